@@ -1,0 +1,58 @@
+/// @file contact.hpp
+/// @brief The contact node: condensation of the massless contact row and the closed-form contact
+/// step of one implicit time step (problem.md §3–§4).
+#pragma once
+
+#include "p1.hpp"
+
+namespace mrm {
+
+/// The algebraic contact row of the redistributed problem (paper eq. (6)) solved for the massless
+/// contact node given u₁: u₀ = max(0, u₁ + h F₀) and λ = min(0, F₀ + u₁/h).
+struct CondensedContact {
+  double u0;
+  double multiplier;
+};
+CondensedContact condense_contact_node(double u1, double h, double load0);
+
+/// The outcome of a contact step: the contact-node value, the multiplier λ ≤ 0 and whether the
+/// constraint is active.
+struct ContactStep {
+  double u0;
+  double multiplier;
+  bool active;
+};
+
+/// Solves A U = b − κ λ e₀ with 0 ≤ u₀ − g ⊥ λ ≤ 0 (g the obstacle position, 0 except for a
+/// restitution e > 0), for a tridiagonal A whose elimination from node n−1 down to node 0 has positive
+/// pivots (A symmetric positive definite, or such a matrix with row 0 rescaled). The factorisation is
+/// done once; each solve is one sweep down and one sweep up, with the contact decided at the last
+/// pivot, which is the Schur complement of A onto the contact node.
+class ContactSolver {
+ public:
+  ContactSolver() = default;
+  /// Factorises A; throws std::invalid_argument if a pivot is not positive.
+  explicit ContactSolver(const Tridiagonal& a);
+
+  /// Solves for u (size n) given b (size n); u may alias b. kappa > 0.
+  ContactStep solve(const double* b, double* u, double kappa, double obstacle = 0.0) const;
+
+  /// The pivot d₀ = 1/(A⁻¹)₀₀, the Schur complement of A onto the contact node.
+  double schur_complement() const { return pivot_[0]; }
+  Index size() const { return pivot_.size(); }
+
+  // The factors, for fused time-stepping kernels that do the sweeps themselves:
+  // sweep down  y_{n−1} = b_{n−1}, y_i = b_i − elimination_[i] y_{i+1};
+  // contact     d₀ u₀ = y₀ − κ λ;
+  // sweep up    u_i = (y_i − lower_[i] u_{i−1}) · inverse_pivot_[i].
+  const Eigen::VectorXd& elimination() const { return elimination_; }
+  const Eigen::VectorXd& inverse_pivot() const { return inverse_pivot_; }
+  const Eigen::VectorXd& lower() const { return lower_; }
+  /// The contact decision on the reduced row d₀ u₀ = y₀ − κ λ.
+  ContactStep resolve_contact(double y0, double kappa, double obstacle) const;
+
+ private:
+  Eigen::VectorXd pivot_, inverse_pivot_, elimination_, lower_;
+};
+
+}  // namespace mrm

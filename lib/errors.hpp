@@ -1,0 +1,52 @@
+/// @file errors.hpp
+/// @brief The error measures of problem.md §5, accumulated while a scheme runs.
+#pragma once
+
+#include <array>
+
+#include "exact_solution.hpp"
+#include "p1.hpp"
+#include "schemes.hpp"
+
+namespace mrm {
+
+/// Relative errors ‖error‖ / ‖exact‖ in the norms of problem.md §5.
+struct ErrorNorms {
+  double u0_L2;      ///< L²(0,T) of the contact-point displacement u(0, ·)
+  double lambda_L2;  ///< L²(0,T) of the contact stress λ
+  double u_LinfL2;   ///< L∞(0,T; L²) of u
+  double u_LinfH1;   ///< L∞(0,T; H¹) of u (the H¹ seminorm: ‖u_x‖_L², a norm on the clamped space)
+  double v_LinfL2;   ///< L∞(0,T; L²) of u_t
+  double u_L2L2;     ///< L²(0,T; L²) of u
+  double u_L2H1;     ///< L²(0,T; H¹) of u
+  double v_L2L2;     ///< L²(0,T; L²) of u_t
+};
+
+/// Accumulates the errors of a run against the exact solution, one sample at a time, in O(N) memory.
+class ErrorAccumulator {
+ public:
+  ErrorAccumulator(const UniformMesh& mesh, const ExactSolution& exact);
+  void add(const Sample& sample);
+  ErrorNorms relative() const;
+  /// The names of the measures in the order of `values(ErrorNorms)`: err_u0_L2, err_lambda_L2, …
+  static const char* const names[8];
+  static std::array<double, 8> values(const ErrorNorms& e);
+
+ private:
+  /// A quantity sampled in time: its maximum and its integral by the trapezoidal rule over the
+  /// instants at which it was sampled; `error` and `exact` are squared norms.
+  struct History {
+    bool started = false;
+    double time = 0, error = 0, exact = 0;
+    double error_max = 0, exact_max = 0, error_integral = 0, exact_integral = 0;
+    void add(double t, double error_squared, double exact_squared);
+  };
+
+  UniformMesh mesh_;
+  ExactSolution exact_;
+  Tridiagonal mass_, stiffness_;
+  Eigen::VectorXd interpolant_, difference_;
+  History u_l2_, u_h1_, v_l2_, u0_, lambda_;
+};
+
+}  // namespace mrm

@@ -1,0 +1,33 @@
+/// @file exact_solution.hpp
+/// @brief The closed-form solution of the benchmark (problem.md §2).
+#pragma once
+
+namespace mrm {
+
+/// The bar (0, L) released at rest from u⁰(x) = a (L − x) against the obstacle at x = 0, f = 0.
+/// Periodic in time with period 3L: free flight, contact, free flight back (problem.md §2).
+///
+/// Derivatives are piecewise constant and jump across characteristics; where a derivative jumps,
+/// the functions here return the mean of the one-sided limits (the symmetric derivative), so that
+/// a point that sits exactly on a characteristic (as grid points do when Δt = h) gets a definite,
+/// convention-free value. The same holds for λ at the instants of impact and release.
+class ExactSolution {
+ public:
+  /// Throws std::invalid_argument unless L > 0 and a are finite (a = 1/2, L = 1 is the paper's case).
+  explicit ExactSolution(double length = 1.0, double amplitude = 0.5);
+
+  double displacement(double x, double t) const;  ///< u(x, t)
+  double strain(double x, double t) const;        ///< u_x(x, t)
+  double velocity(double x, double t) const;      ///< u_t(x, t)
+  double contact_displacement(double t) const;    ///< u(0, t)
+  double contact_multiplier(double t) const;      ///< λ(t) = u_x(0, t) ≤ 0
+  double energy() const;                          ///< E = ½∫(u_t² + u_x²) dx = a² L / 2
+  double period() const { return 3.0 * length_; }
+  double length() const { return length_; }
+  double amplitude() const { return amplitude_; }
+
+ private:
+  double length_, amplitude_;
+};
+
+}  // namespace mrm

@@ -1,0 +1,50 @@
+/// @file mass_redistribution.hpp
+/// @brief The weighted mass-redistribution family of the paper (§2) and its instances Mod 1/2/3.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "p1.hpp"
+
+namespace mrm {
+
+/// A choice of the weights w_{h,ij} of the paper's weighted modified mass
+/// M^mod_ij = ∫ φ_i φ_j w_{h,ij} dx = w_{h,ij} M_ij (weights constant per entry), on all nodes 0..N.
+/// A redistribution removes the inertia of the contact node when w_{h,0j} = w_{h,j0} = 0 for all j.
+struct MassRedistribution {
+  std::string name;         ///< short name used on command lines and in data files ("mod3")
+  std::string description;  ///< one line for help texts and reports
+  /// w(i, j, mesh) for |i − j| ≤ 1, 0 ≤ i, j ≤ N; must be symmetric in (i, j).
+  std::function<double(Index i, Index j, const UniformMesh& mesh)> weight;
+};
+
+/// The consistent (unmodified) P1 mass: w ≡ 1, the contact node keeps its inertia.
+MassRedistribution consistent_mass();
+/// Mod 1: the contact node's mass is dropped (w_{0j} = 0, w = 1 elsewhere).
+MassRedistribution mod1();
+/// Mod 2: the contact node's mass is spread uniformly: w = L/(L − 2h/3) on the other nodes.
+MassRedistribution mod2();
+/// Mod 3: the contact node's mass is moved to node 1: w_11 = 2 (M̄_11 = 4h/3).
+MassRedistribution mod3();
+/// The lost mass 2h/3 spread in equal parts on the diagonal of nodes 1..k (k = 1 is Mod 3).
+MassRedistribution spread_over_first_nodes(Index k);
+
+/// The names accepted by mass_redistribution_by_name: consistent, mod1, mod2, mod3.
+std::vector<std::string> mass_redistribution_names();
+/// The named instance; throws std::invalid_argument listing the allowed names for an unknown name.
+MassRedistribution mass_redistribution_by_name(const std::string& name);
+
+/// M^mod on all nodes 0..N (clamped node included; used for the total mass).
+Tridiagonal modified_mass_all_nodes(const UniformMesh& mesh, const MassRedistribution& redistribution);
+/// M^mod on the unknowns 0..N-1. Throws std::invalid_argument unless the weights are symmetric and
+/// finite, and M^mod is positive definite on the nodes that keep inertia (all of them, or 1..N-1
+/// when row and column 0 vanish).
+Tridiagonal modified_mass(const UniformMesh& mesh, const MassRedistribution& redistribution);
+/// The total mass 1ᵀ M^mod 1 over all nodes 0..N (L for the consistent mass).
+double total_mass(const UniformMesh& mesh, const MassRedistribution& redistribution);
+/// True when row and column 0 of the mass matrix vanish: the contact node has no inertia.
+bool contact_node_is_massless(const Tridiagonal& mass);
+
+}  // namespace mrm

@@ -1,0 +1,190 @@
+// P1 Lagrange finite elements on a uniform mesh of the bar (0, L): problem.md §3, paper eq. (5).
+//
+// The semi-discrete problem (5) of the paper is M U'' + S U = −λ e₀ + F with the P1 hat functions
+// φ_i, i = 0..N, of the uniform mesh x_i = i h. On one element [x_e, x_e + h] the two hat functions
+// are 1 − ξ and ξ (ξ = (x − x_e)/h), so the element matrices are
+//
+//     ∫ φ_a φ_b dx   = h/6 [2 1; 1 2],        ∫ φ_a' φ_b' dx = 1/h [1 −1; −1 1].
+//
+// Summing the two elements that meet at an interior node gives M_ii = 2h/3, M_{i,i±1} = h/6,
+// S_ii = 2/h, S_{i,i±1} = −1/h; the end nodes 0 and N belong to one element only: M_00 = h/3,
+// S_00 = 1/h. The clamped node N is then eliminated (u_N = 0): the unknowns are nodes 0..N-1.
+#include "p1.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Dense>
+#include <doctest/doctest.h>
+
+namespace mrm {
+
+UniformMesh::UniformMesh(double length_, Index elements_) : length(length_), elements(elements_) {
+  if (!(std::isfinite(length_) && length_ > 0))
+    throw std::invalid_argument("mesh: the length L must be a positive finite number (got " +
+                                std::to_string(length_) + ")");
+  if (elements_ < 2)
+    throw std::invalid_argument("mesh: the number of elements N must be an integer >= 2 (got " +
+                                std::to_string(elements_) + ")");
+}
+
+double Tridiagonal::operator()(Index i, Index j) const {
+  if (i == j) return diag[i];
+  if (j == i - 1) return lower[i];
+  if (j == i + 1) return upper[i];
+  return 0.0;
+}
+
+Eigen::VectorXd Tridiagonal::operator*(const Eigen::VectorXd& x) const {
+  const Index n = size();
+  Eigen::VectorXd y(n);
+  for (Index i = 0; i < n; ++i) {
+    double s = diag[i] * x[i];
+    if (i > 0) s += lower[i] * x[i - 1];
+    if (i + 1 < n) s += upper[i] * x[i + 1];
+    y[i] = s;
+  }
+  return y;
+}
+
+double Tridiagonal::bilinear(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const {
+  return x.dot((*this) * y);
+}
+
+double Tridiagonal::sum() const { return lower.sum() + diag.sum() + upper.sum(); }
+
+Tridiagonal Tridiagonal::leading_block(Index n) const {
+  Tridiagonal block(n);
+  block.lower = lower.head(n);
+  block.diag = diag.head(n);
+  block.upper = upper.head(n);
+  block.upper[n - 1] = 0.0;
+  return block;
+}
+
+Tridiagonal Tridiagonal::scaled(double c) const {
+  Tridiagonal r(size());
+  r.lower = c * lower;
+  r.diag = c * diag;
+  r.upper = c * upper;
+  return r;
+}
+
+Tridiagonal Tridiagonal::plus(double c, const Tridiagonal& b) const {
+  Tridiagonal r(size());
+  r.lower = lower + c * b.lower;
+  r.diag = diag + c * b.diag;
+  r.upper = upper + c * b.upper;
+  return r;
+}
+
+Eigen::SparseMatrix<double> Tridiagonal::to_sparse() const {
+  const Index n = size();
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(static_cast<std::size_t>(3 * n));
+  for (Index i = 0; i < n; ++i) {
+    if (i > 0) triplets.emplace_back(i, i - 1, lower[i]);
+    triplets.emplace_back(i, i, diag[i]);
+    if (i + 1 < n) triplets.emplace_back(i, i + 1, upper[i]);
+  }
+  Eigen::SparseMatrix<double> a(n, n);
+  a.setFromTriplets(triplets.begin(), triplets.end());
+  return a;
+}
+
+// Assembly element by element: the element matrix [a b; b a] of element e adds to the block of nodes
+// (e, e+1). Both P1 matrices have this form (a = h/3, b = h/6 for M; a = 1/h, b = −1/h for S).
+static Tridiagonal assemble_all_nodes(const UniformMesh& mesh, double a, double b) {
+  Tridiagonal m(mesh.elements + 1);
+  for (Index e = 0; e < mesh.elements; ++e) {
+    m.diag[e] += a;
+    m.diag[e + 1] += a;
+    m.upper[e] += b;
+    m.lower[e + 1] += b;
+  }
+  return m;
+}
+
+Tridiagonal p1_mass_all_nodes(const UniformMesh& mesh) {
+  return assemble_all_nodes(mesh, mesh.h() / 3.0, mesh.h() / 6.0);
+}
+
+Tridiagonal p1_stiffness_all_nodes(const UniformMesh& mesh) {
+  return assemble_all_nodes(mesh, 1.0 / mesh.h(), -1.0 / mesh.h());
+}
+
+Tridiagonal p1_mass(const UniformMesh& mesh) { return p1_mass_all_nodes(mesh).leading_block(mesh.unknowns()); }
+
+Tridiagonal p1_stiffness(const UniformMesh& mesh) {
+  return p1_stiffness_all_nodes(mesh).leading_block(mesh.unknowns());
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Checks of the P1 matrices. The mass matrix integrates products of P1 functions exactly, so
+// 1ᵀM1 = ∫ 1 dx = L and xᵀM1 = ∫ x dx = L²/2; the stiffness matrix annihilates constants on the full
+// node set (S1 = 0) and, with node N eliminated, is positive definite (the clamp removes the kernel).
+
+TEST_CASE("the P1 mass matrix has the entries h/3, 2h/3, h/6 and sums to L") {
+  for (Index n : {2, 3, 10, 257}) {
+    const UniformMesh mesh(2.5, n);
+    const double h = mesh.h();
+    CAPTURE(n);
+    const Tridiagonal m = p1_mass_all_nodes(mesh);
+    CHECK(m.diag[0] == doctest::Approx(h / 3).epsilon(1e-14));
+    CHECK(m.diag[1] == doctest::Approx(2 * h / 3).epsilon(1e-14));
+    CHECK(m.upper[0] == doctest::Approx(h / 6).epsilon(1e-14));
+    CHECK(m.diag[n] == doctest::Approx(h / 3).epsilon(1e-14));
+    CHECK(std::abs(m.sum() - mesh.length) < 1e-13);
+    Eigen::VectorXd x(n + 1), one = Eigen::VectorXd::Ones(n + 1);
+    for (Index i = 0; i <= n; ++i) x[i] = mesh.x(i);
+    CHECK(std::abs(m.bilinear(x, one) - mesh.length * mesh.length / 2) < 1e-13);
+    CHECK(std::abs(m.bilinear(x, x) - std::pow(mesh.length, 3) / 3) < 1e-12);
+  }
+}
+
+TEST_CASE("the P1 stiffness matrix annihilates constants and integrates u' v' exactly") {
+  const UniformMesh mesh(1.5, 12);
+  const Tridiagonal s = p1_stiffness_all_nodes(mesh);
+  const Eigen::VectorXd one = Eigen::VectorXd::Ones(13);
+  CHECK((s * one).cwiseAbs().maxCoeff() < 1e-12);
+  Eigen::VectorXd x(13);
+  for (Index i = 0; i <= 12; ++i) x[i] = mesh.x(i);
+  CHECK(std::abs(s.bilinear(x, x) - mesh.length) < 1e-12);  // ∫ (x')² dx = L
+  CHECK(s.diag[0] == doctest::Approx(1 / mesh.h()).epsilon(1e-14));
+  CHECK(s.diag[5] == doctest::Approx(2 / mesh.h()).epsilon(1e-14));
+}
+
+TEST_CASE("the clamped P1 matrices are symmetric and positive definite") {
+  const UniformMesh mesh(1.0, 40);
+  for (const Tridiagonal& a : {p1_mass(mesh), p1_stiffness(mesh)}) {
+    const Eigen::MatrixXd dense(a.to_sparse());
+    CHECK(dense.rows() == 40);
+    CHECK((dense - dense.transpose()).cwiseAbs().maxCoeff() == 0.0);
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(dense);
+    REQUIRE(ldlt.info() == Eigen::Success);
+    CHECK(ldlt.vectorD().minCoeff() > 0.0);
+  }
+  // The unclamped stiffness is singular: its smallest eigenvalue is zero (constants).
+  const Eigen::MatrixXd s_all(p1_stiffness_all_nodes(mesh).to_sparse());
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(s_all);
+  CHECK(std::abs(eig.eigenvalues()[0]) < 1e-10);
+}
+
+TEST_CASE("the P1 load vector integrates f φ_i exactly for a quadratic f") {
+  const UniformMesh mesh(2.0, 8);
+  const Eigen::VectorXd f = p1_load(mesh, [](double x) { return 1.0 + x * x; });
+  // Σ_i F_i over all nodes equals ∫ f dx; node N is dropped, so add its share back by hand:
+  // F_N = ∫_{L-h}^{L} f φ_N dx.
+  const double h = mesh.h(), L = mesh.length, a = L - h;
+  auto antiderivative = [&](double x) {  // ∫ (1 + x²) (x − a)/h dx
+    return ((x * x * x * x) / 4 - a * x * x * x / 3 + x * x / 2 - a * x) / h;
+  };
+  const double f_clamped = antiderivative(L) - antiderivative(a);
+  CHECK(std::abs(f.sum() + f_clamped - (L + L * L * L / 3)) < 1e-12);
+  CHECK(std::abs(f[0] - (h / 2 + h * h * h / 12)) < 1e-13);  // ∫₀ʰ (1 + x²)(1 − x/h) dx
+}
+
+}  // namespace mrm

@@ -1,0 +1,122 @@
+/// @file schemes.hpp
+/// @brief The time schemes of the paper (Crank–Nicolson, backward Euler, Paoli–Schatzman) for the
+/// P1 bar with a redistributed or consistent mass (problem.md §4).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "contact.hpp"
+#include "mass_redistribution.hpp"
+#include "p1.hpp"
+
+namespace mrm {
+
+enum class Scheme { crank_nicolson, backward_euler, paoli_schatzman };
+
+/// How the Paoli–Schatzman scheme treats the contact row when the contact node is massless:
+/// `literal` applies the three-level formula to every row, the contact row included;
+/// `algebraic` imposes the contact row S₀·U = F₀ − λ at every new level, as the other schemes do.
+enum class ContactRow { algebraic, literal };
+
+/// The initial value of a massless contact node: `consistent` solves its algebraic row,
+/// u₀(0) = max(0, u₁(0) + hF₀); `interpolant` keeps the nodal value of u⁰.
+enum class InitialContactNode { consistent, interpolant };
+
+std::string to_string(Scheme);
+std::string to_string(ContactRow);
+std::string to_string(InitialContactNode);
+/// Parsers of the names above; throw std::invalid_argument listing the allowed names.
+Scheme scheme_by_name(const std::string&);           ///< cn, be, ps
+ContactRow contact_row_by_name(const std::string&);  ///< algebraic, literal
+InitialContactNode initial_contact_node_by_name(const std::string&);  ///< consistent, interpolant
+
+struct SchemeParameters {
+  Scheme scheme = Scheme::crank_nicolson;
+  double beta = 0.25;         ///< Paoli–Schatzman's β ≥ 0
+  double restitution = 0.0;   ///< Paoli–Schatzman's e ∈ [0, 1]
+  ContactRow contact_row = ContactRow::algebraic;
+};
+
+/// The continuous problem (problem.md §1): bar (0, L), data u⁰, v⁰, load f (may be empty: f = 0).
+struct Problem {
+  double length = 1.0;
+  std::function<double(double x)> initial_displacement;
+  std::function<double(double x)> initial_velocity;
+  std::function<double(double x, double t)> load;
+};
+/// The benchmark of problem.md §2: u⁰(x) = a (L − x), v⁰ = 0, f = 0.
+Problem benchmark_problem(double length = 1.0, double amplitude = 0.5);
+
+/// What a scheme knows at one time level, each quantity with the instant it approximates.
+struct Sample {
+  Index level;                             ///< n
+  double time;                             ///< t_n, the instant of `displacement`
+  const Eigen::VectorXd* displacement;     ///< Uⁿ on nodes 0..N−1
+  double velocity_time;                    ///< t_n (two-level schemes) or t_{n−½} (Paoli–Schatzman)
+  const Eigen::VectorXd* velocity;         ///< Vⁿ, or (Uⁿ − Uⁿ⁻¹)/Δt for Paoli–Schatzman
+  bool has_multiplier;                     ///< false where the level has no multiplier yet
+  double multiplier_time;                  ///< the instant of `multiplier`
+  double multiplier;                       ///< λ ≤ 0
+  double energy_time;                      ///< the instant of `energy`
+  double energy;                           ///< the scheme's discrete energy
+};
+
+/// One run of one scheme on one mesh with one mass: the state, the constant step matrix factorised
+/// once, and the fused step. Memory is O(N): no history is kept.
+class BarSimulation {
+ public:
+  /// Throws std::invalid_argument for a non-positive or non-finite Δt, β < 0, e ∉ [0, 1], an
+  /// algebraic contact row with a contact node that has inertia, or a literal Paoli–Schatzman contact
+  /// row with β = 0 and a massless contact node (singular).
+  BarSimulation(const Problem& problem, const UniformMesh& mesh, const MassRedistribution& mass,
+                const SchemeParameters& parameters, double dt,
+                InitialContactNode initial = InitialContactNode::consistent);
+
+  /// Advances one time level.
+  void step();
+  /// The current level's sample (valid until the next step).
+  Sample sample() const;
+
+  Index level() const { return level_; }
+  double time() const { return static_cast<double>(level_) * dt_; }
+  double dt() const { return dt_; }
+  const UniformMesh& mesh() const { return mesh_; }
+  const Tridiagonal& mass() const { return mass_; }
+  const Tridiagonal& stiffness() const { return stiffness_; }
+  bool massless_contact_node() const { return massless_; }
+  const SchemeParameters& parameters() const { return parameters_; }
+
+ private:
+  void load_at(double t, Eigen::VectorXd& f) const;
+  double energy_two_level() const;
+
+  Problem problem_;
+  UniformMesh mesh_;
+  SchemeParameters parameters_;
+  double dt_;
+  bool massless_, algebraic_row_, three_level_;
+  Tridiagonal mass_, stiffness_;
+  // One step is A U' = B₁ U + B₂ W + G − κ λ e₀ with W = V (two-level) or W = Uⁿ⁻¹ (three-level).
+  Tridiagonal b1_, b2_;
+  ContactSolver solver_;
+  double kappa_, load_now_, load_next_;   // G = load_now_ Fⁿ + load_next_ Fⁿ⁺¹ (+ row-0 terms)
+  double lambda_in_rhs_;                  // Crank–Nicolson with inertia at node 0: −θ λⁿ in row 0
+  double w_new_[3], x_new_[3], sigma_[3];  // W' = ΣcU', X = ΣcU', energy coefficients (see .cpp)
+
+  Index level_ = 0;
+  Eigen::VectorXd u_, u_new_, w_, x_, f_now_, f_next_;
+  double lambda_ = 0.0, lambda_time_ = 0.0, energy_ = 0.0, energy_time_ = 0.0;
+  bool has_lambda_ = true;
+};
+
+/// The number of steps of size dt that reach the final time T (the last level is the first t_n ≥ T
+/// up to round-off): ceil(T/dt − 1e-9).
+Index steps_to_reach(double final_time, double dt);
+
+/// Runs from the current level for `steps` steps, calling `observe` on the current sample first and
+/// after every step.
+void run(BarSimulation& simulation, Index steps, const std::function<void(const Sample&)>& observe);
+
+}  // namespace mrm
