@@ -1,0 +1,92 @@
+# Top-level driver: Debian packages, build, tests and the generated results. `make help` lists the
+# targets. The C++ build itself is CMake's (CMakeLists.txt); this file only calls it.
+#
+#   make                  build, then regenerate the results in $(OUT)
+#   make test             build, then run the test suite
+#   make test WERROR=1    ... with compiler warnings as errors
+#   make test SANITIZE=1  ... under AddressSanitizer + UndefinedBehaviorSanitizer (own build dir)
+.DELETE_ON_ERROR:
+SHELL := /bin/bash
+.SHELLFLAGS := -eu -o pipefail -c
+.DEFAULT_GOAL := all
+
+# ---- Configuration ------------------------------------------------------------------------------
+
+ifeq ($(SANITIZE),1)
+BUILD ?= build-sanitize
+BUILD_TYPE := RelWithDebInfo
+MRM_SANITIZE := ON
+else
+BUILD ?= build
+BUILD_TYPE := Release
+MRM_SANITIZE := OFF
+endif
+# Passed explicitly (ON or OFF) so that a WERROR=1 run does not stick in the CMake cache.
+MRM_WERROR := $(if $(filter 1,$(WERROR)),ON,OFF)
+CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DMRM_WERROR=$(MRM_WERROR) -DMRM_SANITIZE=$(MRM_SANITIZE)
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+
+# Generated results: data, figures, the report and the API documentation.
+OUT ?= output
+DATA := $(OUT)/data
+FIGURES := $(OUT)/figures
+REPORT := $(OUT)/report.pdf
+DOC := $(OUT)/doc
+
+# Hook: extra prerequisites of `make test` (a later issue adds check-claims here).
+TEST_EXTRA :=
+
+.PHONY: all build clean deps help test
+
+# ---- Rules --------------------------------------------------------------------------------------
+
+# Everything: the build and the generated results.
+all: build $(DATA)/benchmark.dat $(DATA)/benchmark.txt
+
+# Check the Debian packages, installing the missing ones when allowed (quiet when all present).
+deps:
+	tools/deps.sh
+
+# Configure (always: it is cheap and applies WERROR/SANITIZE) and build every program into
+# $(BUILD)/bin. MAKEFLAGS is dropped so that our command line does not leak into CMake's makefiles.
+build: deps
+	cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
+	env -u MAKEFLAGS -u MFLAGS cmake --build $(BUILD) -j$(JOBS)
+
+# The programs come from `build`; results depending on one are remade only if it was relinked.
+$(BUILD)/bin/%: build ;
+
+# Build, then run the doctests (one ctest entry per test case); zero tests found is a failure.
+test: build $(TEST_EXTRA)
+	ctest --test-dir $(BUILD) --output-on-failure -j2 --no-tests=error
+
+# The benchmark run: its data file and its stdout summary (written whole, via a temporary file).
+$(DATA)/benchmark.dat $(DATA)/benchmark.txt &: $(BUILD)/bin/bar1d | $(DATA)
+	$< --scheme cn --mass mod3 --elements 100 --courant 0.5 --final-time 6 \
+	  --output $(DATA)/benchmark.dat > $(DATA)/benchmark.txt.tmp \
+	  || { rm -f $(DATA)/benchmark.txt.tmp; exit 1; }
+	mv $(DATA)/benchmark.txt.tmp $(DATA)/benchmark.txt
+
+# Output directories.
+$(DATA) $(FIGURES) $(DOC):
+	mkdir -p $@
+
+# Remove every build directory and every generated result.
+clean:
+	rm -rf -- $(sort $(BUILD) build build-sanitize $(OUT))
+
+# List the targets and options.
+help:
+	@echo 'Targets:'
+	@echo '  all      (default) build, then regenerate the results in $(OUT)/'
+	@echo '  build    configure and build the library, tests and programs into $(BUILD)/bin/'
+	@echo '  test     build, then run the test suite with ctest'
+	@echo '  deps     check the Debian packages, installing the missing ones if root (tools/deps.sh)'
+	@echo '  clean    remove build/, build-sanitize/ and $(OUT)/'
+	@echo '  help     this list'
+	@echo 'Options (on the command line):'
+	@echo '  WERROR=1    compiler warnings are errors'
+	@echo '  SANITIZE=1  ASan + UBSan build (RelWithDebInfo) in build-sanitize/'
+	@echo '  BUILD=dir   build directory (default: build, or build-sanitize with SANITIZE=1)'
+	@echo '  OUT=dir     output directory (default: output)'
+	@echo '  JOBS=n      parallel compile jobs (default: nproc)'
