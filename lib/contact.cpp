@@ -116,7 +116,7 @@ ContactStep ContactSolver::solve(const double* b, double* u, double kappa, doubl
 namespace {
 
 // A U + κ λ e₀ = b with, if active, the constraint row u₀ = g; solved by Eigen's SparseLU.
-Eigen::VectorXd saddle_point_solve(const Tridiagonal& a, const Eigen::VectorXd& b, double kappa, double g,
+[[maybe_unused]] Eigen::VectorXd saddle_point_solve(const Tridiagonal& a, const Eigen::VectorXd& b, double kappa, double g,
                                    bool active) {
   const Index n = a.size();
   Eigen::SparseMatrix<double> k(n + 1, n + 1);
@@ -135,7 +135,7 @@ Eigen::VectorXd saddle_point_solve(const Tridiagonal& a, const Eigen::VectorXd& 
   return lu.solve(rhs);
 }
 
-Tridiagonal step_matrix(const UniformMesh& mesh, const MassRedistribution& r, double theta, bool contact_row) {
+[[maybe_unused]] Tridiagonal step_matrix(const UniformMesh& mesh, const MassRedistribution& r, double theta, bool contact_row) {
   const Tridiagonal s = p1_stiffness(mesh);
   Tridiagonal a = modified_mass(mesh, r).plus(theta, s);
   if (contact_row) {  // row 0 is the algebraic contact row S_00 u₀ + S_01 u₁ = F₀ − λ

@@ -51,9 +51,9 @@
 #include "schemes.hpp"
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
-#include <Eigen/SparseCholesky>
 #include <doctest/doctest.h>
 
 #include "exact_solution.hpp"
@@ -212,29 +212,18 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   } else {
     lambda_ = 0.0;  // an inertial contact node starts without contact force
   }
-  has_lambda_ = !(three_level_ && !algebraic_row_);  // the literal scheme's λ⁰ comes with its first step
+  has_lambda_ = true;
   energy_ = energy_two_level();
 
-  if (!three_level_) {
-    w_ = x_;  // W = V⁰
-  } else {
-    // A second-order start of the three-level scheme: Uⁿ⁻¹ = U⁰ − ΔtV⁰ + ½Δt² a⁰ with
-    // M a⁰ = F⁰ − SU⁰ − λ⁰e₀ on the nodes with inertia; a massless node's U⁻¹ value comes from its row.
-    const Index first = massless_ ? 1 : 0;
-    const Eigen::SparseMatrix<double> m_inertial = mass_.to_sparse().bottomRightCorner(n - first, n - first);
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(m_inertial);
-    if (ldlt.info() != Eigen::Success) throw std::runtime_error("the start of Paoli–Schatzman: mass factorisation failed");
-    Eigen::VectorXd force = f_now_ - stiffness_ * u_;
-    if (!massless_) force[0] -= lambda_;
-    const Eigen::VectorXd acceleration = ldlt.solve(force.tail(n - first));
-    w_ = u_ - dt * x_;
-    w_.tail(n - first) += 0.5 * dt2 * acceleration;
-    if (massless_) {
-      Eigen::VectorXd f_before(n);
-      f_before.setZero();
-      load_at(-dt, f_before);
-      w_[0] = condense_contact_node(w_[1], mesh.h(), f_before[0]).u0;
-    }
+  // W = V⁰ for the two-level schemes. The three-level scheme is started by one Crank–Nicolson step
+  // (with the same mass and contact row): then W = U⁰ and Paoli–Schatzman with β = ¼ and the algebraic
+  // row reproduces Crank–Nicolson exactly when f = 0 (the elimination of V from Crank–Nicolson gives
+  // the three-level formula with β = ¼ on every free row; checked below).
+  w_ = x_;
+  if (three_level_) {
+    SchemeParameters start = parameters;
+    start.scheme = Scheme::crank_nicolson;
+    start_ = std::make_unique<BarSimulation>(problem, mesh, mass, start, dt, initial);
   }
 }
 
@@ -251,6 +240,21 @@ double BarSimulation::energy_two_level() const {
 // eliminates; the contact is decided at node 0; the sweep up gives Uⁿ⁺¹, the new W, the velocity X
 // and the energy, all in the same pass. No allocation, no refactorisation.
 void BarSimulation::step() {
+  if (start_) {
+    start_->step();
+    w_.swap(u_);  // W = U⁰
+    u_ = start_->u_;
+    x_ = start_->x_;
+    f_now_ = start_->f_now_;
+    lambda_ = start_->lambda_;
+    lambda_time_ = start_->lambda_time_;
+    has_lambda_ = algebraic_row_;  // the literal form's λ¹ comes with its first own step
+    energy_ = start_->energy_;
+    energy_time_ = start_->energy_time_;
+    start_.reset();
+    ++level_;
+    return;
+  }
   const Index n = mesh_.unknowns();
   const double t_next = static_cast<double>(level_ + 1) * dt_;
   if (problem_.load) load_at(t_next, f_next_);
@@ -330,7 +334,7 @@ void BarSimulation::step() {
 
 Sample BarSimulation::sample() const {
   const double t = time();
-  const double velocity_time = (three_level_ && level_ > 0) ? t - 0.5 * dt_ : t;
+  const double velocity_time = (three_level_ && level_ > 1) ? t - 0.5 * dt_ : t;
   return {level_, t, &u_, velocity_time, &x_, has_lambda_, level_ == 0 ? 0.0 : lambda_time_, lambda_,
           level_ == 0 ? 0.0 : energy_time_, energy_};
 }
@@ -341,6 +345,117 @@ void run(BarSimulation& simulation, Index steps, const std::function<void(const 
     simulation.step();
     if (observe) observe(simulation.sample());
   }
+}
+
+}  // namespace mrm
+
+// ---------------------------------------------------------------------------------------------------
+// Checks of the schemes' energy behaviour (problem.md §4) and of the Paoli–Schatzman identity.
+
+namespace mrm {
+namespace {
+
+[[maybe_unused]] std::vector<double> energy_history(const MassRedistribution& mass, const SchemeParameters& p, Index elements,
+                                   double courant, double final_time) {
+  const UniformMesh mesh(1.0, elements);
+  const double dt = courant * mesh.h();
+  BarSimulation simulation(benchmark_problem(), mesh, mass, p, dt);
+  std::vector<double> energy;
+  run(simulation, steps_to_reach(final_time, dt), [&](const Sample& s) { energy.push_back(s.energy); });
+  return energy;
+}
+
+[[maybe_unused]] SchemeParameters with(Scheme scheme, ContactRow row = ContactRow::algebraic) {
+  SchemeParameters p;
+  p.scheme = scheme;
+  p.contact_row = row;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("Crank–Nicolson conserves the discrete energy to round-off while the contact status is unchanged") {
+  // The benchmark's first free flight lasts until t = 1: no status change before t = 0.9.
+  for (const MassRedistribution& mass : {mod1(), mod2(), mod3(), consistent_mass()}) {
+    for (double courant : {0.5, 1.0, 3.0}) {
+      const std::vector<double> e = energy_history(mass, with(Scheme::crank_nicolson), 40, courant, 0.9 - 0.075);
+      CAPTURE(mass.name);
+      CAPTURE(courant);
+      // Round-off grows at most linearly with the number of steps k: |E_k − E_0| ≤ 1e-14 + k · 1e-15 (E ≈ 1/8).
+      REQUIRE(e.size() > 2);
+      for (std::size_t k = 0; k < e.size(); ++k) CHECK(std::abs(e[k] - e.front()) <= 1e-14 + k * 1e-15);
+    }
+  }
+}
+
+TEST_CASE("Paoli–Schatzman with beta = 1/4 conserves its energy while the contact status is unchanged") {
+  for (ContactRow row : {ContactRow::algebraic, ContactRow::literal}) {
+    // From level 2 on: levels 0 and 1 carry the two-level energy of the Crank–Nicolson start.
+    const std::vector<double> e = energy_history(mod3(), with(Scheme::paoli_schatzman, row), 40, 0.5, 0.85);
+    CAPTURE(to_string(row));
+    REQUIRE(e.size() > 10);
+    for (std::size_t k = 2; k < e.size(); ++k) CHECK(std::abs(e[k] - e[2]) <= 1e-14 + k * 1e-15);
+  }
+}
+
+TEST_CASE("backward Euler never increases the discrete energy") {
+  for (const MassRedistribution& mass : {mod1(), mod2(), mod3(), consistent_mass()}) {
+    const std::vector<double> e = energy_history(mass, with(Scheme::backward_euler), 30, 0.5, 9.0);
+    CAPTURE(mass.name);
+    int increases = 0;
+    for (std::size_t k = 1; k < e.size(); ++k) increases += e[k] > e[k - 1] * (1 + 1e-14);
+    CHECK(increases == 0);
+    CHECK(e.back() < 0.9 * e.front());  // and it does dissipate
+  }
+}
+
+TEST_CASE("the massless contact node starts on its algebraic row: E_h(0) = (1 - h)/8") {
+  const UniformMesh mesh(1.0, 20);
+  const BarSimulation consistent(benchmark_problem(), mesh, mod3(), with(Scheme::crank_nicolson), 0.025);
+  const BarSimulation interpolant(benchmark_problem(), mesh, mod3(), with(Scheme::crank_nicolson), 0.025,
+                                  InitialContactNode::interpolant);
+  CHECK(std::abs(consistent.sample().energy - (1 - mesh.h()) / 8) < 1e-15);
+  CHECK(std::abs(interpolant.sample().energy - 0.125) < 1e-15);
+  CHECK(std::abs((*consistent.sample().displacement)[0] - (1 - mesh.h()) / 2) < 1e-15);
+}
+
+TEST_CASE("Paoli–Schatzman (1/4, 0) with the algebraic contact row coincides with Crank–Nicolson") {
+  const UniformMesh mesh(1.0, 32);
+  const double dt = 0.5 * mesh.h();
+  for (const MassRedistribution& mass : {mod1(), mod2(), mod3()}) {
+    BarSimulation cn(benchmark_problem(), mesh, mass, with(Scheme::crank_nicolson), dt);
+    BarSimulation ps(benchmark_problem(), mesh, mass, with(Scheme::paoli_schatzman), dt);
+    double difference = 0;
+    for (Index k = 0; k < steps_to_reach(6.0, dt); ++k) {
+      cn.step();
+      ps.step();
+      difference = std::max(difference, (*cn.sample().displacement - *ps.sample().displacement).cwiseAbs().maxCoeff());
+      if (k > 0) CHECK(cn.sample().multiplier == doctest::Approx(ps.sample().multiplier).epsilon(1e-9));
+    }
+    CAPTURE(mass.name);
+    CHECK(difference < 1e-12);
+  }
+}
+
+TEST_CASE("bad scheme parameters are rejected with a message naming them") {
+  const UniformMesh mesh(1.0, 10);
+  SchemeParameters p = with(Scheme::paoli_schatzman);
+  p.beta = -0.1;
+  CHECK_THROWS_WITH_AS(BarSimulation(benchmark_problem(), mesh, mod3(), p, 0.1), doctest::Contains("beta"),
+                       std::invalid_argument);
+  p.beta = 0.25;
+  p.restitution = 1.5;
+  CHECK_THROWS_WITH_AS(BarSimulation(benchmark_problem(), mesh, mod3(), p, 0.1), doctest::Contains("restitution"),
+                       std::invalid_argument);
+  p.restitution = 0;
+  CHECK_THROWS_WITH_AS(BarSimulation(benchmark_problem(), mesh, mod3(), p, 0.0), doctest::Contains("dt"),
+                       std::invalid_argument);
+  CHECK_THROWS_AS(BarSimulation(benchmark_problem(), mesh, consistent_mass(), p, 0.1), std::invalid_argument);
+  p.contact_row = ContactRow::literal;
+  p.beta = 0;
+  CHECK_THROWS_AS(BarSimulation(benchmark_problem(), mesh, mod3(), p, 0.1), std::invalid_argument);
+  CHECK_NOTHROW(BarSimulation(benchmark_problem(), mesh, consistent_mass(), p, 0.01));  // explicit central differences
+  CHECK_THROWS_WITH_AS(scheme_by_name("rk4"), doctest::Contains("allowed: cn, be, ps"), std::invalid_argument);
 }
 
 }  // namespace mrm

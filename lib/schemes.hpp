@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,8 +55,8 @@ struct Sample {
   Index level;                             ///< n
   double time;                             ///< t_n, the instant of `displacement`
   const Eigen::VectorXd* displacement;     ///< Uⁿ on nodes 0..N−1
-  double velocity_time;                    ///< t_n (two-level schemes) or t_{n−½} (Paoli–Schatzman)
-  const Eigen::VectorXd* velocity;         ///< Vⁿ, or (Uⁿ − Uⁿ⁻¹)/Δt for Paoli–Schatzman
+  double velocity_time;                    ///< t_n (two-level schemes, n ≤ 1) or t_{n−½} (Paoli–Schatzman)
+  const Eigen::VectorXd* velocity;         ///< Vⁿ, or (Uⁿ − Uⁿ⁻¹)/Δt for Paoli–Schatzman (n ≥ 2)
   bool has_multiplier;                     ///< false where the level has no multiplier yet
   double multiplier_time;                  ///< the instant of `multiplier`
   double multiplier;                       ///< λ ≤ 0
@@ -109,6 +110,7 @@ class BarSimulation {
   Eigen::VectorXd u_, u_new_, w_, x_, f_now_, f_next_;
   double lambda_ = 0.0, lambda_time_ = 0.0, energy_ = 0.0, energy_time_ = 0.0;
   bool has_lambda_ = true;
+  std::unique_ptr<BarSimulation> start_;  // the Crank–Nicolson first step of Paoli–Schatzman
 };
 
 /// The number of steps of size dt that reach the final time T (the last level is the first t_n ≥ T
