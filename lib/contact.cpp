@@ -73,7 +73,8 @@ TEST_CASE("the condensed contact node satisfies its row and the complementarity"
 // and the free value u₀ = (hF₀ + z̄₁)/(1 + w₁), w = θĀ⁻¹C, is z₀ (a Schur complement identity); the
 // doctests below check both forms and a direct solve against each other.
 ContactSolver::ContactSolver(const Tridiagonal& a)
-    : pivot_(a.size()), inverse_pivot_(a.size()), elimination_(Eigen::VectorXd::Zero(a.size())), lower_(a.lower) {
+    : pivot_(a.size()), inverse_pivot_(a.size()), elimination_(Eigen::VectorXd::Zero(a.size())), lower_(a.lower),
+      upward_(a.size()) {
   const Index n = a.size();
   if (n < 1) throw std::invalid_argument("contact solver: empty matrix");
   pivot_[n - 1] = a.diag[n - 1];
@@ -86,6 +87,7 @@ ContactSolver::ContactSolver(const Tridiagonal& a)
       throw std::invalid_argument("contact solver: the step matrix is not positive definite (pivot " +
                                   std::to_string(i) + " is " + std::to_string(pivot_[i]) + ")");
     inverse_pivot_[i] = 1.0 / pivot_[i];
+    upward_[i] = lower_[i] * inverse_pivot_[i];
   }
 }
 
@@ -105,7 +107,7 @@ ContactStep ContactSolver::solve(const double* b, double* u, double kappa, doubl
   }
   const ContactStep step = resolve_contact(u[0], kappa, obstacle);
   u[0] = step.u0;
-  for (Index i = 1; i < n; ++i) u[i] = (u[i] - lower_[i] * u[i - 1]) * inverse_pivot_[i];
+  for (Index i = 1; i < n; ++i) u[i] = inverse_pivot_[i] * u[i] - upward_[i] * u[i - 1];
   return step;
 }
 

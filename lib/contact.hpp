@@ -44,15 +44,19 @@ class ContactSolver {
   // The factors, for fused time-stepping kernels that do the sweeps themselves:
   // sweep down  y_{n−1} = b_{n−1}, y_i = b_i − elimination_[i] y_{i+1};
   // contact     d₀ u₀ = y₀ − κ λ;
-  // sweep up    u_i = (y_i − lower_[i] u_{i−1}) · inverse_pivot_[i].
+  // sweep up    u_i = (y_i − lower_[i] u_{i−1}) · inverse_pivot_[i]
+  //                 = inverse_pivot_[i] y_i − upward_[i] u_{i−1},   upward_[i] = lower_[i] / d_i.
+  // The second form of the sweep up is the one used (solve() and the schemes): its chain of
+  // dependent operations from u_{i−1} to u_i is one multiplication and one subtraction.
   const Eigen::VectorXd& elimination() const { return elimination_; }
   const Eigen::VectorXd& inverse_pivot() const { return inverse_pivot_; }
   const Eigen::VectorXd& lower() const { return lower_; }
+  const Eigen::VectorXd& upward() const { return upward_; }
   /// The contact decision on the reduced row d₀ u₀ = y₀ − κ λ.
   ContactStep resolve_contact(double y0, double kappa, double obstacle) const;
 
  private:
-  Eigen::VectorXd pivot_, inverse_pivot_, elimination_, lower_;
+  Eigen::VectorXd pivot_, inverse_pivot_, elimination_, lower_, upward_;
 };
 
 }  // namespace mrm

@@ -13,6 +13,7 @@
 #include "errors.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include <doctest/doctest.h>
 
@@ -39,23 +40,70 @@ void ErrorAccumulator::History::add(double t, double error_squared, double exact
   exact_max = std::max(exact_max, exact_squared);
 }
 
+// One level costs one pass over the nodes. The interpolants come from the exact solution's evaluation
+// at many points (exact_solution.cpp: the phase located once, one affine function per node); the six
+// quadratic forms eᵀMe and eᵀSe of the errors and of the interpolants are accumulated together. M and
+// S are the P1 matrices of a uniform mesh: row 0 has its own diagonal entry, and every other row the
+// same entries (checked when the accumulator is built), so each form is
+//
+//     zᵀAz = a₀₀ z₀² + a Σ_{i≥1} z_i² + 2 a' Σ_{i≥1} z_{i−1} z_i,     a = A_ii (i ≥ 1), a' = A_{i,i−1}.
 ErrorAccumulator::ErrorAccumulator(const UniformMesh& mesh, const ExactSolution& exact)
-    : mesh_(mesh), exact_(exact), mass_(p1_mass(mesh)), stiffness_(p1_stiffness(mesh)),
-      interpolant_(mesh.unknowns()), difference_(mesh.unknowns()) {}
+    : mesh_(mesh), exact_(exact), mass_(p1_mass(mesh)), stiffness_(p1_stiffness(mesh)), nodes_(mesh.unknowns()),
+      interpolant_(mesh.unknowns()), velocity_interpolant_(mesh.unknowns()) {
+  const Index n = mesh.unknowns();
+  for (Index i = 0; i < n; ++i) nodes_[i] = mesh.x(i);
+  for (const Tridiagonal* a : {&mass_, &stiffness_})
+    for (Index i = 2; i < n; ++i)
+      if (a->diag[i] != a->diag[1] || a->lower[i] != a->lower[1])
+        throw std::logic_error("error measures: the P1 matrices of a uniform mesh are expected to be Toeplitz");
+}
+
+namespace {
+
+// The two sums of zᵀAz over the rows i ≥ 1, and the form itself.
+struct FormSums {
+  double squares = 0, products = 0;
+  void add(double z_previous, double z) {
+    squares += z * z;
+    products += z_previous * z;
+  }
+  double form(double z0, double a00, double a, double a_lower) const {
+    return a00 * z0 * z0 + a * squares + 2 * a_lower * products;
+  }
+};
+
+}  // namespace
 
 void ErrorAccumulator::add(const Sample& sample) {
   const Index n = mesh_.unknowns();
-  for (Index i = 0; i < n; ++i) interpolant_[i] = exact_.displacement(mesh_.x(i), sample.time);
-  difference_ = *sample.displacement - interpolant_;
-  u_l2_.add(sample.time, mass_.bilinear(difference_, difference_), mass_.bilinear(interpolant_, interpolant_));
-  u_h1_.add(sample.time, stiffness_.bilinear(difference_, difference_),
-            stiffness_.bilinear(interpolant_, interpolant_));
-  const double u0 = exact_.contact_displacement(sample.time);
-  u0_.add(sample.time, std::pow((*sample.displacement)[0] - u0, 2), u0 * u0);
+  const double* x = nodes_.data();
+  double* ui = interpolant_.data();
+  double* vi = velocity_interpolant_.data();
+  exact_.displacement_at_points(sample.time, x, static_cast<long>(n), ui);
+  exact_.velocity_at_points(sample.velocity_time, x, static_cast<long>(n), vi);
 
-  for (Index i = 0; i < n; ++i) interpolant_[i] = exact_.velocity(mesh_.x(i), sample.velocity_time);
-  difference_ = *sample.velocity - interpolant_;
-  v_l2_.add(sample.velocity_time, mass_.bilinear(difference_, difference_), mass_.bilinear(interpolant_, interpolant_));
+  const double* u = sample.displacement->data();
+  const double* v = sample.velocity->data();
+  FormSums du_m, ui_m, du_s, ui_s, dv_m, vi_m;
+  double du_prev = u[0] - ui[0], ui_prev = ui[0], dv_prev = v[0] - vi[0], vi_prev = vi[0];
+  for (Index i = 1; i < n; ++i) {
+    const double du = u[i] - ui[i], dv = v[i] - vi[i];
+    du_m.add(du_prev, du);
+    ui_m.add(ui_prev, ui[i]);
+    dv_m.add(dv_prev, dv);
+    vi_m.add(vi_prev, vi[i]);
+    du_prev = du, ui_prev = ui[i], dv_prev = dv, vi_prev = vi[i];
+  }
+  // The S-sums are those of the M-sums (same vectors), with other coefficients.
+  du_s = du_m, ui_s = ui_m;
+  const double m00 = mass_.diag[0], m = n > 1 ? mass_.diag[1] : 0, ml = n > 1 ? mass_.lower[1] : 0;
+  const double s00 = stiffness_.diag[0], s = n > 1 ? stiffness_.diag[1] : 0, sl = n > 1 ? stiffness_.lower[1] : 0;
+  const double du0 = u[0] - ui[0], dv0 = v[0] - vi[0];
+  u_l2_.add(sample.time, du_m.form(du0, m00, m, ml), ui_m.form(ui[0], m00, m, ml));
+  u_h1_.add(sample.time, du_s.form(du0, s00, s, sl), ui_s.form(ui[0], s00, s, sl));
+  const double u0 = exact_.contact_displacement(sample.time);
+  u0_.add(sample.time, std::pow(u[0] - u0, 2), u0 * u0);
+  v_l2_.add(sample.velocity_time, dv_m.form(dv0, m00, m, ml), vi_m.form(vi[0], m00, m, ml));
 
   if (sample.has_multiplier) {
     const double lambda = exact_.contact_multiplier(sample.multiplier_time);

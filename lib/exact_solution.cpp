@@ -47,6 +47,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include <doctest/doctest.h>
 
@@ -153,6 +154,138 @@ double ExactSolution::contact_multiplier(double t) const {
 }
 
 double ExactSolution::energy() const { return 0.5 * amplitude_ * amplitude_ * length_; }
+
+// ---------------------------------------------------------------------------------------------------
+// Evaluation at many points at once (the error measures need u and u_t at every node of every level).
+//
+// At a fixed instant, with the phase and s located once, the reference solution is c · min_k a_k(ξ)
+// with a_k(ξ) = α_k + β_k ξ + γ_k s affine in ξ: it is piecewise affine, and its kinks are among the
+// crossings ξ_jk of two of the a_k with different slopes β_j ≠ β_k (functions with equal slopes are
+// parallel: they tie everywhere or nowhere). Away from every crossing by more than δ = 1e-9 (in ξ),
+// two non-parallel a_k differ by at least δ ≫ the tie tolerance 1e-12, so the set of active functions
+// is the same all along each run of points between two crossings: there u is the one active function,
+// evaluated with the same expression as displacement(), and u_t the same constant, computed once per
+// run by velocity(). At a phase change u_t averages two phases: the kinks of both count. Points
+// within δ of a crossing go through the generic functions, which decide the ties. So the values are
+// those of the generic functions (the doctest below checks it at points on the characteristics, at
+// the phase changes and elsewhere), at the cost of one affine function per point for u and a copy
+// for u_t.
+namespace {
+
+constexpr double run_margin = 1e-9;
+
+// The crossings in ξ of the non-parallel pairs of affine functions of phase p at time s, appended to
+// `kinks` (at most 6 per phase).
+int append_crossings(const Phase& p, double s, double* kinks, int count) {
+  for (int j = 0; j < p.count; ++j)
+    for (int k = j + 1; k < p.count; ++k) {
+      const Affine &a = p.affine[j], &b = p.affine[k];
+      if (a.beta != b.beta) kinks[count++] = ((b.alpha + b.gamma * s) - (a.alpha + a.gamma * s)) / (a.beta - b.beta);
+    }
+  return count;
+}
+
+// Splits the sorted points x_0 ≤ … ≤ x_{count−1} (ξ = x/L) into runs that lie between two kinks, more
+// than run_margin from each, and single points near a kink: calls run(first, end) or near(i).
+template <class Run, class Near>
+void split_at_kinks(const double* kinks, int kink_count, double length, const double* x, long count, Run&& run,
+                    Near&& near) {
+  long i = 0;
+  while (i < count) {
+    const double xi = x[i] / length;
+    double next = INFINITY;  // the first kink above ξ_i, less the margin
+    bool close = false;
+    for (int k = 0; k < kink_count; ++k) {
+      if (std::abs(xi - kinks[k]) <= run_margin) close = true;
+      if (kinks[k] > xi) next = std::min(next, kinks[k] - run_margin);
+    }
+    if (close) {
+      near(i);
+      ++i;
+      continue;
+    }
+    // The run ends before the first point at or above the kink less the margin: the comparison is made
+    // in x (a product, not a quotient per point), which only moves the end by round-off, far from the kink.
+    const double next_x = next * length;
+    long end = i + 1;
+    while (end < count && x[end] < next_x) ++end;
+    run(i, end);
+    i = end;
+  }
+}
+
+}  // namespace
+
+void ExactSolution::displacement_at_points(double t, const double* x, long count, double* u) const {
+  const PhaseTime pt = locate(t / length_);
+  const Phase& p = phases[pt.phase];
+  double kinks[12];
+  const int kink_count = append_crossings(p, pt.s, kinks, 0);
+  const double scale = 2.0 * amplitude_ * length_;
+  split_at_kinks(
+      kinks, kink_count, length_, x, count,
+      [&](long first, long end) {
+        // The active function: the smallest at the run's first point (strictly, by more than 1e-9).
+        const double xi = x[first] / length_;
+        int active = 0;
+        for (int k = 1; k < p.count; ++k)
+          if (p.affine[k].at(xi, pt.s) < p.affine[active].at(xi, pt.s)) active = k;
+        // The same expression as displacement() (with x·(1/L) for x/L: the same for L = 1, else within
+        // an ulp of ξ).
+        const Affine a = p.affine[active];
+        const double inverse_length = 1.0 / length_;
+        for (long i = first; i < end; ++i) u[i] = scale * (p.c * a.at(x[i] * inverse_length, pt.s));
+      },
+      [&](long i) { u[i] = displacement(x[i], t); });
+}
+
+void ExactSolution::velocity_at_points(double t, const double* x, long count, double* v) const {
+  const PhaseTime pt = locate(t / length_);
+  double kinks[12];
+  int kink_count = append_crossings(phases[pt.phase], pt.s, kinks, 0);
+  if (pt.at_boundary) kink_count = append_crossings(phases[(pt.phase + 2) % 3], 1.0, kinks, kink_count);
+  split_at_kinks(
+      kinks, kink_count, length_, x, count,
+      [&](long first, long end) {
+        const double value = velocity(x[first], t);
+        for (long i = first; i < end; ++i) v[i] = value;
+      },
+      [&](long i) { v[i] = velocity(x[i], t); });
+}
+
+TEST_CASE("the evaluation at many points gives the values of the generic functions, kinks and phase changes included") {
+  // Nodes x_i = iL/N and instants t_n = n Δt with Δt = h and h/2 put points exactly on the
+  // characteristics and at the phase changes; the odd N and Δt put them near but not on.
+  int on_kink = 0;
+  for (const double length : {1.0, 2.5}) {
+    const ExactSolution exact(length, length == 1.0 ? 0.5 : 0.3);
+    for (const long elements : {7L, 40L, 64L, 100L}) {
+      std::vector<double> x(static_cast<std::size_t>(elements) + 1), u(x.size()), v(x.size());
+      for (long i = 0; i <= elements; ++i)
+        x[static_cast<std::size_t>(i)] = length * static_cast<double>(i) / static_cast<double>(elements);
+      const double h = length / static_cast<double>(elements);
+      for (const double dt : {h, 0.5 * h, 0.37 * h}) {
+        for (long n = 0; static_cast<double>(n) * dt <= 7.0 * length; ++n) {
+          const double t = static_cast<double>(n) * dt;
+          exact.displacement_at_points(t, x.data(), static_cast<long>(x.size()), u.data());
+          exact.velocity_at_points(t, x.data(), static_cast<long>(x.size()), v.data());
+          for (std::size_t i = 0; i < x.size(); ++i) {
+            const double u_generic = exact.displacement(x[i], t), v_generic = exact.velocity(x[i], t);
+            CAPTURE(length);
+            CAPTURE(elements);
+            CAPTURE(t);
+            CAPTURE(x[i]);
+            CHECK(std::abs(u[i] - u_generic) <= 1e-15 * length);
+            CHECK(std::abs(v[i] - v_generic) <= 1e-15);
+            // Count the points where u_t is the mean ±a/2 of its one-sided values ±a and 0 (on a kink).
+            on_kink += std::abs(std::abs(v_generic) - 0.5 * exact.amplitude()) < 1e-14;
+          }
+        }
+      }
+    }
+  }
+  CHECK(on_kink > 100);
+}
 
 // ---------------------------------------------------------------------------------------------------
 

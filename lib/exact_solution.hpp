@@ -22,6 +22,13 @@ class ExactSolution {
   double contact_displacement(double t) const;    ///< u(0, t)
   double contact_multiplier(double t) const;      ///< λ(t) = u_x(0, t) ≤ 0
   double energy() const;                          ///< E = ½∫(u_t² + u_x²) dx = a² L / 2
+
+  /// u(x_k, t), k < count, at points sorted in increasing order (a mesh's nodes), with the values of
+  /// displacement(x_k, t) at the cost of a few operations per point: the phase is located once, and
+  /// between the kinks of u(·, t) the value is one affine function.
+  void displacement_at_points(double t, const double* x, long count, double* u) const;
+  /// u_t(x_k, t) likewise, with the values of velocity(x_k, t), the symmetric derivative at a kink.
+  void velocity_at_points(double t, const double* x, long count, double* v) const;
   double period() const { return 3.0 * length_; }
   double length() const { return length_; }
   double amplitude() const { return amplitude_; }

@@ -5,6 +5,8 @@
 /// The unknowns of every discrete problem of this library are the values at nodes 0..N-1.
 #pragma once
 
+#include <utility>
+
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
@@ -61,11 +63,12 @@ Tridiagonal p1_stiffness(const UniformMesh& mesh);
 Tridiagonal p1_mass(const UniformMesh& mesh);
 
 /// The load vector F_i = ∫ f(x) φ_i(x) dx on the unknowns 0..N-1, by two-point Gauss quadrature on
-/// each element (exact for f of degree ≤ 2).
+/// each element (exact for f of degree ≤ 2), written into `load` (resized to N if needed: a time loop
+/// that reuses its vector does not allocate).
 template <class Load>
-Eigen::VectorXd p1_load(const UniformMesh& mesh, Load&& f) {
+void p1_load(const UniformMesh& mesh, Load&& f, Eigen::VectorXd& load) {
   const Index n = mesh.unknowns();
-  Eigen::VectorXd load = Eigen::VectorXd::Zero(n);
+  load.setZero(n);
   const double h = mesh.h();
   const double g = 0.5 / 1.7320508075688772935;  // Gauss points at the element's centre ± h/(2√3)
   for (Index e = 0; e < mesh.elements; ++e) {
@@ -76,6 +79,13 @@ Eigen::VectorXd p1_load(const UniformMesh& mesh, Load&& f) {
       if (e + 1 < n) load[e + 1] += fx * xi;
     }
   }
+}
+
+/// The load vector as above, returned.
+template <class Load>
+Eigen::VectorXd p1_load(const UniformMesh& mesh, Load&& f) {
+  Eigen::VectorXd load;
+  p1_load(mesh, std::forward<Load>(f), load);
   return load;
 }
 

@@ -138,7 +138,7 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   const double dt2 = dt * dt;
   const Tridiagonal& m = mass_;
   const Tridiagonal& s = stiffness_;
-  Tridiagonal a;
+  Tridiagonal a, b1_, b2_;
   lambda_in_rhs_ = 0.0;
   switch (parameters.scheme) {
     case Scheme::crank_nicolson: {
@@ -150,7 +150,7 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
       load_now_ = theta;
       load_next_ = theta;
       lambda_in_rhs_ = theta;
-      w_new_[0] = 2 / dt, w_new_[1] = -2 / dt, w_new_[2] = -1;
+      velocity_rate_ = 2 / dt, velocity_memory_ = 1;
       break;
     }
     case Scheme::backward_euler: {
@@ -160,7 +160,7 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
       kappa_ = dt2;
       load_now_ = 0;
       load_next_ = dt2;
-      w_new_[0] = 1 / dt, w_new_[1] = -1 / dt, w_new_[2] = 0;
+      velocity_rate_ = 1 / dt, velocity_memory_ = 0;
       break;
     }
     case Scheme::paoli_schatzman: {
@@ -171,16 +171,9 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
       kappa_ = dt2;
       load_now_ = dt2;
       load_next_ = 0;
-      w_new_[0] = 0, w_new_[1] = 1, w_new_[2] = 0;
+      velocity_rate_ = 1 / dt, velocity_memory_ = 0;  // X = (Uⁿ⁺¹ − Uⁿ)/Δt; W' = Uⁿ by a swap
       break;
     }
-  }
-  if (three_level_) {
-    x_new_[0] = 1 / dt, x_new_[1] = -1 / dt, x_new_[2] = 0;
-    sigma_[0] = parameters.beta, sigma_[1] = 1 - 2 * parameters.beta, sigma_[2] = parameters.beta;
-  } else {
-    for (int k = 0; k < 3; ++k) x_new_[k] = w_new_[k];
-    sigma_[0] = 1, sigma_[1] = 0, sigma_[2] = 0;
   }
   if (algebraic_row_) {
     a.diag[0] = s.diag[0];
@@ -191,6 +184,33 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   }
   solver_ = ContactSolver(a);
 
+  // The rows of B₁, B₂, M and S as the fused step reads them. On a uniform mesh every row away from
+  // the contact node is the same (the matrices are Toeplitz there) except the last, whose upper
+  // neighbour is the clamped node: the rows from `head` to n−2 share one Row. `head` is the first
+  // row from which on all rows up to n−2 are equal, compared exactly, so any weights are handled
+  // (Mod 1 and Mod 2 give head = 2, Mod 3 and the consistent mass 2 and 1; a weight that varies
+  // along the bar gives head = n−1, every row explicit).
+  const Index rows = mesh.unknowns();
+  const auto row = [&](Index i) {
+    const bool last = i + 1 == rows;
+    return Row{b1_.lower[i], b1_.diag[i], last ? 0.0 : b1_.upper[i], b2_.lower[i], b2_.diag[i],
+               last ? 0.0 : b2_.upper[i], m.diag[i], 2 * m.lower[i], s.diag[i], 2 * s.lower[i]};
+  };
+  const auto same = [](const Row& x, const Row& y) {
+    return x.b1l == y.b1l && x.b1d == y.b1d && x.b1u == y.b1u && x.b2l == y.b2l && x.b2d == y.b2d &&
+           x.b2u == y.b2u && x.md == y.md && x.ml2 == y.ml2 && x.sd == y.sd && x.sl2 == y.sl2;
+  };
+  last_ = row(rows - 1);
+  interior_ = last_;
+  Index head = 1;  // n = 2: row 0 and the last row only
+  if (rows >= 3) {
+    interior_ = row(rows - 2);
+    head = rows - 2;
+    while (head > 1 && same(row(head - 1), interior_)) --head;
+  }
+  head_.clear();
+  for (Index i = 0; i < head; ++i) head_.push_back(row(i));
+
   // The initial level. Uⁿ and V⁰ are the nodal interpolants of u⁰ and v⁰; a massless contact node
   // takes the value its algebraic row gives (problem.md §4: otherwise u₀ jumps in the first step and
   // the initial energy is off), unless the interpolant is asked for.
@@ -198,15 +218,17 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   u_.resize(n);
   u_new_.setZero(n);
   x_.resize(n);
-  f_now_.setZero(n);
-  f_next_.setZero(n);
+  if (problem.load) {
+    f_now_.setZero(n);
+    f_next_.setZero(n);
+  }
   for (Index i = 0; i < n; ++i) {
     u_[i] = problem.initial_displacement(mesh.x(i));
     x_[i] = problem.initial_velocity ? problem.initial_velocity(mesh.x(i)) : 0.0;
   }
   load_at(0.0, f_now_);
   if (massless_) {
-    const CondensedContact c = condense_contact_node(u_[1], mesh.h(), f_now_[0]);
+    const CondensedContact c = condense_contact_node(u_[1], mesh.h(), problem.load ? f_now_[0] : 0.0);
     if (initial == InitialContactNode::consistent) u_[0] = c.u0;
     lambda_ = c.multiplier;
   } else {
@@ -219,33 +241,149 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   // (with the same mass and contact row): then W = U⁰ and Paoli–Schatzman with β = ¼ and the algebraic
   // row reproduces Crank–Nicolson exactly when f = 0 (the elimination of V from Crank–Nicolson gives
   // the three-level formula with β = ¼ on every free row; checked below).
+  // The two-level schemes' velocity is W itself: X is not kept.
   w_ = x_;
   if (three_level_) {
     SchemeParameters start = parameters;
     start.scheme = Scheme::crank_nicolson;
     start_ = std::make_unique<BarSimulation>(problem, mesh, mass, start, dt, initial);
+  } else {
+    x_ = Eigen::VectorXd();
   }
 }
 
 void BarSimulation::load_at(double t, Eigen::VectorXd& f) const {
   if (!problem_.load) return;
-  f = p1_load(mesh_, [&](double x) { return problem_.load(x, t); });
+  p1_load(mesh_, [&](double x) { return problem_.load(x, t); }, f);
 }
 
 double BarSimulation::energy_two_level() const {
   return 0.5 * mass_.bilinear(x_, x_) + 0.5 * stiffness_.bilinear(u_, u_);
 }
 
-// One step of (★), fused: the sweep down forms the right-hand side b = B₁Uⁿ + B₂W + G on the fly and
-// eliminates; the contact is decided at node 0; the sweep up gives Uⁿ⁺¹, the new W, the velocity X
-// and the energy, all in the same pass. No allocation, no refactorisation.
+// One step of (★), fused into the two sweeps of the solve, with no allocation and no refactorisation:
+//
+// - the sweep down (i = n−1 … 1) forms b_i = (B₁Uⁿ + B₂W + G)_i from the neighbours of node i and
+//   eliminates at once, y_i = b_i − ε_i y_{i+1} (ε the elimination factors of contact.cpp);
+// - the contact is decided at node 0's pivot d₀ = 1/(A⁻¹)₀₀, the Schur complement of A onto the
+//   contact node (contact.cpp: this is what problem.md's w = θA⁻¹C does, for the price of a scalar);
+// - the sweep up (i = 0 … n−1) gives Uⁿ⁺¹_i = y_i/d_i − (A_{i,i−1}/d_i) Uⁿ⁺¹_{i−1} and, from the values
+//   at nodes i−1 and i, the new W and X and the quadratic forms of the energy.
+//
+// The chain of dependent operations is one multiplication and one subtraction per node in each sweep;
+// everything else (the right-hand side, the velocities, the energy) is independent work that the
+// processor overlaps with it. The coefficients of B₁, B₂, M and S are read from a few Rows (the
+// Toeplitz interior), so the memory traffic is that of the state vectors and the three factor
+// arrays. The energies need only the quadratic forms of their definition: two-level,
+// E = ½ VᵀMV + ½ UᵀSU at the new level; Paoli–Schatzman, with P = Uⁿ⁺¹ + Uⁿ and Q = Uⁿ⁺¹ − Uⁿ,
+//
+//     β Uⁿ⁺¹ᵀSUⁿ⁺¹ + (1−2β) Uⁿ⁺¹ᵀSUⁿ + β UⁿᵀSUⁿ = ¼ (PᵀSP − (1 − 4β) QᵀSQ),
+//
+// (expand PᵀSP and QᵀSQ), so E = ½ XᵀMX + ⅛ (PᵀSP − (1−4β) QᵀSQ), and for β = ¼ only PᵀSP counts.
+// The scheme (two or three levels) and the presence of a load are template parameters, so that the
+// loops carry no dead work.
+template <bool three_level, bool has_load>
+void BarSimulation::fused_step() {
+  const Index n = mesh_.unknowns();
+  const Index head = static_cast<Index>(head_.size());
+  const double* u = u_.data();
+  const double* w = w_.data();
+  double* y = u_new_.data();
+  const double* elimination = solver_.elimination().data();
+  const double* inverse_pivot = solver_.inverse_pivot().data();
+  const double* upward = solver_.upward().data();
+  const double* f_now = has_load ? f_now_.data() : nullptr;
+  const double* f_next = has_load ? f_next_.data() : nullptr;
+  const double g_now = load_now_, g_next = load_next_;
+
+  // Sweep down. Row n−1 (its upper neighbour is the clamped node: ε_{n−1} = 0), the interior rows
+  // n−2 … head with their common coefficients, the head rows head−1 … 1 with their own.
+  const auto rhs = [&](const Row& r, Index i, double u_up, double w_up) {
+    double b = r.b1l * u[i - 1] + r.b1d * u[i] + r.b1u * u_up + r.b2l * w[i - 1] + r.b2d * w[i] + r.b2u * w_up;
+    if constexpr (has_load) b += g_now * f_now[i] + g_next * f_next[i];
+    return b;
+  };
+  double y_next = rhs(last_, n - 1, 0.0, 0.0);
+  y[n - 1] = y_next;
+  {
+    const Row r = interior_;
+    for (Index i = n - 2; i >= head; --i) {
+      y_next = rhs(r, i, u[i + 1], w[i + 1]) - elimination[i] * y_next;
+      y[i] = y_next;
+    }
+  }
+  for (Index i = std::min(head, n - 1) - 1; i >= 1; --i) {
+    y_next = rhs(head_[static_cast<std::size_t>(i)], i, u[i + 1], w[i + 1]) - elimination[i] * y_next;
+    y[i] = y_next;
+  }
+
+  // Row 0 and the contact decision.
+  const Row& r0 = head_[0];
+  double b0, kappa = kappa_;
+  if (algebraic_row_) {
+    b0 = has_load ? f_next[0] : 0.0;
+    kappa = 1.0;
+  } else {
+    b0 = r0.b1d * u[0] + r0.b1u * u[1] + r0.b2d * w[0] + r0.b2u * w[1] - lambda_in_rhs_ * lambda_;
+    if constexpr (has_load) b0 += g_now * f_now[0] + g_next * f_next[0];
+  }
+  const double obstacle = three_level ? -parameters_.restitution * w[0] : 0.0;
+  const ContactStep contact = solver_.resolve_contact(b0 - elimination[0] * y_next, kappa, obstacle);
+  lambda_ = contact.multiplier;
+
+  // Sweep up. Two-level: V' = rate (U' − U) − memory V, written over W, kinetic form V'ᵀMV',
+  // potential U'ᵀSU'. Three-level: X = (U' − U)/Δt, forms XᵀMX, PᵀSP, QᵀSQ; W' = Uⁿ by a swap below.
+  double* w_out = w_.data();
+  double* x_out = x_.data();
+  const double rate = velocity_rate_, memory = velocity_memory_;
+  double kinetic = 0, potential = 0, potential_q = 0;
+  double un_prev = 0, v_prev = 0, p_prev = 0, q_prev = 0;
+  const auto emit = [&](const Row& r, Index i, double un) {
+    const double uo = u[i];
+    y[i] = un;
+    if constexpr (three_level) {
+      const double x = rate * (un - uo), p = un + uo, q = un - uo;
+      x_out[i] = x;
+      kinetic += r.md * x * x + r.ml2 * v_prev * x;
+      potential += r.sd * p * p + r.sl2 * p_prev * p;
+      potential_q += r.sd * q * q + r.sl2 * q_prev * q;
+      v_prev = x, p_prev = p, q_prev = q;
+    } else {
+      const double v = rate * (un - uo) - memory * w[i];
+      w_out[i] = v;
+      kinetic += r.md * v * v + r.ml2 * v_prev * v;
+      potential += r.sd * un * un + r.sl2 * un_prev * un;
+      v_prev = v;
+    }
+    un_prev = un;
+  };
+  emit(r0, 0, contact.u0);
+  for (Index i = 1; i < std::min(head, n - 1); ++i)
+    emit(head_[static_cast<std::size_t>(i)], i, inverse_pivot[i] * y[i] - upward[i] * un_prev);
+  {
+    const Row r = interior_;
+    for (Index i = head; i < n - 1; ++i) emit(r, i, inverse_pivot[i] * y[i] - upward[i] * un_prev);
+  }
+  emit(last_, n - 1, inverse_pivot[n - 1] * y[n - 1] - upward[n - 1] * un_prev);
+
+  if constexpr (three_level) {
+    energy_ = 0.5 * kinetic + 0.125 * (potential - (1 - 4 * parameters_.beta) * potential_q);
+    u_.swap(w_);      // W' = Uⁿ
+    u_.swap(u_new_);  // U = Uⁿ⁺¹
+  } else {
+    energy_ = 0.5 * kinetic + 0.5 * potential;
+    u_.swap(u_new_);
+  }
+  if constexpr (has_load) f_now_.swap(f_next_);
+}
+
 void BarSimulation::step() {
   if (start_) {
     start_->step();
     w_.swap(u_);  // W = U⁰
     u_ = start_->u_;
-    x_ = start_->x_;
-    f_now_ = start_->f_now_;
+    x_ = start_->w_;  // the starter's velocity V¹
+    if (problem_.load) f_now_ = start_->f_now_;
     lambda_ = start_->lambda_;
     lambda_time_ = start_->lambda_time_;
     has_lambda_ = algebraic_row_;  // the literal form's λ¹ comes with its first own step
@@ -255,72 +393,18 @@ void BarSimulation::step() {
     ++level_;
     return;
   }
-  const Index n = mesh_.unknowns();
-  const double t_next = static_cast<double>(level_ + 1) * dt_;
-  if (problem_.load) load_at(t_next, f_next_);
-
-  const double* u = u_.data();
-  const double* w = w_.data();
-  double* y = u_new_.data();
-  const double *b1l = b1_.lower.data(), *b1d = b1_.diag.data(), *b1u = b1_.upper.data();
-  const double *b2l = b2_.lower.data(), *b2d = b2_.diag.data(), *b2u = b2_.upper.data();
-  const double* elim = solver_.elimination().data();
-  const double *fn = f_now_.data(), *fnext = f_next_.data();
-  const bool has_load = static_cast<bool>(problem_.load);
-
-  // Sweep down, i = n−1 … 1 (row 0 is peeled off below).
-  double y_next = 0.0;
-  for (Index i = n - 1; i >= 1; --i) {
-    double b = b1l[i] * u[i - 1] + b1d[i] * u[i] + b2l[i] * w[i - 1] + b2d[i] * w[i];
-    if (i + 1 < n) b += b1u[i] * u[i + 1] + b2u[i] * w[i + 1];
-    if (has_load) b += load_now_ * fn[i] + load_next_ * fnext[i];
-    y_next = b - elim[i] * y_next;
-    y[i] = y_next;
-  }
-  // Row 0 and the contact decision.
-  double b0;
-  double kappa = kappa_;
-  if (algebraic_row_) {
-    b0 = fnext[0];
-    kappa = 1.0;
-  } else {
-    b0 = b1d[0] * u[0] + b1u[0] * u[1] + b2d[0] * w[0] + b2u[0] * w[1] + load_now_ * fn[0] + load_next_ * fnext[0] -
-         lambda_in_rhs_ * lambda_;
-  }
-  const double obstacle = three_level_ ? -parameters_.restitution * w[0] : 0.0;
-  const ContactStep contact = solver_.resolve_contact(b0 - elim[0] * y_next, kappa, obstacle);
-
-  // Sweep up: Uⁿ⁺¹, W' = c·(Uⁿ⁺¹, Uⁿ, W), X = c·(Uⁿ⁺¹, Uⁿ, W) and the energy's quadratic forms.
-  const double* inv_pivot = solver_.inverse_pivot().data();
-  const double* lower = solver_.lower().data();
-  const double *ml = mass_.lower.data(), *md = mass_.diag.data();
-  const double *sl = stiffness_.lower.data(), *sd = stiffness_.diag.data();
-  double* wout = w_.data();
-  double* xout = x_.data();
-  double kinetic = 0, s_new_new = 0, s_new_old = 0, s_old_old = 0;
-  double un_prev = 0, u_prev = 0, x_prev = 0;
-  for (Index i = 0; i < n; ++i) {
-    const double un = (i == 0) ? contact.u0 : (y[i] - lower[i] * un_prev) * inv_pivot[i];
-    const double uo = u[i];
-    const double wo = w[i];
-    const double x = x_new_[0] * un + x_new_[1] * uo + x_new_[2] * wo;
-    wout[i] = w_new_[0] * un + w_new_[1] * uo + w_new_[2] * wo;
-    xout[i] = x;
-    y[i] = un;
-    kinetic += md[i] * x * x + 2 * ml[i] * x_prev * x;
-    s_new_new += sd[i] * un * un + 2 * sl[i] * un_prev * un;
-    s_new_old += sd[i] * un * uo + sl[i] * (un * u_prev + un_prev * uo);
-    s_old_old += sd[i] * uo * uo + 2 * sl[i] * u_prev * uo;
-    un_prev = un;
-    u_prev = uo;
-    x_prev = x;
-  }
-  energy_ = 0.5 * kinetic + 0.5 * (sigma_[0] * s_new_new + sigma_[1] * s_new_old + sigma_[2] * s_old_old);
-  u_.swap(u_new_);
-  if (has_load) f_now_.swap(f_next_);
-
   const double t_now = static_cast<double>(level_) * dt_;
-  lambda_ = contact.multiplier;
+  const double t_next = static_cast<double>(level_ + 1) * dt_;
+  const bool has_load = static_cast<bool>(problem_.load);
+  if (has_load) load_at(t_next, f_next_);
+  if (three_level_) {
+    if (has_load) fused_step<true, true>();
+    else fused_step<true, false>();
+  } else {
+    if (has_load) fused_step<false, true>();
+    else fused_step<false, false>();
+  }
+
   has_lambda_ = true;
   if (three_level_) {
     lambda_time_ = algebraic_row_ ? t_next : t_now;
@@ -335,7 +419,7 @@ void BarSimulation::step() {
 Sample BarSimulation::sample() const {
   const double t = time();
   const double velocity_time = (three_level_ && level_ > 1) ? t - 0.5 * dt_ : t;
-  return {level_, t, &u_, velocity_time, &x_, has_lambda_, level_ == 0 ? 0.0 : lambda_time_, lambda_,
+  return {level_, t, &u_, velocity_time, three_level_ ? &x_ : &w_, has_lambda_, level_ == 0 ? 0.0 : lambda_time_, lambda_,
           level_ == 0 ? 0.0 : energy_time_, energy_};
 }
 
@@ -434,6 +518,142 @@ TEST_CASE("Paoli–Schatzman (1/4, 0) with the algebraic contact row coincides w
     }
     CAPTURE(mass.name);
     CHECK(difference < 1e-12);
+  }
+}
+
+// The fused step against the textbook one: the same scheme written as in the comment at the top of
+// this file, with whole matrices (A, B₁, B₂ assembled as Tridiagonal), the right-hand side formed
+// first, ContactSolver::solve, then the velocities and the energy from their definitions
+// (Tridiagonal::bilinear). The cases cover every region of the fused loops: a load, the consistent
+// mass, Mod 1–3, the mass spread over 3 nodes, and a weight that varies along the bar (no Toeplitz
+// interior at all), with restitution for Paoli–Schatzman.
+namespace {
+
+struct TextbookScheme {
+  Tridiagonal m, s, a, b1, b2;
+  ContactSolver solver;
+  double dt, kappa, g_now, g_next, lambda_rhs, beta, restitution;
+  bool algebraic, three_level;
+
+  TextbookScheme(const BarSimulation& sim, Scheme scheme) {
+    const SchemeParameters& p = sim.parameters();
+    m = sim.mass(), s = sim.stiffness(), dt = sim.dt(), beta = p.beta, restitution = p.restitution;
+    three_level = scheme == Scheme::paoli_schatzman;
+    algebraic = sim.massless_contact_node() && (!three_level || p.contact_row == ContactRow::algebraic);
+    const double dt2 = dt * dt, theta = dt2 / 4;
+    lambda_rhs = 0;
+    if (scheme == Scheme::crank_nicolson) {
+      a = m.plus(theta, s), b1 = m.plus(-theta, s), b2 = m.scaled(dt);
+      kappa = theta, g_now = theta, g_next = theta, lambda_rhs = theta;
+    } else if (scheme == Scheme::backward_euler) {
+      a = m.plus(dt2, s), b1 = m, b2 = m.scaled(dt);
+      kappa = dt2, g_now = 0, g_next = dt2;
+    } else {
+      a = m.plus(beta * dt2, s), b1 = m.scaled(2).plus(-(1 - 2 * beta) * dt2, s), b2 = m.plus(beta * dt2, s).scaled(-1);
+      kappa = dt2, g_now = dt2, g_next = 0;
+    }
+    if (algebraic) {
+      a.diag[0] = s.diag[0], a.upper[0] = s.upper[0];
+      b1.diag[0] = b1.upper[0] = b2.diag[0] = b2.upper[0] = 0;
+      kappa = 1, lambda_rhs = 0;
+    }
+    solver = ContactSolver(a);
+  }
+
+  // One step from (U, W, λ) with the loads F, F': returns U', overwrites W with W', X with the
+  // velocity, λ with λ', and gives the energy.
+  Eigen::VectorXd step(const Eigen::VectorXd& u, Eigen::VectorXd& w, Eigen::VectorXd& x, double& lambda,
+                       const Eigen::VectorXd& f, const Eigen::VectorXd& f_next, double& energy) const {
+    Eigen::VectorXd b = b1 * u + b2 * w + g_now * f + g_next * f_next;
+    b[0] -= lambda_rhs * lambda;
+    if (algebraic) b[0] = f_next[0];
+    Eigen::VectorXd u_next(u.size());
+    lambda = solver.solve(b.data(), u_next.data(), kappa, three_level ? -restitution * w[0] : 0.0).multiplier;
+    if (three_level) {
+      x = (u_next - u) / dt;
+      energy = 0.5 * m.bilinear(x, x) + 0.5 * (beta * s.bilinear(u_next, u_next) + (1 - 2 * beta) * s.bilinear(u_next, u) +
+                                               beta * s.bilinear(u, u));
+      w = u;
+    } else {
+      const bool cn = lambda_rhs > 0 || g_now > 0;
+      w = cn ? Eigen::VectorXd(2 * (u_next - u) / dt - w) : Eigen::VectorXd((u_next - u) / dt);
+      x = w;
+      energy = 0.5 * m.bilinear(w, w) + 0.5 * s.bilinear(u_next, u_next);
+    }
+    return u_next;
+  }
+};
+
+[[maybe_unused]] MassRedistribution varying_weight() {
+  return {"varying", "a weight that varies along the bar", [](Index i, Index j, const UniformMesh& mesh) {
+            if (i == 0 || j == 0) return 0.0;
+            return 1.0 + 0.3 * static_cast<double>(i + j) / static_cast<double>(mesh.elements);
+          }};
+}
+
+}  // namespace
+
+TEST_CASE("the fused step computes the textbook step of every scheme, with and without a load") {
+  struct Case {
+    Scheme scheme;
+    ContactRow row;
+    MassRedistribution mass;
+    double restitution;
+  };
+  const std::vector<Case> cases = {
+      {Scheme::crank_nicolson, ContactRow::algebraic, mod3(), 0},
+      {Scheme::crank_nicolson, ContactRow::algebraic, mod2(), 0},
+      {Scheme::crank_nicolson, ContactRow::literal, consistent_mass(), 0},
+      {Scheme::backward_euler, ContactRow::algebraic, mod1(), 0},
+      {Scheme::backward_euler, ContactRow::algebraic, spread_over_first_nodes(3), 0},
+      {Scheme::backward_euler, ContactRow::literal, consistent_mass(), 0},
+      {Scheme::paoli_schatzman, ContactRow::algebraic, mod3(), 0},
+      {Scheme::paoli_schatzman, ContactRow::algebraic, varying_weight(), 0},
+      {Scheme::paoli_schatzman, ContactRow::literal, mod2(), 0.5},
+      {Scheme::paoli_schatzman, ContactRow::literal, consistent_mass(), 0.3},
+      {Scheme::crank_nicolson, ContactRow::algebraic, varying_weight(), 0},
+  };
+  for (const bool loaded : {false, true}) {
+    for (const Case& c : cases) {
+      Problem problem = benchmark_problem();
+      if (loaded) problem.load = [](double x, double t) { return -1.0 + 0.7 * std::sin(3 * x + 5 * t); };
+      const UniformMesh mesh(1.0, 12);
+      SchemeParameters p = with(c.scheme, c.row);
+      p.beta = c.scheme == Scheme::paoli_schatzman ? 0.3 : 0.25;
+      p.restitution = c.restitution;
+      const double dt = 0.7 * mesh.h();
+      BarSimulation fused(problem, mesh, c.mass, p, dt);
+      const TextbookScheme textbook(fused, c.scheme);
+      const TextbookScheme start(fused, Scheme::crank_nicolson);
+      const auto load = [&](double t) {
+        return problem.load ? p1_load(mesh, [&](double x) { return problem.load(x, t); })
+                            : Eigen::VectorXd(Eigen::VectorXd::Zero(mesh.unknowns()));
+      };
+      Eigen::VectorXd u = *fused.sample().displacement, w = *fused.sample().velocity, x = w;
+      double lambda = fused.sample().multiplier, energy = 0;
+      CAPTURE(to_string(c.scheme));
+      CAPTURE(c.mass.name);
+      CAPTURE(loaded);
+      int contacts = 0;
+      for (Index k = 0; k < 90; ++k) {
+        const double t = static_cast<double>(k) * dt;
+        const Eigen::VectorXd u_old = u;
+        const bool starting = k == 0 && c.scheme == Scheme::paoli_schatzman;
+        u = (starting ? start : textbook).step(u, w, x, lambda, load(t), load(t + dt), energy);
+        if (starting) w = u_old;  // W = U⁰ after the Crank–Nicolson start
+        fused.step();
+        const Sample sample = fused.sample();
+        CAPTURE(k);
+        const double scale = 1 + u.cwiseAbs().maxCoeff();
+        REQUIRE((*sample.displacement - u).cwiseAbs().maxCoeff() < 1e-12 * scale);
+        REQUIRE((*sample.velocity - x).cwiseAbs().maxCoeff() < 1e-11 * (1 + x.cwiseAbs().maxCoeff()));
+        if (sample.has_multiplier) CHECK(std::abs(sample.multiplier - lambda) < 1e-10 * (1 + std::abs(lambda)));
+        // Velocities are differences of U divided by Δt (here 0.06): their round-off is ~1/Δt times that of U.
+        CHECK(std::abs(sample.energy - energy) < 1e-11 * (1 + std::abs(energy)));
+        contacts += lambda < 0;
+      }
+      CHECK(contacts > 0);  // the runs do reach the obstacle
+    }
   }
 }
 

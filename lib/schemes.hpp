@@ -100,13 +100,23 @@ class BarSimulation {
   bool massless_, algebraic_row_, three_level_;
   Tridiagonal mass_, stiffness_;
   // One step is A U' = B₁ U + B₂ W + G − κ λ e₀ with W = V (two-level) or W = Uⁿ⁻¹ (three-level).
-  Tridiagonal b1_, b2_;
+  // B₁, B₂, M and S are stored by rows: the first rows explicitly (head_: row 0 and the rows the mass
+  // redistribution changes), then one row for the constant (Toeplitz) interior and the last row.
+  struct Row {
+    double b1l, b1d, b1u, b2l, b2d, b2u;  // B₁ and B₂: lower, diagonal, upper
+    double md, ml2, sd, sl2;              // M and S: diagonal and twice the lower entry (energies)
+  };
+  std::vector<Row> head_;
+  Row interior_, last_;
+  template <bool three_level, bool has_load> void fused_step();
   ContactSolver solver_;
   double kappa_, load_now_, load_next_;   // G = load_now_ Fⁿ + load_next_ Fⁿ⁺¹ (+ row-0 terms)
   double lambda_in_rhs_;                  // Crank–Nicolson with inertia at node 0: −θ λⁿ in row 0
-  double w_new_[3], x_new_[3], sigma_[3];  // W' = ΣcU', X = ΣcU', energy coefficients (see .cpp)
+  double velocity_rate_, velocity_memory_;  // two-level: V' = rate (U' − U) − memory V
 
   Index level_ = 0;
+  // U, the scratch for the sweeps (then U'), W, and X = (Uⁿ⁺¹ − Uⁿ)/Δt (three-level only: the
+  // two-level schemes' velocity is W); the loads only when there is a load.
   Eigen::VectorXd u_, u_new_, w_, x_, f_now_, f_next_;
   double lambda_ = 0.0, lambda_time_ = 0.0, energy_ = 0.0, energy_time_ = 0.0;
   bool has_lambda_ = true;

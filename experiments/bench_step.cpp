@@ -1,0 +1,507 @@
+// bench_step: the cost of one time step, per node, against the practical limit of a tridiagonal solve.
+//
+// What it computes. A time step of Crank–Nicolson, backward Euler and Paoli–Schatzman on the P1 bar
+// with a redistributed mass is one solve with a constant tridiagonal matrix A plus a scalar contact
+// decision (problem.md §4, lib/schemes.cpp): its cost should be linear in the number of nodes N and
+// close to that of a bare solve with the same pre-factored A. For N = 2^6 … 2^20 elements this program
+// times, in nanoseconds per node per step:
+//   cn, be, ps   BarSimulation::step() of each scheme (Mod 3 mass, Δt = h/2, the benchmark problem;
+//                Paoli–Schatzman with β = ¼ and the algebraic contact row);
+//   cn+errors    the same Crank–Nicolson step followed by ErrorAccumulator::add, the error measures of
+//                problem.md §5 against the exact solution (the difference is the cost of the errors);
+//   bare         ContactSolver::solve with Crank–Nicolson's step matrix A: one sweep down, the contact
+//                decision, one sweep up, on the factors computed once (the practical limit of a step);
+//   eigen        Eigen's SimplicialLDLT solve (factorised once) of the same matrix, symmetrised by
+//                scaling its algebraic contact row 0 by θ (same sparsity, same cost).
+// Then the ratio of each scheme to the bare solve, the log-log slope of the cost per step against N
+// over 2^10 … 2^20 (least squares), and the peak resident memory of a Crank–Nicolson and of a
+// Paoli–Schatzman run at the largest N and at N/4, each in a fresh child process, to show that the
+// memory is linear in N.
+//
+// Sample runs:
+//   bench_step
+//   bench_step --quick
+//   bench_step --output output/bench/bench_step.dat --tex output/bench/bench_step.tex
+//              --markdown output/bench/bench_step.md
+//
+// Description. Timings depend on the machine and its load: they are written to output/bench/, never
+// compared byte for byte. Method: every measurement first warms up (and calibrates) by doubling the
+// number of steps until a batch takes 2 ms, then times R batches of as many steps as make about 20 ms
+// each with std::chrono::steady_clock; the median over the batches is the figure, the minimum is
+// reported beside it. Nothing is pinned; run it on an idle machine. Steps: (1) read the options;
+// (2) open the outputs; (3) measure the peak memory in child processes (before anything else grows the
+// heap); (4) time every variant for every N; (5) fit the slopes; (6) print and write the tables.
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <Eigen/SparseCholesky>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_fit.h>
+
+#include "cli.hpp"
+#include "contact.hpp"
+#include "errors.hpp"
+#include "exact_solution.hpp"
+#include "schemes.hpp"
+
+namespace cli = mrm::cli;
+using mrm::Index;
+
+namespace {
+
+// ---- Timing -------------------------------------------------------------------------------------
+
+using Clock = std::chrono::steady_clock;
+
+struct Timing {
+  double median = NAN, minimum = NAN;  // nanoseconds per node per step
+  long steps_per_batch = 0;
+};
+
+// `batch(k)` performs k steps. Warm-up and calibration: double k until one batch lasts `warmup`
+// seconds; then `repetitions` batches of k·target/elapsed steps; median and minimum per node per step.
+Timing measure(const std::function<void(long)>& batch, Index nodes, int repetitions, double target) {
+  const double warmup = 2e-3;
+  long k = 1;
+  double elapsed = 0;
+  for (;;) {
+    const auto start = Clock::now();
+    batch(k);
+    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    if (elapsed >= warmup || k > (1L << 40)) break;
+    k *= 2;
+  }
+  const long steps = std::max(1L, static_cast<long>(std::llround(k * target / elapsed)));
+  std::vector<double> per_node(static_cast<std::size_t>(repetitions));
+  for (double& t : per_node) {
+    const auto start = Clock::now();
+    batch(steps);
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    t = seconds * 1e9 / (static_cast<double>(steps) * static_cast<double>(nodes));
+  }
+  std::sort(per_node.begin(), per_node.end());
+  const std::size_t r = per_node.size();
+  Timing result;
+  result.median = r % 2 ? per_node[r / 2] : 0.5 * (per_node[r / 2 - 1] + per_node[r / 2]);
+  result.minimum = per_node.front();
+  result.steps_per_batch = steps;
+  return result;
+}
+
+// ---- The variants -------------------------------------------------------------------------------
+
+// The configuration every variant shares: the benchmark of problem.md §2, Mod 3, Δt = C h.
+const double courant = 0.5;
+
+mrm::SchemeParameters parameters_of(mrm::Scheme scheme) {
+  mrm::SchemeParameters p;
+  p.scheme = scheme;
+  p.contact_row = mrm::ContactRow::algebraic;
+  return p;
+}
+
+// Crank–Nicolson's step matrix A = M^mod + θS with θ = Δt²/4 and row 0 replaced by the algebraic
+// contact row S₀· (lib/schemes.cpp); `symmetric` scales that row by θ instead, which gives the
+// symmetric M^mod + θS (M^mod has a zero row 0).
+mrm::Tridiagonal crank_nicolson_matrix(const mrm::UniformMesh& mesh, bool symmetric) {
+  const double dt = courant * mesh.h(), theta = dt * dt / 4;
+  const mrm::Tridiagonal s = mrm::p1_stiffness(mesh);
+  mrm::Tridiagonal a = mrm::modified_mass(mesh, mrm::mod3()).plus(theta, s);
+  if (!symmetric) {
+    a.diag[0] = s.diag[0];
+    a.upper[0] = s.upper[0];
+  }
+  return a;
+}
+
+Eigen::VectorXd random_vector(Index n, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  Eigen::VectorXd b(n);
+  for (Index i = 0; i < n; ++i) b[i] = uniform(random);
+  return b;
+}
+
+const char* const variant_names[] = {"cn", "be", "ps", "cn+errors", "bare", "eigen"};
+constexpr int variants = 6;
+constexpr int v_cn = 0, v_be = 1, v_ps = 2, v_errors = 3, v_bare = 4, v_eigen = 5;
+
+// A check that the timed code computed something sensible (guards against a benchmark of dead code):
+// the relative residual of the bare and Eigen solves, and the energy of the runs.
+struct Sanity {
+  double bare_residual = 0, eigen_residual = 0, cn_energy = 0, ps_energy = 0, be_energy = 0;
+};
+
+// The normwise backward error max|Au − b| / (max|A| max|u| + max|b|), round-off size for a stable solve.
+double relative_residual(const mrm::Tridiagonal& a, const Eigen::VectorXd& u, const Eigen::VectorXd& b) {
+  const double norm_a = std::max({a.lower.cwiseAbs().maxCoeff(), a.diag.cwiseAbs().maxCoeff(), a.upper.cwiseAbs().maxCoeff()});
+  return (a * u - b).cwiseAbs().maxCoeff() / (norm_a * u.cwiseAbs().maxCoeff() + b.cwiseAbs().maxCoeff());
+}
+
+std::array<Timing, variants> time_all(Index elements, int repetitions, double target, Sanity& sanity) {
+  std::array<Timing, variants> t;
+  const mrm::UniformMesh mesh(1.0, elements);
+  const Index n = mesh.unknowns();
+  const double dt = courant * mesh.h();
+  const mrm::Problem problem = mrm::benchmark_problem();
+
+  const mrm::Scheme schemes[3] = {mrm::Scheme::crank_nicolson, mrm::Scheme::backward_euler,
+                                  mrm::Scheme::paoli_schatzman};
+  for (int v = 0; v < 3; ++v) {
+    mrm::BarSimulation simulation(problem, mesh, mrm::mod3(), parameters_of(schemes[v]), dt);
+    t[v] = measure([&](long k) { for (long s = 0; s < k; ++s) simulation.step(); }, n, repetitions, target);
+    (v == v_cn ? sanity.cn_energy : v == v_be ? sanity.be_energy : sanity.ps_energy) = simulation.sample().energy;
+  }
+  {
+    mrm::BarSimulation simulation(problem, mesh, mrm::mod3(), parameters_of(mrm::Scheme::crank_nicolson), dt);
+    mrm::ErrorAccumulator errors(mesh, mrm::ExactSolution());
+    t[v_errors] = measure(
+        [&](long k) {
+          for (long s = 0; s < k; ++s) {
+            simulation.step();
+            errors.add(simulation.sample());
+          }
+        },
+        n, repetitions, target);
+  }
+  {
+    const mrm::Tridiagonal a = crank_nicolson_matrix(mesh, false);
+    const mrm::ContactSolver solver(a);
+    const Eigen::VectorXd b = random_vector(n, 1);
+    Eigen::VectorXd u(n);
+    const double kappa = 1.0;  // the algebraic row's κ
+    mrm::ContactStep last{};
+    t[v_bare] = measure([&](long k) { for (long s = 0; s < k; ++s) last = solver.solve(b.data(), u.data(), kappa); },
+                        n, repetitions, target);
+    // The residual of the solve with the contact force it found: A u = b − κ λ e₀.
+    Eigen::VectorXd rhs = b;
+    rhs[0] -= kappa * last.multiplier;
+    sanity.bare_residual = std::max(sanity.bare_residual, relative_residual(a, u, rhs));
+  }
+  {
+    const mrm::Tridiagonal a = crank_nicolson_matrix(mesh, true);
+    const Eigen::SparseMatrix<double> sparse = a.to_sparse();
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(sparse);
+    if (ldlt.info() != Eigen::Success) throw std::runtime_error("Eigen's SimplicialLDLT failed to factorise A");
+    const Eigen::VectorXd b = random_vector(n, 2);
+    Eigen::VectorXd u(n);
+    t[v_eigen] = measure([&](long k) { for (long s = 0; s < k; ++s) u = ldlt.solve(b); }, n, repetitions, target);
+    sanity.eigen_residual = std::max(sanity.eigen_residual, relative_residual(a, u, b));
+  }
+  return t;
+}
+
+// ---- Peak memory --------------------------------------------------------------------------------
+
+// The peak resident set (ru_maxrss, KiB on Linux) that a run of `steps` steps of `scheme` at N
+// elements adds to a fresh child process: the child records its peak before building anything and
+// after the run, and returns the difference through a pipe. A process's peak never decreases, so
+// the child starts small (forked before the timings grow the parent) and does nothing else.
+long memory_increment_kib(mrm::Scheme scheme, Index elements, Index steps) {
+  int fd[2];
+  if (pipe(fd) != 0) throw std::runtime_error("pipe() failed");
+  const pid_t child = fork();
+  if (child < 0) throw std::runtime_error("fork() failed");
+  if (child == 0) {
+    close(fd[0]);
+    long increment = -1;
+    try {
+      rusage before{}, after{};
+      getrusage(RUSAGE_SELF, &before);
+      const mrm::UniformMesh mesh(1.0, elements);
+      mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mod3(), parameters_of(scheme),
+                                    courant * mesh.h());
+      mrm::ErrorAccumulator errors(mesh, mrm::ExactSolution());
+      for (Index k = 0; k < steps; ++k) {
+        simulation.step();
+        errors.add(simulation.sample());
+      }
+      getrusage(RUSAGE_SELF, &after);
+      increment = after.ru_maxrss - before.ru_maxrss;
+    } catch (...) {
+      increment = -1;
+    }
+    const ssize_t written = write(fd[1], &increment, sizeof increment);
+    close(fd[1]);
+    _exit(written == static_cast<ssize_t>(sizeof increment) ? 0 : 1);
+  }
+  close(fd[1]);
+  long increment = -1;
+  const ssize_t got = read(fd[0], &increment, sizeof increment);
+  close(fd[0]);
+  int status = 0;
+  waitpid(child, &status, 0);
+  if (got != static_cast<ssize_t>(sizeof increment) || !WIFEXITED(status) || WEXITSTATUS(status) != 0 || increment < 0)
+    throw std::runtime_error("the memory measurement in a child process failed");
+  return increment;
+}
+
+// ---- Fit ----------------------------------------------------------------------------------------
+
+// The least-squares slope of log(cost per step) against log N over the sizes in [first, last] (NaN
+// with fewer than two).
+double loglog_slope(const std::vector<Index>& sizes, const std::vector<double>& ns_per_node, Index first, Index last) {
+  std::vector<double> x, y;
+  for (std::size_t k = 0; k < sizes.size(); ++k) {
+    if (sizes[k] < first || sizes[k] > last || !(ns_per_node[k] > 0)) continue;
+    x.push_back(std::log(static_cast<double>(sizes[k])));
+    y.push_back(std::log(ns_per_node[k] * static_cast<double>(sizes[k])));
+  }
+  if (x.size() < 2) return NAN;
+  double c0, c1, cov00, cov01, cov11, sumsq;
+  if (gsl_fit_linear(x.data(), 1, y.data(), 1, x.size(), &c0, &c1, &cov00, &cov01, &cov11, &sumsq) != GSL_SUCCESS)
+    return NAN;
+  return c1;
+}
+
+std::string fixed(double value, int digits) {
+  if (!std::isfinite(value)) return "nan";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << value;
+  return s.str();
+}
+
+std::string cpu_model() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line))
+    if (line.rfind("model name", 0) == 0) {
+      const std::size_t colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
+    }
+  return "unknown";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return cli::guarded_main("bench_step", [&] {
+    // 1. Options.
+    long min_log2 = 6, max_log2 = 20, repetitions = 7;
+    double target_ms = 20;
+    bool quick = false;
+    std::string output, tex, markdown;
+    cli::Parser parser("bench_step",
+                       "Times one step of Crank-Nicolson, backward Euler and Paoli-Schatzman per node, a bare "
+                       "pre-factored tridiagonal solve and Eigen's SimplicialLDLT solve of the same matrix, for "
+                       "N = 2^6 .. 2^20 elements; prints the ratios to the bare solve, the log-log slope of the "
+                       "cost per step against N and the peak memory. Timings go to output/bench/, not to the "
+                       "deterministic data.",
+                       {"bench_step", "bench_step --quick",
+                        "bench_step --output output/bench/bench_step.dat --tex output/bench/bench_step.tex "
+                        "--markdown output/bench/bench_step.md"});
+    parser.add_integer("--min-log2", "", "K", "smallest mesh N = 2^K elements (K >= 2)", &min_log2,
+                       cli::in_closed_range(2, 24));
+    parser.add_integer("--max-log2", "", "K", "largest mesh N = 2^K elements (K <= 24)", &max_log2,
+                       cli::in_closed_range(2, 24));
+    parser.add_integer("--repetitions", "-r", "R", "timed batches per measurement (the median is reported)",
+                       &repetitions, cli::in_closed_range(1, 1000));
+    parser.add_real("--batch-ms", "", "MS", "target duration of one timed batch in milliseconds", &target_ms,
+                    cli::in_closed_range(0.1, 10000));
+    parser.add_flag("--quick", "-q", "smoke test: N up to 2^12, 3 batches of 2 ms (overridden by explicit options)",
+                    &quick);
+    parser.add_string("--output", "-o", "FILE", "write the timings as a gnuplot data file", &output);
+    parser.add_string("--tex", "", "FILE", "write the table as a LaTeX tabular", &tex);
+    parser.add_string("--markdown", "", "FILE", "write the table as Markdown", &markdown);
+    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    if (quick) {
+      if (!parser.given("--max-log2")) max_log2 = 12;
+      if (!parser.given("--repetitions")) repetitions = 3;
+      if (!parser.given("--batch-ms")) target_ms = 2;
+    }
+    if (min_log2 > max_log2) throw cli::UsageError("--min-log2: must not exceed --max-log2 (" + std::to_string(max_log2) + ")");
+    gsl_set_error_handler_off();
+
+    // 2. The outputs, opened now so that an unwritable path fails before the measurements.
+    std::unique_ptr<cli::AtomicFile> data, table_tex, table_md;
+    if (parser.given("--output")) data = std::make_unique<cli::AtomicFile>(output, "--output");
+    if (parser.given("--tex")) table_tex = std::make_unique<cli::AtomicFile>(tex, "--tex");
+    if (parser.given("--markdown")) table_md = std::make_unique<cli::AtomicFile>(markdown, "--markdown");
+
+    // 3. Peak memory, in fresh children: the largest N and a quarter of it, Crank–Nicolson and
+    // Paoli–Schatzman (which holds its Crank–Nicolson starter until the first step), 4 steps each,
+    // with the error accumulator.
+    const Index big = Index{1} << max_log2, small = std::max<Index>(Index{1} << min_log2, big / 4);
+    const long mem_cn_big = memory_increment_kib(mrm::Scheme::crank_nicolson, big, 4);
+    const long mem_cn_small = memory_increment_kib(mrm::Scheme::crank_nicolson, small, 4);
+    const long mem_ps_big = memory_increment_kib(mrm::Scheme::paoli_schatzman, big, 4);
+    const long mem_ps_small = memory_increment_kib(mrm::Scheme::paoli_schatzman, small, 4);
+    const auto bytes_per_node = [](long kib, Index n) { return 1024.0 * static_cast<double>(kib) / static_cast<double>(n); };
+
+    // 4. The timings, N = 2^min .. 2^max.
+    std::vector<Index> sizes;
+    std::vector<std::array<Timing, variants>> timings;
+    Sanity sanity;
+    for (long k = min_log2; k <= max_log2; ++k) {
+      const Index elements = Index{1} << k;
+      std::cerr << "bench_step: N = 2^" << k << '\n';
+      sizes.push_back(elements);
+      timings.push_back(time_all(elements, static_cast<int>(repetitions), target_ms * 1e-3, sanity));
+    }
+    if (!(sanity.bare_residual < 1e-13 && sanity.eigen_residual < 1e-13))
+      throw std::runtime_error("a timed solve is wrong: relative residual " + cli::format_real(sanity.bare_residual) +
+                               " (bare), " + cli::format_real(sanity.eigen_residual) + " (eigen)");
+    for (double e : {sanity.cn_energy, sanity.be_energy, sanity.ps_energy})
+      if (!(std::isfinite(e) && e > 0 && e < 0.2)) throw std::runtime_error("a timed run has a wrong energy");
+
+    // 5. Slopes of the cost per step against N over 2^10 .. 2^20, for every variant.
+    std::array<double, variants> slope{};
+    for (int v = 0; v < variants; ++v) {
+      std::vector<double> ns;
+      for (const auto& t : timings) ns.push_back(t[v].median);
+      slope[v] = loglog_slope(sizes, ns, Index{1} << 10, Index{1} << 20);
+    }
+
+    // 6. The tables: stdout, data file, LaTeX, Markdown.
+    const auto ratio = [](const std::array<Timing, variants>& t, int v) { return t[v].median / t[v_bare].median; };
+    const auto errors_cost = [](const std::array<Timing, variants>& t) { return t[v_errors].median - t[v_cn].median; };
+    std::ostringstream summary;
+    summary << "cpu = " << cpu_model() << '\n'
+            << "mass = mod3\ncourant = " << cli::format_real(courant) << '\n'
+            << "repetitions = " << repetitions << "\nbatch_ms = " << cli::format_real(target_ms) << '\n';
+    for (int v = 0; v < variants; ++v) summary << "slope_" << variant_names[v] << " = " << fixed(slope[v], 3) << '\n';
+    summary << "memory_cn_kib_N" << big << " = " << mem_cn_big << "\nmemory_cn_kib_N" << small << " = " << mem_cn_small
+            << "\nmemory_ps_kib_N" << big << " = " << mem_ps_big << "\nmemory_ps_kib_N" << small << " = "
+            << mem_ps_small << "\nmemory_cn_bytes_per_node_N" << big << " = " << fixed(bytes_per_node(mem_cn_big, big), 1)
+            << "\nmemory_cn_bytes_per_node_N" << small << " = " << fixed(bytes_per_node(mem_cn_small, small), 1)
+            << "\nmemory_ps_bytes_per_node_N" << big << " = " << fixed(bytes_per_node(mem_ps_big, big), 1)
+            << "\nmemory_ps_bytes_per_node_N" << small << " = " << fixed(bytes_per_node(mem_ps_small, small), 1)
+            << "\nbare_residual = " << cli::format_real(sanity.bare_residual)
+            << "\neigen_residual = " << cli::format_real(sanity.eigen_residual) << '\n';
+
+    std::cout << "# ns per node per step (median of " << repetitions << " batches; min in brackets)\n";
+    std::cout << std::setw(9) << "N";
+    for (int v = 0; v < variants; ++v) std::cout << std::setw(17) << variant_names[v];
+    std::cout << std::setw(9) << "cn/bare" << std::setw(9) << "be/bare" << std::setw(9) << "ps/bare" << std::setw(9)
+              << "errors" << '\n';
+    for (std::size_t k = 0; k < sizes.size(); ++k) {
+      const auto& t = timings[k];
+      std::cout << std::setw(9) << sizes[k];
+      for (int v = 0; v < variants; ++v)
+        std::cout << std::setw(8) << fixed(t[v].median, 2) << " [" << std::setw(5) << fixed(t[v].minimum, 2) << "]";
+      std::cout << std::setw(9) << fixed(ratio(t, v_cn), 2) << std::setw(9) << fixed(ratio(t, v_be), 2)
+                << std::setw(9) << fixed(ratio(t, v_ps), 2) << std::setw(9) << fixed(errors_cost(t), 2) << '\n';
+    }
+    std::cout << summary.str();
+
+    if (data) {
+      std::ostream& out = data->stream();
+      out << "# bench_step: nanoseconds per node per step (timings: machine- and load-dependent, not reproducible)\n";
+      parser.echo(out);
+      std::istringstream lines(summary.str());
+      for (std::string line; std::getline(lines, line);) out << "# " << line << '\n';
+      out << "# columns: log2N N";
+      for (int v = 0; v < variants; ++v) {
+        std::string name = variant_names[v];
+        std::replace(name.begin(), name.end(), '+', '_');
+        out << ' ' << name << "_median " << name << "_min " << name << "_steps";
+      }
+      out << " cn_over_bare be_over_bare ps_over_bare errors_cost\n";
+      for (std::size_t k = 0; k < sizes.size(); ++k) {
+        const auto& t = timings[k];
+        out << std::lround(std::log2(static_cast<double>(sizes[k]))) << ' ' << sizes[k];
+        for (int v = 0; v < variants; ++v)
+          out << ' ' << fixed(t[v].median, 4) << ' ' << fixed(t[v].minimum, 4) << ' ' << t[v].steps_per_batch;
+        out << ' ' << fixed(ratio(t, v_cn), 4) << ' ' << fixed(ratio(t, v_be), 4) << ' ' << fixed(ratio(t, v_ps), 4)
+            << ' ' << fixed(errors_cost(t), 4) << '\n';
+      }
+    }
+
+    // The row of the table for one N: the median of each scheme and of the limits, the ratios, the errors.
+    const auto row_cells = [&](std::size_t k) {
+      const auto& t = timings[k];
+      return std::vector<std::string>{std::to_string(sizes[k]),   fixed(t[v_cn].median, 2),  fixed(t[v_be].median, 2),
+                                      fixed(t[v_ps].median, 2),   fixed(t[v_bare].median, 2), fixed(t[v_eigen].median, 2),
+                                      fixed(ratio(t, v_cn), 2),   fixed(ratio(t, v_be), 2),  fixed(ratio(t, v_ps), 2),
+                                      fixed(errors_cost(t), 2)};
+    };
+    const std::vector<std::string> slope_cells = {"slope", fixed(slope[v_cn], 3), fixed(slope[v_be], 3),
+                                                  fixed(slope[v_ps], 3), fixed(slope[v_bare], 3),
+                                                  fixed(slope[v_eigen], 3), "", "", "", ""};
+    const std::string memory_line =
+        "Peak memory added by a run with the error accumulator (child process, ru_maxrss): CN " +
+        std::to_string(mem_cn_big) + " KiB at N = " + std::to_string(big) + " (" +
+        fixed(bytes_per_node(mem_cn_big, big), 0) + " B/node), " + std::to_string(mem_cn_small) + " KiB at N = " +
+        std::to_string(small) + " (" + fixed(bytes_per_node(mem_cn_small, small), 0) + " B/node); PS " +
+        std::to_string(mem_ps_big) + " KiB at N = " + std::to_string(big) + " (" +
+        fixed(bytes_per_node(mem_ps_big, big), 0) + " B/node), " + std::to_string(mem_ps_small) + " KiB at N = " +
+        std::to_string(small) + " (" + fixed(bytes_per_node(mem_ps_small, small), 0) + " B/node).";
+    const std::string caption_md =
+        "Nanoseconds per node per step (median of " + std::to_string(repetitions) + " batches of about " +
+        fixed(target_ms, 0) + " ms), Mod 3, Δt = h/2, on " + cpu_model() +
+        ". *bare*: the same pre-factored tridiagonal solve without the scheme; *eigen*: Eigen's SimplicialLDLT "
+        "solve of the same matrix; *errors*: the cost of the error measures (ErrorAccumulator::add). The slope is "
+        "that of log(cost per step) against log N over 2^10..2^20.";
+
+    if (table_md) {
+      std::ostream& out = table_md->stream();
+      out << caption_md << "\n\n"
+          << "| N | CN | BE | PS | bare | eigen | CN/bare | BE/bare | PS/bare | errors |\n"
+          << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+      const auto md_row = [&](const std::vector<std::string>& cells) {
+        out << '|';
+        for (const std::string& c : cells) out << ' ' << c << " |";
+        out << '\n';
+      };
+      for (std::size_t k = 0; k < sizes.size(); ++k) md_row(row_cells(k));
+      md_row(slope_cells);
+      out << '\n' << memory_line << '\n';
+    }
+    if (table_tex) {
+      std::ostream& out = table_tex->stream();
+      out << "% bench_step: generated by `make bench`; timings depend on the machine and its load.\n"
+          << "\\begin{tabular}{rrrrrrrrrr}\n\\hline\n"
+          << "$N$ & CN & BE & PS & bare & Eigen & CN/bare & BE/bare & PS/bare & errors \\\\\n\\hline\n";
+      const auto tex_row = [&](const std::vector<std::string>& cells) {
+        for (std::size_t c = 0; c < cells.size(); ++c) out << (c ? " & " : "") << cells[c];
+        out << " \\\\\n";
+      };
+      for (std::size_t k = 0; k < sizes.size(); ++k) tex_row(row_cells(k));
+      out << "\\hline\n";
+      tex_row(slope_cells);
+      out << "\\hline\n\\end{tabular}\n";
+      // The figures the text quotes, as macros.
+      const auto at = [&](Index n) -> const std::array<Timing, variants>* {
+        for (std::size_t k = 0; k < sizes.size(); ++k)
+          if (sizes[k] == n) return &timings[k];
+        return nullptr;
+      };
+      out << "% Macros for the text (N = 2^16 where measured).\n";
+      if (const auto* t = at(Index{1} << 16)) {
+        out << "\\newcommand{\\BenchCnNs}{" << fixed((*t)[v_cn].median, 2) << "}\n"
+            << "\\newcommand{\\BenchBeNs}{" << fixed((*t)[v_be].median, 2) << "}\n"
+            << "\\newcommand{\\BenchPsNs}{" << fixed((*t)[v_ps].median, 2) << "}\n"
+            << "\\newcommand{\\BenchBareNs}{" << fixed((*t)[v_bare].median, 2) << "}\n"
+            << "\\newcommand{\\BenchEigenNs}{" << fixed((*t)[v_eigen].median, 2) << "}\n"
+            << "\\newcommand{\\BenchCnRatio}{" << fixed(ratio(*t, v_cn), 2) << "}\n"
+            << "\\newcommand{\\BenchBeRatio}{" << fixed(ratio(*t, v_be), 2) << "}\n"
+            << "\\newcommand{\\BenchErrorsNs}{" << fixed(errors_cost(*t), 2) << "}\n";
+      }
+      out << "\\newcommand{\\BenchSlopeCn}{" << fixed(slope[v_cn], 3) << "}\n"
+          << "\\newcommand{\\BenchSlopeBe}{" << fixed(slope[v_be], 3) << "}\n"
+          << "\\newcommand{\\BenchSlopePs}{" << fixed(slope[v_ps], 3) << "}\n"
+          << "\\newcommand{\\BenchMemoryCnBytesPerNode}{" << fixed(bytes_per_node(mem_cn_big, big), 0) << "}\n"
+          << "\\newcommand{\\BenchMemoryLargestN}{" << big << "}\n";
+    }
+    if (data) data->commit();
+    if (table_tex) table_tex->commit();
+    if (table_md) table_md->commit();
+    return 0;
+  });
+}
