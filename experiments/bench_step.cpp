@@ -138,12 +138,37 @@ Eigen::VectorXd random_vector(Index n, unsigned seed) {
   return b;
 }
 
-const char* const variant_names[] = {"cn", "be", "ps", "cn+errors", "bare", "eigen"};
-constexpr int variants = 6;
-constexpr int v_cn = 0, v_be = 1, v_ps = 2, v_errors = 3, v_bare = 4, v_eigen = 5;
+const char* const variant_names[] = {"cn", "be", "ps", "cn+errors", "bare", "eigen", "bare2"};
+constexpr int variants = 7;
+constexpr int v_cn = 0, v_be = 1, v_ps = 2, v_errors = 3, v_bare = 4, v_eigen = 5, v_bare2 = 6;
+
+// The two-chain solve ("bare2"): the same factors, each sweep's recurrence substituted into itself
+// so that it runs as two independent chains (ContactSolver::elimination_pair, upward_pair; the form
+// the schemes' fused step uses). Compared with "bare", it shows what the dependency chain costs.
+mrm::ContactStep two_chain_solve(const mrm::ContactSolver& solver, const double* b, double* u, double kappa) {
+  const Index n = solver.size();
+  const double *e = solver.elimination().data(), *e2 = solver.elimination_pair().data();
+  const double *q = solver.inverse_pivot().data(), *c = solver.upward().data(), *c2 = solver.upward_pair().data();
+  double b1 = 0, y1 = 0, y2 = 0;  // b_{i+1}, y_{i+1}, y_{i+2}
+  for (Index i = n - 1; i >= 1; --i) {
+    const double y = (b[i] - e[i] * b1) + e2[i] * y2;
+    u[i] = y;
+    b1 = b[i], y2 = y1, y1 = y;
+  }
+  const mrm::ContactStep step = solver.resolve_contact(b[0] - e[0] * y1, kappa, 0.0);
+  double z1 = step.u0, u1 = step.u0, u2 = 0;  // z_{i−1}, u_{i−1}, u_{i−2}
+  u[0] = step.u0;
+  for (Index i = 1; i < n; ++i) {
+    const double z = q[i] * u[i];
+    const double ui = (z - c[i] * z1) + c2[i] * u2;
+    u[i] = ui;
+    z1 = z, u2 = u1, u1 = ui;
+  }
+  return step;
+}
 
 // A check that the timed code computed something sensible (guards against a benchmark of dead code):
-// the relative residual of the bare and Eigen solves, and the energy of the runs.
+// the backward error of the bare and Eigen solves, and the energy of the runs.
 struct Sanity {
   double bare_residual = 0, eigen_residual = 0, cn_energy = 0, ps_energy = 0, be_energy = 0;
 };
@@ -193,6 +218,13 @@ std::array<Timing, variants> time_all(Index elements, int repetitions, double ta
     Eigen::VectorXd rhs = b;
     rhs[0] -= kappa * last.multiplier;
     sanity.bare_residual = std::max(sanity.bare_residual, relative_residual(a, u, rhs));
+
+    Eigen::VectorXd u2(n);
+    t[v_bare2] = measure([&](long k) { for (long s = 0; s < k; ++s) last = two_chain_solve(solver, b.data(), u2.data(), kappa); },
+                         n, repetitions, target);
+    rhs = b;
+    rhs[0] -= kappa * last.multiplier;
+    sanity.bare_residual = std::max(sanity.bare_residual, relative_residual(a, u2, rhs));
   }
   {
     const mrm::Tridiagonal a = crank_nicolson_matrix(mesh, true);

@@ -89,6 +89,12 @@ ContactSolver::ContactSolver(const Tridiagonal& a)
     inverse_pivot_[i] = 1.0 / pivot_[i];
     upward_[i] = lower_[i] * inverse_pivot_[i];
   }
+  elimination_pair_.setZero(n);
+  upward_pair_.setZero(n);
+  for (Index i = 0; i < n; ++i) {
+    if (i + 1 < n) elimination_pair_[i] = elimination_[i] * elimination_[i + 1];
+    if (i >= 1) upward_pair_[i] = upward_[i] * upward_[i - 1];
+  }
 }
 
 ContactStep ContactSolver::resolve_contact(double y0, double kappa, double obstacle) const {

@@ -52,11 +52,18 @@ class ContactSolver {
   const Eigen::VectorXd& inverse_pivot() const { return inverse_pivot_; }
   const Eigen::VectorXd& lower() const { return lower_; }
   const Eigen::VectorXd& upward() const { return upward_; }
+  // The same recurrences substituted into themselves, two nodes at a time:
+  //   y_i = (b_i − ε_i b_{i+1}) + elimination_pair_[i] y_{i+2},          elimination_pair_[i] = ε_i ε_{i+1},
+  //   u_i = (z_i − c_i z_{i−1}) + upward_pair_[i] u_{i−2},  z_i = y_i/d_i,  upward_pair_[i] = c_i c_{i−1},
+  // so that each sweep is two independent chains (even and odd nodes) of half the length: the
+  // schemes' fused step uses this form (schemes.cpp), solve() the plain one.
+  const Eigen::VectorXd& elimination_pair() const { return elimination_pair_; }
+  const Eigen::VectorXd& upward_pair() const { return upward_pair_; }
   /// The contact decision on the reduced row d₀ u₀ = y₀ − κ λ.
   ContactStep resolve_contact(double y0, double kappa, double obstacle) const;
 
  private:
-  Eigen::VectorXd pivot_, inverse_pivot_, elimination_, lower_, upward_;
+  Eigen::VectorXd pivot_, inverse_pivot_, elimination_, lower_, upward_, elimination_pair_, upward_pair_;
 };
 
 }  // namespace mrm

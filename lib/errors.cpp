@@ -13,6 +13,7 @@
 #include "errors.hpp"
 
 #include <cmath>
+#include <random>
 #include <stdexcept>
 
 #include <doctest/doctest.h>
@@ -43,10 +44,14 @@ void ErrorAccumulator::History::add(double t, double error_squared, double exact
 // One level costs one pass over the nodes. The interpolants come from the exact solution's evaluation
 // at many points (exact_solution.cpp: the phase located once, one affine function per node); the six
 // quadratic forms eᵀMe and eᵀSe of the errors and of the interpolants are accumulated together. M and
-// S are the P1 matrices of a uniform mesh: row 0 has its own diagonal entry, and every other row the
-// same entries (checked when the accumulator is built), so each form is
+// S are the P1 matrices of a uniform mesh: row 0 has its own diagonal entry a₀₀, and every other row
+// the same entries (d, l) = (A_ii, A_{i,i−1}) (checked when the accumulator is built). Expanding
+// −l (z_i − z_{i−1})² and telescoping, with D = Σ_{i≥1} (z_i − z_{i−1})² and Q = Σ_{i≥1} z_i²,
 //
-//     zᵀAz = a₀₀ z₀² + a Σ_{i≥1} z_i² + 2 a' Σ_{i≥1} z_{i−1} z_i,     a = A_ii (i ≥ 1), a' = A_{i,i−1}.
+//     zᵀAz = a₀₀ z₀² + Σ_{i=1}^{n−1} (d z_i² + 2l z_{i−1} z_i) = a₀₀ z₀² − l D + (d + 2l) Q − l z_{n−1}² + l z₀².
+//
+// For S, d + 2l = 0 and −l = 1/h: |z|²_H¹ = (D + z_{n−1}²)/h, a sum of squares with no cancellation
+// (the same form written as Σ z_i² against Σ z_{i−1} z_i loses O(N²) in relative accuracy).
 ErrorAccumulator::ErrorAccumulator(const UniformMesh& mesh, const ExactSolution& exact)
     : mesh_(mesh), exact_(exact), mass_(p1_mass(mesh)), stiffness_(p1_stiffness(mesh)), nodes_(mesh.unknowns()),
       interpolant_(mesh.unknowns()), velocity_interpolant_(mesh.unknowns()) {
@@ -60,17 +65,10 @@ ErrorAccumulator::ErrorAccumulator(const UniformMesh& mesh, const ExactSolution&
 
 namespace {
 
-// The two sums of zᵀAz over the rows i ≥ 1, and the form itself.
-struct FormSums {
-  double squares = 0, products = 0;
-  void add(double z_previous, double z) {
-    squares += z * z;
-    products += z_previous * z;
-  }
-  double form(double z0, double a00, double a, double a_lower) const {
-    return a00 * z0 * z0 + a * squares + 2 * a_lower * products;
-  }
-};
+// zᵀAz from z₀, z_{n−1} and the sums D and Q (see above).
+double form(double z0, double z_last, double differences, double squares, double a00, double d, double l) {
+  return a00 * z0 * z0 - l * differences + (d + 2 * l) * squares - l * z_last * z_last + l * z0 * z0;
+}
 
 }  // namespace
 
@@ -82,28 +80,40 @@ void ErrorAccumulator::add(const Sample& sample) {
   exact_.displacement_at_points(sample.time, x, static_cast<long>(n), ui);
   exact_.velocity_at_points(sample.velocity_time, x, static_cast<long>(n), vi);
 
+  // D and Q for the vectors e = W − w_I and w_I, W = U or V: four independent sums, each a short chain
+  // of additions (one loop per W keeps them all in registers).
+  struct Sums {
+    double e0, e_last, e_differences, e_squares, i0, i_last, i_differences, i_squares;
+  };
+  const auto sums = [n](const double* w, const double* wi) {
+    Sums r{w[0] - wi[0], 0, 0, 0, wi[0], 0, 0, 0};
+    double e_prev = r.e0, i_prev = r.i0;
+    for (Index i = 1; i < n; ++i) {
+      const double e = w[i] - wi[i], z = wi[i], de = e - e_prev, dz = z - i_prev;
+      r.e_differences += de * de;
+      r.e_squares += e * e;
+      r.i_differences += dz * dz;
+      r.i_squares += z * z;
+      e_prev = e, i_prev = z;
+    }
+    r.e_last = e_prev, r.i_last = i_prev;
+    return r;
+  };
   const double* u = sample.displacement->data();
-  const double* v = sample.velocity->data();
-  FormSums du_m, ui_m, du_s, ui_s, dv_m, vi_m;
-  double du_prev = u[0] - ui[0], ui_prev = ui[0], dv_prev = v[0] - vi[0], vi_prev = vi[0];
-  for (Index i = 1; i < n; ++i) {
-    const double du = u[i] - ui[i], dv = v[i] - vi[i];
-    du_m.add(du_prev, du);
-    ui_m.add(ui_prev, ui[i]);
-    dv_m.add(dv_prev, dv);
-    vi_m.add(vi_prev, vi[i]);
-    du_prev = du, ui_prev = ui[i], dv_prev = dv, vi_prev = vi[i];
-  }
-  // The S-sums are those of the M-sums (same vectors), with other coefficients.
-  du_s = du_m, ui_s = ui_m;
+  const Sums su = sums(u, ui), sv = sums(sample.velocity->data(), vi);
+  const auto error_form = [](const Sums& r, double a00, double d, double l) {
+    return form(r.e0, r.e_last, r.e_differences, r.e_squares, a00, d, l);
+  };
+  const auto exact_form = [](const Sums& r, double a00, double d, double l) {
+    return form(r.i0, r.i_last, r.i_differences, r.i_squares, a00, d, l);
+  };
   const double m00 = mass_.diag[0], m = n > 1 ? mass_.diag[1] : 0, ml = n > 1 ? mass_.lower[1] : 0;
   const double s00 = stiffness_.diag[0], s = n > 1 ? stiffness_.diag[1] : 0, sl = n > 1 ? stiffness_.lower[1] : 0;
-  const double du0 = u[0] - ui[0], dv0 = v[0] - vi[0];
-  u_l2_.add(sample.time, du_m.form(du0, m00, m, ml), ui_m.form(ui[0], m00, m, ml));
-  u_h1_.add(sample.time, du_s.form(du0, s00, s, sl), ui_s.form(ui[0], s00, s, sl));
+  u_l2_.add(sample.time, error_form(su, m00, m, ml), exact_form(su, m00, m, ml));
+  u_h1_.add(sample.time, error_form(su, s00, s, sl), exact_form(su, s00, s, sl));
   const double u0 = exact_.contact_displacement(sample.time);
   u0_.add(sample.time, std::pow(u[0] - u0, 2), u0 * u0);
-  v_l2_.add(sample.velocity_time, dv_m.form(dv0, m00, m, ml), vi_m.form(vi[0], m00, m, ml));
+  v_l2_.add(sample.velocity_time, error_form(sv, m00, m, ml), exact_form(sv, m00, m, ml));
 
   if (sample.has_multiplier) {
     const double lambda = exact_.contact_multiplier(sample.multiplier_time);
@@ -167,6 +177,38 @@ TEST_CASE("the error measures vanish for the exact interpolant and are relative"
   }
   for (double e : ErrorAccumulator::values(perfect.relative())) CHECK(e == 0.0);
   for (double e : ErrorAccumulator::values(doubled.relative())) CHECK(e == doctest::Approx(1.0).epsilon(1e-12));
+}
+
+TEST_CASE("the one-pass error forms equal the matrix forms of the generic evaluation") {
+  // One sample, so that each L∞ measure is the ratio of two forms at that level; the reference takes
+  // the interpolants node by node from ExactSolution's generic functions and the forms from
+  // Tridiagonal::bilinear. Random discrete fields, instants in each phase and on a phase change.
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> uniform(-0.6, 0.6);
+  for (const Index elements : {2, 9, 64, 1000}) {
+    const UniformMesh mesh(1.0, elements);
+    const ExactSolution exact;
+    const Tridiagonal m = p1_mass(mesh), s = p1_stiffness(mesh);
+    for (const double t : {0.3, 1.45, 2.7, 3.0, 4.0 + 1.0 / static_cast<double>(elements)}) {
+      Eigen::VectorXd u(elements), v(elements), ui(elements), vi(elements);
+      const double tv = t - 0.25 / static_cast<double>(elements);  // a staggered velocity instant
+      for (Index i = 0; i < elements; ++i) {
+        ui[i] = exact.displacement(mesh.x(i), t);
+        vi[i] = exact.velocity(mesh.x(i), tv);
+        u[i] = ui[i] + 0.01 * uniform(random);
+        v[i] = vi[i] + 0.01 * uniform(random);
+      }
+      ErrorAccumulator errors(mesh, exact);
+      errors.add({0, t, &u, tv, &v, true, t, -0.5, t, 0.125});
+      const ErrorNorms e = errors.relative();
+      const Eigen::VectorXd du = u - ui, dv = v - vi;
+      CAPTURE(elements);
+      CAPTURE(t);
+      CHECK(std::abs(e.u_LinfL2 - std::sqrt(m.bilinear(du, du) / m.bilinear(ui, ui))) < 1e-12 * e.u_LinfL2);
+      CHECK(std::abs(e.u_LinfH1 - std::sqrt(s.bilinear(du, du) / s.bilinear(ui, ui))) < 1e-12 * e.u_LinfH1);
+      CHECK(std::abs(e.v_LinfL2 - std::sqrt(m.bilinear(dv, dv) / m.bilinear(vi, vi))) < 1e-12 * e.v_LinfL2);
+    }
+  }
 }
 
 TEST_CASE("each scheme approaches the exact solution on a coarse mesh and improves under refinement") {
