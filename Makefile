@@ -36,7 +36,7 @@ DOC := $(OUT)/doc
 # Hook: extra prerequisites of `make test` (a later issue adds check-claims here).
 TEST_EXTRA :=
 
-.PHONY: all build clean deps help test
+.PHONY: all build clean deps help test bench
 
 # ---- Rules --------------------------------------------------------------------------------------
 
@@ -67,6 +67,26 @@ $(DATA)/benchmark.dat $(DATA)/benchmark.txt &: $(BUILD)/bin/bar1d | $(DATA)
 	  || { rm -f $(DATA)/benchmark.txt.tmp; exit 1; }
 	mv $(DATA)/benchmark.txt.tmp $(DATA)/benchmark.txt
 
+# ---- Benchmark (make bench; never part of `make all`) ----------------------------------------------
+# The cost of one time step per node against N, the bare tridiagonal solve and Eigen's solve
+# (experiments/bench_step.cpp), with its table for the report (.tex) and the README (.md) and its plot
+# (PDF for the report, PNG for the README). Timings depend on the machine and its load: they live in
+# $(BENCH), outside the deterministic results, and are remade on every `make bench`.
+BENCH := $(OUT)/bench
+
+bench: build | $(BENCH)
+	$(BUILD)/bin/bench_step --output $(BENCH)/bench_step.dat --tex $(BENCH)/bench_step.tex \
+	  --markdown $(BENCH)/bench_step.md > $(BENCH)/bench_step.txt.tmp || { rm -f $(BENCH)/bench_step.txt.tmp; exit 1; }
+	mv $(BENCH)/bench_step.txt.tmp $(BENCH)/bench_step.txt
+	gnuplot -e "data='$(BENCH)/bench_step.dat'; output='$(BENCH)/bench_step.pdf.tmp'" figures/bench_step.gp
+	mv $(BENCH)/bench_step.pdf.tmp $(BENCH)/bench_step.pdf
+	gnuplot -e "data='$(BENCH)/bench_step.dat'; output='$(BENCH)/bench_step.png.tmp'; format='png'" figures/bench_step.gp
+	mv $(BENCH)/bench_step.png.tmp $(BENCH)/bench_step.png
+	cat $(BENCH)/bench_step.md
+
+$(BENCH):
+	mkdir -p $@
+
 # Output directories.
 $(DATA) $(FIGURES) $(DOC):
 	mkdir -p $@
@@ -81,6 +101,7 @@ help:
 	@echo '  all      (default) build, then regenerate the results in $(OUT)/'
 	@echo '  build    configure and build the library, tests and programs into $(BUILD)/bin/'
 	@echo '  test     build, then run the test suite with ctest'
+	@echo '  bench    build, then time one step per node for N = 2^6..2^20 ($(OUT)/bench/bench_step.*)'
 	@echo '  deps     check the Debian packages, installing the missing ones if root (tools/deps.sh)'
 	@echo '  clean    remove build/, build-sanitize/ and $(OUT)/'
 	@echo '  help     this list'

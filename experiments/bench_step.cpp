@@ -10,7 +10,10 @@
 //   cn+errors    the same Crank–Nicolson step followed by ErrorAccumulator::add, the error measures of
 //                problem.md §5 against the exact solution (the difference is the cost of the errors);
 //   bare         ContactSolver::solve with Crank–Nicolson's step matrix A: one sweep down, the contact
-//                decision, one sweep up, on the factors computed once (the practical limit of a step);
+//                decision, one sweep up, plain substitution loops on the factors computed once (the
+//                practical limit of a step);
+//   bare2        the same solve with each sweep run as two interleaved chains (the form the schemes'
+//                fused step uses, contact.hpp): what the dependency chain of the substitution costs;
 //   eigen        Eigen's SimplicialLDLT solve (factorised once) of the same matrix, symmetrised by
 //                scaling its algebraic contact row 0 by θ (same sparsity, same cost).
 // Then the ratio of each scheme to the bare solve, the log-log slope of the cost per step against N
@@ -375,8 +378,20 @@ int main(int argc, char** argv) {
     const long mem_ps_big = memory_increment_kib(mrm::Scheme::paoli_schatzman, big, 4);
     const long mem_ps_small = memory_increment_kib(mrm::Scheme::paoli_schatzman, small, 4);
     const auto bytes_per_node = [](long kib, Index n) { return 1024.0 * static_cast<double>(kib) / static_cast<double>(n); };
+    // The marginal cost, (memory(N) − memory(N/4)) / (N − N/4): the constant of a memory linear in N.
+    const auto marginal = [&](long kib_big, long kib_small) {
+      return big > small ? 1024.0 * static_cast<double>(kib_big - kib_small) / static_cast<double>(big - small) : NAN;
+    };
 
-    // 4. The timings, N = 2^min .. 2^max.
+    // 4. The timings, N = 2^min .. 2^max, after half a second of steps that brings the core out of
+    // any idle state (the first measurements would otherwise pay for it).
+    {
+      const mrm::UniformMesh mesh(1.0, 4096);
+      mrm::BarSimulation warm(mrm::benchmark_problem(), mesh, mrm::mod3(), parameters_of(mrm::Scheme::crank_nicolson),
+                              courant * mesh.h());
+      const auto start = Clock::now();
+      while (std::chrono::duration<double>(Clock::now() - start).count() < (quick ? 0.1 : 0.5)) warm.step();
+    }
     std::vector<Index> sizes;
     std::vector<std::array<Timing, variants>> timings;
     Sanity sanity;
@@ -414,6 +429,8 @@ int main(int argc, char** argv) {
             << "\nmemory_cn_bytes_per_node_N" << small << " = " << fixed(bytes_per_node(mem_cn_small, small), 1)
             << "\nmemory_ps_bytes_per_node_N" << big << " = " << fixed(bytes_per_node(mem_ps_big, big), 1)
             << "\nmemory_ps_bytes_per_node_N" << small << " = " << fixed(bytes_per_node(mem_ps_small, small), 1)
+            << "\nmemory_cn_marginal_bytes_per_node = " << fixed(marginal(mem_cn_big, mem_cn_small), 1)
+            << "\nmemory_ps_marginal_bytes_per_node = " << fixed(marginal(mem_ps_big, mem_ps_small), 1)
             << "\nbare_residual = " << cli::format_real(sanity.bare_residual)
             << "\neigen_residual = " << cli::format_real(sanity.eigen_residual) << '\n';
 
@@ -458,13 +475,13 @@ int main(int argc, char** argv) {
     // The row of the table for one N: the median of each scheme and of the limits, the ratios, the errors.
     const auto row_cells = [&](std::size_t k) {
       const auto& t = timings[k];
-      return std::vector<std::string>{std::to_string(sizes[k]),   fixed(t[v_cn].median, 2),  fixed(t[v_be].median, 2),
-                                      fixed(t[v_ps].median, 2),   fixed(t[v_bare].median, 2), fixed(t[v_eigen].median, 2),
-                                      fixed(ratio(t, v_cn), 2),   fixed(ratio(t, v_be), 2),  fixed(ratio(t, v_ps), 2),
-                                      fixed(errors_cost(t), 2)};
+      return std::vector<std::string>{std::to_string(sizes[k]),  fixed(t[v_cn].median, 2),    fixed(t[v_be].median, 2),
+                                      fixed(t[v_ps].median, 2),  fixed(t[v_bare].median, 2),  fixed(t[v_bare2].median, 2),
+                                      fixed(t[v_eigen].median, 2), fixed(ratio(t, v_cn), 2),  fixed(ratio(t, v_be), 2),
+                                      fixed(ratio(t, v_ps), 2),  fixed(errors_cost(t), 2)};
     };
-    const std::vector<std::string> slope_cells = {"slope", fixed(slope[v_cn], 3), fixed(slope[v_be], 3),
-                                                  fixed(slope[v_ps], 3), fixed(slope[v_bare], 3),
+    const std::vector<std::string> slope_cells = {"slope",         fixed(slope[v_cn], 3),    fixed(slope[v_be], 3),
+                                                  fixed(slope[v_ps], 3), fixed(slope[v_bare], 3), fixed(slope[v_bare2], 3),
                                                   fixed(slope[v_eigen], 3), "", "", "", ""};
     const std::string memory_line =
         "Peak memory added by a run with the error accumulator (child process, ru_maxrss): CN " +
@@ -473,19 +490,22 @@ int main(int argc, char** argv) {
         std::to_string(small) + " (" + fixed(bytes_per_node(mem_cn_small, small), 0) + " B/node); PS " +
         std::to_string(mem_ps_big) + " KiB at N = " + std::to_string(big) + " (" +
         fixed(bytes_per_node(mem_ps_big, big), 0) + " B/node), " + std::to_string(mem_ps_small) + " KiB at N = " +
-        std::to_string(small) + " (" + fixed(bytes_per_node(mem_ps_small, small), 0) + " B/node).";
+        std::to_string(small) + " (" + fixed(bytes_per_node(mem_ps_small, small), 0) + " B/node). Marginal cost " +
+        "(memory(N) − memory(N/4))/(3N/4): CN " + fixed(marginal(mem_cn_big, mem_cn_small), 0) + " B/node, PS " +
+        fixed(marginal(mem_ps_big, mem_ps_small), 0) + " B/node.";
     const std::string caption_md =
         "Nanoseconds per node per step (median of " + std::to_string(repetitions) + " batches of about " +
         fixed(target_ms, 0) + " ms), Mod 3, Δt = h/2, on " + cpu_model() +
-        ". *bare*: the same pre-factored tridiagonal solve without the scheme; *eigen*: Eigen's SimplicialLDLT "
-        "solve of the same matrix; *errors*: the cost of the error measures (ErrorAccumulator::add). The slope is "
+        ". *bare*: the same pre-factored tridiagonal solve without the scheme (plain substitution loops); "
+        "*bare2*: the same with each sweep run as two interleaved chains (the form the schemes use); *eigen*: Eigen's "
+        "SimplicialLDLT solve of the same matrix; *errors*: the cost of the error measures (ErrorAccumulator::add). The slope is "
         "that of log(cost per step) against log N over 2^10..2^20.";
 
     if (table_md) {
       std::ostream& out = table_md->stream();
       out << caption_md << "\n\n"
-          << "| N | CN | BE | PS | bare | eigen | CN/bare | BE/bare | PS/bare | errors |\n"
-          << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+          << "| N | CN | BE | PS | bare | bare2 | eigen | CN/bare | BE/bare | PS/bare | errors |\n"
+          << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
       const auto md_row = [&](const std::vector<std::string>& cells) {
         out << '|';
         for (const std::string& c : cells) out << ' ' << c << " |";
@@ -498,8 +518,8 @@ int main(int argc, char** argv) {
     if (table_tex) {
       std::ostream& out = table_tex->stream();
       out << "% bench_step: generated by `make bench`; timings depend on the machine and its load.\n"
-          << "\\begin{tabular}{rrrrrrrrrr}\n\\hline\n"
-          << "$N$ & CN & BE & PS & bare & Eigen & CN/bare & BE/bare & PS/bare & errors \\\\\n\\hline\n";
+          << "\\begin{tabular}{rrrrrrrrrrr}\n\\hline\n"
+          << "$N$ & CN & BE & PS & bare & bare2 & Eigen & CN/bare & BE/bare & PS/bare & errors \\\\\n\\hline\n";
       const auto tex_row = [&](const std::vector<std::string>& cells) {
         for (std::size_t c = 0; c < cells.size(); ++c) out << (c ? " & " : "") << cells[c];
         out << " \\\\\n";
@@ -520,16 +540,19 @@ int main(int argc, char** argv) {
             << "\\newcommand{\\BenchBeNs}{" << fixed((*t)[v_be].median, 2) << "}\n"
             << "\\newcommand{\\BenchPsNs}{" << fixed((*t)[v_ps].median, 2) << "}\n"
             << "\\newcommand{\\BenchBareNs}{" << fixed((*t)[v_bare].median, 2) << "}\n"
+            << "\\newcommand{\\BenchBareTwoChainsNs}{" << fixed((*t)[v_bare2].median, 2) << "}\n"
             << "\\newcommand{\\BenchEigenNs}{" << fixed((*t)[v_eigen].median, 2) << "}\n"
             << "\\newcommand{\\BenchCnRatio}{" << fixed(ratio(*t, v_cn), 2) << "}\n"
             << "\\newcommand{\\BenchBeRatio}{" << fixed(ratio(*t, v_be), 2) << "}\n"
+            << "\\newcommand{\\BenchPsRatio}{" << fixed(ratio(*t, v_ps), 2) << "}\n"
             << "\\newcommand{\\BenchErrorsNs}{" << fixed(errors_cost(*t), 2) << "}\n";
       }
       out << "\\newcommand{\\BenchSlopeCn}{" << fixed(slope[v_cn], 3) << "}\n"
           << "\\newcommand{\\BenchSlopeBe}{" << fixed(slope[v_be], 3) << "}\n"
           << "\\newcommand{\\BenchSlopePs}{" << fixed(slope[v_ps], 3) << "}\n"
           << "\\newcommand{\\BenchMemoryCnBytesPerNode}{" << fixed(bytes_per_node(mem_cn_big, big), 0) << "}\n"
-          << "\\newcommand{\\BenchMemoryLargestN}{" << big << "}\n";
+          << "\\newcommand{\\BenchMemoryLargestN}{" << big << "}\n"
+          << "\\newcommand{\\BenchMemoryCnMarginal}{" << fixed(marginal(mem_cn_big, mem_cn_small), 0) << "}\n";
     }
     if (data) data->commit();
     if (table_tex) table_tex->commit();

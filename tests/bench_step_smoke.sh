@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Smoke test of the benchmark program (never a timed assertion): a tiny run writes its three outputs
+# with the expected structure, and a bad option is a usage error (status 2). Usage: bench_step_smoke.sh BIN_DIR
+set -euo pipefail
+bin=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+
+"$bin/bench_step" --quick --min-log2 6 --max-log2 7 --repetitions 1 --batch-ms 0.5 \
+  --output "$dir/b.dat" --tex "$dir/b.tex" --markdown "$dir/b.md" > "$dir/stdout" 2> /dev/null
+# Two sizes: two data rows of 2 + 7*3 + 4 = 27 columns each.
+rows=$(grep -v '^#' "$dir/b.dat" | awk 'NF == 27' | wc -l)
+[[ $rows == 2 ]] || { echo "expected 2 data rows of 27 columns, got $rows"; cat "$dir/b.dat"; exit 1; }
+grep -q '^\\begin{tabular}' "$dir/b.tex" || { echo "no tabular in the LaTeX table"; exit 1; }
+grep -q '^| 128 |' "$dir/b.md" || { echo "no row for N = 128 in the Markdown table"; exit 1; }
+grep -q '^slope_cn = ' "$dir/stdout" || { echo "no slope on stdout"; exit 1; }
+
+status=0
+"$bin/bench_step" --max-log2 30 > /dev/null 2>&1 || status=$?
+[[ $status == 2 ]] || { echo "--max-log2 30: expected exit status 2, got $status"; exit 1; }
+echo "bench_step smoke test passed"
