@@ -29,7 +29,7 @@
 //
 // Description. Timings depend on the machine and its load: they are written to output/bench/, never
 // compared byte for byte. Method: every measurement first warms up (and calibrates) by doubling the
-// number of steps until a batch takes 2 ms, then times R batches of as many steps as make about 20 ms
+// number of steps until a batch takes 2 ms, then times R batches of as many steps as make about 10 ms
 // each with std::chrono::steady_clock; the median over the batches is the figure, the minimum is
 // reported beside it. Nothing is pinned; run it on an idle machine. Steps: (1) read the options;
 // (2) open the outputs; (3) measure the peak memory in child processes (before anything else grows the
@@ -178,7 +178,8 @@ struct Sanity {
 
 // The normwise backward error max|Au − b| / (max|A| max|u| + max|b|), round-off size for a stable solve.
 double relative_residual(const mrm::Tridiagonal& a, const Eigen::VectorXd& u, const Eigen::VectorXd& b) {
-  const double norm_a = std::max({a.lower.cwiseAbs().maxCoeff(), a.diag.cwiseAbs().maxCoeff(), a.upper.cwiseAbs().maxCoeff()});
+  const double norm_a =
+      std::max({a.lower.cwiseAbs().maxCoeff(), a.diag.cwiseAbs().maxCoeff(), a.upper.cwiseAbs().maxCoeff()});
   return (a * u - b).cwiseAbs().maxCoeff() / (norm_a * u.cwiseAbs().maxCoeff() + b.cwiseAbs().maxCoeff());
 }
 
@@ -223,8 +224,9 @@ std::array<Timing, variants> time_all(Index elements, int repetitions, double ta
     sanity.bare_residual = std::max(sanity.bare_residual, relative_residual(a, u, rhs));
 
     Eigen::VectorXd u2(n);
-    t[v_bare2] = measure([&](long k) { for (long s = 0; s < k; ++s) last = two_chain_solve(solver, b.data(), u2.data(), kappa); },
-                         n, repetitions, target);
+    t[v_bare2] = measure(
+        [&](long k) { for (long s = 0; s < k; ++s) last = two_chain_solve(solver, b.data(), u2.data(), kappa); }, n,
+        repetitions, target);
     rhs = b;
     rhs[0] -= kappa * last.multiplier;
     sanity.bare_residual = std::max(sanity.bare_residual, relative_residual(a, u2, rhs));
@@ -312,6 +314,13 @@ std::string fixed(double value, int digits) {
   return s.str();
 }
 
+// The load average of the machine (/proc/loadavg, 1 minute): timings taken under load are suspect.
+std::string load_average() {
+  std::ifstream file("/proc/loadavg");
+  std::string one;
+  return file >> one ? one : "unknown";
+}
+
 std::string cpu_model() {
   std::ifstream cpuinfo("/proc/cpuinfo");
   std::string line;
@@ -328,8 +337,8 @@ std::string cpu_model() {
 int main(int argc, char** argv) {
   return cli::guarded_main("bench_step", [&] {
     // 1. Options.
-    long min_log2 = 6, max_log2 = 20, repetitions = 7;
-    double target_ms = 20;
+    long min_log2 = 6, max_log2 = 20, repetitions = 11;
+    double target_ms = 10;
     bool quick = false;
     std::string output, tex, markdown;
     cli::Parser parser("bench_step",
@@ -360,7 +369,8 @@ int main(int argc, char** argv) {
       if (!parser.given("--repetitions")) repetitions = 3;
       if (!parser.given("--batch-ms")) target_ms = 2;
     }
-    if (min_log2 > max_log2) throw cli::UsageError("--min-log2: must not exceed --max-log2 (" + std::to_string(max_log2) + ")");
+    if (min_log2 > max_log2)
+      throw cli::UsageError("--min-log2: must not exceed --max-log2 (" + std::to_string(max_log2) + ")");
     gsl_set_error_handler_off();
 
     // 2. The outputs, opened now so that an unwritable path fails before the measurements.
@@ -377,11 +387,15 @@ int main(int argc, char** argv) {
     const long mem_cn_small = memory_increment_kib(mrm::Scheme::crank_nicolson, small, 4);
     const long mem_ps_big = memory_increment_kib(mrm::Scheme::paoli_schatzman, big, 4);
     const long mem_ps_small = memory_increment_kib(mrm::Scheme::paoli_schatzman, small, 4);
-    const auto bytes_per_node = [](long kib, Index n) { return 1024.0 * static_cast<double>(kib) / static_cast<double>(n); };
+    const auto bytes_per_node = [](long kib, Index n) {
+      return 1024.0 * static_cast<double>(kib) / static_cast<double>(n);
+    };
     // The marginal cost, (memory(N) − memory(N/4)) / (N − N/4): the constant of a memory linear in N.
     const auto marginal = [&](long kib_big, long kib_small) {
       return big > small ? 1024.0 * static_cast<double>(kib_big - kib_small) / static_cast<double>(big - small) : NAN;
     };
+
+    const std::string load_before = load_average();
 
     // 4. The timings, N = 2^min .. 2^max, after half a second of steps that brings the core out of
     // any idle state (the first measurements would otherwise pay for it).
@@ -421,11 +435,13 @@ int main(int argc, char** argv) {
     std::ostringstream summary;
     summary << "cpu = " << cpu_model() << '\n'
             << "mass = mod3\ncourant = " << cli::format_real(courant) << '\n'
-            << "repetitions = " << repetitions << "\nbatch_ms = " << cli::format_real(target_ms) << '\n';
+            << "repetitions = " << repetitions << "\nbatch_ms = " << cli::format_real(target_ms) << '\n'
+            << "load_average_before = " << load_before << "\nload_average_after = " << load_average() << '\n';
     for (int v = 0; v < variants; ++v) summary << "slope_" << variant_names[v] << " = " << fixed(slope[v], 3) << '\n';
     summary << "memory_cn_kib_N" << big << " = " << mem_cn_big << "\nmemory_cn_kib_N" << small << " = " << mem_cn_small
             << "\nmemory_ps_kib_N" << big << " = " << mem_ps_big << "\nmemory_ps_kib_N" << small << " = "
-            << mem_ps_small << "\nmemory_cn_bytes_per_node_N" << big << " = " << fixed(bytes_per_node(mem_cn_big, big), 1)
+            << mem_ps_small << "\nmemory_cn_bytes_per_node_N" << big << " = "
+            << fixed(bytes_per_node(mem_cn_big, big), 1)
             << "\nmemory_cn_bytes_per_node_N" << small << " = " << fixed(bytes_per_node(mem_cn_small, small), 1)
             << "\nmemory_ps_bytes_per_node_N" << big << " = " << fixed(bytes_per_node(mem_ps_big, big), 1)
             << "\nmemory_ps_bytes_per_node_N" << small << " = " << fixed(bytes_per_node(mem_ps_small, small), 1)
@@ -475,14 +491,15 @@ int main(int argc, char** argv) {
     // The row of the table for one N: the median of each scheme and of the limits, the ratios, the errors.
     const auto row_cells = [&](std::size_t k) {
       const auto& t = timings[k];
-      return std::vector<std::string>{std::to_string(sizes[k]),  fixed(t[v_cn].median, 2),    fixed(t[v_be].median, 2),
-                                      fixed(t[v_ps].median, 2),  fixed(t[v_bare].median, 2),  fixed(t[v_bare2].median, 2),
-                                      fixed(t[v_eigen].median, 2), fixed(ratio(t, v_cn), 2),  fixed(ratio(t, v_be), 2),
-                                      fixed(ratio(t, v_ps), 2),  fixed(errors_cost(t), 2)};
+      return std::vector<std::string>{
+          std::to_string(sizes[k]),    fixed(t[v_cn].median, 2),   fixed(t[v_be].median, 2),
+          fixed(t[v_ps].median, 2),    fixed(t[v_bare].median, 2), fixed(t[v_bare2].median, 2),
+          fixed(t[v_eigen].median, 2), fixed(ratio(t, v_cn), 2),   fixed(ratio(t, v_be), 2),
+          fixed(ratio(t, v_ps), 2),    fixed(errors_cost(t), 2)};
     };
-    const std::vector<std::string> slope_cells = {"slope",         fixed(slope[v_cn], 3),    fixed(slope[v_be], 3),
-                                                  fixed(slope[v_ps], 3), fixed(slope[v_bare], 3), fixed(slope[v_bare2], 3),
-                                                  fixed(slope[v_eigen], 3), "", "", "", ""};
+    const std::vector<std::string> slope_cells = {
+        "slope", fixed(slope[v_cn], 3),   fixed(slope[v_be], 3),    fixed(slope[v_ps], 3), fixed(slope[v_bare], 3),
+        fixed(slope[v_bare2], 3),          fixed(slope[v_eigen], 3), "", "", "", ""};
     const std::string memory_line =
         "Peak memory added by a run with the error accumulator (child process, ru_maxrss): CN " +
         std::to_string(mem_cn_big) + " KiB at N = " + std::to_string(big) + " (" +
@@ -495,11 +512,12 @@ int main(int argc, char** argv) {
         fixed(marginal(mem_ps_big, mem_ps_small), 0) + " B/node.";
     const std::string caption_md =
         "Nanoseconds per node per step (median of " + std::to_string(repetitions) + " batches of about " +
-        fixed(target_ms, 0) + " ms), Mod 3, Δt = h/2, on " + cpu_model() +
+        fixed(target_ms, 0) + " ms), Mod 3, Δt = h/2, on " + cpu_model() + " (load average " + load_before +
+        " before the run)" +
         ". *bare*: the same pre-factored tridiagonal solve without the scheme (plain substitution loops); "
         "*bare2*: the same with each sweep run as two interleaved chains (the form the schemes use); *eigen*: Eigen's "
-        "SimplicialLDLT solve of the same matrix; *errors*: the cost of the error measures (ErrorAccumulator::add). The slope is "
-        "that of log(cost per step) against log N over 2^10..2^20.";
+        "SimplicialLDLT solve of the same matrix; *errors*: the cost of the error measures (ErrorAccumulator::add). "
+        "The slope is that of log(cost per step) against log N over 2^10..2^20.";
 
     if (table_md) {
       std::ostream& out = table_md->stream();
