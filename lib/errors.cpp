@@ -13,6 +13,8 @@
 #include "errors.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include <doctest/doctest.h>
 
@@ -41,7 +43,11 @@ void ErrorAccumulator::History::add(double t, double error_squared, double exact
 
 ErrorAccumulator::ErrorAccumulator(const UniformMesh& mesh, const ExactSolution& exact)
     : mesh_(mesh), exact_(exact), mass_(p1_mass(mesh)), stiffness_(p1_stiffness(mesh)),
-      interpolant_(mesh.unknowns()), difference_(mesh.unknowns()) {}
+      interpolant_(mesh.unknowns()), difference_(mesh.unknowns()) {
+  if (exact.length() != mesh.length)
+    throw std::invalid_argument("error measures: the exact solution's bar has L = " + std::to_string(exact.length()) +
+                                ", the mesh's L = " + std::to_string(mesh.length) + " (allowed: the same L)");
+}
 
 void ErrorAccumulator::add(const Sample& sample) {
   const Index n = mesh_.unknowns();
@@ -119,6 +125,12 @@ TEST_CASE("the error measures vanish for the exact interpolant and are relative"
   }
   for (double e : ErrorAccumulator::values(perfect.relative())) CHECK(e == 0.0);
   for (double e : ErrorAccumulator::values(doubled.relative())) CHECK(e == doctest::Approx(1.0).epsilon(1e-12));
+}
+
+TEST_CASE("the error measures refuse an exact solution of another bar than the mesh's") {
+  CHECK_NOTHROW(ErrorAccumulator(UniformMesh(2.0, 8), ExactSolution(2.0, 0.5)));
+  CHECK_THROWS_WITH_AS(ErrorAccumulator(UniformMesh(2.0, 8), ExactSolution(1.0, 0.5)),
+                       doctest::Contains("(allowed: the same L)"), std::invalid_argument);
 }
 
 TEST_CASE("each scheme approaches the exact solution on a coarse mesh and improves under refinement") {

@@ -5,6 +5,10 @@
 /// The unknowns of every discrete problem of this library are the values at nodes 0..N-1.
 #pragma once
 
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
@@ -34,6 +38,8 @@ struct Tridiagonal {
   explicit Tridiagonal(Index n = 0)
       : lower(Eigen::VectorXd::Zero(n)), diag(Eigen::VectorXd::Zero(n)), upper(Eigen::VectorXd::Zero(n)) {}
   Index size() const { return diag.size(); }
+  // The operations below throw std::invalid_argument for an operand whose size is not size(), an
+  // index outside [0, size()), and a block size outside [1, size()].
   /// The entry A(i, j) (zero outside the three diagonals).
   double operator()(Index i, Index j) const;
   /// y = A x.
@@ -61,7 +67,8 @@ Tridiagonal p1_stiffness(const UniformMesh& mesh);
 Tridiagonal p1_mass(const UniformMesh& mesh);
 
 /// The load vector F_i = ∫ f(x) φ_i(x) dx on the unknowns 0..N-1, by two-point Gauss quadrature on
-/// each element (exact for f of degree ≤ 2).
+/// each element (exact for f of degree ≤ 2). Throws std::invalid_argument if f is not finite at a
+/// quadrature point.
 template <class Load>
 Eigen::VectorXd p1_load(const UniformMesh& mesh, Load&& f) {
   const Index n = mesh.unknowns();
@@ -71,7 +78,10 @@ Eigen::VectorXd p1_load(const UniformMesh& mesh, Load&& f) {
   for (Index e = 0; e < mesh.elements; ++e) {
     const double xl = mesh.x(e);
     for (double xi : {0.5 - g, 0.5 + g}) {
-      const double fx = f(xl + xi * h) * 0.5 * h;
+      const double x = xl + xi * h, fx = f(x) * 0.5 * h;
+      if (!std::isfinite(fx))
+        throw std::invalid_argument("p1_load: the load f(x) is not finite at x = " + std::to_string(x) +
+                                    " (allowed: finite values)");
       load[e] += fx * (1.0 - xi);
       if (e + 1 < n) load[e + 1] += fx * xi;
     }
