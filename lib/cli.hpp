@@ -195,6 +195,12 @@ private:
 //   --output: cannot write "/nonexistent/x.dat": No such file or directory
 // and is a UsageError; with an empty `option` the message has no prefix and the error is a
 // std::runtime_error. A failed commit throws std::runtime_error naming the target.
+//
+// A process ended by SIGHUP, SIGINT, SIGQUIT, SIGTERM, SIGPIPE or SIGXFSZ removes the temporary
+// files of its uncommitted AtomicFiles before it ends (a handler that each AtomicFile installs for
+// those of these signals whose action is the default). SIGKILL cannot be caught: the
+// temporary file it leaves is removed by the next AtomicFile for the same target, once the process
+// that wrote it no longer exists. In every case the target keeps its old content.
 class AtomicFile {
 public:
     explicit AtomicFile(std::string path, std::string_view option = "");
@@ -215,6 +221,7 @@ private:
     std::string temporary_path_;
     std::ofstream stream_;
     bool finished_ = false;
+    std::size_t pending_slot_ = static_cast<std::size_t>(-1);  // in the signal handler's table
 };
 
 // Runs a program's body and turns its exceptions into an exit status and one line on `errors`:

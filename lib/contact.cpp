@@ -104,6 +104,10 @@ ContactStep ContactSolver::resolve_contact(double y0, double kappa, double obsta
 }
 
 ContactStep ContactSolver::solve(const double* b, double* u, double kappa, double obstacle) const {
+  if (!(kappa > 0 && std::isfinite(kappa)))
+    throw std::invalid_argument("contact solver: kappa = " + std::to_string(kappa) +
+                                " (allowed: a positive finite number)");
+  if (size() == 0) throw std::invalid_argument("contact solver: solve before factorising a matrix");
   const Index n = size();
   double y = b[n - 1];
   u[n - 1] = y;
@@ -234,6 +238,19 @@ TEST_CASE("the contact solver rejects a step matrix that is not positive definit
   Tridiagonal a(3);
   a.diag << 1.0, -2.0, 1.0;
   CHECK_THROWS_AS(ContactSolver{a}, std::invalid_argument);
+  CHECK_THROWS_WITH_AS(ContactSolver{Tridiagonal(0)}, "contact solver: empty matrix", std::invalid_argument);
+}
+
+TEST_CASE("the contact step refuses kappa <= 0 and a solver without a matrix") {
+  const ContactSolver solver(p1_mass(UniformMesh(1.0, 4)));
+  double b[4] = {1, 1, 1, 1}, u[4];
+  CHECK_NOTHROW(solver.solve(b, u, 1.0));
+  for (double kappa : {0.0, -1.0, std::nan("")}) {
+    CAPTURE(kappa);
+    CHECK_THROWS_WITH_AS(solver.solve(b, u, kappa), doctest::Contains("(allowed: a positive finite number)"),
+                         std::invalid_argument);
+  }
+  CHECK_THROWS_AS(ContactSolver().solve(b, u, 1.0), std::invalid_argument);
 }
 
 }  // namespace mrm

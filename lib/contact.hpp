@@ -34,7 +34,8 @@ class ContactSolver {
   /// Factorises A; throws std::invalid_argument if a pivot is not positive.
   explicit ContactSolver(const Tridiagonal& a);
 
-  /// Solves for u (size n) given b (size n); u may alias b. kappa > 0.
+  /// Solves for u (size n) given b (size n); u may alias b. Throws std::invalid_argument unless
+  /// kappa > 0 (finite) and a matrix has been factorised.
   ContactStep solve(const double* b, double* u, double kappa, double obstacle = 0.0) const;
 
   /// The pivot d₀ = 1/(A⁻¹)₀₀, the Schur complement of A onto the contact node.

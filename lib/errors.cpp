@@ -15,6 +15,7 @@
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 #include <doctest/doctest.h>
 
@@ -61,6 +62,9 @@ ErrorAccumulator::ErrorAccumulator(const UniformMesh& mesh, const ExactSolution&
     for (Index i = 2; i < n; ++i)
       if (a->diag[i] != a->diag[1] || a->lower[i] != a->lower[1])
         throw std::logic_error("error measures: the P1 matrices of a uniform mesh are expected to be Toeplitz");
+  if (exact.length() != mesh.length)
+    throw std::invalid_argument("error measures: the exact solution's bar has L = " + std::to_string(exact.length()) +
+                                ", the mesh's L = " + std::to_string(mesh.length) + " (allowed: the same L)");
 }
 
 namespace {
@@ -74,6 +78,9 @@ double form(double z0, double z_last, double differences, double squares, double
 
 void ErrorAccumulator::add(const Sample& sample) {
   const Index n = mesh_.unknowns();
+  if (sample.displacement->size() != n || sample.velocity->size() != n)
+    throw std::invalid_argument("error measures: the sample's vectors must have the mesh's N = " + std::to_string(n) +
+                                " entries (allowed: samples of a run on the same mesh)");
   const double* x = nodes_.data();
   double* ui = interpolant_.data();
   double* vi = velocity_interpolant_.data();
@@ -209,6 +216,16 @@ TEST_CASE("the one-pass error forms equal the matrix forms of the generic evalua
       CHECK(std::abs(e.v_LinfL2 - std::sqrt(m.bilinear(dv, dv) / m.bilinear(vi, vi))) < 1e-12 * e.v_LinfL2);
     }
   }
+}
+
+TEST_CASE("the error measures refuse an exact solution or a sample of another bar than the mesh's") {
+  Eigen::VectorXd wrong = Eigen::VectorXd::Zero(5);
+  ErrorAccumulator on_eight(UniformMesh(1.0, 8), ExactSolution());
+  CHECK_THROWS_WITH_AS(on_eight.add({0, 0.0, &wrong, 0.0, &wrong, true, 0.0, 0.0, 0.0, 0.0}),
+                       doctest::Contains("N = 8"), std::invalid_argument);
+  CHECK_NOTHROW(ErrorAccumulator(UniformMesh(2.0, 8), ExactSolution(2.0, 0.5)));
+  CHECK_THROWS_WITH_AS(ErrorAccumulator(UniformMesh(2.0, 8), ExactSolution(1.0, 0.5)),
+                       doctest::Contains("(allowed: the same L)"), std::invalid_argument);
 }
 
 TEST_CASE("each scheme approaches the exact solution on a coarse mesh and improves under refinement") {

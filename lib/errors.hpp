@@ -25,6 +25,8 @@ struct ErrorNorms {
 /// Accumulates the errors of a run against the exact solution, one sample at a time, in O(N) memory.
 class ErrorAccumulator {
  public:
+  /// Throws std::invalid_argument unless the exact solution and the mesh have the same length L.
+  /// `add` expects samples of a simulation on the same mesh (vectors of size mesh.unknowns()).
   ErrorAccumulator(const UniformMesh& mesh, const ExactSolution& exact);
   void add(const Sample& sample);
   ErrorNorms relative() const;

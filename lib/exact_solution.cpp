@@ -48,6 +48,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <vector>
+#include <string>
 
 #include <doctest/doctest.h>
 
@@ -82,6 +83,9 @@ struct PhaseTime {
 };
 
 PhaseTime locate(double tau) {
+  // A time that is not finite has no phase (its cast to a phase index would be undefined).
+  if (!std::isfinite(tau))
+    throw std::invalid_argument("exact solution: the time t must be finite (got " + std::to_string(tau) + ")");
   double r = std::fmod(tau, 3.0);
   if (r < 0) r += 3.0;
   const double nearest = std::round(r);
@@ -288,6 +292,24 @@ TEST_CASE("the evaluation at many points gives the values of the generic functio
 }
 
 // ---------------------------------------------------------------------------------------------------
+
+TEST_CASE("the exact solution refuses L <= 0, a non-finite amplitude and a non-finite time") {
+  for (double length : {0.0, -2.0, std::nan(""), HUGE_VAL}) {
+    CAPTURE(length);
+    CHECK_THROWS_WITH_AS(ExactSolution(length, 0.5), doctest::Contains("the length L must be a positive finite number"),
+                         std::invalid_argument);
+  }
+  CHECK_THROWS_WITH_AS(ExactSolution(1.0, std::nan("")), doctest::Contains("amplitude must be finite"),
+                       std::invalid_argument);
+  const ExactSolution exact;
+  for (double t : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
+    CAPTURE(t);
+    CHECK_THROWS_WITH_AS(exact.displacement(0.5, t), doctest::Contains("the time t must be finite"),
+                         std::invalid_argument);
+    CHECK_THROWS_AS(exact.velocity(0.5, t), std::invalid_argument);
+    CHECK_THROWS_AS(exact.contact_multiplier(t), std::invalid_argument);
+  }
+}
 
 TEST_CASE("the exact solution satisfies the clamp and the Signorini conditions") {
   const ExactSolution exact;

@@ -77,6 +77,9 @@ MassRedistribution mass_redistribution_by_name(const std::string& name) {
 }
 
 Tridiagonal modified_mass_all_nodes(const UniformMesh& mesh, const MassRedistribution& redistribution) {
+  if (!redistribution.weight)
+    throw std::invalid_argument("mass redistribution \"" + redistribution.name +
+                                "\": no weight function (allowed: a function w(i, j, mesh))");
   Tridiagonal m = p1_mass_all_nodes(mesh);
   const Index n = m.size();
   for (Index i = 0; i < n; ++i) {
@@ -182,6 +185,14 @@ TEST_CASE("weights that break symmetry or definiteness are rejected with the red
   CHECK_THROWS_AS(modified_mass(mesh, half), std::invalid_argument);
   CHECK_THROWS_WITH_AS(mass_redistribution_by_name("mod4"), doctest::Contains("allowed: consistent, mod1, mod2, mod3"),
                        std::invalid_argument);
+}
+
+TEST_CASE("a redistribution without a weight function is rejected with its name") {
+  const UniformMesh mesh(1.0, 8);
+  const MassRedistribution empty{"empty", "no weights", {}};
+  CHECK_THROWS_WITH_AS(modified_mass(mesh, empty), doctest::Contains("\"empty\": no weight function"),
+                       std::invalid_argument);
+  CHECK_THROWS_AS(total_mass(mesh, empty), std::invalid_argument);
 }
 
 }  // namespace mrm

@@ -31,7 +31,18 @@ UniformMesh::UniformMesh(double length_, Index elements_) : length(length_), ele
                                 std::to_string(elements_) + ")");
 }
 
+// The sizes and indices that the operations below require are checked in every build: an assertion
+// would vanish from a release build, and a wrong size would then read or write past a vector's end.
+static void require_size(const char* operation, Index given, Index expected) {
+  if (given != expected)
+    throw std::invalid_argument(std::string("Tridiagonal::") + operation + ": the operand has size " +
+                                std::to_string(given) + " (allowed: the matrix size " + std::to_string(expected) + ")");
+}
+
 double Tridiagonal::operator()(Index i, Index j) const {
+  if (!(0 <= i && i < size() && 0 <= j && j < size()))
+    throw std::invalid_argument("Tridiagonal: entry (" + std::to_string(i) + ", " + std::to_string(j) +
+                                ") requested (allowed: indices in [0, " + std::to_string(size() - 1) + "])");
   if (i == j) return diag[i];
   if (j == i - 1) return lower[i];
   if (j == i + 1) return upper[i];
@@ -39,6 +50,7 @@ double Tridiagonal::operator()(Index i, Index j) const {
 }
 
 Eigen::VectorXd Tridiagonal::operator*(const Eigen::VectorXd& x) const {
+  require_size("operator*", x.size(), size());
   const Index n = size();
   Eigen::VectorXd y(n);
   for (Index i = 0; i < n; ++i) {
@@ -51,12 +63,16 @@ Eigen::VectorXd Tridiagonal::operator*(const Eigen::VectorXd& x) const {
 }
 
 double Tridiagonal::bilinear(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const {
+  require_size("bilinear", x.size(), size());
   return x.dot((*this) * y);
 }
 
 double Tridiagonal::sum() const { return lower.sum() + diag.sum() + upper.sum(); }
 
 Tridiagonal Tridiagonal::leading_block(Index n) const {
+  if (!(1 <= n && n <= size()))
+    throw std::invalid_argument("Tridiagonal::leading_block: block size " + std::to_string(n) +
+                                " (allowed: 1 to " + std::to_string(size()) + ")");
   Tridiagonal block(n);
   block.lower = lower.head(n);
   block.diag = diag.head(n);
@@ -74,6 +90,7 @@ Tridiagonal Tridiagonal::scaled(double c) const {
 }
 
 Tridiagonal Tridiagonal::plus(double c, const Tridiagonal& b) const {
+  require_size("plus", b.size(), size());
   Tridiagonal r(size());
   r.lower = lower + c * b.lower;
   r.diag = diag + c * b.diag;
@@ -173,6 +190,37 @@ TEST_CASE("the clamped P1 matrices are symmetric and positive definite") {
   CHECK(std::abs(eig.eigenvalues()[0]) < 1e-10);
 }
 
+TEST_CASE("a mesh needs L > 0 finite and N >= 2, and says so") {
+  CHECK_NOTHROW(UniformMesh(1.0, 2));
+  for (double length : {0.0, -1.0, std::nan(""), HUGE_VAL}) {
+    CAPTURE(length);
+    CHECK_THROWS_WITH_AS(UniformMesh(length, 10), doctest::Contains("the length L must be a positive finite number"),
+                         std::invalid_argument);
+  }
+  for (Index elements : {1, 0, -5}) {
+    CAPTURE(elements);
+    CHECK_THROWS_WITH_AS(UniformMesh(1.0, elements), doctest::Contains("N must be an integer >= 2"),
+                         std::invalid_argument);
+  }
+}
+
+TEST_CASE("tridiagonal operations refuse operands of the wrong size and entries outside the matrix") {
+  const Tridiagonal a = p1_mass(UniformMesh(1.0, 4));
+  const Eigen::VectorXd right(4), wrong(5);
+  CHECK_NOTHROW(a * right);
+  CHECK_THROWS_WITH_AS(a * wrong, "Tridiagonal::operator*: the operand has size 5 (allowed: the matrix size 4)",
+                       std::invalid_argument);
+  CHECK_THROWS_AS(a.bilinear(wrong, right), std::invalid_argument);
+  CHECK_THROWS_AS(a.plus(1.0, Tridiagonal(3)), std::invalid_argument);
+  CHECK_NOTHROW(a.leading_block(4));
+  CHECK_THROWS_WITH_AS(a.leading_block(5), "Tridiagonal::leading_block: block size 5 (allowed: 1 to 4)",
+                       std::invalid_argument);
+  CHECK_THROWS_AS(a.leading_block(0), std::invalid_argument);
+  CHECK(a(3, 1) == 0.0);
+  CHECK_THROWS_WITH_AS(a(4, 3), doctest::Contains("allowed: indices in [0, 3]"), std::invalid_argument);
+  CHECK_THROWS_AS(a(-1, 0), std::invalid_argument);
+}
+
 TEST_CASE("the P1 load vector integrates f φ_i exactly for a quadratic f") {
   const UniformMesh mesh(2.0, 8);
   const Eigen::VectorXd f = p1_load(mesh, [](double x) { return 1.0 + x * x; });
@@ -185,6 +233,13 @@ TEST_CASE("the P1 load vector integrates f φ_i exactly for a quadratic f") {
   const double f_clamped = antiderivative(L) - antiderivative(a);
   CHECK(std::abs(f.sum() + f_clamped - (L + L * L * L / 3)) < 1e-12);
   CHECK(std::abs(f[0] - (h / 2 + h * h * h / 12)) < 1e-13);  // ∫₀ʰ (1 + x²)(1 − x/h) dx
+}
+
+TEST_CASE("the P1 load vector refuses a load that is not finite") {
+  const UniformMesh mesh(1.0, 4);
+  CHECK_THROWS_WITH_AS(p1_load(mesh, [](double x) { return x > 0.5 ? std::nan("") : 1.0; }),
+                       doctest::Contains("p1_load: the load f(x) is not finite"), std::invalid_argument);
+  CHECK_THROWS_AS(p1_load(mesh, [](double x) { return 1.0 / (x - x); }), std::invalid_argument);
 }
 
 }  // namespace mrm

@@ -5,6 +5,9 @@
 /// The unknowns of every discrete problem of this library are the values at nodes 0..N-1.
 #pragma once
 
+#include <cmath>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include <Eigen/Core>
@@ -36,6 +39,8 @@ struct Tridiagonal {
   explicit Tridiagonal(Index n = 0)
       : lower(Eigen::VectorXd::Zero(n)), diag(Eigen::VectorXd::Zero(n)), upper(Eigen::VectorXd::Zero(n)) {}
   Index size() const { return diag.size(); }
+  // The operations below throw std::invalid_argument for an operand whose size is not size(), an
+  // index outside [0, size()), and a block size outside [1, size()].
   /// The entry A(i, j) (zero outside the three diagonals).
   double operator()(Index i, Index j) const;
   /// y = A x.
@@ -64,7 +69,8 @@ Tridiagonal p1_mass(const UniformMesh& mesh);
 
 /// The load vector F_i = ∫ f(x) φ_i(x) dx on the unknowns 0..N-1, by two-point Gauss quadrature on
 /// each element (exact for f of degree ≤ 2), written into `load` (resized to N if needed: a time loop
-/// that reuses its vector does not allocate).
+/// that reuses its vector does not allocate). Throws std::invalid_argument if f is not finite at a
+/// quadrature point.
 template <class Load>
 void p1_load(const UniformMesh& mesh, Load&& f, Eigen::VectorXd& load) {
   const Index n = mesh.unknowns();
@@ -74,7 +80,10 @@ void p1_load(const UniformMesh& mesh, Load&& f, Eigen::VectorXd& load) {
   for (Index e = 0; e < mesh.elements; ++e) {
     const double xl = mesh.x(e);
     for (double xi : {0.5 - g, 0.5 + g}) {
-      const double fx = f(xl + xi * h) * 0.5 * h;
+      const double x = xl + xi * h, fx = f(x) * 0.5 * h;
+      if (!std::isfinite(fx))
+        throw std::invalid_argument("p1_load: the load f(x) is not finite at x = " + std::to_string(x) +
+                                    " (allowed: finite values)");
       load[e] += fx * (1.0 - xi);
       if (e + 1 < n) load[e + 1] += fx * xi;
     }

@@ -126,6 +126,11 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
                              const SchemeParameters& parameters, double dt, InitialContactNode initial)
     : problem_(problem), mesh_(mesh), parameters_((validate(parameters, dt), parameters)), dt_(dt),
       mass_(modified_mass(mesh, mass)), stiffness_(p1_stiffness(mesh)) {
+  if (!problem.initial_displacement)
+    throw std::invalid_argument("problem: no initial displacement u0 (allowed: a function of x)");
+  if (problem.length != mesh.length)
+    throw std::invalid_argument("problem: the bar has L = " + std::to_string(problem.length) + ", the mesh L = " +
+                                std::to_string(mesh.length) + " (allowed: the same L)");
   massless_ = contact_node_is_massless(mass_);
   three_level_ = parameters.scheme == Scheme::paoli_schatzman;
   if (three_level_ && parameters.contact_row == ContactRow::algebraic && !massless_)
@@ -229,6 +234,8 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
     u_[i] = problem.initial_displacement(mesh.x(i));
     x_[i] = problem.initial_velocity ? problem.initial_velocity(mesh.x(i)) : 0.0;
   }
+  if (!(u_.allFinite() && x_.allFinite()))
+    throw std::invalid_argument("problem: the initial data u0, v0 are not finite at every node (allowed: finite values)");
   load_at(0.0, f_now_);
   if (massless_) {
     const CondensedContact c = condense_contact_node(u_[1], mesh.h(), problem.load ? f_now_[0] : 0.0);
@@ -746,6 +753,50 @@ TEST_CASE("bad scheme parameters are rejected with a message naming them") {
   CHECK_THROWS_AS(BarSimulation(benchmark_problem(), mesh, mod3(), p, 0.1), std::invalid_argument);
   CHECK_NOTHROW(BarSimulation(benchmark_problem(), mesh, consistent_mass(), p, 0.01));  // explicit central differences
   CHECK_THROWS_WITH_AS(scheme_by_name("rk4"), doctest::Contains("allowed: cn, be, ps"), std::invalid_argument);
+  p = with(Scheme::crank_nicolson);
+  for (double restitution : {-0.5, std::nan("")}) {
+    p.restitution = restitution;
+    CAPTURE(restitution);
+    CHECK_THROWS_WITH_AS(BarSimulation(benchmark_problem(), mesh, mod3(), p, 0.1), doctest::Contains("restitution"),
+                         std::invalid_argument);
+  }
+  p.restitution = 0;
+  for (double dt : {-0.1, std::nan(""), HUGE_VAL}) {
+    CAPTURE(dt);
+    CHECK_THROWS_WITH_AS(BarSimulation(benchmark_problem(), mesh, mod3(), p, dt), doctest::Contains("dt"),
+                         std::invalid_argument);
+  }
+}
+
+TEST_CASE("a problem without initial data, with non-finite data or on another bar is rejected") {
+  const UniformMesh mesh(1.0, 10);
+  const SchemeParameters p = with(Scheme::crank_nicolson);
+  Problem problem = benchmark_problem();
+  problem.initial_displacement = {};
+  CHECK_THROWS_WITH_AS(BarSimulation(problem, mesh, mod3(), p, 0.1), doctest::Contains("no initial displacement"),
+                       std::invalid_argument);
+  problem = benchmark_problem();
+  problem.initial_velocity = [](double x) { return x > 0.5 ? std::nan("") : 0.0; };
+  CHECK_THROWS_WITH_AS(BarSimulation(problem, mesh, mod3(), p, 0.1), doctest::Contains("not finite"),
+                       std::invalid_argument);
+  CHECK_THROWS_WITH_AS(BarSimulation(benchmark_problem(2.0), mesh, mod3(), p, 0.1),
+                       doctest::Contains("(allowed: the same L)"), std::invalid_argument);
+  problem = benchmark_problem();
+  problem.load = [](double x, double) { return 1.0 / x; };  // singular at x = 0, which no Gauss point is
+  CHECK_NOTHROW(BarSimulation(problem, mesh, mod3(), p, 0.1));
+  problem.load = [](double, double t) { return t > 0 ? HUGE_VAL : 0.0; };
+  BarSimulation simulation(problem, mesh, mod3(), p, 0.1);
+  CHECK_THROWS_WITH_AS(simulation.step(), doctest::Contains("p1_load"), std::invalid_argument);
+}
+
+TEST_CASE("the number of steps to reach T needs T > 0, dt > 0 finite and at most 1e12 steps") {
+  CHECK(steps_to_reach(1.0, 0.1) == 10);
+  CHECK(steps_to_reach(1.0, 0.3) == 4);
+  CHECK_THROWS_WITH_AS(steps_to_reach(0.0, 0.1), doctest::Contains("final time"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(steps_to_reach(1.0, -0.1), doctest::Contains("time step"), std::invalid_argument);
+  CHECK_THROWS_AS(steps_to_reach(std::nan(""), 0.1), std::invalid_argument);
+  CHECK_THROWS_AS(steps_to_reach(1.0, HUGE_VAL), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(steps_to_reach(1.0, 1e-13), doctest::Contains("more than 1e12"), std::invalid_argument);
 }
 
 }  // namespace mrm
