@@ -40,7 +40,8 @@ TEST_EXTRA :=
 
 # ---- Rules --------------------------------------------------------------------------------------
 
-# Everything: the build and the generated results.
+# Everything: the build and the generated results (the figures, the report and the API documentation
+# are listed in their section below).
 all: build $(DATA)/benchmark.dat $(DATA)/benchmark.txt
 
 # Check the Debian packages, installing the missing ones when allowed (quiet when all present).
@@ -67,6 +68,54 @@ $(DATA)/benchmark.dat $(DATA)/benchmark.txt &: $(BUILD)/bin/bar1d | $(DATA)
 	  || { rm -f $(DATA)/benchmark.txt.tmp; exit 1; }
 	mv $(DATA)/benchmark.txt.tmp $(DATA)/benchmark.txt
 
+# ---- Figures, report and API documentation ------------------------------------------------------
+# One figure = one program experiments/X.cpp = one data file $(DATA)/X.dat (with the LaTeX values the
+# report quotes, $(DATA)/X.tex) = one gnuplot script figures/X.gp = one PDF $(FIGURES)/X.pdf.
+# The report paper/report.tex \input's the .tex fragments and includes the PDFs; latexmk builds it.
+FIGURE_NAMES := fig_contact_history fig_energy fig_convergence fig_time_error fig_ps_forms fig_profiles
+FIGURE_PDFS := $(FIGURE_NAMES:%=$(FIGURES)/%.pdf)
+FIGURE_TEX := $(FIGURE_NAMES:%=$(DATA)/%.tex)
+REPORT_SOURCES := $(wildcard paper/*.tex)
+# The claims table (tests/check_claims.cpp, another issue): built and included when the program exists.
+CLAIMS_TEX := $(if $(wildcard tests/check_claims.cpp),$(DATA)/claims.tex)
+# Fixed dates in the PDFs (pdfTeX and cairo honour SOURCE_DATE_EPOCH).
+REPRODUCIBLE := SOURCE_DATE_EPOCH=0 FORCE_SOURCE_DATE=1
+
+all: $(FIGURE_PDFS) $(REPORT) $(DOC)/html/index.html
+
+.PHONY: figures report doc
+figures: $(FIGURE_PDFS)
+report: $(REPORT)
+doc: $(DOC)/html/index.html
+
+# The data of figure X and the report's values: run the program X (a pattern rule with two targets:
+# one run makes both).
+$(DATA)/%.dat $(DATA)/%.tex: $(BUILD)/bin/% | $(DATA)
+	$< --output $(DATA)/$*.dat --tex $(DATA)/$*.tex
+
+# Figure X from its gnuplot script and its data (written under a temporary name, then renamed).
+$(FIGURES)/%.pdf: figures/%.gp $(DATA)/%.dat | $(FIGURES)
+	$(REPRODUCIBLE) gnuplot -e "data='$(DATA)/$*.dat'; output='$@.tmp'" $<
+	mv $@.tmp $@
+
+ifneq ($(CLAIMS_TEX),)
+$(DATA)/claims.tex: $(BUILD)/bin/check_claims | $(DATA)
+	$< --tex $@ > /dev/null
+endif
+
+# The report: every figure and fragment is found through TEXINPUTS (so OUT=dir works); latexmk keeps its
+# auxiliary files in $(OUT)/latex. The benchmark's table and plot (make bench) are included if present.
+$(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) | $(DATA)
+	TEXINPUTS=paper:$(DATA):$(FIGURES):$(OUT)/bench: $(REPRODUCIBLE) \
+	  latexmk -pdf -silent -interaction=nonstopmode -halt-on-error -outdir=$(OUT)/latex paper/report.tex
+	cp $(OUT)/latex/report.pdf $@.tmp
+	mv $@.tmp $@
+
+# The API documentation of the library (Doxygen; its warnings go to $(DOC)/doxygen.log).
+$(DOC)/html/index.html: Doxyfile $(wildcard lib/*.hpp lib/*.cpp) | $(DOC)
+	( cat Doxyfile; echo 'OUTPUT_DIRECTORY = $(DOC)' ) | doxygen - > $(DOC)/doxygen.log 2>&1
+	touch $@
+
 # Output directories.
 $(DATA) $(FIGURES) $(DOC):
 	mkdir -p $@
@@ -82,6 +131,9 @@ help:
 	@echo '  build    configure and build the library, tests and programs into $(BUILD)/bin/'
 	@echo '  test     build, then run the test suite with ctest'
 	@echo '  deps     check the Debian packages, installing the missing ones if root (tools/deps.sh)'
+	@echo '  figures  the figures in $(FIGURES)/ (part of all)'
+	@echo '  report   the report $(REPORT) (part of all)'
+	@echo '  doc      the API documentation, $(DOC)/html/index.html (part of all)'
 	@echo '  clean    remove build/, build-sanitize/ and $(OUT)/'
 	@echo '  help     this list'
 	@echo 'Options (on the command line):'
