@@ -74,6 +74,7 @@ $(DATA)/benchmark.dat $(DATA)/benchmark.txt &: $(BUILD)/bin/bar1d | $(DATA)
 # The report paper/report.tex \input's the .tex fragments and includes the PDFs; latexmk builds it.
 FIGURE_NAMES := fig_contact_history fig_energy fig_convergence fig_time_error fig_ps_forms fig_profiles
 FIGURE_PDFS := $(FIGURE_NAMES:%=$(FIGURES)/%.pdf)
+FIGURE_DATA := $(FIGURE_NAMES:%=$(DATA)/%.dat)
 FIGURE_TEX := $(FIGURE_NAMES:%=$(DATA)/%.tex)
 REPORT_SOURCES := $(wildcard paper/*.tex)
 # The claims table (tests/check_claims.cpp, another issue): built and included when the program exists.
@@ -81,7 +82,8 @@ CLAIMS_TEX := $(if $(wildcard tests/check_claims.cpp),$(DATA)/claims.tex)
 # Fixed dates in the PDFs (pdfTeX and cairo honour SOURCE_DATE_EPOCH).
 REPRODUCIBLE := SOURCE_DATE_EPOCH=0 FORCE_SOURCE_DATE=1
 
-all: $(FIGURE_PDFS) $(REPORT) $(DOC)/html/index.html
+# The data files are named here so that make does not take them for intermediate files and delete them.
+all: $(FIGURE_DATA) $(FIGURE_TEX) $(FIGURE_PDFS) $(REPORT) $(DOC)/html/index.html
 
 .PHONY: figures report doc
 figures: $(FIGURE_PDFS)

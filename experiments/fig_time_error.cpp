@@ -141,8 +141,14 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "time:R", std::to_string(reference_ratio));
     mrm::tex_define(defs, "time:mass", mass == "mod1" ? "Mod 1" : mass == "mod2" ? "Mod 2" : "Mod 3");
     mrm::tex_define(defs, "time:T", mrm::tex_number(static_cast<double>(reference_steps) * dt_ref, 3));
-    mrm::tex_define(defs, "time:largest", std::to_string(largest));
-    mrm::tex_define(defs, "time:smallest", std::to_string(1L << (steps_count - 1)));
+    // A step as a multiple of h, for the prose: "4h", "h", "h/8".
+    auto step_text = [&](long m) {
+      const double q = static_cast<double>(m) / static_cast<double>(reference_ratio);
+      if (q == 1) return std::string("h");
+      return q > 1 ? std::to_string(static_cast<long>(q)) + "h" : "h/" + std::to_string(static_cast<long>(1 / q));
+    };
+    mrm::tex_define(defs, "time:largest", step_text(ratio.front()));
+    mrm::tex_define(defs, "time:smallest", step_text(ratio.back()));
     table << "\\begin{tabular}{ll" << std::string(8, 'r') << "}\n\\toprule\nscheme & $\\Delta t/h$";
     for (const char* label : measure_labels) table << " & \\rotatebox{70}{" << label << "}";
     table << " \\\\\n\\midrule\n";
@@ -181,9 +187,7 @@ int main(int argc, char** argv) {
       }
     }
     table << "\\bottomrule\n\\end{tabular}";
-    const double q_half = static_cast<double>(ratio[half]) / static_cast<double>(reference_ratio);
-    mrm::tex_define(defs, "time:finehalf",
-                    q_half >= 1 ? std::to_string(static_cast<long>(q_half)) : "1/" + std::to_string(static_cast<long>(1 / q_half)));
+    mrm::tex_define(defs, "time:finehalf", step_text(ratio[half]));
     defs << "\\mrmdef{time:table}{" << table.str() << "}\n";
 
     // 6. Commit.

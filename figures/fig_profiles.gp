@@ -14,7 +14,7 @@ count = words(instants)
 phase(t) = (t - 3*floor(t/3)) < 1 ? "free flight" : (t - 3*floor(t/3)) < 2 ? "contact" : "release"
 colour(m) = m == 1 ? "#d62728" : m == 2 ? "#1f77b4" : "#2ca02c"
 
-set multiplot layout 2,(count+1)/2 margins 0.08,0.98,0.09,0.88 spacing 0.07,0.12
+set multiplot layout 2,(count+1)/2 margins 0.08,0.98,0.09,0.87 spacing 0.07,0.15
 set grid lc rgb "#dddddd" lw 0.5
 set xlabel "x"
 set ylabel "u(x,t)"

@@ -25,9 +25,10 @@ std::string tex_number(double value, int significant) {
   const double rounded = std::strtod(buffer, nullptr);
   const int exponent = static_cast<int>(std::floor(std::log10(std::abs(rounded))));
   if (exponent >= -3 && exponent < 4) {
+    // An integer part is never rounded away (2048 stays 2048 at three digits).
     const int decimals = std::max(0, significant - 1 - exponent);
-    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, rounded);
-    return buffer;
+    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, std::abs(decimals == 0 ? std::round(value) : rounded));
+    return (rounded < 0 ? "\\ensuremath{-}" : "") + std::string(buffer);
   }
   std::snprintf(buffer, sizeof buffer, "%.*f", significant - 1, rounded / std::pow(10.0, exponent));
   return std::string("\\ensuremath{") + buffer + "\\cdot 10^{" + std::to_string(exponent) + "}}";
@@ -36,7 +37,7 @@ std::string tex_number(double value, int significant) {
 TEST_CASE("report numbers are rounded to their significant digits in fixed or scientific form") {
   CHECK(tex_number(0.012345) == "0.0123");
   CHECK(tex_number(1.5) == "1.50");
-  CHECK(tex_number(-0.98765, 2) == "-0.99");
+  CHECK(tex_number(-0.98765, 2) == "\\ensuremath{-}0.99");  // a minus sign, not a hyphen, in text
   CHECK(tex_number(2048, 3) == "2048");
   CHECK(tex_number(0.000999, 2) == "0.0010");
   CHECK(tex_number(1.234e-5) == "\\ensuremath{1.23\\cdot 10^{-5}}");

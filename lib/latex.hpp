@@ -8,8 +8,8 @@
 
 namespace mrm {
 
-/// A number for prose and tables, rounded to `significant` digits: fixed notation for
-/// 10⁻³ ≤ |v| < 10⁴ ("0.0123", "1.50", "2048"), otherwise "\ensuremath{1.23\cdot 10^{-5}}";
+/// A number for prose and tables, rounded to `significant` digits (an integer part is never rounded): fixed notation for
+/// 10⁻³ ≤ |v| < 10⁴ ("0.0123", "1.50", "2048"; a negative value starts with "\ensuremath{-}"), otherwise "\ensuremath{1.23\cdot 10^{-5}}";
 /// "0" for zero, "n/a" for a non-finite value. Deterministic (no locale).
 std::string tex_number(double value, int significant = 3);
 
