@@ -95,9 +95,12 @@ doc: $(DOC)/html/index.html
 $(DATA)/%.dat $(DATA)/%.tex: $(BUILD)/bin/% | $(DATA)
 	$< --output $(DATA)/$*.dat --tex $(DATA)/$*.tex
 
-# Figure X from its gnuplot script and its data (written under a temporary name, then renamed).
+# Figure X from its gnuplot script and its data (written under a temporary name, then renamed). This
+# cairo ignores SOURCE_DATE_EPOCH: its creation date is replaced by a fixed one of the same length (so
+# the PDF's byte offsets stay valid), and the same data give the same figure, byte for byte.
 $(FIGURES)/%.pdf: figures/%.gp $(DATA)/%.dat | $(FIGURES)
 	$(REPRODUCIBLE) gnuplot -e "data='$(DATA)/$*.dat'; output='$@.tmp'" $<
+	LC_ALL=C sed -i 's|/CreationDate (D:[0-9]\{14\}Z)|/CreationDate (D:19700101000000Z)|' $@.tmp
 	mv $@.tmp $@
 
 ifneq ($(CLAIMS_TEX),)
@@ -107,7 +110,8 @@ endif
 
 # The report: every figure and fragment is found through TEXINPUTS (so OUT=dir works); latexmk keeps its
 # auxiliary files in $(OUT)/latex. The benchmark's table and plot (make bench) are included if present.
-$(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) | $(DATA)
+$(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) \
+           $(wildcard $(OUT)/bench/bench_step.tex $(OUT)/bench/bench_step.pdf) | $(DATA)
 	TEXINPUTS=paper:$(DATA):$(FIGURES):$(OUT)/bench: $(REPRODUCIBLE) \
 	  latexmk -pdf -silent -interaction=nonstopmode -halt-on-error -outdir=$(OUT)/latex paper/report.tex
 	cp $(OUT)/latex/report.pdf $@.tmp

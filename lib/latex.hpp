@@ -13,8 +13,8 @@ namespace mrm {
 /// "0" for zero, "n/a" for a non-finite value. Deterministic (no locale).
 std::string tex_number(double value, int significant = 3);
 
-/// One definition line `\mrmdef{key}{value}`; the report defines \mrmdef to store the value under the
-/// key and \mrm{key} to print it (a missing key stops the build). Throws std::invalid_argument for a
+/// One definition line `\mrmdef{key}{value}`; the report defines `\mrmdef` to store the value under the
+/// key and `\mrm{key}` to print it (a missing key stops the build). Throws std::invalid_argument for a
 /// key with characters other than letters, digits, '-', ':', '.' and '_'.
 void tex_define(std::ostream& out, const std::string& key, const std::string& value);
 
