@@ -90,6 +90,10 @@ figures: $(FIGURE_PDFS)
 report: $(REPORT)
 doc: $(DOC)/html/index.html
 
+# The figure programs are reached through the pattern rule $(BUILD)/bin/%: make must not take them for
+# intermediate files and delete them after use.
+.SECONDARY: $(FIGURE_NAMES:%=$(BUILD)/bin/%)
+
 # The data of figure X and the report's values: run the program X (a pattern rule with two targets:
 # one run makes both).
 $(DATA)/%.dat $(DATA)/%.tex: $(BUILD)/bin/% | $(DATA)
