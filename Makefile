@@ -42,7 +42,8 @@ CTEST_EXCLUDE := -E '^check_claims$$'
 
 # ---- Rules --------------------------------------------------------------------------------------
 
-# Everything: the build and the generated results.
+# Everything: the build and the generated results (the figures, the report and the API documentation
+# are listed in their section below).
 all: build $(DATA)/benchmark.dat $(DATA)/benchmark.txt
 
 # Check the Debian packages, installing the missing ones when allowed (quiet when all present).
@@ -106,6 +107,72 @@ all: $(DATA)/claims.tex $(DATA)/claims.md
 $(DATA)/claims.tex $(DATA)/claims.md &: $(BUILD)/bin/check_claims | $(DATA)
 	$< --tex $(DATA)/claims.tex --markdown $(DATA)/claims.md > /dev/null
 
+# ---- Figures, report and API documentation ------------------------------------------------------
+# One figure = one program experiments/X.cpp = one data file $(DATA)/X.dat (with the LaTeX values the
+# report quotes, $(DATA)/X.tex) = one gnuplot script figures/X.gp = one PDF $(FIGURES)/X.pdf.
+# The report paper/report.tex \input's the .tex fragments and includes the PDFs; latexmk builds it.
+FIGURE_NAMES := fig_contact_history fig_energy fig_convergence fig_time_error fig_ps_forms fig_profiles
+FIGURE_PDFS := $(FIGURE_NAMES:%=$(FIGURES)/%.pdf)
+FIGURE_DATA := $(FIGURE_NAMES:%=$(DATA)/%.dat)
+FIGURE_TEX := $(FIGURE_NAMES:%=$(DATA)/%.tex)
+REPORT_SOURCES := $(wildcard paper/*.tex)
+# The claims table (tests/check_claims.cpp, see the claims section above).
+CLAIMS_TEX := $(DATA)/claims.tex
+# Fixed dates in the PDFs (pdfTeX and cairo honour SOURCE_DATE_EPOCH).
+REPRODUCIBLE := SOURCE_DATE_EPOCH=0 FORCE_SOURCE_DATE=1
+
+# The data files are named here so that make does not take them for intermediate files and delete them.
+all: $(FIGURE_DATA) $(FIGURE_TEX) $(FIGURE_PDFS) $(REPORT) $(DOC)/html/index.html
+
+.PHONY: figures report doc
+figures: $(FIGURE_PDFS)
+report: $(REPORT)
+doc: $(DOC)/html/index.html
+
+# The figure programs are reached through the pattern rule $(BUILD)/bin/%: make must not take them for
+# intermediate files and delete them after use.
+.SECONDARY: $(FIGURE_NAMES:%=$(BUILD)/bin/%)
+
+# The data of figure X and the report's values: run the program X (a pattern rule with two targets:
+# one run makes both).
+$(DATA)/%.dat $(DATA)/%.tex: $(BUILD)/bin/% | $(DATA)
+	$< --output $(DATA)/$*.dat --tex $(DATA)/$*.tex
+
+# Figure X from its gnuplot script and its data (written under a temporary name, then renamed). This
+# cairo ignores SOURCE_DATE_EPOCH: its creation date is replaced by a fixed one of the same length (so
+# the PDF's byte offsets stay valid), and the same data give the same figure, byte for byte.
+$(FIGURES)/%.pdf: figures/%.gp $(DATA)/%.dat | $(FIGURES)
+	$(REPRODUCIBLE) gnuplot -e "data='$(DATA)/$*.dat'; output='$@.tmp'" $<
+	LC_ALL=C sed -i 's|/CreationDate (D:[0-9]\{14\}Z)|/CreationDate (D:19700101000000Z)|' $@.tmp
+	mv $@.tmp $@
+
+# Crank–Nicolson with Δt ≫ h (a finding beyond the paper, quoted by the report): the largest energy over
+# 100 periods relative to E_h(0), on N = 16 with Mod 3, for each ratio Δt/h, as \mrmdef{large:C}{value}.
+LARGE_STEP_RATIOS := 0.5 2 5 10 40
+$(DATA)/cn_large_step.tex: $(BUILD)/bin/bar1d | $(DATA)
+	for c in $(LARGE_STEP_RATIOS); do \
+	  $< --scheme cn --mass mod3 --elements 16 --courant $$c --final-time 300 \
+	  | awk -v c=$$c '/^energy_initial/ {e0 = $$3} /^energy_max/ {m = $$3} \
+	      END {x = m / e0; if (x < 1000) s = sprintf("%.3g", x); \
+	           else {e = int(log(x) / log(10)); s = sprintf("%.2f\\times10^{%d}", x / 10^e, e)}; \
+	           printf "\\mrmdef{large:%s}{%s}\n", c, s}'; \
+	done > $@.tmp
+	mv $@.tmp $@
+
+# The report: every figure and fragment is found through TEXINPUTS (so OUT=dir works); latexmk keeps its
+# auxiliary files in $(OUT)/latex. The benchmark's table and plot (make bench) are included if present.
+$(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/cn_large_step.tex \
+           $(wildcard $(OUT)/bench/bench_step.tex $(OUT)/bench/bench_step.pdf) | $(DATA)
+	TEXINPUTS=paper:$(DATA):$(FIGURES):$(OUT)/bench: $(REPRODUCIBLE) \
+	  latexmk -pdf -silent -interaction=nonstopmode -halt-on-error -outdir=$(OUT)/latex paper/report.tex
+	cp $(OUT)/latex/report.pdf $@.tmp
+	mv $@.tmp $@
+
+# The API documentation of the library (Doxygen; its warnings go to $(DOC)/doxygen.log).
+$(DOC)/html/index.html: Doxyfile $(wildcard lib/*.hpp lib/*.cpp) | $(DOC)
+	( cat Doxyfile; echo 'OUTPUT_DIRECTORY = $(DOC)' ) | doxygen - > $(DOC)/doxygen.log 2>&1
+	touch $@
+
 # Output directories.
 $(DATA) $(FIGURES) $(DOC):
 	mkdir -p $@
@@ -123,6 +190,9 @@ help:
 	@echo '  check-claims  build, then check every claim of the paper and print the table'
 	@echo '  bench    build, then time one step per node for N = 2^6..2^20 ($(OUT)/bench/bench_step.*)'
 	@echo '  deps     check the Debian packages, installing the missing ones if root (tools/deps.sh)'
+	@echo '  figures  the figures in $(FIGURES)/ (part of all)'
+	@echo '  report   the report $(REPORT) (part of all)'
+	@echo '  doc      the API documentation, $(DOC)/html/index.html (part of all)'
 	@echo '  clean    remove build/, build-sanitize/ and $(OUT)/'
 	@echo '  help     this list'
 	@echo 'Options (on the command line):'

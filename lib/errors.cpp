@@ -28,7 +28,7 @@ std::array<double, 8> ErrorAccumulator::values(const ErrorNorms& e) {
   return {e.u0_L2, e.lambda_L2, e.u_LinfL2, e.u_LinfH1, e.v_LinfL2, e.u_L2L2, e.u_L2H1, e.v_L2L2};
 }
 
-void ErrorAccumulator::History::add(double t, double error_squared, double exact_squared) {
+void TimeHistory::add(double t, double error_squared, double exact_squared) {
   if (started) {
     const double dt = t - time;
     error_integral += 0.5 * dt * (error + error_squared);

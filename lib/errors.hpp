@@ -10,6 +10,15 @@
 
 namespace mrm {
 
+/// A quantity sampled in time: its maximum and its integral by the trapezoidal rule over the
+/// instants at which it was sampled; `error` and `exact` are squared norms at one instant.
+struct TimeHistory {
+  bool started = false;
+  double time = 0, error = 0, exact = 0;
+  double error_max = 0, exact_max = 0, error_integral = 0, exact_integral = 0;
+  void add(double t, double error_squared, double exact_squared);
+};
+
 /// Relative errors ‖error‖ / ‖exact‖ in the norms of problem.md §5.
 struct ErrorNorms {
   double u0_L2;      ///< L²(0,T) of the contact-point displacement u(0, ·)
@@ -35,20 +44,11 @@ class ErrorAccumulator {
   static std::array<double, 8> values(const ErrorNorms& e);
 
  private:
-  /// A quantity sampled in time: its maximum and its integral by the trapezoidal rule over the
-  /// instants at which it was sampled; `error` and `exact` are squared norms.
-  struct History {
-    bool started = false;
-    double time = 0, error = 0, exact = 0;
-    double error_max = 0, exact_max = 0, error_integral = 0, exact_integral = 0;
-    void add(double t, double error_squared, double exact_squared);
-  };
-
   UniformMesh mesh_;
   ExactSolution exact_;
   Tridiagonal mass_, stiffness_;
   Eigen::VectorXd nodes_, interpolant_, velocity_interpolant_;  // x_i; u_I and (u_t)_I at one level
-  History u_l2_, u_h1_, v_l2_, u0_, lambda_;
+  TimeHistory u_l2_, u_h1_, v_l2_, u0_, lambda_;
 };
 
 }  // namespace mrm

@@ -1,0 +1,138 @@
+// fig_contact_history: the paper's Figure 1, the history of the contact point.
+//
+// What it computes. The benchmark of problem.md §2 (bar released at rest from u⁰(x) = (1 − x)/2
+// against the obstacle at x = 0) over several periods, with each of the paper's three schemes
+// (Crank–Nicolson, backward Euler, Paoli–Schatzman (¼, 0)) and each of its three mass choices (Mod 1,
+// Mod 2, Mod 3), on one coarse mesh: the displacement of the contact point u₀ⁿ ≈ u(0, tₙ) and the
+// contact stress λⁿ ≈ λ(t) = u_x(0, t), beside the exact ones. The mesh is coarse on purpose: the three
+// mass choices differ by O(h) near the contact node, so on a fine mesh their curves merge.
+//
+// Sample runs:
+//   fig_contact_history --output output/data/fig_contact_history.dat --tex output/data/fig_contact_history.tex
+//   fig_contact_history --elements 40 --courant 1 --final-time 6 --output h.dat
+//
+// Description. Steps: (1) read the options; (2) open the outputs; (3) write the exact history; (4) run
+// every scheme × mass, writing one block each and accumulating the errors; (5) write the values the
+// report quotes and commit.
+//
+// Data file: gnuplot blocks separated by two blank lines (select with `index`). Block 0 is the exact
+// solution (t u0 lambda); block 1 + 3 s + m is scheme s ∈ (cn, be, ps), mass m ∈ (mod1, mod2, mod3),
+// columns t u0_h t_lambda lambda_h (each quantity at the instant it approximates; lambda_h = nan where
+// a level has no multiplier).
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "cli.hpp"
+#include "errors.hpp"
+#include "exact_solution.hpp"
+#include "figure_runs.hpp"
+#include "latex.hpp"
+#include "schemes.hpp"
+
+namespace cli = mrm::cli;
+
+int main(int argc, char** argv) {
+  return cli::guarded_main("fig_contact_history", [&] {
+    // 1. Options.
+    long elements = 20, exact_points = 3600;
+    double courant = 0.5, final_time = 9.0;
+    std::string ps_form = "literal", output = "fig_contact_history.dat", tex;
+    cli::Parser parser("fig_contact_history",
+                       "Writes the history of the contact point, u(0,t) and the contact stress lambda(t), of the "
+                       "exact solution and of every scheme (cn, be, ps) with every mass choice (mod1, mod2, mod3): "
+                       "the paper's Figure 1.",
+                       {"fig_contact_history --output output/data/fig_contact_history.dat "
+                        "--tex output/data/fig_contact_history.tex",
+                        "fig_contact_history --elements 40 --courant 1 --final-time 6 --output h.dat"});
+    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), >= 2; coarse so that the masses differ",
+                       &elements, cli::at_least(2));
+    parser.add_real("--courant", "-c", "C", "time step dt = C h (C > 0)", &courant, cli::positive());
+    parser.add_real("--final-time", "-T", "T", "final time (> 0); the period is 3", &final_time, cli::positive());
+    parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
+                      {"algebraic", "literal"}, &ps_form);
+    parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve (>= 10)",
+                       &exact_points, cli::at_least(10));
+    parser.add_string("--output", "-o", "FILE", "data file to write", &output);
+    parser.add_string("--tex", "", "FILE", "also write the values the report quotes, as \\mrmdef lines", &tex);
+    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+
+    // 2. Outputs, opened before the runs so that a bad path fails at once.
+    cli::AtomicFile data(output, "--output");
+    std::unique_ptr<cli::AtomicFile> macros;
+    if (parser.given("--tex")) macros = std::make_unique<cli::AtomicFile>(tex, "--tex");
+    const mrm::UniformMesh mesh(1.0, elements);
+    const double dt = courant * mesh.h();  // Δt derived from h here only
+    const mrm::Index steps = mrm::steps_to_reach(final_time, dt);
+    const mrm::ExactSolution exact;
+    std::ostream& out = data.stream();
+    out << "# fig_contact_history: u(0,t) and lambda(t), exact and computed (problem.md sec. 2; paper Figure 1)\n";
+    parser.echo(out);
+    out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt) << "\n# steps = " << steps
+        << "\n# blocks: 0 exact (t u0 lambda); 1 + 3 s + m: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3)\n";
+
+    // 3. The exact history on a fine, uniform grid of instants.
+    out << "# block 0: exact\n# columns: t u0 lambda\n";
+    for (long k = 0; k <= exact_points; ++k) {
+      const double t = final_time * static_cast<double>(k) / static_cast<double>(exact_points);
+      out << cli::format_real(t) << ' ' << cli::format_real(exact.contact_displacement(t)) << ' '
+          << cli::format_real(exact.contact_multiplier(t)) << '\n';
+    }
+
+    // 4. Every scheme with every mass.
+    if (macros) {
+      std::ostream& m = macros->stream();
+      m << "% Generated by fig_contact_history; do not edit.\n";
+      mrm::tex_define(m, "hist:elements", std::to_string(elements));
+      mrm::tex_define(m, "hist:h", mrm::tex_number(mesh.h(), 3));
+      mrm::tex_define(m, "hist:dt", mrm::tex_number(dt, 3));
+      mrm::tex_define(m, "hist:courant", mrm::tex_number(courant, 3));
+      mrm::tex_define(m, "hist:T", mrm::tex_number(final_time, 3));
+      mrm::tex_define(m, "hist:psform", ps_form);
+      // The total mass 1ᵀM^mod1 of each choice on this mesh (paper §2: Mod 2 and Mod 3 preserve it).
+      for (const std::string& mass : figures::mass_names())
+        mrm::tex_define(m, "hist:totalmass:" + mass,
+                        mrm::tex_number(mrm::total_mass(mesh, mrm::mass_redistribution_by_name(mass)), 6));
+    }
+    std::ostringstream table;
+    table << "\\begin{tabular}{llrrr}\n\\toprule\nscheme & mass & $u(0,\\cdot)$, $L^2_t$ & $\\lambda$, $L^2_t$ & "
+             "$u$, $L^2_t H^1$ \\\\\n\\midrule\n";
+    int block = 1;
+    for (const std::string& scheme : figures::scheme_names()) {
+      for (const std::string& mass : figures::mass_names()) {
+        std::cerr << "fig_contact_history: " << scheme << ' ' << mass << '\n';
+        mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(mass),
+                                      figures::scheme_parameters(scheme, ps_form, mass), dt);
+        mrm::ErrorAccumulator errors(mesh, exact);
+        out << "\n\n# block " << block++ << ": scheme = " << scheme << ", mass = " << mass
+            << "\n# columns: t u0_h t_lambda lambda_h\n";
+        mrm::run(simulation, steps, [&](const mrm::Sample& s) {
+          errors.add(s);
+          const double lambda = s.has_multiplier ? s.multiplier : std::numeric_limits<double>::quiet_NaN();
+          out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
+              << cli::format_real(s.multiplier_time) << ' ' << cli::format_real(lambda) << '\n';
+        });
+        // 5. The errors of the contact point, quoted by the report beside the figure.
+        if (macros) {
+          const mrm::ErrorNorms e = errors.relative();
+          mrm::tex_define(macros->stream(), "hist:" + scheme + ":" + mass + ":err_u0_L2", mrm::tex_number(e.u0_L2, 2));
+          mrm::tex_define(macros->stream(), "hist:" + scheme + ":" + mass + ":err_lambda_L2",
+                          mrm::tex_number(e.lambda_L2, 2));
+          mrm::tex_define(macros->stream(), "hist:" + scheme + ":" + mass + ":err_u_L2H1", mrm::tex_number(e.u_L2H1, 2));
+          table << (mass == "mod1" ? figures::scheme_label(scheme) : std::string()) << " & Mod " << mass.back() << " & "
+                << mrm::tex_number(e.u0_L2, 2) << " & " << mrm::tex_number(e.lambda_L2, 2) << " & "
+                << mrm::tex_number(e.u_L2H1, 2) << " \\\\\n";
+        }
+      }
+      if (scheme != figures::scheme_names().back()) table << "\\midrule\n";
+    }
+    table << "\\bottomrule\n\\end{tabular}";
+    if (macros) macros->stream() << "\\mrmdef{hist:table}{" << table.str() << "}\n";
+    data.commit();
+    if (macros) macros->commit();
+    return 0;
+  });
+}

@@ -1,0 +1,273 @@
+// fig_convergence: convergence in space and time, every error measure against h.
+//
+// What it computes. The relative errors of problem.md §5 (u(0,·) and λ in L²(0,T); u in L∞(0,T;L²),
+// L∞(0,T;H¹), L²(0,T;L²), L²(0,T;H¹); u_t in L∞(0,T;L²) and L²(0,T;L²)) against the exact solution of
+// the benchmark, for every scheme (Crank–Nicolson, backward Euler, Paoli–Schatzman (¼, 0)) and every mass
+// choice (Mod 1, 2, 3), on the meshes N = N₀, 2N₀, …, 2^{K−1}N₀ with Δt = h and Δt = h/2 (the paper's
+// Section 2: the method converges as h, Δt → 0). The observed order of each measure is the slope of the
+// least-squares line through (log h, log error) (mrm::fit_order, GSL). The final time is one period,
+// T = 3: it covers the free flight, the impact at t = 1, the contact and the release at t = 2.
+//
+// The runs are independent; they are spread over --threads worker threads, and the results are
+// written in a fixed order, so that the output does not depend on the number of threads.
+//
+// Sample runs:
+//   fig_convergence --output output/data/fig_convergence.dat --tex output/data/fig_convergence.tex
+//   fig_convergence --coarsest 16 --refinements 4 --threads 1 --output c.dat
+//
+// Description. Steps: (1) options; (2) outputs; (3) the list of runs; (4) the runs, in parallel;
+// (5) the data blocks; (6) the orders, the tables and the values the report quotes; (7) commit.
+//
+// Data file: block 2 (3 s + m) + c is scheme s ∈ (cn, be, ps), mass m ∈ (mod1, mod2, mod3), ratio
+// c ∈ (Δt = h, Δt = h/2); columns N h dt and the eight errors.
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli.hpp"
+#include "convergence.hpp"
+#include "errors.hpp"
+#include "exact_solution.hpp"
+#include "figure_runs.hpp"
+#include "latex.hpp"
+#include "schemes.hpp"
+
+namespace cli = mrm::cli;
+
+namespace {
+
+// The two ratios Δt/h of problem.md §5, with the short names used in keys and their labels.
+const std::array<double, 2> courants{1.0, 0.5};
+const std::array<const char*, 2> courant_keys{"dth", "dth2"};
+const std::array<const char*, 2> courant_labels{"$\\Delta t = h$", "$\\Delta t = h/2$"};
+// The measures in the order of mrm::ErrorAccumulator::names, as the report prints them.
+const std::array<const char*, 8> measure_labels{
+    "$u(0,\\cdot)$, $L^2_t$", "$\\lambda$, $L^2_t$",      "$u$, $L^\\infty_t L^2$", "$u$, $L^\\infty_t H^1$",
+    "$u_t$, $L^\\infty_t L^2$", "$u$, $L^2_t L^2$", "$u$, $L^2_t H^1$",       "$u_t$, $L^2_t L^2$"};
+
+struct Run {
+  std::size_t scheme, mass, courant, level;
+  mrm::Index elements;
+  double cost;  // steps × unknowns, to start the longest runs first
+  std::array<double, 8> errors{};
+};
+
+std::string mass_label(std::size_t m) { return "Mod " + std::to_string(m + 1); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return cli::guarded_main("fig_convergence", [&] {
+    // 1. Options.
+    long coarsest = 128, refinements = 6, threads = 2;
+    double final_time = 3.0;
+    std::string ps_form = "literal", output = "fig_convergence.dat", tex;
+    cli::Parser parser("fig_convergence",
+                       "Writes every relative error of problem.md sec. 5 against h, with dt = h and dt = h/2, for "
+                       "every scheme (cn, be, ps) and mass choice (mod1, mod2, mod3), and the observed orders "
+                       "(least-squares fit of log error against log h).",
+                       {"fig_convergence --output output/data/fig_convergence.dat --tex output/data/fig_convergence.tex",
+                        "fig_convergence --coarsest 16 --refinements 4 --threads 1 --output c.dat"});
+    parser.add_integer("--coarsest", "-n", "N0", "number of elements of the coarsest mesh (>= 2)", &coarsest,
+                       cli::at_least(2));
+    parser.add_integer("--refinements", "-k", "K", "number of meshes N0, 2 N0, ..., 2^(K-1) N0 (>= 2)", &refinements,
+                       cli::at_least(2));
+    parser.add_real("--final-time", "-T", "T", "final time (> 0); one period is 3", &final_time, cli::positive());
+    parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
+                      {"algebraic", "literal"}, &ps_form);
+    parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it", &threads,
+                       cli::at_least(1));
+    parser.add_string("--output", "-o", "FILE", "data file to write", &output);
+    parser.add_string("--tex", "", "FILE", "also write the tables and values the report quotes", &tex);
+    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    if (refinements > 20) throw cli::UsageError("--refinements: at most 20 (N doubles each time)");
+
+    // 2. Outputs.
+    cli::AtomicFile data(output, "--output");
+    std::unique_ptr<cli::AtomicFile> macros;
+    if (parser.given("--tex")) macros = std::make_unique<cli::AtomicFile>(tex, "--tex");
+    const auto& schemes = figures::scheme_names();
+    const auto& masses = figures::mass_names();
+
+    // 3. The runs, longest first.
+    std::vector<Run> runs;
+    for (std::size_t s = 0; s < schemes.size(); ++s)
+      for (std::size_t m = 0; m < masses.size(); ++m)
+        for (std::size_t c = 0; c < courants.size(); ++c)
+          for (std::size_t l = 0; l < static_cast<std::size_t>(refinements); ++l) {
+            const mrm::Index n = static_cast<mrm::Index>(coarsest) << l;
+            const double h = 1.0 / static_cast<double>(n);
+            runs.push_back({s, m, c, l, n, static_cast<double>(mrm::steps_to_reach(final_time, courants[c] * h)) * n, {}});
+          }
+    std::vector<std::size_t> order(runs.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
+
+    // 4. The runs, on `threads` workers taking the next run from a shared counter. Each run writes only
+    // its own slot; the first exception stops the others and is rethrown here.
+    const mrm::ExactSolution exact;
+    std::atomic<std::size_t> next{0};
+    std::atomic<bool> failed{false};
+    std::exception_ptr failure;
+    std::mutex failure_mutex, log_mutex;
+    auto worker = [&] {
+      while (!failed) {
+        const std::size_t k = next++;
+        if (k >= order.size()) return;
+        Run& r = runs[order[k]];
+        try {
+          const mrm::UniformMesh mesh(1.0, r.elements);
+          const double dt = courants[r.courant] * mesh.h();
+          mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(masses[r.mass]),
+                                        figures::scheme_parameters(schemes[r.scheme], ps_form, masses[r.mass]), dt);
+          mrm::ErrorAccumulator errors(mesh, exact);
+          mrm::run(simulation, mrm::steps_to_reach(final_time, dt), [&](const mrm::Sample& s) { errors.add(s); });
+          r.errors = mrm::ErrorAccumulator::values(errors.relative());
+          std::lock_guard<std::mutex> lock(log_mutex);
+          std::cerr << "fig_convergence: " << k + 1 << '/' << order.size() << ' ' << schemes[r.scheme] << ' '
+                    << masses[r.mass] << " dt/h=" << courants[r.courant] << " N=" << r.elements << '\n';
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(failure_mutex);
+          if (!failure) failure = std::current_exception();
+          failed = true;
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (long t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
+
+    // 5. The data blocks, in the fixed order of `runs` (scheme, mass, ratio, mesh).
+    std::ostream& out = data.stream();
+    out << "# fig_convergence: relative errors against h (problem.md sec. 5)\n";
+    parser.echo(out);
+    out << "# blocks: 2 (3 s + m) + c: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3), c in (dt = h, dt = h/2)\n";
+    const std::size_t levels = static_cast<std::size_t>(refinements);
+    auto at = [&](std::size_t s, std::size_t m, std::size_t c, std::size_t l) -> const Run& {
+      return runs[((s * masses.size() + m) * courants.size() + c) * levels + l];
+    };
+    for (std::size_t s = 0; s < schemes.size(); ++s)
+      for (std::size_t m = 0; m < masses.size(); ++m)
+        for (std::size_t c = 0; c < courants.size(); ++c) {
+          out << (s + m + c ? "\n\n" : "") << "# block " << (s * masses.size() + m) * courants.size() + c
+              << ": scheme = " << schemes[s] << ", mass = " << masses[m] << ", dt/h = " << cli::format_real(courants[c])
+              << "\n# columns: N h dt";
+          for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
+          out << '\n';
+          for (std::size_t l = 0; l < levels; ++l) {
+            const Run& r = at(s, m, c, l);
+            const double h = 1.0 / static_cast<double>(r.elements);
+            out << r.elements << ' ' << cli::format_real(h) << ' ' << cli::format_real(courants[c] * h);
+            for (double e : r.errors) out << ' ' << cli::format_real(e);
+            out << '\n';
+          }
+        }
+
+    // 6. Orders (fit over all meshes), the tables of orders and of the errors on the finest mesh, the
+    // ranking of the three masses, and the values quoted in the prose.
+    std::ostringstream defs;
+    defs << "% Generated by fig_convergence; do not edit.\n";
+    const mrm::Index finest = static_cast<mrm::Index>(coarsest) << (levels - 1);
+    mrm::tex_define(defs, "conv:Nmin", std::to_string(coarsest));
+    mrm::tex_define(defs, "conv:Nmax", std::to_string(finest));
+    mrm::tex_define(defs, "conv:meshes", std::to_string(levels));
+    mrm::tex_define(defs, "conv:T", mrm::tex_number(final_time, 3));
+    mrm::tex_define(defs, "conv:psform", ps_form);
+    std::ostringstream orders_table, errors_table, ranking_table;
+    const std::string columns = "lll" + std::string(8, 'r');
+    std::ostringstream head;
+    head << "\\begin{tabular}{" << columns << "}\n\\toprule\nscheme & mass & $\\Delta t$";
+    for (const char* label : measure_labels) head << " & \\rotatebox{70}{" << label << "}";
+    head << " \\\\\n\\midrule\n";
+    orders_table << head.str();
+    errors_table << head.str();
+    ranking_table << "\\begin{tabular}{ll" << std::string(8, 'c') << "}\n\\toprule\nscheme & $\\Delta t$";
+    for (const char* label : measure_labels) ranking_table << " & \\rotatebox{70}{" << label << "}";
+    ranking_table << " \\\\\n\\midrule\n";
+
+    std::vector<double> steps(levels);
+    for (std::size_t l = 0; l < levels; ++l) steps[l] = 1.0 / static_cast<double>(static_cast<mrm::Index>(coarsest) << l);
+    for (std::size_t s = 0; s < schemes.size(); ++s) {
+      long ordered = 0, cases = 0;
+      for (std::size_t m = 0; m < masses.size(); ++m)
+        for (std::size_t c = 0; c < courants.size(); ++c) {
+          const std::string row_label = (m == 0 && c == 0 ? figures::scheme_label(schemes[s]) : std::string()) + " & " +
+                                        (c == 0 ? mass_label(m) : std::string()) + " & " + courant_labels[c];
+          orders_table << row_label;
+          errors_table << row_label;
+          for (std::size_t k = 0; k < 8; ++k) {
+            std::vector<double> errors(levels);
+            for (std::size_t l = 0; l < levels; ++l) errors[l] = at(s, m, c, l).errors[k];
+            const std::string key = schemes[s] + ":" + masses[m] + ":" + courant_keys[c] + ":" +
+                                    mrm::ErrorAccumulator::names[k];
+            const bool fittable = std::all_of(errors.begin(), errors.end(), [](double e) { return e > 0 && std::isfinite(e); });
+            if (fittable) {
+              const mrm::OrderFit fit = mrm::fit_order(steps, errors);
+              orders_table << " & " << mrm::tex_number(fit.order, 2);
+              mrm::tex_define(defs, "conv:order:" + key, mrm::tex_number(fit.order, 2));
+              mrm::tex_define(defs, "conv:stderr:" + key, mrm::tex_number(fit.order_std_error, 1));
+            } else {
+              orders_table << " & n/a";
+              mrm::tex_define(defs, "conv:order:" + key, "n/a");
+              mrm::tex_define(defs, "conv:stderr:" + key, "n/a");
+            }
+            errors_table << " & " << mrm::tex_number(errors.back(), 2);
+            mrm::tex_define(defs, "conv:err:" + key, mrm::tex_number(errors.back(), 2));
+            mrm::tex_define(defs, "conv:errcoarse:" + key, mrm::tex_number(errors.front(), 2));
+          }
+          orders_table << " \\\\\n";
+          errors_table << " \\\\\n";
+        }
+      // The paper's claim 3: Mod 3 < Mod 2 < Mod 1 in error. Counted over every measure, mesh and ratio.
+      for (std::size_t c = 0; c < courants.size(); ++c) {
+        ranking_table << (c == 0 ? figures::scheme_label(schemes[s]) : std::string()) << " & " << courant_labels[c];
+        for (std::size_t k = 0; k < 8; ++k) {
+          for (std::size_t l = 0; l < levels; ++l) {
+            const double e1 = at(s, 0, c, l).errors[k], e2 = at(s, 1, c, l).errors[k], e3 = at(s, 2, c, l).errors[k];
+            ordered += (e3 < e2 && e2 < e1);
+            ++cases;
+          }
+          // The ranking on the finest mesh, best first: "3 2 1" is the paper's order.
+          std::array<std::size_t, 3> rank{0, 1, 2};
+          std::stable_sort(rank.begin(), rank.end(), [&](std::size_t a, std::size_t b) {
+            return at(s, a, c, levels - 1).errors[k] < at(s, b, c, levels - 1).errors[k];
+          });
+          const bool paper = rank[0] == 2 && rank[1] == 1 && rank[2] == 0;
+          ranking_table << " & " << (paper ? "\\textbf{" : "") << rank[0] + 1 << rank[1] + 1 << rank[2] + 1
+                        << (paper ? "}" : "");
+        }
+        ranking_table << " \\\\\n";
+      }
+      if (s + 1 < schemes.size()) {
+        orders_table << "\\midrule\n";
+        errors_table << "\\midrule\n";
+        ranking_table << "\\midrule\n";
+      }
+      mrm::tex_define(defs, "conv:ordered:" + schemes[s], std::to_string(ordered));
+      mrm::tex_define(defs, "conv:cases:" + schemes[s], std::to_string(cases));
+    }
+    for (std::ostringstream* t : {&orders_table, &errors_table, &ranking_table}) *t << "\\bottomrule\n\\end{tabular}";
+    defs << "\\mrmdef{conv:table:orders}{" << orders_table.str() << "}\n";
+    defs << "\\mrmdef{conv:table:errors}{" << errors_table.str() << "}\n";
+    defs << "\\mrmdef{conv:table:ranking}{" << ranking_table.str() << "}\n";
+
+    // 7. Commit.
+    data.commit();
+    if (macros) {
+      macros->stream() << defs.str();
+      macros->commit();
+    }
+    return 0;
+  });
+}

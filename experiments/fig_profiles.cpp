@@ -1,0 +1,145 @@
+// fig_profiles: the displacement along the bar at a few instants of each phase.
+//
+// What it computes. The profiles x ↦ u(x, t) of the benchmark of problem.md §2 at instants of the free
+// flight towards the obstacle (t < 1), of the contact (1 < t < 2) and of the release (2 < t < 3): the
+// exact solution (a broken line: the rigid motion behind an unloading wave, the tent of the contact
+// phase) and the nodal values of one scheme with Mod 1, Mod 2 and Mod 3 on the coarse mesh of the
+// paper's Figure 1. The mass choices differ near the contact node; the profiles show where along the
+// bar the differences are and how the wave fronts are smeared.
+//
+// Sample runs:
+//   fig_profiles --output output/data/fig_profiles.dat --tex output/data/fig_profiles.tex
+//   fig_profiles --scheme be --instants 0.5,1.5,2.5 --output p.dat
+//
+// Description. Steps: (1) options; (2) outputs; (3) the instants, rounded to time levels; (4) one run
+// per mass, keeping the profiles at those levels; (5) the blocks: exact and computed per instant;
+// (6) commit.
+//
+// Data file: for instant k (in the order given), block 2k is the exact profile (x u) on a fine grid and
+// block 2k+1 the nodal values (x u_mod1 u_mod2 u_mod3), node N (clamped, u = 0) included.
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "errors.hpp"
+#include "exact_solution.hpp"
+#include "figure_runs.hpp"
+#include "latex.hpp"
+#include "schemes.hpp"
+
+namespace cli = mrm::cli;
+
+int main(int argc, char** argv) {
+  return cli::guarded_main("fig_profiles", [&] {
+    // 1. Options.
+    long elements = 20, exact_points = 400;
+    double courant = 0.5;
+    std::string scheme = "cn", ps_form = "literal", instants_text = "0.5,1.5,2.5,6.5,7.5,8.5",
+                output = "fig_profiles.dat", tex;
+    cli::Parser parser("fig_profiles",
+                       "Writes the displacement along the bar at a few instants (free flight, contact, release): "
+                       "exact, and one scheme with Mod 1, Mod 2 and Mod 3.",
+                       {"fig_profiles --output output/data/fig_profiles.dat --tex output/data/fig_profiles.tex",
+                        "fig_profiles --scheme be --instants 0.5,1.5,2.5 --output p.dat"});
+    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), >= 2", &elements, cli::at_least(2));
+    parser.add_real("--courant", "-c", "C", "time step dt = C h (C > 0)", &courant, cli::positive());
+    parser.add_choice("--scheme", "-s", "S", "time scheme", {"cn", "be", "ps"}, &scheme);
+    parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row", {"algebraic", "literal"}, &ps_form);
+    parser.add_string("--instants", "-t", "LIST", "comma-separated instants t >= 0, each rounded to a time level",
+                      &instants_text);
+    parser.add_integer("--exact-points", "", "K", "number of intervals of each exact profile (>= 10)", &exact_points,
+                       cli::at_least(10));
+    parser.add_string("--output", "-o", "FILE", "data file to write", &output);
+    parser.add_string("--tex", "", "FILE", "also write the values the report quotes, as \\mrmdef lines", &tex);
+    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    std::vector<double> instants;
+    {
+      std::stringstream list(instants_text);
+      std::string item;
+      while (std::getline(list, item, ',')) {
+        const double t = cli::parse_real("--instants", item);
+        cli::require_at_least("--instants", t, 0.0);
+        instants.push_back(t);
+      }
+      if (instants.empty()) throw cli::UsageError("--instants: give at least one instant, e.g. 0.5,1.5,2.5");
+    }
+
+    // 2. Outputs.
+    cli::AtomicFile data(output, "--output");
+    std::unique_ptr<cli::AtomicFile> macros;
+    if (parser.given("--tex")) macros = std::make_unique<cli::AtomicFile>(tex, "--tex");
+    const mrm::UniformMesh mesh(1.0, elements);
+    const double dt = courant * mesh.h();
+    const mrm::ExactSolution exact;
+
+    // 3. The instants, rounded to the nearest time level.
+    std::vector<mrm::Index> levels;
+    mrm::Index last_level = 0;
+    for (double t : instants) {
+      levels.push_back(static_cast<mrm::Index>(std::llround(t / dt)));
+      last_level = std::max(last_level, levels.back());
+    }
+
+    // 4. One run per mass, keeping Uⁿ at the chosen levels.
+    const auto& masses = figures::mass_names();
+    std::vector<std::vector<Eigen::VectorXd>> profiles(masses.size(), std::vector<Eigen::VectorXd>(levels.size()));
+    for (std::size_t m = 0; m < masses.size(); ++m) {
+      std::cerr << "fig_profiles: " << scheme << ' ' << masses[m] << '\n';
+      mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(masses[m]),
+                                    figures::scheme_parameters(scheme, ps_form, masses[m]), dt);
+      mrm::run(simulation, last_level, [&](const mrm::Sample& s) {
+        for (std::size_t k = 0; k < levels.size(); ++k)
+          if (levels[k] == s.level) profiles[m][k] = *s.displacement;
+      });
+    }
+
+    // 5. The blocks.
+    std::ostream& out = data.stream();
+    out << "# fig_profiles: u(x,t) at a few instants, exact and computed (problem.md sec. 2)\n";
+    parser.echo(out);
+    out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt)
+        << "\n# blocks: 2k exact profile at instant k (x u); 2k+1 nodal values (x u_mod1 u_mod2 u_mod3)\n";
+    std::ostringstream defs;
+    defs << "% Generated by fig_profiles; do not edit.\n";
+    mrm::tex_define(defs, "prof:elements", std::to_string(elements));
+    mrm::tex_define(defs, "prof:dt", mrm::tex_number(dt, 3));
+    mrm::tex_define(defs, "prof:scheme", figures::scheme_label(scheme));
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+      const double t = static_cast<double>(levels[k]) * dt;
+      mrm::tex_define(defs, "prof:t:" + std::to_string(k + 1), mrm::tex_number(t, 3));
+      out << (k ? "\n\n" : "") << "# block " << 2 * k << ": exact, t = " << cli::format_real(t) << "\n# columns: x u\n";
+      for (long j = 0; j <= exact_points; ++j) {
+        const double x = static_cast<double>(j) / static_cast<double>(exact_points);
+        out << cli::format_real(x) << ' ' << cli::format_real(exact.displacement(x, t)) << '\n';
+      }
+      out << "\n\n# block " << 2 * k + 1 << ": " << scheme << ", t = " << cli::format_real(t)
+          << "\n# columns: x u_mod1 u_mod2 u_mod3\n";
+      for (mrm::Index i = 0; i <= mesh.elements; ++i) {
+        out << cli::format_real(mesh.x(i));
+        for (std::size_t m = 0; m < masses.size(); ++m)
+          out << ' ' << cli::format_real(i < mesh.elements ? profiles[m][k][i] : 0.0);
+        out << '\n';
+      }
+      // The largest nodal error of each mass at this instant, for the caption.
+      for (std::size_t m = 0; m < masses.size(); ++m) {
+        double largest = 0;
+        for (mrm::Index i = 0; i < mesh.elements; ++i)
+          largest = std::max(largest, std::abs(profiles[m][k][i] - exact.displacement(mesh.x(i), t)));
+        mrm::tex_define(defs, "prof:maxerr:" + std::to_string(k + 1) + ":" + masses[m], mrm::tex_number(largest, 2));
+      }
+    }
+
+    // 6. Commit.
+    data.commit();
+    if (macros) {
+      macros->stream() << defs.str();
+      macros->commit();
+    }
+    return 0;
+  });
+}

@@ -1,0 +1,21 @@
+/// @file latex.hpp
+/// @brief Numbers and tables for the report: every number the report prints comes from a LaTeX
+/// fragment written by a program, never typed by hand.
+#pragma once
+
+#include <ostream>
+#include <string>
+
+namespace mrm {
+
+/// A number for prose and tables, rounded to `significant` digits (an integer part is never rounded): fixed notation for
+/// 10⁻³ ≤ |v| < 10⁴ ("0.0123", "1.50", "2048"; a negative value starts with "\ensuremath{-}"), otherwise "\ensuremath{1.23\cdot 10^{-5}}";
+/// "0" for zero, "n/a" for a non-finite value. Deterministic (no locale).
+std::string tex_number(double value, int significant = 3);
+
+/// One definition line `\mrmdef{key}{value}`; the report defines `\mrmdef` to store the value under the
+/// key and `\mrm{key}` to print it (a missing key stops the build). Throws std::invalid_argument for a
+/// key with characters other than letters, digits, '-', ':', '.' and '_'.
+void tex_define(std::ostream& out, const std::string& key, const std::string& value);
+
+}  // namespace mrm
