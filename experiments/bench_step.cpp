@@ -574,23 +574,23 @@ int main(int argc, char** argv) {
       };
       out << "% Macros for the text (N = 2^16 where measured).\n";
       if (const auto* t = at(Index{1} << 16)) {
-        out << "\\newcommand{\\BenchCnNs}{" << fixed((*t)[v_cn].median, 2) << "}\n"
-            << "\\newcommand{\\BenchBeNs}{" << fixed((*t)[v_be].median, 2) << "}\n"
-            << "\\newcommand{\\BenchPsNs}{" << fixed((*t)[v_ps].median, 2) << "}\n"
-            << "\\newcommand{\\BenchBareNs}{" << fixed((*t)[v_bare].median, 2) << "}\n"
-            << "\\newcommand{\\BenchBareTwoChainsNs}{" << fixed((*t)[v_bare2].median, 2) << "}\n"
-            << "\\newcommand{\\BenchEigenNs}{" << fixed((*t)[v_eigen].median, 2) << "}\n"
-            << "\\newcommand{\\BenchCnRatio}{" << fixed(ratio(*t, v_cn), 2) << "}\n"
-            << "\\newcommand{\\BenchBeRatio}{" << fixed(ratio(*t, v_be), 2) << "}\n"
-            << "\\newcommand{\\BenchPsRatio}{" << fixed(ratio(*t, v_ps), 2) << "}\n"
-            << "\\newcommand{\\BenchErrorsNs}{" << fixed(errors_cost(*t), 2) << "}\n";
+        out << "\\gdef\\BenchCnNs{" << fixed((*t)[v_cn].median, 2) << "}\n"
+            << "\\gdef\\BenchBeNs{" << fixed((*t)[v_be].median, 2) << "}\n"
+            << "\\gdef\\BenchPsNs{" << fixed((*t)[v_ps].median, 2) << "}\n"
+            << "\\gdef\\BenchBareNs{" << fixed((*t)[v_bare].median, 2) << "}\n"
+            << "\\gdef\\BenchBareTwoChainsNs{" << fixed((*t)[v_bare2].median, 2) << "}\n"
+            << "\\gdef\\BenchEigenNs{" << fixed((*t)[v_eigen].median, 2) << "}\n"
+            << "\\gdef\\BenchCnRatio{" << fixed(ratio(*t, v_cn), 2) << "}\n"
+            << "\\gdef\\BenchBeRatio{" << fixed(ratio(*t, v_be), 2) << "}\n"
+            << "\\gdef\\BenchPsRatio{" << fixed(ratio(*t, v_ps), 2) << "}\n"
+            << "\\gdef\\BenchErrorsNs{" << fixed(errors_cost(*t), 2) << "}\n";
       }
-      out << "\\newcommand{\\BenchSlopeCn}{" << fixed(slope[v_cn], 3) << "}\n"
-          << "\\newcommand{\\BenchSlopeBe}{" << fixed(slope[v_be], 3) << "}\n"
-          << "\\newcommand{\\BenchSlopePs}{" << fixed(slope[v_ps], 3) << "}\n"
-          << "\\newcommand{\\BenchMemoryCnBytesPerNode}{" << fixed(bytes_per_node(mem_cn_big, big), 0) << "}\n"
-          << "\\newcommand{\\BenchMemoryLargestN}{" << big << "}\n"
-          << "\\newcommand{\\BenchMemoryCnMarginal}{" << fixed(marginal(mem_cn_big, mem_cn_small), 0) << "}\n";
+      out << "\\gdef\\BenchSlopeCn{" << fixed(slope[v_cn], 3) << "}\n"
+          << "\\gdef\\BenchSlopeBe{" << fixed(slope[v_be], 3) << "}\n"
+          << "\\gdef\\BenchSlopePs{" << fixed(slope[v_ps], 3) << "}\n"
+          << "\\gdef\\BenchMemoryCnBytesPerNode{" << fixed(bytes_per_node(mem_cn_big, big), 0) << "}\n"
+          << "\\gdef\\BenchMemoryLargestN{" << big << "}\n"
+          << "\\gdef\\BenchMemoryCnMarginal{" << fixed(marginal(mem_cn_big, mem_cn_small), 0) << "}\n";
     }
     if (data) data->commit();
     if (table_tex) table_tex->commit();
