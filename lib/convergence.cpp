@@ -124,19 +124,8 @@ void ReferenceComparison::add(const Sample& run, const Sample& reference) {
                 reference.multiplier * reference.multiplier);
 }
 
-namespace {
-double ratio(double error, double exact) { return exact > 0 ? std::sqrt(error / exact) : std::sqrt(error); }
-}  // namespace
-
 std::array<double, 8> ReferenceComparison::relative() const {
-  return {ratio(u0_.error_integral, u0_.exact_integral),
-          ratio(lambda_.error_integral, lambda_.exact_integral),
-          ratio(u_l2_.error_max, u_l2_.exact_max),
-          ratio(u_h1_.error_max, u_h1_.exact_max),
-          ratio(v_l2_.error_max, v_l2_.exact_max),
-          ratio(u_l2_.error_integral, u_l2_.exact_integral),
-          ratio(u_h1_.error_integral, u_h1_.exact_integral),
-          ratio(v_l2_.error_integral, v_l2_.exact_integral)};
+  return ErrorAccumulator::values(relative_norms(u0_, lambda_, u_l2_, u_h1_, v_l2_));
 }
 
 namespace {

@@ -31,6 +31,12 @@ struct ErrorNorms {
   double v_L2L2;     ///< L²(0,T; L²) of u_t
 };
 
+/// The eight relative measures of ErrorNorms from the histories of the squared norms of the error and
+/// of the exact (or reference) solution: L²(0,T) of u(0,·) and λ, L∞ and L² in time of the L² and H¹
+/// norms of u and of the L² norm of u_t.
+ErrorNorms relative_norms(const TimeHistory& u0, const TimeHistory& lambda, const TimeHistory& u_l2,
+                          const TimeHistory& u_h1, const TimeHistory& v_l2);
+
 /// Accumulates the errors of a run against the exact solution, one sample at a time, in O(N) memory.
 class ErrorAccumulator {
  public:
