@@ -169,7 +169,7 @@ double predicted_period_change(double local, double global) { return 2 * local +
 
 namespace {
 
-Eigen::MatrixXd dense(const Tridiagonal& a) { return Eigen::MatrixXd(a.to_sparse()); }
+[[maybe_unused]] Eigen::MatrixXd dense(const Tridiagonal& a) { return Eigen::MatrixXd(a.to_sparse()); }
 
 }  // namespace
 

@@ -128,7 +128,7 @@ namespace {
 
 // A synthetic indicator with contacts [aₖ, bₖ]: −(distance to the nearest end) inside a contact,
 // +(distance to the nearest contact) outside, affine with slope ±1 near every end.
-double synthetic_indicator(double t, const std::vector<double>& a, const std::vector<double>& b) {
+[[maybe_unused]] double synthetic_indicator(double t, const std::vector<double>& a, const std::vector<double>& b) {
   double g = 1e300;
   for (std::size_t k = 0; k < a.size(); ++k) {
     if (t >= a[k] && t <= b[k]) return -std::min(t - a[k], b[k] - t);
