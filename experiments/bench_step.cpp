@@ -2,13 +2,13 @@
 //
 // What it computes. A time step of Crank–Nicolson, backward Euler and Paoli–Schatzman on the P1 bar
 // with a redistributed mass is one solve with a constant tridiagonal matrix A plus a scalar contact
-// decision (problem.md §4, lib/schemes.cpp): its cost should be linear in the number of nodes N and
+// decision (mathematics.md §4, lib/schemes.cpp): its cost should be linear in the number of nodes N and
 // close to that of a bare solve with the same pre-factored A. For N = 2^6 … 2^20 elements this program
 // times, in nanoseconds per node per step:
 //   cn, be, ps   BarSimulation::step() of each scheme (Mod 3 mass, Δt = h/2, the benchmark problem;
 //                Paoli–Schatzman with β = ¼ and the algebraic contact row);
 //   cn+errors    the same Crank–Nicolson step followed by ErrorAccumulator::add, the error measures of
-//                problem.md §5 against the exact solution (the difference is the cost of the errors);
+//                mathematics.md §5 against the exact solution (the difference is the cost of the errors);
 //   bare         ContactSolver::solve with Crank–Nicolson's step matrix A: one sweep down, the contact
 //                decision, one sweep up, plain substitution loops on the factors computed once (the
 //                practical limit of a step);
@@ -58,7 +58,8 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_fit.h>
 
-#include "cli.hpp"
+#include "options.hpp"
+#include "output_file.hpp"
 #include "contact.hpp"
 #include "errors.hpp"
 #include "exact_solution.hpp"
@@ -124,7 +125,7 @@ Timing measure(const std::function<void(long)>& batch, Index nodes, int repetiti
 
 // ---- The variants -------------------------------------------------------------------------------
 
-// The configuration every variant shares: the benchmark of problem.md §2, Mod 3, Δt = C h.
+// The configuration every variant shares: the benchmark of mathematics.md §2, Mod 3, Δt = C h.
 const double courant = 0.5;
 
 mrm::SchemeParameters parameters_of(mrm::Scheme scheme) {
