@@ -31,6 +31,7 @@
 #include "exact_solution.hpp"
 #include "configurations.hpp"
 #include "report_values.hpp"
+#include "table.hpp"
 #include "schemes.hpp"
 
 namespace cli = mrm::cli;
@@ -93,9 +94,7 @@ int main(int argc, char** argv) {
         mrm::tex_define(m, "hist:totalmass:" + mass,
                         mrm::tex_number(mrm::total_mass(mesh, mrm::mass_redistribution_by_name(mass)), 6));
     }
-    std::ostringstream table;
-    table << "\\begin{tabular}{llrrr}\n\\toprule\nscheme & mass & $u(0,\\cdot)$, $L^2_t$ & $\\lambda$, $L^2_t$ & "
-             "$u$, $L^2_t H^1$ \\\\\n\\midrule\n";
+    mrm::repro::Table table({"scheme", "mass", "$u(0,\\cdot)$, $L^2_t$", "$\\lambda$, $L^2_t$", "$u$, $L^2_t H^1$"});
     int block = 1;
     for (const std::string& scheme : mrm::repro::scheme_names()) {
       for (const std::string& mass : mrm::repro::mass_names()) {
@@ -118,15 +117,18 @@ int main(int argc, char** argv) {
           mrm::tex_define(outputs.values(), "hist:" + scheme + ":" + mass + ":err_lambda_L2",
                           mrm::tex_number(e.lambda_L2, 2));
           mrm::tex_define(outputs.values(), "hist:" + scheme + ":" + mass + ":err_u_L2H1", mrm::tex_number(e.u_L2H1, 2));
-          table << (mass == "mod1" ? mrm::repro::scheme_label(scheme) : std::string()) << " & Mod " << mass.back() << " & "
-                << mrm::tex_number(e.u0_L2, 2) << " & " << mrm::tex_number(e.lambda_L2, 2) << " & "
-                << mrm::tex_number(e.u_L2H1, 2) << " \\\\\n";
+          table.add_row({mass == "mod1" ? mrm::repro::scheme_label(scheme) : std::string(), std::string("Mod ") + mass.back(),
+                         mrm::tex_number(e.u0_L2, 2), mrm::tex_number(e.lambda_L2, 2), mrm::tex_number(e.u_L2H1, 2)});
         }
       }
-      if (scheme != mrm::repro::scheme_names().back()) table << "\\midrule\n";
+      table.add_rule();
     }
-    table << "\\bottomrule\n\\end{tabular}";
-    outputs.values() << "\\mrmdef{hist:table}{" << table.str() << "}\n";
+    std::ostringstream tabular;
+    mrm::repro::LatexLayout layout;
+    layout.columns = "llrrr";
+    layout.final_newline = false;
+    table.write_latex(tabular, layout);
+    outputs.values() << "\\mrmdef{hist:table}{" << tabular.str() << "}\n";
     outputs.commit();
     return 0;
   });

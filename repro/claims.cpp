@@ -42,6 +42,7 @@
 
 #include "configurations.hpp"
 #include "options.hpp"
+#include "table.hpp"
 #include "exact_solution.hpp"
 
 namespace mrm::claims {
@@ -1234,30 +1235,9 @@ std::vector<ClaimResult> check_all(const Expectations& expectations, std::ostrea
 }
 
 // ---------------------------------------------------------------------------------------------------
-// Output: the same rows as a word-wrapped text table (stdout), Markdown and LaTeX (for the report).
+// Output: the same rows as a word-wrapped text table (stdout), Markdown and LaTeX (for the report),
+// all three written by repro/table.
 namespace {
-
-std::size_t display_width(const std::string& s) {
-  std::size_t w = 0;
-  for (unsigned char c : s) w += (c & 0xC0) != 0x80;
-  return w;
-}
-
-// Greedy word wrap to `width` display columns; a word longer than the width gets a line of its own.
-std::vector<std::string> wrap(const std::string& text, std::size_t width) {
-  std::vector<std::string> lines;
-  std::istringstream words(text);
-  std::string word, line;
-  while (words >> word) {
-    if (!line.empty() && display_width(line) + 1 + display_width(word) > width) {
-      lines.push_back(line);
-      line.clear();
-    }
-    line += (line.empty() ? "" : " ") + word;
-  }
-  if (!line.empty() || lines.empty()) lines.push_back(line);
-  return lines;
-}
 
 std::string verdict_text(const ClaimResult& r) {
   return r.reason.empty() ? to_string(r.verdict) : to_string(r.verdict) + " (" + r.reason + ")";
@@ -1268,39 +1248,15 @@ std::string verdict_text(const ClaimResult& r) {
 // Rows of one group share their criterion and often their reason: from the second row on, the text
 // table says "as above" instead of repeating them (the Markdown table repeats everything).
 void write_text_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
-  const std::size_t widths[4] = {34, 58, 40, 30};
-  const char* const headers[4] = {"claim", "measured", "criterion", "verdict"};
-  auto rule = [&] {
-    for (std::size_t w : widths) out << '+' << std::string(w + 2, '-');
-    out << "+\n";
-  };
-  auto print_row = [&](const std::vector<std::string>& cells) {
-    std::vector<std::vector<std::string>> wrapped;
-    std::size_t height = 0;
-    for (std::size_t c = 0; c < 4; ++c) {
-      wrapped.push_back(wrap(cells[c], widths[c]));
-      height = std::max(height, wrapped.back().size());
-    }
-    for (std::size_t l = 0; l < height; ++l) {
-      for (std::size_t c = 0; c < 4; ++c) {
-        const std::string cell = l < wrapped[c].size() ? wrapped[c][l] : "";
-        const std::size_t w = display_width(cell);
-        out << "| " << cell << std::string(w < widths[c] ? widths[c] - w : 0, ' ') << ' ';
-      }
-      out << "|\n";
-    }
-  };
-  rule();
-  print_row({headers[0], headers[1], headers[2], headers[3]});
-  rule();
+  repro::Table table({"claim", "measured", "criterion", "verdict"});
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const ClaimResult& r = rows[k];
     const bool same_criterion = k > 0 && rows[k - 1].criterion == r.criterion;
     const bool same_reason = k > 0 && !r.reason.empty() && rows[k - 1].reason == r.reason;
-    print_row({"[" + r.id + "] " + r.claim, r.measured, same_criterion ? "(as above)" : r.criterion,
-               same_reason ? to_string(r.verdict) + " (as above)" : verdict_text(r)});
-    rule();
+    table.add_row({"[" + r.id + "] " + r.claim, r.measured, same_criterion ? "(as above)" : r.criterion,
+                   same_reason ? to_string(r.verdict) + " (as above)" : verdict_text(r)});
   }
+  table.write_text(out, {34, 58, 40, 30});
   int counts[3] = {0, 0, 0};
   for (const ClaimResult& r : rows) ++counts[static_cast<int>(r.verdict)];
   out << rows.size() << " rows: " << counts[0] << " reproduced, " << counts[1]
@@ -1308,15 +1264,10 @@ void write_text_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
 }
 
 void write_markdown_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
-  auto cell = [](const std::string& s) {
-    std::string t;
-    for (char c : s) t += c == '|' ? std::string("\\|") : std::string(1, c);
-    return t;
-  };
-  out << "| claim | measured | criterion | verdict |\n|---|---|---|---|\n";
+  repro::Table table({"claim", "measured", "criterion", "verdict"});
   for (const ClaimResult& r : rows)
-    out << "| **" << cell(r.id) << "** " << cell(r.claim) << " | " << cell(r.measured) << " | " << cell(r.criterion)
-        << " | " << cell(verdict_text(r)) << " |\n";
+    table.add_row({"**" + r.id + "** " + r.claim, r.measured, r.criterion, verdict_text(r)});
+  table.write_markdown(out);
 }
 
 std::string latex_escape(const std::string& text) {
@@ -1391,16 +1342,18 @@ TEST_CASE("LaTeX escaping handles the special characters and the table's symbols
 // table says "as above" instead of repeating them, and a reason gets a line of its own under its row,
 // across the three last columns, so that the table stays a few pages long.
 void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
-  out << "% The claims of the paper as executable checks: generated by check_claims --tex (do not edit).\n"
-         "% Needs \\usepackage{longtable,booktabs,array}.\n"
-         "{\\footnotesize\\setlength{\\tabcolsep}{3pt}\n"
-         "\\begin{longtable}{>{\\raggedright\\arraybackslash}p{0.20\\linewidth}"
-         ">{\\raggedright\\arraybackslash}p{0.40\\linewidth}"
-         ">{\\raggedright\\arraybackslash}p{0.23\\linewidth}"
-         ">{\\raggedright\\arraybackslash}p{0.11\\linewidth}}\n"
-         "\\toprule\nClaim & Measured & Criterion & Verdict \\\\\n\\midrule\n\\endfirsthead\n"
-         "\\toprule\nClaim & Measured & Criterion & Verdict \\\\\n\\midrule\n\\endhead\n"
-         "\\bottomrule\n\\endfoot\n";
+  const std::string column = ">{\\raggedright\\arraybackslash}p{";
+  repro::LatexLayout layout;
+  layout.before = "% The claims of the paper as executable checks: generated by check_claims --tex (do not edit).\n"
+                  "% Needs \\usepackage{longtable,booktabs,array}.\n"
+                  "{\\footnotesize\\setlength{\\tabcolsep}{3pt}\n";
+  layout.columns = column + "0.20\\linewidth}" + column + "0.40\\linewidth}" + column + "0.23\\linewidth}" + column +
+                   "0.11\\linewidth}";
+  layout.longtable = true;
+  layout.rule_between_rows = true;
+  layout.note_columns = column + "0.76\\linewidth}";
+  layout.after_end = "}";
+  repro::Table table({"Claim", "Measured", "Criterion", "Verdict"});
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const ClaimResult& r = rows[k];
     const bool same_criterion = k > 0 && rows[k - 1].criterion == r.criterion;
@@ -1413,15 +1366,12 @@ void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) 
       id += c;
       if (c == '/' || c == '_') id += "\\allowbreak{}";
     }
-    out << "\\textbf{" << id << "} " << latex_escape(r.claim) << " & " << latex_escape(r.measured)
-        << " & " << (same_criterion ? std::string("\\emph{as above}") : latex_escape(r.criterion)) << " & " << verdict
-        << " \\\\\n";
-    if (!r.reason.empty())
-      out << " & \\multicolumn{3}{>{\\raggedright\\arraybackslash}p{0.76\\linewidth}}{\\emph{Why:} "
-          << (same_reason ? std::string("as above.") : latex_escape(r.reason)) << "} \\\\\n";
-    if (k + 1 < rows.size()) out << "\\midrule\n";
+    table.add_row({"\\textbf{" + id + "} " + latex_escape(r.claim), latex_escape(r.measured),
+                   same_criterion ? std::string("\\emph{as above}") : latex_escape(r.criterion), verdict},
+                  r.reason.empty() ? std::string()
+                                   : "\\emph{Why:} " + (same_reason ? std::string("as above.") : latex_escape(r.reason)));
   }
-  out << "\\end{longtable}}\n";
+  table.write_latex(out, layout);
 }
 
 }  // namespace mrm::claims
