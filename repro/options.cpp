@@ -1,6 +1,6 @@
 // The command-line interface shared by every program: strict parsing of option values, the option
 // parser with its help and its echo of the effective values, the deterministic formatting of real
-// numbers, atomic output files and the guard of main. See cli.hpp for the interface and for a
+// numbers, atomic output files and the guard of main. See options.hpp for the interface and for a
 // complete example of a program's main function.
 #include "options.hpp"
 

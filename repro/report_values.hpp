@@ -1,4 +1,4 @@
-/// @file latex.hpp
+/// @file report_values.hpp
 /// @brief Numbers and tables for the report: every number the report prints comes from a LaTeX
 /// fragment written by a program, never typed by hand.
 #pragma once
