@@ -2,13 +2,13 @@
 //
 // What it computes. A time step of Crank–Nicolson, backward Euler and Paoli–Schatzman on the P1 bar
 // with a redistributed mass is one solve with a constant tridiagonal matrix A plus a scalar contact
-// decision (problem.md §4, lib/schemes.cpp): its cost should be linear in the number of nodes N and
+// decision (mathematics.md §4, lib/schemes.cpp): its cost should be linear in the number of nodes N and
 // close to that of a bare solve with the same pre-factored A. For N = 2^6 … 2^20 elements this program
 // times, in nanoseconds per node per step:
 //   cn, be, ps   BarSimulation::step() of each scheme (Mod 3 mass, Δt = h/2, the benchmark problem;
 //                Paoli–Schatzman with β = ¼ and the algebraic contact row);
 //   cn+errors    the same Crank–Nicolson step followed by ErrorAccumulator::add, the error measures of
-//                problem.md §5 against the exact solution (the difference is the cost of the errors);
+//                mathematics.md §5 against the exact solution (the difference is the cost of the errors);
 //   bare         ContactSolver::solve with Crank–Nicolson's step matrix A: one sweep down, the contact
 //                decision, one sweep up, plain substitution loops on the factors computed once (the
 //                practical limit of a step);
@@ -58,7 +58,10 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_fit.h>
 
-#include "cli.hpp"
+#include "options.hpp"
+#include "output_file.hpp"
+#include "report_values.hpp"
+#include "table.hpp"
 #include "contact.hpp"
 #include "errors.hpp"
 #include "exact_solution.hpp"
@@ -124,7 +127,7 @@ Timing measure(const std::function<void(long)>& batch, Index nodes, int repetiti
 
 // ---- The variants -------------------------------------------------------------------------------
 
-// The configuration every variant shares: the benchmark of problem.md §2, Mod 3, Δt = C h.
+// The configuration every variant shares: the benchmark of mathematics.md §2, Mod 3, Δt = C h.
 const double courant = 0.5;
 
 mrm::SchemeParameters parameters_of(mrm::Scheme scheme) {
@@ -472,17 +475,24 @@ int main(int argc, char** argv) {
             << "\neigen_residual = " << cli::format_real(sanity.eigen_residual) << '\n';
 
     std::cout << "# ns per node per step (median of " << repetitions << " batches; min in brackets)\n";
-    std::cout << std::setw(9) << "N";
-    for (int v = 0; v < variants; ++v) std::cout << std::setw(17) << variant_names[v];
-    std::cout << std::setw(9) << "cn/bare" << std::setw(9) << "be/bare" << std::setw(9) << "ps/bare" << std::setw(9)
-              << "errors" << '\n';
-    for (std::size_t k = 0; k < sizes.size(); ++k) {
-      const auto& t = timings[k];
-      std::cout << std::setw(9) << sizes[k];
-      for (int v = 0; v < variants; ++v)
-        std::cout << std::setw(8) << fixed(t[v].median, 2) << " [" << std::setw(5) << fixed(t[v].minimum, 2) << "]";
-      std::cout << std::setw(9) << fixed(ratio(t, v_cn), 2) << std::setw(9) << fixed(ratio(t, v_be), 2)
-                << std::setw(9) << fixed(ratio(t, v_ps), 2) << std::setw(9) << fixed(errors_cost(t), 2) << '\n';
+    {
+      std::vector<std::string> headers{"N"};
+      for (int v = 0; v < variants; ++v) headers.push_back(variant_names[v]);
+      for (const char* h : {"cn/bare", "be/bare", "ps/bare", "errors"}) headers.push_back(h);
+      mrm::repro::Table screen(headers);
+      for (std::size_t k = 0; k < sizes.size(); ++k) {
+        const auto& t = timings[k];
+        std::vector<std::string> cells{std::to_string(sizes[k])};
+        for (int v = 0; v < variants; ++v) cells.push_back(fixed(t[v].median, 2) + " [" + fixed(t[v].minimum, 2) + "]");
+        for (const std::string& c : {fixed(ratio(t, v_cn), 2), fixed(ratio(t, v_be), 2), fixed(ratio(t, v_ps), 2),
+                                     fixed(errors_cost(t), 2)})
+          cells.push_back(c);
+        screen.add_row(cells);
+      }
+      std::vector<std::size_t> widths(headers.size(), 15);
+      widths[0] = 7;
+      for (std::size_t c = 1 + variants; c < widths.size(); ++c) widths[c] = 7;
+      screen.write_text(std::cout, widths);
     }
     std::cout << summary.str();
 
@@ -539,58 +549,49 @@ int main(int argc, char** argv) {
         "SimplicialLDLT solve of the same matrix; *errors*: the cost of the error measures (ErrorAccumulator::add). "
         "The slope is that of log(cost per step) against log N over 2^10..2^20.";
 
+    // One table (repro/table), written as Markdown for the README and as LaTeX for the report.
+    mrm::repro::Table table({"N", "CN", "BE", "PS", "bare", "bare2", "Eigen", "CN/bare", "BE/bare", "PS/bare", "errors"});
+    for (std::size_t k = 0; k < sizes.size(); ++k) table.add_row(row_cells(k));
+    table.add_rule();
+    table.add_row(slope_cells);
     if (table_md) {
       std::ostream& out = table_md->stream();
-      out << caption_md << "\n\n"
-          << "| N | CN | BE | PS | bare | bare2 | eigen | CN/bare | BE/bare | PS/bare | errors |\n"
-          << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-      const auto md_row = [&](const std::vector<std::string>& cells) {
-        out << '|';
-        for (const std::string& c : cells) out << ' ' << c << " |";
-        out << '\n';
-      };
-      for (std::size_t k = 0; k < sizes.size(); ++k) md_row(row_cells(k));
-      md_row(slope_cells);
+      out << caption_md << "\n\n";
+      table.write_markdown(out, std::string(11, 'r'));
       out << '\n' << memory_line << '\n';
     }
     if (table_tex) {
       std::ostream& out = table_tex->stream();
-      out << "% bench_step: generated by `make bench`; timings depend on the machine and its load.\n"
-          << "\\begin{tabular}{rrrrrrrrrrr}\n\\hline\n"
-          << "$N$ & CN & BE & PS & bare & bare2 & Eigen & CN/bare & BE/bare & PS/bare & errors \\\\\n\\hline\n";
-      const auto tex_row = [&](const std::vector<std::string>& cells) {
-        for (std::size_t c = 0; c < cells.size(); ++c) out << (c ? " & " : "") << cells[c];
-        out << " \\\\\n";
-      };
-      for (std::size_t k = 0; k < sizes.size(); ++k) tex_row(row_cells(k));
-      out << "\\hline\n";
-      tex_row(slope_cells);
-      out << "\\hline\n\\end{tabular}\n";
-      // The figures the text quotes, as macros.
+      mrm::repro::LatexLayout layout;
+      layout.before = "% bench_step: generated by `make bench`; timings depend on the machine and its load.\n";
+      layout.columns = std::string(11, 'r');
+      layout.booktabs = false;
+      table.write_latex(out, layout);
       const auto at = [&](Index n) -> const std::array<Timing, variants>* {
         for (std::size_t k = 0; k < sizes.size(); ++k)
           if (sizes[k] == n) return &timings[k];
         return nullptr;
       };
-      out << "% Macros for the text (N = 2^16 where measured).\n";
+      // The figures the text quotes, as the report's values (\mrmdef, like every generated number).
+      out << "% Values for the text (N = 2^16 where measured).\n";
       if (const auto* t = at(Index{1} << 16)) {
-        out << "\\gdef\\BenchCnNs{" << fixed((*t)[v_cn].median, 2) << "}\n"
-            << "\\gdef\\BenchBeNs{" << fixed((*t)[v_be].median, 2) << "}\n"
-            << "\\gdef\\BenchPsNs{" << fixed((*t)[v_ps].median, 2) << "}\n"
-            << "\\gdef\\BenchBareNs{" << fixed((*t)[v_bare].median, 2) << "}\n"
-            << "\\gdef\\BenchBareTwoChainsNs{" << fixed((*t)[v_bare2].median, 2) << "}\n"
-            << "\\gdef\\BenchEigenNs{" << fixed((*t)[v_eigen].median, 2) << "}\n"
-            << "\\gdef\\BenchCnRatio{" << fixed(ratio(*t, v_cn), 2) << "}\n"
-            << "\\gdef\\BenchBeRatio{" << fixed(ratio(*t, v_be), 2) << "}\n"
-            << "\\gdef\\BenchPsRatio{" << fixed(ratio(*t, v_ps), 2) << "}\n"
-            << "\\gdef\\BenchErrorsNs{" << fixed(errors_cost(*t), 2) << "}\n";
+        mrm::tex_define(out, "bench:cn:ns", fixed((*t)[v_cn].median, 2));
+        mrm::tex_define(out, "bench:be:ns", fixed((*t)[v_be].median, 2));
+        mrm::tex_define(out, "bench:ps:ns", fixed((*t)[v_ps].median, 2));
+        mrm::tex_define(out, "bench:bare:ns", fixed((*t)[v_bare].median, 2));
+        mrm::tex_define(out, "bench:bare2:ns", fixed((*t)[v_bare2].median, 2));
+        mrm::tex_define(out, "bench:eigen:ns", fixed((*t)[v_eigen].median, 2));
+        mrm::tex_define(out, "bench:cn:ratio", fixed(ratio(*t, v_cn), 2));
+        mrm::tex_define(out, "bench:be:ratio", fixed(ratio(*t, v_be), 2));
+        mrm::tex_define(out, "bench:ps:ratio", fixed(ratio(*t, v_ps), 2));
+        mrm::tex_define(out, "bench:errors:ns", fixed(errors_cost(*t), 2));
       }
-      out << "\\gdef\\BenchSlopeCn{" << fixed(slope[v_cn], 3) << "}\n"
-          << "\\gdef\\BenchSlopeBe{" << fixed(slope[v_be], 3) << "}\n"
-          << "\\gdef\\BenchSlopePs{" << fixed(slope[v_ps], 3) << "}\n"
-          << "\\gdef\\BenchMemoryCnBytesPerNode{" << fixed(bytes_per_node(mem_cn_big, big), 0) << "}\n"
-          << "\\gdef\\BenchMemoryLargestN{" << big << "}\n"
-          << "\\gdef\\BenchMemoryCnMarginal{" << fixed(marginal(mem_cn_big, mem_cn_small), 0) << "}\n";
+      mrm::tex_define(out, "bench:cn:slope", fixed(slope[v_cn], 3));
+      mrm::tex_define(out, "bench:be:slope", fixed(slope[v_be], 3));
+      mrm::tex_define(out, "bench:ps:slope", fixed(slope[v_ps], 3));
+      mrm::tex_define(out, "bench:memory:cn:bytes-per-node", fixed(bytes_per_node(mem_cn_big, big), 0));
+      mrm::tex_define(out, "bench:memory:largest-n", std::to_string(big));
+      mrm::tex_define(out, "bench:memory:cn:marginal", fixed(marginal(mem_cn_big, mem_cn_small), 0));
     }
     if (data) data->commit();
     if (table_tex) table_tex->commit();

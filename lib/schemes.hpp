@@ -1,6 +1,6 @@
 /// @file schemes.hpp
 /// @brief The time schemes of the paper (Crank–Nicolson, backward Euler, Paoli–Schatzman) for the
-/// P1 bar with a redistributed or consistent mass (problem.md §4).
+/// P1 bar with a redistributed or consistent mass (mathematics.md §4).
 #pragma once
 
 #include <functional>
@@ -14,7 +14,12 @@
 
 namespace mrm {
 
-enum class Scheme { crank_nicolson, backward_euler, paoli_schatzman };
+/// The time schemes of the paper (mathematics.md §4).
+enum class Scheme {
+  crank_nicolson,  ///< Crank–Nicolson (trapezoidal rule), two levels
+  backward_euler,  ///< backward Euler, two levels
+  paoli_schatzman  ///< Paoli–Schatzman (β, e), three levels
+};
 
 /// How the Paoli–Schatzman scheme treats the contact row when the contact node is massless:
 /// `literal` applies the three-level formula to every row, the contact row included;
@@ -25,29 +30,30 @@ enum class ContactRow { algebraic, literal };
 /// u₀(0) = max(0, u₁(0) + hF₀); `interpolant` keeps the nodal value of u⁰.
 enum class InitialContactNode { consistent, interpolant };
 
-std::string to_string(Scheme);
-std::string to_string(ContactRow);
-std::string to_string(InitialContactNode);
+std::string to_string(Scheme);              ///< "cn", "be", "ps"
+std::string to_string(ContactRow);          ///< "algebraic", "literal"
+std::string to_string(InitialContactNode);  ///< "consistent", "interpolant"
 /// Parsers of the names above; throw std::invalid_argument listing the allowed names.
 Scheme scheme_by_name(const std::string&);           ///< cn, be, ps
 ContactRow contact_row_by_name(const std::string&);  ///< algebraic, literal
 InitialContactNode initial_contact_node_by_name(const std::string&);  ///< consistent, interpolant
 
+/// A time scheme with its parameters.
 struct SchemeParameters {
-  Scheme scheme = Scheme::crank_nicolson;
+  Scheme scheme = Scheme::crank_nicolson;  ///< the scheme
   double beta = 0.25;         ///< Paoli–Schatzman's β ≥ 0
   double restitution = 0.0;   ///< Paoli–Schatzman's e ∈ [0, 1]
-  ContactRow contact_row = ContactRow::algebraic;
+  ContactRow contact_row = ContactRow::algebraic;  ///< Paoli–Schatzman's contact row (massless node)
 };
 
-/// The continuous problem (problem.md §1): bar (0, L), data u⁰, v⁰, load f (may be empty: f = 0).
+/// The continuous problem (mathematics.md §1): bar (0, L), data u⁰, v⁰, load f (may be empty: f = 0).
 struct Problem {
-  double length = 1.0;
-  std::function<double(double x)> initial_displacement;
-  std::function<double(double x)> initial_velocity;
-  std::function<double(double x, double t)> load;
+  double length = 1.0;                                    ///< L
+  std::function<double(double x)> initial_displacement;  ///< u⁰(x)
+  std::function<double(double x)> initial_velocity;      ///< v⁰(x)
+  std::function<double(double x, double t)> load;        ///< f(x, t); empty for f = 0
 };
-/// The benchmark of problem.md §2: u⁰(x) = a (L − x), v⁰ = 0, f = 0.
+/// The benchmark of mathematics.md §2: u⁰(x) = a (L − x), v⁰ = 0, f = 0.
 Problem benchmark_problem(double length = 1.0, double amplitude = 0.5);
 
 /// What a scheme knows at one time level, each quantity with the instant it approximates.
@@ -80,14 +86,14 @@ class BarSimulation {
   /// The current level's sample (valid until the next step).
   Sample sample() const;
 
-  Index level() const { return level_; }
-  double time() const { return static_cast<double>(level_) * dt_; }
-  double dt() const { return dt_; }
-  const UniformMesh& mesh() const { return mesh_; }
-  const Tridiagonal& mass() const { return mass_; }
-  const Tridiagonal& stiffness() const { return stiffness_; }
-  bool massless_contact_node() const { return massless_; }
-  const SchemeParameters& parameters() const { return parameters_; }
+  Index level() const { return level_; }                               ///< the current level n
+  double time() const { return static_cast<double>(level_) * dt_; }  ///< t_n = n Δt
+  double dt() const { return dt_; }                                    ///< Δt
+  const UniformMesh& mesh() const { return mesh_; }                    ///< the mesh
+  const Tridiagonal& mass() const { return mass_; }                    ///< M (or M^mod) on the unknowns
+  const Tridiagonal& stiffness() const { return stiffness_; }          ///< S on the unknowns
+  bool massless_contact_node() const { return massless_; }             ///< whether row 0 of M vanishes
+  const SchemeParameters& parameters() const { return parameters_; }  ///< the scheme and its parameters
 
  private:
   void load_at(double t, Eigen::VectorXd& f) const;
