@@ -127,7 +127,7 @@ ContactStep ContactSolver::solve(const double* b, double* u, double kappa, doubl
 
 // ---------------------------------------------------------------------------------------------------
 // Checks: the closed-form step against (1) a direct sparse LU solve of the saddle-point system with
-// the active set fixed, for both outcomes, and (2) problem.md's condensed formula on the free nodes.
+// the active set fixed, for both outcomes, and (2) mathematics.md's condensed formula on the free nodes.
 
 namespace {
 
@@ -198,7 +198,7 @@ TEST_CASE("the closed-form contact step agrees with a direct saddle-point solve 
   }
 }
 
-TEST_CASE("the closed-form contact step is problem.md's condensed formula for a massless node") {
+TEST_CASE("the closed-form contact step is mathematics.md's condensed formula for a massless node") {
   const UniformMesh mesh(1.0, 25);
   const double h = mesh.h(), theta = 0.04 * 0.04 / 4;
   const Tridiagonal a = step_matrix(mesh, mod2(), theta, true);
