@@ -60,7 +60,7 @@ class ContactSolver {
   //   y_i = (b_i − ε_i b_{i+1}) + elimination_pair_[i] y_{i+2},          elimination_pair_[i] = ε_i ε_{i+1},
   //   u_i = (z_i − c_i z_{i−1}) + upward_pair_[i] u_{i−2},  z_i = y_i/d_i,  upward_pair_[i] = c_i c_{i−1},
   // so that each sweep is two independent chains (even and odd nodes) of half the length: the
-  // schemes' fused step uses this form (schemes.cpp), solve() the plain one.
+  // schemes' fused step uses this form (fast_step.cpp), solve() the plain one.
   const Eigen::VectorXd& elimination_pair() const { return elimination_pair_; }  ///< ε_i ε_{i+1}
   const Eigen::VectorXd& upward_pair() const { return upward_pair_; }            ///< c_i c_{i−1}
   /// The contact decision on the reduced row d₀ u₀ = y₀ − κ λ.
