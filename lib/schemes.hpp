@@ -117,6 +117,9 @@ class BarSimulation {
   friend class FastStep;  // the fast kernel reads and advances the state below
   void load_at(double t, Eigen::VectorXd& f) const;
   double energy_two_level() const;
+  double contact_load(double t) const;
+  double contact_load_rate(double t) const;
+  double massless_node_velocity(double t) const;
   void reference_step(bool has_load);
 
   Problem problem_;
