@@ -4,8 +4,11 @@
 // u⁰(x) = a (L − x) against the rigid obstacle at x = 0, discretised with P1 elements and a
 // Lagrange multiplier at the contact node, a mass matrix (consistent, or redistributed by Mod 1, 2
 // or 3) and one time scheme (Crank–Nicolson, backward Euler or Paoli–Schatzman). It prints the
-// relative errors of mathematics.md §5 against the exact solution, the energy range and the run's size
-// and time, one `name = value` line each, and optionally writes the time series of the contact
+// relative errors of mathematics.md §5 against the exact solution, the energy range, the run's size
+// and time, and its phase (mathematics.md §8: the number of impacts, first_impact_error = the error of
+// the first impact time, phase_drift_per_period = the least-squares drift of the impact times per
+// period, negative when the impacts come early, beside the period law's predictions of both), one
+// `name = value` line each, and optionally writes the time series of the contact
 // point (u(0,t), λ(t), the energy, and the exact values beside them). Its standard output is the
 // same bytes for the same command except the wall time of the run (wall_seconds), which
 // `--no-timing` leaves out.
@@ -32,6 +35,7 @@
 #include "configurations.hpp"
 #include "errors.hpp"
 #include "exact_solution.hpp"
+#include "period_law.hpp"
 #include "schemes.hpp"
 
 namespace cli = mrm::cli;
@@ -163,6 +167,20 @@ int main(int argc, char** argv) {
               << "energy_min = " << cli::format_real(measures.energy_min) << '\n'
               << "energy_max = " << cli::format_real(measures.energy_max) << '\n'
               << "steps = " << measures.steps << '\n';
+    // The phase (mathematics.md §8): the impacts found, the error of the first one and the drift of
+    // the impact times per period (time units per period, early = negative), each printed only when it
+    // can be computed (one impact, two impacts), beside the period law's prediction for this mass.
+    std::cout << "impacts = " << measures.impacts.size() << '\n';
+    if (measures.phase) {
+      std::cout << "first_impact_error = " << cli::format_real(measures.phase->first_impact_error) << '\n';
+      if (measures.phase->drift_per_period)
+        std::cout << "phase_drift_per_period = " << cli::format_real(*measures.phase->drift_per_period) << '\n';
+    }
+    if (elements >= 3) {
+      const mrm::PeriodPrediction law = mrm::predict_period(mesh, configuration.mass);
+      std::cout << "period_law_first_impact_error = " << cli::format_real(law.first_impact_error) << '\n'
+                << "period_law_drift_per_period = " << cli::format_real(law.period_error) << '\n';
+    }
     if (!no_timing) std::cout << "wall_seconds = " << cli::format_real(std::round(wall * 1e4) / 1e4) << '\n';
     if (series) series->commit();
     return 0;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 
 #include <memory>
 #include <ostream>
@@ -15,6 +16,7 @@
 
 #include "errors.hpp"
 #include "mass_redistribution.hpp"
+#include "phase.hpp"
 #include "schemes.hpp"
 
 namespace mrm::repro {
@@ -96,6 +98,9 @@ struct Configuration {
   double length = 1.0;
   double amplitude = 0.5;
   InitialContactNode initial = InitialContactNode::consistent;
+  /// Horizons T_k (increasing, each ≤ final_time) at which the errors over [0, T_k] are also measured,
+  /// from the same run: a prefix of the run is the run to T_k.
+  std::vector<double> horizons;
 
   double step() const { return dt > 0 ? dt : courant * UniformMesh(length, elements).h(); }
 };
@@ -106,17 +111,30 @@ Configuration paper_configuration(const std::string& scheme, const std::string& 
                                   Index elements, double courant, double final_time);
 
 /// What a run measures: the eight relative errors against the exact solution (mathematics.md §5), the
-/// range of the discrete energy and the number of steps.
+/// same over [0, T_k] for each horizon of the configuration, the range of the discrete energy, the
+/// number of steps, and the phase (mathematics.md §8): the impact times read off the contact indicator
+/// (phase.hpp; a contact that starts less than L after the previous one ended continues it) and their
+/// errors against the exact impacts L + 3Lk.
 struct Measures {
   ErrorNorms errors;
+  std::vector<ErrorNorms> horizon_errors;  ///< one per Configuration::horizons, in order
   double energy_initial = 0, energy_final = 0, energy_min = 0, energy_max = 0;
   Index steps = 0;
+  std::vector<double> impacts;
+  std::optional<PhaseMeasures> phase;  ///< absent when the run has no impact
 };
 
 /// Runs the configuration to its final time, calling `observe` (if given) on every sample from level 0
 /// on, and returns its measures. Throws std::runtime_error if the energy becomes non-finite (a value
-/// that cannot be computed is an error, never a nan in a table).
+/// that cannot be computed is an error, never a nan in a table), std::invalid_argument for horizons
+/// that do not increase or exceed the final time.
 Measures run_configuration(const Configuration& configuration,
                            const std::function<void(const Sample&)>& observe = {});
+
+/// Runs independent configurations on `threads` threads (0: one per hardware thread) and returns their
+/// measures in the order given: the same numbers as one run_configuration each (every run is
+/// deterministic and shares nothing). The first exception of a run, in the order given, is rethrown
+/// after every thread has finished.
+std::vector<Measures> run_configurations(const std::vector<Configuration>& configurations, unsigned threads = 0);
 
 }  // namespace mrm::repro
