@@ -43,9 +43,9 @@ void TimeHistory::add(double t, double error_squared, double exact_squared) {
   exact_max = std::max(exact_max, exact_squared);
 }
 
-// One level costs one pass over the nodes. The interpolants come from the exact solution's evaluation
-// at many points (exact_solution.cpp: the phase located once, one affine function per node); the six
-// quadratic forms eᵀMe and eᵀSe of the errors and of the interpolants are accumulated together. M and
+// One level costs one pass over the nodes per field. The interpolants come from the exact solution as
+// runs of one affine function each between its kinks (exact_solution.cpp: the phase located once), so
+// no array of values is formed; the six quadratic forms eᵀMe and eᵀSe of the errors and of the interpolants are accumulated together. M and
 // S are the P1 matrices of a uniform mesh: row 0 has its own diagonal entry a₀₀, and every other row
 // the same entries (d, l) = (A_ii, A_{i,i−1}) (checked when the accumulator is built). Expanding
 // −l (z_i − z_{i−1})² and telescoping, with D = Σ_{i≥1} (z_i − z_{i−1})² and Q = Σ_{i≥1} z_i²,
@@ -55,8 +55,7 @@ void TimeHistory::add(double t, double error_squared, double exact_squared) {
 // For S, d + 2l = 0 and −l = 1/h: |z|²_H¹ = (D + z_{n−1}²)/h, a sum of squares with no cancellation
 // (the same form written as Σ z_i² against Σ z_{i−1} z_i loses O(N²) in relative accuracy).
 ErrorAccumulator::ErrorAccumulator(const UniformMesh& mesh, const ExactSolution& exact)
-    : mesh_(mesh), exact_(exact), mass_(p1_mass(mesh)), stiffness_(p1_stiffness(mesh)), nodes_(mesh.unknowns()),
-      interpolant_(mesh.unknowns()), velocity_interpolant_(mesh.unknowns()) {
+    : mesh_(mesh), exact_(exact), mass_(p1_mass(mesh)), stiffness_(p1_stiffness(mesh)), nodes_(mesh.unknowns()) {
   const Index n = mesh.unknowns();
   for (Index i = 0; i < n; ++i) nodes_[i] = mesh.x(i);
   for (const Tridiagonal* a : {&mass_, &stiffness_})
@@ -83,32 +82,43 @@ void ErrorAccumulator::add(const Sample& sample) {
     throw std::invalid_argument("error measures: the sample's vectors must have the mesh's N = " + std::to_string(n) +
                                 " entries (allowed: samples of a run on the same mesh)");
   const double* x = nodes_.data();
-  double* ui = interpolant_.data();
-  double* vi = velocity_interpolant_.data();
-  exact_.displacement_at_points(sample.time, x, static_cast<long>(n), ui);
-  exact_.velocity_at_points(sample.velocity_time, x, static_cast<long>(n), vi);
+  ExactSolution::AffineRun u_runs[32], v_runs[32];
+  const int u_count = exact_.displacement_runs(sample.time, x, static_cast<long>(n), u_runs, 32);
+  const int v_count = exact_.velocity_runs(sample.velocity_time, x, static_cast<long>(n), v_runs, 32);
 
-  // D and Q for the vectors e = W − w_I and w_I, W = U or V: four independent sums, each a short chain
-  // of additions (one loop per W keeps them all in registers).
+  // D and Q for the vectors e = W − w_I and w_I, W = U or V, run by run: on a run the interpolant is
+  // w_I(x_i) = A + B x_i, so e_i − e_{i−1} = (W_i − W_{i−1}) − B (x_i − x_{i−1}) and
+  // w_I(x_i) − w_I(x_{i−1}) = B (x_i − x_{i−1}) need no value of the previous iteration: the four sums
+  // of a run are independent over i, and the loop is vectorised (omp simd, a reduction). The first
+  // node of a run takes its differences across the kink from the previous node's values.
   struct Sums {
     double e0, e_last, e_differences, e_squares, i0, i_last, i_differences, i_squares;
   };
-  const auto sums = [n](const double* w, const double* wi) {
-    Sums r{w[0] - wi[0], 0, 0, 0, wi[0], 0, 0, 0};
-    double e_prev = r.e0, i_prev = r.i0;
-    for (Index i = 1; i < n; ++i) {
-      const double e = w[i] - wi[i], z = wi[i], de = e - e_prev, dz = z - i_prev;
-      r.e_differences += de * de;
-      r.e_squares += e * e;
-      r.i_differences += dz * dz;
-      r.i_squares += z * z;
-      e_prev = e, i_prev = z;
+  const auto sums = [n, x](const double* w, const ExactSolution::AffineRun* runs, int count) {
+    const double z0 = runs[0].intercept + runs[0].slope * x[0];
+    Sums r{w[0] - z0, 0, 0, 0, z0, 0, 0, 0};
+    double ed = 0, es = 0, id = 0, is = 0, z_prev = z0;
+    for (int k = 0; k < count; ++k) {
+      const double a = runs[k].intercept, b = runs[k].slope;
+      const long first = std::max(runs[k].first, 1L), end = runs[k].end;
+      if (first >= end) continue;
+      {
+        const double z = a + b * x[first], e = w[first] - z, dz = z - z_prev, de = e - (w[first - 1] - z_prev);
+        ed += de * de, es += e * e, id += dz * dz, is += z * z;
+      }
+#pragma omp simd reduction(+ : ed, es, id, is)
+      for (long i = first + 1; i < end; ++i) {
+        const double z = a + b * x[i], e = w[i] - z, dz = b * (x[i] - x[i - 1]), de = (w[i] - w[i - 1]) - dz;
+        ed += de * de, es += e * e, id += dz * dz, is += z * z;
+      }
+      z_prev = a + b * x[end - 1];
     }
-    r.e_last = e_prev, r.i_last = i_prev;
+    r.e_differences = ed, r.e_squares = es, r.i_differences = id, r.i_squares = is;
+    r.e_last = w[n - 1] - z_prev, r.i_last = z_prev;
     return r;
   };
   const double* u = sample.displacement->data();
-  const Sums su = sums(u, ui), sv = sums(sample.velocity->data(), vi);
+  const Sums su = sums(u, u_runs, u_count), sv = sums(sample.velocity->data(), v_runs, v_count);
   const auto error_form = [](const Sums& r, double a00, double d, double l) {
     return form(r.e0, r.e_last, r.e_differences, r.e_squares, a00, d, l);
   };

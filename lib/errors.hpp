@@ -62,7 +62,7 @@ class ErrorAccumulator {
   UniformMesh mesh_;
   ExactSolution exact_;
   Tridiagonal mass_, stiffness_;
-  Eigen::VectorXd nodes_, interpolant_, velocity_interpolant_;  // x_i; u_I and (u_t)_I at one level
+  Eigen::VectorXd nodes_;  // x_i
   TimeHistory u_l2_, u_h1_, v_l2_, u0_, lambda_;
 };
 

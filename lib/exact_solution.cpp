@@ -258,6 +258,85 @@ void ExactSolution::velocity_at_points(double t, const double* x, long count, do
       [&](long i) { v[i] = velocity(x[i], t); });
 }
 
+// The same split as runs of one affine function each, for the error measures (errors.cpp), which then
+// need no array of values: on a run between kinks u = scale · c · (α + β x/L + γ s), that is
+// intercept scale·c·(α + γs) and slope scale·c·β/L, and u_t is the constant that velocity() gives.
+int ExactSolution::displacement_runs(double t, const double* x, long count, AffineRun* runs, int capacity) const {
+  const PhaseTime pt = locate(t / length_);
+  const Phase& p = phases[pt.phase];
+  double kinks[12];
+  const int kink_count = append_crossings(p, pt.s, kinks, 0);
+  const double scale = 2.0 * amplitude_ * length_;
+  int n = 0;
+  const auto push = [&](AffineRun r) {
+    if (n == capacity) throw std::length_error("ExactSolution::displacement_runs: more runs than the capacity");
+    runs[n++] = r;
+  };
+  split_at_kinks(
+      kinks, kink_count, length_, x, count,
+      [&](long first, long end) {
+        const double xi = x[first] / length_;
+        int active = 0;
+        for (int k = 1; k < p.count; ++k)
+          if (p.affine[k].at(xi, pt.s) < p.affine[active].at(xi, pt.s)) active = k;
+        const Affine a = p.affine[active];
+        push({first, end, scale * p.c * (a.alpha + a.gamma * pt.s), scale * p.c * a.beta / length_});
+      },
+      [&](long i) { push({i, i + 1, displacement(x[i], t), 0.0}); });
+  return n;
+}
+
+int ExactSolution::velocity_runs(double t, const double* x, long count, AffineRun* runs, int capacity) const {
+  const PhaseTime pt = locate(t / length_);
+  double kinks[12];
+  int kink_count = append_crossings(phases[pt.phase], pt.s, kinks, 0);
+  if (pt.at_boundary) kink_count = append_crossings(phases[(pt.phase + 2) % 3], 1.0, kinks, kink_count);
+  int n = 0;
+  const auto push = [&](AffineRun r) {
+    if (n == capacity) throw std::length_error("ExactSolution::velocity_runs: more runs than the capacity");
+    runs[n++] = r;
+  };
+  split_at_kinks(
+      kinks, kink_count, length_, x, count, [&](long first, long end) { push({first, end, velocity(x[first], t), 0.0}); },
+      [&](long i) { push({i, i + 1, velocity(x[i], t), 0.0}); });
+  return n;
+}
+
+TEST_CASE("the runs of the exact solution give the values at many points to round-off") {
+  // Every point of every run against displacement_at_points and velocity_at_points (themselves checked
+  // against the generic functions below), on meshes and instants that put points on the kinks.
+  for (const double length : {1.0, 2.5}) {
+    const ExactSolution exact(length, 0.5);
+    for (const long elements : {7L, 64L, 100L}) {
+      std::vector<double> x(static_cast<std::size_t>(elements)), u(x.size()), v(x.size());
+      for (long i = 0; i < elements; ++i) x[static_cast<std::size_t>(i)] = length * static_cast<double>(i) / static_cast<double>(elements);
+      const double h = length / static_cast<double>(elements);
+      for (long n = 0; static_cast<double>(n) * 0.5 * h <= 4.0 * length; ++n) {
+        const double t = static_cast<double>(n) * 0.5 * h;
+        exact.displacement_at_points(t, x.data(), elements, u.data());
+        exact.velocity_at_points(t, x.data(), elements, v.data());
+        ExactSolution::AffineRun runs[32];
+        for (int field = 0; field < 2; ++field) {
+          const int count = field == 0 ? exact.displacement_runs(t, x.data(), elements, runs, 32)
+                                       : exact.velocity_runs(t, x.data(), elements, runs, 32);
+          long covered = 0;
+          for (int r = 0; r < count; ++r) {
+            CHECK(runs[r].first == covered);
+            covered = runs[r].end;
+            for (long i = runs[r].first; i < runs[r].end; ++i) {
+              const double value = runs[r].intercept + runs[r].slope * x[static_cast<std::size_t>(i)];
+              CAPTURE(t);
+              CAPTURE(i);
+              CHECK(std::abs(value - (field == 0 ? u : v)[static_cast<std::size_t>(i)]) <= 4e-16 * length);
+            }
+          }
+          CHECK(covered == elements);
+        }
+      }
+    }
+  }
+}
+
 TEST_CASE("the evaluation at many points gives the values of the generic functions, kinks and phase changes included") {
   // Nodes x_i = iL/N and instants t_n = n Δt with Δt = h and h/2 put points exactly on the
   // characteristics and at the phase changes; the odd N and Δt put them near but not on.

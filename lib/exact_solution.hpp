@@ -29,6 +29,18 @@ class ExactSolution {
   void displacement_at_points(double t, const double* x, long count, double* u) const;
   /// u_t(x_k, t) likewise, with the values of velocity(x_k, t), the symmetric derivative at a kink.
   void velocity_at_points(double t, const double* x, long count, double* v) const;
+  /// A run of consecutive points on which a field of the exact solution is one affine function:
+  /// value(x_i) = intercept + slope · x_i for first ≤ i < end.
+  struct AffineRun {
+    long first, end;
+    double intercept, slope;
+  };
+  /// u(·, t) on the sorted points as runs between the kinks (a point within 1e-9 L of a kink gets a run
+  /// of its own with the value of displacement()); returns the number of runs written (at most
+  /// `capacity`; 32 always suffice). Throws std::length_error if `capacity` is too small.
+  int displacement_runs(double t, const double* x, long count, AffineRun* runs, int capacity) const;
+  /// u_t(·, t) likewise (constant on each run: slope 0; the symmetric derivative at a kink).
+  int velocity_runs(double t, const double* x, long count, AffineRun* runs, int capacity) const;
   double period() const { return 3.0 * length_; }  ///< the period 3L of the motion
   double length() const { return length_; }        ///< L
   double amplitude() const { return amplitude_; }  ///< a
