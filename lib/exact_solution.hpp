@@ -32,8 +32,10 @@ class ExactSolution {
   /// A run of consecutive points on which a field of the exact solution is one affine function:
   /// value(x_i) = intercept + slope · x_i for first ≤ i < end.
   struct AffineRun {
-    long first, end;
-    double intercept, slope;
+    long first;        ///< the first point of the run
+    long end;          ///< one past the last point
+    double intercept;  ///< the value at x = 0 of the run's affine function
+    double slope;      ///< its slope in x
   };
   /// u(·, t) on the sorted points as runs between the kinks (a point within 1e-9 L of a kink gets a run
   /// of its own with the value of displacement()); returns the number of runs written (at most
