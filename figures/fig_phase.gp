@@ -18,7 +18,7 @@ set xlabel "t"
 set ylabel "error"
 plot for [m=0:2] data index m using 1:2 with lines ls m+1 title sprintf("Mod %d", m+1)
 
-set title "Relative L^2 error of u" font ",10"
+set title "L^2 error of u, ||u_h - u_I||" font ",10"
 plot for [m=0:2] data index m using 1:3 with lines ls m+1 title sprintf("Mod %d", m+1)
 
 set title "Impact-time errors t_k - (1 + 3k): measured (points) and period law e_0 + k {/Symbol D}P (lines)" font ",10"
