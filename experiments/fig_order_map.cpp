@@ -10,7 +10,7 @@
 // Sample runs:
 //   fig_order_map --sweep output/data/sweep.dat --output output/data/fig_order_map.dat --tex output/data/fig_order_map.tex
 //
-// Description. Steps: (1) options; (2) read the sweep; (3) outputs; (4) one block per (scheme, mass,
+// Description. Steps: (1) options; (2) outputs; (3) read the sweep; (4) one block per (scheme, mass,
 // Δt/h): a line per horizon; (5) the values; (6) commit.
 //
 // Data file: block b = (s · M + m) · J + j for scheme s ∈ (cn, be, ps, ps-consistent), mass m, ratio j;
@@ -43,14 +43,15 @@ int main(int argc, char** argv) {
     repro::FigureOutputs outputs(parser, "fig_order_map", "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
-    // 2. The sweep.
+    // 2. Outputs, opened first so that a bad output path fails before anything is read.
+    outputs.open(parser);
+
+    // 3. The sweep.
     std::ifstream in(sweep_file);
     if (!in) throw cli::UsageError("--sweep: cannot read \"" + sweep_file + "\" (allowed: a file written by check_claims --sweep)");
     const repro::Sweep sweep = repro::read_sweep(in);
     const repro::SweepGrid& g = sweep.grid;
 
-    // 3. Outputs.
-    outputs.open(parser);
     std::ostream& out = outputs.data();
     out << "# fig_order_map: least-squares orders in h per (scheme, mass, dt/h, horizon) (claim 4, mathematics.md "
            "sec. 9)\n";

@@ -12,7 +12,7 @@
 // Sample runs:
 //   fig_ordering_map --sweep output/data/sweep.dat --output output/data/fig_ordering_map.dat --tex output/data/fig_ordering_map.tex
 //
-// Description. Steps: (1) options; (2) read the sweep; (3) outputs; (4) the cells, block by block;
+// Description. Steps: (1) options; (2) outputs; (3) read the sweep; (4) the cells, block by block;
 // (5) the values; (6) commit.
 //
 // Data file: block 4s + j (scheme s ∈ (cn, be, ps), ratio j) has columns elements horizon ranked judged
@@ -45,14 +45,15 @@ int main(int argc, char** argv) {
     repro::FigureOutputs outputs(parser, "fig_ordering_map", "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
-    // 2. The sweep.
+    // 2. Outputs, opened first so that a bad output path fails before anything is read.
+    outputs.open(parser);
+
+    // 3. The sweep.
     std::ifstream in(sweep_file);
     if (!in) throw cli::UsageError("--sweep: cannot read \"" + sweep_file + "\" (allowed: a file written by check_claims --sweep)");
     const repro::Sweep sweep = repro::read_sweep(in);
     const repro::SweepGrid& g = sweep.grid;
 
-    // 3. Outputs.
-    outputs.open(parser);
     std::ostream& out = outputs.data();
     out << "# fig_ordering_map: the ranking Mod 3 < Mod 2 < Mod 1 per cell (claim 3, mathematics.md sec. 6, 8)\n";
     parser.echo(out);

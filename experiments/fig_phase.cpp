@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
     });
     parser.add_real("--periods", "-p", "P", "number of periods (3L each), in [2, 1000]", &periods,
                     cli::in_closed_range(2, 1000));
-    parser.add_integer("--stride", "", "K", "write every K-th level of the error history (K >= 1)", &stride,
+    parser.add_integer("--stride", "", "K", "keep every K-th level of the error history in the data file (K >= 1)", &stride,
                        cli::at_least(1));
     parser.add_choice("--scheme", "-s", "S", "time scheme (Paoli-Schatzman with the algebraic row)",
                       {"cn", "be", "ps"}, &scheme);
