@@ -578,9 +578,9 @@ SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& sch
       int fewest = all;
       for (double c : g.courants)
         for (Index n : g.elements) fewest = std::min(fewest, cell_count(c, n, k));
-      fails.push_back(sig(g.horizons[k]) + " period(s): " + std::to_string(total - ranked) + " of " +
-                      std::to_string(total) + " cells (down to " + std::to_string(fewest) + "/" + std::to_string(all) +
-                      " measures)");
+      fails.push_back("at " + sig(g.horizons[k]) + " period(s) " + std::to_string(total - ranked) + " of " +
+                      std::to_string(total) + " cells are not ranked in every measure (down to " +
+                      std::to_string(fewest) + " of " + std::to_string(all) + ")");
     }
   }
   SummaryLine line;
@@ -878,7 +878,9 @@ SummaryLine summarize_convergence(const repro::Sweep& sweep) {
         if (cell.scheme == scheme && cell.horizon == k)
           for (std::size_t q : judged) w += cell.within[q], ++t;
       within += w, total += t;
-      if (w < t) bad_horizons.push_back(sig(g.horizons[k]) + "p " + std::to_string(t - w) + "/" + std::to_string(t));
+      if (w < t)
+        bad_horizons.push_back(std::to_string(t - w) + " of " + std::to_string(t) + " orders outside at " +
+                               sig(g.horizons[k]) + " period(s)");
     }
     all_within += within, all_total += total;
     holds.push_back(scheme + " " + std::to_string(within) + "/" + std::to_string(total));
@@ -1611,11 +1613,19 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
   summary.push_back(summarize_convergence(sweep));
   {
     const auto r = rows_with("4t/");
-    std::vector<std::string> numbers;
-    for (const ClaimResult* row : r) numbers.push_back(row->id.substr(6) + ": " + row->measured);
+    std::vector<std::string> numbers;  // the velocity's orders: what the massless node's row changed
+    for (const ClaimResult* row : r) {
+      std::vector<std::string> velocity;
+      std::istringstream parts(row->measured);
+      for (std::string part; std::getline(parts, part, ';');) {
+        const std::size_t start = part.find_first_not_of(' ');
+        if (start != std::string::npos && part.compare(start, 3, "u_t") == 0) velocity.push_back(part.substr(start));
+      }
+      numbers.push_back(row->id.substr(6) + ": " + join(velocity, ", "));
+    }
     summary.push_back({"time", "4 Error estimate in time: cn at order 2 in Δt (h = 1/" +
                                    std::to_string(TimeConvergenceSettings().elements) + ")",
-                       verdict_of(r), ids(r, Verdict::reproduced), ids(r, Verdict::failed), numbers.front()});
+                       verdict_of(r), ids(r, Verdict::reproduced), ids(r, Verdict::failed), join(numbers, "; ")});
   }
   {
     const auto r = rows_with("5/");
