@@ -16,7 +16,6 @@
 // Data file: block b = (s · M + m) · J + j for scheme s ∈ (cn, be, ps, ps-consistent), mass m, ratio j;
 // columns horizon, the eight orders, the predicted displacement and energy-type orders, the lower and
 // upper ends of the allowed interval of a displacement and of an energy-type measure.
-#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -47,9 +46,7 @@ int main(int argc, char** argv) {
     outputs.open(parser);
 
     // 3. The sweep.
-    std::ifstream in(sweep_file);
-    if (!in) throw cli::UsageError("--sweep: cannot read \"" + sweep_file + "\" (allowed: a file written by check_claims --sweep)");
-    const repro::Sweep sweep = repro::read_sweep(in);
+    const repro::Sweep sweep = repro::read_sweep_file(sweep_file, "--sweep");
     const repro::SweepGrid& g = sweep.grid;
 
     std::ostream& out = outputs.data();

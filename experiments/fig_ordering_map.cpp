@@ -18,7 +18,6 @@
 // Data file: block 4s + j (scheme s ∈ (cn, be, ps), ratio j) has columns elements horizon ranked judged
 // cn_mod3_beats_baseline; block 12 + 4s + j has columns elements and, per measure, the first horizon (in
 // periods) from which it is ranked at every longer horizon (0: not at the longest).
-#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -49,9 +48,7 @@ int main(int argc, char** argv) {
     outputs.open(parser);
 
     // 3. The sweep.
-    std::ifstream in(sweep_file);
-    if (!in) throw cli::UsageError("--sweep: cannot read \"" + sweep_file + "\" (allowed: a file written by check_claims --sweep)");
-    const repro::Sweep sweep = repro::read_sweep(in);
+    const repro::Sweep sweep = repro::read_sweep_file(sweep_file, "--sweep");
     const repro::SweepGrid& g = sweep.grid;
 
     std::ostream& out = outputs.data();

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <istream>
 #include <numeric>
 #include <ostream>
@@ -194,6 +195,13 @@ Sweep read_sweep(std::istream& in) {
                                std::to_string(r.elements) + " lacks horizons");
   if (sweep.runs.empty()) throw std::runtime_error("sweep file: no run");
   return sweep;
+}
+
+Sweep read_sweep_file(const std::string& path, const std::string& option) {
+  std::ifstream in(path);
+  if (!in)
+    throw cli::UsageError(option + ": cannot read \"" + path + "\" (allowed: a file written by check_claims --sweep)");
+  return read_sweep(in);
 }
 
 std::vector<std::size_t> judged_measures(const std::string& scheme) {

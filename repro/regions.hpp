@@ -55,6 +55,9 @@ Sweep run_sweep(const SweepGrid& grid, unsigned threads = 0, std::ostream* progr
 /// else.
 void write_sweep(std::ostream& out, const Sweep& sweep);
 Sweep read_sweep(std::istream& in);
+/// The sweep in the file `path`, given by the option `option` of a map program: throws
+/// cli::UsageError naming the option if the file cannot be opened.
+Sweep read_sweep_file(const std::string& path, const std::string& option);
 
 /// The measures a scheme is judged in. Paoli–Schatzman (¼, 0) with the algebraic row computes the
 /// displacements and λ of Crank–Nicolson exactly (a doctest of schemes.cpp): its displacement-type
