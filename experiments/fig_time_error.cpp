@@ -299,6 +299,7 @@ int main(int argc, char** argv) {
         return q > 1 ? std::to_string(static_cast<long>(q)) + "h" : "h/" + std::to_string(static_cast<long>(1 / q));
       };
       mrm::tex_define(defs, prefix + "elements", std::to_string(se.elements));
+      mrm::tex_define(defs, prefix + "steps", std::to_string(se.ratio.size()));
       mrm::tex_define(defs, prefix + "R", std::to_string(se.reference_ratio));
       mrm::tex_define(defs, prefix + "T", mrm::tex_number(se.final_time_used, 3));
       mrm::tex_define(defs, prefix + "largest", step_text(se.ratio.front()));
@@ -371,6 +372,15 @@ int main(int argc, char** argv) {
           if (se.mismatched[s * se.ratio.size() + j] > 0)
             mismatch += (mismatch.empty() ? "" : ", ") + std::string("$") + step_text(se.ratio[j]) + "$";
         mrm::tex_define(defs, prefix + "mismatch:" + schemes[s], mismatch.empty() ? "none" : mismatch);
+        std::size_t mismatched_steps = 0, finest_mismatched = se.ratio.size();
+        for (std::size_t j = 0; j < se.ratio.size(); ++j)
+          if (se.mismatched[s * se.ratio.size() + j] > 0) ++mismatched_steps, finest_mismatched = j;
+        mrm::tex_define(defs, prefix + "mismatchsteps:" + schemes[s], std::to_string(mismatched_steps));
+        mrm::tex_define(defs, prefix + "mismatchfinest:" + schemes[s],
+                        finest_mismatched < se.ratio.size() ? "$" + step_text(se.ratio[finest_mismatched]) + "$"
+                                                            : "none");
+        mrm::tex_define(defs, prefix + "withinwords:" + schemes[s],
+                        count == 8 ? "all 8 measures" : std::to_string(count) + " of the 8 measures");
       }
       if (i == 0) mrm::tex_define(defs, "time:finehalf", step_text(se.ratio[half]));
       std::ostringstream tabular;
