@@ -342,8 +342,8 @@ int main(int argc, char** argv) {
         std::size_t count = 0;
         for (std::size_t k = 0; k < 8; ++k) {
           const std::string key = schemes[s] + ":" + mrm::ErrorAccumulator::names[k];
-          mrm::tex_define(defs, prefix + "orderfinest:" + key, mrm::tex_number(orders[i][s][k], 2));
-          mrm::tex_define(defs, prefix + "ordershifted:" + key, mrm::tex_number(shifted[i][s][k], 2));
+          mrm::tex_define(defs, prefix + "orderfinest:" + key, mrm::tex_number(orders[i][s][k], 3));
+          mrm::tex_define(defs, prefix + "ordershifted:" + key, mrm::tex_number(shifted[i][s][k], 3));
           mrm::tex_define(defs, prefix + "verdict:" + key, within(i, s, k) ? "within" : "outside");
           count += within(i, s, k);
           mrm::tex_define(defs, prefix + "errfine:" + key,
