@@ -181,16 +181,20 @@ int main(int argc, char** argv) {
                        cli::at_least(1));
     mrm::repro::FigureOutputs outputs(parser, "fig_time_error", "also write the tables and values the report quotes");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
-    auto power_of_two = [](long v) { return v > 0 && (v & (v - 1)) == 0; };
-    if (!power_of_two(reference_ratio)) throw cli::UsageError("--reference-ratio: must be a power of 2");
-    if (!power_of_two(coarse_reference_ratio)) throw cli::UsageError("--coarse-reference-ratio: must be a power of 2");
-    if (!power_of_two(largest)) throw cli::UsageError("--largest: must be a power of 2");
+    auto require_power_of_two = [](const char* option, long v) {
+      if (v <= 0 || (v & (v - 1)) != 0) throw cli::UsageError(std::string(option) + ": must be a power of 2");
+    };
+    require_power_of_two("--reference-ratio", reference_ratio);
+    require_power_of_two("--coarse-reference-ratio", coarse_reference_ratio);
+    require_power_of_two("--largest", largest);
     // Every step Δt_j = P h / 2^j must be a multiple m_j = P R / 2^j ≥ 2 of the reference step.
-    if (steps_count > 62 || ((largest * reference_ratio) >> (steps_count - 1)) < 2)
-      throw cli::UsageError("--steps: the smallest step P h/2^(K-1) must be at least twice the reference step h/R");
-    if (coarse_steps_count > 62 || ((largest * coarse_reference_ratio) >> (coarse_steps_count - 1)) < 2)
-      throw cli::UsageError(
-          "--coarse-steps: the smallest step P h/2^(K-1) must be at least twice the reference step h/R");
+    auto require_steps = [&](const char* option, long count, long ratio) {
+      if (count > 62 || ((largest * ratio) >> (count - 1)) < 2)
+        throw cli::UsageError(std::string(option) +
+                              ": the smallest step P h/2^(K-1) must be at least twice the reference step h/R");
+    };
+    require_steps("--steps", steps_count, reference_ratio);
+    require_steps("--coarse-steps", coarse_steps_count, coarse_reference_ratio);
     if (fit_points > steps_count || fit_points > coarse_steps_count)
       throw cli::UsageError("--fit-points: at most the number of steps of each mesh (--steps, --coarse-steps)");
 
