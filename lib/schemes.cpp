@@ -50,6 +50,7 @@
 // (for β = ¼ the familiar ½DᵀMD + ½ ŪᵀSŪ with Ū = (Uⁿ⁺¹ + Uⁿ)/2), attached to the instant t_{n+½}.
 #include "schemes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <type_traits>
@@ -245,6 +246,7 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
     lambda_ = 0.0;  // an inertial contact node starts without contact force
   }
   has_lambda_ = true;
+  choose_energy_scale();
   energy_ = energy_two_level();
 
   // W = V⁰ for the two-level schemes. The three-level scheme is started by one Crank–Nicolson step
@@ -267,8 +269,49 @@ void BarSimulation::load_at(double t, Eigen::VectorXd& f) const {
   p1_load(mesh_, [&](double x) { return problem_.load(x, t); }, f);
 }
 
+// Scale of the energy. The energy's quadratic forms square the nodal values: on the benchmark,
+// u ~ aL and v ~ a, so that the squares reach (aL)² ~ 1e400 or fall to (aL/N)² ~ 1e-414 over the
+// lengths and amplitudes that bar1d accepts ([1e-100, 1e100] each), although the energy itself,
+// a²L/2, is a representable number. The forms are therefore taken on scaled values σ_u U and σ_v V,
+// with σ_u = 2^−e_u and σ_v = 2^−e_v powers of two chosen from the data at t = 0: e_u is the binary
+// exponent of the size of the displacements, the largest of |u⁰_i|, L |v⁰_i| and L²|f_i|/h (the
+// displacement that the initial velocity or the load produce over the time L a wave takes to cross
+// the bar; wave speed 1), and e_v = e_u − e_L, e_L that of L. Each half of the energy is then
+// brought back by an exact ldexp. Scaling by a power of two is exact wherever nothing over- or
+// underflows, so the scaled forms give the same doubles as the unscaled ones whenever both are
+// representable: the choice affects only the cost (two or three multiplications per node). It is made
+// only when an exponent (e_u, e_v, or that of h) exceeds 200 in magnitude; below that, with at most
+// 2^30 nodes, every square and every form stays between 2^−700 and 2^700 (ratios of u between nodes
+// of order N, of v of order 1 over a run whose energy does not grow by 2^100).
+void BarSimulation::choose_energy_scale() {
+  const int length_exponent = std::ilogb(mesh_.length);
+  const int step_exponent = std::ilogb(mesh_.h());
+  bool any = false;
+  int exponent = 0;
+  const auto consider = [&](const Eigen::VectorXd& values, int shift) {
+    if (values.size() == 0) return;
+    const double largest = values.cwiseAbs().maxCoeff();
+    if (!(largest > 0) || !std::isfinite(largest)) return;
+    const int e = std::ilogb(largest) + shift;
+    exponent = any ? std::max(exponent, e) : e;
+    any = true;
+  };
+  consider(u_, 0);
+  consider(x_, length_exponent);
+  if (problem_.load) consider(f_now_, 2 * length_exponent - step_exponent);
+  displacement_exponent_ = exponent;
+  velocity_exponent_ = exponent - length_exponent;
+  constexpr int band = 200;
+  scaled_ = std::abs(displacement_exponent_) > band || std::abs(velocity_exponent_) > band ||
+            std::abs(step_exponent) > band;
+}
+
 double BarSimulation::energy_two_level() const {
-  return 0.5 * mass_.bilinear(x_, x_) + 0.5 * stiffness_.bilinear(u_, u_);
+  if (!scaled_) return 0.5 * mass_.bilinear(x_, x_) + 0.5 * stiffness_.bilinear(u_, u_);
+  const Eigen::VectorXd v = std::ldexp(1.0, -velocity_exponent_) * x_;
+  const Eigen::VectorXd u = std::ldexp(1.0, -displacement_exponent_) * u_;
+  return std::ldexp(0.5 * mass_.bilinear(v, v), 2 * velocity_exponent_) +
+         std::ldexp(0.5 * stiffness_.bilinear(u, u), 2 * displacement_exponent_);
 }
 
 // One step of (★), fused into the two sweeps of the solve, with no allocation and no refactorisation:
@@ -298,7 +341,7 @@ double BarSimulation::energy_two_level() const {
 // (expand PᵀSP and QᵀSQ), so E = ½ XᵀMX + ⅛ (PᵀSP − (1−4β) QᵀSQ), and for β = ¼ only PᵀSP counts.
 // The scheme (two or three levels) and the presence of a load are template parameters, so that the
 // loops carry no dead work.
-template <bool three_level, bool has_load>
+template <bool three_level, bool has_load, bool scaled>
 void BarSimulation::fused_step() {
   const Index n = mesh_.unknowns();
   const Index head = static_cast<Index>(head_.size());
@@ -374,13 +417,19 @@ void BarSimulation::fused_step() {
   // squared differences, free of the cancellation of Σ z_i² against Σ z_{i−1} z_i (relative error
   // O(ε) instead of O(ε N²): the energy of Crank–Nicolson stays constant to round-off).
   double k_d = 0, k_q = 0, p_d = 0, p_q = 0, q_d = 0, q_q = 0;
+  // The values entering the forms: as they are, or times σ_u, σ_v (see Scale of the energy above).
+  // uf_prev is the previous scaled displacement (un_prev itself serves the solve).
+  const double sigma_u = std::ldexp(1.0, -displacement_exponent_), sigma_v = std::ldexp(1.0, -velocity_exponent_);
+  double uf_prev = 0;
   const auto emit = [&](const Row& r, Index i, double un, auto toeplitz) {
     constexpr bool sums = decltype(toeplitz)::value;
     const double uo = u[i];
     y[i] = un;
     if constexpr (three_level) {
-      const double x = rate * (un - uo), p = un + uo, q = un - uo;
-      x_out[i] = x;
+      const double x_raw = rate * (un - uo), p_raw = un + uo, q_raw = un - uo;
+      x_out[i] = x_raw;
+      const double x = scaled ? sigma_v * x_raw : x_raw, p = scaled ? sigma_u * p_raw : p_raw,
+                   q = scaled ? sigma_u * q_raw : q_raw;
       if constexpr (sums) {
         const double dx = x - v_prev, dp = p - p_prev, dq = q - q_prev;
         k_d += dx * dx, k_q += x * x;
@@ -393,17 +442,20 @@ void BarSimulation::fused_step() {
       }
       v_prev = x, p_prev = p, q_prev = q;
     } else {
-      const double v = rate * (un - uo) - memory * w[i];
-      w_out[i] = v;
+      const double v_raw = rate * (un - uo) - memory * w[i];
+      w_out[i] = v_raw;
+      const double v = scaled ? sigma_v * v_raw : v_raw, uf = scaled ? sigma_u * un : un;
+      const double uf_before = scaled ? uf_prev : un_prev;
       if constexpr (sums) {
-        const double dv = v - v_prev, du = un - un_prev;
+        const double dv = v - v_prev, du = uf - uf_before;
         k_d += dv * dv, k_q += v * v;
-        p_d += du * du, p_q += un * un;
+        p_d += du * du, p_q += uf * uf;
       } else {
         kinetic += r.md * v * v + r.ml2 * v_prev * v;
-        potential += r.sd * un * un + r.sl2 * un_prev * un;
+        potential += r.sd * uf * uf + r.sl2 * uf_before * uf;
       }
       v_prev = v;
+      if constexpr (scaled) uf_prev = uf;
     }
     un_prev2 = un_prev, un_prev = un;
   };
@@ -424,9 +476,9 @@ void BarSimulation::fused_step() {
   if (head < n - 1) {
     const Row r = interior_;
     // The values z_{a−1} at row head − 1 (the first of the kinetic, the potential and the second forms).
-    const double ka = v_prev, pa = three_level ? p_prev : un_prev, qa = q_prev;
+    const double ka = v_prev, pa = three_level ? p_prev : (scaled ? uf_prev : un_prev), qa = q_prev;
     for (Index i = head; i < n - 1; ++i) emit(r, i, solve_up(i), toeplitz_row);
-    const double kb = v_prev, pb = three_level ? p_prev : un_prev, qb = q_prev;
+    const double kb = v_prev, pb = three_level ? p_prev : (scaled ? uf_prev : un_prev), qb = q_prev;
     const auto form = [](double d, double l2, double sum_d, double sum_q, double za, double zb) {
       const double l = 0.5 * l2;
       return -l * sum_d + (d + l2) * sum_q - l * zb * zb + l * za * za;
@@ -437,12 +489,14 @@ void BarSimulation::fused_step() {
   }
   emit(last_, n - 1, solve_up(n - 1), explicit_row);
 
+  const auto back = [&](double half, int exponent) { return scaled ? std::ldexp(half, 2 * exponent) : half; };
   if constexpr (three_level) {
-    energy_ = 0.5 * kinetic + 0.125 * (potential - (1 - 4 * parameters_.beta) * potential_q);
+    energy_ = back(0.5 * kinetic, velocity_exponent_) +
+              back(0.125 * (potential - (1 - 4 * parameters_.beta) * potential_q), displacement_exponent_);
     u_.swap(w_);      // W' = Uⁿ
     u_.swap(u_new_);  // U = Uⁿ⁺¹
   } else {
-    energy_ = 0.5 * kinetic + 0.5 * potential;
+    energy_ = back(0.5 * kinetic, velocity_exponent_) + back(0.5 * potential, displacement_exponent_);
     u_.swap(u_new_);
   }
   if constexpr (has_load) f_now_.swap(f_next_);
@@ -469,11 +523,11 @@ void BarSimulation::step() {
   const bool has_load = static_cast<bool>(problem_.load);
   if (has_load) load_at(t_next, f_next_);
   if (three_level_) {
-    if (has_load) fused_step<true, true>();
-    else fused_step<true, false>();
+    if (has_load) scaled_ ? fused_step<true, true, true>() : fused_step<true, true, false>();
+    else scaled_ ? fused_step<true, false, true>() : fused_step<true, false, false>();
   } else {
-    if (has_load) fused_step<false, true>();
-    else fused_step<false, false>();
+    if (has_load) scaled_ ? fused_step<false, true, true>() : fused_step<false, true, false>();
+    else scaled_ ? fused_step<false, false, true>() : fused_step<false, false, false>();
   }
 
   has_lambda_ = true;
@@ -512,10 +566,10 @@ namespace mrm {
 namespace {
 
 [[maybe_unused]] std::vector<double> energy_history(const MassRedistribution& mass, const SchemeParameters& p, Index elements,
-                                   double courant, double final_time) {
-  const UniformMesh mesh(1.0, elements);
+                                   double courant, double final_time, double length = 1.0, double amplitude = 0.5) {
+  const UniformMesh mesh(length, elements);
   const double dt = courant * mesh.h();
-  BarSimulation simulation(benchmark_problem(), mesh, mass, p, dt);
+  BarSimulation simulation(benchmark_problem(length, amplitude), mesh, mass, p, dt);
   std::vector<double> energy;
   run(simulation, steps_to_reach(final_time, dt), [&](const Sample& s) { energy.push_back(s.energy); });
   return energy;
@@ -562,6 +616,58 @@ TEST_CASE("backward Euler never increases the discrete energy") {
     for (std::size_t k = 1; k < e.size(); ++k) increases += e[k] > e[k - 1] * (1 + 1e-14);
     CHECK(increases == 0);
     CHECK(e.back() < 0.9 * e.front());  // and it does dissipate
+  }
+}
+
+TEST_CASE("the discrete energy is right at the ends of the accepted lengths and amplitudes") {
+  // Under x → Lx, t → Lt, u → aLu the benchmark with (L, a) is the one with (1, 1), and its energy is
+  // a²L times that one. With L = 2^±332 and a = 2^±332 (≈ 8.7e99 and 1.1e-100, inside bar1d's
+  // [1e-100, 1e100]) every rounding of the run is the same as with (1, 1) up to the power of two, so
+  // the energies must be those of (1, 1) times a²L exactly; the squares of the unscaled forms would
+  // overflow ((aL)² = 2^1328) or underflow ((aL/N)² ≈ 2^−1337). At the decimal ends 1e±100 the data
+  // themselves are rounded differently (relative 1e-16 each, over a few hundred steps): the energy
+  // divided by a²L must agree with the (1, 1) run to 1e-12 relative.
+  struct Case {
+    Scheme scheme;
+    ContactRow row;
+    const MassRedistribution* mass;
+  };
+  const MassRedistribution m3 = mod3(), m1 = mod1(), consistent = consistent_mass();
+  for (const Case c : {Case{Scheme::crank_nicolson, ContactRow::algebraic, &m3},
+                       Case{Scheme::backward_euler, ContactRow::algebraic, &m1},
+                       Case{Scheme::paoli_schatzman, ContactRow::algebraic, &m3},
+                       Case{Scheme::paoli_schatzman, ContactRow::literal, &consistent}}) {
+    SchemeParameters p = with(c.scheme, c.row);
+    const std::vector<double> base = energy_history(*c.mass, p, 12, 0.5, 6.0, 1.0, 1.0);
+    for (const int length_exponent : {-332, 332})
+      for (const int amplitude_exponent : {-332, 332}) {
+        const double length = std::ldexp(1.0, length_exponent), amplitude = std::ldexp(1.0, amplitude_exponent);
+        const std::vector<double> e = energy_history(*c.mass, p, 12, 0.5, 6.0 * length, length, amplitude);
+        CAPTURE(to_string(c.scheme));
+        CAPTURE(c.mass->name);
+        CAPTURE(length_exponent);
+        CAPTURE(amplitude_exponent);
+        REQUIRE(e.size() == base.size());
+        for (std::size_t k = 0; k < e.size(); ++k) {
+          CAPTURE(k);
+          CHECK(e[k] == std::ldexp(base[k], 2 * amplitude_exponent + length_exponent));
+        }
+      }
+    for (const double length : {1e-100, 1e100})
+      for (const double amplitude : {1e-100, 1e100}) {
+        const std::vector<double> e = energy_history(*c.mass, p, 12, 0.5, 6.0 * length, length, amplitude);
+        CAPTURE(to_string(c.scheme));
+        CAPTURE(c.mass->name);
+        CAPTURE(length);
+        CAPTURE(amplitude);
+        REQUIRE(e.size() == base.size());
+        for (std::size_t k = 0; k < e.size(); ++k) {
+          CAPTURE(k);
+          const double scaled = e[k] / (amplitude * amplitude * length);
+          CHECK(std::isfinite(scaled));
+          CHECK(std::abs(scaled - base[k]) <= 1e-12 * base[k]);
+        }
+      }
   }
 }
 

@@ -92,6 +92,7 @@ class BarSimulation {
  private:
   void load_at(double t, Eigen::VectorXd& f) const;
   double energy_two_level() const;
+  void choose_energy_scale();
 
   Problem problem_;
   UniformMesh mesh_;
@@ -108,11 +109,16 @@ class BarSimulation {
   };
   std::vector<Row> head_;
   Row interior_, last_;
-  template <bool three_level, bool has_load> void fused_step();
+  template <bool three_level, bool has_load, bool scaled> void fused_step();
   ContactSolver solver_;
   double kappa_, load_now_, load_next_;   // G = load_now_ Fⁿ + load_next_ Fⁿ⁺¹ (+ row-0 terms)
   double lambda_in_rhs_;                  // Crank–Nicolson with inertia at node 0: −θ λⁿ in row 0
   double velocity_rate_, velocity_memory_;  // two-level: V' = rate (U' − U) − memory V
+  // The energy's quadratic forms on values scaled by σ_u = 2^−e_u (displacements) and σ_v = 2^−e_v
+  // (velocities) when the data are far from 1 (schemes.cpp: Scale of the energy); scaled_ = false
+  // otherwise, and the forms take the values as they are.
+  bool scaled_ = false;
+  int displacement_exponent_ = 0, velocity_exponent_ = 0;
 
   Index level_ = 0;
   // U, the scratch for the sweeps (then U'), W, and X = (Uⁿ⁺¹ − Uⁿ)/Δt (three-level only: the
