@@ -1,28 +1,29 @@
-// The error measures: problem.md §5.
-//
-// The discrete solution is compared with the nodal interpolant u_I of the exact solution on the same
-// mesh, in the consistent P1 norms of the full mesh (node N carries zero on both sides):
-//
-//     ‖e‖²_L² = eᵀ M e,    |e|²_H¹ = eᵀ S e,
-//
-// and in time on the scheme's own instants (each quantity at the instant it approximates, see
-// Sample): L∞(0,T; X) is the maximum over the instants, L²(0,T; X) the trapezoidal rule over them.
-// Every error is relative, ‖error‖ / ‖exact‖ in the same norm, the exact solution also being taken
-// through its interpolant and the same instants. Derivatives of the exact solution that jump are
-// given their symmetric value (exact_solution.hpp).
-//
-// Scale. The squared norms grow like powers of the data: for the bar of length L released with
-// amplitude a, u ~ aL, u_t ~ a, λ ~ a, the entries of M ~ h and of S ~ 1/h, and t ~ L, so that
-// ∫‖u‖²_L² dt ~ a²L⁴. Over the lengths and amplitudes the programs accept, [1e-100, 1e100] each, a
-// squared norm taken as it is would overflow (a²L⁴ up to 1e600) or underflow to zero or to a
-// subnormal. Only ratios of two norms of the same kind are reported, so every quantity is scaled
-// first to a size of order one: the nodal values of u and of its interpolant by σ_u = 2^−(e_a+e_L),
-// those of u_t and λ by σ_v = 2^−e_a, the entries of M by 2^−e_L and of S by 2^e_L, and the times by
-// 2^−e_L, where e_a and e_L are the binary exponents of a and L (std::ilogb). The factors are powers
-// of two, so each scaled product, sum and difference is the unscaled one times an exact power of two:
-// wherever the unscaled computation neither overflows nor underflows (L = 1, a = ½ and every run of
-// the figures), the ratios, hence every measure, are the same doubles, bit for bit; everywhere else
-// they are still the right finite values.
+/// @file errors.cpp
+/// @brief The error measures: mathematics.md §5.
+///
+/// The discrete solution is compared with the nodal interpolant u_I of the exact solution on the same
+/// mesh, in the consistent P1 norms of the full mesh (node N carries zero on both sides):
+///
+///     ‖e‖²_L² = eᵀ M e,    |e|²_H¹ = eᵀ S e,
+///
+/// and in time on the scheme's own instants (each quantity at the instant it approximates, see
+/// Sample): L∞(0,T; X) is the maximum over the instants, L²(0,T; X) the trapezoidal rule over them.
+/// Every error is relative, ‖error‖ / ‖exact‖ in the same norm, the exact solution also being taken
+/// through its interpolant and the same instants. Derivatives of the exact solution that jump are
+/// given their symmetric value (exact_solution.hpp).
+///
+/// Scale. The squared norms grow like powers of the data: for the bar of length L released with
+/// amplitude a, u ~ aL, u_t ~ a, λ ~ a, the entries of M ~ h and of S ~ 1/h, and t ~ L, so that
+/// ∫‖u‖²_L² dt ~ a²L⁴. Over the lengths and amplitudes the programs accept, [1e-100, 1e100] each, a
+/// squared norm taken as it is would overflow (a²L⁴ up to 1e600) or underflow to zero or to a
+/// subnormal. Only ratios of two norms of the same kind are reported, so every quantity is scaled
+/// first to a size of order one: the nodal values of u and of its interpolant by σ_u = 2^−(e_a+e_L),
+/// those of u_t and λ by σ_v = 2^−e_a, the entries of M by 2^−e_L and of S by 2^e_L, and the times by
+/// 2^−e_L, where e_a and e_L are the binary exponents of a and L (std::ilogb). The factors are powers
+/// of two, so each scaled product, sum and difference is the unscaled one times an exact power of two:
+/// wherever the unscaled computation neither overflows nor underflows (L = 1, a = ½ and every run of
+/// the figures), the ratios, hence every measure, are the same doubles, bit for bit; everywhere else
+/// they are still the right finite values.
 #include "errors.hpp"
 
 #include <cmath>
