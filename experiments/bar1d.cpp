@@ -30,6 +30,7 @@
 #include "options.hpp"
 #include "output_file.hpp"
 #include "configurations.hpp"
+#include "run_limits.hpp"
 #include "errors.hpp"
 #include "exact_solution.hpp"
 #include "schemes.hpp"
@@ -44,8 +45,11 @@ int main(int argc, char** argv) {
     std::string scheme = "cn", mass = "mod3", ps_form = "algebraic", initial = "consistent", output;
     bool no_timing = false;
     // The ranges below keep every quantity of the run (h, Δt², the matrices' entries, the energy a²L/2)
-    // far from overflow and underflow of a double, and the memory (≈ 250 bytes per element) bounded.
-    constexpr double largest_courant = 1e6, largest_steps = 1e12;
+    // far from overflow and underflow of a double (the energy and the errors are computed scale-free:
+    // errors.cpp, schemes.cpp), and the memory bounded: the peak memory of a run, measured at N = 1e6
+    // and 2e6, is 205 bytes per element (the scheme's vectors and factors, the error accumulator's
+    // interpolants and matrices); 256 with a margin, compared with what the process may use.
+    constexpr double largest_courant = cli::max_courant, bytes_per_element = 256;
     const cli::Check courant_range = [&](std::string_view option, double value) {
       cli::require_positive(option, value);
       cli::require_in_closed_range(option, value, 0, largest_courant);
@@ -57,7 +61,7 @@ int main(int argc, char** argv) {
                        {"bar1d --scheme cn --mass mod3 --elements 50 --courant 0.5 --final-time 12",
                         "bar1d --scheme ps --ps-form literal --mass mod2 --elements 100 --dt 0.004 --output ps.dat"});
     parser.add_integer("--elements", "-n", "N", "number of elements N of the mesh (h = L/N), an integer in [2, 1e7]",
-                       &elements, cli::in_closed_range(2, 1e7));
+                       &elements, cli::in_closed_range(2, cli::max_elements));
     parser.add_real("--courant", "-c", "C", "time step as a multiple of h: dt = C h (0 < C <= 1e6)", &courant,
                     courant_range);
     parser.add_real("--dt", "", "X", "time step (0 < dt <= 1e6 h); excludes --courant", &dt, cli::positive());
@@ -71,7 +75,10 @@ int main(int argc, char** argv) {
                       {"cn", "be", "ps"}, &scheme);
     parser.add_choice("--mass", "-m", "M", "mass matrix: Mod 1/2/3 or the consistent P1 mass",
                       {"mod1", "mod2", "mod3", "consistent"}, &mass);
-    parser.add_real("--beta", "-b", "B", "Paoli-Schatzman's beta, in [0, 1e6]", &beta, cli::in_closed_range(0, 1e6));
+    parser.add_real("--beta", "-b", "B",
+                    "Paoli-Schatzman's beta, in [0, 1e6]; at least 1/4 with --ps-form literal and a massless "
+                    "contact node",
+                    &beta, cli::in_closed_range(0, 1e6));
     parser.add_real("--restitution", "-e", "E", "Paoli-Schatzman's restitution coefficient e in [0, 1]",
                     &restitution, cli::in_closed_range(0, 1));
     parser.add_choice("--ps-form", "", "F",
@@ -93,6 +100,16 @@ int main(int argc, char** argv) {
     if (scheme == "ps" && ps_form == "literal" && beta == 0.0 && mass != "consistent")
       throw cli::UsageError("--beta: 0 is not allowed with --ps-form literal and a massless contact node "
                             "(the step matrix is singular); use --beta > 0 or --ps-form algebraic");
+    // With the literal row and a massless contact node, row 0 off contact reads
+    // β d^{n+1} + (1 − 2β) d^n + β d^{n−1} = 0 for d = u₀ − u₁ (S's row 0 is (1, −1)/h): the roots of
+    // β r² + (1 − 2β) r + β have product 1 and are real and distinct when β < ¼, so one exceeds 1 in
+    // modulus and d grows geometrically at every step of free flight (by 1.5 per step at β = 0.24,
+    // overflowing within a few thousand steps; faster for smaller β): no finite or meaningful value
+    // can come out. β ≥ ¼ puts both roots on the unit circle.
+    if (scheme == "ps" && ps_form == "literal" && beta > 0.0 && beta < 0.25 && mass != "consistent")
+      throw cli::UsageError("--beta: " + cli::format_real(beta) + " is not allowed with --ps-form literal and a "
+                            "massless contact node (allowed: beta >= 1/4; below, u0 - u1 grows at every step of free "
+                            "flight); use --ps-form algebraic or --mass consistent");
 
     // 2. The output, opened now so that an unwritable path fails before the run.
     std::unique_ptr<cli::AtomicFile> series;
@@ -104,10 +121,11 @@ int main(int argc, char** argv) {
     if (!(step <= largest_courant * mesh.h()))
       throw cli::UsageError("--dt: " + cli::format_real(step) + " is more than 1e6 h = " +
                             cli::format_real(largest_courant * mesh.h()) + " (allowed: 0 < dt <= 1e6 h, h = L/N)");
-    if (!(final_time / step <= largest_steps))
-      throw cli::UsageError("--final-time: " + cli::format_real(final_time) + " needs " +
-                            cli::format_real(std::ceil(final_time / step)) + " steps of " + cli::format_real(step) +
-                            " (allowed: at most 1e12 steps; lower --final-time or raise --dt or --courant)");
+    const mrm::Index steps = cli::checked_steps("--final-time", final_time, step, "--dt or --courant");
+    cli::require_mesh_memory("--elements", static_cast<double>(elements), bytes_per_element);
+    if (parser.given("--output"))
+      cli::require_rows("--final-time", static_cast<double>(steps) + 1,
+                        cli::format_real(static_cast<double>(steps)) + " steps");
     dt = step;  // the header echoes the effective step
     mrm::repro::Configuration configuration;
     configuration.scheme.scheme = mrm::scheme_by_name(scheme);
@@ -121,7 +139,6 @@ int main(int argc, char** argv) {
     configuration.length = length;
     configuration.amplitude = amplitude;
     configuration.initial = mrm::initial_contact_node_by_name(initial);
-    const mrm::Index steps = mrm::steps_to_reach(final_time, step);
     const mrm::ExactSolution exact(length, amplitude);
     const bool massless = mrm::contact_node_is_massless(mrm::modified_mass(mesh, configuration.mass));
 

@@ -635,9 +635,7 @@ int main(int argc, char** argv) {
       mrm::tex_define(out, "bench:memory:largest-n", std::to_string(big));
       mrm::tex_define(out, "bench:memory:cn:marginal", fixed(marginal(mem_cn_big, mem_cn_small), 0));
     }
-    if (data) data->commit();
-    if (table_tex) table_tex->commit();
-    if (table_md) table_md->commit();
+    cli::commit_all({data.get(), table_tex.get(), table_md.get()});  // all three or none
     return 0;
   });
 }

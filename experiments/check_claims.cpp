@@ -57,14 +57,9 @@ int main(int argc, char** argv) {
 
     // 4. The table, the files, the verdict.
     claims::write_text_table(std::cout, rows);
-    if (tex_file) {
-      claims::write_latex_table(tex_file->stream(), rows);
-      tex_file->commit();
-    }
-    if (markdown_file) {
-      claims::write_markdown_table(markdown_file->stream(), rows);
-      markdown_file->commit();
-    }
+    if (tex_file) claims::write_latex_table(tex_file->stream(), rows);
+    if (markdown_file) claims::write_markdown_table(markdown_file->stream(), rows);
+    cli::commit_all({tex_file.get(), markdown_file.get()});  // the table on stdout, then both files or neither
     int failed = 0;
     for (const claims::ClaimResult& r : rows) failed += r.verdict == claims::Verdict::failed;
     if (failed > 0) std::cerr << "check_claims: " << failed << " check(s) FAILED\n";

@@ -11,9 +11,9 @@
 //   fig_contact_history --output output/data/fig_contact_history.dat --tex output/data/fig_contact_history.tex
 //   fig_contact_history --elements 40 --courant 1 --final-time 6 --output h.dat
 //
-// Description. Steps: (1) read the options; (2) open the outputs; (3) write the exact history; (4) run
-// every scheme × mass, writing one block each and accumulating the errors; (5) write the values the
-// report quotes and commit.
+// Description. Steps: (1) read the options, check the limits of the run; (2) open the outputs; (3) write
+// the exact history; (4) run every scheme × mass, writing one block each and accumulating the errors;
+// (5) write the values the report quotes and commit.
 //
 // Data file: gnuplot blocks separated by two blank lines (select with `index`). Block 0 is the exact
 // solution (t u0 lambda); block 1 + 3 s + m is scheme s ∈ (cn, be, ps), mass m ∈ (mod1, mod2, mod3),
@@ -49,22 +49,28 @@ int main(int argc, char** argv) {
                        {"fig_contact_history --output output/data/fig_contact_history.dat "
                         "--tex output/data/fig_contact_history.tex",
                         "fig_contact_history --elements 40 --courant 1 --final-time 6 --output h.dat"});
-    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), >= 2; coarse so that the masses differ",
-                       &elements, cli::at_least(2));
-    parser.add_real("--courant", "-c", "C", "time step dt = C h (C > 0)", &courant, cli::positive());
+    parser.add_integer("--elements", "-n", "N",
+                       "number of elements N (h = 1/N), in [2, 1e7]; coarse so that the masses differ", &elements,
+                       mrm::repro::elements_range());
+    parser.add_real("--courant", "-c", "C", "time step dt = C h (0 < C <= 1e6)", &courant, mrm::repro::courant_range());
     parser.add_real("--final-time", "-T", "T", "final time (> 0); the period is 3", &final_time, cli::positive());
     parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
                       {"algebraic", "literal"}, &ps_form);
-    parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve (>= 10)",
-                       &exact_points, cli::at_least(10));
+    parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve, in [10, 1e6]",
+                       &exact_points, cli::in_closed_range(10, cli::max_curve_points));
     mrm::repro::FigureOutputs outputs(parser, "fig_contact_history", "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
-    // 2. Outputs, opened before the runs so that a bad path fails at once.
-    outputs.open(parser);
     const mrm::UniformMesh mesh(1.0, elements);
     const double dt = courant * mesh.h();  // Δt derived from h here only
-    const mrm::Index steps = mrm::steps_to_reach(final_time, dt);
+    const mrm::Index steps = cli::checked_steps("--final-time", final_time, dt, "--courant");
+    // Nine contact histories of steps + 1 lines each.
+    cli::require_rows("--final-time", 9 * (static_cast<double>(steps) + 1),
+                      cli::format_real(static_cast<double>(steps)) + " steps of 9 runs");
+    cli::require_mesh_memory("--elements", static_cast<double>(elements), mrm::repro::bytes_per_element);
+
+    // 2. Outputs, opened before the runs so that a bad path fails at once.
+    outputs.open(parser);
     const mrm::ExactSolution exact;
     std::ostream& out = outputs.data();
     out << "# fig_contact_history: u(0,t) and lambda(t), exact and computed (problem.md sec. 2; paper Figure 1)\n";

@@ -30,6 +30,7 @@
 #include <mutex>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -78,18 +79,31 @@ int main(int argc, char** argv) {
                        "(least-squares fit of log error against log h).",
                        {"fig_convergence --output output/data/fig_convergence.dat --tex output/data/fig_convergence.tex",
                         "fig_convergence --coarsest 16 --refinements 4 --threads 1 --output c.dat"});
-    parser.add_integer("--coarsest", "-n", "N0", "number of elements of the coarsest mesh (>= 2)", &coarsest,
-                       cli::at_least(2));
-    parser.add_integer("--refinements", "-k", "K", "number of meshes N0, 2 N0, ..., 2^(K-1) N0 (>= 2)", &refinements,
-                       cli::at_least(2));
+    parser.add_integer("--coarsest", "-n", "N0", "number of elements of the coarsest mesh, in [2, 1e7]", &coarsest,
+                       mrm::repro::elements_range());
+    parser.add_integer("--refinements", "-k", "K",
+                       "number of meshes N0, 2 N0, ..., 2^(K-1) N0, in [2, 20]; the finest has at most 1e7 elements",
+                       &refinements, cli::in_closed_range(2, 20));
     parser.add_real("--final-time", "-T", "T", "final time (> 0); one period is 3", &final_time, cli::positive());
     parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
                       {"algebraic", "literal"}, &ps_form);
-    parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it", &threads,
-                       cli::at_least(1));
+    parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
+                       &threads, cli::in_closed_range(1, cli::max_threads));
     mrm::repro::FigureOutputs outputs(parser, "fig_convergence", "also write the tables and values the report quotes");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
-    if (refinements > 20) throw cli::UsageError("--refinements: at most 20 (N doubles each time)");
+    // The finest mesh (K ≤ 20 and N0 ≤ 1e7: the product is exact in a double), its steps at Δt = h/2, the
+    // coarsest run's at Δt = h (at least one), and the memory of the runs that may run at once: the
+    // longest go first, so up to `threads` of the 18 finest ones.
+    const double finest_elements = std::ldexp(static_cast<double>(coarsest), static_cast<int>(refinements) - 1);
+    if (!(finest_elements <= cli::max_elements))
+      throw cli::UsageError("--refinements: " + std::to_string(refinements) + " meshes from N0 = " +
+                            std::to_string(coarsest) + " end at " + cli::format_real(finest_elements) +
+                            " elements (allowed: at most 1e7; lower --coarsest or --refinements)");
+    cli::checked_steps("--final-time", final_time, 0.5 / finest_elements,
+                       "the finest mesh size (lower --coarsest or --refinements)");
+    cli::checked_steps("--final-time", final_time, 1.0 / static_cast<double>(coarsest), "--coarsest");
+    cli::require_mesh_memory("--coarsest", finest_elements, mrm::repro::bytes_per_element,
+                             std::min<double>(static_cast<double>(threads), 18));
 
     // 2. Outputs.
     outputs.open(parser);
@@ -136,8 +150,17 @@ int main(int argc, char** argv) {
         }
       }
     };
+    // A thread that cannot be started (the system's limit on threads) stops the run with a message:
+    // the workers already started are told to stop and joined first, never left joinable.
     std::vector<std::thread> pool;
-    for (long t = 1; t < threads; ++t) pool.emplace_back(worker);
+    try {
+      for (long t = 1; t < threads; ++t) pool.emplace_back(worker);
+    } catch (const std::system_error& error) {
+      failed = true;
+      for (std::thread& t : pool) t.join();
+      throw std::runtime_error("--threads: cannot start worker thread " + std::to_string(pool.size() + 2) + " of " +
+                               std::to_string(threads) + ": " + error.what());
+    }
     worker();
     for (std::thread& t : pool) t.join();
     if (failure) std::rethrow_exception(failure);

@@ -55,12 +55,14 @@ int main(int argc, char** argv) {
                        "step, and the observed orders in time.",
                        {"fig_time_error --output output/data/fig_time_error.dat --tex output/data/fig_time_error.tex",
                         "fig_time_error --elements 128 --reference-ratio 128 --mass mod1 --output t.dat"});
-    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), >= 2", &elements, cli::at_least(2));
-    parser.add_integer("--reference-ratio", "-r", "R", "reference step dt_ref = h/R; a power of 2, >= 2",
-                       &reference_ratio, cli::at_least(2));
-    parser.add_integer("--largest", "", "P", "largest step dt = P h; a power of 2, >= 1", &largest, cli::at_least(1));
-    parser.add_integer("--steps", "-k", "K", "number of steps dt = P h, P h/2, ..., P h/2^(K-1) (>= 2)", &steps_count,
-                       cli::at_least(2));
+    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), in [2, 1e7]", &elements,
+                       mrm::repro::elements_range());
+    parser.add_integer("--reference-ratio", "-r", "R", "reference step dt_ref = h/R; a power of 2 in [2, 2^30]",
+                       &reference_ratio, cli::in_closed_range(2, 1 << 30));
+    parser.add_integer("--largest", "", "P", "largest step dt = P h; a power of 2 in [1, 2^20]", &largest,
+                       cli::in_closed_range(1, 1 << 20));
+    parser.add_integer("--steps", "-k", "K", "number of steps dt = P h, P h/2, ..., P h/2^(K-1), in [2, 50]",
+                       &steps_count, cli::in_closed_range(2, 50));
     parser.add_real("--final-time", "-T", "T", "final time (> 0); one period is 3", &final_time, cli::positive());
     parser.add_choice("--mass", "-m", "M", "mass choice", {"mod1", "mod2", "mod3"}, &mass);
     mrm::repro::FigureOutputs outputs(parser, "fig_time_error", "also write the table and values the report quotes");
@@ -69,14 +71,25 @@ int main(int argc, char** argv) {
     if (!power_of_two(reference_ratio)) throw cli::UsageError("--reference-ratio: must be a power of 2");
     if (!power_of_two(largest)) throw cli::UsageError("--largest: must be a power of 2");
     // Every step Δt_j = P h / 2^j must be a multiple m_j = P R / 2^j ≥ 2 of the reference step.
-    if (steps_count > 62 || ((largest * reference_ratio) >> (steps_count - 1)) < 2)
+    // P R ≤ 2^50 and K ≤ 50 by the ranges: no shift below overflows.
+    if (((largest * reference_ratio) >> (steps_count - 1)) < 2)
       throw cli::UsageError("--steps: the smallest step P h/2^(K-1) must be at least twice the reference step h/R");
-
-    // 2. Outputs.
-    outputs.open(parser);
     const mrm::UniformMesh mesh(1.0, elements);
     const double h = mesh.h();
     const double dt_ref = h / static_cast<double>(reference_ratio);
+    // The reference run makes T/dt_ref steps (T rounded up to a whole largest step); 2K runs and their
+    // comparisons are held at once with the reference: about 256 bytes per element each.
+    const double coarsest_dt = static_cast<double>(largest * reference_ratio) * dt_ref;
+    const mrm::Index coarse_steps = cli::checked_steps("--final-time", final_time, coarsest_dt, "--largest");
+    if (!(static_cast<double>(coarse_steps) * static_cast<double>(largest * reference_ratio) <= cli::max_steps))
+      throw cli::UsageError("--reference-ratio: " + std::to_string(reference_ratio) + " gives the reference run " +
+                            cli::format_real(static_cast<double>(coarse_steps) *
+                                             static_cast<double>(largest * reference_ratio)) +
+                            " steps (allowed: at most 1e12 steps; lower --reference-ratio, --elements or --final-time)");
+    cli::require_mesh_memory("--elements", static_cast<double>(elements), 256, 2 * static_cast<double>(steps_count) + 2);
+
+    // 2. Outputs.
+    outputs.open(parser);
     const mrm::MassRedistribution redistribution = mrm::mass_redistribution_by_name(mass);
 
     // 3. The reference and every run in lockstep: run j makes one step every m_j reference steps and is
@@ -85,7 +98,6 @@ int main(int argc, char** argv) {
     const std::vector<std::string> schemes{"cn", "be"};
     std::vector<long> ratio(static_cast<std::size_t>(steps_count));
     for (std::size_t j = 0; j < ratio.size(); ++j) ratio[j] = (largest * reference_ratio) >> j;
-    const mrm::Index coarse_steps = mrm::steps_to_reach(final_time, static_cast<double>(ratio[0]) * dt_ref);
     const mrm::Index reference_steps = coarse_steps * ratio[0];
     mrm::BarSimulation reference(mrm::benchmark_problem(), mesh, redistribution,
                                  mrm::repro::scheme_parameters("cn", "algebraic", mass), dt_ref);

@@ -11,6 +11,19 @@
 /// Every error is relative, ‖error‖ / ‖exact‖ in the same norm, the exact solution also being taken
 /// through its interpolant and the same instants. Derivatives of the exact solution that jump are
 /// given their symmetric value (exact_solution.hpp).
+///
+/// Scale. The squared norms grow like powers of the data: for the bar of length L released with
+/// amplitude a, u ~ aL, u_t ~ a, λ ~ a, the entries of M ~ h and of S ~ 1/h, and t ~ L, so that
+/// ∫‖u‖²_L² dt ~ a²L⁴. Over the lengths and amplitudes the programs accept, [1e-100, 1e100] each, a
+/// squared norm taken as it is would overflow (a²L⁴ up to 1e600) or underflow to zero or to a
+/// subnormal. Only ratios of two norms of the same kind are reported, so every quantity is scaled
+/// first to a size of order one: the nodal values of u and of its interpolant by σ_u = 2^−(e_a+e_L),
+/// those of u_t and λ by σ_v = 2^−e_a, the entries of M by 2^−e_L and of S by 2^e_L, and the times by
+/// 2^−e_L, where e_a and e_L are the binary exponents of a and L (std::ilogb). The factors are powers
+/// of two, so each scaled product, sum and difference is the unscaled one times an exact power of two:
+/// wherever the unscaled computation neither overflows nor underflows (L = 1, a = ½ and every run of
+/// the figures), the ratios, hence every measure, are the same doubles, bit for bit; everywhere else
+/// they are still the right finite values.
 #include "errors.hpp"
 
 #include <cmath>
@@ -54,9 +67,17 @@ void TimeHistory::add(double t, double error_squared, double exact_squared) {
 //
 // For S, d + 2l = 0 and −l = 1/h: |z|²_H¹ = (D + z_{n−1}²)/h, a sum of squares with no cancellation
 // (the same form written as Σ z_i² against Σ z_{i−1} z_i loses O(N²) in relative accuracy).
+namespace {
+// 2^−e, e the binary exponent of x (e = 0 for x = 0, whose scale is then left alone).
+double inverse_binary_scale(double x) { return x == 0 ? 1.0 : std::ldexp(1.0, -std::ilogb(x)); }
+}  // namespace
+
 ErrorAccumulator::ErrorAccumulator(const UniformMesh& mesh, const ExactSolution& exact)
-    : mesh_(mesh), exact_(exact), mass_(p1_mass(mesh)), stiffness_(p1_stiffness(mesh)), nodes_(mesh.unknowns()),
-      interpolant_(mesh.unknowns()), velocity_interpolant_(mesh.unknowns()) {
+    : mesh_(mesh), exact_(exact), mass_(p1_mass(mesh).scaled(inverse_binary_scale(mesh.length))),
+      stiffness_(p1_stiffness(mesh).scaled(1 / inverse_binary_scale(mesh.length))), nodes_(mesh.unknowns()),
+      interpolant_(mesh.unknowns()), velocity_interpolant_(mesh.unknowns()),
+      u_scale_(inverse_binary_scale(exact.amplitude()) * inverse_binary_scale(exact.length())),
+      v_scale_(inverse_binary_scale(exact.amplitude())), time_scale_(inverse_binary_scale(exact.length())) {
   const Index n = mesh.unknowns();
   for (Index i = 0; i < n; ++i) nodes_[i] = mesh.x(i);
   for (const Tridiagonal* a : {&mass_, &stiffness_})
@@ -93,11 +114,12 @@ void ErrorAccumulator::add(const Sample& sample) {
   struct Sums {
     double e0, e_last, e_differences, e_squares, i0, i_last, i_differences, i_squares;
   };
-  const auto sums = [n](const double* w, const double* wi) {
-    Sums r{w[0] - wi[0], 0, 0, 0, wi[0], 0, 0, 0};
+  // Each value is scaled by σ (σ_u or σ_v) before it is squared (see Scale above).
+  const auto sums = [n](const double* w, const double* wi, double sigma) {
+    Sums r{sigma * (w[0] - wi[0]), 0, 0, 0, sigma * wi[0], 0, 0, 0};
     double e_prev = r.e0, i_prev = r.i0;
     for (Index i = 1; i < n; ++i) {
-      const double e = w[i] - wi[i], z = wi[i], de = e - e_prev, dz = z - i_prev;
+      const double e = sigma * (w[i] - wi[i]), z = sigma * wi[i], de = e - e_prev, dz = z - i_prev;
       r.e_differences += de * de;
       r.e_squares += e * e;
       r.i_differences += dz * dz;
@@ -108,7 +130,7 @@ void ErrorAccumulator::add(const Sample& sample) {
     return r;
   };
   const double* u = sample.displacement->data();
-  const Sums su = sums(u, ui), sv = sums(sample.velocity->data(), vi);
+  const Sums su = sums(u, ui, u_scale_), sv = sums(sample.velocity->data(), vi, v_scale_);
   const auto error_form = [](const Sums& r, double a00, double d, double l) {
     return form(r.e0, r.e_last, r.e_differences, r.e_squares, a00, d, l);
   };
@@ -117,15 +139,17 @@ void ErrorAccumulator::add(const Sample& sample) {
   };
   const double m00 = mass_.diag[0], m = n > 1 ? mass_.diag[1] : 0, ml = n > 1 ? mass_.lower[1] : 0;
   const double s00 = stiffness_.diag[0], s = n > 1 ? stiffness_.diag[1] : 0, sl = n > 1 ? stiffness_.lower[1] : 0;
-  u_l2_.add(sample.time, error_form(su, m00, m, ml), exact_form(su, m00, m, ml));
-  u_h1_.add(sample.time, error_form(su, s00, s, sl), exact_form(su, s00, s, sl));
-  const double u0 = exact_.contact_displacement(sample.time);
-  u0_.add(sample.time, std::pow(u[0] - u0, 2), u0 * u0);
-  v_l2_.add(sample.velocity_time, error_form(sv, m00, m, ml), exact_form(sv, m00, m, ml));
+  const double t = time_scale_ * sample.time;
+  u_l2_.add(t, error_form(su, m00, m, ml), exact_form(su, m00, m, ml));
+  u_h1_.add(t, error_form(su, s00, s, sl), exact_form(su, s00, s, sl));
+  const double u0 = u_scale_ * exact_.contact_displacement(sample.time);
+  u0_.add(t, std::pow(u_scale_ * u[0] - u0, 2), u0 * u0);
+  v_l2_.add(time_scale_ * sample.velocity_time, error_form(sv, m00, m, ml), exact_form(sv, m00, m, ml));
 
   if (sample.has_multiplier) {
-    const double lambda = exact_.contact_multiplier(sample.multiplier_time);
-    lambda_.add(sample.multiplier_time, std::pow(sample.multiplier - lambda, 2), lambda * lambda);
+    const double lambda = v_scale_ * exact_.contact_multiplier(sample.multiplier_time);
+    lambda_.add(time_scale_ * sample.multiplier_time, std::pow(v_scale_ * sample.multiplier - lambda, 2),
+                lambda * lambda);
   }
 }
 
@@ -157,14 +181,14 @@ namespace mrm {
 namespace {
 
 [[maybe_unused]] ErrorNorms benchmark_errors(Scheme scheme, const MassRedistribution& mass, Index elements, double courant,
-                            double final_time) {
-  const UniformMesh mesh(1.0, elements);
+                            double final_time, double length = 1.0, double amplitude = 0.5) {
+  const UniformMesh mesh(length, elements);
   SchemeParameters p;
   p.scheme = scheme;
   p.contact_row = contact_node_is_massless(modified_mass(mesh, mass)) ? ContactRow::algebraic : ContactRow::literal;
   const double dt = courant * mesh.h();
-  BarSimulation simulation(benchmark_problem(), mesh, mass, p, dt);
-  ErrorAccumulator errors(mesh, ExactSolution());
+  BarSimulation simulation(benchmark_problem(length, amplitude), mesh, mass, p, dt);
+  ErrorAccumulator errors(mesh, ExactSolution(length, amplitude));
   run(simulation, steps_to_reach(final_time, dt), [&](const Sample& s) { errors.add(s); });
   return errors.relative();
 }
@@ -190,6 +214,63 @@ TEST_CASE("the error measures vanish for the exact interpolant and are relative"
   }
   for (double e : ErrorAccumulator::values(perfect.relative())) CHECK(e == 0.0);
   for (double e : ErrorAccumulator::values(doubled.relative())) CHECK(e == doctest::Approx(1.0).epsilon(1e-12));
+}
+
+TEST_CASE("the error measures are right at the ends of the accepted lengths and amplitudes") {
+  // bar1d accepts L and a in [1e-100, 1e100]; the squared norms then range over 1e±600 (see Scale).
+  // 1. The same relative field at every scale: the interpolant of the exact solution times
+  //    (1 + g(x/L)), g a fixed wiggle of size 0.01, and the same for the velocity and λ; its relative
+  //    errors do not depend on L and a but through the rounding of the nodes and instants (relative
+  //    1e-16), so they agree with those at L = a = 1 to 1e-12; the interpolant itself gives 0 up to
+  //    the rounding of the two evaluations of the exact solution (the generic one here, the one per
+  //    mesh in the accumulator: 1e-16 relative at each node), 1e-13.
+  // 2. Whole runs with L = 2^±332, a = 2^±332: the scheme's roundings are those of L = a = 1 up to a
+  //    power of two (schemes.cpp), so every measure is the same double.
+  const Index elements = 16;
+  const auto measures = [&](double length, double amplitude, double wiggle) {
+    const UniformMesh mesh(length, elements);
+    const ExactSolution exact(length, amplitude);
+    ErrorAccumulator errors(mesh, exact);
+    Eigen::VectorXd u(elements), v(elements);
+    for (int n = 0; n <= 48; ++n) {
+      const double t = n * 0.0625 * length;
+      for (Index i = 0; i < elements; ++i) {
+        const double g = wiggle * std::sin(7.0 * static_cast<double>(i) / elements + n);
+        u[i] = exact.displacement(mesh.x(i), t) * (1 + g);
+        v[i] = exact.velocity(mesh.x(i), t) * (1 - g);
+      }
+      const double lambda = exact.contact_multiplier(t) * (1 + wiggle * std::cos(n));
+      errors.add({n, t, &u, t, &v, true, t, lambda, t, 0.0});
+    }
+    return ErrorAccumulator::values(errors.relative());
+  };
+  const auto reference = measures(1.0, 1.0, 0.01);
+  for (const double length : {1e-100, 1.0, 1e100})
+    for (const double amplitude : {1e-100, 1.0, 1e100}) {
+      CAPTURE(length);
+      CAPTURE(amplitude);
+      const auto wiggled = measures(length, amplitude, 0.01), exact = measures(length, amplitude, 0.0);
+      for (std::size_t k = 0; k < 8; ++k) {
+        CAPTURE(std::string(ErrorAccumulator::names[k]));
+        CHECK(reference[k] > 1e-3);
+        CHECK(std::abs(wiggled[k] - reference[k]) <= 1e-12 * reference[k]);
+        CHECK(exact[k] <= 1e-13);
+      }
+    }
+  const ErrorNorms base = benchmark_errors(Scheme::crank_nicolson, mod3(), 20, 0.5, 6.0, 1.0, 1.0);
+  for (const int length_exponent : {-332, 332})
+    for (const int amplitude_exponent : {-332, 332}) {
+      const double length = std::ldexp(1.0, length_exponent);
+      const ErrorNorms e = benchmark_errors(Scheme::crank_nicolson, mod3(), 20, 0.5, 6.0 * length, length,
+                                            std::ldexp(1.0, amplitude_exponent));
+      CAPTURE(length_exponent);
+      CAPTURE(amplitude_exponent);
+      const auto got = ErrorAccumulator::values(e), expected = ErrorAccumulator::values(base);
+      for (std::size_t k = 0; k < 8; ++k) {
+        CAPTURE(std::string(ErrorAccumulator::names[k]));
+        CHECK(got[k] == expected[k]);
+      }
+    }
 }
 
 TEST_CASE("the one-pass error forms equal the matrix forms of the generic evaluation") {

@@ -44,6 +44,8 @@ ErrorNorms relative_norms(const TimeHistory& u0, const TimeHistory& lambda, cons
                           const TimeHistory& u_h1, const TimeHistory& v_l2);
 
 /// Accumulates the errors of a run against the exact solution, one sample at a time, in O(N) memory.
+/// The squared norms are taken on values scaled by powers of two (errors.cpp), so that any length and
+/// amplitude accepted by the programs, [1e-100, 1e100], gives the right finite relative errors.
 class ErrorAccumulator {
  public:
   /// Throws std::invalid_argument unless the exact solution and the mesh have the same length L.
@@ -61,8 +63,9 @@ class ErrorAccumulator {
  private:
   UniformMesh mesh_;
   ExactSolution exact_;
-  Tridiagonal mass_, stiffness_;
+  Tridiagonal mass_, stiffness_;  // scaled by 2^−e_L and 2^e_L (errors.cpp: Scale)
   Eigen::VectorXd nodes_, interpolant_, velocity_interpolant_;  // x_i; u_I and (u_t)_I at one level
+  double u_scale_, v_scale_, time_scale_;  // σ_u, σ_v and 2^−e_L: powers of two
   TimeHistory u_l2_, u_h1_, v_l2_, u0_, lambda_;
 };
 

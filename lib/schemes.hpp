@@ -117,6 +117,7 @@ class BarSimulation {
   friend class FastStep;  // the fast kernel reads and advances the state below
   void load_at(double t, Eigen::VectorXd& f) const;
   double energy_two_level() const;
+  void choose_energy_scale();
   void reference_step(bool has_load);
 
   Problem problem_;
@@ -134,6 +135,11 @@ class BarSimulation {
   double kappa_, load_now_, load_next_;   // G = load_now_ Fⁿ + load_next_ Fⁿ⁺¹ (+ row-0 terms)
   double lambda_in_rhs_;                  // Crank–Nicolson with inertia at node 0: −θ λⁿ in row 0
   double velocity_rate_, velocity_memory_;  // two-level: V' = rate (U' − U) − memory V
+  // The energy's quadratic forms on values scaled by σ_u = 2^−e_u (displacements) and σ_v = 2^−e_v
+  // (velocities) when the data are far from 1 (schemes.cpp: Scale of the energy); scaled_ = false
+  // otherwise, and the forms take the values as they are.
+  bool scaled_ = false;
+  int displacement_exponent_ = 0, velocity_exponent_ = 0;
 
   Index level_ = 0;
   // U, the scratch for the sweeps (then U'), W, and X = (Uⁿ⁺¹ − Uⁿ)/Δt (three-level only: the
