@@ -96,7 +96,7 @@ class CharacteristicSolution : public ReferenceSolution {
   void check(double x, double t) const;
   void advance_contact_point(const PolynomialPiece& incoming);
 
-  double length_, horizon_, tie_, event_snap_, energy_ = 0;
+  double length_, horizon_, tie_, event_snap_, slope_noise_ = 0, energy_ = 0;
   std::size_t first_initial_piece_ = 0;  // the index in F of the first piece of the initial F (ξ ≥ 0)
   PiecewisePolynomial right_, left_, outgoing_;  // F, G and s ↦ F(−s) while it is built
   std::vector<ContactInterval> contact_;
