@@ -104,4 +104,38 @@ class CharacteristicSolution : public ReferenceSolution {
   bool held_ = false;    // whether the contact point is held there
 };
 
+/// The characteristic solution tabulated on a lattice of spacing δ, for the error measures: F and F′ at
+/// ξ = kδ in [−T, L], G and G′ at η = kδ in [0, L + T]. At points x = jδ and instants t = nδ (the nodes
+/// and levels of a mesh whose h and Δt are multiples of δ), u = F(x − t) + G(x + t) and
+/// u_t = −F′(x − t) + G′(x + t) are two table entries each; anywhere else the solution is evaluated
+/// directly. The tables hold the solver's own values (the same means at breakpoints), so the two paths
+/// differ only by the rounding of x − t.
+class TabulatedSolution : public ReferenceSolution {
+ public:
+  /// Throws std::invalid_argument unless δ > 0 is finite and the tables have at most 10⁸ entries.
+  TabulatedSolution(CharacteristicSolution solution, double spacing);
+
+  double length() const override { return solution_.length(); }
+  double displacement(double x, double t) const override { return solution_.displacement(x, t); }
+  double strain(double x, double t) const override { return solution_.strain(x, t); }
+  double velocity(double x, double t) const override { return solution_.velocity(x, t); }
+  double contact_displacement(double t) const override { return solution_.contact_displacement(t); }
+  double contact_multiplier(double t) const override { return solution_.contact_multiplier(t); }
+  double energy() const override { return solution_.energy(); }
+  void displacement_at_points(double t, const double* x, long count, double* u) const override;
+  void velocity_at_points(double t, const double* x, long count, double* v) const override;
+  const CharacteristicSolution& solution() const { return solution_; }
+
+ private:
+  // The lattice index of a point (−1 if it is not on the lattice to 1e-9 δ).
+  bool on_lattice(double x, long& index) const;
+  template <bool derivative>
+  void at_points(double t, const double* x, long count, double* out) const;
+
+  CharacteristicSolution solution_;
+  double spacing_, inverse_spacing_;
+  long right_first_;  // ξ = (right_first_ + k) δ is entry k of the tables of F
+  std::vector<double> right_value_, right_slope_, left_value_, left_slope_;
+};
+
 }  // namespace mrm
