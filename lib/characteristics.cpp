@@ -445,10 +445,10 @@ TabulatedSolution::TabulatedSolution(CharacteristicSolution solution, double spa
   }
 }
 
+// For 0 ≤ x ≤ L + T (checked by the callers): the nearest lattice index by truncation of x/δ + ½.
 bool TabulatedSolution::on_lattice(double x, long& index) const {
-  const double k = std::nearbyint(x * inverse_spacing_);
-  index = static_cast<long>(k);
-  return std::abs(x - k * spacing_) <= 1e-9 * spacing_;
+  index = static_cast<long>(x * inverse_spacing_ + 0.5);
+  return std::abs(x - static_cast<double>(index) * spacing_) <= 1e-9 * spacing_;
 }
 
 template <bool derivative>
