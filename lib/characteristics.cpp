@@ -59,9 +59,9 @@
 #include "characteristics.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 #include <doctest/doctest.h>
 
@@ -85,11 +85,11 @@ const InitialDataPiece& data_piece(const InitialData& data, double x) {
 
 double local_variable(const InitialDataPiece& p, double x) { return (x - 0.5 * (p.a + p.b)) / (0.5 * (p.b - p.a)); }
 
+// The shortest text that reads back as the same double ("0.4", not "0.40000000000000002").
 std::string number(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, result.ptr);
 }
 
 }  // namespace
@@ -368,14 +368,22 @@ double CharacteristicSolution::displacement(double x, double t) const {
   return right_.value(x - t) + left_.value(x + t);
 }
 
+// F′(x − t) with the mean of the one-sided values at a breakpoint, except at the corner x = 0, t = 0:
+// there the solution is the data, u_x = u⁰′(0) and u_t = v⁰(0), so F′ is the initial one (ξ ≥ 0 side).
+// (The outgoing side belongs to t > 0, where the contact law holds; the data need not satisfy it.)
+double CharacteristicSolution::right_slope(double x, double t, std::size_t* hint) const {
+  if (t <= tie_ && x <= tie_) return right_.pieces()[first_initial_piece_].derivative_at(x - t);
+  return right_.derivative(x - t, tie_, hint);
+}
+
 double CharacteristicSolution::strain(double x, double t) const {
   check(x, t);
-  return right_.derivative(x - t, tie_) + left_.derivative(x + t, tie_);
+  return right_slope(x, t) + left_.derivative(x + t, tie_);
 }
 
 double CharacteristicSolution::velocity(double x, double t) const {
   check(x, t);
-  return -right_.derivative(x - t, tie_) + left_.derivative(x + t, tie_);
+  return -right_slope(x, t) + left_.derivative(x + t, tie_);
 }
 
 double CharacteristicSolution::contact_displacement(double t) const { return displacement(0.0, t); }
@@ -410,7 +418,7 @@ void CharacteristicSolution::velocity_at_points(double t, const double* x, long 
   std::size_t hr = 0, hl = 0;
   for (long i = 0; i < count; ++i) {
     check(x[i], t);
-    v[i] = -right_.derivative(x[i] - t, tie_, &hr) + left_.derivative(x[i] + t, tie_, &hl);
+    v[i] = -right_slope(x[i], t, &hr) + left_.derivative(x[i] + t, tie_, &hl);
   }
 }
 
@@ -460,7 +468,7 @@ void TabulatedSolution::at_points(double t, const double* x, long count, double*
     long j = 0;
     const bool tabulated = level_on_lattice && x[i] >= 0.0 && x[i] <= solution_.length() && on_lattice(x[i], j) &&
                            j - n - right_first_ >= 0 && j - n - right_first_ < right_size && j + n < left_size;
-    if (!tabulated) {
+    if (!tabulated || (n == 0 && j == 0)) {  // off the lattice, or the corner x = 0, t = 0
       out[i] = derivative ? solution_.velocity(x[i], t) : solution_.displacement(x[i], t);
       continue;
     }

@@ -94,6 +94,7 @@ class CharacteristicSolution : public ReferenceSolution {
 
  private:
   void check(double x, double t) const;
+  double right_slope(double x, double t, std::size_t* hint = nullptr) const;
   void advance_contact_point(const PolynomialPiece& incoming);
 
   double length_, horizon_, tie_, event_snap_, slope_noise_ = 0, energy_ = 0;
