@@ -51,7 +51,8 @@ double closed_form_difference(double length, double amplitude) {
     largest = std::max(largest, std::abs(solution.contact_multiplier(t) - exact.contact_multiplier(t)) / amplitude);
     for (int i = 0; i <= 80; ++i) {
       const double x = length * i / 80.0;
-      largest = std::max(largest, std::abs(solution.displacement(x, t) - exact.displacement(x, t)) / (amplitude * length));
+      largest =
+          std::max(largest, std::abs(solution.displacement(x, t) - exact.displacement(x, t)) / (amplitude * length));
       if ((i == 0 || i == 80) && n % 100 == 0) continue;
       largest = std::max(largest, std::abs(solution.strain(x, t) - exact.strain(x, t)) / amplitude);
       largest = std::max(largest, std::abs(solution.velocity(x, t) - exact.velocity(x, t)) / amplitude);
@@ -102,7 +103,8 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "smoothbench:closedform", mrm::tex_number(difference, 2));
 
     // 4. One block per benchmark: the three runs sampled at their levels, the exact values beside them.
-    const std::array<mrm::SmoothBenchmark, 2> which{mrm::SmoothBenchmark::generic_impact, mrm::SmoothBenchmark::grazing};
+    const std::array<mrm::SmoothBenchmark, 2> which{mrm::SmoothBenchmark::generic_impact,
+                                                    mrm::SmoothBenchmark::grazing};
     const std::array<const char*, 2> names{"smooth-impact", "grazing"}, keys{"s1", "s2"};
     for (std::size_t b = 0; b < which.size(); ++b) {
       const mrm::SmoothBenchmarkData benchmark = mrm::smooth_benchmark(which[b]);
@@ -136,7 +138,8 @@ int main(int argc, char** argv) {
             reference);
       }
       out << (b ? "\n\n" : "") << "# block " << b << ": benchmark = " << names[b]
-          << "\n# K = " << cli::format_real(benchmark.scale) << "\n# touch_time = " << cli::format_real(benchmark.touch_time)
+          << "\n# K = " << cli::format_real(benchmark.scale)
+          << "\n# touch_time = " << cli::format_real(benchmark.touch_time)
           << "\n# release_time = " << cli::format_real(benchmark.release_time)
           << "\n# exact_energy = " << cli::format_real(reference->energy())
           << "\n# columns: t u0_exact lambda_exact u0_mod1 lambda_mod1 u0_mod2 lambda_mod2 u0_mod3 lambda_mod3\n";
@@ -148,7 +151,8 @@ int main(int argc, char** argv) {
       mrm::tex_define(defs, std::string("smoothbench:") + keys[b] + ":K", mrm::tex_number(benchmark.scale, 4));
       mrm::tex_define(defs, std::string("smoothbench:") + keys[b] + ":touch", mrm::tex_number(benchmark.touch_time, 4));
       if (std::isfinite(benchmark.release_time))
-        mrm::tex_define(defs, std::string("smoothbench:") + keys[b] + ":release", mrm::tex_number(benchmark.release_time, 4));
+        mrm::tex_define(defs, std::string("smoothbench:") + keys[b] + ":release",
+                        mrm::tex_number(benchmark.release_time, 4));
       mrm::tex_define(defs, std::string("smoothbench:") + keys[b] + ":energy", mrm::tex_number(reference->energy(), 4));
     }
     mrm::tex_define(defs, "smoothbench:N", std::to_string(elements));

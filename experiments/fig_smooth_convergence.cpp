@@ -75,8 +75,8 @@ const std::array<const char*, 2> courant_keys{"dth", "dth2"};
 const std::array<const char*, 2> courant_labels{"$\\Delta t = h$", "$\\Delta t = h/2$"};
 // The measures in the order of mrm::ErrorAccumulator::names, as the report prints them.
 const std::array<const char*, 8> measure_labels{
-    "$u(0,\\cdot)$, $L^2_t$", "$\\lambda$, $L^2_t$",      "$u$, $L^\\infty_t L^2$", "$u$, $L^\\infty_t H^1$",
-    "$u_t$, $L^\\infty_t L^2$", "$u$, $L^2_t L^2$", "$u$, $L^2_t H^1$",       "$u_t$, $L^2_t L^2$"};
+    "$u(0,\\cdot)$, $L^2_t$",   "$\\lambda$, $L^2_t$", "$u$, $L^\\infty_t L^2$", "$u$, $L^\\infty_t H^1$",
+    "$u_t$, $L^\\infty_t L^2$", "$u$, $L^2_t L^2$",    "$u$, $L^2_t H^1$",       "$u_t$, $L^2_t L^2$"};
 constexpr double agreement = 0.25;
 
 enum Measure { u0_L2, lambda_L2, u_LinfL2, u_LinfH1, v_LinfL2, u_L2L2, u_L2H1, v_L2L2 };
@@ -90,11 +90,15 @@ double predicted_order(std::size_t b, std::size_t s, std::size_t m, std::size_t 
     return mod1 && k == lambda_L2 ? 2.0 : 1.0;
   }
   switch (k) {  // S1: the impact's jump
-    case lambda_L2: return 0.5;
-    case u0_L2: return cn && mod3 ? 2.0 : 1.0;
+    case lambda_L2:
+      return 0.5;
+    case u0_L2:
+      return cn && mod3 ? 2.0 : 1.0;
     case u_LinfL2:
-    case u_L2L2: return cn ? 1.0 : 0.75;
-    default: return cn ? 1.0 / 3.0 : 0.25;  // u in H¹, u_t in L²
+    case u_L2L2:
+      return cn ? 1.0 : 0.75;
+    default:
+      return cn ? 1.0 / 3.0 : 0.25;  // u in H¹, u_t in L²
   }
 }
 
@@ -154,12 +158,13 @@ int main(int argc, char** argv) {
             for (std::size_t l = 0; l < static_cast<std::size_t>(refinements); ++l) {
               const mrm::Index n = static_cast<mrm::Index>(coarsest) << l;
               const double h = 1.0 / static_cast<double>(n);
-              runs.push_back({b, s, m, c, l, n,
-                              static_cast<double>(mrm::steps_to_reach(final_time, courants[c] * h)) * n, {}});
+              runs.push_back(
+                  {b, s, m, c, l, n, static_cast<double>(mrm::steps_to_reach(final_time, courants[c] * h)) * n, {}});
             }
     std::vector<std::size_t> order(runs.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
 
     // 4. The runs (repro/configurations: the scheme against the characteristic solution, tabulated on the
     // lattice of h and Δt), on `threads` workers taking the next run from a shared counter. Each run
@@ -215,8 +220,8 @@ int main(int argc, char** argv) {
           for (std::size_t c = 0; c < courants.size(); ++c) {
             const std::size_t block = ((b * schemes.size() + s) * masses.size() + m) * courants.size() + c;
             out << (block ? "\n\n" : "") << "# block " << block << ": benchmark = " << benchmarks[b]
-                << ", scheme = " << schemes[s] << ", mass = " << masses[m] << ", dt/h = " << cli::format_real(courants[c])
-                << "\n# columns: N h dt";
+                << ", scheme = " << schemes[s] << ", mass = " << masses[m]
+                << ", dt/h = " << cli::format_real(courants[c]) << "\n# columns: N h dt";
             for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
             out << '\n';
             for (std::size_t l = 0; l < levels; ++l) {
@@ -240,7 +245,8 @@ int main(int argc, char** argv) {
     for (const char* label : measure_labels) headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
     mrm::repro::Table orders_table(headers);
     std::vector<double> steps(levels);
-    for (std::size_t l = 0; l < levels; ++l) steps[l] = 1.0 / static_cast<double>(static_cast<mrm::Index>(coarsest) << l);
+    for (std::size_t l = 0; l < levels; ++l)
+      steps[l] = 1.0 / static_cast<double>(static_cast<mrm::Index>(coarsest) << l);
     long agreeing = 0, cases = 0;
     for (std::size_t b = 0; b < benchmarks.size(); ++b) {
       for (std::size_t s = 0; s < schemes.size(); ++s)
@@ -263,7 +269,8 @@ int main(int argc, char** argv) {
               agreeing += agrees;
               ++cases;
               const std::string fitted = mrm::tex_number(fit.order, 2);
-              row.push_back((agrees ? fitted : "\\textit{" + fitted + "}") + " {\\scriptsize(" + fraction(predicted) + ")}");
+              row.push_back((agrees ? fitted : "\\textit{" + fitted + "}") + " {\\scriptsize(" + fraction(predicted) +
+                            ")}");
               mrm::tex_define(defs, "smooth:order:" + key, fitted);
               mrm::tex_define(defs, "smooth:stderr:" + key, mrm::tex_number(fit.order_std_error, 1));
               mrm::tex_define(defs, "smooth:err:" + key, mrm::tex_number(errors.back(), 2));

@@ -120,13 +120,15 @@ void InitialData::validate() const {
     for (double s : {-1.0, 1.0}) scale = std::max(scale, std::abs(poly::evaluate(p.displacement, s)));
   }
   for (std::size_t k = 1; k < pieces.size(); ++k) {
-    const double left = poly::evaluate(pieces[k - 1].displacement, 1.0), right = poly::evaluate(pieces[k].displacement, -1.0);
+    const double left = poly::evaluate(pieces[k - 1].displacement, 1.0),
+                 right = poly::evaluate(pieces[k].displacement, -1.0);
     if (!(std::abs(left - right) <= 1e-12 * scale))
-      throw std::invalid_argument("initial data: u0 must be continuous (jump " + number(right - left) + " at x = " +
-                                  number(pieces[k].a) + ")");
+      throw std::invalid_argument("initial data: u0 must be continuous (jump " + number(right - left) +
+                                  " at x = " + number(pieces[k].a) + ")");
   }
   const double at_clamp = poly::evaluate(pieces.back().displacement, 1.0);
-  if (at_clamp != 0.0) throw std::invalid_argument("initial data: u0(L) must be 0 (the clamp), got " + number(at_clamp));
+  if (at_clamp != 0.0)
+    throw std::invalid_argument("initial data: u0(L) must be 0 (the clamp), got " + number(at_clamp));
   const double at_contact = poly::evaluate(pieces.front().displacement, -1.0);
   if (!(at_contact >= 0.0))
     throw std::invalid_argument("initial data: u0(0) must be >= 0 (the obstacle), got " + number(at_contact));
@@ -155,14 +157,17 @@ InitialData initial_data_from_samples(const std::vector<double>& x, const std::v
   if (x[0] != 0.0) throw SampleError(0, "initial data: the first x must be 0 (the contact point), got " + number(x[0]));
   for (std::size_t k = 1; k < x.size(); ++k)
     if (!(x[k] > x[k - 1]))
-      throw SampleError(k, "initial data: x must increase strictly (" + number(x[k]) + " after " + number(x[k - 1]) + ")");
+      throw SampleError(k,
+                        "initial data: x must increase strictly (" + number(x[k]) + " after " + number(x[k - 1]) + ")");
   if (u0.back() != 0.0)
     throw SampleError(x.size() - 1, "initial data: u0(L) must be 0 (the clamp), got " + number(u0.back()));
   if (!(u0.front() >= 0.0))
     throw SampleError(0, "initial data: u0(0) must be >= 0 (the obstacle), got " + number(u0.front()));
   InitialData data;
   for (std::size_t k = 0; k + 1 < x.size(); ++k)
-    data.pieces.push_back({x[k], x[k + 1], {0.5 * (u0[k] + u0[k + 1]), 0.5 * (u0[k + 1] - u0[k])},
+    data.pieces.push_back({x[k],
+                           x[k + 1],
+                           {0.5 * (u0[k] + u0[k + 1]), 0.5 * (u0[k + 1] - u0[k])},
                            {0.5 * (v0[k] + v0[k + 1]), 0.5 * (v0[k + 1] - v0[k])}});
   data.validate();
   return data;
@@ -170,7 +175,8 @@ InitialData initial_data_from_samples(const std::vector<double>& x, const std::v
 
 // u⁰ = a (L − x) on one piece: with x = L/2 + (L/2) σ, u⁰ = aL/2 − (aL/2) σ.
 InitialData benchmark_initial_data(double length, double amplitude) {
-  if (!(std::isfinite(length) && length > 0)) throw std::invalid_argument("benchmark data: L must be positive and finite");
+  if (!(std::isfinite(length) && length > 0))
+    throw std::invalid_argument("benchmark data: L must be positive and finite");
   InitialData data;
   data.pieces.push_back({0.0, length, {0.5 * amplitude * length, -0.5 * amplitude * length}, {}});
   data.validate();
@@ -198,8 +204,8 @@ TEST_CASE("sampled initial data are interpolated linearly, and bad samples are r
   CHECK(row_of({0.0, 0.5, 1.0}, {-0.1, 0.1, 0.0}, {0, 0, 0}) == 0);              // u⁰(0) < 0
   CHECK(row_of({0.0, 0.5, 1.0}, {0.1, NAN, 0.0}, {0, 0, 0}) == 1);               // not finite
   CHECK(row_of({0.0, 0.5, 1.0}, {0.1, 0.1, 0.0}, {0, INFINITY, 0}) == 1);
-  CHECK(row_of({0.0}, {0.0}, {0.0}) == 1);                                       // too few rows
-  CHECK(row_of({0.1, 0.5, 1.0}, {0.1, 0.1, 0.0}, {0, 0, 0}) == 0);               // x₀ ≠ 0
+  CHECK(row_of({0.0}, {0.0}, {0.0}) == 1);                          // too few rows
+  CHECK(row_of({0.1, 0.5, 1.0}, {0.1, 0.1, 0.0}, {0, 0, 0}) == 0);  // x₀ ≠ 0
   CHECK(row_of({0.0, 0.5, 1.0}, {0.1, 0.1, 0.0}, {0, 0, 0}) == -1);
   CHECK_THROWS_AS(initial_data_from_samples({0.0, 1.0}, {0.0}, {0.0, 0.0}), std::invalid_argument);
 }
@@ -285,7 +291,8 @@ CharacteristicSolution::CharacteristicSolution(const InitialData& data, double f
   }
 
   // 3. F on [−T, L]: s ↦ F(−s) mirrored at 0, then the initial F.
-  for (std::size_t k = outgoing_.pieces().size(); k-- > 0;) right_.append(outgoing_.pieces()[k].mirrored(0.0), event_snap_);
+  for (std::size_t k = outgoing_.pieces().size(); k-- > 0;)
+    right_.append(outgoing_.pieces()[k].mirrored(0.0), event_snap_);
   first_initial_piece_ = right_.pieces().size();
   for (const PolynomialPiece& p : waves.right.pieces()) right_.append(p, event_snap_);
   outgoing_ = PiecewisePolynomial();
@@ -357,10 +364,11 @@ void CharacteristicSolution::advance_contact_point(const PolynomialPiece& incomi
 
 void CharacteristicSolution::check(double x, double t) const {
   if (!(x >= 0.0 && x <= length_))
-    throw std::out_of_range("characteristic solution: x = " + number(x) + " outside [0, L] = [0, " + number(length_) + "]");
-  if (!(t >= 0.0 && t <= horizon_))
-    throw std::out_of_range("characteristic solution: t = " + number(t) + " outside the computed [0, " + number(horizon_) +
+    throw std::out_of_range("characteristic solution: x = " + number(x) + " outside [0, L] = [0, " + number(length_) +
                             "]");
+  if (!(t >= 0.0 && t <= horizon_))
+    throw std::out_of_range("characteristic solution: t = " + number(t) + " outside the computed [0, " +
+                            number(horizon_) + "]");
 }
 
 double CharacteristicSolution::displacement(double x, double t) const {
@@ -394,9 +402,9 @@ double CharacteristicSolution::contact_displacement(double t) const { return dis
 // piece before the initial F).
 double CharacteristicSolution::contact_multiplier(double t) const {
   check(0.0, t);
-  const double lambda = t > tie_ ? strain(0.0, t)
-                                 : right_.pieces()[first_initial_piece_ - 1].derivative_at(-t) +
-                                       left_.pieces().front().derivative_at(t);
+  const double lambda =
+      t > tie_ ? strain(0.0, t)
+               : right_.pieces()[first_initial_piece_ - 1].derivative_at(-t) + left_.pieces().front().derivative_at(t);
   return std::min(0.0, lambda);
 }
 
@@ -620,7 +628,8 @@ TEST_CASE("the characteristic solution keeps the energy and satisfies the clamp,
   }
 }
 
-TEST_CASE("the contact point is the Skorokhod reflection of the incoming wave (against a brute-force running minimum)") {
+TEST_CASE(
+    "the contact point is the Skorokhod reflection of the incoming wave (against a brute-force running minimum)") {
   // In the first window, y(t) = u⁰(0) + 2(G(t) − G(0)) with G = (u⁰ + V⁰)/2 straight from the data;
   // g = y − min(0, running minimum of y) on a fine grid. The grid misses the true minimum between two
   // grid points by at most max|y″| δ²/8: δ = 1/200000 gives ≤ 1e-10 here.
@@ -793,7 +802,8 @@ TEST_CASE("the characteristic solution refuses bad data and points outside its d
   data.pieces[0].displacement = {0.25, 0.25};  // u⁰(L) = 0.5 ≠ 0
   CHECK_THROWS_WITH_AS(CharacteristicSolution(data, 1.0), doctest::Contains("u0(L) must be 0"), std::invalid_argument);
   data.pieces[0].displacement = {-0.5, 0.5};  // u⁰(0) = −1 < 0
-  CHECK_THROWS_WITH_AS(CharacteristicSolution(data, 1.0), doctest::Contains("u0(0) must be >= 0"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(CharacteristicSolution(data, 1.0), doctest::Contains("u0(0) must be >= 0"),
+                       std::invalid_argument);
 }
 
 }  // namespace mrm

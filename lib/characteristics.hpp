@@ -16,7 +16,8 @@ namespace mrm {
 
 /// One piece [a, b] of initial data: u⁰ and v⁰ are polynomials in σ = (x − (a + b)/2)/((b − a)/2).
 struct InitialDataPiece {
-  double a, b;
+  double a;                         ///< the start of the piece
+  double b;                         ///< its end (> a)
   poly::Coefficients displacement;  ///< u⁰ in σ
   poly::Coefficients velocity;      ///< v⁰ in σ
 };
@@ -25,11 +26,11 @@ struct InitialDataPiece {
 /// assumptions (mathematics.md §1): u⁰ continuous, u⁰(L) = 0 (the clamp), u⁰(0) ≥ 0 (the obstacle);
 /// v⁰ may jump.
 struct InitialData {
-  std::vector<InitialDataPiece> pieces;
+  std::vector<InitialDataPiece> pieces;  ///< contiguous pieces from x = 0 to x = L
 
-  double length() const { return pieces.back().b; }
-  double displacement(double x) const;  ///< u⁰(x), x ∈ [0, L]
-  double velocity(double x) const;      ///< v⁰(x), x ∈ [0, L] (the right-hand piece at a breakpoint)
+  double length() const { return pieces.back().b; }  ///< L, the end of the last piece
+  double displacement(double x) const;               ///< u⁰(x), x ∈ [0, L]
+  double velocity(double x) const;                   ///< v⁰(x), x ∈ [0, L] (the right-hand piece at a breakpoint)
   /// Throws std::invalid_argument unless the pieces are contiguous from 0 with b > a, every
   /// coefficient is finite, u⁰ is continuous (to 1e-12 of its largest value), u⁰(L) = 0 exactly and
   /// u⁰(0) ≥ 0.
@@ -41,8 +42,9 @@ struct InitialData {
 /// A bad row of sampled initial data: `row()` is its 0-based index among the samples.
 class SampleError : public std::invalid_argument {
  public:
+  /// The error `what` about row `row`.
   SampleError(std::size_t row, const std::string& what) : std::invalid_argument(what), row_(row) {}
-  std::size_t row() const { return row_; }
+  std::size_t row() const { return row_; }  ///< the 0-based index of the bad row (the count for too few rows)
 
  private:
   std::size_t row_;
@@ -60,8 +62,9 @@ InitialData benchmark_initial_data(double length = 1.0, double amplitude = 0.5);
 /// A time interval during which the contact point is held (u(0, t) = 0). One still held at the end of
 /// the computed horizon T ends there and is `open`.
 struct ContactInterval {
-  double start, end;
-  bool open;
+  double start;  ///< the instant the point is first held
+  double end;    ///< the instant it is released (or T)
+  bool open;     ///< whether it is still held at T
 };
 
 /// The solution for f = 0 and any data, exact to round-off for piecewise-polynomial data
@@ -80,6 +83,7 @@ class CharacteristicSolution : public ReferenceSolution {
   double contact_multiplier(double t) const override;
   /// E(0); energy_at(t) computes E(t) from the waves (the same to round-off).
   double energy() const override { return energy_; }
+  /// E(t) = ∫_{−t}^{L−t} F′² + ∫_t^{L+t} G′², exact for polynomial pieces.
   double energy_at(double t) const;
   void displacement_at_points(double t, const double* x, long count, double* u) const override;
   void velocity_at_points(double t, const double* x, long count, double* v) const override;
@@ -88,8 +92,9 @@ class CharacteristicSolution : public ReferenceSolution {
   const std::vector<ContactInterval>& contact_intervals() const { return contact_; }
   /// T, the end of the computed horizon (the final time asked for).
   double horizon() const { return horizon_; }
-  /// The right-going wave F on [−T, L] and the left-going wave G on [0, T + L] (u = F(x − t) + G(x + t)).
+  /// The right-going wave F on [−T, L] (u = F(x − t) + G(x + t)).
   const PiecewisePolynomial& right_going() const { return right_; }
+  /// The left-going wave G on [0, T + L].
   const PiecewisePolynomial& left_going() const { return left_; }
 
  private:
@@ -98,11 +103,11 @@ class CharacteristicSolution : public ReferenceSolution {
   void advance_contact_point(const PolynomialPiece& incoming);
 
   double length_, horizon_, tie_, event_snap_, slope_noise_ = 0, energy_ = 0;
-  std::size_t first_initial_piece_ = 0;  // the index in F of the first piece of the initial F (ξ ≥ 0)
+  std::size_t first_initial_piece_ = 0;          // the index in F of the first piece of the initial F (ξ ≥ 0)
   PiecewisePolynomial right_, left_, outgoing_;  // F, G and s ↦ F(−s) while it is built
   std::vector<ContactInterval> contact_;
-  double gap_ = 0;       // g at the start of the next incoming piece
-  bool held_ = false;    // whether the contact point is held there
+  double gap_ = 0;     // g at the start of the next incoming piece
+  bool held_ = false;  // whether the contact point is held there
 };
 
 /// The characteristic solution tabulated on a lattice of spacing δ, for the error measures: F and F′ at
@@ -125,7 +130,7 @@ class TabulatedSolution : public ReferenceSolution {
   double energy() const override { return solution_.energy(); }
   void displacement_at_points(double t, const double* x, long count, double* u) const override;
   void velocity_at_points(double t, const double* x, long count, double* v) const override;
-  const CharacteristicSolution& solution() const { return solution_; }
+  const CharacteristicSolution& solution() const { return solution_; }  ///< the solution tabulated
 
  private:
   // The lattice index of a point (−1 if it is not on the lattice to 1e-9 δ).

@@ -11,6 +11,7 @@ namespace mrm {
 /// Polynomials Σ_k c_k σ^k stored by their coefficients in increasing degree.
 namespace poly {
 
+/// The coefficients c_0, c_1, … of Σ_k c_k σ^k.
 using Coefficients = std::vector<double>;
 
 /// p(σ) by Horner's rule (0 for the empty polynomial).
@@ -38,16 +39,18 @@ std::vector<double> sign_changes(const Coefficients& c, double lo, double hi);
 /// centre and the signs of the coefficients. These operations are therefore exact in floating point,
 /// which is what makes the characteristic solution exact to round-off (mathematics.md §10).
 struct PolynomialPiece {
-  double a = 0, b = 0;                 ///< the piece's interval
-  double centre = 0, radius = 1;       ///< σ = (x − centre)/radius
-  poly::Coefficients value;            ///< p in σ
-  poly::Coefficients slope;            ///< dp/dx in σ: (1/radius) dp/dσ
+  double a = 0;              ///< the start of the piece's interval
+  double b = 0;              ///< its end
+  double centre = 0;         ///< the centre of the local variable σ = (x − centre)/radius
+  double radius = 1;         ///< its scale
+  poly::Coefficients value;  ///< p in σ
+  poly::Coefficients slope;  ///< dp/dx in σ: (1/radius) dp/dσ
 
   /// The piece p(x) = Σ c_k σ^k on [a, b] with σ = (x − (a + b)/2)/((b − a)/2).
   static PolynomialPiece on(double a, double b, poly::Coefficients c);
-  double sigma(double x) const { return (x - centre) / radius; }
-  double at(double x) const { return poly::evaluate(value, sigma(x)); }
-  double derivative_at(double x) const { return poly::evaluate(slope, sigma(x)); }
+  double sigma(double x) const { return (x - centre) / radius; }                    ///< σ(x)
+  double at(double x) const { return poly::evaluate(value, sigma(x)); }             ///< p(x)
+  double derivative_at(double x) const { return poly::evaluate(slope, sigma(x)); }  ///< p′(x)
   /// x ↦ p(x) restricted to [a', b'] ⊂ [a, b] (same variable).
   PolynomialPiece restricted(double a_new, double b_new) const;
   /// x ↦ p(x − shift) on [a + shift, b + shift].
@@ -67,16 +70,17 @@ class PiecewisePolynomial {
   /// absorbs round-off in the caller's arithmetic); throws std::invalid_argument if it would be empty
   /// or start elsewhere by more than `tolerance`.
   void append(PolynomialPiece piece, double tolerance = 0.0);
-  const std::vector<PolynomialPiece>& pieces() const { return pieces_; }
-  bool empty() const { return pieces_.empty(); }
-  double begin() const { return pieces_.front().a; }
-  double end() const { return pieces_.back().b; }
+  const std::vector<PolynomialPiece>& pieces() const { return pieces_; }  ///< the pieces, in increasing order
+  bool empty() const { return pieces_.empty(); }                          ///< whether there is no piece
+  double begin() const { return pieces_.front().a; }                      ///< the start of the first piece
+  double end() const { return pieces_.back().b; }                         ///< the end of the last piece
 
   /// The index of the piece with a ≤ x < b (the last piece for x = end), starting the search at `hint`
   /// (a walk for nearby points, a bisection otherwise). x must lie in [begin, end].
   std::size_t locate(double x, std::size_t hint = 0) const;
+  /// p(x); `hint` (if given) is the piece to start the search from, and receives the piece found.
   double value(double x, std::size_t* hint = nullptr) const;
-  /// p′(x); within `tie` of a breakpoint, the mean of the one-sided derivatives there.
+  /// p′(x); within `tie` of a breakpoint, the mean of the one-sided derivatives there (`hint` as for value).
   double derivative(double x, double tie, std::size_t* hint = nullptr) const;
   /// ∫_{x0}^{x1} p′(x)² dx, x0 ≤ x1 in [begin, end], exact up to round-off.
   double integral_of_squared_derivative(double x0, double x1) const;

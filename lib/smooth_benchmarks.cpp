@@ -52,15 +52,19 @@ namespace mrm {
 
 std::string to_string(SmoothBenchmark b) {
   switch (b) {
-    case SmoothBenchmark::generic_impact: return "s1";
-    case SmoothBenchmark::grazing: return "s2";
-    case SmoothBenchmark::grazing_quartic: return "s3";
+    case SmoothBenchmark::generic_impact:
+      return "s1";
+    case SmoothBenchmark::grazing:
+      return "s2";
+    case SmoothBenchmark::grazing_quartic:
+      return "s3";
   }
   return "?";
 }
 
 SmoothBenchmark smooth_benchmark_by_name(const std::string& name) {
-  for (SmoothBenchmark b : {SmoothBenchmark::generic_impact, SmoothBenchmark::grazing, SmoothBenchmark::grazing_quartic})
+  for (SmoothBenchmark b :
+       {SmoothBenchmark::generic_impact, SmoothBenchmark::grazing, SmoothBenchmark::grazing_quartic})
     if (to_string(b) == name) return b;
   throw std::invalid_argument("unknown smooth benchmark '" + name + "' (allowed: s1, s2, s3)");
 }
@@ -86,7 +90,8 @@ PiecewisePolynomial weight(double begin, double end, const std::vector<Factor>& 
     const double m = 0.5 * (a + b), r = 0.5 * (b - a);
     poly::Coefficients c{1.0};
     for (const Factor& f : factors) {
-      const poly::Coefficients linear = f.reversed ? poly::Coefficients{f.root - m, -r} : poly::Coefficients{m - f.root, r};
+      const poly::Coefficients linear =
+          f.reversed ? poly::Coefficients{f.root - m, -r} : poly::Coefficients{m - f.root, r};
       c = poly::product(c, poly::power(linear, f.power));
     }
     q.append(PolynomialPiece::on(a, b, c));
@@ -191,7 +196,8 @@ SmoothBenchmarkData smooth_benchmark(SmoothBenchmark which) {
 // ---------------------------------------------------------------------------------------------------
 
 TEST_CASE("the smooth benchmarks are purely left-going, with P(0) = 1/4, constant near 0 and zero near 1") {
-  for (SmoothBenchmark which : {SmoothBenchmark::generic_impact, SmoothBenchmark::grazing, SmoothBenchmark::grazing_quartic}) {
+  for (SmoothBenchmark which :
+       {SmoothBenchmark::generic_impact, SmoothBenchmark::grazing, SmoothBenchmark::grazing_quartic}) {
     const SmoothBenchmarkData s = smooth_benchmark(which);
     CAPTURE(to_string(which));
     CHECK(s.scale > 0);
@@ -262,7 +268,8 @@ TEST_CASE("S2 and S3 touch at t* with zero velocity and acceleration and are rel
     CHECK(std::abs(2 * s.data.velocity(s.touch_time)) <= 1e-13 * largest_slope);
     // u(0, t) ~ c (t* − t)^{p+1} before the touch, p the power of (x − t*): the ratio at δ and δ/2 is 2^{p+1}.
     const double order = which == SmoothBenchmark::grazing ? 3 : 5, delta = 0.02;
-    const double ratio = solution.contact_displacement(s.touch_time - delta) / solution.contact_displacement(s.touch_time - 0.5 * delta);
+    const double ratio =
+        solution.contact_displacement(s.touch_time - delta) / solution.contact_displacement(s.touch_time - 0.5 * delta);
     CHECK(std::abs(ratio / std::pow(2.0, order) - 1) <= 0.05);
     // Held in between with λ ≤ 0, released after t_r (u(0, ·) > 0 again), λ = 0 after.
     CHECK(solution.contact_displacement(0.5 * (s.touch_time + s.release_time)) == 0.0);
