@@ -93,7 +93,7 @@ struct TemporaryFile {
   ~TemporaryFile() { std::remove(path.c_str()); }
 };
 
-std::string message_of(const std::string& text) {
+[[maybe_unused]] std::string message_of(const std::string& text) {
   const TemporaryFile file(text);
   try {
     read_initial_data(file.path);
