@@ -141,7 +141,7 @@ int main(int argc, char** argv) {
               columns[3 + 2 * m].push_back(s.has_multiplier ? s.multiplier : std::nan(""));
               ++level;
             },
-            reference);
+            reference.get());
       }
       out << (b ? "\n\n" : "") << "# block " << b << ": benchmark = " << names[b]
           << "\n# K = " << cli::format_real(benchmark.scale)

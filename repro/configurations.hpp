@@ -95,7 +95,7 @@ inline const std::vector<std::string>& benchmark_names() {
 
 /// One run: the bar (0, L) released from the initial data of a benchmark (the paper's u⁰(x) = a (L − x)
 /// by default) or of a file, a scheme, a mass, a mesh of N elements and Δt (given, or C h), to the first
-/// level t_n ≥ T.
+/// level t_n ≥ T (or for a given number of steps).
 struct Configuration {
   SchemeParameters scheme;
   MassRedistribution mass = mod3();
@@ -103,6 +103,7 @@ struct Configuration {
   double courant = 0.5;  ///< Δt = C h, unless dt > 0
   double dt = 0.0;       ///< the time step if > 0
   double final_time = 3.0;
+  Index steps = -1;  ///< the number of steps if ≥ 0 (final_time is then unused)
   double length = 1.0;
   double amplitude = 0.5;
   InitialContactNode initial = InitialContactNode::consistent;
@@ -146,12 +147,12 @@ struct Measures {
 };
 
 /// Runs the configuration to its final time, calling `observe` (if given) on every sample from level 0
-/// on, and returns its measures against `reference` (if null: configuration_reference up to
-/// reference_horizon). Throws std::runtime_error if the energy becomes non-finite (a value that cannot
-/// be computed is an error, never a nan in a table).
-Measures run_configuration(const Configuration& configuration,
-                           const std::function<void(const Sample&)>& observe = {},
-                           std::shared_ptr<const ReferenceSolution> reference = nullptr);
+/// on, and returns its measures: the errors against `reference` if given (not owned: it must outlive
+/// the call; a closed form under test, or a reference shared by several runs), else against
+/// configuration_reference up to reference_horizon. Throws std::runtime_error if the energy becomes
+/// non-finite (a value that cannot be computed is an error, never a nan in a table).
+Measures run_configuration(const Configuration& configuration, const std::function<void(const Sample&)>& observe = {},
+                           const ReferenceSolution* reference = nullptr);
 
 /// The instant up to which a reference must be known for a run of `steps` steps of size dt: the last
 /// level plus one step (the schemes' staggered instants stay below it).
