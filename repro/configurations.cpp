@@ -4,13 +4,48 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include <doctest/doctest.h>
 
 #include "exact_solution.hpp"
+#include "smooth_benchmarks.hpp"
 
 namespace mrm::repro {
+
+double Configuration::bar_length() const {
+  if (data) return data->length();
+  return benchmark == "paper" ? length : 1.0;
+}
+
+InitialData configuration_data(const Configuration& c) {
+  if (c.data) return *c.data;
+  if (c.benchmark == "paper") return benchmark_initial_data(c.length, c.amplitude);
+  if (c.benchmark == "smooth-impact") return smooth_benchmark(SmoothBenchmark::generic_impact).data;
+  if (c.benchmark == "grazing") return smooth_benchmark(SmoothBenchmark::grazing).data;
+  throw std::invalid_argument("unknown benchmark '" + c.benchmark + "' (allowed: paper, smooth-impact, grazing)");
+}
+
+// The paper's benchmark keeps its own problem (the closed-form data as functions), so that its runs are
+// the same bits as before the benchmarks became a choice.
+Problem configuration_problem(const Configuration& c) {
+  if (!c.data && c.benchmark == "paper") return benchmark_problem(c.length, c.amplitude);
+  return configuration_data(c).problem();
+}
+
+// The lattice: δ = min(h, Δt) when max/min is a whole number (to 1e-9), which puts every node and level
+// on it (characteristics.hpp: TabulatedSolution); otherwise the characteristic solution is evaluated
+// directly.
+std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& c, double horizon) {
+  if (!c.data && c.benchmark == "paper") return std::make_shared<const ExactSolution>(c.length, c.amplitude);
+  CharacteristicSolution solution(configuration_data(c), horizon);
+  const double h = UniformMesh(c.bar_length(), c.elements).h(), dt = c.step();
+  const double small = std::min(h, dt), ratio = std::max(h, dt) / small;
+  if (std::abs(ratio - std::round(ratio)) <= 1e-9 * ratio && horizon / small <= 1e7)
+    return std::make_shared<const TabulatedSolution>(std::move(solution), small);
+  return std::make_shared<const CharacteristicSolution>(std::move(solution));
+}
 
 Configuration paper_configuration(const std::string& scheme, const std::string& ps_form, const std::string& mass,
                                   Index elements, double courant, double final_time) {
@@ -24,13 +59,16 @@ Configuration paper_configuration(const std::string& scheme, const std::string& 
 }
 
 Measures run_configuration(const Configuration& c, const std::function<void(const Sample&)>& observe,
-                           const ExactSolution* reference) {
-  const UniformMesh mesh(c.length, c.elements);
+                           const ReferenceSolution* reference) {
+  const UniformMesh mesh(c.bar_length(), c.elements);
   const double dt = c.step();
-  BarSimulation simulation(benchmark_problem(c.length, c.amplitude), mesh, c.mass, c.scheme, dt, c.initial);
-  ErrorAccumulator errors(mesh, reference ? *reference : ExactSolution(c.length, c.amplitude));
+  BarSimulation simulation(configuration_problem(c), mesh, c.mass, c.scheme, dt, c.initial);
   Measures m;
   m.steps = c.steps >= 0 ? c.steps : steps_to_reach(c.final_time, dt);
+  // A given reference is the caller's (not owned: an aliasing pointer with no owner); otherwise the
+  // configuration's own, kept for the run.
+  ErrorAccumulator errors(mesh, reference ? std::shared_ptr<const ReferenceSolution>(std::shared_ptr<void>(), reference)
+                                          : configuration_reference(c, reference_horizon(m.steps, dt)));
   m.energy_min = std::numeric_limits<double>::infinity();
   m.energy_max = -m.energy_min;
   run(simulation, m.steps, [&](const Sample& s) {
@@ -73,6 +111,39 @@ TEST_CASE("a configuration's measures are those of the same run observed by hand
   CHECK(m.steps == 120);
   CHECK(m.energy_min == lowest);
   CHECK(m.energy_max == highest);
+}
+
+TEST_CASE("every benchmark runs with its reference, and the smooth ones converge") {
+  // The prediction (mathematics.md §11): on the smooth benchmarks Crank–Nicolson with Mod 3 converges at
+  // order 2 in u(0,·); doubling N must divide its error by more than 3 (order > 1.58) on both.
+  for (const std::string& benchmark : {std::string("smooth-impact"), std::string("grazing")}) {
+    double previous = 0;
+    for (const Index elements : {40, 80}) {
+      Configuration c = paper_configuration("cn", "algebraic", "mod3", elements, 0.5, 2.0);
+      c.benchmark = benchmark;
+      const Measures m = run_configuration(c);
+      CAPTURE(benchmark);
+      CAPTURE(elements);
+      for (double e : ErrorAccumulator::values(m.errors)) CHECK((std::isfinite(e) && e > 0 && e < 1));
+      if (previous > 0) CHECK(m.errors.u0_L2 < previous / 3);
+      previous = m.errors.u0_L2;
+    }
+  }
+  Configuration c = paper_configuration("cn", "algebraic", "mod3", 10, 0.5, 1.0);
+  c.benchmark = "nonsense";
+  CHECK_THROWS_WITH_AS(run_configuration(c), doctest::Contains("allowed: paper, smooth-impact, grazing"),
+                       std::invalid_argument);
+  // Data of one's own: the paper's benchmark as data gives the paper's measures (the characteristic
+  // solution equals the closed form; Δt = 0.37 h keeps the levels off the corners t = kL).
+  c = paper_configuration("cn", "algebraic", "mod3", 30, 0.37, 4.0);
+  const Measures paper = run_configuration(c);
+  c.data = std::make_shared<const InitialData>(benchmark_initial_data(1.0, 0.5));
+  const Measures own = run_configuration(c);
+  const auto a = ErrorAccumulator::values(paper.errors), b = ErrorAccumulator::values(own.errors);
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    CAPTURE(std::string(ErrorAccumulator::names[k]));
+    CHECK(std::abs(a[k] - b[k]) <= 1e-9 * a[k]);
+  }
 }
 
 TEST_CASE("a configuration run for a given number of steps is measured against the reference given") {

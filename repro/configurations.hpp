@@ -14,8 +14,10 @@
 #include "output_file.hpp"
 #include "run_limits.hpp"
 
+#include "characteristics.hpp"
 #include "errors.hpp"
 #include "mass_redistribution.hpp"
+#include "reference_solution.hpp"
 #include "schemes.hpp"
 
 namespace mrm::repro {
@@ -100,9 +102,16 @@ class FigureOutputs {
   std::ostringstream values_;
 };
 
-/// One run of the benchmark (mathematics.md §2): the bar (0, L) released from u⁰(x) = a (L − x), a
-/// scheme, a mass, a mesh of N elements and Δt (given, or C h), to the first level t_n ≥ T (or for a
-/// given number of steps).
+/// The benchmarks a run can start from: "paper" (the closed-form benchmark of mathematics.md §2),
+/// "smooth-impact" and "grazing" (S1 and S2 of mathematics.md §11), in this order.
+inline const std::vector<std::string>& benchmark_names() {
+  static const std::vector<std::string> names{"paper", "smooth-impact", "grazing"};
+  return names;
+}
+
+/// One run: the bar (0, L) released from the initial data of a benchmark (the paper's u⁰(x) = a (L − x)
+/// by default) or of a file, a scheme, a mass, a mesh of N elements and Δt (given, or C h), to the first
+/// level t_n ≥ T (or for a given number of steps).
 struct Configuration {
   SchemeParameters scheme;
   MassRedistribution mass = mod3();
@@ -114,17 +123,39 @@ struct Configuration {
   double length = 1.0;
   double amplitude = 0.5;
   InitialContactNode initial = InitialContactNode::consistent;
+  /// One of benchmark_names(); `length` and `amplitude` apply to "paper" only (the smooth benchmarks have
+  /// L = 1). Ignored when `data` is set.
+  std::string benchmark = "paper";
+  /// Initial data of one's own (bar1d --initial-data), L = their last x; the reference is then the
+  /// characteristic solution.
+  std::shared_ptr<const InitialData> data;
 
-  double step() const { return dt > 0 ? dt : courant * UniformMesh(length, elements).h(); }
+  /// The length of the bar: L of the data, of the smooth benchmarks (1), or `length`.
+  double bar_length() const;
+  double step() const { return dt > 0 ? dt : courant * UniformMesh(bar_length(), elements).h(); }
 };
+
+/// The problem (f = 0) of a configuration's initial data. Throws std::invalid_argument for an unknown
+/// benchmark name.
+Problem configuration_problem(const Configuration& configuration);
+
+/// The initial data of a configuration as piecewise polynomials (the paper's, a smooth benchmark's or
+/// the file's).
+InitialData configuration_data(const Configuration& configuration);
+
+/// The exact solution a configuration's errors are measured against: the closed form for "paper"
+/// (mathematics.md §2), otherwise the characteristic solution of its data (mathematics.md §10) up to
+/// `horizon`, tabulated on the lattice of h and Δt when one of them is a whole multiple of the other.
+std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& configuration, double horizon);
 
 /// A configuration named as the paper names it: scheme "cn", "be" or "ps" (Paoli–Schatzman (¼, 0) with
 /// the contact row `ps_form`), mass "mod1", "mod2", "mod3" or "consistent", N, Δt = C h, T.
 Configuration paper_configuration(const std::string& scheme, const std::string& ps_form, const std::string& mass,
                                   Index elements, double courant, double final_time);
 
-/// What a run measures: the eight relative errors against the exact solution (mathematics.md §5), the
-/// range of the discrete energy and the number of steps.
+/// What a run measures: the eight relative errors against the exact solution (mathematics.md §5; the
+/// configuration's reference, see configuration_reference), the range of the discrete energy and the
+/// number of steps.
 struct Measures {
   ErrorNorms errors;
   double energy_initial = 0, energy_final = 0, energy_min = 0, energy_max = 0;
@@ -132,11 +163,15 @@ struct Measures {
 };
 
 /// Runs the configuration to its final time, calling `observe` (if given) on every sample from level 0
-/// on, and returns its measures: the errors against `reference` if given (a closed form under test),
-/// else against the configuration's own exact solution. Throws std::runtime_error if the energy becomes
+/// on, and returns its measures: the errors against `reference` if given (not owned: it must outlive
+/// the call; a closed form under test, or a reference shared by several runs), else against
+/// configuration_reference up to reference_horizon. Throws std::runtime_error if the energy becomes
 /// non-finite (a value that cannot be computed is an error, never a nan in a table).
-Measures run_configuration(const Configuration& configuration,
-                           const std::function<void(const Sample&)>& observe = {},
-                           const ExactSolution* reference = nullptr);
+Measures run_configuration(const Configuration& configuration, const std::function<void(const Sample&)>& observe = {},
+                           const ReferenceSolution* reference = nullptr);
+
+/// The instant up to which a reference must be known for a run of `steps` steps of size dt: the last
+/// level plus one step (the schemes' staggered instants stay below it).
+inline double reference_horizon(Index steps, double dt) { return static_cast<double>(steps + 1) * dt; }
 
 }  // namespace mrm::repro
