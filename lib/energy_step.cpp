@@ -96,6 +96,16 @@
 // Each quadratic has one root on each side of 0 (or at 0), and G has one root: the root found on the
 // side predicted by G(0) is G's root.
 //
+// With a load. ψ is then evaluated at s = u₁ + hF₀(t) (the contact row couples u₁ and the load at the
+// contact node), a = u₁ⁿ + hF₀ⁿ, and the right-hand side gains θ(F̄ⁿ + F̄ⁿ⁺¹); the scalar equation is the
+// same with c = z₁ + hF₀ⁿ⁺¹. The mechanical energy E = ½VᵀM̄V + ½ŪᵀS̄Ū − ψ(s) then changes by the work of
+// the loads only: with D = Ūⁿ⁺¹ − Ūⁿ and u₁ⁿ⁺¹ − u₁ⁿ = (b − a) − h(F₀ⁿ⁺¹ − F₀ⁿ),
+//
+//     Eⁿ⁺¹ − Eⁿ = ½(F̄ⁿ + F̄ⁿ⁺¹)·D − ½ χ(a, b)(F₀ⁿ⁺¹ − F₀ⁿ),
+//
+// the discrete form of dE/dt = F̄·V − ψ'(s) h dF₀/dt. (The library's energy ½VᵀMV + ½UᵀSU over all nodes
+// with u₀ = max(0, s) is this E plus F₀u₀.)
+//
 // 4. CN-switch: a θ-step at each status change.
 //
 // Take the Crank–Nicolson step; if the contact status changes across it (active: s < 0, the contact
