@@ -96,6 +96,19 @@
 // Each quadratic has one root on each side of 0 (or at 0), and G has one root: the root found on the
 // side predicted by G(0) is G's root.
 //
+// In the library's step. The library solves Crank–Nicolson on all unknowns 0..N−1 with the algebraic
+// contact row (schemes.cpp): after the sweep down from node N−1 (contact.cpp), row 1 reads
+// d₁u₁ⁿ⁺¹ + A₁₀u₀ = y₁ with A₁₀ = θS₁₀ = −θ/h, d₁ = 1/(Ā⁻¹)₁₁ the pivot at node 1, and y₁ containing the
+// old level's contact term −B₁₀u₀ⁿ = (θ/h)u₀ⁿ. The total contact force on row 1 is (θ/h)(u₀ⁿ + u₀) and
+// must be 2θφ = (θ/h)χ(a, b): so the sweep up starts from the value u₀ = χ(a, b) − u₀ⁿ (not the contact
+// node's new value max(0, b)), and
+//
+//     u₁ⁿ⁺¹ = z₁ + μ(χ(a, b) − u₀ⁿ),   z₁ = y₁/d₁,   μ = −A₁₀/d₁ = θ(Ā⁻¹)₁₁/h,
+//
+// which is the scalar equation with c = z₁ − μu₀ⁿ + hF₀ⁿ⁺¹ (in s = u₁ + hF₀). The contact node's new value
+// is max(0, b), the condensed row's at the new level, and λⁿ⁺¹ = min(0, b)/h. On a step without a status
+// change χ − u₀ⁿ = max(0, b): the sweep starts from the contact node's own value, as Crank–Nicolson's.
+//
 // With a load. ψ is then evaluated at s = u₁ + hF₀(t) (the contact row couples u₁ and the load at the
 // contact node), a = u₁ⁿ + hF₀ⁿ, and the right-hand side gains θ(F̄ⁿ + F̄ⁿ⁺¹); the scalar equation is the
 // same with c = z₁ + hF₀ⁿ⁺¹. The mechanical energy E = ½VᵀM̄V + ½ŪᵀS̄Ū − ψ(s) then changes by the work of
@@ -209,6 +222,13 @@ double crank_nicolson_contact_root(double alpha, double c, double mu) {
   return shifted > 0 ? shifted / (1 - mu) : shifted;
 }
 
+EnergyConservingContact energy_conserving_contact(double z1, double mu, double u0_now, double s_now, double h,
+                                                  double load0_next) {
+  const double c = z1 - mu * u0_now + h * load0_next;
+  const double s = energy_conserving_contact_root(s_now, c, mu);
+  return {s, std::max(0.0, s), contact_secant(s_now, s) - u0_now, std::min(0.0, s) / h, contact_is_active(s)};
+}
+
 // ---------------------------------------------------------------------------------------------------
 // Checks of the scalar pieces: the cases of χ and κ, and the root against a bracketing solver.
 
@@ -234,8 +254,10 @@ struct RootProblem {
   };
   g.params = const_cast<RootProblem*>(&problem);
   const double lo = problem.c - 1 - std::abs(problem.c);
-  const double hi = std::max(std::abs(problem.alpha), (std::abs(problem.c) + problem.mu * std::max(0.0, problem.alpha)) /
-                                                           (1 - problem.mu)) * 2 + 1;
+  const double hi = std::max(std::abs(problem.alpha),
+                             (std::abs(problem.c) + problem.mu * std::max(0.0, problem.alpha)) / (1 - problem.mu)) *
+                        2 +
+                    1;
   gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
   REQUIRE(solver != nullptr);
   REQUIRE(gsl_root_fsolver_set(solver, &g, lo, hi) == GSL_SUCCESS);
@@ -369,14 +391,19 @@ TEST_CASE("the EC scalar equation has a unique root, found in closed form and by
       const double s2 = s + (unit(random) - 0.5) * 4 * spread;
       if (std::abs(s2 - s1) < 1e-6 * spread) continue;
       const double slope = (ec_residual(s2, problem.alpha, problem.c, problem.mu) -
-                            ec_residual(s1, problem.alpha, problem.c, problem.mu)) / (s2 - s1);
+                            ec_residual(s1, problem.alpha, problem.c, problem.mu)) /
+                           (s2 - s1);
       CHECK(slope >= (1 - problem.mu) - 1e-9 * spread / std::abs(s2 - s1));
     }
     const bool before = contact_is_active(problem.alpha), after = contact_is_active(s);
-    if (problem.alpha <= 0 && problem.c <= 0) ++cases[0];
-    else if (before == after) ++cases[1];
-    else if (before) ++cases[2];
-    else ++cases[3];
+    if (problem.alpha <= 0 && problem.c <= 0)
+      ++cases[0];
+    else if (before == after)
+      ++cases[1];
+    else if (before)
+      ++cases[2];
+    else
+      ++cases[3];
   }
   for (int k = 0; k < 4; ++k) {
     CAPTURE(k);

@@ -44,4 +44,18 @@ double energy_conserving_contact_root(double alpha, double c, double mu);
 /// The same equation with Crank–Nicolson's trapezoidal force, s = c + μ (max(0, α) + max(0, s)).
 double crank_nicolson_contact_root(double alpha, double c, double mu);
 
+/// The contact of one EC step, decided on row 1 of the Crank–Nicolson system after the sweep down
+/// (energy_step.cpp, "In the library's step").
+struct EnergyConservingContact {
+  double s;              ///< sⁿ⁺¹ = u₁ⁿ⁺¹ + hF₀ⁿ⁺¹
+  double u0;             ///< the contact node's value at the new level, max(0, sⁿ⁺¹)
+  double recurrence_u0;  ///< the value of u₀ the sweep up starts from: χ(sⁿ, sⁿ⁺¹) − u₀ⁿ
+  double multiplier;     ///< λⁿ⁺¹ = min(0, sⁿ⁺¹)/h, the condensed row's multiplier at the new level
+  bool active;           ///< sⁿ⁺¹ < 0
+};
+/// Given z₁ (node 1's value if the contact node stayed at u₀ = 0 for the sweep up), μ = θ(Ā⁻¹)₁₁/h,
+/// the contact node's current value u₀ⁿ, sⁿ = u₁ⁿ + hF₀ⁿ, h and F₀ⁿ⁺¹.
+EnergyConservingContact energy_conserving_contact(double z1, double mu, double u0_now, double s_now, double h,
+                                                  double load0_next);
+
 }  // namespace mrm
