@@ -3,7 +3,8 @@
 // What it computes. The elastic bar (0, L), clamped at x = L and released at rest from
 // u⁰(x) = a (L − x) against the rigid obstacle at x = 0, discretised with P1 elements and a
 // Lagrange multiplier at the contact node, a mass matrix (consistent, or redistributed by Mod 1, 2
-// or 3) and one time scheme (Crank–Nicolson, backward Euler or Paoli–Schatzman). It prints the
+// or 3) and one time scheme (Crank–Nicolson, backward Euler, Paoli–Schatzman, or the energy-conserving
+// Crank–Nicolson and Crank–Nicolson with a θ-step at each status change of mathematics.md §12). It prints the
 // relative errors of mathematics.md §5 against the exact solution, the energy range and the run's size
 // and time, one `name = value` line each, and optionally writes the time series of the contact
 // point (u(0,t), λ(t), the energy, and the exact values beside them). Its standard output is the
@@ -14,6 +15,8 @@
 //   bar1d --scheme cn --mass mod3 --elements 50 --courant 0.5 --final-time 12
 //   bar1d --scheme ps --ps-form literal --mass mod2 --elements 100 --dt 0.004 --output ps.dat
 //   bar1d --scheme be --mass consistent --elements 200 --courant 1
+//   bar1d --scheme ec --mass mod3 --elements 16 --courant 10 --final-time 300
+//   bar1d --scheme cn-switch --switch-theta 0.75 --mass mod1 --elements 400
 //
 // Description. Steps: (1) read the options; (2) open the output file (so that a bad path fails
 // before the run); (3) build the mesh, the mass and the scheme, Δt = C h unless --dt is given;
@@ -40,7 +43,8 @@ int main(int argc, char** argv) {
   return cli::guarded_main("bar1d", [&] {
     // 1. Options.
     long elements = 100;
-    double courant = 0.5, dt = 0.0, final_time = 6.0, length = 1.0, amplitude = 0.5, beta = 0.25, restitution = 0.0;
+    double courant = 0.5, dt = 0.0, final_time = 6.0, length = 1.0, amplitude = 0.5, beta = 0.25, restitution = 0.0,
+           switch_theta = 1.0;
     std::string scheme = "cn", mass = "mod3", ps_form = "algebraic", initial = "consistent", output;
     bool no_timing = false;
     // The ranges below keep every quantity of the run (h, Δt², the matrices' entries, the energy a²L/2)
@@ -67,8 +71,15 @@ int main(int argc, char** argv) {
                     cli::in_closed_range(1e-100, 1e100));
     parser.add_real("--amplitude", "-a", "A", "initial datum u0(x) = A (L - x), A in [1e-100, 1e100]", &amplitude,
                     cli::in_closed_range(1e-100, 1e100));
-    parser.add_choice("--scheme", "-s", "S", "time scheme: Crank-Nicolson, backward Euler, Paoli-Schatzman",
-                      {"cn", "be", "ps"}, &scheme);
+    parser.add_choice("--scheme", "-s", "S",
+                      "time scheme: Crank-Nicolson, backward Euler, Paoli-Schatzman, energy-conserving "
+                      "Crank-Nicolson (massless contact node), Crank-Nicolson with a theta-step at each change of "
+                      "the contact status",
+                      {"cn", "be", "ps", "ec", "cn-switch"}, &scheme);
+    parser.add_real("--switch-theta", "", "TH",
+                    "cn-switch: theta in [0.5, 1] of the step that replaces a Crank-Nicolson step across a change "
+                    "of the contact status (1: backward Euler, the energy never increases)",
+                    &switch_theta, cli::in_closed_range(0.5, 1));
     parser.add_choice("--mass", "-m", "M", "mass matrix: Mod 1/2/3 or the consistent P1 mass",
                       {"mod1", "mod2", "mod3", "consistent"}, &mass);
     parser.add_real("--beta", "-b", "B", "Paoli-Schatzman's beta, in [0, 1e6]", &beta, cli::in_closed_range(0, 1e6));
@@ -90,6 +101,11 @@ int main(int argc, char** argv) {
     if (mass == "consistent" && scheme == "ps" && ps_form == "algebraic")
       throw cli::UsageError("--ps-form: algebraic needs a massless contact node (--mass mod1, mod2 or mod3); "
                             "with --mass consistent use --ps-form literal");
+    if (scheme == "ec" && mass == "consistent")
+      throw cli::UsageError("--scheme: ec needs a massless contact node (--mass mod1, mod2 or mod3): with the "
+                            "consistent mass the contact energy has no discrete gradient");
+    if (parser.given("--switch-theta") && scheme != "cn-switch")
+      throw cli::UsageError("--switch-theta: only with --scheme cn-switch (allowed: omit it)");
     if (scheme == "ps" && ps_form == "literal" && beta == 0.0 && mass != "consistent")
       throw cli::UsageError("--beta: 0 is not allowed with --ps-form literal and a massless contact node "
                             "(the step matrix is singular); use --beta > 0 or --ps-form algebraic");
@@ -114,6 +130,7 @@ int main(int argc, char** argv) {
     configuration.scheme.beta = beta;
     configuration.scheme.restitution = restitution;
     configuration.scheme.contact_row = mrm::contact_row_by_name(ps_form);
+    configuration.scheme.switch_theta = switch_theta;
     configuration.mass = mrm::mass_redistribution_by_name(mass);
     configuration.elements = elements;
     configuration.dt = step;

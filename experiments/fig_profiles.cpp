@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
   return cli::guarded_main("fig_profiles", [&] {
     // 1. Options.
     long elements = 20, exact_points = 400;
-    double courant = 0.5;
+    double courant = 0.5, switch_theta = 1.0;
     std::string scheme = "cn", ps_form = "literal", instants_text = "0.5,1.5,2.5,6.5,7.5,8.5";
     cli::Parser parser("fig_profiles",
                        "Writes the displacement along the bar at a few instants (free flight, contact, release): "
@@ -47,7 +47,11 @@ int main(int argc, char** argv) {
                         "fig_profiles --scheme be --instants 0.5,1.5,2.5 --output p.dat"});
     parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), >= 2", &elements, cli::at_least(2));
     parser.add_real("--courant", "-c", "C", "time step dt = C h (C > 0)", &courant, cli::positive());
-    parser.add_choice("--scheme", "-s", "S", "time scheme", {"cn", "be", "ps"}, &scheme);
+    parser.add_choice("--scheme", "-s", "S", "time scheme (ec: energy-conserving Crank-Nicolson; cn-switch: "
+                      "Crank-Nicolson with a theta-step at each change of the contact status)",
+                      {"cn", "be", "ps", "ec", "cn-switch"}, &scheme);
+    parser.add_real("--switch-theta", "", "TH", "cn-switch: theta of its switching step, in [0.5, 1]", &switch_theta,
+                    cli::in_closed_range(0.5, 1));
     parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row", {"algebraic", "literal"}, &ps_form);
     parser.add_string("--instants", "-t", "LIST", "comma-separated instants t >= 0, each rounded to a time level",
                       &instants_text);
@@ -55,6 +59,8 @@ int main(int argc, char** argv) {
                        cli::at_least(10));
     mrm::repro::FigureOutputs outputs(parser, "fig_profiles", "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    if (parser.given("--switch-theta") && scheme != "cn-switch")
+      throw cli::UsageError("--switch-theta: only with --scheme cn-switch (allowed: omit it)");
     std::vector<double> instants;
     {
       std::stringstream list(instants_text);
@@ -87,7 +93,7 @@ int main(int argc, char** argv) {
     for (std::size_t m = 0; m < masses.size(); ++m) {
       std::cerr << "fig_profiles: " << scheme << ' ' << masses[m] << '\n';
       mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(masses[m]),
-                                    mrm::repro::scheme_parameters(scheme, ps_form, masses[m]), dt);
+                                    mrm::repro::scheme_parameters(scheme, ps_form, masses[m], switch_theta), dt);
       mrm::run(simulation, last_level, [&](const mrm::Sample& s) {
         for (std::size_t k = 0; k < levels.size(); ++k)
           if (levels[k] == s.level) profiles[m][k] = *s.displacement;
