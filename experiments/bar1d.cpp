@@ -5,19 +5,23 @@
 // solution (mathematics.md §2, the default), or the smooth S1 (smooth-impact) and S2 (grazing) of
 // mathematics.md §11 — or from samples x, u⁰, v⁰ read from a file (--initial-data), discretised with P1
 // elements and a Lagrange multiplier at the contact node, a mass matrix (consistent, or redistributed by
-// Mod 1, 2 or 3) and one time scheme (Crank–Nicolson, backward Euler or Paoli–Schatzman). It prints the
-// relative errors of mathematics.md §5 against the exact solution (the closed form for the paper's
-// benchmark, the characteristic solution of mathematics.md §10 for any other data), the energy range and
-// the run's size and time, one `name = value` line each, and optionally writes the time series of the
-// contact point (u(0,t), λ(t), the energy, and the exact values beside them). Its standard output is the
-// same bytes for the same command except the wall time of the run (wall_seconds), which `--no-timing`
-// leaves out.
+// Mod 1, 2 or 3) and one time scheme (Crank–Nicolson, backward Euler, Paoli–Schatzman, or the
+// energy-conserving Crank–Nicolson and Crank–Nicolson with a θ-step at each status change of
+// mathematics.md §12). It prints the relative errors of mathematics.md §5 against the exact solution (the
+// closed form for the paper's benchmark, the characteristic solution of mathematics.md §10 for any other
+// data), the energy range and the run's size and time, one `name = value` line each, and optionally
+// writes the time series of the contact point (u(0,t), λ(t), the energy, and the exact values beside
+// them). Its standard output is the same bytes for the same command except the wall time of the run
+// (wall_seconds), which `--no-timing` leaves out.
 //
 // Sample runs:
 //   bar1d --scheme cn --mass mod3 --elements 50 --courant 0.5 --final-time 12
 //   bar1d --scheme ps --ps-form literal --mass mod2 --elements 100 --dt 0.004 --output ps.dat
 //   bar1d --benchmark grazing --scheme cn --mass mod1 --elements 400
 //   bar1d --initial-data tests/data/initial_data/left_going_wave.dat --elements 200 --final-time 4
+//   bar1d --scheme be --mass consistent --elements 200 --courant 1
+//   bar1d --scheme ec --mass mod3 --elements 16 --courant 10 --final-time 300
+//   bar1d --scheme cn-switch --switch-theta 0.75 --mass mod1 --elements 400
 //
 // Description. Steps: (1) read the options and the initial-data file (so that bad values fail before
 // any work); (2) open the output file (so that a bad path fails before the run); (3) build the mesh,
@@ -46,7 +50,8 @@ int main(int argc, char** argv) {
   return cli::guarded_main("bar1d", [&] {
     // 1. Options.
     long elements = 100;
-    double courant = 0.5, dt = 0.0, final_time = 6.0, length = 1.0, amplitude = 0.5, beta = 0.25, restitution = 0.0;
+    double courant = 0.5, dt = 0.0, final_time = 6.0, length = 1.0, amplitude = 0.5, beta = 0.25, restitution = 0.0,
+           switch_theta = 1.0;
     std::string scheme = "cn", mass = "mod3", ps_form = "algebraic", initial = "consistent", output;
     std::string benchmark = "paper", initial_data;
     bool no_timing = false;
@@ -91,8 +96,15 @@ int main(int argc, char** argv) {
     parser.add_real("--amplitude", "-a", "A",
                     "initial datum u0(x) = A (L - x), A in [1e-100, 1e100] (--benchmark paper only)", &amplitude,
                     cli::in_closed_range(1e-100, 1e100));
-    parser.add_choice("--scheme", "-s", "S", "time scheme: Crank-Nicolson, backward Euler, Paoli-Schatzman",
-                      {"cn", "be", "ps"}, &scheme);
+    parser.add_choice("--scheme", "-s", "S",
+                      "time scheme: Crank-Nicolson, backward Euler, Paoli-Schatzman, energy-conserving "
+                      "Crank-Nicolson (massless contact node), Crank-Nicolson with a theta-step at each change of "
+                      "the contact status",
+                      {"cn", "be", "ps", "ec", "cn-switch"}, &scheme);
+    parser.add_real("--switch-theta", "", "TH",
+                    "cn-switch: theta in [0.5, 1] of the step that replaces a Crank-Nicolson step across a change "
+                    "of the contact status (1: backward Euler, the energy never increases)",
+                    &switch_theta, cli::in_closed_range(0.5, 1));
     parser.add_choice("--mass", "-m", "M", "mass matrix: Mod 1/2/3 or the consistent P1 mass",
                       {"mod1", "mod2", "mod3", "consistent"}, &mass);
     parser.add_real("--beta", "-b", "B",
@@ -126,6 +138,11 @@ int main(int argc, char** argv) {
     if (mass == "consistent" && scheme == "ps" && ps_form == "algebraic")
       throw cli::UsageError("--ps-form: algebraic needs a massless contact node (--mass mod1, mod2 or mod3); "
                             "with --mass consistent use --ps-form literal");
+    if (scheme == "ec" && mass == "consistent")
+      throw cli::UsageError("--scheme: ec needs a massless contact node (--mass mod1, mod2 or mod3): with the "
+                            "consistent mass the contact energy has no discrete gradient");
+    if (parser.given("--switch-theta") && scheme != "cn-switch")
+      throw cli::UsageError("--switch-theta: only with --scheme cn-switch (allowed: omit it)");
     if (scheme == "ps" && ps_form == "literal" && beta == 0.0 && mass != "consistent")
       throw cli::UsageError("--beta: 0 is not allowed with --ps-form literal and a massless contact node "
                             "(the step matrix is singular); use --beta > 0 or --ps-form algebraic");
@@ -165,6 +182,7 @@ int main(int argc, char** argv) {
     configuration.scheme.beta = beta;
     configuration.scheme.restitution = restitution;
     configuration.scheme.contact_row = mrm::contact_row_by_name(ps_form);
+    configuration.scheme.switch_theta = switch_theta;
     configuration.mass = mrm::mass_redistribution_by_name(mass);
     configuration.elements = elements;
     configuration.dt = step;

@@ -22,16 +22,11 @@
 // c ∈ (Δt = h, Δt = h/2); columns N h dt and the eight errors.
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <iostream>
 #include <memory>
-#include <mutex>
 #include <sstream>
 #include <string>
-#include <system_error>
-#include <thread>
 #include <vector>
 
 #include "options.hpp"
@@ -39,6 +34,7 @@
 #include "errors.hpp"
 #include "exact_solution.hpp"
 #include "configurations.hpp"
+#include "parallel.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
 #include "schemes.hpp"
@@ -51,10 +47,6 @@ namespace {
 const std::array<double, 2> courants{1.0, 0.5};
 const std::array<const char*, 2> courant_keys{"dth", "dth2"};
 const std::array<const char*, 2> courant_labels{"$\\Delta t = h$", "$\\Delta t = h/2$"};
-// The measures in the order of mrm::ErrorAccumulator::names, as the report prints them.
-const std::array<const char*, 8> measure_labels{
-    "$u(0,\\cdot)$, $L^2_t$", "$\\lambda$, $L^2_t$",      "$u$, $L^\\infty_t L^2$", "$u$, $L^\\infty_t H^1$",
-    "$u_t$, $L^\\infty_t L^2$", "$u$, $L^2_t L^2$", "$u$, $L^2_t H^1$",       "$u_t$, $L^2_t L^2$"};
 
 struct Run {
   std::size_t scheme, mass, courant, level;
@@ -124,46 +116,21 @@ int main(int argc, char** argv) {
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
 
-    // 4. The runs, on `threads` workers taking the next run from a shared counter. Each run writes only
-    // its own slot; the first exception stops the others and is rethrown here.
-    std::atomic<std::size_t> next{0};
-    std::atomic<bool> failed{false};
-    std::exception_ptr failure;
-    std::mutex failure_mutex, log_mutex;
-    auto worker = [&] {
-      while (!failed) {
-        const std::size_t k = next++;
-        if (k >= order.size()) return;
-        Run& r = runs[order[k]];
-        try {
+    // 4. The runs, on `threads` workers (repro/parallel: each run writes only its own slot).
+    mrm::repro::run_in_parallel(
+        order, threads,
+        [&](std::size_t k) {
+          Run& r = runs[k];
           r.errors = mrm::ErrorAccumulator::values(
               mrm::repro::run_configuration(mrm::repro::paper_configuration(schemes[r.scheme], ps_form, masses[r.mass],
                                                                             r.elements, courants[r.courant], final_time))
                   .errors);
-          std::lock_guard<std::mutex> lock(log_mutex);
-          std::cerr << "fig_convergence: " << k + 1 << '/' << order.size() << ' ' << schemes[r.scheme] << ' '
+        },
+        [&](std::size_t position, std::size_t k) {
+          const Run& r = runs[k];
+          std::cerr << "fig_convergence: " << position << '/' << order.size() << ' ' << schemes[r.scheme] << ' '
                     << masses[r.mass] << " dt/h=" << courants[r.courant] << " N=" << r.elements << '\n';
-        } catch (...) {
-          std::lock_guard<std::mutex> lock(failure_mutex);
-          if (!failure) failure = std::current_exception();
-          failed = true;
-        }
-      }
-    };
-    // A thread that cannot be started (the system's limit on threads) stops the run with a message:
-    // the workers already started are told to stop and joined first, never left joinable.
-    std::vector<std::thread> pool;
-    try {
-      for (long t = 1; t < threads; ++t) pool.emplace_back(worker);
-    } catch (const std::system_error& error) {
-      failed = true;
-      for (std::thread& t : pool) t.join();
-      throw std::runtime_error("--threads: cannot start worker thread " + std::to_string(pool.size() + 2) + " of " +
-                               std::to_string(threads) + ": " + error.what());
-    }
-    worker();
-    for (std::thread& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+        });
 
     // 5. The data blocks, in the fixed order of `runs` (scheme, mass, ratio, mesh).
     std::ostream& out = outputs.data();
@@ -201,7 +168,7 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "conv:T", mrm::tex_number(final_time, 3));
     mrm::tex_define(defs, "conv:psform", ps_form);
     std::vector<std::string> headers{"scheme", "mass", "$\\Delta t$"}, ranking_headers{"scheme", "$\\Delta t$"};
-    for (const char* label : measure_labels) {
+    for (const char* label : mrm::repro::measure_labels()) {
       headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
       ranking_headers.push_back(headers.back());
     }

@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
   return cli::guarded_main("fig_profiles", [&] {
     // 1. Options.
     long elements = 20, exact_points = 400;
-    double courant = 0.5;
+    double courant = 0.5, switch_theta = 1.0;
     std::string scheme = "cn", ps_form = "literal", instants_text = "0.5,1.5,2.5,6.5,7.5,8.5";
     cli::Parser parser("fig_profiles",
                        "Writes the displacement along the bar at a few instants (free flight, contact, release): "
@@ -48,7 +48,11 @@ int main(int argc, char** argv) {
     parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), in [2, 1e7]", &elements,
                        mrm::repro::elements_range());
     parser.add_real("--courant", "-c", "C", "time step dt = C h (0 < C <= 1e6)", &courant, mrm::repro::courant_range());
-    parser.add_choice("--scheme", "-s", "S", "time scheme", {"cn", "be", "ps"}, &scheme);
+    parser.add_choice("--scheme", "-s", "S", "time scheme (ec: energy-conserving Crank-Nicolson; cn-switch: "
+                      "Crank-Nicolson with a theta-step at each change of the contact status)",
+                      {"cn", "be", "ps", "ec", "cn-switch"}, &scheme);
+    parser.add_real("--switch-theta", "", "TH", "cn-switch: theta of its switching step, in [0.5, 1]", &switch_theta,
+                    cli::in_closed_range(0.5, 1));
     parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row", {"algebraic", "literal"}, &ps_form);
     parser.add_string("--instants", "-t", "LIST",
                       "comma-separated instants t >= 0, each rounded to a time level (at most 1e12 steps away)",
@@ -57,6 +61,8 @@ int main(int argc, char** argv) {
                        &exact_points, cli::in_closed_range(10, cli::max_curve_points));
     mrm::repro::FigureOutputs outputs(parser, "fig_profiles", "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    if (parser.given("--switch-theta") && scheme != "cn-switch")
+      throw cli::UsageError("--switch-theta: only with --scheme cn-switch (allowed: omit it)");
     std::vector<double> instants;
     {
       std::stringstream list(instants_text);
@@ -95,6 +101,7 @@ int main(int argc, char** argv) {
       mrm::repro::Configuration configuration =
           mrm::repro::paper_configuration(scheme, ps_form, masses[m], elements, courant,
                                           static_cast<double>(last_level) * dt);
+      configuration.scheme.switch_theta = switch_theta;
       configuration.steps = last_level;  // exactly the last chosen level (it may be level 0)
       mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
         for (std::size_t k = 0; k < levels.size(); ++k)

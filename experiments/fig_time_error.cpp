@@ -37,12 +37,6 @@
 
 namespace cli = mrm::cli;
 
-namespace {
-const std::array<const char*, 8> measure_labels{
-    "$u(0,\\cdot)$, $L^2_t$", "$\\lambda$, $L^2_t$",      "$u$, $L^\\infty_t L^2$", "$u$, $L^\\infty_t H^1$",
-    "$u_t$, $L^\\infty_t L^2$", "$u$, $L^2_t L^2$", "$u$, $L^2_t H^1$",       "$u_t$, $L^2_t L^2$"};
-}
-
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_time_error", [&] {
     // 1. Options.
@@ -159,7 +153,7 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "time:largest", step_text(ratio.front()));
     mrm::tex_define(defs, "time:smallest", step_text(ratio.back()));
     std::vector<std::string> headers{"scheme", "$\\Delta t/h$"};
-    for (const char* label : measure_labels) headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
+    for (const char* label : mrm::repro::measure_labels()) headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
     mrm::repro::Table table(headers);
     const std::size_t half = ratio.size() / 2;
     for (std::size_t s = 0; s < schemes.size(); ++s) {

@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "contact.hpp"
+#include "energy_step.hpp"
 #include "schemes.hpp"
 
 namespace mrm {
@@ -20,7 +21,8 @@ namespace mrm {
 // row from which on all rows up to n−2 are equal, compared exactly, so any weights are handled
 // (Mod 1 and Mod 2 give head = 2, Mod 3 and the consistent mass 2 and 1; a weight that varies
 // along the bar gives head = n−1, every row explicit).
-FastStep::FastStep(const Tridiagonal& b1, const Tridiagonal& b2, const Tridiagonal& m, const Tridiagonal& s) {
+FastStep::FastStep(const Tridiagonal& b1, const Tridiagonal& b2, const Tridiagonal& m, const Tridiagonal& s,
+                   Index minimum_head) {
   const Index rows = m.size();
   const auto row = [&](Index i) {
     const bool last = i + 1 == rows;
@@ -40,20 +42,20 @@ FastStep::FastStep(const Tridiagonal& b1, const Tridiagonal& b2, const Tridiagon
     while (head > 1 && same(row(head - 1), interior_)) --head;
     // The interior loop uses the symmetry of B₁ and B₂ there; without it, every row is explicit.
     if (!(interior_.b1l == interior_.b1u && interior_.b2l == interior_.b2u)) head = rows - 1;
+    head = std::max(head, std::min(minimum_head, rows - 1));
   }
   head_.clear();
   for (Index i = 0; i < head; ++i) head_.push_back(row(i));
 }
 
-void FastStep::step(BarSimulation& simulation, bool has_load) const {
+bool FastStep::step(BarSimulation& simulation, bool has_load) const {
   const bool scaled = simulation.scaled_;
   if (simulation.three_level_) {
-    if (has_load) scaled ? fused_step<true, true, true>(simulation) : fused_step<true, true, false>(simulation);
-    else scaled ? fused_step<true, false, true>(simulation) : fused_step<true, false, false>(simulation);
-  } else {
-    if (has_load) scaled ? fused_step<false, true, true>(simulation) : fused_step<false, true, false>(simulation);
-    else scaled ? fused_step<false, false, true>(simulation) : fused_step<false, false, false>(simulation);
+    if (has_load) return scaled ? fused_step<true, true, true>(simulation) : fused_step<true, true, false>(simulation);
+    return scaled ? fused_step<true, false, true>(simulation) : fused_step<true, false, false>(simulation);
   }
+  if (has_load) return scaled ? fused_step<false, true, true>(simulation) : fused_step<false, true, false>(simulation);
+  return scaled ? fused_step<false, false, true>(simulation) : fused_step<false, false, false>(simulation);
 }
 
 // One step of (★), fused into the two sweeps of the solve, with no allocation and no refactorisation:
@@ -84,7 +86,7 @@ void FastStep::step(BarSimulation& simulation, bool has_load) const {
 // The scheme (two or three levels) and the presence of a load are template parameters, so that the
 // loops carry no dead work.
 template <bool three_level, bool has_load, bool scaled>
-void FastStep::fused_step(BarSimulation& sim) const {
+bool FastStep::fused_step(BarSimulation& sim) const {
   const Index n = sim.mesh_.unknowns();
   const Index head = static_cast<Index>(head_.size());
   const double* u = sim.u_.data();
@@ -138,9 +140,26 @@ void FastStep::fused_step(BarSimulation& sim) const {
     b0 = r0.b1d * u[0] + r0.b1u * u[1] + r0.b2d * w[0] + r0.b2u * w[1] - sim.lambda_in_rhs_ * sim.lambda_;
     if constexpr (has_load) b0 += g_now * f_now[0] + g_next * f_next[0];
   }
+  // EC decides the contact on row 1 instead (energy_step.cpp: its sweep up starts from the value u₀
+  // that carries the discrete-gradient force, which is not the contact node's new value at a status
+  // change); CN-switch returns before writing anything when the status changes.
   const double obstacle = three_level ? -sim.parameters_.restitution * w[0] : 0.0;
-  const ContactStep contact = sim.solver_.resolve_contact(b0 - elimination[0] * y_next, sim.kappa_, obstacle);
+  ContactStep contact;
+  double recurrence_u0;
+  if (sim.energy_conserving_) {
+    const double h = sim.mesh_.h();
+    const double load0_now = has_load ? f_now[0] : 0.0, load0_next = has_load ? f_next[0] : 0.0;
+    const EnergyConservingContact c =
+        energy_conserving_contact(inverse_pivot[1] * y_next, -upward[1], u[0], u[1] + h * load0_now, h, load0_next);
+    contact = {c.u0, c.multiplier, c.active};
+    recurrence_u0 = c.recurrence_u0;
+  } else {
+    contact = sim.solver_.resolve_contact(b0 - elimination[0] * y_next, sim.kappa_, obstacle);
+    if (sim.switch_ && contact.active != sim.active_) return false;
+    recurrence_u0 = contact.u0;
+  }
   sim.lambda_ = contact.multiplier;
+  sim.active_ = contact.active;
 
   // Sweep up. Two-level: V' = rate (U' − U) − memory V, written over W, kinetic form V'ᵀMV',
   // potential U'ᵀSU'. Three-level: X = (U' − U)/Δt, forms XᵀMX, PᵀSP, QᵀSQ; W' = Uⁿ by a swap below.
@@ -212,10 +231,15 @@ void FastStep::fused_step(BarSimulation& sim) const {
     z_prev = z;
     return un;
   };
+  // Node 0's value enters the energy and the velocity; the recurrence runs from recurrence_u0 (the same
+  // number except for EC at a status change): z₀ for node 1, and Uⁿ⁺¹_{i−2} for node 2, set after node 1
+  // (EC keeps row 1 among the explicit rows for this: minimum_head = 2).
   emit(r0, 0, contact.u0, explicit_row);
-  z_prev = contact.u0;
-  for (Index i = 1; i < std::min(head, n - 1); ++i)
+  z_prev = recurrence_u0;
+  for (Index i = 1; i < std::min(head, n - 1); ++i) {
     emit(head_[static_cast<std::size_t>(i)], i, solve_up(i), explicit_row);
+    if (i == 1) un_prev2 = recurrence_u0;
+  }
   if (head < n - 1) {
     const Row r = interior_;
     // The values z_{a−1} at row head − 1 (the first of the kinetic, the potential and the second forms).
@@ -243,6 +267,7 @@ void FastStep::fused_step(BarSimulation& sim) const {
     sim.u_.swap(sim.u_new_);
   }
   if constexpr (has_load) sim.f_now_.swap(sim.f_next_);
+  return true;
 }
 
 }  // namespace mrm

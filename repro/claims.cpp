@@ -991,6 +991,9 @@ RebuiltStep rebuild_step(const SchemeParameters& p, const Tridiagonal& m, const 
       r.obstacle = -p.restitution * u_previous[0];
       break;
     }
+    case Scheme::energy_conserving:
+    case Scheme::switching:  // not schemes of the paper: their steps are checked in lib/energy_step.cpp
+      throw std::invalid_argument("check_contact_step: the paper's schemes only (allowed: cn, be, ps)");
   }
   const bool algebraic = massless && (p.scheme != Scheme::paoli_schatzman || p.contact_row == ContactRow::algebraic);
   if (algebraic) {
