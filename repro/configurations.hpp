@@ -49,13 +49,12 @@ inline std::string scheme_label(const std::string& scheme) {
 }
 
 /// The scheme's parameters; Paoli–Schatzman with β = ¼, e = 0 and the given contact row (a mass that
-/// keeps the contact node's inertia always takes the literal row: it has no algebraic one); CN-switch
-/// with the given θ of its switching step.
+/// keeps the contact node's inertia always takes the literal row: it has no algebraic one). CN-switch's
+/// θ keeps its default (1, backward Euler); a program that offers it sets SchemeParameters::switch_theta.
 inline mrm::SchemeParameters scheme_parameters(const std::string& scheme, const std::string& ps_form,
-                                               const std::string& mass, double switch_theta = 1.0) {
+                                               const std::string& mass) {
   mrm::SchemeParameters p;
   p.scheme = mrm::scheme_by_name(scheme);
-  p.switch_theta = switch_theta;
   p.beta = 0.25;
   p.restitution = 0.0;
   p.contact_row = mass == "consistent" ? mrm::ContactRow::literal : mrm::contact_row_by_name(ps_form);
@@ -99,7 +98,8 @@ class FigureOutputs {
 };
 
 /// One run of the benchmark (mathematics.md §2): the bar (0, L) released from u⁰(x) = a (L − x), a
-/// scheme, a mass, a mesh of N elements and Δt (given, or C h), to the first level t_n ≥ T.
+/// scheme, a mass, a mesh of N elements and Δt (given, or C h), to the first level t_n ≥ T (or for a
+/// given number of steps).
 struct Configuration {
   SchemeParameters scheme;
   MassRedistribution mass = mod3();
@@ -107,6 +107,7 @@ struct Configuration {
   double courant = 0.5;  ///< Δt = C h, unless dt > 0
   double dt = 0.0;       ///< the time step if > 0
   double final_time = 3.0;
+  Index steps = -1;  ///< the number of steps if ≥ 0 (final_time is then unused)
   double length = 1.0;
   double amplitude = 0.5;
   InitialContactNode initial = InitialContactNode::consistent;
@@ -128,9 +129,11 @@ struct Measures {
 };
 
 /// Runs the configuration to its final time, calling `observe` (if given) on every sample from level 0
-/// on, and returns its measures. Throws std::runtime_error if the energy becomes non-finite (a value
-/// that cannot be computed is an error, never a nan in a table).
+/// on, and returns its measures: the errors against `reference` if given (a closed form under test),
+/// else against the configuration's own exact solution. Throws std::runtime_error if the energy becomes
+/// non-finite (a value that cannot be computed is an error, never a nan in a table).
 Measures run_configuration(const Configuration& configuration,
-                           const std::function<void(const Sample&)>& observe = {});
+                           const std::function<void(const Sample&)>& observe = {},
+                           const ExactSolution* reference = nullptr);
 
 }  // namespace mrm::repro
