@@ -116,7 +116,8 @@ struct Configuration {
 };
 
 /// A configuration named as the paper names it: scheme "cn", "be" or "ps" (Paoli–Schatzman (¼, 0) with
-/// the contact row `ps_form`), mass "mod1", "mod2", "mod3" or "consistent", N, Δt = C h, T.
+/// the contact row `ps_form`), or "ec" or "cn-switch" (mathematics.md §12), mass "mod1", "mod2", "mod3"
+/// or "consistent", N, Δt = C h, T.
 Configuration paper_configuration(const std::string& scheme, const std::string& ps_form, const std::string& mass,
                                   Index elements, double courant, double final_time);
 
