@@ -126,12 +126,7 @@ int main(int argc, char** argv) {
       }
       table.add_rule();
     }
-    std::ostringstream tabular;
-    mrm::repro::LatexLayout layout;
-    layout.columns = "llrrr";
-    layout.final_newline = false;
-    table.write_latex(tabular, layout);
-    outputs.values() << "\\mrmdef{hist:table}{" << tabular.str() << "}\n";
+    outputs.values() << "\\mrmdef{hist:table}{" << mrm::repro::latex_tabular(table, "llrrr") << "}\n";
     outputs.commit();
     return 0;
   });

@@ -230,17 +230,9 @@ int main(int argc, char** argv) {
       mrm::tex_define(defs, "conv:ordered:" + schemes[s], std::to_string(ordered));
       mrm::tex_define(defs, "conv:cases:" + schemes[s], std::to_string(cases));
     }
-    const auto tabular = [](const mrm::repro::Table& table, const std::string& columns) {
-      mrm::repro::LatexLayout layout;
-      layout.columns = columns;
-      layout.final_newline = false;
-      std::ostringstream out;
-      table.write_latex(out, layout);
-      return out.str();
-    };
-    defs << "\\mrmdef{conv:table:orders}{" << tabular(orders_table, "lll" + std::string(8, 'r')) << "}\n";
-    defs << "\\mrmdef{conv:table:errors}{" << tabular(errors_table, "lll" + std::string(8, 'r')) << "}\n";
-    defs << "\\mrmdef{conv:table:ranking}{" << tabular(ranking_table, "ll" + std::string(8, 'c')) << "}\n";
+    defs << "\\mrmdef{conv:table:orders}{" << mrm::repro::latex_tabular(orders_table, "lll" + std::string(8, 'r')) << "}\n";
+    defs << "\\mrmdef{conv:table:errors}{" << mrm::repro::latex_tabular(errors_table, "lll" + std::string(8, 'r')) << "}\n";
+    defs << "\\mrmdef{conv:table:ranking}{" << mrm::repro::latex_tabular(ranking_table, "ll" + std::string(8, 'c')) << "}\n";
 
     // 7. Commit.
     outputs.commit();

@@ -34,7 +34,6 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -93,15 +92,6 @@ double ratio(const Run& r, double energy) { return energy / r.measures.energy_in
 // max over the run of |Eⁿ − E⁰|/E⁰
 double drift(const Run& r) {
   return std::max(ratio(r, r.measures.energy_max) - 1, 1 - ratio(r, r.measures.energy_min));
-}
-
-std::string tabular(const mrm::repro::Table& table, const std::string& columns) {
-  mrm::repro::LatexLayout layout;
-  layout.columns = columns;
-  layout.final_newline = false;
-  std::ostringstream out;
-  table.write_latex(out, layout);
-  return out.str();
 }
 
 std::string mass_label(const std::string& mass) { return "Mod~" + mass.substr(3); }
@@ -274,7 +264,7 @@ int main(int argc, char** argv) {
           table.add_rule();
         }
       }
-      defs << "\\mrmdef{ecs:long:table}{" << tabular(table, "lllrrrr") << "}\n";
+      mrm::tex_define(defs, "ecs:long:table", mrm::repro::latex_tabular(table, "lllrrrr"));
     } else {
       out << "# dt/h = 0.5\n# T = " << cli::format_real(10 * period) << '\n';
       mrm::tex_define(defs, "ecs:meas:T", mrm::tex_number(10 * period, 2));
@@ -322,7 +312,8 @@ int main(int argc, char** argv) {
           mrm::tex_define(defs, key + ":largest_ratio", mrm::tex_number(largest_ratio, 2));
           mrm::tex_define(defs, key + ":largest_deviation", mrm::tex_number(100 * largest_deviation, 2));
         }
-        defs << "\\mrmdef{ecs:meas:table:" << n << "}{" << tabular(table, "ll" + std::string(9, 'r')) << "}\n";
+        mrm::tex_define(defs, "ecs:meas:table:" + std::to_string(n),
+                        mrm::repro::latex_tabular(table, "ll" + std::string(9, 'r')));
       }
       mrm::tex_define(defs, "ecs:meas:cn-switch:mod3:lost_ratio", mrm::tex_number(switch_lost[0] / switch_lost[1], 2));
       mrm::tex_define(defs, "ecs:meas:mesh_ratio", std::to_string(measure_meshes[1] / measure_meshes[0]));

@@ -192,12 +192,7 @@ int main(int argc, char** argv) {
       }
     }
     mrm::tex_define(defs, "time:finehalf", step_text(ratio[half]));
-    std::ostringstream tabular;
-    mrm::repro::LatexLayout layout;
-    layout.columns = "ll" + std::string(8, 'r');
-    layout.final_newline = false;
-    table.write_latex(tabular, layout);
-    defs << "\\mrmdef{time:table}{" << tabular.str() << "}\n";
+    defs << "\\mrmdef{time:table}{" << mrm::repro::latex_tabular(table, "ll" + std::string(8, 'r')) << "}\n";
 
     // 6. Commit.
     outputs.commit();

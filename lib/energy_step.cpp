@@ -437,7 +437,7 @@ TEST_CASE("the EC root is Crank–Nicolson's, bitwise, when the status does not 
   CHECK(changed > 1000);
 }
 
-TEST_CASE("the contact roots reject mu outside [0, 1) and non-finite data") {
+TEST_CASE("the contact roots reject mu outside 0 <= mu < 1 and non-finite data") {
   for (double mu : {-0.1, 1.0, 1.5, std::nan("")}) {
     CAPTURE(mu);
     CHECK_THROWS_WITH_AS(energy_conserving_contact_root(0.1, 0.2, mu), doctest::Contains("allowed: 0 <= mu < 1"),

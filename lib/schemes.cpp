@@ -918,7 +918,7 @@ TEST_CASE("CN-switch never increases the energy, dissipating O(h) per status cha
   }
 }
 
-TEST_CASE("CN-switch with theta = 1/2 is Crank–Nicolson, and theta outside [1/2, 1] is refused") {
+TEST_CASE("CN-switch with theta = 1/2 is Crank–Nicolson, and theta outside 1/2 ... 1 is refused") {
   const UniformMesh mesh(1.0, 20);
   SchemeParameters p = with(Scheme::switching);
   p.switch_theta = 0.5;

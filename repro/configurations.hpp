@@ -65,13 +65,12 @@ inline std::string scheme_label(const std::string& scheme) {
 }
 
 /// The scheme's parameters; Paoli–Schatzman with β = ¼, e = 0 and the given contact row (a mass that
-/// keeps the contact node's inertia always takes the literal row: it has no algebraic one); CN-switch
-/// with the given θ of its switching step.
+/// keeps the contact node's inertia always takes the literal row: it has no algebraic one). CN-switch's
+/// θ keeps its default (1, backward Euler); a program that offers it sets SchemeParameters::switch_theta.
 inline mrm::SchemeParameters scheme_parameters(const std::string& scheme, const std::string& ps_form,
-                                               const std::string& mass, double switch_theta = 1.0) {
+                                               const std::string& mass) {
   mrm::SchemeParameters p;
   p.scheme = mrm::scheme_by_name(scheme);
-  p.switch_theta = switch_theta;
   p.beta = 0.25;
   p.restitution = 0.0;
   p.contact_row = mass == "consistent" ? mrm::ContactRow::literal : mrm::contact_row_by_name(ps_form);
@@ -163,7 +162,8 @@ InitialData configuration_data(const Configuration& configuration);
 std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& configuration, double horizon);
 
 /// A configuration named as the paper names it: scheme "cn", "be" or "ps" (Paoli–Schatzman (¼, 0) with
-/// the contact row `ps_form`), mass "mod1", "mod2", "mod3" or "consistent", N, Δt = C h, T.
+/// the contact row `ps_form`), or "ec" or "cn-switch" (mathematics.md §12), mass "mod1", "mod2", "mod3"
+/// or "consistent", N, Δt = C h, T.
 Configuration paper_configuration(const std::string& scheme, const std::string& ps_form, const std::string& mass,
                                   Index elements, double courant, double final_time);
 
