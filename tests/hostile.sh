@@ -667,6 +667,7 @@ usage_case late "fig_energy --final-time 1e-300: zero steps refused" fig_energy 
 usage_case late "fig_convergence --final-time 1e-300: zero steps refused" fig_convergence --final-time --final-time 1e-300 -n 4 -k 2
 usage_case late "fig_time_error --final-time 1e-300: zero steps refused" fig_time_error --final-time --final-time 1e-300
 usage_case late "fig_profiles --instants 1e300: refused" fig_profiles --instants --instants 1e300
+usage_case late "cn_large_step --final-time 1e-300: zero steps refused" cn_large_step --final-time --final-time 1e-300
 usage_case late "bench_step --repetitions 4611686018427387904: refused" bench_step --repetitions --repetitions 4611686018427387904
 usage_case late "bench_step --batch-ms 1e300: refused" bench_step --batch-ms --batch-ms 1e300
 
