@@ -120,12 +120,14 @@ $(SWEEP_MAPS:%=$(DATA)/%.dat): $(DATA)/%.dat: $(BUILD)/bin/% $(DATA)/sweep.dat |
 $(SWEEP_MAPS:%=$(DATA)/%.tex): $(DATA)/%.tex: $(DATA)/%.dat ;
 
 # ---- Figures, report and API documentation ------------------------------------------------------
+# The views of experiments/fig_energy_schemes.cpp (its rule is below).
+ENERGY_SCHEMES_VIEWS := history map measures
 # One figure = one program experiments/X.cpp = one data file $(DATA)/X.dat (with the LaTeX values the
 # report quotes, $(DATA)/X.tex) = one gnuplot script figures/X.gp = one PDF $(FIGURES)/X.pdf.
 # The report paper/report.tex \input's the .tex fragments and includes the PDFs; latexmk builds it.
 FIGURE_NAMES := fig_contact_history fig_energy fig_convergence fig_time_error fig_ps_forms fig_profiles fig_phase \
-                fig_stability_map \
-                $(SWEEP_MAPS)
+                fig_stability_map fig_smooth_convergence fig_smooth_benchmarks \
+                $(SWEEP_MAPS) $(ENERGY_SCHEMES_VIEWS:%=fig_energy_schemes_%)
 FIGURE_PDFS := $(FIGURE_NAMES:%=$(FIGURES)/%.pdf)
 FIGURE_DATA := $(FIGURE_NAMES:%=$(DATA)/%.dat)
 FIGURE_TEX := $(FIGURE_NAMES:%=$(DATA)/%.tex)
@@ -159,6 +161,13 @@ $(FIGURES)/%.pdf: figures/%.gp $(DATA)/%.dat | $(FIGURES)
 	$(REPRODUCIBLE) gnuplot -e "data='$(DATA)/$*.dat'; output='$@.tmp'" $<
 	LC_ALL=C sed -i 's|/CreationDate (D:[0-9]\{14\}Z)|/CreationDate (D:19700101000000Z)|' $@.tmp
 	mv $@.tmp $@
+
+# EC and CN-switch against Crank–Nicolson and backward Euler (mathematics.md §12): one program,
+# experiments/fig_energy_schemes.cpp, three views, each its own run, data file, values and figure
+# (a pattern rule more specific than the one above: make takes the one with the shorter stem).
+.SECONDARY: $(BUILD)/bin/fig_energy_schemes
+$(DATA)/fig_energy_schemes_%.dat $(DATA)/fig_energy_schemes_%.tex: $(BUILD)/bin/fig_energy_schemes | $(DATA)
+	$< --view $* --output $(DATA)/fig_energy_schemes_$*.dat --tex $(DATA)/fig_energy_schemes_$*.tex
 
 # Crank–Nicolson's largest energy for Δt ≫ h, relative to E_h(0) (experiments/cn_large_step.cpp).
 $(DATA)/cn_large_step.tex: $(BUILD)/bin/cn_large_step | $(DATA)

@@ -79,26 +79,14 @@ int main(int argc, char** argv) {
     claims::write_text_summary(std::cout, report.summary);
     std::cout << "\nDetail: one row per check\n";
     claims::write_text_table(std::cout, rows);
-    if (summary_tex_file) {
-      claims::write_latex_summary(summary_tex_file->stream(), report.summary);
-      summary_tex_file->commit();
-    }
-    if (summary_table_file) {
-      claims::write_latex_summary_table(summary_table_file->stream(), report.summary);
-      summary_table_file->commit();
-    }
-    if (sweep_file) {
-      mrm::repro::write_sweep(sweep_file->stream(), report.sweep);
-      sweep_file->commit();
-    }
-    if (tex_file) {
-      claims::write_latex_table(tex_file->stream(), rows);
-      tex_file->commit();
-    }
-    if (markdown_file) {
-      claims::write_markdown_table(markdown_file->stream(), rows);
-      markdown_file->commit();
-    }
+    if (summary_tex_file) claims::write_latex_summary(summary_tex_file->stream(), report.summary);
+    if (summary_table_file) claims::write_latex_summary_table(summary_table_file->stream(), report.summary);
+    if (sweep_file) mrm::repro::write_sweep(sweep_file->stream(), report.sweep);
+    if (tex_file) claims::write_latex_table(tex_file->stream(), rows);
+    if (markdown_file) claims::write_markdown_table(markdown_file->stream(), rows);
+    // The table on stdout, then every file or none.
+    cli::commit_all({summary_tex_file.get(), summary_table_file.get(), sweep_file.get(), tex_file.get(),
+                     markdown_file.get()});
     int failed = 0;
     for (const claims::ClaimResult& r : rows) failed += r.verdict == claims::Verdict::failed;
     if (failed > 0) std::cerr << "check_claims: " << failed << " check(s) FAILED\n";

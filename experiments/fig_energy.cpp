@@ -13,7 +13,7 @@
 //   fig_energy --output output/data/fig_energy.dat --tex output/data/fig_energy.tex
 //   fig_energy --elements 40 --final-time 30 --output e.dat
 //
-// Description. Steps: (1) options; (2) outputs; (3) every scheme × mass, one block each (t_energy
+// Description. Steps: (1) options and the limits of the run; (2) outputs; (3) every scheme × mass, one block each (t_energy
 // energy_h), with the energy's range and its jumps; (4) the initial-datum comparison; (5) commit.
 //
 // Data file: block 3 s + m is scheme s ∈ (cn, be, ps), mass m ∈ (mod1, mod2, mod3); columns
@@ -45,19 +45,25 @@ int main(int argc, char** argv) {
                        "(mod1, mod2, mod3) on the benchmark; the exact energy is 1/8.",
                        {"fig_energy --output output/data/fig_energy.dat --tex output/data/fig_energy.tex",
                         "fig_energy --elements 40 --final-time 30 --output e.dat"});
-    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), >= 2", &elements, cli::at_least(2));
-    parser.add_real("--courant", "-c", "C", "time step dt = C h (C > 0)", &courant, cli::positive());
+    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), in [2, 1e7]", &elements,
+                       mrm::repro::elements_range());
+    parser.add_real("--courant", "-c", "C", "time step dt = C h (0 < C <= 1e6)", &courant, mrm::repro::courant_range());
     parser.add_real("--final-time", "-T", "T", "final time (> 0); the period is 3", &final_time, cli::positive());
     parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
                       {"algebraic", "literal"}, &ps_form);
     mrm::repro::FigureOutputs outputs(parser, "fig_energy", "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
-    // 2. Outputs.
-    outputs.open(parser);
     const mrm::UniformMesh mesh(1.0, elements);
     const double dt = courant * mesh.h();
-    const mrm::Index steps = mrm::steps_to_reach(final_time, dt);
+    const mrm::Index steps = cli::checked_steps("--final-time", final_time, dt, "--courant");
+    // Nine energy histories of steps + 1 lines each.
+    cli::require_rows("--final-time", 9 * (static_cast<double>(steps) + 1),
+                      cli::format_real(static_cast<double>(steps)) + " steps of 9 runs");
+    cli::require_mesh_memory("--elements", static_cast<double>(elements), mrm::repro::bytes_per_element);
+
+    // 2. Outputs.
+    outputs.open(parser);
     const mrm::ExactSolution exact;
     std::ostream& out = outputs.data();
     out << "# fig_energy: discrete energy E_h(t) against the exact 1/8 (problem.md sec. 4-5)\n";
@@ -75,20 +81,19 @@ int main(int argc, char** argv) {
     for (const std::string& scheme : mrm::repro::scheme_names()) {
       for (const std::string& mass : mrm::repro::mass_names()) {
         std::cerr << "fig_energy: " << scheme << ' ' << mass << '\n';
-        mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(mass),
-                                      mrm::repro::scheme_parameters(scheme, ps_form, mass), dt);
         out << (block ? "\n\n" : "") << "# block " << block << ": scheme = " << scheme << ", mass = " << mass
             << "\n# columns: t_energy energy_h\n";
         ++block;
-        double initial = 0, last = 0, largest_jump = 0, lowest = 1e300, highest = -1e300;
-        mrm::run(simulation, steps, [&](const mrm::Sample& s) {
-          if (s.level == 0) initial = last = s.energy;
-          largest_jump = std::max(largest_jump, std::abs(s.energy - last));
-          last = s.energy;
-          lowest = std::min(lowest, s.energy);
-          highest = std::max(highest, s.energy);
-          out << cli::format_real(s.energy_time) << ' ' << cli::format_real(s.energy) << '\n';
-        });
+        double last = 0, largest_jump = 0;
+        const mrm::repro::Measures measures = mrm::repro::run_configuration(
+            mrm::repro::paper_configuration(scheme, ps_form, mass, elements, courant, final_time),
+            [&](const mrm::Sample& s) {
+              if (s.level == 0) last = s.energy;
+              largest_jump = std::max(largest_jump, std::abs(s.energy - last));
+              last = s.energy;
+              out << cli::format_real(s.energy_time) << ' ' << cli::format_real(s.energy) << '\n';
+            });
+        const double initial = measures.energy_initial, lowest = measures.energy_min, highest = measures.energy_max;
         const std::string key = "energy:" + scheme + ":" + mass + ":";
         mrm::tex_define(defs, key + "initial", mrm::tex_number(initial, 4));
         mrm::tex_define(defs, key + "final", mrm::tex_number(last, 4));
@@ -103,17 +108,14 @@ int main(int argc, char** argv) {
     // u₀(0) = max(0, u₁(0)), which gives E_h(0) = (1 − h)/8, or the interpolant u⁰(0) = ½, which gives
     // E_h(0) = 1/8 but is not a state of the reduced problem; Crank–Nicolson with Mod 3, errors of both.
     for (const std::string initial : {"consistent", "interpolant"}) {
-      mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mod3(),
-                                    mrm::repro::scheme_parameters("cn", ps_form, "mod3"), dt,
-                                    mrm::initial_contact_node_by_name(initial));
-      mrm::ErrorAccumulator errors(mesh, exact);
+      mrm::repro::Configuration configuration =
+          mrm::repro::paper_configuration("cn", ps_form, "mod3", elements, courant, final_time);
+      configuration.initial = mrm::initial_contact_node_by_name(initial);
       double first = 0, after_one_step = 0;
-      mrm::run(simulation, steps, [&](const mrm::Sample& s) {
-        errors.add(s);
-        if (s.level == 0) first = s.energy;
-        if (s.level == 1) after_one_step = s.energy;
-      });
-      const mrm::ErrorNorms e = errors.relative();
+      const mrm::ErrorNorms e = mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
+                                  if (s.level == 0) first = s.energy;
+                                  if (s.level == 1) after_one_step = s.energy;
+                                }).errors;
       const std::string key = "energy:initial:" + initial + ":";
       mrm::tex_define(defs, key + "E0", mrm::tex_number(first, 4));
       mrm::tex_define(defs, key + "E1", mrm::tex_number(after_one_step, 4));

@@ -19,7 +19,7 @@
 //   fig_ps_forms --output output/data/fig_ps_forms.dat --tex output/data/fig_ps_forms.tex
 //   fig_ps_forms --mass mod1 --elements 50 --final-time 30 --output ps.dat
 //
-// Description. Steps: (1) options; (2) outputs; (3) the exact u(0,t); (4) the three variants, one block
+// Description. Steps: (1) options and the limits of the run; (2) outputs; (3) the exact u(0,t); (4) the three variants, one block
 // each, with the sawtooth per period; (5) commit.
 //
 // Data file: block 0 exact (t u0); blocks 1, 2, 3: algebraic row with the redistributed mass, literal row
@@ -53,21 +53,31 @@ int main(int argc, char** argv) {
                        "the sawtooth in u(0,t) per period.",
                        {"fig_ps_forms --output output/data/fig_ps_forms.dat --tex output/data/fig_ps_forms.tex",
                         "fig_ps_forms --mass mod1 --elements 50 --final-time 30 --output ps.dat"});
-    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), >= 2", &elements, cli::at_least(2));
-    parser.add_real("--courant", "-c", "C", "time step dt = C h (C > 0)", &courant, cli::positive());
+    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), in [2, 1e7]", &elements,
+                       mrm::repro::elements_range());
+    parser.add_real("--courant", "-c", "C", "time step dt = C h (0 < C <= 1e6)", &courant, mrm::repro::courant_range());
     parser.add_real("--final-time", "-T", "T", "final time (> 0); the period is 3", &final_time, cli::positive());
     parser.add_choice("--mass", "-m", "M", "the redistributed mass", {"mod1", "mod2", "mod3"}, &mass);
-    parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve (>= 10)",
-                       &exact_points, cli::at_least(10));
+    parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve, in [10, 1e6]",
+                       &exact_points, cli::in_closed_range(10, cli::max_curve_points));
     mrm::repro::FigureOutputs outputs(parser, "fig_ps_forms", "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
-    // 2. Outputs.
-    outputs.open(parser);
     const mrm::UniformMesh mesh(1.0, elements);
     const double dt = courant * mesh.h();
-    const mrm::Index steps = mrm::steps_to_reach(final_time, dt);
+    const mrm::Index steps = cli::checked_steps("--final-time", final_time, dt, "--courant");
     const mrm::ExactSolution exact;
+    // Three histories of steps + 1 lines each, and one sawtooth value per period and variant.
+    cli::require_rows("--final-time", 3 * (static_cast<double>(steps) + 1),
+                      cli::format_real(static_cast<double>(steps)) + " steps of 3 runs");
+    if (!(final_time / exact.period() <= 1e6))
+      throw cli::UsageError("--final-time: " + cli::format_real(final_time) + " spans " +
+                            cli::format_real(std::ceil(final_time / exact.period())) +
+                            " periods (allowed: at most 1e6 periods, each with its own values)");
+    cli::require_mesh_memory("--elements", static_cast<double>(elements), mrm::repro::bytes_per_element);
+
+    // 2. Outputs.
+    outputs.open(parser);
     std::ostream& out = outputs.data();
     out << "# fig_ps_forms: Paoli-Schatzman (1/4, 0), literal and algebraic contact row (problem.md sec. 4)\n";
     parser.echo(out);
@@ -100,16 +110,14 @@ int main(int argc, char** argv) {
     int block = 1;
     for (const Variant& v : variants) {
       std::cerr << "fig_ps_forms: " << v.key << '\n';
-      mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(v.mass),
-                                    mrm::repro::scheme_parameters("ps", v.form, v.mass), dt);
-      mrm::ErrorAccumulator errors(mesh, exact);
       out << "\n\n# block " << block++ << ": form = " << v.form << ", mass = " << v.mass
           << "\n# columns: t u0_h t_energy energy_h\n";
       std::vector<double> sawtooth(static_cast<std::size_t>(periods), 0.0);
       double u_before = std::nan(""), u_prev = std::nan("");
       double energy_first = std::nan(""), energy_last = 0, energy_max = -1e300, energy_min = 1e300;
-      mrm::run(simulation, steps, [&](const mrm::Sample& s) {
-        errors.add(s);
+      const mrm::repro::Configuration configuration =
+          mrm::repro::paper_configuration("ps", v.form, v.mass, elements, courant, final_time);
+      const mrm::ErrorNorms e = mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
         const double u0 = (*s.displacement)[0];
         if (s.level >= 2) {
           const double t_mid = s.time - dt, t_first = s.time - 2 * dt;
@@ -132,8 +140,7 @@ int main(int argc, char** argv) {
         }
         out << cli::format_real(s.time) << ' ' << cli::format_real(u0) << ' ' << cli::format_real(s.energy_time) << ' '
             << cli::format_real(s.energy) << '\n';
-      });
-      const mrm::ErrorNorms e = errors.relative();
+      }).errors;
       const std::string key = "ps:" + v.key + ":";
       mrm::tex_define(defs, key + "err_u0_L2", mrm::tex_number(e.u0_L2, 2));
       mrm::tex_define(defs, key + "err_u_L2H1", mrm::tex_number(e.u_L2H1, 2));

@@ -45,18 +45,16 @@
 // against the exact solution) and mismatched_levels. The fitted orders and verdicts are header lines.
 #include <array>
 #include <cmath>
-#include <exception>
 #include <iostream>
 #include <memory>
-#include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "configurations.hpp"
 #include "convergence.hpp"
 #include "errors.hpp"
 #include "options.hpp"
+#include "parallel.hpp"
 #include "report_values.hpp"
 #include "schemes.hpp"
 #include "table.hpp"
@@ -64,10 +62,6 @@
 namespace cli = mrm::cli;
 
 namespace {
-const std::array<const char*, 8> measure_labels{
-    "$u(0,\\cdot)$, $L^2_t$",   "$\\lambda$, $L^2_t$", "$u$, $L^\\infty_t L^2$", "$u$, $L^\\infty_t H^1$",
-    "$u_t$, $L^\\infty_t L^2$", "$u$, $L^2_t L^2$",     "$u$, $L^2_t H^1$",       "$u_t$, $L^2_t L^2$"};
-
 const std::vector<std::string> schemes{"cn", "be"};
 /// The predicted order in Δt of each scheme (mathematics.md §9) and the tolerance of the verdict
 /// (derived in the header comment).
@@ -159,20 +153,22 @@ int main(int argc, char** argv) {
                        "fitted orders in time over the finest steps beside the predicted ones (2 and 1).",
                        {"fig_time_error --output output/data/fig_time_error.dat --tex output/data/fig_time_error.tex",
                         "fig_time_error --elements 128 --reference-ratio 128 --mass mod1 --threads 1 --output t.dat"});
-    parser.add_integer("--elements", "-n", "N", "fine mesh: number of elements N (h = 1/N), >= 2", &elements,
-                       cli::at_least(2));
-    parser.add_integer("--reference-ratio", "-r", "R", "fine mesh: reference step dt_ref = h/R; a power of 2, >= 2",
-                       &reference_ratio, cli::at_least(2));
-    parser.add_integer("--steps", "-k", "K", "fine mesh: number of steps dt = P h, P h/2, ..., P h/2^(K-1) (>= 3)",
-                       &steps_count, cli::at_least(3));
-    parser.add_integer("--coarse-elements", "", "N", "coarse mesh: number of elements (>= 2)", &coarse_elements,
-                       cli::at_least(2));
-    parser.add_integer("--coarse-reference-ratio", "", "R", "coarse mesh: dt_ref = h/R; a power of 2, >= 2",
-                       &coarse_reference_ratio, cli::at_least(2));
-    parser.add_integer("--coarse-steps", "", "K", "coarse mesh: number of steps dt = P h, ..., P h/2^(K-1) (>= 3)",
-                       &coarse_steps_count, cli::at_least(3));
-    parser.add_integer("--largest", "", "P", "largest step dt = P h of both meshes; a power of 2, >= 1", &largest,
-                       cli::at_least(1));
+    parser.add_integer("--elements", "-n", "N", "fine mesh: number of elements N (h = 1/N), in [2, 1e7]", &elements,
+                       mrm::repro::elements_range());
+    parser.add_integer("--reference-ratio", "-r", "R",
+                       "fine mesh: reference step dt_ref = h/R; a power of 2 in [2, 2^30]", &reference_ratio,
+                       cli::in_closed_range(2, 1 << 30));
+    parser.add_integer("--steps", "-k", "K",
+                       "fine mesh: number of steps dt = P h, P h/2, ..., P h/2^(K-1), in [3, 50]", &steps_count,
+                       cli::in_closed_range(3, 50));
+    parser.add_integer("--coarse-elements", "", "N", "coarse mesh: number of elements, in [2, 1e7]", &coarse_elements,
+                       mrm::repro::elements_range());
+    parser.add_integer("--coarse-reference-ratio", "", "R", "coarse mesh: dt_ref = h/R; a power of 2 in [2, 2^30]",
+                       &coarse_reference_ratio, cli::in_closed_range(2, 1 << 30));
+    parser.add_integer("--coarse-steps", "", "K", "coarse mesh: number of steps dt = P h, ..., P h/2^(K-1), in [3, 50]",
+                       &coarse_steps_count, cli::in_closed_range(3, 50));
+    parser.add_integer("--largest", "", "P", "largest step dt = P h of both meshes; a power of 2 in [1, 2^20]",
+                       &largest, cli::in_closed_range(1, 1 << 20));
     parser.add_integer("--fit-points", "", "F", "the order is fitted over the finest F steps (>= 2, <= each K)",
                        &fit_points, cli::at_least(2));
     parser.add_real("--final-time", "-T", "T", "final time (> 0); one period is 3", &final_time, cli::positive());
@@ -188,13 +184,30 @@ int main(int argc, char** argv) {
     require_power_of_two("--coarse-reference-ratio", coarse_reference_ratio);
     require_power_of_two("--largest", largest);
     // Every step Δt_j = P h / 2^j must be a multiple m_j = P R / 2^j ≥ 2 of the reference step.
+    // P R <= 2^50 and K <= 50 by the ranges: no shift below overflows.
     auto require_steps = [&](const char* option, long count, long ratio) {
-      if (count > 62 || ((largest * ratio) >> (count - 1)) < 2)
+      if (((largest * ratio) >> (count - 1)) < 2)
         throw cli::UsageError(std::string(option) +
                               ": the smallest step P h/2^(K-1) must be at least twice the reference step h/R");
     };
     require_steps("--steps", steps_count, reference_ratio);
     require_steps("--coarse-steps", coarse_steps_count, coarse_reference_ratio);
+    // The reference run of each mesh makes T/dt_ref steps (T rounded up to a whole largest step); its 2K
+    // runs and their comparisons are held at once with the reference: about 256 bytes per element each.
+    auto require_run = [&](const char* elements_option, const char* ratio_option, long n, long ratio, long count) {
+      const double h = 1.0 / static_cast<double>(n);
+      const mrm::Index coarse_steps =
+          cli::checked_steps("--final-time", final_time, static_cast<double>(largest) * h, "--largest");
+      const double reference_steps = static_cast<double>(coarse_steps) * static_cast<double>(largest * ratio);
+      if (!(reference_steps <= cli::max_steps))
+        throw cli::UsageError(std::string(ratio_option) + ": " + std::to_string(ratio) + " gives the reference run " +
+                              cli::format_real(reference_steps) +
+                              " steps (allowed: at most 1e12 steps; lower it, the elements or --final-time)");
+      cli::require_mesh_memory(elements_option, static_cast<double>(n), 256, 2 * static_cast<double>(count) + 2);
+    };
+    require_run("--elements", "--reference-ratio", elements, reference_ratio, steps_count);
+    require_run("--coarse-elements", "--coarse-reference-ratio", coarse_elements, coarse_reference_ratio,
+                coarse_steps_count);
     if (fit_points > steps_count || fit_points > coarse_steps_count)
       throw cli::UsageError("--fit-points: at most the number of steps of each mesh (--steps, --coarse-steps)");
 
@@ -213,23 +226,7 @@ int main(int argc, char** argv) {
       for (std::size_t j = 0; j < series[i].ratio.size(); ++j)
         series[i].ratio[j] = (largest * series_ratio[i]) >> j;
     }
-    std::vector<std::exception_ptr> failures(series.size());
-    auto work = [&](std::size_t i) {
-      try {
-        compute(series[i], final_time, mass);
-      } catch (...) {
-        failures[i] = std::current_exception();
-      }
-    };
-    if (threads >= 2) {
-      std::thread other(work, 1);
-      work(0);
-      other.join();
-    } else {
-      for (std::size_t i = 0; i < series.size(); ++i) work(i);
-    }
-    for (const std::exception_ptr& failure : failures)
-      if (failure) std::rethrow_exception(failure);
+    mrm::repro::run_in_parallel({0, 1}, threads, [&](std::size_t i) { compute(series[i], final_time, mass); });
 
     // 4. Orders over the finest steps and the verdicts.
     const std::size_t points = static_cast<std::size_t>(fit_points);
@@ -314,7 +311,7 @@ int main(int argc, char** argv) {
         mrm::tex_define(defs, prefix + "shiftsmallest", step_text(se.ratio[se.ratio.size() - 2]));
       }
       std::vector<std::string> headers{"scheme", "$\\Delta t/h$"};
-      for (const char* label : measure_labels) headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
+      for (const char* label : mrm::repro::measure_labels()) headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
       headers.push_back("\\rotatebox{70}{mismatched levels}");
       mrm::repro::Table table(headers);
       const std::size_t half = se.ratio.size() / 2;
@@ -387,12 +384,7 @@ int main(int argc, char** argv) {
                         count == 8 ? "all 8 measures" : std::to_string(count) + " of the 8 measures");
       }
       if (i == 0) mrm::tex_define(defs, "time:finehalf", step_text(se.ratio[half]));
-      std::ostringstream tabular;
-      mrm::repro::LatexLayout layout;
-      layout.columns = "ll" + std::string(9, 'r');
-      layout.final_newline = false;
-      table.write_latex(tabular, layout);
-      defs << "\\mrmdef{" << prefix << "table}{" << tabular.str() << "}\n";
+      defs << "\\mrmdef{" << prefix << "table}{" << mrm::repro::latex_tabular(table, "ll" + std::string(9, 'r')) << "}\n";
     }
 
     // 7. Commit.

@@ -112,17 +112,25 @@ ContactStep ContactSolver::solve(const double* b, double* u, double kappa, doubl
     throw std::invalid_argument("contact solver: kappa = " + std::to_string(kappa) +
                                 " (allowed: a positive finite number)");
   if (size() == 0) throw std::invalid_argument("contact solver: solve before factorising a matrix");
-  const Index n = size();
-  double y = b[n - 1];
-  u[n - 1] = y;
-  for (Index i = n - 2; i >= 0; --i) {
-    y = b[i] - elimination_[i] * y;
-    u[i] = y;
-  }
+  sweep_down(b, u);
   const ContactStep step = resolve_contact(u[0], kappa, obstacle);
-  u[0] = step.u0;
-  for (Index i = 1; i < n; ++i) u[i] = inverse_pivot_[i] * u[i] - upward_[i] * u[i - 1];
+  sweep_up(step.u0, u);
   return step;
+}
+
+void ContactSolver::sweep_down(const double* b, double* y) const {
+  const Index n = size();
+  double yi = b[n - 1];
+  y[n - 1] = yi;
+  for (Index i = n - 2; i >= 0; --i) {
+    yi = b[i] - elimination_[i] * yi;
+    y[i] = yi;
+  }
+}
+
+void ContactSolver::sweep_up(double u0, double* y) const {
+  y[0] = u0;
+  for (Index i = 1; i < size(); ++i) y[i] = inverse_pivot_[i] * y[i] - upward_[i] * y[i - 1];
 }
 
 // ---------------------------------------------------------------------------------------------------

@@ -25,7 +25,7 @@ struct ReducedPencils {
   Tridiagonal mass_free;          ///< the mass of the free-flight pencil
   Tridiagonal stiffness_free;     ///< the stiffness of the free-flight pencil
   Tridiagonal mass_contact;       ///< the mass of the contact pencil (u₀ = 0)
-  Tridiagonal stiffness_contact;  ///< the stiffness of the contact pencil
+  Tridiagonal stiffness_contact;  ///< the stiffness of the contact pencil (u₀ = 0)
 };
 /// Throws std::invalid_argument for a mesh with N < 3 (the reduced pencils need two free nodes).
 ReducedPencils reduced_pencils(const UniformMesh& mesh, const MassRedistribution& redistribution);
@@ -38,7 +38,7 @@ struct EffectiveLengths {
   /// The discrete period of the benchmark (free flight, contact, free flight back): 2ℓ_f + ℓ_c.
   double period() const { return 2 * free + contact; }
 };
-/// ℓ_f and ℓ_c of a mass on a mesh (N ≥ 3), from the smallest eigenvalues of its reduced pencils.
+/// ℓ_f and ℓ_c of a redistribution on a mesh, from the smallest eigenvalues of its reduced pencils.
 EffectiveLengths effective_lengths(const UniformMesh& mesh, const MassRedistribution& redistribution);
 
 /// The period law's prediction for the benchmark (u⁰ = a(L − x), period 3L) on a mesh: the discrete
@@ -49,7 +49,7 @@ struct PeriodPrediction {
   double period_error;        ///< 2ℓ_f + ℓ_c − 3L
   double first_impact_error;  ///< ℓ_f − L
 };
-/// The period law's prediction for the benchmark on a mesh (N ≥ 3) with a mass.
+/// The prediction of the period law for a redistribution on a mesh (see PeriodPrediction).
 PeriodPrediction predict_period(const UniformMesh& mesh, const MassRedistribution& redistribution);
 
 /// The leading-order period change of a redistribution that adds the mass `local` at node 1 beyond

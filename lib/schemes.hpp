@@ -16,9 +16,11 @@ namespace mrm {
 
 /// The time schemes of the paper (mathematics.md §4).
 enum class Scheme {
-  crank_nicolson,  ///< Crank–Nicolson (trapezoidal rule), two levels
-  backward_euler,  ///< backward Euler, two levels
-  paoli_schatzman  ///< Paoli–Schatzman (β, e), three levels
+  crank_nicolson,     ///< Crank–Nicolson (trapezoidal rule), two levels
+  backward_euler,     ///< backward Euler, two levels
+  paoli_schatzman,    ///< Paoli–Schatzman (β, e), three levels
+  energy_conserving,  ///< EC: Crank–Nicolson with the discrete gradient of the contact energy (mathematics.md §12)
+  switching           ///< CN-switch: Crank–Nicolson, a θ-step where the contact status changes (mathematics.md §12)
 };
 
 /// How the Paoli–Schatzman scheme treats the contact row when the contact node is massless:
@@ -39,22 +41,25 @@ enum class InitialContactNode { consistent, interpolant };
 /// program of this project (bench_step times both).
 enum class StepKernel { reference, fast };
 
-std::string to_string(Scheme);              ///< "cn", "be", "ps"
+std::string to_string(Scheme);              ///< "cn", "be", "ps", "ec", "cn-switch"
 std::string to_string(ContactRow);          ///< "algebraic", "literal"
 std::string to_string(InitialContactNode);  ///< "consistent", "interpolant"
 std::string to_string(StepKernel);          ///< "reference", "fast"
 /// Parsers of the names above; throw std::invalid_argument listing the allowed names.
-Scheme scheme_by_name(const std::string&);           ///< cn, be, ps
-ContactRow contact_row_by_name(const std::string&);  ///< algebraic, literal
+Scheme scheme_by_name(const std::string&);                            ///< cn, be, ps, ec, cn-switch
+ContactRow contact_row_by_name(const std::string&);                   ///< algebraic, literal
 InitialContactNode initial_contact_node_by_name(const std::string&);  ///< consistent, interpolant
 
 /// A time scheme with its parameters.
 struct SchemeParameters {
-  Scheme scheme = Scheme::crank_nicolson;  ///< the scheme
-  double beta = 0.25;         ///< Paoli–Schatzman's β ≥ 0
-  double restitution = 0.0;   ///< Paoli–Schatzman's e ∈ [0, 1]
+  Scheme scheme = Scheme::crank_nicolson;          ///< the scheme
+  double beta = 0.25;                              ///< Paoli–Schatzman's β ≥ 0
+  double restitution = 0.0;                        ///< Paoli–Schatzman's e ∈ [0, 1]
   ContactRow contact_row = ContactRow::algebraic;  ///< Paoli–Schatzman's contact row (massless node)
-  StepKernel kernel = StepKernel::fast;  ///< the implementation of the step (same results to round-off)
+  StepKernel kernel = StepKernel::fast;            ///< the implementation of the step (same results to round-off)
+  /// CN-switch's θ ∈ [½, 1] of the step that replaces a Crank–Nicolson step across which the contact
+  /// status changes: 1 is backward Euler, the only value for which the energy provably never increases.
+  double switch_theta = 1.0;
 };
 
 /// The continuous problem (mathematics.md §1): bar (0, L), data u⁰, v⁰, load f (may be empty: f = 0).
@@ -89,8 +94,9 @@ class FastStep;
 class BarSimulation {
  public:
   /// Throws std::invalid_argument for a non-positive or non-finite Δt, β < 0, e ∉ [0, 1], an
-  /// algebraic contact row with a contact node that has inertia, or a literal Paoli–Schatzman contact
-  /// row with β = 0 and a massless contact node (singular).
+  /// algebraic contact row with a contact node that has inertia, a literal Paoli–Schatzman contact
+  /// row with β = 0 and a massless contact node (singular), CN-switch's θ ∉ [½, 1], or the
+  /// energy-conserving scheme with a contact node that has inertia (it needs the condensed row).
   BarSimulation(const Problem& problem, const UniformMesh& mesh, const MassRedistribution& mass,
                 const SchemeParameters& parameters, double dt,
                 InitialContactNode initial = InitialContactNode::consistent);
@@ -120,7 +126,12 @@ class BarSimulation {
   double contact_load(double t) const;
   double contact_load_rate(double t) const;
   double massless_node_velocity(double t) const;
+  void choose_energy_scale();
   void reference_step(bool has_load);
+  void switch_step(bool has_load);  // CN-switch's θ-step, replacing a Crank–Nicolson step
+  // B₁U + B₂W + G with the algebraic contact row or −κ'λⁿ in row 0 (the reference step's step 1).
+  Eigen::VectorXd right_hand_side(const Tridiagonal& b1, const Tridiagonal& b2, double load_now, double load_next,
+                                  double lambda_in_rhs, bool has_load) const;
 
   Problem problem_;
   UniformMesh mesh_;
@@ -137,6 +148,20 @@ class BarSimulation {
   double kappa_, load_now_, load_next_;   // G = load_now_ Fⁿ + load_next_ Fⁿ⁺¹ (+ row-0 terms)
   double lambda_in_rhs_;                  // Crank–Nicolson with inertia at node 0: −θ λⁿ in row 0
   double velocity_rate_, velocity_memory_;  // two-level: V' = rate (U' − U) − memory V
+  // The energy's quadratic forms on values scaled by σ_u = 2^−e_u (displacements) and σ_v = 2^−e_v
+  // (velocities) when the data are far from 1 (schemes.cpp: Scale of the energy); scaled_ = false
+  // otherwise, and the forms take the values as they are.
+  bool scaled_ = false;
+  int displacement_exponent_ = 0, velocity_exponent_ = 0;
+  // CN-switch: the θ-step's matrices and scalars, the same roles as above (schemes.cpp).
+  struct SwitchStep {
+    Tridiagonal b1, b2;
+    ContactSolver solver;
+    double kappa, load_now, load_next, lambda_in_rhs, velocity_rate, velocity_memory;
+  };
+  std::unique_ptr<const SwitchStep> switch_;
+  bool energy_conserving_ = false;
+  bool active_ = false;  // the contact status at the current level (λ < 0, or s < 0 for a massless node)
 
   Index level_ = 0;
   // U, the scratch for the sweeps (then U'), W, and X = (Uⁿ⁺¹ − Uⁿ)/Δt (three-level only: the

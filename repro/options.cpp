@@ -3,6 +3,7 @@
 // numbers, atomic output files and the guard of main. See options.hpp for the interface and for a
 // complete example of a program's main function.
 #include "options.hpp"
+#include "output_file.hpp"
 
 #include <doctest/doctest.h>
 
@@ -684,6 +685,17 @@ void Parser::print_help(std::ostream& out) const {
     for (const auto& [column, help] : lines) {
         out << column << std::string(width + 2 - column.size(), ' ') << help << '\n';
     }
+    // What an output option does with the path it is given (output_file.hpp), said once for all the
+    // options whose value is a FILE.
+    if (std::any_of(options_.begin(), options_.end(), [](const Option& option) { return option.metavar == "FILE"; })) {
+        out << "\nOutput files:\n"
+            << wrapped("Each FILE is written under a hidden temporary name in its directory and renamed over FILE "
+                       "only when complete: an interrupted or failed run leaves FILE as it was. A character device "
+                       "or a FIFO (/dev/null, /dev/stdout, a named pipe whose reader is running) is written in "
+                       "place. A directory, a socket, a block device, any other symbolic link, and one file named "
+                       "by two options are refused.",
+                       80);
+    }
     if (!sample_runs_.empty()) {
         out << "\nSample runs:\n";
         for (const std::string& run : sample_runs_) {
@@ -914,6 +926,13 @@ TEST_CASE("the help lists every option with its default and stops the program") 
               "  -h, --help           print this help and exit\n"
               "      --version        print the version and exit\n"
               "\n"
+              "Output files:\n"
+              "Each FILE is written under a hidden temporary name in its directory and renamed\n"
+              "over FILE only when complete: an interrupted or failed run leaves FILE as it\n"
+              "was. A character device or a FIFO (/dev/null, /dev/stdout, a named pipe whose\n"
+              "reader is running) is written in place. A directory, a socket, a block device,\n"
+              "any other symbolic link, and one file named by two options are refused.\n"
+              "\n"
               "Sample runs:\n"
               "  contact -n 400 --scheme be\n"
               "  contact --dt 1e-4 -o run.dat\n");
@@ -984,13 +1003,25 @@ TEST_CASE("registration mistakes are reported as logic errors") {
 // status and a single line of message. The final check of the output stream catches a failure to
 // write the results to standard output (a full disk, a closed pipe), which would otherwise go
 // unnoticed, since a C++ stream reports write errors only through its state.
+//
+// Before the body runs, the standard descriptors are made to be open (prepare_standard_descriptors,
+// output_file.hpp): otherwise the first file the program opens would take the place of a closed one,
+// and whatever is written to standard error (progress lines) or standard output would go into it.
+// After the body, both streams are checked: a body whose diagnostics could not be written also ends
+// with status 1.
 int guarded_main(std::string_view program, const std::function<int()>& body, std::ostream& output,
                  std::ostream& errors) {
+    const bool output_closed = prepare_standard_descriptors();
     try {
         const int status = body();
         output.flush();
         if (!output) {
-            errors << program << ": error: writing the standard output failed\n";
+            errors << program << ": error: writing the standard output failed"
+                   << (output_closed && &output == &std::cout ? ": it is closed" : "") << '\n';
+            return status != 0 ? status : 1;
+        }
+        errors.flush();
+        if (!errors) {
             return status != 0 ? status : 1;
         }
         return status;
@@ -1031,6 +1062,11 @@ TEST_CASE("guarded_main maps usage errors to status 2 and other failures to stat
         output.setstate(std::ios::badbit);
         CHECK(guarded_main("p", [] { return 0; }, output, errors) == 1);
         CHECK(errors.str() == "p: error: writing the standard output failed\n");
+    }
+    SUBCASE("failed diagnostics") {
+        errors.setstate(std::ios::badbit);
+        CHECK(guarded_main("p", [] { return 0; }, output, errors) == 1);
+        CHECK(guarded_main("p", [] { return 3; }, output, errors) == 3);
     }
 }
 

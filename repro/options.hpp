@@ -191,7 +191,9 @@ private:
 //   UsageError            "<program>: <message>"         status 2
 //   other std::exception  "<program>: error: <what>"     status 1
 // A body that succeeds but whose writes to `output` (standard output) failed, for example on a
-// full disk, also ends with status 1. Otherwise the body's own return value is returned.
+// full disk or a closed standard output, also ends with status 1, and so does one whose writes to
+// `errors` failed. Otherwise the body's own return value is returned. Before the body runs, closed
+// standard descriptors are reopened (prepare_standard_descriptors, output_file.hpp).
 int guarded_main(std::string_view program, const std::function<int()>& body,
                  std::ostream& output = std::cout, std::ostream& errors = std::cerr);
 

@@ -58,6 +58,10 @@ class Table {
   std::vector<Row> rows_;
 };
 
+/// The table as a LaTeX tabular (booktabs) with the given column specification, without the final
+/// newline: the value of a `\mrmdef` that the report prints where it wants the table.
+std::string latex_tabular(const Table& table, const std::string& columns);
+
 /// The observed order between successive rows, as ConvergenceTable's reduction rate: for k ≥ 1,
 /// log(e_{k−1}/e_k) / log(s_{k−1}/s_k) (for halved steps, log₂ of the error ratio); NaN for k = 0 and
 /// where an error is not positive. Throws std::invalid_argument for sizes that differ.
