@@ -39,11 +39,12 @@ int main(int argc, char** argv) {
   return cli::guarded_main("check_claims", [&] {
     // 1. Options.
     std::string tex, markdown, summary_tex, summary_table, sweep;
-    cli::Parser parser("check_claims",
-                       "Checks every claim of the paper (mathematics.md §6) on the benchmark and prints a table: claim, "
-                       "what was measured, criterion, verdict (reproduced, not reproduced = expected failure, or "
-                       "FAILED). Exits 0 iff no check FAILED.",
-                       {"check_claims", "check_claims --tex output/data/claims.tex --markdown output/data/claims.md"});
+    cli::Parser parser(
+        "check_claims",
+        "Checks every claim of the paper (mathematics.md §6) on the benchmark and prints a table: claim, "
+        "what was measured, criterion, verdict (reproduced, not reproduced = expected failure, or "
+        "FAILED). Exits 0 iff no check FAILED.",
+        {"check_claims", "check_claims --tex output/data/claims.tex --markdown output/data/claims.md"});
     parser.add_string("--tex", "", "FILE", "also write the table as a LaTeX longtable fragment (booktabs) to FILE",
                       &tex);
     parser.add_string("--markdown", "", "FILE", "also write the table as Markdown to FILE", &markdown);
@@ -85,8 +86,8 @@ int main(int argc, char** argv) {
     if (tex_file) claims::write_latex_table(tex_file->stream(), rows);
     if (markdown_file) claims::write_markdown_table(markdown_file->stream(), rows);
     // The table on stdout, then every file or none.
-    cli::commit_all({summary_tex_file.get(), summary_table_file.get(), sweep_file.get(), tex_file.get(),
-                     markdown_file.get()});
+    cli::commit_all(
+        {summary_tex_file.get(), summary_table_file.get(), sweep_file.get(), tex_file.get(), markdown_file.get()});
     int failed = 0;
     for (const claims::ClaimResult& r : rows) failed += r.verdict == claims::Verdict::failed;
     if (failed > 0) std::cerr << "check_claims: " << failed << " check(s) FAILED\n";

@@ -41,7 +41,8 @@ int main(int argc, char** argv) {
                        "horizon), how many measures rank the masses Mod 3 < Mod 2 < Mod 1, and from which horizon.",
                        {"fig_ordering_map --sweep output/data/sweep.dat --output output/data/fig_ordering_map.dat"});
     parser.add_string("--sweep", "-i", "FILE", "the sweep to read (check_claims --sweep FILE)", &sweep_file);
-    repro::FigureOutputs outputs(parser, "fig_ordering_map", "also write the values the report quotes, as \\mrmdef lines");
+    repro::FigureOutputs outputs(parser, "fig_ordering_map",
+                                 "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
     // 2. Outputs, opened first so that a bad output path fails before anything is read.

@@ -51,17 +51,19 @@ int main(int argc, char** argv) {
                         "fig_phase --elements 50 --courant 1 --periods 10 --output p.dat"});
     parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), in [3, 1e5]", &elements,
                        cli::in_closed_range(3, 1e5));
-    parser.add_real("--courant", "-c", "C", "time step dt = C h, C in (0, 10]", &courant, [](std::string_view o, double v) {
-      cli::require_positive(o, v);
-      cli::require_in_closed_range(o, v, 0, 10);
-    });
+    parser.add_real("--courant", "-c", "C", "time step dt = C h, C in (0, 10]", &courant,
+                    [](std::string_view o, double v) {
+                      cli::require_positive(o, v);
+                      cli::require_in_closed_range(o, v, 0, 10);
+                    });
     parser.add_real("--periods", "-p", "P", "number of periods (3L each), in [2, 1000]", &periods,
                     cli::in_closed_range(2, 1000));
-    parser.add_integer("--stride", "", "K", "keep every K-th level of the error history in the data file (K >= 1)", &stride,
-                       cli::at_least(1));
-    parser.add_choice("--scheme", "-s", "S", "time scheme (Paoli-Schatzman with the algebraic row)",
-                      {"cn", "be", "ps"}, &scheme);
-    mrm::repro::FigureOutputs outputs(parser, "fig_phase", "also write the values the report quotes, as \\mrmdef lines");
+    parser.add_integer("--stride", "", "K", "keep every K-th level of the error history in the data file (K >= 1)",
+                       &stride, cli::at_least(1));
+    parser.add_choice("--scheme", "-s", "S", "time scheme (Paoli-Schatzman with the algebraic row)", {"cn", "be", "ps"},
+                      &scheme);
+    mrm::repro::FigureOutputs outputs(parser, "fig_phase",
+                                      "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
     // 2. Outputs.

@@ -43,7 +43,8 @@ int main(int argc, char** argv) {
                     cli::in_closed_range(1, 1000));
     parser.add_real("--long-periods", "", "P", "periods of the long runs at dt = h, in [1, 10000]", &long_periods,
                     cli::in_closed_range(1, 10000));
-    repro::FigureOutputs outputs(parser, "fig_stability_map", "also write the values the report quotes, as \\mrmdef lines");
+    repro::FigureOutputs outputs(parser, "fig_stability_map",
+                                 "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
     // 2. Outputs.
@@ -62,7 +63,8 @@ int main(int argc, char** argv) {
     // 3. All runs.
     std::vector<repro::Configuration> configurations;
     for (mrm::Index n : meshes)
-      for (double c : courants) configurations.push_back(repro::paper_configuration("cn", "algebraic", "mod3", n, c, 3 * periods));
+      for (double c : courants)
+        configurations.push_back(repro::paper_configuration("cn", "algebraic", "mod3", n, c, 3 * periods));
     for (const std::string& mass : repro::mass_names())
       for (mrm::Index n : meshes)
         configurations.push_back(repro::paper_configuration("cn", "algebraic", mass, n, 1.0, 3 * long_periods));
@@ -96,7 +98,8 @@ int main(int argc, char** argv) {
         const double ratio = m[k].energy_max / m[k].energy_initial;
         ++k;
         out << mass + 1 << ' ' << n << ' ' << cli::format_real(ratio) << '\n';
-        mrm::tex_define(defs, "stab:long:" + repro::mass_names()[mass] + ":" + std::to_string(n), mrm::tex_magnitude(ratio));
+        mrm::tex_define(defs, "stab:long:" + repro::mass_names()[mass] + ":" + std::to_string(n),
+                        mrm::tex_magnitude(ratio));
       }
 
     // 5. Commit.

@@ -158,9 +158,8 @@ int main(int argc, char** argv) {
     parser.add_integer("--reference-ratio", "-r", "R",
                        "fine mesh: reference step dt_ref = h/R; a power of 2 in [2, 2^30]", &reference_ratio,
                        cli::in_closed_range(2, 1 << 30));
-    parser.add_integer("--steps", "-k", "K",
-                       "fine mesh: number of steps dt = P h, P h/2, ..., P h/2^(K-1), in [3, 50]", &steps_count,
-                       cli::in_closed_range(3, 50));
+    parser.add_integer("--steps", "-k", "K", "fine mesh: number of steps dt = P h, P h/2, ..., P h/2^(K-1), in [3, 50]",
+                       &steps_count, cli::in_closed_range(3, 50));
     parser.add_integer("--coarse-elements", "", "N", "coarse mesh: number of elements, in [2, 1e7]", &coarse_elements,
                        mrm::repro::elements_range());
     parser.add_integer("--coarse-reference-ratio", "", "R", "coarse mesh: dt_ref = h/R; a power of 2 in [2, 2^30]",
@@ -223,8 +222,7 @@ int main(int argc, char** argv) {
       series[i].elements = series_elements[i];
       series[i].reference_ratio = series_ratio[i];
       series[i].ratio.resize(static_cast<std::size_t>(series_steps[i]));
-      for (std::size_t j = 0; j < series[i].ratio.size(); ++j)
-        series[i].ratio[j] = (largest * series_ratio[i]) >> j;
+      for (std::size_t j = 0; j < series[i].ratio.size(); ++j) series[i].ratio[j] = (largest * series_ratio[i]) >> j;
     }
     mrm::repro::run_in_parallel({0, 1}, threads, [&](std::size_t i) { compute(series[i], final_time, mass); });
 
@@ -258,7 +256,8 @@ int main(int argc, char** argv) {
            "7, 9)\n";
     parser.echo(out);
     out << "# reference: Crank-Nicolson with the same mesh and mass\n"
-        << "# predicted_order_cn = 2\n# predicted_order_be = 1\n# order_tolerance = " << cli::format_real(order_tolerance)
+        << "# predicted_order_cn = 2\n# predicted_order_be = 1\n# order_tolerance = "
+        << cli::format_real(order_tolerance)
         << "\n# verdict: within if |order over the finest fit_points steps - predicted| <= order_tolerance\n"
         << "# blocks: 2 i + s, mesh i in (fine, coarse), scheme s in (cn, be)\n";
     for (std::size_t i = 0; i < series.size(); ++i)
@@ -272,8 +271,8 @@ int main(int argc, char** argv) {
             << ", elements = " << se.elements << ", reference_ratio = " << se.reference_ratio << '\n';
         for (std::size_t k = 0; k < 8; ++k)
           out << "# order_finest " << mrm::ErrorAccumulator::names[k] << " = " << cli::format_real(orders[i][s][k])
-              << " (" << (within(i, s, k) ? "within" : "outside") << "); one step coarser: "
-              << cli::format_real(shifted[i][s][k]) << '\n';
+              << " (" << (within(i, s, k) ? "within" : "outside")
+              << "); one step coarser: " << cli::format_real(shifted[i][s][k]) << '\n';
         out << "# columns: dt dt_over_h";
         for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
         out << " mismatched_levels\n";
@@ -311,7 +310,8 @@ int main(int argc, char** argv) {
         mrm::tex_define(defs, prefix + "shiftsmallest", step_text(se.ratio[se.ratio.size() - 2]));
       }
       std::vector<std::string> headers{"scheme", "$\\Delta t/h$"};
-      for (const char* label : mrm::repro::measure_labels()) headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
+      for (const char* label : mrm::repro::measure_labels())
+        headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
       headers.push_back("\\rotatebox{70}{mismatched levels}");
       mrm::repro::Table table(headers);
       const std::size_t half = se.ratio.size() / 2;
@@ -358,12 +358,12 @@ int main(int argc, char** argv) {
               all_errors.push_back(e);
               if (j >= half) fine_steps.push_back(steps[j]), fine_errors.push_back(e);
             }
-            mrm::tex_define(defs, prefix + "order:" + key,
-                            all_steps.size() >= 2 ? mrm::tex_number(mrm::fit_order(all_steps, all_errors).order, 2)
-                                                  : "n/a");
-            mrm::tex_define(defs, prefix + "orderfine:" + key,
-                            fine_steps.size() >= 2 ? mrm::tex_number(mrm::fit_order(fine_steps, fine_errors).order, 2)
-                                                   : "n/a");
+            mrm::tex_define(
+                defs, prefix + "order:" + key,
+                all_steps.size() >= 2 ? mrm::tex_number(mrm::fit_order(all_steps, all_errors).order, 2) : "n/a");
+            mrm::tex_define(
+                defs, prefix + "orderfine:" + key,
+                fine_steps.size() >= 2 ? mrm::tex_number(mrm::fit_order(fine_steps, fine_errors).order, 2) : "n/a");
           }
         }
         mrm::tex_define(defs, prefix + "within:" + schemes[s], std::to_string(count));
@@ -377,14 +377,15 @@ int main(int argc, char** argv) {
         for (std::size_t j = 0; j < se.ratio.size(); ++j)
           if (se.mismatched[s * se.ratio.size() + j] > 0) ++mismatched_steps, finest_mismatched = j;
         mrm::tex_define(defs, prefix + "mismatchsteps:" + schemes[s], std::to_string(mismatched_steps));
-        mrm::tex_define(defs, prefix + "mismatchfinest:" + schemes[s],
-                        finest_mismatched < se.ratio.size() ? "$" + step_text(se.ratio[finest_mismatched]) + "$"
-                                                            : "none");
+        mrm::tex_define(
+            defs, prefix + "mismatchfinest:" + schemes[s],
+            finest_mismatched < se.ratio.size() ? "$" + step_text(se.ratio[finest_mismatched]) + "$" : "none");
         mrm::tex_define(defs, prefix + "withinwords:" + schemes[s],
                         count == 8 ? "all 8 measures" : std::to_string(count) + " of the 8 measures");
       }
       if (i == 0) mrm::tex_define(defs, "time:finehalf", step_text(se.ratio[half]));
-      defs << "\\mrmdef{" << prefix << "table}{" << mrm::repro::latex_tabular(table, "ll" + std::string(9, 'r')) << "}\n";
+      defs << "\\mrmdef{" << prefix << "table}{" << mrm::repro::latex_tabular(table, "ll" + std::string(9, 'r'))
+           << "}\n";
     }
 
     // 7. Commit.

@@ -65,16 +65,16 @@ struct Affine {
 };
 
 struct Phase {
-  double c;                // u = c · min_k(affine_k)
+  double c;  // u = c · min_k(affine_k)
   int count;
   Affine affine[4];
 };
 
 // The three phases of the reference solution (L = 1, a = ½), with s the time since the phase began.
 constexpr Phase phases[3] = {
-    {0.5, 2, {{1, -1, 0}, {1, 0, -1}, {}, {}}},                  // ½ min(1 − ξ, 1 − s)
-    {-0.5, 4, {{0, 1, 0}, {1, -1, 0}, {0, 0, 1}, {1, 0, -1}}},   // −½ min(ξ, 1 − ξ, s, 1 − s)
-    {0.5, 2, {{0, 0, 1}, {1, -1, 0}, {}, {}}},                   // ½ min(s, 1 − ξ)
+    {0.5, 2, {{1, -1, 0}, {1, 0, -1}, {}, {}}},                 // ½ min(1 − ξ, 1 − s)
+    {-0.5, 4, {{0, 1, 0}, {1, -1, 0}, {0, 0, 1}, {1, 0, -1}}},  // −½ min(ξ, 1 − ξ, s, 1 − s)
+    {0.5, 2, {{0, 0, 1}, {1, -1, 0}, {}, {}}},                  // ½ min(s, 1 − ξ)
 };
 
 struct PhaseTime {
@@ -245,7 +245,9 @@ int ExactSolution::displacement_runs(double t, const double* x, long count, Affi
         const Affine a = p.affine[active];
         push({first, end, scale * p.c * (a.alpha + a.gamma * pt.s), scale * p.c * a.beta / length_});
       },
-      [&](long i) { push({i, i + 1, displacement(x[i], t), 0.0}); });
+      [&](long i) {
+        push({i, i + 1, displacement(x[i], t), 0.0});
+      });
   return n;
 }
 
@@ -260,8 +262,13 @@ int ExactSolution::velocity_runs(double t, const double* x, long count, AffineRu
     runs[n++] = r;
   };
   split_at_kinks(
-      kinks, kink_count, length_, x, count, [&](long first, long end) { push({first, end, velocity(x[first], t), 0.0}); },
-      [&](long i) { push({i, i + 1, velocity(x[i], t), 0.0}); });
+      kinks, kink_count, length_, x, count,
+      [&](long first, long end) {
+        push({first, end, velocity(x[first], t), 0.0});
+      },
+      [&](long i) {
+        push({i, i + 1, velocity(x[i], t), 0.0});
+      });
   return n;
 }
 

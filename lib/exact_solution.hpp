@@ -45,9 +45,9 @@ class ExactSolution : public ReferenceSolution {
   int displacement_runs(double t, const double* x, long count, AffineRun* runs, int capacity) const;
   /// u_t(·, t) likewise (constant on each run: slope 0; the symmetric derivative at a kink).
   int velocity_runs(double t, const double* x, long count, AffineRun* runs, int capacity) const;
-  double period() const { return 3.0 * length_; }  ///< the period 3L of the motion
+  double period() const { return 3.0 * length_; }     ///< the period 3L of the motion
   double length() const override { return length_; }  ///< L
-  double amplitude() const { return amplitude_; }  ///< a
+  double amplitude() const { return amplitude_; }     ///< a
 
  private:
   double length_, amplitude_;

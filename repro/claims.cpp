@@ -99,9 +99,10 @@ const Expectations& paper_expectations() {
       {"3/be/dt=0.75h", be_ranking},
       {"3/be/dt=1h", be_ranking},
       // ps velocity, 30 periods, Δt = h: 2 2 1 1 1 0 of 2.
-      {"3/ps/dt=1h", "Paoli-Schatzman's velocity, a difference quotient at the half step, is an energy-type "
-                     "measure: at Δt = h it sees the swap of Mod 2 and Mod 3 that Crank-Nicolson's late release "
-                     "causes (see 3/cn/dt=1h)"},
+      {"3/ps/dt=1h",
+       "Paoli-Schatzman's velocity, a difference quotient at the half step, is an energy-type "
+       "measure: at Δt = h it sees the swap of Mod 2 and Mod 3 that Crank-Nicolson's late release "
+       "causes (see 3/cn/dt=1h)"},
 
       // Claim 4 in h, sweep N = 25 … 800. cn: every (mass, Δt/h) cell in its band except mod3 at Δt = h/2:
       // u_t L²(L²) 0.16 (1 and 4 periods), u(0,·) and u 0.45–0.49 (10 and 30 periods); its drift per period
@@ -111,26 +112,31 @@ const Expectations& paper_expectations() {
       {"4/cn/T=10p", cn_mod3_half},
       {"4/cn/T=30p", cn_mod3_half},
       // be, 30 periods: displacement orders 0.20–0.41, energy-type 0.16–0.28 for Δt ≥ h/2, every mass.
-      {"4/be/T=30p", "over 30 periods backward Euler dissipates most of the energy on the coarse meshes (E_h down to "
-                     "a few percent of E_h(0)), so the relative errors there approach 1 and the fit over N = 25 … 800 "
-                     "is pre-asymptotic: displacement orders 0.2–0.4 instead of ½ for Δt ≥ h/2 (at Δt = h/4 and "
-                     "over 1 to 10 periods every cell is in its band)"},
+      {"4/be/T=30p",
+       "over 30 periods backward Euler dissipates most of the energy on the coarse meshes (E_h down to "
+       "a few percent of E_h(0)), so the relative errors there approach 1 and the fit over N = 25 … 800 "
+       "is pre-asymptotic: displacement orders 0.2–0.4 instead of ½ for Δt ≥ h/2 (at Δt = h/4 and "
+       "over 1 to 10 periods every cell is in its band)"},
 
       // Claim 6b, N = 4000: λ 0.0564 above the bound 0.05; u L∞(H¹) 0.0495, u_t 0.048, u L²(H¹) 0.048 just
       // below it; u(0), u L∞(L²), u L²(L²) 0.001–0.0015.
-      {"6/exact", "λ's error is above the bound, which assumed rates h^½ in the roughest measures; the orders "
-                  "measured for claim 4 (about 1/3 for λ with cn) make an error of this size the discretisation "
-                  "error at N = 4000, not a defect of the closed form, whose displacement errors are more than "
-                  "an order of magnitude smaller"},
+      {"6/exact",
+       "λ's error is above the bound, which assumed rates h^½ in the roughest measures; the orders "
+       "measured for claim 4 (about 1/3 for λ with cn) make an error of this size the discretisation "
+       "error at N = 4000, not a defect of the closed form, whose displacement errors are more than "
+       "an order of magnitude smaller"},
   };
   return table;
 }
 
 std::string to_string(Verdict v) {
   switch (v) {
-    case Verdict::reproduced: return "reproduced";
-    case Verdict::not_reproduced: return "not reproduced";
-    case Verdict::failed: return "FAILED";
+    case Verdict::reproduced:
+      return "reproduced";
+    case Verdict::not_reproduced:
+      return "not reproduced";
+    case Verdict::failed:
+      return "FAILED";
   }
   return "?";
 }
@@ -150,8 +156,9 @@ ClaimResult judge(std::string id, std::string claim, std::string measured, std::
     row.reason = "the criterion does not hold";
   } else {
     row.verdict = Verdict::failed;
-    row.reason = "unexpected pass: the criterion holds although the expectation table lists this row as not "
-                 "reproduced; update the table";
+    row.reason =
+        "unexpected pass: the criterion holds although the expectation table lists this row as not "
+        "reproduced; update the table";
   }
   return row;
 }
@@ -175,8 +182,10 @@ TEST_CASE("a row's verdict follows its criterion and the expectation table, both
 
 SchemeChoice scheme_choice(const std::string& label) {
   SchemeParameters p;
-  if (label == "cn") p.scheme = Scheme::crank_nicolson;
-  else if (label == "be") p.scheme = Scheme::backward_euler;
+  if (label == "cn")
+    p.scheme = Scheme::crank_nicolson;
+  else if (label == "be")
+    p.scheme = Scheme::backward_euler;
   else if (label == "ps" || label == "ps-literal") {
     p.scheme = Scheme::paoli_schatzman;
     p.beta = 0.25;
@@ -211,7 +220,7 @@ std::string fixed(double x, int decimals) {
 }
 
 // The short names of the eight error measures of mathematics.md §5, in ErrorAccumulator::values order.
-const char* const measure_names[8] = {"u(0,·) L²(0,T)", "λ L²(0,T)",  "u L∞(L²)", "u L∞(H¹)",
+const char* const measure_names[8] = {"u(0,·) L²(0,T)", "λ L²(0,T)", "u L∞(L²)", "u L∞(H¹)",
                                       "u_t L∞(L²)",     "u L²(L²)",  "u L²(H¹)", "u_t L²(L²)"};
 
 std::string join(const std::vector<std::string>& parts, const std::string& separator) {
@@ -308,8 +317,10 @@ bool is_dissipative(const SchemeChoice& scheme) { return scheme.parameters.schem
 std::string stability_criterion(const StabilitySettings& st) {
   return "every value finite, and E_hⁿ and ½UⁿᵀSUⁿ ≤ " + sig(st.bound_conserving) +
          " E_h(0) (CN, PS: energy conserved up to O(h) jumps at status changes) or ≤ (1 + " +
-         sig(st.bound_dissipative - 1) + ") E_h(0) (BE: dissipative) at every step, "
-         "N = " + std::to_string(st.elements) + ", Δt = " + sig(st.courant) + "h, T = " + sig(st.final_time);
+         sig(st.bound_dissipative - 1) +
+         ") E_h(0) (BE: dissipative) at every step, "
+         "N = " +
+         std::to_string(st.elements) + ", Δt = " + sig(st.courant) + "h, T = " + sig(st.final_time);
 }
 
 std::string describe(const StabilityRun& r) {
@@ -340,8 +351,9 @@ std::vector<ClaimResult> check_stability(const std::vector<SchemeChoice>& scheme
       measured.push_back(mass.name + ": " + describe(r));
       names.push_back(mass.name);
     }
-    rows.push_back(judge("1/" + scheme.label, "Stability: " + scheme.label + " with " + join(names, ", ") +
-                                                  " does not blow up over " + sig(settings.final_time / 3) + " periods",
+    rows.push_back(judge("1/" + scheme.label,
+                         "Stability: " + scheme.label + " with " + join(names, ", ") + " does not blow up over " +
+                             sig(settings.final_time / 3) + " periods",
                          join(measured, "; "), stability_criterion(settings), holds, expectations, used));
   }
   return rows;
@@ -388,8 +400,8 @@ TEST_CASE("the stability check fails on an unstable configuration and passes on 
 namespace {
 
 struct MassDeviation {
-  double worst_ratio = 0;      // max |deviation| / tolerance
-  double worst_relative = 0;   // max |deviation| / L
+  double worst_ratio = 0;     // max |deviation| / tolerance
+  double worst_relative = 0;  // max |deviation| / L
   std::string worst_mesh;
 };
 
@@ -515,16 +527,16 @@ std::vector<ClaimResult> check_ordering(const repro::Sweep& sweep, const std::ve
           }
         per_horizon.push_back(sig(g.horizons[k]) + " period(s): " + join(counts, " "));
       }
-      rows.push_back(judge(
-          "3/" + scheme + "/dt=" + sig(c) + "h",
-          "Ordering (Figure 1) at Δt = " + sig(c) + "h: " + ordering_claim_text(scheme, ordered),
-          "measures ranked (of " + std::to_string(measures.size()) + ") for N = " + list_elements(g.elements) +
-              ", per horizon: " + join(per_horizon, "; "),
-          "strictly in each of " + join(measure_list, ", ") + " on every mesh N ∈ {" + list_elements(g.elements) +
-              "} over " + sig(g.horizons.back()) +
-              " periods of 3L, the horizon where the period law's drift has had the longest to act (the counts "
-              "at shorter horizons show from when it holds)",
-          holds, expectations, used));
+      rows.push_back(
+          judge("3/" + scheme + "/dt=" + sig(c) + "h",
+                "Ordering (Figure 1) at Δt = " + sig(c) + "h: " + ordering_claim_text(scheme, ordered),
+                "measures ranked (of " + std::to_string(measures.size()) + ") for N = " + list_elements(g.elements) +
+                    ", per horizon: " + join(per_horizon, "; "),
+                "strictly in each of " + join(measure_list, ", ") + " on every mesh N ∈ {" + list_elements(g.elements) +
+                    "} over " + sig(g.horizons.back()) +
+                    " periods of 3L, the horizon where the period law's drift has had the longest to act (the counts "
+                    "at shorter horizons show from when it holds)",
+                holds, expectations, used));
     }
   }
   return rows;
@@ -658,16 +670,16 @@ std::vector<ClaimResult> check_phase_drift(const repro::Sweep& sweep, const Phas
                        fixed(law_drift(mass, g.elements.back()) * static_cast<double>(g.elements.back()), 2) + "h)");
   }
   holds = worst <= st.tolerance && worst_difference <= st.difference_tolerance;
-  return {judge("3/mechanism/" + st.scheme,
-                "Mechanism of claim 3 (period law, mathematics.md §8): with " + st.scheme +
-                    ", the impact times drift per period as 2ℓ_f + ℓ_c − 3L predicts (−4h/3, −h/3, 0)",
-                "drift per period over every Δt/h and N: " + join(per_mass, "; ") + "; largest deviation from the law " +
-                    fixed(worst, 3) + "h, of the differences to mod3 " + fixed(worst_difference, 3) + "h",
-                "in every cell Δt/h ∈ {" + list_reals(g.courants) + "}, N ∈ {" + list_elements(g.elements) + "} over " +
-                    sig(g.horizons.back()) + " periods: |drift − law| ≤ " + sig(st.tolerance) +
-                    "h for each mass, and |(drift − drift_mod3) − (law − law_mod3)| ≤ " +
-                    sig(st.difference_tolerance) + "h",
-                holds, expectations, used)};
+  return {judge(
+      "3/mechanism/" + st.scheme,
+      "Mechanism of claim 3 (period law, mathematics.md §8): with " + st.scheme +
+          ", the impact times drift per period as 2ℓ_f + ℓ_c − 3L predicts (−4h/3, −h/3, 0)",
+      "drift per period over every Δt/h and N: " + join(per_mass, "; ") + "; largest deviation from the law " +
+          fixed(worst, 3) + "h, of the differences to mod3 " + fixed(worst_difference, 3) + "h",
+      "in every cell Δt/h ∈ {" + list_reals(g.courants) + "}, N ∈ {" + list_elements(g.elements) + "} over " +
+          sig(g.horizons.back()) + " periods: |drift − law| ≤ " + sig(st.tolerance) +
+          "h for each mass, and |(drift − drift_mod3) − (law − law_mod3)| ≤ " + sig(st.difference_tolerance) + "h",
+      holds, expectations, used)};
 }
 
 SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSettings& st) {
@@ -743,15 +755,16 @@ std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySetti
     for (const MassRedistribution& m : triple)
       for (Index n : st.elements) {
         if (std::find(names.begin(), names.end(), m.name + "/" + std::to_string(n)) != names.end()) continue;
-        repro::Configuration c = repro::paper_configuration(st.scheme, "algebraic", "mod3", n, st.courant, 3 * st.periods);
+        repro::Configuration c =
+            repro::paper_configuration(st.scheme, "algebraic", "mod3", n, st.courant, 3 * st.periods);
         c.mass = m;
         configurations.push_back(c);
         names.push_back(m.name + "/" + std::to_string(n));
       }
   const std::vector<repro::Measures> measures = repro::run_configurations(configurations);
   const auto errors = [&](const std::string& mass, Index n) {
-    const std::size_t k = static_cast<std::size_t>(
-        std::find(names.begin(), names.end(), mass + "/" + std::to_string(n)) - names.begin());
+    const std::size_t k =
+        static_cast<std::size_t>(std::find(names.begin(), names.end(), mass + "/" + std::to_string(n)) - names.begin());
     return measures[k];
   };
   const std::vector<std::size_t> judged = repro::judged_measures(st.scheme);
@@ -783,7 +796,8 @@ std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySetti
                          join(measured, "; "),
                          "with " + st.scheme + ", Δt = " + sig(st.courant) + "h, " + sig(st.periods) +
                              " periods: the same number of measures ranked Mod 3 < Mod 2 < Mod 1 as with the "
-                             "reconstruction on every mesh N = " + list_elements(st.elements),
+                             "reconstruction on every mesh N = " +
+                             list_elements(st.elements),
                          holds, expectations, used));
   }
   return rows;
@@ -828,8 +842,10 @@ std::vector<ClaimResult> check_convergence(const repro::Sweep& sweep, const Expe
         std::vector<std::string> outside;
         for (std::size_t q : judged) {
           const double p = cell.order[q];
-          if (repro::displacement_measure(q)) d_lo = std::min(d_lo, p), d_hi = std::max(d_hi, p);
-          else e_lo = std::min(e_lo, p), e_hi = std::max(e_hi, p);
+          if (repro::displacement_measure(q))
+            d_lo = std::min(d_lo, p), d_hi = std::max(d_hi, p);
+          else
+            e_lo = std::min(e_lo, p), e_hi = std::max(e_hi, p);
           if (!cell.within[q]) outside.push_back(std::string(measure_names[q]) + " " + fixed(p, 2));
           holds = holds && cell.within[q];
           within += cell.within[q];
@@ -959,8 +975,8 @@ std::array<double, 8> against_reference(const SchemeChoice& scheme, const MassRe
 // other, and the sampled velocity norms then show one O(1) outlier.
 std::vector<ClaimResult> check_time_convergence(const SchemeChoice& scheme,
                                                 const std::vector<MassRedistribution>& masses,
-                                                const TimeConvergenceSettings& st,
-                                                const Expectations& expectations, std::vector<std::string>* used) {
+                                                const TimeConvergenceSettings& st, const Expectations& expectations,
+                                                std::vector<std::string>* used) {
   const UniformMesh mesh(1.0, st.elements);
   const double h = mesh.h(), dt_ref = st.reference_courant * h;
   std::vector<double> dt;
@@ -984,7 +1000,8 @@ std::vector<ClaimResult> check_time_convergence(const SchemeChoice& scheme,
       std::vector<std::string> local;
       double finest = std::nan("");
       for (std::size_t i = 0; i + 1 < y.size(); ++i) {
-        const double p = y[i + 1] > 0 && y[i] > 0 ? std::log(y[i] / y[i + 1]) / std::log(dt[i] / dt[i + 1]) : std::nan("");
+        const double p =
+            y[i + 1] > 0 && y[i] > 0 ? std::log(y[i] / y[i + 1]) / std::log(dt[i] / dt[i + 1]) : std::nan("");
         local.push_back(fixed(p, 2));
         finest = p;
       }
@@ -1041,17 +1058,17 @@ namespace {
 
 struct EnergyTrace {
   double e0 = 0, e_final = 0, round_off = 0;
-  double max_same_status = 0;   // max |ΔE| / E(0) over steps that keep the status
-  double jump_sum = 0;          // Σ |ΔE| / E(0) over steps that change it
-  double max_increase = 0;      // max (ΔE) / E(0)
+  double max_same_status = 0;  // max |ΔE| / E(0) over steps that keep the status
+  double jump_sum = 0;         // Σ |ΔE| / E(0) over steps that change it
+  double max_increase = 0;     // max (ΔE) / E(0)
   int changes = 0;
-  int increases = 0;            // steps with ΔE > round-off
+  int increases = 0;  // steps with ΔE > round-off
 };
 
 // The round-off allowance of an energy change, relative to E(0): factor · ε √N (L/Δt).
 double energy_round_off(const UniformMesh& mesh, double dt, double factor) {
-  return factor * std::numeric_limits<double>::epsilon() * std::sqrt(static_cast<double>(mesh.elements)) *
-         mesh.length / dt;
+  return factor * std::numeric_limits<double>::epsilon() * std::sqrt(static_cast<double>(mesh.elements)) * mesh.length /
+         dt;
 }
 
 std::string round_off_text(const EnergySettings& settings) {
@@ -1115,17 +1132,18 @@ std::vector<ClaimResult> check_energy_conservation(const SchemeChoice& scheme,
     const bool positive = std::all_of(jumps.begin(), jumps.end(), [](double v) { return v > 0 && std::isfinite(v); });
     const std::string order = positive ? ", order in h " + fixed(least_squares_order(h, jumps), 2) : "";
     const bool holds = worst_share <= 1.0 && shrinking;
-    rows.push_back(judge("5/" + scheme.label + "/" + mass.name,
-                         "Energy: " + scheme.label + " with " + mass.name +
-                             " conserves E_h up to jumps at status changes that shrink with h",
-                         "max |ΔE|/E_h(0) over steps keeping the status: " + sig(max_same) + " (at most " +
-                             fixed(worst_share, 3) + " × the round-off allowance); Σ|ΔE|/E_h(0) at status changes: " +
-                             join(per_mesh, "; ") + order,
-                         "|ΔE| ≤ " + round_off_text(settings) +
-                             " (round-off) at every step keeping the contact status, and Σ|ΔE| over the steps changing "
-                             "it decreases at every refinement N = " + list_elements(settings.elements) +
-                             " (Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time) + ")",
-                         holds, expectations, used));
+    rows.push_back(
+        judge("5/" + scheme.label + "/" + mass.name,
+              "Energy: " + scheme.label + " with " + mass.name +
+                  " conserves E_h up to jumps at status changes that shrink with h",
+              "max |ΔE|/E_h(0) over steps keeping the status: " + sig(max_same) + " (at most " + fixed(worst_share, 3) +
+                  " × the round-off allowance); Σ|ΔE|/E_h(0) at status changes: " + join(per_mesh, "; ") + order,
+              "|ΔE| ≤ " + round_off_text(settings) +
+                  " (round-off) at every step keeping the contact status, and Σ|ΔE| over the steps changing "
+                  "it decreases at every refinement N = " +
+                  list_elements(settings.elements) + " (Δt = " + sig(settings.courant) +
+                  "h, T = " + sig(settings.final_time) + ")",
+              holds, expectations, used));
   }
   return rows;
 }
@@ -1149,9 +1167,9 @@ std::vector<ClaimResult> check_energy_dissipation(const SchemeChoice& scheme,
                          "Energy: " + scheme.label + " with " + mass.name + " never increases the energy",
                          std::to_string(increases) + " steps with an increase; largest ΔE/E_h(0) = " +
                              sig(max_increase) + "; " + join(per_mesh, "; "),
-                         "Eⁿ⁺¹ ≤ Eⁿ + " + round_off_text(settings) + " (round-off) at every step, N = " +
-                             list_elements(settings.elements) + " (Δt = " + sig(settings.courant) +
-                             "h, T = " + sig(settings.final_time) + ")",
+                         "Eⁿ⁺¹ ≤ Eⁿ + " + round_off_text(settings) +
+                             " (round-off) at every step, N = " + list_elements(settings.elements) +
+                             " (Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time) + ")",
                          increases == 0, expectations, used));
   }
   return rows;
@@ -1296,8 +1314,8 @@ StepComparison compare_steps(const ContactStepCase& c, const ContactStepSettings
     const double multiplier = before.multiplier;
     simulation.step();
     const Sample after = simulation.sample();
-    const RebuiltStep r = rebuild_step(c.model.parameters, simulation.mass(), simulation.stiffness(), dt, u, velocity,
-                                       multiplier);
+    const RebuiltStep r =
+        rebuild_step(c.model.parameters, simulation.mass(), simulation.stiffness(), dt, u, velocity, multiplier);
     const double u0 = (*after.displacement)[0];
     const bool active = u0 == r.obstacle;
     const bool changed = active != contact;
@@ -1347,8 +1365,8 @@ std::vector<ClaimResult> check_contact_step(const std::vector<ContactStepCase>& 
                              ") solves the step's saddle-point system",
                          join(measured, "; "),
                          "against Eigen's SparseLU on the full (U, λ) system rebuilt from (Uⁿ, Vⁿ or Uⁿ⁻¹, λⁿ) with "
-                         "the active set fixed: max|ΔU|/max|U| and max|Δλ|/max|λ| ≤ " + sig(settings.tolerance) +
-                             ", complementarity exact; every status change and every " +
+                         "the active set fixed: max|ΔU|/max|U| and max|Δλ|/max|λ| ≤ " +
+                             sig(settings.tolerance) + ", complementarity exact; every status change and every " +
                              std::to_string(settings.every) + "th step, N = " + std::to_string(settings.elements) +
                              ", Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time),
                          holds, expectations, used));
@@ -1399,9 +1417,9 @@ ClaimResult check_exact_solution(const ExactSolution& exact, const FineSolutionS
   }
   return judge("6/exact", "The closed-form solution agrees with a very fine numerical solution",
                "relative errors: " + join(measured, ", "),
-               "all 8 relative errors ≤ " + sig(settings.bound) + " (≈ 3h^½) for cn, mod3, N = " +
-                   std::to_string(settings.elements) + ", Δt = " + sig(settings.courant) + "h, T = " +
-                   sig(settings.final_time),
+               "all 8 relative errors ≤ " + sig(settings.bound) +
+                   " (≈ 3h^½) for cn, mod3, N = " + std::to_string(settings.elements) +
+                   ", Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time),
                holds, expectations, used);
 }
 
@@ -1498,8 +1516,8 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     int reproduced = 0;
     for (const ClaimResult* row : r) reproduced += row->verdict == Verdict::reproduced;
     return reproduced == static_cast<int>(r.size()) ? std::string("reproduced")
-           : reproduced == 0                         ? std::string("not reproduced")
-                                                     : std::string("partly reproduced");
+           : reproduced == 0                        ? std::string("not reproduced")
+                                                    : std::string("partly reproduced");
   };
 
   timed("sweep (claims 3 and 4)", [&] { report.sweep = repro::run_sweep(repro::SweepGrid(), 0, progress); });
@@ -1529,11 +1547,10 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
       if (large_holds && worst <= blow_up) bounded_up_to = c;
       large_holds = large_holds && worst <= blow_up;
     }
-    rows.push_back(judge("1/cn/large-steps", "Stability over a region: cn with mod3 for Δt/h from ¼ to 40",
-                         "largest E_hⁿ/E_h(0) over N = 16, 32, 64, 128 and 100 periods, per Δt/h: " +
-                             join(per_courant, ", "),
-                         "E_hⁿ ≤ " + sig(blow_up) + " E_h(0) at every step, every N and Δt/h", large_holds,
-                         expectations, &used));
+    rows.push_back(
+        judge("1/cn/large-steps", "Stability over a region: cn with mod3 for Δt/h from ¼ to 40",
+              "largest E_hⁿ/E_h(0) over N = 16, 32, 64, 128 and 100 periods, per Δt/h: " + join(per_courant, ", "),
+              "E_hⁿ ≤ " + sig(blow_up) + " E_h(0) at every step, every N and Δt/h", large_holds, expectations, &used));
     bool long_holds = true;
     std::vector<std::string> per_mass;
     for (const StabilityCell& cell : long_runs) {
@@ -1542,8 +1559,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     }
     rows.push_back(judge("1/cn/1000-periods", "Stability over a long run: cn at Δt = h over 1000 periods",
                          "largest E_hⁿ/E_h(0): " + join(per_mass, ", "),
-                         "E_hⁿ ≤ " + sig(blow_up) + " E_h(0) at every step", long_holds, expectations,
-                         &used));
+                         "E_hⁿ ≤ " + sig(blow_up) + " E_h(0) at every step", long_holds, expectations, &used));
     stability_line.key = "stability";
     stability_line.claim = "1 Stability (no blow-up)";
     stability_line.verdict = verdict_of(rows_with("1/"));
@@ -1582,9 +1598,8 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     append(check_energy_conservation(scheme_choice("cn"), paper_masses(), EnergySettings(), expectations, &used));
     append(check_energy_dissipation(scheme_choice("be"), paper_masses(), EnergySettings(), expectations, &used));
   });
-  timed("6 contact step", [&] {
-    append(check_contact_step(paper_contact_step_cases(), ContactStepSettings(), expectations, &used));
-  });
+  timed("6 contact step",
+        [&] { append(check_contact_step(paper_contact_step_cases(), ContactStepSettings(), expectations, &used)); });
   timed("6 exact solution", [&] {
     rows.push_back(check_exact_solution(ExactSolution(1.0, 0.5), FineSolutionSettings(), expectations, &used));
   });
@@ -1627,8 +1642,9 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
       }
       numbers.push_back(row->id.substr(6) + ": " + join(velocity, ", "));
     }
-    summary.push_back({"time", "4 Error estimate in time: cn at order 2 in Δt (h = 1/" +
-                                   std::to_string(TimeConvergenceSettings().elements) + ")",
+    summary.push_back({"time",
+                       "4 Error estimate in time: cn at order 2 in Δt (h = 1/" +
+                           std::to_string(TimeConvergenceSettings().elements) + ")",
                        verdict_of(r), ids(r, Verdict::reproduced), ids(r, Verdict::failed), join(numbers, "; ")});
   }
   {
@@ -1715,17 +1731,45 @@ void write_markdown_table(std::ostream& out, const std::vector<ClaimResult>& row
 
 std::string latex_escape(const std::string& text) {
   static const std::pair<const char*, const char*> symbols[] = {
-      {"λ", "\\ensuremath{\\lambda}"}, {"Δ", "\\ensuremath{\\Delta}"}, {"≤", "\\ensuremath{\\le}"},
-      {"≥", "\\ensuremath{\\ge}"}, {"×", "\\ensuremath{\\times}"}, {"∞", "\\ensuremath{\\infty}"},
-      {"²", "\\ensuremath{^2}"}, {"¹", "\\ensuremath{^1}"}, {"ⁿ", "\\ensuremath{^n}"}, {"⁺", "\\ensuremath{^+}"},
-      {"⁻", "\\ensuremath{^-}"}, {"ᵀ", "\\ensuremath{^T}"}, {"½", "\\ensuremath{\\frac12}"},
-      {"¼", "\\ensuremath{\\frac14}"}, {"·", "\\ensuremath{\\cdot}"}, {"−", "\\ensuremath{-}"},
-      {"→", "\\ensuremath{\\to}"}, {"ε", "\\ensuremath{\\varepsilon}"}, {"θ", "\\ensuremath{\\theta}"},
-      {"β", "\\ensuremath{\\beta}"}, {"₀", "\\ensuremath{_0}"}, {"≈", "\\ensuremath{\\approx}"}, {"–", "--"},
-      {"—", "---"}, {"…", "\\dots{}"}, {"§", "\\S{}"}, {"é", "\\'e"}, {"√", "\\ensuremath{\\surd}"},
-      {"Σ", "\\ensuremath{\\Sigma}"}, {"∝", "\\ensuremath{\\propto}"}, {"è", "\\`e"}, {"č", "\\v{c}"},
-      {"œ", "\\oe{}"}, {"¾", "\\ensuremath{\\frac34}"}, {"ℓ", "\\ensuremath{\\ell}"},
-      {"₁", "\\ensuremath{_1}"}, {"ą", "\\k{a}"}, {"∈", "\\ensuremath{\\in}"}, {"±", "\\ensuremath{\\pm}"},
+      {"λ", "\\ensuremath{\\lambda}"},
+      {"Δ", "\\ensuremath{\\Delta}"},
+      {"≤", "\\ensuremath{\\le}"},
+      {"≥", "\\ensuremath{\\ge}"},
+      {"×", "\\ensuremath{\\times}"},
+      {"∞", "\\ensuremath{\\infty}"},
+      {"²", "\\ensuremath{^2}"},
+      {"¹", "\\ensuremath{^1}"},
+      {"ⁿ", "\\ensuremath{^n}"},
+      {"⁺", "\\ensuremath{^+}"},
+      {"⁻", "\\ensuremath{^-}"},
+      {"ᵀ", "\\ensuremath{^T}"},
+      {"½", "\\ensuremath{\\frac12}"},
+      {"¼", "\\ensuremath{\\frac14}"},
+      {"·", "\\ensuremath{\\cdot}"},
+      {"−", "\\ensuremath{-}"},
+      {"→", "\\ensuremath{\\to}"},
+      {"ε", "\\ensuremath{\\varepsilon}"},
+      {"θ", "\\ensuremath{\\theta}"},
+      {"β", "\\ensuremath{\\beta}"},
+      {"₀", "\\ensuremath{_0}"},
+      {"≈", "\\ensuremath{\\approx}"},
+      {"–", "--"},
+      {"—", "---"},
+      {"…", "\\dots{}"},
+      {"§", "\\S{}"},
+      {"é", "\\'e"},
+      {"√", "\\ensuremath{\\surd}"},
+      {"Σ", "\\ensuremath{\\Sigma}"},
+      {"∝", "\\ensuremath{\\propto}"},
+      {"è", "\\`e"},
+      {"č", "\\v{c}"},
+      {"œ", "\\oe{}"},
+      {"¾", "\\ensuremath{\\frac34}"},
+      {"ℓ", "\\ensuremath{\\ell}"},
+      {"₁", "\\ensuremath{_1}"},
+      {"ą", "\\k{a}"},
+      {"∈", "\\ensuremath{\\in}"},
+      {"±", "\\ensuremath{\\pm}"},
   };
 
   std::string out;
@@ -1733,17 +1777,36 @@ std::string latex_escape(const std::string& text) {
     const unsigned char c = static_cast<unsigned char>(text[i]);
     if (c < 0x80) {
       switch (c) {
-        case '\\': out += "\\textbackslash{}"; break;
-        case '{': case '}': case '$': case '&': case '#': case '_': case '%':
+        case '\\':
+          out += "\\textbackslash{}";
+          break;
+        case '{':
+        case '}':
+        case '$':
+        case '&':
+        case '#':
+        case '_':
+        case '%':
           out += '\\';
           out += static_cast<char>(c);
           break;
-        case '^': out += "\\textasciicircum{}"; break;
-        case '~': out += "\\textasciitilde{}"; break;
-        case '<': out += "\\ensuremath{<}"; break;
-        case '>': out += "\\ensuremath{>}"; break;
-        case '|': out += "\\ensuremath{|}"; break;
-        default: out += static_cast<char>(c);
+        case '^':
+          out += "\\textasciicircum{}";
+          break;
+        case '~':
+          out += "\\textasciitilde{}";
+          break;
+        case '<':
+          out += "\\ensuremath{<}";
+          break;
+        case '>':
+          out += "\\ensuremath{>}";
+          break;
+        case '|':
+          out += "\\ensuremath{|}";
+          break;
+        default:
+          out += static_cast<char>(c);
       }
       ++i;
       continue;
@@ -1819,9 +1882,10 @@ TEST_CASE("LaTeX escaping handles the special characters and the table's symbols
 void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
   const std::string column = ">{\\raggedright\\arraybackslash}p{";
   repro::LatexLayout layout;
-  layout.before = "% The claims of the paper as executable checks: generated by check_claims --tex (do not edit).\n"
-                  "% Needs \\usepackage{longtable,booktabs,array}.\n"
-                  "{\\footnotesize\\setlength{\\tabcolsep}{3pt}\n";
+  layout.before =
+      "% The claims of the paper as executable checks: generated by check_claims --tex (do not edit).\n"
+      "% Needs \\usepackage{longtable,booktabs,array}.\n"
+      "{\\footnotesize\\setlength{\\tabcolsep}{3pt}\n";
   layout.columns = column + "0.20\\linewidth}" + column + "0.40\\linewidth}" + column + "0.23\\linewidth}" + column +
                    "0.11\\linewidth}";
   layout.longtable = true;
@@ -1843,8 +1907,9 @@ void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) 
     }
     table.add_row({"\\textbf{" + id + "} " + latex_escape(r.claim), latex_escape(r.measured),
                    same_criterion ? std::string("\\emph{as above}") : latex_escape(r.criterion), verdict},
-                  r.reason.empty() ? std::string()
-                                   : "\\emph{Why:} " + (same_reason ? std::string("as above.") : latex_escape(r.reason)));
+                  r.reason.empty()
+                      ? std::string()
+                      : "\\emph{Why:} " + (same_reason ? std::string("as above.") : latex_escape(r.reason)));
   }
   table.write_latex(out, layout);
 }

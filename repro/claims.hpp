@@ -36,7 +36,7 @@ struct ClaimResult {
   std::string measured;   ///< what was measured, with the numbers
   std::string criterion;  ///< the criterion, stated in advance
   Verdict verdict;
-  std::string reason;     ///< for not_reproduced/failed: why (the expected-failure reason, or what broke)
+  std::string reason;  ///< for not_reproduced/failed: why (the expected-failure reason, or what broke)
 };
 
 /// The rows expected NOT to reproduce, by row id, with the reason (and, in the table's source, the
@@ -72,8 +72,8 @@ struct SummaryLine {
 struct StabilitySettings {
   Index elements = 200;
   double courant = 0.5;
-  double final_time = 300;   ///< 100 periods of the benchmark
-  double bound_conserving = 1.01;  ///< E_hⁿ ≤ 1.01 E_h(0) for Crank–Nicolson and Paoli–Schatzman
+  double final_time = 300;                 ///< 100 periods of the benchmark
+  double bound_conserving = 1.01;          ///< E_hⁿ ≤ 1.01 E_h(0) for Crank–Nicolson and Paoli–Schatzman
   double bound_dissipative = 1.0 + 1e-12;  ///< E_hⁿ ≤ (1 + 1e-12) E_h(0) for backward Euler
 };
 /// Every scheme × mass runs to the final time with finite values and a bounded energy.
@@ -148,7 +148,7 @@ struct TimeConvergenceSettings {
   std::vector<double> courants = {0.125, 0.0625, 0.03125, 0.015625, 0.0078125};  ///< Δt/h; each divides the first
   double reference_courant = 1.0 / 2048;  ///< the reference: same h, this much smaller Δt
   double final_time = 3;
-  double predicted_order = 2;   ///< the trapezoidal rule on the semi-discrete Lipschitz ODE
+  double predicted_order = 2;  ///< the trapezoidal rule on the semi-discrete Lipschitz ODE
   double tolerance = 0.25;
 };
 /// The error in time at fixed h against a reference of the same h with a much smaller Δt, in the eight

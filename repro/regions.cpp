@@ -33,8 +33,7 @@
 
 namespace mrm::repro {
 
-const SweepRun& Sweep::find(const std::string& scheme, const std::string& mass, double courant,
-                            Index elements) const {
+const SweepRun& Sweep::find(const std::string& scheme, const std::string& mass, double courant, Index elements) const {
   for (const SweepRun& r : runs)
     if (r.scheme == scheme && r.mass == mass && r.courant == courant && r.elements == elements) return r;
   throw std::out_of_range("sweep: no run " + scheme + " " + mass + " dt/h = " + cli::format_real(courant) +
@@ -100,9 +99,12 @@ std::string list(const std::vector<T>& values) {
   std::string s;
   for (std::size_t k = 0; k < values.size(); ++k) {
     if (k) s += ' ';
-    if constexpr (std::is_same_v<T, std::string>) s += values[k];
-    else if constexpr (std::is_same_v<T, double>) s += cli::format_real(values[k]);
-    else s += std::to_string(values[k]);
+    if constexpr (std::is_same_v<T, std::string>)
+      s += values[k];
+    else if constexpr (std::is_same_v<T, double>)
+      s += cli::format_real(values[k]);
+    else
+      s += std::to_string(values[k]);
   }
   return s;
 }
@@ -160,9 +162,12 @@ Sweep read_sweep(std::istream& in) {
       if (eq == std::string::npos) continue;
       const std::string key = line.substr(2, eq - 2);
       const std::vector<std::string> v = words(line.substr(eq + 3));
-      if (key == "schemes") g.schemes = v;
-      else if (key == "masses") g.masses = v;
-      else if (key == "baseline") g.baseline = v.size() == 1 && v[0] == "true";
+      if (key == "schemes")
+        g.schemes = v;
+      else if (key == "masses")
+        g.masses = v;
+      else if (key == "baseline")
+        g.baseline = v.size() == 1 && v[0] == "true";
       else if (key == "courants") {
         g.courants.clear();
         for (const std::string& x : v) g.courants.push_back(real(x));
@@ -191,8 +196,8 @@ Sweep read_sweep(std::istream& in) {
   }
   for (const SweepRun& r : sweep.runs)
     if (r.errors.size() != g.horizons.size())
-      throw std::runtime_error("sweep file: the run " + r.scheme + " " + r.mass + " N = " +
-                               std::to_string(r.elements) + " lacks horizons");
+      throw std::runtime_error("sweep file: the run " + r.scheme + " " + r.mass + " N = " + std::to_string(r.elements) +
+                               " lacks horizons");
   if (sweep.runs.empty()) throw std::runtime_error("sweep file: no run");
   return sweep;
 }
@@ -314,7 +319,9 @@ TEST_CASE("a sweep written and read back is the same sweep, and a malformed file
   CHECK_THROWS_WITH_AS(read_sweep(bad), doctest::Contains("columns"), std::runtime_error);
 }
 
-TEST_CASE("the ordering cells count the measures in which the masses rank as given, and reversing the ranking reverses them") {
+TEST_CASE(
+    "the ordering cells count the measures in which the masses rank as given, and reversing the ranking reverses "
+    "them") {
   // Over 10 periods on N = 20, 40 with Δt = h/2, the period law's drift (−4h/3, −h/3, 0 per period)
   // dominates Crank–Nicolson's errors: the paper's ranking holds in most measures, and the reversed
   // list can hold in none of those (strict inequalities).
