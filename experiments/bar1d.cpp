@@ -65,15 +65,16 @@ int main(int argc, char** argv) {
       cli::require_positive(option, value);
       cli::require_in_closed_range(option, value, 0, largest_courant);
     };
-    cli::Parser parser("bar1d",
-                       "Runs one scheme with one mass matrix on the bar hitting an obstacle (the paper's benchmark "
-                       "with a closed-form solution, a smooth benchmark, or initial data from a file) and prints the "
-                       "relative errors against the exact solution, the energy range, the number of steps and the "
-                       "run time, one `name = value` line each.",
-                       {"bar1d --scheme cn --mass mod3 --elements 50 --courant 0.5 --final-time 12",
-                        "bar1d --scheme ps --ps-form literal --mass mod2 --elements 100 --dt 0.004 --output ps.dat",
-                        "bar1d --benchmark grazing --scheme cn --mass mod1 --elements 400",
-                        "bar1d --initial-data tests/data/initial_data/left_going_wave.dat --elements 200 --final-time 4"});
+    cli::Parser parser(
+        "bar1d",
+        "Runs one scheme with one mass matrix on the bar hitting an obstacle (the paper's benchmark "
+        "with a closed-form solution, a smooth benchmark, or initial data from a file) and prints the "
+        "relative errors against the exact solution, the energy range, the number of steps and the "
+        "run time, one `name = value` line each.",
+        {"bar1d --scheme cn --mass mod3 --elements 50 --courant 0.5 --final-time 12",
+         "bar1d --scheme ps --ps-form literal --mass mod2 --elements 100 --dt 0.004 --output ps.dat",
+         "bar1d --benchmark grazing --scheme cn --mass mod1 --elements 400",
+         "bar1d --initial-data tests/data/initial_data/left_going_wave.dat --elements 200 --final-time 4"});
     parser.add_integer("--elements", "-n", "N", "number of elements N of the mesh (h = L/N), an integer in [2, 1e7]",
                        &elements, cli::in_closed_range(2, cli::max_elements));
     parser.add_real("--courant", "-c", "C", "time step as a multiple of h: dt = C h (0 < C <= 1e6)", &courant,
@@ -111,8 +112,8 @@ int main(int argc, char** argv) {
                     "Paoli-Schatzman's beta, in [0, 1e6]; at least 1/4 with --ps-form literal and a massless "
                     "contact node",
                     &beta, cli::in_closed_range(0, 1e6));
-    parser.add_real("--restitution", "-e", "E", "Paoli-Schatzman's restitution coefficient e in [0, 1]",
-                    &restitution, cli::in_closed_range(0, 1));
+    parser.add_real("--restitution", "-e", "E", "Paoli-Schatzman's restitution coefficient e in [0, 1]", &restitution,
+                    cli::in_closed_range(0, 1));
     parser.add_choice("--ps-form", "", "F",
                       "Paoli-Schatzman's contact row: algebraic at every level, or the literal three-level formula "
                       "(the consistent mass needs literal, which is then the default)",
@@ -121,31 +122,37 @@ int main(int argc, char** argv) {
                       "initial value of a massless contact node: solved from its algebraic row, or the interpolant",
                       {"consistent", "interpolant"}, &initial);
     parser.add_string("--output", "-o", "FILE", "write the contact-point time series to FILE", &output);
-    parser.add_flag("--no-timing", "", "leave out the wall time of the run (wall_seconds, the one value that varies "
-                    "from run to run)", &no_timing);
+    parser.add_flag("--no-timing", "",
+                    "leave out the wall time of the run (wall_seconds, the one value that varies "
+                    "from run to run)",
+                    &no_timing);
     parser.add_conflict("--dt", "--courant");
     parser.add_conflict("--initial-data", "--benchmark");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
     const bool own_data = parser.given("--initial-data");
     for (const char* option : {"--length", "--amplitude"})
       if (parser.given(option) && (own_data || benchmark != "paper"))
-        throw cli::UsageError(std::string(option) + ": only with --benchmark paper (the smooth benchmarks have L = 1, " +
+        throw cli::UsageError(std::string(option) +
+                              ": only with --benchmark paper (the smooth benchmarks have L = 1, " +
                               "and --initial-data gives L as its last x)");
     std::shared_ptr<const mrm::InitialData> data;
     if (own_data) data = std::make_shared<const mrm::InitialData>(mrm::repro::read_initial_data(initial_data));
     if (!parser.given("--final-time") && !own_data && benchmark != "paper") final_time = 2.0;
     if (mass == "consistent" && !parser.given("--ps-form")) ps_form = "literal";
     if (mass == "consistent" && scheme == "ps" && ps_form == "algebraic")
-      throw cli::UsageError("--ps-form: algebraic needs a massless contact node (--mass mod1, mod2 or mod3); "
-                            "with --mass consistent use --ps-form literal");
+      throw cli::UsageError(
+          "--ps-form: algebraic needs a massless contact node (--mass mod1, mod2 or mod3); "
+          "with --mass consistent use --ps-form literal");
     if (scheme == "ec" && mass == "consistent")
-      throw cli::UsageError("--scheme: ec needs a massless contact node (--mass mod1, mod2 or mod3): with the "
-                            "consistent mass the contact energy has no discrete gradient");
+      throw cli::UsageError(
+          "--scheme: ec needs a massless contact node (--mass mod1, mod2 or mod3): with the "
+          "consistent mass the contact energy has no discrete gradient");
     if (parser.given("--switch-theta") && scheme != "cn-switch")
       throw cli::UsageError("--switch-theta: only with --scheme cn-switch (allowed: omit it)");
     if (scheme == "ps" && ps_form == "literal" && beta == 0.0 && mass != "consistent")
-      throw cli::UsageError("--beta: 0 is not allowed with --ps-form literal and a massless contact node "
-                            "(the step matrix is singular); use --beta > 0 or --ps-form algebraic");
+      throw cli::UsageError(
+          "--beta: 0 is not allowed with --ps-form literal and a massless contact node "
+          "(the step matrix is singular); use --beta > 0 or --ps-form algebraic");
     // With the literal row and a massless contact node, row 0 off contact reads
     // β d^{n+1} + (1 − 2β) d^n + β d^{n−1} = 0 for d = u₀ − u₁ (S's row 0 is (1, −1)/h): the roots of
     // β r² + (1 − 2β) r + β have product 1 and are real and distinct when β < ¼, so one exceeds 1 in
@@ -153,7 +160,8 @@ int main(int argc, char** argv) {
     // overflowing within a few thousand steps; faster for smaller β): no finite or meaningful value
     // can come out. β ≥ ¼ puts both roots on the unit circle.
     if (scheme == "ps" && ps_form == "literal" && beta > 0.0 && beta < 0.25 && mass != "consistent")
-      throw cli::UsageError("--beta: " + cli::format_real(beta) + " is not allowed with --ps-form literal and a "
+      throw cli::UsageError("--beta: " + cli::format_real(beta) +
+                            " is not allowed with --ps-form literal and a "
                             "massless contact node (allowed: beta >= 1/4; below, u0 - u1 grows at every step of free "
                             "flight); use --ps-form algebraic or --mass consistent");
 
@@ -196,12 +204,13 @@ int main(int argc, char** argv) {
     if (series) {
       std::ostream& out = series->stream();
       out << "# bar1d: time series at the contact point x = 0 ("
-          << (own_data ? std::string("initial data from a file") : benchmark + " benchmark")
-          << "; exact values: " << (own_data || benchmark != "paper" ? "characteristic solution, mathematics.md sec. 10"
-                                                                     : "closed form, mathematics.md sec. 2")
+          << (own_data ? std::string("initial data from a file") : benchmark + " benchmark") << "; exact values: "
+          << (own_data || benchmark != "paper" ? "characteristic solution, mathematics.md sec. 10"
+                                               : "closed form, mathematics.md sec. 2")
           << ")\n";
       parser.echo(out);
-      out << "# h = " << cli::format_real(mesh.h()) << "\n# steps = " << steps << "\n# total_mass = " << cli::format_real(mrm::total_mass(mesh, configuration.mass))
+      out << "# h = " << cli::format_real(mesh.h()) << "\n# steps = " << steps
+          << "\n# total_mass = " << cli::format_real(mrm::total_mass(mesh, configuration.mass))
           << "\n# massless_contact_node = " << (massless ? "true" : "false")
           << "\n# exact_energy = " << cli::format_real(exact.energy()) << '\n'
           << "# Each quantity is given at the instant it approximates: t for u0, t_lambda for lambda,\n"
@@ -213,18 +222,20 @@ int main(int argc, char** argv) {
     // 4. The run (repro/configurations: the errors and the energy range), writing the series if asked.
     const auto start = std::chrono::steady_clock::now();
     const mrm::repro::Measures measures = mrm::repro::run_configuration(
-        configuration, [&](const mrm::Sample& s) {
-      if (series) {
-        std::ostream& out = series->stream();
-        const double nan = std::numeric_limits<double>::quiet_NaN();
-        out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
-            << cli::format_real(exact.contact_displacement(s.time)) << ' ' << cli::format_real(s.multiplier_time)
-            << ' ' << cli::format_real(s.has_multiplier ? s.multiplier : nan) << ' '
-            << cli::format_real(exact.contact_multiplier(s.multiplier_time)) << ' '
-            << cli::format_real(s.energy_time) << ' ' << cli::format_real(s.energy) << ' '
-            << cli::format_real(exact.energy()) << '\n';
-      }
-        }, reference.get());
+        configuration,
+        [&](const mrm::Sample& s) {
+          if (series) {
+            std::ostream& out = series->stream();
+            const double nan = std::numeric_limits<double>::quiet_NaN();
+            out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
+                << cli::format_real(exact.contact_displacement(s.time)) << ' ' << cli::format_real(s.multiplier_time)
+                << ' ' << cli::format_real(s.has_multiplier ? s.multiplier : nan) << ' '
+                << cli::format_real(exact.contact_multiplier(s.multiplier_time)) << ' '
+                << cli::format_real(s.energy_time) << ' ' << cli::format_real(s.energy) << ' '
+                << cli::format_real(exact.energy()) << '\n';
+          }
+        },
+        reference.get());
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     // 5. The figures, then the output file.

@@ -34,11 +34,12 @@ int main(int argc, char** argv) {
   return cli::guarded_main("check_claims", [&] {
     // 1. Options.
     std::string tex, markdown;
-    cli::Parser parser("check_claims",
-                       "Checks every claim of the paper (mathematics.md §6) on the benchmark and prints a table: claim, "
-                       "what was measured, criterion, verdict (reproduced, not reproduced = expected failure, or "
-                       "FAILED). Exits 0 iff no check FAILED.",
-                       {"check_claims", "check_claims --tex output/data/claims.tex --markdown output/data/claims.md"});
+    cli::Parser parser(
+        "check_claims",
+        "Checks every claim of the paper (mathematics.md §6) on the benchmark and prints a table: claim, "
+        "what was measured, criterion, verdict (reproduced, not reproduced = expected failure, or "
+        "FAILED). Exits 0 iff no check FAILED.",
+        {"check_claims", "check_claims --tex output/data/claims.tex --markdown output/data/claims.md"});
     parser.add_string("--tex", "", "FILE", "also write the table as a LaTeX longtable fragment (booktabs) to FILE",
                       &tex);
     parser.add_string("--markdown", "", "FILE", "also write the table as Markdown to FILE", &markdown);

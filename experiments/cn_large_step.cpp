@@ -37,8 +37,8 @@ int main(int argc, char** argv) {
                        {"cn_large_step --tex output/data/cn_large_step.tex"});
     parser.add_integer("--elements", "-n", "N", "number of elements N of the mesh, an integer in [2, 1e5]", &elements,
                        cli::in_closed_range(2, 1e5));
-    parser.add_real("--final-time", "-T", "T", "final time, in (0, 1e4]; the period of the benchmark is 3",
-                    &final_time, cli::in_closed_range(1e-300, 1e4));
+    parser.add_real("--final-time", "-T", "T", "final time, in (0, 1e4]; the period of the benchmark is 3", &final_time,
+                    cli::in_closed_range(1e-300, 1e4));
     parser.add_string("--tex", "", "FILE", "write the values for the report (\\mrmdef lines) to FILE", &tex);
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
     // Every run takes at least one step: the one with the largest step, dt = 40 h (the smallest,
@@ -51,9 +51,8 @@ int main(int argc, char** argv) {
 
     // 3-4. The runs and their values.
     for (const char* ratio : {"0.5", "2", "5", "10", "40"}) {
-      const mrm::repro::Measures m = mrm::repro::run_configuration(
-          mrm::repro::paper_configuration("cn", "algebraic", "mod3", elements, cli::parse_real("ratio", ratio),
-                                          final_time));
+      const mrm::repro::Measures m = mrm::repro::run_configuration(mrm::repro::paper_configuration(
+          "cn", "algebraic", "mod3", elements, cli::parse_real("ratio", ratio), final_time));
       mrm::tex_define(out.stream(), std::string("large:") + ratio, mrm::tex_magnitude(m.energy_max / m.energy_initial));
     }
     out.commit();

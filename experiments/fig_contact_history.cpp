@@ -58,7 +58,8 @@ int main(int argc, char** argv) {
                       {"algebraic", "literal"}, &ps_form);
     parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve, in [10, 1e6]",
                        &exact_points, cli::in_closed_range(10, cli::max_curve_points));
-    mrm::repro::FigureOutputs outputs(parser, "fig_contact_history", "also write the values the report quotes, as \\mrmdef lines");
+    mrm::repro::FigureOutputs outputs(parser, "fig_contact_history",
+                                      "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
     const mrm::UniformMesh mesh(1.0, elements);
@@ -109,19 +110,22 @@ int main(int argc, char** argv) {
             << "\n# columns: t u0_h t_lambda lambda_h\n";
         const mrm::repro::Configuration configuration =
             mrm::repro::paper_configuration(scheme, ps_form, mass, elements, courant, final_time);
-        const mrm::ErrorNorms e = mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
-          const double lambda = s.has_multiplier ? s.multiplier : std::numeric_limits<double>::quiet_NaN();
-          out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
-              << cli::format_real(s.multiplier_time) << ' ' << cli::format_real(lambda) << '\n';
-        }).errors;
+        const mrm::ErrorNorms e =
+            mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
+              const double lambda = s.has_multiplier ? s.multiplier : std::numeric_limits<double>::quiet_NaN();
+              out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
+                  << cli::format_real(s.multiplier_time) << ' ' << cli::format_real(lambda) << '\n';
+            }).errors;
         // 5. The errors of the contact point, quoted by the report beside the figure.
         {
           mrm::tex_define(outputs.values(), "hist:" + scheme + ":" + mass + ":err_u0_L2", mrm::tex_number(e.u0_L2, 2));
           mrm::tex_define(outputs.values(), "hist:" + scheme + ":" + mass + ":err_lambda_L2",
                           mrm::tex_number(e.lambda_L2, 2));
-          mrm::tex_define(outputs.values(), "hist:" + scheme + ":" + mass + ":err_u_L2H1", mrm::tex_number(e.u_L2H1, 2));
-          table.add_row({mass == "mod1" ? mrm::repro::scheme_label(scheme) : std::string(), std::string("Mod ") + mass.back(),
-                         mrm::tex_number(e.u0_L2, 2), mrm::tex_number(e.lambda_L2, 2), mrm::tex_number(e.u_L2H1, 2)});
+          mrm::tex_define(outputs.values(), "hist:" + scheme + ":" + mass + ":err_u_L2H1",
+                          mrm::tex_number(e.u_L2H1, 2));
+          table.add_row({mass == "mod1" ? mrm::repro::scheme_label(scheme) : std::string(),
+                         std::string("Mod ") + mass.back(), mrm::tex_number(e.u0_L2, 2),
+                         mrm::tex_number(e.lambda_L2, 2), mrm::tex_number(e.u_L2H1, 2)});
         }
       }
       table.add_rule();

@@ -65,12 +65,13 @@ int main(int argc, char** argv) {
     long coarsest = 128, refinements = 6, threads = 2;
     double final_time = 3.0;
     std::string ps_form = "literal";
-    cli::Parser parser("fig_convergence",
-                       "Writes every relative error of mathematics.md §5 against h, with dt = h and dt = h/2, for "
-                       "every scheme (cn, be, ps) and mass choice (mod1, mod2, mod3), and the observed orders "
-                       "(least-squares fit of log error against log h).",
-                       {"fig_convergence --output output/data/fig_convergence.dat --tex output/data/fig_convergence.tex",
-                        "fig_convergence --coarsest 16 --refinements 4 --threads 1 --output c.dat"});
+    cli::Parser parser(
+        "fig_convergence",
+        "Writes every relative error of mathematics.md §5 against h, with dt = h and dt = h/2, for "
+        "every scheme (cn, be, ps) and mass choice (mod1, mod2, mod3), and the observed orders "
+        "(least-squares fit of log error against log h).",
+        {"fig_convergence --output output/data/fig_convergence.dat --tex output/data/fig_convergence.tex",
+         "fig_convergence --coarsest 16 --refinements 4 --threads 1 --output c.dat"});
     parser.add_integer("--coarsest", "-n", "N0", "number of elements of the coarsest mesh, in [2, 1e7]", &coarsest,
                        mrm::repro::elements_range());
     parser.add_integer("--refinements", "-k", "K",
@@ -110,11 +111,13 @@ int main(int argc, char** argv) {
           for (std::size_t l = 0; l < static_cast<std::size_t>(refinements); ++l) {
             const mrm::Index n = static_cast<mrm::Index>(coarsest) << l;
             const double h = 1.0 / static_cast<double>(n);
-            runs.push_back({s, m, c, l, n, static_cast<double>(mrm::steps_to_reach(final_time, courants[c] * h)) * n, {}});
+            runs.push_back(
+                {s, m, c, l, n, static_cast<double>(mrm::steps_to_reach(final_time, courants[c] * h)) * n, {}});
           }
     std::vector<std::size_t> order(runs.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
 
     // 4. The runs, on `threads` workers (repro/parallel: each run writes only its own slot).
     mrm::repro::run_in_parallel(
@@ -123,7 +126,8 @@ int main(int argc, char** argv) {
           Run& r = runs[k];
           r.errors = mrm::ErrorAccumulator::values(
               mrm::repro::run_configuration(mrm::repro::paper_configuration(schemes[r.scheme], ps_form, masses[r.mass],
-                                                                            r.elements, courants[r.courant], final_time))
+                                                                            r.elements, courants[r.courant],
+                                                                            final_time))
                   .errors);
         },
         [&](std::size_t position, std::size_t k) {
@@ -136,7 +140,8 @@ int main(int argc, char** argv) {
     std::ostream& out = outputs.data();
     out << "# fig_convergence: relative errors against h (problem.md sec. 5)\n";
     parser.echo(out);
-    out << "# blocks: 2 (3 s + m) + c: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3), c in (dt = h, dt = h/2)\n";
+    out << "# blocks: 2 (3 s + m) + c: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3), c in (dt = h, dt = "
+           "h/2)\n";
     const std::size_t levels = static_cast<std::size_t>(refinements);
     auto at = [&](std::size_t s, std::size_t m, std::size_t c, std::size_t l) -> const Run& {
       return runs[((s * masses.size() + m) * courants.size() + c) * levels + l];
@@ -175,7 +180,8 @@ int main(int argc, char** argv) {
     mrm::repro::Table orders_table(headers), errors_table(headers), ranking_table(ranking_headers);
 
     std::vector<double> steps(levels);
-    for (std::size_t l = 0; l < levels; ++l) steps[l] = 1.0 / static_cast<double>(static_cast<mrm::Index>(coarsest) << l);
+    for (std::size_t l = 0; l < levels; ++l)
+      steps[l] = 1.0 / static_cast<double>(static_cast<mrm::Index>(coarsest) << l);
     for (std::size_t s = 0; s < schemes.size(); ++s) {
       long ordered = 0, cases = 0;
       for (std::size_t m = 0; m < masses.size(); ++m)
@@ -186,9 +192,10 @@ int main(int argc, char** argv) {
           for (std::size_t k = 0; k < 8; ++k) {
             std::vector<double> errors(levels);
             for (std::size_t l = 0; l < levels; ++l) errors[l] = at(s, m, c, l).errors[k];
-            const std::string key = schemes[s] + ":" + masses[m] + ":" + courant_keys[c] + ":" +
-                                    mrm::ErrorAccumulator::names[k];
-            const bool fittable = std::all_of(errors.begin(), errors.end(), [](double e) { return e > 0 && std::isfinite(e); });
+            const std::string key =
+                schemes[s] + ":" + masses[m] + ":" + courant_keys[c] + ":" + mrm::ErrorAccumulator::names[k];
+            const bool fittable =
+                std::all_of(errors.begin(), errors.end(), [](double e) { return e > 0 && std::isfinite(e); });
             if (fittable) {
               const mrm::OrderFit fit = mrm::fit_order(steps, errors);
               orders_row.push_back(mrm::tex_number(fit.order, 2));
@@ -208,7 +215,8 @@ int main(int argc, char** argv) {
         }
       // The paper's claim 3: Mod 3 < Mod 2 < Mod 1 in error. Counted over every measure, mesh and ratio.
       for (std::size_t c = 0; c < courants.size(); ++c) {
-        std::vector<std::string> ranking_row{c == 0 ? mrm::repro::scheme_label(schemes[s]) : std::string(), courant_labels[c]};
+        std::vector<std::string> ranking_row{c == 0 ? mrm::repro::scheme_label(schemes[s]) : std::string(),
+                                             courant_labels[c]};
         for (std::size_t k = 0; k < 8; ++k) {
           for (std::size_t l = 0; l < levels; ++l) {
             const double e1 = at(s, 0, c, l).errors[k], e2 = at(s, 1, c, l).errors[k], e3 = at(s, 2, c, l).errors[k];
@@ -221,7 +229,8 @@ int main(int argc, char** argv) {
             return at(s, a, c, levels - 1).errors[k] < at(s, b, c, levels - 1).errors[k];
           });
           const bool paper = rank[0] == 2 && rank[1] == 1 && rank[2] == 0;
-          const std::string ranking = std::to_string(rank[0] + 1) + std::to_string(rank[1] + 1) + std::to_string(rank[2] + 1);
+          const std::string ranking =
+              std::to_string(rank[0] + 1) + std::to_string(rank[1] + 1) + std::to_string(rank[2] + 1);
           ranking_row.push_back(paper ? "\\textbf{" + ranking + "}" : ranking);
         }
         ranking_table.add_row(ranking_row);
@@ -230,9 +239,12 @@ int main(int argc, char** argv) {
       mrm::tex_define(defs, "conv:ordered:" + schemes[s], std::to_string(ordered));
       mrm::tex_define(defs, "conv:cases:" + schemes[s], std::to_string(cases));
     }
-    defs << "\\mrmdef{conv:table:orders}{" << mrm::repro::latex_tabular(orders_table, "lll" + std::string(8, 'r')) << "}\n";
-    defs << "\\mrmdef{conv:table:errors}{" << mrm::repro::latex_tabular(errors_table, "lll" + std::string(8, 'r')) << "}\n";
-    defs << "\\mrmdef{conv:table:ranking}{" << mrm::repro::latex_tabular(ranking_table, "ll" + std::string(8, 'c')) << "}\n";
+    defs << "\\mrmdef{conv:table:orders}{" << mrm::repro::latex_tabular(orders_table, "lll" + std::string(8, 'r'))
+         << "}\n";
+    defs << "\\mrmdef{conv:table:errors}{" << mrm::repro::latex_tabular(errors_table, "lll" + std::string(8, 'r'))
+         << "}\n";
+    defs << "\\mrmdef{conv:table:ranking}{" << mrm::repro::latex_tabular(ranking_table, "ll" + std::string(8, 'c'))
+         << "}\n";
 
     // 7. Commit.
     outputs.commit();

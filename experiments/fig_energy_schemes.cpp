@@ -81,8 +81,10 @@ void execute(Run& r, double switch_theta) {
   double initial = 0, previous = 0;
   r.largest_increase = -std::numeric_limits<double>::infinity();
   r.measures = mrm::repro::run_configuration(c, [&](const mrm::Sample& s) {
-    if (s.level == 0) initial = previous = s.energy;
-    else r.largest_increase = std::max(r.largest_increase, (s.energy - previous) / initial);
+    if (s.level == 0)
+      initial = previous = s.energy;
+    else
+      r.largest_increase = std::max(r.largest_increase, (s.energy - previous) / initial);
     previous = s.energy;
     if (r.history) r.energy.emplace_back(s.energy_time, s.energy / initial);
   });
@@ -118,10 +120,10 @@ int main(int argc, char** argv) {
                        cli::in_closed_range(2, 1e5));
     parser.add_choice("--mass", "-m", "M", "history and map: the mass (a massless contact node, which ec needs)",
                       {"mod1", "mod2", "mod3"}, &mass);
-    parser.add_real("--switch-theta", "", "TH", "cn-switch: theta in [0.5, 1] of its switching step",
-                    &switch_theta, cli::in_closed_range(0.5, 1));
-    parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 64]; the output does not depend on it",
-                       &threads, cli::in_closed_range(1, 64));
+    parser.add_real("--switch-theta", "", "TH", "cn-switch: theta in [0.5, 1] of its switching step", &switch_theta,
+                    cli::in_closed_range(0.5, 1));
+    parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 64]; the output does not depend on it", &threads,
+                       cli::in_closed_range(1, 64));
     mrm::repro::FigureOutputs outputs(parser, "fig_energy_schemes",
                                       "also write the values and tables the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
@@ -170,7 +172,8 @@ int main(int argc, char** argv) {
     }
     std::vector<std::size_t> order(runs.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
     mrm::repro::run_in_parallel(
         order, threads, [&](std::size_t k) { execute(runs[k], switch_theta); },
         [&](std::size_t position, std::size_t k) {
@@ -217,8 +220,8 @@ int main(int argc, char** argv) {
             const Run& r = runs[next++];
             out << cli::format_real(c) << ' ' << cli::format_real(ratio(r, r.measures.energy_max)) << ' '
                 << cli::format_real(ratio(r, r.measures.energy_min)) << ' '
-                << cli::format_real(ratio(r, r.measures.energy_final)) << ' '
-                << cli::format_real(r.largest_increase) << '\n';
+                << cli::format_real(ratio(r, r.measures.energy_final)) << ' ' << cli::format_real(r.largest_increase)
+                << '\n';
             largest = std::max(largest, ratio(r, r.measures.energy_max));
             largest_drift = std::max(largest_drift, drift(r));
             largest_increase = std::max(largest_increase, r.largest_increase);
@@ -238,8 +241,8 @@ int main(int argc, char** argv) {
                                "$\\max_n (E^{n+1} - E^n)/E^0$", "$\\max_n E^n/E^0$", "$E(T)/E^0$"});
       for (const LongRun& l : long_runs) {
         const std::string run_label = std::to_string(l.elements) + ", $" +
-                                      (l.courant == 1 ? std::string("h") : cli::format_real(l.courant) + "h") +
-                                      "$, " + cli::format_real(l.periods);
+                                      (l.courant == 1 ? std::string("h") : cli::format_real(l.courant) + "h") + "$, " +
+                                      cli::format_real(l.periods);
         mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":N", std::to_string(l.elements));
         mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":courant", cli::format_real(l.courant));
         mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":periods", cli::format_real(l.periods));

@@ -48,7 +48,8 @@ int main(int argc, char** argv) {
     parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), in [2, 1e7]", &elements,
                        mrm::repro::elements_range());
     parser.add_real("--courant", "-c", "C", "time step dt = C h (0 < C <= 1e6)", &courant, mrm::repro::courant_range());
-    parser.add_choice("--scheme", "-s", "S", "time scheme (ec: energy-conserving Crank-Nicolson; cn-switch: "
+    parser.add_choice("--scheme", "-s", "S",
+                      "time scheme (ec: energy-conserving Crank-Nicolson; cn-switch: "
                       "Crank-Nicolson with a theta-step at each change of the contact status)",
                       {"cn", "be", "ps", "ec", "cn-switch"}, &scheme);
     parser.add_real("--switch-theta", "", "TH", "cn-switch: theta of its switching step, in [0.5, 1]", &switch_theta,
@@ -59,7 +60,8 @@ int main(int argc, char** argv) {
                       &instants_text);
     parser.add_integer("--exact-points", "", "K", "number of intervals of each exact profile, in [10, 1e6]",
                        &exact_points, cli::in_closed_range(10, cli::max_curve_points));
-    mrm::repro::FigureOutputs outputs(parser, "fig_profiles", "also write the values the report quotes, as \\mrmdef lines");
+    mrm::repro::FigureOutputs outputs(parser, "fig_profiles",
+                                      "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
     if (parser.given("--switch-theta") && scheme != "cn-switch")
       throw cli::UsageError("--switch-theta: only with --scheme cn-switch (allowed: omit it)");
@@ -98,9 +100,8 @@ int main(int argc, char** argv) {
     std::vector<std::vector<Eigen::VectorXd>> profiles(masses.size(), std::vector<Eigen::VectorXd>(levels.size()));
     for (std::size_t m = 0; m < masses.size(); ++m) {
       std::cerr << "fig_profiles: " << scheme << ' ' << masses[m] << '\n';
-      mrm::repro::Configuration configuration =
-          mrm::repro::paper_configuration(scheme, ps_form, masses[m], elements, courant,
-                                          static_cast<double>(last_level) * dt);
+      mrm::repro::Configuration configuration = mrm::repro::paper_configuration(
+          scheme, ps_form, masses[m], elements, courant, static_cast<double>(last_level) * dt);
       configuration.scheme.switch_theta = switch_theta;
       configuration.steps = last_level;  // exactly the last chosen level (it may be level 0)
       mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {

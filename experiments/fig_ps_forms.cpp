@@ -60,7 +60,8 @@ int main(int argc, char** argv) {
     parser.add_choice("--mass", "-m", "M", "the redistributed mass", {"mod1", "mod2", "mod3"}, &mass);
     parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve, in [10, 1e6]",
                        &exact_points, cli::in_closed_range(10, cli::max_curve_points));
-    mrm::repro::FigureOutputs outputs(parser, "fig_ps_forms", "also write the values the report quotes, as \\mrmdef lines");
+    mrm::repro::FigureOutputs outputs(parser, "fig_ps_forms",
+                                      "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
     const mrm::UniformMesh mesh(1.0, elements);
@@ -98,8 +99,8 @@ int main(int argc, char** argv) {
     struct Variant {
       std::string key, mass, form;
     };
-    const std::vector<Variant> variants{{"algebraic", mass, "algebraic"}, {"literal", mass, "literal"},
-                                        {"consistent", "consistent", "literal"}};
+    const std::vector<Variant> variants{
+        {"algebraic", mass, "algebraic"}, {"literal", mass, "literal"}, {"consistent", "consistent", "literal"}};
     const long periods = static_cast<long>(std::ceil(final_time / exact.period() - 1e-9));
     std::ostream& defs = outputs.values();
     mrm::tex_define(defs, "ps:elements", std::to_string(elements));
@@ -117,30 +118,31 @@ int main(int argc, char** argv) {
       double energy_first = std::nan(""), energy_last = 0, energy_max = -1e300, energy_min = 1e300;
       const mrm::repro::Configuration configuration =
           mrm::repro::paper_configuration("ps", v.form, v.mass, elements, courant, final_time);
-      const mrm::ErrorNorms e = mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
-        const double u0 = (*s.displacement)[0];
-        if (s.level >= 2) {
-          const double t_mid = s.time - dt, t_first = s.time - 2 * dt;
-          const double period_start = exact.period() * std::floor(t_first / exact.period());
-          const double a = t_first - period_start, b = s.time - period_start;  // the three instants, in [a, b]
-          const double margin = 2 * dt;
-          const bool free_flight = (b <= 1 - margin) || (a >= 2 + margin && b <= 3 - margin);
-          const auto period = static_cast<std::size_t>(std::floor(t_mid / exact.period()));
-          if (free_flight && a >= 0 && period < sawtooth.size())
-            sawtooth[period] = std::max(sawtooth[period], std::abs(u0 - 2 * u_prev + u_before));
-        }
-        u_before = u_prev;
-        u_prev = u0;
-        // Paoli–Schatzman's three-level energy exists from level 2 on (levels 0, 1 carry the start's).
-        if (s.level >= 2) {
-          if (std::isnan(energy_first)) energy_first = s.energy;
-          energy_last = s.energy;
-          energy_max = std::max(energy_max, s.energy);
-          energy_min = std::min(energy_min, s.energy);
-        }
-        out << cli::format_real(s.time) << ' ' << cli::format_real(u0) << ' ' << cli::format_real(s.energy_time) << ' '
-            << cli::format_real(s.energy) << '\n';
-      }).errors;
+      const mrm::ErrorNorms e =
+          mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
+            const double u0 = (*s.displacement)[0];
+            if (s.level >= 2) {
+              const double t_mid = s.time - dt, t_first = s.time - 2 * dt;
+              const double period_start = exact.period() * std::floor(t_first / exact.period());
+              const double a = t_first - period_start, b = s.time - period_start;  // the three instants, in [a, b]
+              const double margin = 2 * dt;
+              const bool free_flight = (b <= 1 - margin) || (a >= 2 + margin && b <= 3 - margin);
+              const auto period = static_cast<std::size_t>(std::floor(t_mid / exact.period()));
+              if (free_flight && a >= 0 && period < sawtooth.size())
+                sawtooth[period] = std::max(sawtooth[period], std::abs(u0 - 2 * u_prev + u_before));
+            }
+            u_before = u_prev;
+            u_prev = u0;
+            // Paoli–Schatzman's three-level energy exists from level 2 on (levels 0, 1 carry the start's).
+            if (s.level >= 2) {
+              if (std::isnan(energy_first)) energy_first = s.energy;
+              energy_last = s.energy;
+              energy_max = std::max(energy_max, s.energy);
+              energy_min = std::min(energy_min, s.energy);
+            }
+            out << cli::format_real(s.time) << ' ' << cli::format_real(u0) << ' ' << cli::format_real(s.energy_time)
+                << ' ' << cli::format_real(s.energy) << '\n';
+          }).errors;
       const std::string key = "ps:" + v.key + ":";
       mrm::tex_define(defs, key + "err_u0_L2", mrm::tex_number(e.u0_L2, 2));
       mrm::tex_define(defs, key + "err_u_L2H1", mrm::tex_number(e.u_L2H1, 2));

@@ -76,11 +76,12 @@ int main(int argc, char** argv) {
     const double coarsest_dt = static_cast<double>(largest * reference_ratio) * dt_ref;
     const mrm::Index coarse_steps = cli::checked_steps("--final-time", final_time, coarsest_dt, "--largest");
     if (!(static_cast<double>(coarse_steps) * static_cast<double>(largest * reference_ratio) <= cli::max_steps))
-      throw cli::UsageError("--reference-ratio: " + std::to_string(reference_ratio) + " gives the reference run " +
-                            cli::format_real(static_cast<double>(coarse_steps) *
-                                             static_cast<double>(largest * reference_ratio)) +
-                            " steps (allowed: at most 1e12 steps; lower --reference-ratio, --elements or --final-time)");
-    cli::require_mesh_memory("--elements", static_cast<double>(elements), 256, 2 * static_cast<double>(steps_count) + 2);
+      throw cli::UsageError(
+          "--reference-ratio: " + std::to_string(reference_ratio) + " gives the reference run " +
+          cli::format_real(static_cast<double>(coarse_steps) * static_cast<double>(largest * reference_ratio)) +
+          " steps (allowed: at most 1e12 steps; lower --reference-ratio, --elements or --final-time)");
+    cli::require_mesh_memory("--elements", static_cast<double>(elements), 256,
+                             2 * static_cast<double>(steps_count) + 2);
 
     // 2. Outputs.
     outputs.open(parser);
@@ -153,7 +154,8 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "time:largest", step_text(ratio.front()));
     mrm::tex_define(defs, "time:smallest", step_text(ratio.back()));
     std::vector<std::string> headers{"scheme", "$\\Delta t/h$"};
-    for (const char* label : mrm::repro::measure_labels()) headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
+    for (const char* label : mrm::repro::measure_labels())
+      headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
     mrm::repro::Table table(headers);
     const std::size_t half = ratio.size() / 2;
     for (std::size_t s = 0; s < schemes.size(); ++s) {
@@ -167,8 +169,8 @@ int main(int argc, char** argv) {
           cells.push_back(mrm::tex_number(e, 2));
           if (j > 0) {  // the local order of this halving of the step (steps ratio[j−1] → ratio[j])
             const double previous = differences[s * ratio.size() + j - 1][k];
-            const double local = mrm::repro::local_orders({static_cast<double>(ratio[j - 1]), static_cast<double>(ratio[j])},
-                                                          {previous, e})[1];
+            const double local = mrm::repro::local_orders(
+                {static_cast<double>(ratio[j - 1]), static_cast<double>(ratio[j])}, {previous, e})[1];
             cells.back() += " (" + mrm::tex_number(local, 2) + ")";
           }
         }
@@ -185,10 +187,13 @@ int main(int argc, char** argv) {
           if (j >= half) fine_steps.push_back(steps.back()), fine_errors.push_back(e);
         }
         const std::string key = schemes[s] + ":" + mrm::ErrorAccumulator::names[k];
-        mrm::tex_define(defs, "time:order:" + key, steps.size() >= 2 ? mrm::tex_number(mrm::fit_order(steps, errors).order, 2) : "n/a");
-        mrm::tex_define(defs, "time:orderfine:" + key,
-                        fine_steps.size() >= 2 ? mrm::tex_number(mrm::fit_order(fine_steps, fine_errors).order, 2) : "n/a");
-        mrm::tex_define(defs, "time:errfine:" + key, mrm::tex_number(differences[s * ratio.size() + ratio.size() - 1][k], 2));
+        mrm::tex_define(defs, "time:order:" + key,
+                        steps.size() >= 2 ? mrm::tex_number(mrm::fit_order(steps, errors).order, 2) : "n/a");
+        mrm::tex_define(
+            defs, "time:orderfine:" + key,
+            fine_steps.size() >= 2 ? mrm::tex_number(mrm::fit_order(fine_steps, fine_errors).order, 2) : "n/a");
+        mrm::tex_define(defs, "time:errfine:" + key,
+                        mrm::tex_number(differences[s * ratio.size() + ratio.size() - 1][k], 2));
       }
     }
     mrm::tex_define(defs, "time:finehalf", step_text(ratio[half]));

@@ -41,7 +41,8 @@ OrderFit fit_order(const std::vector<double>& steps, const std::vector<double>& 
   gsl_set_error_handler_off();
   double c0 = 0, c1 = 0, cov00 = 0, cov01 = 0, cov11 = 0, sumsq = 0;
   const int status = gsl_fit_linear(x.data(), 1, y.data(), 1, n, &c0, &c1, &cov00, &cov01, &cov11, &sumsq);
-  if (status != GSL_SUCCESS) throw std::runtime_error(std::string("fit_order: gsl_fit_linear failed: ") + gsl_strerror(status));
+  if (status != GSL_SUCCESS)
+    throw std::runtime_error(std::string("fit_order: gsl_fit_linear failed: ") + gsl_strerror(status));
   // gsl_fit_linear estimates the variance of the residuals as sumsq/(n − 2); with two points the
   // line is exact and the standard error is zero.
   return {c1, c0, n > 2 ? std::sqrt(cov11) : 0.0, n};
@@ -105,7 +106,8 @@ ReferenceComparison::ReferenceComparison(const UniformMesh& mesh)
 
 void ReferenceComparison::add(const Sample& run, const Sample& reference) {
   constexpr double tolerance = 1e-9;
-  if (std::abs(run.time - reference.time) > tolerance || std::abs(run.velocity_time - reference.velocity_time) > tolerance ||
+  if (std::abs(run.time - reference.time) > tolerance ||
+      std::abs(run.velocity_time - reference.velocity_time) > tolerance ||
       (run.has_multiplier && reference.has_multiplier &&
        std::abs(run.multiplier_time - reference.multiplier_time) > tolerance))
     throw std::invalid_argument("ReferenceComparison: the two samples are not at the same instant (t = " +
@@ -174,7 +176,8 @@ TEST_CASE("a run compared with itself as reference has no error, and the error s
   const UniformMesh mesh(1.0, 4);
   ReferenceComparison comparison(mesh);
   const Eigen::VectorXd u = Eigen::VectorXd::Ones(4);
-  CHECK_THROWS_AS(comparison.add({1, 0.5, &u, 0.5, &u, true, 0.5, 0.0, 0.5, 0.1}, {1, 0.25, &u, 0.25, &u, true, 0.25, 0.0, 0.25, 0.1}),
+  CHECK_THROWS_AS(comparison.add({1, 0.5, &u, 0.5, &u, true, 0.5, 0.0, 0.5, 0.1},
+                                 {1, 0.25, &u, 0.25, &u, true, 0.25, 0.0, 0.25, 0.1}),
                   std::invalid_argument);
 }
 

@@ -89,9 +89,13 @@ double amplitude_of(const ReferenceSolution& reference) {
 }  // namespace
 
 ErrorAccumulator::ErrorAccumulator(const UniformMesh& mesh, std::shared_ptr<const ReferenceSolution> reference)
-    : mesh_(mesh), exact_(std::move(reference)), mass_(p1_mass(mesh).scaled(inverse_binary_scale(mesh.length))),
-      stiffness_(p1_stiffness(mesh).scaled(1 / inverse_binary_scale(mesh.length))), nodes_(mesh.unknowns()),
-      interpolant_(mesh.unknowns()), velocity_interpolant_(mesh.unknowns()) {
+    : mesh_(mesh),
+      exact_(std::move(reference)),
+      mass_(p1_mass(mesh).scaled(inverse_binary_scale(mesh.length))),
+      stiffness_(p1_stiffness(mesh).scaled(1 / inverse_binary_scale(mesh.length))),
+      nodes_(mesh.unknowns()),
+      interpolant_(mesh.unknowns()),
+      velocity_interpolant_(mesh.unknowns()) {
   if (!exact_) throw std::invalid_argument("error measures: no reference solution");
   const ReferenceSolution& exact = *exact_;
   u_scale_ = inverse_binary_scale(amplitude_of(exact)) * inverse_binary_scale(exact.length());
@@ -180,14 +184,10 @@ double ratio(double error, double exact) { return exact > 0 ? std::sqrt(error / 
 
 ErrorNorms relative_norms(const TimeHistory& u0, const TimeHistory& lambda, const TimeHistory& u_l2,
                           const TimeHistory& u_h1, const TimeHistory& v_l2) {
-  return {ratio(u0.error_integral, u0.exact_integral),
-          ratio(lambda.error_integral, lambda.exact_integral),
-          ratio(u_l2.error_max, u_l2.exact_max),
-          ratio(u_h1.error_max, u_h1.exact_max),
-          ratio(v_l2.error_max, v_l2.exact_max),
-          ratio(u_l2.error_integral, u_l2.exact_integral),
-          ratio(u_h1.error_integral, u_h1.exact_integral),
-          ratio(v_l2.error_integral, v_l2.exact_integral)};
+  return {ratio(u0.error_integral, u0.exact_integral),     ratio(lambda.error_integral, lambda.exact_integral),
+          ratio(u_l2.error_max, u_l2.exact_max),           ratio(u_h1.error_max, u_h1.exact_max),
+          ratio(v_l2.error_max, v_l2.exact_max),           ratio(u_l2.error_integral, u_l2.exact_integral),
+          ratio(u_h1.error_integral, u_h1.exact_integral), ratio(v_l2.error_integral, v_l2.exact_integral)};
 }
 
 ErrorNorms ErrorAccumulator::relative() const { return relative_norms(u0_, lambda_, u_l2_, u_h1_, v_l2_); }
@@ -199,8 +199,9 @@ ErrorNorms ErrorAccumulator::relative() const { return relative_norms(u0_, lambd
 namespace mrm {
 namespace {
 
-[[maybe_unused]] ErrorNorms benchmark_errors(Scheme scheme, const MassRedistribution& mass, Index elements, double courant,
-                            double final_time, double length = 1.0, double amplitude = 0.5) {
+[[maybe_unused]] ErrorNorms benchmark_errors(Scheme scheme, const MassRedistribution& mass, Index elements,
+                                             double courant, double final_time, double length = 1.0,
+                                             double amplitude = 0.5) {
   const UniformMesh mesh(length, elements);
   SchemeParameters p;
   p.scheme = scheme;
@@ -334,7 +335,8 @@ TEST_CASE("the error measures refuse an exact solution or a sample of another ba
                        doctest::Contains("(allowed: the same L)"), std::invalid_argument);
 }
 
-TEST_CASE("on the paper's benchmark, the measures against the characteristic solution are those against the closed form") {
+TEST_CASE(
+    "on the paper's benchmark, the measures against the characteristic solution are those against the closed form") {
   // The two references agree to round-off wherever u_x and u_t have a limit (characteristics.cpp) and
   // at t = 0 (both give the data); the corners x = 0, t = kL, k ≥ 1, are avoided by a step that never
   // reaches them (Δt = 0.37 h, N = 40: t_n = kL would need n = 108.1… k), and so the eight measures must
@@ -352,7 +354,8 @@ TEST_CASE("on the paper's benchmark, the measures against the characteristic sol
       closed_form.add(s);
       characteristics.add(s);
     });
-    const auto a = ErrorAccumulator::values(closed_form.relative()), b = ErrorAccumulator::values(characteristics.relative());
+    const auto a = ErrorAccumulator::values(closed_form.relative()),
+               b = ErrorAccumulator::values(characteristics.relative());
     for (std::size_t k = 0; k < a.size(); ++k) {
       CAPTURE(mass.name);
       CAPTURE(std::string(ErrorAccumulator::names[k]));

@@ -65,16 +65,16 @@ struct Affine {
 };
 
 struct Phase {
-  double c;                // u = c · min_k(affine_k)
+  double c;  // u = c · min_k(affine_k)
   int count;
   Affine affine[4];
 };
 
 // The three phases of the reference solution (L = 1, a = ½), with s the time since the phase began.
 constexpr Phase phases[3] = {
-    {0.5, 2, {{1, -1, 0}, {1, 0, -1}, {}, {}}},                  // ½ min(1 − ξ, 1 − s)
-    {-0.5, 4, {{0, 1, 0}, {1, -1, 0}, {0, 0, 1}, {1, 0, -1}}},   // −½ min(ξ, 1 − ξ, s, 1 − s)
-    {0.5, 2, {{0, 0, 1}, {1, -1, 0}, {}, {}}},                   // ½ min(s, 1 − ξ)
+    {0.5, 2, {{1, -1, 0}, {1, 0, -1}, {}, {}}},                 // ½ min(1 − ξ, 1 − s)
+    {-0.5, 4, {{0, 1, 0}, {1, -1, 0}, {0, 0, 1}, {1, 0, -1}}},  // −½ min(ξ, 1 − ξ, s, 1 − s)
+    {0.5, 2, {{0, 0, 1}, {1, -1, 0}, {}, {}}},                  // ½ min(s, 1 − ξ)
 };
 
 struct PhaseTime {

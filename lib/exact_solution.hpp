@@ -31,9 +31,9 @@ class ExactSolution : public ReferenceSolution {
   void displacement_at_points(double t, const double* x, long count, double* u) const override;
   /// u_t(x_k, t) likewise, with the values of velocity(x_k, t), the symmetric derivative at a kink.
   void velocity_at_points(double t, const double* x, long count, double* v) const override;
-  double period() const { return 3.0 * length_; }  ///< the period 3L of the motion
+  double period() const { return 3.0 * length_; }     ///< the period 3L of the motion
   double length() const override { return length_; }  ///< L
-  double amplitude() const { return amplitude_; }  ///< a
+  double amplitude() const { return amplitude_; }     ///< a
 
  private:
   double length_, amplitude_;

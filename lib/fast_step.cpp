@@ -26,12 +26,14 @@ FastStep::FastStep(const Tridiagonal& b1, const Tridiagonal& b2, const Tridiagon
   const Index rows = m.size();
   const auto row = [&](Index i) {
     const bool last = i + 1 == rows;
-    return Row{b1.lower[i], b1.diag[i], last ? 0.0 : b1.upper[i], b2.lower[i], b2.diag[i],
-               last ? 0.0 : b2.upper[i], m.diag[i], 2 * m.lower[i], s.diag[i], 2 * s.lower[i]};
+    return Row{b1.lower[i],   b1.diag[i],     last ? 0.0 : b1.upper[i],
+               b2.lower[i],   b2.diag[i],     last ? 0.0 : b2.upper[i],
+               m.diag[i],     2 * m.lower[i], s.diag[i],
+               2 * s.lower[i]};
   };
   const auto same = [](const Row& x, const Row& y) {
-    return x.b1l == y.b1l && x.b1d == y.b1d && x.b1u == y.b1u && x.b2l == y.b2l && x.b2d == y.b2d &&
-           x.b2u == y.b2u && x.md == y.md && x.ml2 == y.ml2 && x.sd == y.sd && x.sl2 == y.sl2;
+    return x.b1l == y.b1l && x.b1d == y.b1d && x.b1u == y.b1u && x.b2l == y.b2l && x.b2d == y.b2d && x.b2u == y.b2u &&
+           x.md == y.md && x.ml2 == y.ml2 && x.sd == y.sd && x.sl2 == y.sl2;
   };
   last_ = row(rows - 1);
   interior_ = last_;

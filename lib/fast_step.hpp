@@ -38,7 +38,7 @@ class FastStep {
     double b1l, b1d, b1u, b2l, b2d, b2u;
     double md, ml2, sd, sl2;
   };
-  std::vector<Row> head_;  // rows 0 … head−1, explicitly
+  std::vector<Row> head_;    // rows 0 … head−1, explicitly
   Row interior_{}, last_{};  // the common row of head … N−2, and row N−1
   template <bool three_level, bool has_load, bool scaled>
   bool fused_step(BarSimulation& simulation) const;

@@ -131,7 +131,8 @@ Problem benchmark_problem(double length, double amplitude) {
 }
 
 Index steps_to_reach(double final_time, double dt) {
-  if (!(std::isfinite(final_time) && final_time > 0)) throw std::invalid_argument("the final time must be positive and finite");
+  if (!(std::isfinite(final_time) && final_time > 0))
+    throw std::invalid_argument("the final time must be positive and finite");
   if (!(std::isfinite(dt) && dt > 0)) throw std::invalid_argument("the time step must be positive and finite");
   const double ratio = final_time / dt;
   if (ratio > 1e12) throw std::invalid_argument("the final time needs more than 1e12 time steps");
@@ -291,7 +292,8 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
     x_[i] = problem.initial_velocity ? problem.initial_velocity(mesh.x(i)) : 0.0;
   }
   if (!(u_.allFinite() && x_.allFinite()))
-    throw std::invalid_argument("problem: the initial data u0, v0 are not finite at every node (allowed: finite values)");
+    throw std::invalid_argument(
+        "problem: the initial data u0, v0 are not finite at every node (allowed: finite values)");
   load_at(0.0, f_now_);
   if (massless_) {
     const CondensedContact c = condense_contact_node(u_[1], mesh.h(), problem.load ? f_now_[0] : 0.0);
@@ -327,7 +329,8 @@ BarSimulation& BarSimulation::operator=(BarSimulation&&) = default;
 
 void BarSimulation::load_at(double t, Eigen::VectorXd& f) const {
   if (!problem_.load) return;
-  p1_load(mesh_, [&](double x) { return problem_.load(x, t); }, f);
+  p1_load(
+      mesh_, [&](double x) { return problem_.load(x, t); }, f);
 }
 
 // Scale of the energy. The energy's quadratic forms square the nodal values: on the benchmark,
@@ -363,8 +366,8 @@ void BarSimulation::choose_energy_scale() {
   displacement_exponent_ = exponent;
   velocity_exponent_ = exponent - length_exponent;
   constexpr int band = 200;
-  scaled_ = std::abs(displacement_exponent_) > band || std::abs(velocity_exponent_) > band ||
-            std::abs(step_exponent) > band;
+  scaled_ =
+      std::abs(displacement_exponent_) > band || std::abs(velocity_exponent_) > band || std::abs(step_exponent) > band;
 }
 
 double BarSimulation::energy_two_level() const {
@@ -551,8 +554,16 @@ Sample BarSimulation::sample() const {
   const double t = time();
   const double velocity_time = (three_level_ && level_ > 1) ? t - 0.5 * dt_ : t;
   const Eigen::VectorXd* velocity = three_level_ ? &x_ : &w_;  // the two-level velocity is W
-  return {level_, t, &u_, velocity_time, velocity, has_lambda_, level_ == 0 ? 0.0 : lambda_time_, lambda_,
-          level_ == 0 ? 0.0 : energy_time_, energy_};
+  return {level_,
+          t,
+          &u_,
+          velocity_time,
+          velocity,
+          has_lambda_,
+          level_ == 0 ? 0.0 : lambda_time_,
+          lambda_,
+          level_ == 0 ? 0.0 : energy_time_,
+          energy_};
 }
 
 void run(BarSimulation& simulation, Index steps, const std::function<void(const Sample&)>& observe) {
@@ -571,8 +582,9 @@ void run(BarSimulation& simulation, Index steps, const std::function<void(const 
 namespace mrm {
 namespace {
 
-[[maybe_unused]] std::vector<double> energy_history(const MassRedistribution& mass, const SchemeParameters& p, Index elements,
-                                   double courant, double final_time, double length = 1.0, double amplitude = 0.5) {
+[[maybe_unused]] std::vector<double> energy_history(const MassRedistribution& mass, const SchemeParameters& p,
+                                                    Index elements, double courant, double final_time,
+                                                    double length = 1.0, double amplitude = 0.5) {
   const UniformMesh mesh(length, elements);
   const double dt = courant * mesh.h();
   BarSimulation simulation(benchmark_problem(length, amplitude), mesh, mass, p, dt);
@@ -582,7 +594,7 @@ namespace {
 }
 
 [[maybe_unused]] SchemeParameters with(Scheme scheme, ContactRow row = ContactRow::algebraic,
-                                      StepKernel kernel = StepKernel::fast) {
+                                       StepKernel kernel = StepKernel::fast) {
   SchemeParameters p;
   p.scheme = scheme;
   p.contact_row = row;
@@ -596,44 +608,44 @@ TEST_CASE("Crank–Nicolson conserves the discrete energy to round-off while the
   // The benchmark's first free flight lasts until t = 1: no status change before t = 0.9. Both step
   // kernels (their energies are summed in different orders).
   for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference})
-  for (const MassRedistribution& mass : {mod1(), mod2(), mod3(), consistent_mass()}) {
-    for (double courant : {0.5, 1.0, 3.0}) {
-      const std::vector<double> e =
-          energy_history(mass, with(Scheme::crank_nicolson, ContactRow::algebraic, kernel), 40, courant, 0.9 - 0.075);
-      CAPTURE(to_string(kernel));
-      CAPTURE(mass.name);
-      CAPTURE(courant);
-      // Round-off grows at most linearly with the number of steps k: |E_k − E_0| ≤ 1e-14 + k · 1e-15 (E ≈ 1/8).
-      REQUIRE(e.size() > 2);
-      for (std::size_t k = 0; k < e.size(); ++k) CHECK(std::abs(e[k] - e.front()) <= 1e-14 + k * 1e-15);
+    for (const MassRedistribution& mass : {mod1(), mod2(), mod3(), consistent_mass()}) {
+      for (double courant : {0.5, 1.0, 3.0}) {
+        const std::vector<double> e =
+            energy_history(mass, with(Scheme::crank_nicolson, ContactRow::algebraic, kernel), 40, courant, 0.9 - 0.075);
+        CAPTURE(to_string(kernel));
+        CAPTURE(mass.name);
+        CAPTURE(courant);
+        // Round-off grows at most linearly with the number of steps k: |E_k − E_0| ≤ 1e-14 + k · 1e-15 (E ≈ 1/8).
+        REQUIRE(e.size() > 2);
+        for (std::size_t k = 0; k < e.size(); ++k) CHECK(std::abs(e[k] - e.front()) <= 1e-14 + k * 1e-15);
+      }
     }
-  }
 }
 
 TEST_CASE("Paoli–Schatzman with beta = 1/4 conserves its energy while the contact status is unchanged") {
   for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference})
-  for (ContactRow row : {ContactRow::algebraic, ContactRow::literal}) {
-    // From level 2 on: levels 0 and 1 carry the two-level energy of the Crank–Nicolson start.
-    const std::vector<double> e = energy_history(mod3(), with(Scheme::paoli_schatzman, row, kernel), 40, 0.5, 0.85);
-    CAPTURE(to_string(kernel));
-    CAPTURE(to_string(row));
-    REQUIRE(e.size() > 10);
-    for (std::size_t k = 2; k < e.size(); ++k) CHECK(std::abs(e[k] - e[2]) <= 1e-14 + k * 1e-15);
-  }
+    for (ContactRow row : {ContactRow::algebraic, ContactRow::literal}) {
+      // From level 2 on: levels 0 and 1 carry the two-level energy of the Crank–Nicolson start.
+      const std::vector<double> e = energy_history(mod3(), with(Scheme::paoli_schatzman, row, kernel), 40, 0.5, 0.85);
+      CAPTURE(to_string(kernel));
+      CAPTURE(to_string(row));
+      REQUIRE(e.size() > 10);
+      for (std::size_t k = 2; k < e.size(); ++k) CHECK(std::abs(e[k] - e[2]) <= 1e-14 + k * 1e-15);
+    }
 }
 
 TEST_CASE("backward Euler never increases the discrete energy") {
   for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference})
-  for (const MassRedistribution& mass : {mod1(), mod2(), mod3(), consistent_mass()}) {
-    const std::vector<double> e =
-        energy_history(mass, with(Scheme::backward_euler, ContactRow::algebraic, kernel), 30, 0.5, 9.0);
-    CAPTURE(to_string(kernel));
-    CAPTURE(mass.name);
-    int increases = 0;
-    for (std::size_t k = 1; k < e.size(); ++k) increases += e[k] > e[k - 1] * (1 + 1e-14);
-    CHECK(increases == 0);
-    CHECK(e.back() < 0.9 * e.front());  // and it does dissipate
-  }
+    for (const MassRedistribution& mass : {mod1(), mod2(), mod3(), consistent_mass()}) {
+      const std::vector<double> e =
+          energy_history(mass, with(Scheme::backward_euler, ContactRow::algebraic, kernel), 30, 0.5, 9.0);
+      CAPTURE(to_string(kernel));
+      CAPTURE(mass.name);
+      int increases = 0;
+      for (std::size_t k = 1; k < e.size(); ++k) increases += e[k] > e[k - 1] * (1 + 1e-14);
+      CHECK(increases == 0);
+      CHECK(e.back() < 0.9 * e.front());  // and it does dissipate
+    }
 }
 
 TEST_CASE("the discrete energy is right at the ends of the accepted lengths and amplitudes") {
@@ -1030,7 +1042,9 @@ TEST_CASE("the fast step and the reference step agree to round-off for every sch
           p.kernel = StepKernel::fast;
           BarSimulation fast(problem, mesh, mass, p, dt);
           Problem perturbed_problem = problem;
-          perturbed_problem.initial_displacement = [&](double x) { return problem.initial_displacement(x) + perturbation * std::sin(5 * x); };
+          perturbed_problem.initial_displacement = [&](double x) {
+            return problem.initial_displacement(x) + perturbation * std::sin(5 * x);
+          };
           BarSimulation perturbed(perturbed_problem, mesh, mass, p, dt);
           p.kernel = StepKernel::reference;
           BarSimulation reference(problem, mesh, mass, p, dt);

@@ -64,7 +64,7 @@ struct SchemeParameters {
 
 /// The continuous problem (mathematics.md §1): bar (0, L), data u⁰, v⁰, load f (may be empty: f = 0).
 struct Problem {
-  double length = 1.0;                                    ///< L
+  double length = 1.0;                                   ///< L
   std::function<double(double x)> initial_displacement;  ///< u⁰(x)
   std::function<double(double x)> initial_velocity;      ///< v⁰(x)
   std::function<double(double x, double t)> load;        ///< f(x, t); empty for f = 0
@@ -74,16 +74,16 @@ Problem benchmark_problem(double length = 1.0, double amplitude = 0.5);
 
 /// What a scheme knows at one time level, each quantity with the instant it approximates.
 struct Sample {
-  Index level;                             ///< n
-  double time;                             ///< t_n, the instant of `displacement`
-  const Eigen::VectorXd* displacement;     ///< Uⁿ on nodes 0..N−1
-  double velocity_time;                    ///< t_n (two-level schemes, n ≤ 1) or t_{n−½} (Paoli–Schatzman)
-  const Eigen::VectorXd* velocity;         ///< Vⁿ, or (Uⁿ − Uⁿ⁻¹)/Δt for Paoli–Schatzman (n ≥ 2)
-  bool has_multiplier;                     ///< false where the level has no multiplier yet
-  double multiplier_time;                  ///< the instant of `multiplier`
-  double multiplier;                       ///< λ ≤ 0
-  double energy_time;                      ///< the instant of `energy`
-  double energy;                           ///< the scheme's discrete energy
+  Index level;                          ///< n
+  double time;                          ///< t_n, the instant of `displacement`
+  const Eigen::VectorXd* displacement;  ///< Uⁿ on nodes 0..N−1
+  double velocity_time;                 ///< t_n (two-level schemes, n ≤ 1) or t_{n−½} (Paoli–Schatzman)
+  const Eigen::VectorXd* velocity;      ///< Vⁿ, or (Uⁿ − Uⁿ⁻¹)/Δt for Paoli–Schatzman (n ≥ 2)
+  bool has_multiplier;                  ///< false where the level has no multiplier yet
+  double multiplier_time;               ///< the instant of `multiplier`
+  double multiplier;                    ///< λ ≤ 0
+  double energy_time;                   ///< the instant of `energy`
+  double energy;                        ///< the scheme's discrete energy
 };
 
 class FastStep;
@@ -110,13 +110,13 @@ class BarSimulation {
   /// The current level's sample (valid until the next step).
   Sample sample() const;
 
-  Index level() const { return level_; }                               ///< the current level n
-  double time() const { return static_cast<double>(level_) * dt_; }  ///< t_n = n Δt
-  double dt() const { return dt_; }                                    ///< Δt
-  const UniformMesh& mesh() const { return mesh_; }                    ///< the mesh
-  const Tridiagonal& mass() const { return mass_; }                    ///< M (or M^mod) on the unknowns
-  const Tridiagonal& stiffness() const { return stiffness_; }          ///< S on the unknowns
-  bool massless_contact_node() const { return massless_; }             ///< whether row 0 of M vanishes
+  Index level() const { return level_; }                              ///< the current level n
+  double time() const { return static_cast<double>(level_) * dt_; }   ///< t_n = n Δt
+  double dt() const { return dt_; }                                   ///< Δt
+  const UniformMesh& mesh() const { return mesh_; }                   ///< the mesh
+  const Tridiagonal& mass() const { return mass_; }                   ///< M (or M^mod) on the unknowns
+  const Tridiagonal& stiffness() const { return stiffness_; }         ///< S on the unknowns
+  bool massless_contact_node() const { return massless_; }            ///< whether row 0 of M vanishes
   const SchemeParameters& parameters() const { return parameters_; }  ///< the scheme and its parameters
 
  private:
@@ -142,8 +142,8 @@ class BarSimulation {
   Tridiagonal b1_, b2_;
   ContactSolver solver_;
   std::unique_ptr<const FastStep> fast_;
-  double kappa_, load_now_, load_next_;   // G = load_now_ Fⁿ + load_next_ Fⁿ⁺¹ (+ row-0 terms)
-  double lambda_in_rhs_;                  // Crank–Nicolson with inertia at node 0: −θ λⁿ in row 0
+  double kappa_, load_now_, load_next_;     // G = load_now_ Fⁿ + load_next_ Fⁿ⁺¹ (+ row-0 terms)
+  double lambda_in_rhs_;                    // Crank–Nicolson with inertia at node 0: −θ λⁿ in row 0
   double velocity_rate_, velocity_memory_;  // two-level: V' = rate (U' − U) − memory V
   // The energy's quadratic forms on values scaled by σ_u = 2^−e_u (displacements) and σ_v = 2^−e_v
   // (velocities) when the data are far from 1 (schemes.cpp: Scale of the energy); scaled_ = false

@@ -125,8 +125,9 @@ const Expectations& paper_expectations() {
       {"4/cn/mod1/C=1", velocity_order},
       // cn/mod3/C=0.5: u_t L∞(L²) ratio 1.10 at one refinement (0.155 → 0.0855 overall), orders u L²(H¹)
       // 0.21, u_t L²(L²) 0.23.
-      {"4/cn/mod3/C=0.5", "the L∞(L²) velocity error increases at one refinement, and the L²(H¹) and L²(L²) "
-                          "velocity errors decrease with least-squares orders below the margin ¼ fixed in advance"},
+      {"4/cn/mod3/C=0.5",
+       "the L∞(L²) velocity error increases at one refinement, and the L²(H¹) and L²(L²) "
+       "velocity errors decrease with least-squares orders below the margin ¼ fixed in advance"},
       // be, all masses and C: orders 0.23–0.25 in u L∞(H¹), u L²(H¹), u_t and λ, ratios 0.84–0.87; u(0) and
       // u L²-type orders ≈ 0.5.
       {"4/be/mod1/C=0.5", be_order},
@@ -138,8 +139,9 @@ const Expectations& paper_expectations() {
       // ps/mod1/C=1: u_t L²(L²) order 0.247, ratios ≤ 0.85.
       {"4/ps/mod1/C=1", velocity_order},
       // ps/mod3/C=0.5: orders u_t L∞(L²) 0.19, u L²(H¹) 0.21, u_t L²(L²) 0.20, ratios ≤ 0.97.
-      {"4/ps/mod3/C=0.5", "every error decreases at every refinement, but the velocity errors and the L²(H¹) error "
-                          "have least-squares orders below the margin ¼ fixed in advance"},
+      {"4/ps/mod3/C=0.5",
+       "every error decreases at every refinement, but the velocity errors and the L²(H¹) error "
+       "have least-squares orders below the margin ¼ fixed in advance"},
       // ps-literal: H¹ and velocity relative errors above 100% that grow with N at C = 0.5 (orders −0.1 to
       // −0.45) and jump by factors up to 18 between meshes at C = 1.
       {"4/ps-literal/mod1/C=0.5", sawtooth},
@@ -151,19 +153,23 @@ const Expectations& paper_expectations() {
 
       // Claim 6b, N = 4000: λ 0.0564 above the bound 0.05; u L∞(H¹) 0.0495, u_t 0.049, u L²(H¹) 0.048 just
       // below it; u(0), u L∞(L²), u L²(L²) 0.001–0.0015.
-      {"6/exact", "λ's error is above the bound, which assumed rates h^½ in the roughest measures; the orders "
-                  "measured for claim 4 (about 1/3 for λ with cn) make an error of this size the discretisation "
-                  "error at N = 4000, not a defect of the closed form, whose displacement errors are more than "
-                  "an order of magnitude smaller"},
+      {"6/exact",
+       "λ's error is above the bound, which assumed rates h^½ in the roughest measures; the orders "
+       "measured for claim 4 (about 1/3 for λ with cn) make an error of this size the discretisation "
+       "error at N = 4000, not a defect of the closed form, whose displacement errors are more than "
+       "an order of magnitude smaller"},
   };
   return table;
 }
 
 std::string to_string(Verdict v) {
   switch (v) {
-    case Verdict::reproduced: return "reproduced";
-    case Verdict::not_reproduced: return "not reproduced";
-    case Verdict::failed: return "FAILED";
+    case Verdict::reproduced:
+      return "reproduced";
+    case Verdict::not_reproduced:
+      return "not reproduced";
+    case Verdict::failed:
+      return "FAILED";
   }
   return "?";
 }
@@ -183,8 +189,9 @@ ClaimResult judge(std::string id, std::string claim, std::string measured, std::
     row.reason = "the criterion does not hold";
   } else {
     row.verdict = Verdict::failed;
-    row.reason = "unexpected pass: the criterion holds although the expectation table lists this row as not "
-                 "reproduced; update the table";
+    row.reason =
+        "unexpected pass: the criterion holds although the expectation table lists this row as not "
+        "reproduced; update the table";
   }
   return row;
 }
@@ -208,8 +215,10 @@ TEST_CASE("a row's verdict follows its criterion and the expectation table, both
 
 SchemeChoice scheme_choice(const std::string& label) {
   SchemeParameters p;
-  if (label == "cn") p.scheme = Scheme::crank_nicolson;
-  else if (label == "be") p.scheme = Scheme::backward_euler;
+  if (label == "cn")
+    p.scheme = Scheme::crank_nicolson;
+  else if (label == "be")
+    p.scheme = Scheme::backward_euler;
   else if (label == "ps" || label == "ps-literal") {
     p.scheme = Scheme::paoli_schatzman;
     p.beta = 0.25;
@@ -244,7 +253,7 @@ std::string fixed(double x, int decimals) {
 }
 
 // The short names of the eight error measures of mathematics.md §5, in ErrorAccumulator::values order.
-const char* const measure_names[8] = {"u(0,·) L²(0,T)", "λ L²(0,T)",  "u L∞(L²)", "u L∞(H¹)",
+const char* const measure_names[8] = {"u(0,·) L²(0,T)", "λ L²(0,T)", "u L∞(L²)", "u L∞(H¹)",
                                       "u_t L∞(L²)",     "u L²(L²)",  "u L²(H¹)", "u_t L²(L²)"};
 
 std::string join(const std::vector<std::string>& parts, const std::string& separator) {
@@ -358,8 +367,10 @@ bool is_dissipative(const SchemeChoice& scheme) { return scheme.parameters.schem
 std::string stability_criterion(const StabilitySettings& st) {
   return "every value finite, and E_hⁿ and ½UⁿᵀSUⁿ ≤ " + sig(st.bound_conserving) +
          " E_h(0) (CN, PS: energy conserved up to O(h) jumps at status changes) or ≤ (1 + " +
-         sig(st.bound_dissipative - 1) + ") E_h(0) (BE: dissipative) at every step, "
-         "N = " + std::to_string(st.elements) + ", Δt = " + sig(st.courant) + "h, T = " + sig(st.final_time);
+         sig(st.bound_dissipative - 1) +
+         ") E_h(0) (BE: dissipative) at every step, "
+         "N = " +
+         std::to_string(st.elements) + ", Δt = " + sig(st.courant) + "h, T = " + sig(st.final_time);
 }
 
 std::string describe(const StabilityRun& r) {
@@ -390,8 +401,9 @@ std::vector<ClaimResult> check_stability(const std::vector<SchemeChoice>& scheme
       measured.push_back(mass.name + ": " + describe(r));
       names.push_back(mass.name);
     }
-    rows.push_back(judge("1/" + scheme.label, "Stability: " + scheme.label + " with " + join(names, ", ") +
-                                                  " does not blow up over " + sig(settings.final_time / 3) + " periods",
+    rows.push_back(judge("1/" + scheme.label,
+                         "Stability: " + scheme.label + " with " + join(names, ", ") + " does not blow up over " +
+                             sig(settings.final_time / 3) + " periods",
                          join(measured, "; "), stability_criterion(settings), holds, expectations, used));
   }
   return rows;
@@ -438,8 +450,8 @@ TEST_CASE("the stability check fails on an unstable configuration and passes on 
 namespace {
 
 struct MassDeviation {
-  double worst_ratio = 0;      // max |deviation| / tolerance
-  double worst_relative = 0;   // max |deviation| / L
+  double worst_ratio = 0;     // max |deviation| / tolerance
+  double worst_relative = 0;  // max |deviation| / L
   std::string worst_mesh;
 };
 
@@ -544,14 +556,14 @@ std::vector<ClaimResult> check_ordering(const std::vector<SchemeChoice>& schemes
         for (std::size_t k = 0; k + 1 < ordered.size(); ++k) holds = holds && errors[i][k + 1][q] < errors[i][k][q];
         measured.push_back("N = " + std::to_string(settings.elements[i]) + ": " + join(values, " / "));
       }
-      rows.push_back(judge("3/" + scheme.label + "/" + ErrorAccumulator::names[q],
-                           "Ordering (Figure 1): with " + scheme.label + ", " + join(best_first, " < ") + " in " +
-                               measure_names[q],
-                           join(best_first, " / ") + " errors: " + join(measured, "; "),
-                           "error(" + join(best_first, ") < error(") + ") strictly on every mesh, N = " +
-                               list_elements(settings.elements) + ", Δt = " + sig(settings.courant) +
-                               "h, T = " + sig(settings.final_time),
-                           holds, expectations, used));
+      rows.push_back(judge(
+          "3/" + scheme.label + "/" + ErrorAccumulator::names[q],
+          "Ordering (Figure 1): with " + scheme.label + ", " + join(best_first, " < ") + " in " + measure_names[q],
+          join(best_first, " / ") + " errors: " + join(measured, "; "),
+          "error(" + join(best_first, ") < error(") +
+              ") strictly on every mesh, N = " + list_elements(settings.elements) + ", Δt = " + sig(settings.courant) +
+              "h, T = " + sig(settings.final_time),
+          holds, expectations, used));
     }
   }
   return rows;
@@ -641,14 +653,13 @@ std::vector<ClaimResult> check_convergence(const std::vector<SchemeChoice>& sche
         }
         std::string measured = "orders: " + join(orders, ", ");
         if (!broken.empty()) measured += ". Criterion not met by: " + join(broken, "; ");
-        rows.push_back(judge("4/" + scheme.label + "/" + mass.name + "/C=" + sig(courant),
-                             "Convergence in h: " + scheme.label + " with " + mass.name + ", Δt = " + sig(courant) +
-                                 "h",
-                             measured,
-                             "each of the 8 errors decreases at every refinement N = " +
-                                 list_elements(settings.elements) + " and its least-squares order in h is ≥ " +
-                                 sig(settings.minimum_order) + " (T = " + sig(settings.final_time) + ")",
-                             holds, expectations, used));
+        rows.push_back(
+            judge("4/" + scheme.label + "/" + mass.name + "/C=" + sig(courant),
+                  "Convergence in h: " + scheme.label + " with " + mass.name + ", Δt = " + sig(courant) + "h", measured,
+                  "each of the 8 errors decreases at every refinement N = " + list_elements(settings.elements) +
+                      " and its least-squares order in h is ≥ " + sig(settings.minimum_order) +
+                      " (T = " + sig(settings.final_time) + ")",
+                  holds, expectations, used));
       }
     }
   }
@@ -744,15 +755,15 @@ std::vector<ClaimResult> check_time_convergence(const SchemeChoice& scheme,
     }
     std::vector<std::string> ratios;
     for (double c : settings.courants) ratios.push_back(sig(c));
-    rows.push_back(judge(
-        "4t/" + scheme.label + "/" + mass.name,
-        "Error estimate in time: " + scheme.label + " with " + mass.name + " converges in Δt at fixed h",
-        join(measured, "; "),
-        "against a reference with Δt = h/" + sig(1 / settings.reference_courant) + " (same h = 1/" +
-            std::to_string(settings.elements) + "), at the instants of the coarsest Δt up to T = " +
-            sig(settings.final_time) + ", each error decreases at every refinement Δt/h = " + join(ratios, ", ") +
-            " and its least-squares order in Δt is ≥ " + sig(settings.minimum_order),
-        holds, expectations, used));
+    rows.push_back(
+        judge("4t/" + scheme.label + "/" + mass.name,
+              "Error estimate in time: " + scheme.label + " with " + mass.name + " converges in Δt at fixed h",
+              join(measured, "; "),
+              "against a reference with Δt = h/" + sig(1 / settings.reference_courant) + " (same h = 1/" +
+                  std::to_string(settings.elements) + "), at the instants of the coarsest Δt up to T = " +
+                  sig(settings.final_time) + ", each error decreases at every refinement Δt/h = " + join(ratios, ", ") +
+                  " and its least-squares order in Δt is ≥ " + sig(settings.minimum_order),
+              holds, expectations, used));
   }
   return rows;
 }
@@ -793,17 +804,17 @@ namespace {
 
 struct EnergyTrace {
   double e0 = 0, e_final = 0, round_off = 0;
-  double max_same_status = 0;   // max |ΔE| / E(0) over steps that keep the status
-  double jump_sum = 0;          // Σ |ΔE| / E(0) over steps that change it
-  double max_increase = 0;      // max (ΔE) / E(0)
+  double max_same_status = 0;  // max |ΔE| / E(0) over steps that keep the status
+  double jump_sum = 0;         // Σ |ΔE| / E(0) over steps that change it
+  double max_increase = 0;     // max (ΔE) / E(0)
   int changes = 0;
-  int increases = 0;            // steps with ΔE > round-off
+  int increases = 0;  // steps with ΔE > round-off
 };
 
 // The round-off allowance of an energy change, relative to E(0): factor · ε √N (L/Δt).
 double energy_round_off(const UniformMesh& mesh, double dt, double factor) {
-  return factor * std::numeric_limits<double>::epsilon() * std::sqrt(static_cast<double>(mesh.elements)) *
-         mesh.length / dt;
+  return factor * std::numeric_limits<double>::epsilon() * std::sqrt(static_cast<double>(mesh.elements)) * mesh.length /
+         dt;
 }
 
 std::string round_off_text(const EnergySettings& settings) {
@@ -867,17 +878,18 @@ std::vector<ClaimResult> check_energy_conservation(const SchemeChoice& scheme,
     const bool positive = std::all_of(jumps.begin(), jumps.end(), [](double v) { return v > 0 && std::isfinite(v); });
     const std::string order = positive ? ", order in h " + fixed(least_squares_order(h, jumps), 2) : "";
     const bool holds = worst_share <= 1.0 && shrinking;
-    rows.push_back(judge("5/" + scheme.label + "/" + mass.name,
-                         "Energy: " + scheme.label + " with " + mass.name +
-                             " conserves E_h up to jumps at status changes that shrink with h",
-                         "max |ΔE|/E_h(0) over steps keeping the status: " + sig(max_same) + " (at most " +
-                             fixed(worst_share, 3) + " × the round-off allowance); Σ|ΔE|/E_h(0) at status changes: " +
-                             join(per_mesh, "; ") + order,
-                         "|ΔE| ≤ " + round_off_text(settings) +
-                             " (round-off) at every step keeping the contact status, and Σ|ΔE| over the steps changing "
-                             "it decreases at every refinement N = " + list_elements(settings.elements) +
-                             " (Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time) + ")",
-                         holds, expectations, used));
+    rows.push_back(
+        judge("5/" + scheme.label + "/" + mass.name,
+              "Energy: " + scheme.label + " with " + mass.name +
+                  " conserves E_h up to jumps at status changes that shrink with h",
+              "max |ΔE|/E_h(0) over steps keeping the status: " + sig(max_same) + " (at most " + fixed(worst_share, 3) +
+                  " × the round-off allowance); Σ|ΔE|/E_h(0) at status changes: " + join(per_mesh, "; ") + order,
+              "|ΔE| ≤ " + round_off_text(settings) +
+                  " (round-off) at every step keeping the contact status, and Σ|ΔE| over the steps changing "
+                  "it decreases at every refinement N = " +
+                  list_elements(settings.elements) + " (Δt = " + sig(settings.courant) +
+                  "h, T = " + sig(settings.final_time) + ")",
+              holds, expectations, used));
   }
   return rows;
 }
@@ -901,9 +913,9 @@ std::vector<ClaimResult> check_energy_dissipation(const SchemeChoice& scheme,
                          "Energy: " + scheme.label + " with " + mass.name + " never increases the energy",
                          std::to_string(increases) + " steps with an increase; largest ΔE/E_h(0) = " +
                              sig(max_increase) + "; " + join(per_mesh, "; "),
-                         "Eⁿ⁺¹ ≤ Eⁿ + " + round_off_text(settings) + " (round-off) at every step, N = " +
-                             list_elements(settings.elements) + " (Δt = " + sig(settings.courant) +
-                             "h, T = " + sig(settings.final_time) + ")",
+                         "Eⁿ⁺¹ ≤ Eⁿ + " + round_off_text(settings) +
+                             " (round-off) at every step, N = " + list_elements(settings.elements) +
+                             " (Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time) + ")",
                          increases == 0, expectations, used));
   }
   return rows;
@@ -1048,8 +1060,8 @@ StepComparison compare_steps(const ContactStepCase& c, const ContactStepSettings
     const double multiplier = before.multiplier;
     simulation.step();
     const Sample after = simulation.sample();
-    const RebuiltStep r = rebuild_step(c.model.parameters, simulation.mass(), simulation.stiffness(), dt, u, velocity,
-                                       multiplier);
+    const RebuiltStep r =
+        rebuild_step(c.model.parameters, simulation.mass(), simulation.stiffness(), dt, u, velocity, multiplier);
     const double u0 = (*after.displacement)[0];
     const bool active = u0 == r.obstacle;
     const bool changed = active != contact;
@@ -1099,8 +1111,8 @@ std::vector<ClaimResult> check_contact_step(const std::vector<ContactStepCase>& 
                              ") solves the step's saddle-point system",
                          join(measured, "; "),
                          "against Eigen's SparseLU on the full (U, λ) system rebuilt from (Uⁿ, Vⁿ or Uⁿ⁻¹, λⁿ) with "
-                         "the active set fixed: max|ΔU|/max|U| and max|Δλ|/max|λ| ≤ " + sig(settings.tolerance) +
-                             ", complementarity exact; every status change and every " +
+                         "the active set fixed: max|ΔU|/max|U| and max|Δλ|/max|λ| ≤ " +
+                             sig(settings.tolerance) + ", complementarity exact; every status change and every " +
                              std::to_string(settings.every) + "th step, N = " + std::to_string(settings.elements) +
                              ", Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time),
                          holds, expectations, used));
@@ -1151,9 +1163,9 @@ ClaimResult check_exact_solution(const ExactSolution& exact, const FineSolutionS
   }
   return judge("6/exact", "The closed-form solution agrees with a very fine numerical solution",
                "relative errors: " + join(measured, ", "),
-               "all 8 relative errors ≤ " + sig(settings.bound) + " (≈ 3h^½) for cn, mod3, N = " +
-                   std::to_string(settings.elements) + ", Δt = " + sig(settings.courant) + "h, T = " +
-                   sig(settings.final_time),
+               "all 8 relative errors ≤ " + sig(settings.bound) +
+                   " (≈ 3h^½) for cn, mod3, N = " + std::to_string(settings.elements) +
+                   ", Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time),
                holds, expectations, used);
 }
 
@@ -1227,9 +1239,8 @@ std::vector<ClaimResult> check_all(const Expectations& expectations, std::ostrea
     append(check_energy_conservation(scheme_choice("cn"), paper_masses(), EnergySettings(), expectations, &used));
     append(check_energy_dissipation(scheme_choice("be"), paper_masses(), EnergySettings(), expectations, &used));
   });
-  timed("6 contact step", [&] {
-    append(check_contact_step(paper_contact_step_cases(), ContactStepSettings(), expectations, &used));
-  });
+  timed("6 contact step",
+        [&] { append(check_contact_step(paper_contact_step_cases(), ContactStepSettings(), expectations, &used)); });
   timed("6 exact solution", [&] {
     rows.push_back(check_exact_solution(ExactSolution(1.0, 0.5), FineSolutionSettings(), expectations, &used));
   });
@@ -1276,15 +1287,38 @@ void write_markdown_table(std::ostream& out, const std::vector<ClaimResult>& row
 
 std::string latex_escape(const std::string& text) {
   static const std::pair<const char*, const char*> symbols[] = {
-      {"λ", "\\ensuremath{\\lambda}"}, {"Δ", "\\ensuremath{\\Delta}"}, {"≤", "\\ensuremath{\\le}"},
-      {"≥", "\\ensuremath{\\ge}"}, {"×", "\\ensuremath{\\times}"}, {"∞", "\\ensuremath{\\infty}"},
-      {"²", "\\ensuremath{^2}"}, {"¹", "\\ensuremath{^1}"}, {"ⁿ", "\\ensuremath{^n}"}, {"⁺", "\\ensuremath{^+}"},
-      {"⁻", "\\ensuremath{^-}"}, {"ᵀ", "\\ensuremath{^T}"}, {"½", "\\ensuremath{\\frac12}"},
-      {"¼", "\\ensuremath{\\frac14}"}, {"·", "\\ensuremath{\\cdot}"}, {"−", "\\ensuremath{-}"},
-      {"→", "\\ensuremath{\\to}"}, {"ε", "\\ensuremath{\\varepsilon}"}, {"θ", "\\ensuremath{\\theta}"},
-      {"β", "\\ensuremath{\\beta}"}, {"₀", "\\ensuremath{_0}"}, {"≈", "\\ensuremath{\\approx}"}, {"–", "--"},
-      {"—", "---"}, {"…", "\\dots{}"}, {"§", "\\S{}"}, {"é", "\\'e"}, {"√", "\\ensuremath{\\surd}"},
-      {"Σ", "\\ensuremath{\\Sigma}"}, {"∝", "\\ensuremath{\\propto}"}, {"è", "\\`e"}, {"č", "\\v{c}"},
+      {"λ", "\\ensuremath{\\lambda}"},
+      {"Δ", "\\ensuremath{\\Delta}"},
+      {"≤", "\\ensuremath{\\le}"},
+      {"≥", "\\ensuremath{\\ge}"},
+      {"×", "\\ensuremath{\\times}"},
+      {"∞", "\\ensuremath{\\infty}"},
+      {"²", "\\ensuremath{^2}"},
+      {"¹", "\\ensuremath{^1}"},
+      {"ⁿ", "\\ensuremath{^n}"},
+      {"⁺", "\\ensuremath{^+}"},
+      {"⁻", "\\ensuremath{^-}"},
+      {"ᵀ", "\\ensuremath{^T}"},
+      {"½", "\\ensuremath{\\frac12}"},
+      {"¼", "\\ensuremath{\\frac14}"},
+      {"·", "\\ensuremath{\\cdot}"},
+      {"−", "\\ensuremath{-}"},
+      {"→", "\\ensuremath{\\to}"},
+      {"ε", "\\ensuremath{\\varepsilon}"},
+      {"θ", "\\ensuremath{\\theta}"},
+      {"β", "\\ensuremath{\\beta}"},
+      {"₀", "\\ensuremath{_0}"},
+      {"≈", "\\ensuremath{\\approx}"},
+      {"–", "--"},
+      {"—", "---"},
+      {"…", "\\dots{}"},
+      {"§", "\\S{}"},
+      {"é", "\\'e"},
+      {"√", "\\ensuremath{\\surd}"},
+      {"Σ", "\\ensuremath{\\Sigma}"},
+      {"∝", "\\ensuremath{\\propto}"},
+      {"è", "\\`e"},
+      {"č", "\\v{c}"},
       {"œ", "\\oe{}"},
   };
 
@@ -1293,17 +1327,36 @@ std::string latex_escape(const std::string& text) {
     const unsigned char c = static_cast<unsigned char>(text[i]);
     if (c < 0x80) {
       switch (c) {
-        case '\\': out += "\\textbackslash{}"; break;
-        case '{': case '}': case '$': case '&': case '#': case '_': case '%':
+        case '\\':
+          out += "\\textbackslash{}";
+          break;
+        case '{':
+        case '}':
+        case '$':
+        case '&':
+        case '#':
+        case '_':
+        case '%':
           out += '\\';
           out += static_cast<char>(c);
           break;
-        case '^': out += "\\textasciicircum{}"; break;
-        case '~': out += "\\textasciitilde{}"; break;
-        case '<': out += "\\ensuremath{<}"; break;
-        case '>': out += "\\ensuremath{>}"; break;
-        case '|': out += "\\ensuremath{|}"; break;
-        default: out += static_cast<char>(c);
+        case '^':
+          out += "\\textasciicircum{}";
+          break;
+        case '~':
+          out += "\\textasciitilde{}";
+          break;
+        case '<':
+          out += "\\ensuremath{<}";
+          break;
+        case '>':
+          out += "\\ensuremath{>}";
+          break;
+        case '|':
+          out += "\\ensuremath{|}";
+          break;
+        default:
+          out += static_cast<char>(c);
       }
       ++i;
       continue;
@@ -1348,9 +1401,10 @@ TEST_CASE("LaTeX escaping handles the special characters and the table's symbols
 void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
   const std::string column = ">{\\raggedright\\arraybackslash}p{";
   repro::LatexLayout layout;
-  layout.before = "% The claims of the paper as executable checks: generated by check_claims --tex (do not edit).\n"
-                  "% Needs \\usepackage{longtable,booktabs,array}.\n"
-                  "{\\footnotesize\\setlength{\\tabcolsep}{3pt}\n";
+  layout.before =
+      "% The claims of the paper as executable checks: generated by check_claims --tex (do not edit).\n"
+      "% Needs \\usepackage{longtable,booktabs,array}.\n"
+      "{\\footnotesize\\setlength{\\tabcolsep}{3pt}\n";
   layout.columns = column + "0.20\\linewidth}" + column + "0.40\\linewidth}" + column + "0.23\\linewidth}" + column +
                    "0.11\\linewidth}";
   layout.longtable = true;
@@ -1372,8 +1426,9 @@ void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) 
     }
     table.add_row({"\\textbf{" + id + "} " + latex_escape(r.claim), latex_escape(r.measured),
                    same_criterion ? std::string("\\emph{as above}") : latex_escape(r.criterion), verdict},
-                  r.reason.empty() ? std::string()
-                                   : "\\emph{Why:} " + (same_reason ? std::string("as above.") : latex_escape(r.reason)));
+                  r.reason.empty()
+                      ? std::string()
+                      : "\\emph{Why:} " + (same_reason ? std::string("as above.") : latex_escape(r.reason)));
   }
   table.write_latex(out, layout);
 }

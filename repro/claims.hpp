@@ -35,7 +35,7 @@ struct ClaimResult {
   std::string measured;   ///< what was measured, with the numbers
   std::string criterion;  ///< the criterion, stated in advance
   Verdict verdict;
-  std::string reason;     ///< for not_reproduced/failed: why (the expected-failure reason, or what broke)
+  std::string reason;  ///< for not_reproduced/failed: why (the expected-failure reason, or what broke)
 };
 
 /// The rows expected NOT to reproduce, by row id, with the reason (and, in the table's source, the
@@ -76,8 +76,8 @@ class ErrorCache {
 struct StabilitySettings {
   Index elements = 200;
   double courant = 0.5;
-  double final_time = 300;   ///< 100 periods of the benchmark
-  double bound_conserving = 1.01;  ///< E_hⁿ ≤ 1.01 E_h(0) for Crank–Nicolson and Paoli–Schatzman
+  double final_time = 300;                 ///< 100 periods of the benchmark
+  double bound_conserving = 1.01;          ///< E_hⁿ ≤ 1.01 E_h(0) for Crank–Nicolson and Paoli–Schatzman
   double bound_dissipative = 1.0 + 1e-12;  ///< E_hⁿ ≤ (1 + 1e-12) E_h(0) for backward Euler
 };
 /// Every scheme × mass runs to the final time with finite values and a bounded energy.
@@ -131,7 +131,7 @@ std::vector<ClaimResult> check_convergence(const std::vector<SchemeChoice>& sche
 struct TimeConvergenceSettings {
   Index elements = 100;
   std::vector<double> courants = {4, 2, 1, 0.5, 0.25, 0.125};  ///< Δt/h, from the coarsest; each divides the first
-  double reference_courant = 1.0 / 128;  ///< the reference: same h, this much smaller Δt
+  double reference_courant = 1.0 / 128;                        ///< the reference: same h, this much smaller Δt
   double final_time = 3;
   double minimum_order = 0.25;
 };

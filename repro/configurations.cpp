@@ -154,7 +154,8 @@ TEST_CASE("a configuration run for a given number of steps is measured against t
   c.steps = 7;
   const ExactSolution other(1.0, 0.4);
   Index observed = 0;
-  const Measures m = run_configuration(c, [&](const Sample&) { ++observed; }, &other);
+  const Measures m = run_configuration(
+      c, [&](const Sample&) { ++observed; }, &other);
   CHECK(m.steps == 7);
   CHECK(observed == 8);
   const UniformMesh mesh(1.0, 16);

@@ -52,7 +52,7 @@ inline const std::vector<std::string>& mass_names() {
 inline const std::array<const char*, 8>& measure_labels() {
   static const std::array<const char*, 8> labels{
       "$u(0,\\cdot)$, $L^2_t$",   "$\\lambda$, $L^2_t$", "$u$, $L^\\infty_t L^2$", "$u$, $L^\\infty_t H^1$",
-      "$u_t$, $L^\\infty_t L^2$", "$u$, $L^2_t L^2$",     "$u$, $L^2_t H^1$",       "$u_t$, $L^2_t L^2$"};
+      "$u_t$, $L^\\infty_t L^2$", "$u$, $L^2_t L^2$",    "$u$, $L^2_t H^1$",       "$u_t$, $L^2_t L^2$"};
   return labels;
 }
 

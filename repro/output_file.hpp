@@ -38,53 +38,53 @@ namespace mrm::cli {
 // A stream buffer over a file descriptor that remembers the first failed write (its errno) and
 // fails every write after it, so that the stream's state tells whether all the data got out.
 class DescriptorBuffer : public std::streambuf {
-public:
-    explicit DescriptorBuffer(int descriptor = -1);
-    void reset(int descriptor);
-    int error() const { return error_; }
-    // Writes out what is buffered; false if this or any earlier write failed.
-    bool drain();
+ public:
+  explicit DescriptorBuffer(int descriptor = -1);
+  void reset(int descriptor);
+  int error() const { return error_; }
+  // Writes out what is buffered; false if this or any earlier write failed.
+  bool drain();
 
-protected:
-    int_type overflow(int_type character) override;
-    int sync() override;
+ protected:
+  int_type overflow(int_type character) override;
+  int sync() override;
 
-private:
-    int descriptor_;
-    std::vector<char> buffer_;
-    int error_ = 0;
+ private:
+  int descriptor_;
+  std::vector<char> buffer_;
+  int error_ = 0;
 };
 
 class AtomicFile {
-public:
-    explicit AtomicFile(std::string path, std::string_view option = "");
-    ~AtomicFile();
-    AtomicFile(const AtomicFile&) = delete;
-    AtomicFile& operator=(const AtomicFile&) = delete;
+ public:
+  explicit AtomicFile(std::string path, std::string_view option = "");
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
 
-    std::ostream& stream() { return stream_; }
-    // Equivalent to commit_all({this}).
-    void commit();
+  std::ostream& stream() { return stream_; }
+  // Equivalent to commit_all({this}).
+  void commit();
 
-    const std::string& path() const { return path_; }
-    // The hidden file being written ("" when the target is written in place).
-    const std::string& temporary_path() const { return temporary_path_; }
-    bool in_place() const { return temporary_path_.empty(); }
+  const std::string& path() const { return path_; }
+  // The hidden file being written ("" when the target is written in place).
+  const std::string& temporary_path() const { return temporary_path_; }
+  bool in_place() const { return temporary_path_.empty(); }
 
-private:
-    friend void commit_all(const std::vector<AtomicFile*>& files);
-    void open_in_place(int descriptor);
-    void open_temporary(std::string_view option);
-    void finish_writing();
-    void discard() noexcept;
+ private:
+  friend void commit_all(const std::vector<AtomicFile*>& files);
+  void open_in_place(int descriptor);
+  void open_temporary(std::string_view option);
+  void finish_writing();
+  void discard() noexcept;
 
-    std::string path_, option_, temporary_path_;
-    int descriptor_ = -1;
-    DescriptorBuffer buffer_;
-    std::ostream stream_;
-    bool finished_ = false;
-    std::size_t pending_slot_;
-    std::size_t identity_slot_;
+  std::string path_, option_, temporary_path_;
+  int descriptor_ = -1;
+  DescriptorBuffer buffer_;
+  std::ostream stream_;
+  bool finished_ = false;
+  std::size_t pending_slot_;
+  std::size_t identity_slot_;
 };
 
 // Commits several outputs all or nothing. First what the program wrote on standard output is

@@ -61,8 +61,9 @@ TEST_CASE("run_in_parallel calls the work once per index and rethrows the first 
     std::vector<std::size_t> order{3, 0, 2, 1, 4};
     std::vector<int> calls(order.size(), 0);
     std::vector<int> positions(order.size() + 1, 0);
-    run_in_parallel(order, threads, [&](std::size_t k) { ++calls[k]; },
-                    [&](std::size_t position, std::size_t) { ++positions[position]; });
+    run_in_parallel(
+        order, threads, [&](std::size_t k) { ++calls[k]; },
+        [&](std::size_t position, std::size_t) { ++positions[position]; });
     CAPTURE(threads);
     for (int c : calls) CHECK(c == 1);
     for (std::size_t p = 1; p < positions.size(); ++p) CHECK(positions[p] == 1);

@@ -151,7 +151,8 @@ std::vector<double> local_orders(const std::vector<double>& steps, const std::ve
                                 std::to_string(errors.size()) + " errors");
   std::vector<double> orders(errors.size(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t k = 1; k < errors.size(); ++k)
-    if (errors[k] > 0 && errors[k - 1] > 0) orders[k] = std::log2(errors[k - 1] / errors[k]) / std::log2(steps[k - 1] / steps[k]);
+    if (errors[k] > 0 && errors[k - 1] > 0)
+      orders[k] = std::log2(errors[k - 1] / errors[k]) / std::log2(steps[k - 1] / steps[k]);
   return orders;
 }
 

@@ -14,14 +14,14 @@ namespace mrm::repro {
 
 /// How write_latex lays out a table.
 struct LatexLayout {
-  std::string columns;           ///< the column specification, e.g. "llrrr"
-  bool booktabs = true;          ///< \toprule, \midrule, \bottomrule (else \hline)
-  bool longtable = false;        ///< a longtable whose header is repeated on every page (booktabs)
+  std::string columns;             ///< the column specification, e.g. "llrrr"
+  bool booktabs = true;            ///< \toprule, \midrule, \bottomrule (else \hline)
+  bool longtable = false;          ///< a longtable whose header is repeated on every page (booktabs)
   bool rule_between_rows = false;  ///< a \midrule between every two rows
-  std::string note_columns;      ///< the p{} specification of a note spanning all columns but the first
-  std::string before;            ///< text before \begin (comments, a group opened)
-  std::string after_end;         ///< text right after \end{…} (a group closed)
-  bool final_newline = true;     ///< a newline after the last line (false inside a \mrmdef value)
+  std::string note_columns;        ///< the p{} specification of a note spanning all columns but the first
+  std::string before;              ///< text before \begin (comments, a group opened)
+  std::string after_end;           ///< text right after \end{…} (a group closed)
+  bool final_newline = true;       ///< a newline after the last line (false inside a \mrmdef value)
 };
 
 /// Rows of cells under a header, with rules between groups of rows and optional notes under a row.
