@@ -119,7 +119,7 @@ int main(int argc, char** argv) {
 
     // 4. Data blocks.
     std::ostream& out = outputs.data();
-    out << "# fig_time_error: error in time at fixed h against a reference with dt_ref = h/R (problem.md sec. 5)\n";
+    out << "# fig_time_error: error in time at fixed h against a reference with dt_ref = h/R (mathematics.md sec. 5)\n";
     parser.echo(out);
     out << "# h = " << cli::format_real(h) << "\n# dt_ref = " << cli::format_real(dt_ref)
         << "\n# final_time_used = " << cli::format_real(static_cast<double>(reference_steps) * dt_ref)

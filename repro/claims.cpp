@@ -56,7 +56,7 @@ namespace mrm::claims {
 const Expectations& paper_expectations() {
   // Reasons shared by several rows.
   const std::string sawtooth =
-      "the literal Paoli-Schatzman contact row lets a sawtooth in u₀ grow after each release (problem.md §4), which "
+      "the literal Paoli-Schatzman contact row lets a sawtooth in u₀ grow after each release (mathematics.md §4), which "
       "dominates the H¹ and velocity errors";
   const std::string be_order =
       "every error decreases at every refinement, but the H¹, velocity (and for some, λ) errors have least-squares "
@@ -415,7 +415,7 @@ ClaimResult check_consistent_mass_blows_up(const SchemeChoice& scheme, const Sta
   const StabilityRun r =
       stability_run(scheme, consistent_mass(), settings.elements, settings.courant, settings.final_time, bound);
   return judge("1/" + scheme.label + "/consistent",
-               "Contrast (the method's motivation, problem.md §3): " + scheme.label +
+               "Contrast (the method's motivation, mathematics.md §3): " + scheme.label +
                    " with the consistent mass and exact contact is unstable",
                "consistent: " + describe(r),
                "the same run (N = " + std::to_string(settings.elements) + ", Δt = " + sig(settings.courant) +
