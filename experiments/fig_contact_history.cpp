@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
     outputs.open(parser);
     const mrm::ExactSolution exact;
     std::ostream& out = outputs.data();
-    out << "# fig_contact_history: u(0,t) and lambda(t), exact and computed (problem.md sec. 2; paper Figure 1)\n";
+    out << "# fig_contact_history: u(0,t) and lambda(t), exact and computed (mathematics.md sec. 2; paper Figure 1)\n";
     parser.echo(out);
     out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt) << "\n# steps = " << steps
         << "\n# blocks: 0 exact (t u0 lambda); 1 + 3 s + m: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3);"

@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
 
     // 5. The data blocks, in the fixed order of `runs` (scheme, mass, ratio, mesh).
     std::ostream& out = outputs.data();
-    out << "# fig_convergence: relative errors against h (problem.md sec. 5)\n";
+    out << "# fig_convergence: relative errors against h (mathematics.md sec. 5)\n";
     parser.echo(out);
     out << "# blocks: 2 (3 s + m) + c: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3), c in (dt = h, dt = "
            "h/2)\n";

@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
     outputs.open(parser);
     const mrm::ExactSolution exact;
     std::ostream& out = outputs.data();
-    out << "# fig_energy: discrete energy E_h(t) against the exact 1/8 (problem.md sec. 4-5)\n";
+    out << "# fig_energy: discrete energy E_h(t) against the exact 1/8 (mathematics.md sec. 4-5)\n";
     parser.echo(out);
     out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt) << "\n# steps = " << steps
         << "\n# exact_energy = " << cli::format_real(exact.energy())

@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
 
     // 4. The blocks.
     std::ostream& out = outputs.data();
-    out << "# fig_profiles: u(x,t) at a few instants, exact and computed (problem.md sec. 2)\n";
+    out << "# fig_profiles: u(x,t) at a few instants, exact and computed (mathematics.md sec. 2)\n";
     parser.echo(out);
     out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt)
         << "\n# blocks: 2k exact profile at instant k (x u); 2k+1 nodal values (x u_mod1 u_mod2 u_mod3)\n";

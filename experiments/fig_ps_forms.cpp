@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
     // 2. Outputs.
     outputs.open(parser);
     std::ostream& out = outputs.data();
-    out << "# fig_ps_forms: Paoli-Schatzman (1/4, 0), literal and algebraic contact row (problem.md sec. 4)\n";
+    out << "# fig_ps_forms: Paoli-Schatzman (1/4, 0), literal and algebraic contact row (mathematics.md sec. 4)\n";
     parser.echo(out);
     out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt) << "\n# steps = " << steps
         << "\n# blocks: 0 exact; 1 algebraic row, " << mass << "; 2 literal row, " << mass

@@ -68,7 +68,7 @@
 //     Ūⁿ⁺¹ = z + 2θ g r,   so   b = z₁ + 2θ(Ā⁻¹)₁₁ φ(a, b) = c + μ χ(a, b),
 //     c = z₁ (+ hF₀ⁿ⁺¹ with a load),   μ = θ(Ā⁻¹)₁₁/h.
 //
-// (In problem.md §4's notation Ūⁿ⁺¹ = z − w u₀ with w = θĀ⁻¹C = −(θ/h) r: the contact node's value u₀
+// (In mathematics.md §4's notation Ūⁿ⁺¹ = z − w u₀ with w = θĀ⁻¹C = −(θ/h) r: the contact node's value u₀
 // is replaced by the effective 2hφ(a, b) split over the two levels.) Two facts make this scalar
 // equation harmless:
 //

@@ -17,7 +17,7 @@
 //
 //     ℓ_f = π / (2 √μ_f),   ℓ_c = π / √μ_c,   μ the smallest eigenvalue of the pencil.
 //
-// The benchmark's solution (problem.md §2) spends L in free flight (the unloading wave runs to the
+// The benchmark's solution (mathematics.md §2) spends L in free flight (the unloading wave runs to the
 // clamp: a quarter of the free–clamped period 4L), L in contact (half the clamped–clamped period 2L)
 // and L flying back, so the period is 3L; the discrete bar spends ℓ_f, ℓ_c and ℓ_f, up to the
 // dispersion of P1 (relative O((kh)²) on the low modes):

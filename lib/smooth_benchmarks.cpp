@@ -251,7 +251,7 @@ TEST_CASE("S2 and S3 touch at t* with zero velocity and acceleration and are rel
     const SmoothBenchmarkData s = smooth_benchmark(which);
     CAPTURE(to_string(which));
     CAPTURE(s.release_time);
-    // t_r makes y(t*) = 2P(t*) − P(0) vanish (beyond.md quotes t_r ≈ 0.6597 for S2, ≈ 0.6786 for S3).
+    // t_r makes y(t*) = 2P(t*) − P(0) vanish (mathematics.md §11: t_r ≈ 0.66 for S2, ≈ 0.68 for S3).
     CHECK(std::abs(2 * s.data.displacement(s.touch_time) - 0.25) <= 1e-15);
     CHECK(std::abs(s.release_time - (which == SmoothBenchmark::grazing ? 0.6597 : 0.6786)) <= 1e-4);
     const CharacteristicSolution solution(s.data, s.final_time);

@@ -365,7 +365,7 @@ ClaimResult check_consistent_mass_blows_up(const SchemeChoice& scheme, const Sta
   const StabilityRun r =
       stability_run(scheme, consistent_mass(), settings.elements, settings.courant, settings.final_time, bound);
   return judge("1/" + scheme.label + "/consistent",
-               "Contrast (the method's motivation, problem.md §3): " + scheme.label +
+               "Contrast (the method's motivation, mathematics.md §3): " + scheme.label +
                    " with the consistent mass and exact contact is unstable",
                "consistent: " + describe(r),
                "the same run (N = " + std::to_string(settings.elements) + ", Δt = " + sig(settings.courant) +
