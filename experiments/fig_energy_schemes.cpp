@@ -16,8 +16,8 @@
 //   measures  the eight relative errors of mathematics.md §5 of each scheme with Mod 1, 2 and 3 at
 //             N = 100 and 400, Δt = h/2, T = 30, their ratios to Crank–Nicolson's, and the energy lost,
 //             1 − E_h(T)/E_h(0) (in the data file; in per cent in the report's values), with the table of
-//             each mesh in two halves (four measures each, the energy lost with the second) so that each
-//             fits the text width.
+//             each mesh in three parts (three, three and two measures, the energy lost with the last) so
+//             that each fits the text width.
 // Every run is repro/configurations' run_configuration, observed step by step for the energy; the runs
 // of a view are independent and shared among --threads workers (repro/parallel): the output does not
 // depend on their number. EC needs a massless contact node: every mass here is Mod 1, 2 or 3.
@@ -56,7 +56,13 @@ namespace {
 
 // The schemes compared, in the order of every block and table.
 const std::array<const char*, 4> schemes{"cn", "ec", "cn-switch", "be"};
-const std::array<const char*, 4> scheme_labels{"Crank--Nicolson", "EC", "CN-switch", "backward Euler"};
+// Their labels in the tables (the captions say CN for Crank–Nicolson and BE for backward Euler).
+const std::array<const char*, 4> scheme_labels{"CN", "EC", "CN-switch", "BE"};
+
+// A header cell on two lines (a one-column tabular inside the cell), to keep a table within the width.
+std::string stacked(const std::string& top, const std::string& bottom) {
+  return "\\begin{tabular}[b]{@{}c@{}}" + top + "\\\\ " + bottom + "\\end{tabular}";
+}
 
 // One run and what the views read from it.
 struct Run {
@@ -260,8 +266,9 @@ int main(int argc, char** argv) {
       // The long runs: a block and a table (run, scheme, mass: drift, largest increase, largest, final).
       start_block("the long runs",
                   "run scheme mass N dt_over_h periods drift largest_increase largest final increase_bound");
-      mrm::repro::Table table({"$N$, $\\Delta t$, periods", "scheme", "mass", "$\\max_n |E^n - E^0|/E^0$",
-                               "$\\max_n (E^{n+1} - E^n)/E^0$", "$\\max_n E^n/E^0$", "$E(T)/E^0$"});
+      mrm::repro::Table table({stacked("$N$, $\\Delta t$,", "periods"), "scheme", "mass",
+                               stacked("$\\max_n |E^n - E^0|$", "$/E^0$"), stacked("$\\max_n (E^{n+1} - E^n)$", "$/E^0$"),
+                               stacked("$\\max_n E^n$", "$/E^0$"), stacked("$E(T)$", "$/E^0$")});
       for (const LongRun& l : long_runs) {
         const std::string run_label = std::to_string(l.elements) + ", $" +
                                       (l.courant == 1 ? std::string("h") : cli::format_real(l.courant) + "h") + "$, " +
@@ -309,13 +316,16 @@ int main(int argc, char** argv) {
         start_block("N = " + std::to_string(n),
                     "scheme mass (8 measures) (8 ratios to cn) energy_lost; measures in the order of mathematics.md "
                     "sec. 5: u0_L2 lambda_L2 u_LinfL2 u_LinfH1 v_LinfL2 u_L2L2 u_L2H1 v_L2L2");
-        // The table in two halves, measures 0–3 and 4–7 with the energy lost, each within the text width.
-        constexpr std::size_t half = 4;
-        std::array<std::vector<std::string>, 2> headers{{{"scheme", "mass"}, {"scheme", "mass"}}};
+        // The table in three parts, measures 0–2, 3–5 and 6–7 with the energy lost, each within the text
+        // width.
+        constexpr std::size_t per_part = 3;
+        std::array<std::vector<std::string>, 3> headers;
+        for (auto& h : headers) h = {"scheme", "mass"};
         for (std::size_t k = 0; k < mrm::repro::measure_labels().size(); ++k)
-          headers[k / half].push_back(mrm::repro::measure_labels()[k]);
-        headers[1].push_back("energy lost, \\%");
-        std::array<mrm::repro::Table, 2> tables{mrm::repro::Table(headers[0]), mrm::repro::Table(headers[1])};
+          headers[k / per_part].push_back(mrm::repro::measure_labels()[k]);
+        headers.back().push_back("energy lost, \\%");
+        std::array<mrm::repro::Table, 3> tables{mrm::repro::Table(headers[0]), mrm::repro::Table(headers[1]),
+                                                mrm::repro::Table(headers[2])};
         const std::size_t first = next;  // Crank–Nicolson's runs come first, one per mass
         for (std::size_t s = 0; s < schemes.size(); ++s) {
           double largest_ratio = 0, largest_deviation = 0;  // over the measures and the masses
@@ -328,14 +338,14 @@ int main(int argc, char** argv) {
             for (double e : errors) out << ' ' << cli::format_real(e);
             for (std::size_t k = 0; k < errors.size(); ++k) out << ' ' << cli::format_real(errors[k] / reference[k]);
             out << ' ' << cli::format_real(lost) << '\n';
-            std::array<std::vector<std::string>, 2> rows;
+            std::array<std::vector<std::string>, 3> rows;
             for (auto& row : rows) row = {m == 0 ? scheme_labels[s] : std::string(), mass_label(masses[m])};
             const std::string key = "ecs:meas:" + std::to_string(n) + ":" + schemes[s] + ":" + masses[m];
             for (std::size_t k = 0; k < errors.size(); ++k) {
               const std::string value = mrm::tex_number(errors[k], 3);
               // Beside Crank–Nicolson's row, each other scheme's error relative to it, in per cent.
               const std::string relative = mrm::tex_number(100 * (errors[k] / reference[k] - 1), 2);
-              rows[k / half].push_back(s == 0 ? value
+              rows[k / per_part].push_back(s == 0 ? value
                                               : value + " (" + (errors[k] >= reference[k] ? "+" : "") + relative + "\\%)");
               mrm::tex_define(defs, key + ":" + mrm::ErrorAccumulator::names[k], value);
               mrm::tex_define(defs, key + ":" + mrm::ErrorAccumulator::names[k] + ":vs_cn", relative);
@@ -343,7 +353,7 @@ int main(int argc, char** argv) {
               largest_deviation = std::max(largest_deviation, std::abs(errors[k] / reference[k] - 1));
             }
             if (std::string(schemes[s]) == "cn-switch" && masses[m] == "mod3") switch_lost.push_back(lost);
-            rows[1].push_back(mrm::tex_number(100 * lost, 2));
+            rows.back().push_back(mrm::tex_number(100 * lost, 2));
             mrm::tex_define(defs, key + ":lost", mrm::tex_number(100 * lost, 2));
             for (std::size_t t = 0; t < tables.size(); ++t) tables[t].add_row(rows[t]);
           }
