@@ -267,8 +267,9 @@ int main(int argc, char** argv) {
       start_block("the long runs",
                   "run scheme mass N dt_over_h periods drift largest_increase largest final increase_bound");
       mrm::repro::Table table({stacked("$N$, $\\Delta t$,", "periods"), "scheme", "mass",
-                               stacked("$\\max_n |E^n - E^0|$", "$/E^0$"), stacked("$\\max_n (E^{n+1} - E^n)$", "$/E^0$"),
-                               stacked("$\\max_n E^n$", "$/E^0$"), stacked("$E(T)$", "$/E^0$")});
+                               stacked("$\\max_n |E^n - E^0|$", "$/E^0$"),
+                               stacked("$\\max_n (E^{n+1} - E^n)$", "$/E^0$"), stacked("$\\max_n E^n$", "$/E^0$"),
+                               stacked("$E(T)$", "$/E^0$")});
       for (const LongRun& l : long_runs) {
         const std::string run_label = std::to_string(l.elements) + ", $" +
                                       (l.courant == 1 ? std::string("h") : cli::format_real(l.courant) + "h") + "$, " +
@@ -284,8 +285,7 @@ int main(int argc, char** argv) {
             out << l.key << ' ' << schemes[s] << ' ' << m << ' ' << l.elements << ' ' << cli::format_real(l.courant)
                 << ' ' << cli::format_real(l.periods) << ' ' << cli::format_real(drift(r)) << ' '
                 << cli::format_real(r.largest_increase) << ' ' << cli::format_real(ratio(r, r.measures.energy_max))
-                << ' ' << cli::format_real(ratio(r, r.measures.energy_final)) << ' ' << cli::format_real(bound)
-                << '\n';
+                << ' ' << cli::format_real(ratio(r, r.measures.energy_final)) << ' ' << cli::format_real(bound) << '\n';
             check_increase(r);
             const std::string key = std::string("ecs:long:") + l.key + ":" + schemes[s] + ":" + m;
             mrm::tex_define(defs, key + ":drift", mrm::tex_number(drift(r), 2));
@@ -345,8 +345,8 @@ int main(int argc, char** argv) {
               const std::string value = mrm::tex_number(errors[k], 3);
               // Beside Crank–Nicolson's row, each other scheme's error relative to it, in per cent.
               const std::string relative = mrm::tex_number(100 * (errors[k] / reference[k] - 1), 2);
-              rows[k / per_part].push_back(s == 0 ? value
-                                              : value + " (" + (errors[k] >= reference[k] ? "+" : "") + relative + "\\%)");
+              rows[k / per_part].push_back(
+                  s == 0 ? value : value + " (" + (errors[k] >= reference[k] ? "+" : "") + relative + "\\%)");
               mrm::tex_define(defs, key + ":" + mrm::ErrorAccumulator::names[k], value);
               mrm::tex_define(defs, key + ":" + mrm::ErrorAccumulator::names[k] + ":vs_cn", relative);
               largest_ratio = std::max(largest_ratio, errors[k] / reference[k]);

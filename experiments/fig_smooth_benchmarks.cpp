@@ -95,15 +95,16 @@ int main(int argc, char** argv) {
                                                         {"u0", d.contact_displacement},
                                                         {"lambda", d.contact_multiplier}};
       const std::string prefix = "# closed_form_" + std::to_string(k + 1) + "_";
-      out << prefix << "L = " << cli::format_real(length) << '\n' << prefix << "a = " << cli::format_real(amplitude) << '\n';
+      out << prefix << "L = " << cli::format_real(length) << '\n'
+          << prefix << "a = " << cli::format_real(amplitude) << '\n';
       for (const auto& [name, value] : entries) out << prefix << name << " = " << cli::format_real(value) << '\n';
       mrm::tex_define(defs, key + ":L", cli::format_real(length));
       mrm::tex_define(defs, key + ":a", cli::format_real(amplitude));
       for (const auto& [name, value] : entries) {
         if (!(value <= bound))
           throw std::runtime_error(std::string("the characteristic solution differs from the closed form in ") + name +
-                                   " by " + cli::format_real(value) + " (L = " + cli::format_real(length) + ", a = " +
-                                   cli::format_real(amplitude) + "), above the round-off bound " +
+                                   " by " + cli::format_real(value) + " (L = " + cli::format_real(length) +
+                                   ", a = " + cli::format_real(amplitude) + "), above the round-off bound " +
                                    cli::format_real(bound));
         mrm::tex_define(defs, key + ":" + name, mrm::tex_number(value, 2));
       }

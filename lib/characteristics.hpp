@@ -160,7 +160,7 @@ struct ClosedFormDifference {
 };
 
 /// Compares the two solutions on [0, L] × [0, T], T = 3L × `periods`, at (1) the lattice
-/// x_i = iL/20, t_n = nL/20, whose points lie on characteristics x ± t = jL/20, the kinks x ± t = kL
+/// x_i = iL/40, t_n = nL/40, whose points lie on characteristics x ± t = jL/40, the kinks x ± t = kL
 /// among them (the derivatives there are the means of their one-sided values in both); (2) 41 × 429
 /// points off the characteristics; (3) 3000 instants per period at the contact point (u(0, t), λ),
 /// the impacts and releases t = kL among them. At the corners x ∈ {0, L}, t = kL, u_x and u_t have no
