@@ -33,10 +33,9 @@ FIGURES := $(OUT)/figures
 REPORT := $(OUT)/report.pdf
 DOC := $(OUT)/doc
 
-# Hook: extra prerequisites of `make test`. check-claims prints the claims table (see its section);
-# it is then left out of the ctest run below so that the checks do not run twice.
+# Hook: extra prerequisites of `make test`. check-claims (the program experiments/check_claims.cpp)
+# prints the claims table (see its section).
 TEST_EXTRA := check-claims
-CTEST_EXCLUDE := -E '^check_claims$$'
 
 .PHONY: all build clean deps help test bench
 
@@ -61,7 +60,7 @@ $(BUILD)/bin/%: build ;
 
 # Build, then run the doctests (one ctest entry per test case); zero tests found is a failure.
 test: build $(TEST_EXTRA)
-	ctest --test-dir $(BUILD) --output-on-failure -j2 --no-tests=error $(CTEST_EXCLUDE)
+	ctest --test-dir $(BUILD) --output-on-failure -j2 --no-tests=error
 
 # The benchmark run: its data file and its stdout summary (written whole, via a temporary file; without
 # the wall time, so that the same command gives the same bytes).
@@ -93,11 +92,11 @@ bench: build | $(BENCH)
 $(BENCH):
 	mkdir -p $@
 
-# ---- The claims of the paper (problem.md §6) ----------------------------------------------------
-# `make check-claims` runs every check of lib/claims.cpp and prints the table claim | measured |
-# criterion | verdict; it fails iff a check FAILED (expected failures, listed with their reasons in
-# lib/claims.cpp, do not fail it). `make test` runs it (TEST_EXTRA); ctest also knows it as the test
-# check_claims, for whoever runs ctest directly. The same table for the report, as LaTeX and Markdown:
+# ---- The claims of the paper (mathematics.md §6) ----------------------------------------------------
+# `make check-claims` runs every check of repro/claims.cpp (the program experiments/check_claims.cpp)
+# and prints the table claim | measured | criterion | verdict; it fails iff a check FAILED (expected
+# failures, listed with their reasons in repro/claims.cpp, do not fail it). `make test` runs it
+# (TEST_EXTRA). The same table for the report, as LaTeX and Markdown:
 # $(DATA)/claims.tex and $(DATA)/claims.md, part of `make all`.
 .PHONY: check-claims
 check-claims: build
@@ -117,7 +116,7 @@ FIGURE_PDFS := $(FIGURE_NAMES:%=$(FIGURES)/%.pdf)
 FIGURE_DATA := $(FIGURE_NAMES:%=$(DATA)/%.dat)
 FIGURE_TEX := $(FIGURE_NAMES:%=$(DATA)/%.tex)
 REPORT_SOURCES := $(wildcard paper/*.tex)
-# The claims table (tests/check_claims.cpp, see the claims section above).
+# The claims table (experiments/check_claims.cpp, see the claims section above).
 CLAIMS_TEX := $(DATA)/claims.tex
 # Fixed dates in the PDFs (pdfTeX and cairo honour SOURCE_DATE_EPOCH).
 REPRODUCIBLE := SOURCE_DATE_EPOCH=0 FORCE_SOURCE_DATE=1
@@ -147,18 +146,9 @@ $(FIGURES)/%.pdf: figures/%.gp $(DATA)/%.dat | $(FIGURES)
 	LC_ALL=C sed -i 's|/CreationDate (D:[0-9]\{14\}Z)|/CreationDate (D:19700101000000Z)|' $@.tmp
 	mv $@.tmp $@
 
-# Crank–Nicolson with Δt ≫ h (a finding beyond the paper, quoted by the report): the largest energy over
-# 100 periods relative to E_h(0), on N = 16 with Mod 3, for each ratio Δt/h, as \mrmdef{large:C}{value}.
-LARGE_STEP_RATIOS := 0.5 2 5 10 40
-$(DATA)/cn_large_step.tex: $(BUILD)/bin/bar1d | $(DATA)
-	for c in $(LARGE_STEP_RATIOS); do \
-	  $< --scheme cn --mass mod3 --elements 16 --courant $$c --final-time 300 \
-	  | awk -v c=$$c '/^energy_initial/ {e0 = $$3} /^energy_max/ {m = $$3} \
-	      END {x = m / e0; if (x < 1000) s = sprintf("%.3g", x); \
-	           else {e = int(log(x) / log(10)); s = sprintf("%.2f\\times10^{%d}", x / 10^e, e)}; \
-	           printf "\\mrmdef{large:%s}{%s}\n", c, s}'; \
-	done > $@.tmp
-	mv $@.tmp $@
+# Crank–Nicolson's largest energy for Δt ≫ h, relative to E_h(0) (experiments/cn_large_step.cpp).
+$(DATA)/cn_large_step.tex: $(BUILD)/bin/cn_large_step | $(DATA)
+	$< --tex $@
 
 # The report: every figure and fragment is found through TEXINPUTS (so OUT=dir works); latexmk keeps its
 # auxiliary files in $(OUT)/latex. The benchmark's table and plot (make bench) are included if present.
@@ -169,9 +159,25 @@ $(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/
 	cp $(OUT)/latex/report.pdf $@.tmp
 	mv $@.tmp $@
 
-# The API documentation of the library (Doxygen; its warnings go to $(DOC)/doxygen.log).
-$(DOC)/html/index.html: Doxyfile $(wildcard lib/*.hpp lib/*.cpp) | $(DOC)
-	( cat Doxyfile; echo 'OUTPUT_DIRECTORY = $(DOC)' ) | doxygen - > $(DOC)/doxygen.log 2>&1
+# The API documentation (Doxyfile): lib/ and the documents of doc/ that exist. Any warning in
+# $(DOC)/doxygen.log (an undocumented public member, a broken reference) fails the build. The formulas
+# are rendered by MathJax 2 from Debian's libjs-mathjax, whose needed parts are copied beside the HTML
+# (MATHJAX_RELPATH = mathjax), so that the pages work offline.
+DOC_INPUT := lib $(wildcard doc/mainpage.md doc/mathematics.md)
+MATHJAX := /usr/share/javascript/mathjax
+MATHJAX_PARTS := MathJax.js extensions jax/input/TeX jax/element jax/output/HTML-CSS fonts/HTML-CSS/TeX \
+                 localization/en
+
+$(DOC)/html/index.html: Doxyfile $(wildcard lib/*.hpp lib/*.cpp doc/*.md) | $(DOC)
+	rm -rf $(DOC)/html
+	( cat Doxyfile; echo 'OUTPUT_DIRECTORY = $(DOC)'; echo 'INPUT = $(DOC_INPUT)'; \
+	  $(if $(filter doc/mainpage.md,$(DOC_INPUT)),,echo 'USE_MDFILE_AS_MAINPAGE =') ) \
+	  | doxygen - > $(DOC)/doxygen.log 2>&1
+	if [[ -s $(DOC)/doxygen.log ]]; then cat $(DOC)/doxygen.log; \
+	  echo 'doxygen: warnings (above, in $(DOC)/doxygen.log): document every public member of lib/'; exit 1; fi
+	for part in $(MATHJAX_PARTS); do \
+	  mkdir -p $(DOC)/html/mathjax/$$(dirname $$part); cp -r $(MATHJAX)/$$part $(DOC)/html/mathjax/$$part; \
+	done
 	touch $@
 
 # Output directories.

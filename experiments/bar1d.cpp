@@ -1,10 +1,10 @@
-// bar1d: one run of one configuration on the benchmark of problem.md §2.
+// bar1d: one run of one configuration on the benchmark of mathematics.md §2.
 //
 // What it computes. The elastic bar (0, L), clamped at x = L and released at rest from
 // u⁰(x) = a (L − x) against the rigid obstacle at x = 0, discretised with P1 elements and a
 // Lagrange multiplier at the contact node, a mass matrix (consistent, or redistributed by Mod 1, 2
 // or 3) and one time scheme (Crank–Nicolson, backward Euler or Paoli–Schatzman). It prints the
-// relative errors of problem.md §5 against the exact solution, the energy range and the run's size
+// relative errors of mathematics.md §5 against the exact solution, the energy range and the run's size
 // and time, one `name = value` line each, and optionally writes the time series of the contact
 // point (u(0,t), λ(t), the energy, and the exact values beside them). Its standard output is the
 // same bytes for the same command except the wall time of the run (wall_seconds), which
@@ -27,7 +27,9 @@
 #include <sstream>
 #include <string>
 
-#include "cli.hpp"
+#include "options.hpp"
+#include "output_file.hpp"
+#include "configurations.hpp"
 #include "errors.hpp"
 #include "exact_solution.hpp"
 #include "schemes.hpp"
@@ -107,23 +109,28 @@ int main(int argc, char** argv) {
                             cli::format_real(std::ceil(final_time / step)) + " steps of " + cli::format_real(step) +
                             " (allowed: at most 1e12 steps; lower --final-time or raise --dt or --courant)");
     dt = step;  // the header echoes the effective step
-    mrm::SchemeParameters parameters;
-    parameters.scheme = mrm::scheme_by_name(scheme);
-    parameters.beta = beta;
-    parameters.restitution = restitution;
-    parameters.contact_row = mrm::contact_row_by_name(ps_form);
-    const mrm::MassRedistribution redistribution = mrm::mass_redistribution_by_name(mass);
+    mrm::repro::Configuration configuration;
+    configuration.scheme.scheme = mrm::scheme_by_name(scheme);
+    configuration.scheme.beta = beta;
+    configuration.scheme.restitution = restitution;
+    configuration.scheme.contact_row = mrm::contact_row_by_name(ps_form);
+    configuration.mass = mrm::mass_redistribution_by_name(mass);
+    configuration.elements = elements;
+    configuration.dt = step;
+    configuration.final_time = final_time;
+    configuration.length = length;
+    configuration.amplitude = amplitude;
+    configuration.initial = mrm::initial_contact_node_by_name(initial);
     const mrm::Index steps = mrm::steps_to_reach(final_time, step);
     const mrm::ExactSolution exact(length, amplitude);
-    mrm::BarSimulation simulation(mrm::benchmark_problem(length, amplitude), mesh, redistribution, parameters, step,
-                                  mrm::initial_contact_node_by_name(initial));
+    const bool massless = mrm::contact_node_is_massless(mrm::modified_mass(mesh, configuration.mass));
 
     if (series) {
       std::ostream& out = series->stream();
       out << "# bar1d: time series at the contact point x = 0 (problem.md §2 benchmark)\n";
       parser.echo(out);
-      out << "# h = " << cli::format_real(mesh.h()) << "\n# steps = " << steps << "\n# total_mass = " << cli::format_real(mrm::total_mass(mesh, redistribution))
-          << "\n# massless_contact_node = " << (simulation.massless_contact_node() ? "true" : "false")
+      out << "# h = " << cli::format_real(mesh.h()) << "\n# steps = " << steps << "\n# total_mass = " << cli::format_real(mrm::total_mass(mesh, configuration.mass))
+          << "\n# massless_contact_node = " << (massless ? "true" : "false")
           << "\n# exact_energy = " << cli::format_real(exact.energy()) << '\n'
           << "# Each quantity is given at the instant it approximates: t for u0, t_lambda for lambda,\n"
           << "# t_energy for the energy (Paoli-Schatzman: lambda at t_n or t_{n+1}, energy at t_{n+1/2}).\n"
@@ -131,18 +138,9 @@ int main(int argc, char** argv) {
           << "# columns: t u0_h u0_exact t_lambda lambda_h lambda_exact t_energy energy_h energy_exact\n";
     }
 
-    // 4. The run.
-    mrm::ErrorAccumulator errors(mesh, exact);
-    double energy_min = std::numeric_limits<double>::infinity(), energy_max = -energy_min;
-    double energy_initial = 0, energy_final = 0;
+    // 4. The run (repro/configurations: the errors and the energy range), writing the series if asked.
     const auto start = std::chrono::steady_clock::now();
-    mrm::run(simulation, steps, [&](const mrm::Sample& s) {
-      errors.add(s);
-      if (s.level == 0) energy_initial = s.energy;
-      energy_final = s.energy;
-      energy_min = std::min(energy_min, s.energy);
-      energy_max = std::max(energy_max, s.energy);
-      if (!std::isfinite(s.energy)) throw std::runtime_error("the run produced a non-finite energy");
+    const mrm::repro::Measures measures = mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
       if (series) {
         std::ostream& out = series->stream();
         const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -157,15 +155,14 @@ int main(int argc, char** argv) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     // 5. The figures, then the output file.
-    const mrm::ErrorNorms norms = errors.relative();
-    const auto values = mrm::ErrorAccumulator::values(norms);
+    const auto values = mrm::ErrorAccumulator::values(measures.errors);
     for (std::size_t k = 0; k < values.size(); ++k)
       std::cout << mrm::ErrorAccumulator::names[k] << " = " << cli::format_real(values[k]) << '\n';
-    std::cout << "energy_initial = " << cli::format_real(energy_initial) << '\n'
-              << "energy_final = " << cli::format_real(energy_final) << '\n'
-              << "energy_min = " << cli::format_real(energy_min) << '\n'
-              << "energy_max = " << cli::format_real(energy_max) << '\n'
-              << "steps = " << steps << '\n';
+    std::cout << "energy_initial = " << cli::format_real(measures.energy_initial) << '\n'
+              << "energy_final = " << cli::format_real(measures.energy_final) << '\n'
+              << "energy_min = " << cli::format_real(measures.energy_min) << '\n'
+              << "energy_max = " << cli::format_real(measures.energy_max) << '\n'
+              << "steps = " << measures.steps << '\n';
     if (!no_timing) std::cout << "wall_seconds = " << cli::format_real(std::round(wall * 1e4) / 1e4) << '\n';
     if (series) series->commit();
     return 0;

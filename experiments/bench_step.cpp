@@ -2,13 +2,18 @@
 //
 // What it computes. A time step of Crank–Nicolson, backward Euler and Paoli–Schatzman on the P1 bar
 // with a redistributed mass is one solve with a constant tridiagonal matrix A plus a scalar contact
-// decision (problem.md §4, lib/schemes.cpp): its cost should be linear in the number of nodes N and
+// decision (mathematics.md §4, lib/schemes.cpp): its cost should be linear in the number of nodes N and
 // close to that of a bare solve with the same pre-factored A. For N = 2^6 … 2^20 elements this program
 // times, in nanoseconds per node per step:
 //   cn, be, ps   BarSimulation::step() of each scheme (Mod 3 mass, Δt = h/2, the benchmark problem;
-//                Paoli–Schatzman with β = ¼ and the algebraic contact row);
+//                Paoli–Schatzman with β = ¼ and the algebraic contact row), with the fast step that
+//                every program uses (the fused two-chain kernel of lib/fast_step.cpp);
+//   cn_ref, be_ref, ps_ref
+//                the same with the reference step (StepKernel::reference, lib/schemes.cpp: the
+//                scheme written as its derivation, assembled matrices, ContactSolver::solve, the
+//                velocity and the energy as whole vectors; mathematics.md §4);
 //   cn+errors    the same Crank–Nicolson step followed by ErrorAccumulator::add, the error measures of
-//                problem.md §5 against the exact solution (the difference is the cost of the errors);
+//                mathematics.md §5 against the exact solution (the difference is the cost of the errors);
 //   bare         ContactSolver::solve with Crank–Nicolson's step matrix A: one sweep down, the contact
 //                decision, one sweep up, plain substitution loops on the factors computed once (the
 //                practical limit of a step);
@@ -16,7 +21,7 @@
 //                fused step uses, contact.hpp): what the dependency chain of the substitution costs;
 //   eigen        Eigen's SimplicialLDLT solve (factorised once) of the same matrix, symmetrised by
 //                scaling its algebraic contact row 0 by θ (same sparsity, same cost).
-// Then the ratio of each scheme to the bare solve, the log-log slope of the cost per step against N
+// Then the ratio of each scheme (fast and reference steps) to the bare solve, the log-log slope of the cost per step against N
 // over 2^10 … 2^20 (least squares), and the peak resident memory of a Crank–Nicolson and of a
 // Paoli–Schatzman run at the largest N and at N/4, each in a fresh child process, to show that the
 // memory is linear in N.
@@ -58,7 +63,10 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_fit.h>
 
-#include "cli.hpp"
+#include "options.hpp"
+#include "output_file.hpp"
+#include "report_values.hpp"
+#include "table.hpp"
 #include "contact.hpp"
 #include "errors.hpp"
 #include "exact_solution.hpp"
@@ -124,13 +132,14 @@ Timing measure(const std::function<void(long)>& batch, Index nodes, int repetiti
 
 // ---- The variants -------------------------------------------------------------------------------
 
-// The configuration every variant shares: the benchmark of problem.md §2, Mod 3, Δt = C h.
+// The configuration every variant shares: the benchmark of mathematics.md §2, Mod 3, Δt = C h.
 const double courant = 0.5;
 
-mrm::SchemeParameters parameters_of(mrm::Scheme scheme) {
+mrm::SchemeParameters parameters_of(mrm::Scheme scheme, mrm::StepKernel kernel = mrm::StepKernel::fast) {
   mrm::SchemeParameters p;
   p.scheme = scheme;
   p.contact_row = mrm::ContactRow::algebraic;
+  p.kernel = kernel;
   return p;
 }
 
@@ -156,9 +165,12 @@ Eigen::VectorXd random_vector(Index n, unsigned seed) {
   return b;
 }
 
-const char* const variant_names[] = {"cn", "be", "ps", "cn+errors", "bare", "eigen", "bare2"};
-constexpr int variants = 7;
-constexpr int v_cn = 0, v_be = 1, v_ps = 2, v_errors = 3, v_bare = 4, v_eigen = 5, v_bare2 = 6;
+// The reference-step variants come last, so that the columns of the others keep their places in the
+// data file (figures/bench_step.gp reads them by index).
+const char* const variant_names[] = {"cn", "be", "ps", "cn+errors", "bare", "eigen", "bare2", "cn_ref", "be_ref", "ps_ref"};
+constexpr int variants = 10;
+constexpr int v_cn = 0, v_be = 1, v_ps = 2, v_errors = 3, v_bare = 4, v_eigen = 5, v_bare2 = 6, v_cn_ref = 7,
+              v_be_ref = 8, v_ps_ref = 9;
 
 // The two-chain solve ("bare2"): the same factors, each sweep's recurrence substituted into itself
 // so that it runs as two independent chains (ContactSolver::elimination_pair, upward_pair; the form
@@ -188,7 +200,8 @@ mrm::ContactStep two_chain_solve(const mrm::ContactSolver& solver, const double*
 // A check that the timed code computed something sensible (guards against a benchmark of dead code):
 // the backward error of the bare and Eigen solves, and the energy of the runs.
 struct Sanity {
-  double bare_residual = 0, eigen_residual = 0, cn_energy = 0, ps_energy = 0, be_energy = 0;
+  double bare_residual = 0, eigen_residual = 0;
+  std::vector<double> energies;  // the energy at the end of every timed run of a scheme
 };
 
 // The normwise backward error max|Au − b| / (max|A| max|u| + max|b|), round-off size for a stable solve.
@@ -207,10 +220,14 @@ std::array<Timing, variants> time_all(Index elements, int repetitions, double ta
 
   const mrm::Scheme schemes[3] = {mrm::Scheme::crank_nicolson, mrm::Scheme::backward_euler,
                                   mrm::Scheme::paoli_schatzman};
-  for (int v = 0; v < 3; ++v) {
-    mrm::BarSimulation simulation(problem, mesh, mrm::mod3(), parameters_of(schemes[v]), dt);
-    t[v] = measure([&](long k) { for (long s = 0; s < k; ++s) simulation.step(); }, n, repetitions, target);
-    (v == v_cn ? sanity.cn_energy : v == v_be ? sanity.be_energy : sanity.ps_energy) = simulation.sample().energy;
+  const int fast_variants[3] = {v_cn, v_be, v_ps}, reference_variants[3] = {v_cn_ref, v_be_ref, v_ps_ref};
+  for (int k = 0; k < 3; ++k) {
+    for (const mrm::StepKernel kernel : {mrm::StepKernel::fast, mrm::StepKernel::reference}) {
+      const int v = kernel == mrm::StepKernel::fast ? fast_variants[k] : reference_variants[k];
+      mrm::BarSimulation simulation(problem, mesh, mrm::mod3(), parameters_of(schemes[k], kernel), dt);
+      t[v] = measure([&](long s) { for (long i = 0; i < s; ++i) simulation.step(); }, n, repetitions, target);
+      sanity.energies.push_back(simulation.sample().energy);
+    }
   }
   {
     mrm::BarSimulation simulation(problem, mesh, mrm::mod3(), parameters_of(mrm::Scheme::crank_nicolson), dt);
@@ -357,7 +374,8 @@ int main(int argc, char** argv) {
     bool quick = false;
     std::string output, tex, markdown, clock = "wall";
     cli::Parser parser("bench_step",
-                       "Times one step of Crank-Nicolson, backward Euler and Paoli-Schatzman per node, a bare "
+                       "Times one step of Crank-Nicolson, backward Euler and Paoli-Schatzman per node (the fast "
+                       "step every program uses and the reference step written as the derivation), a bare "
                        "pre-factored tridiagonal solve and Eigen's SimplicialLDLT solve of the same matrix, for "
                        "N = 2^6 .. 2^20 elements; prints the ratios to the bare solve, the log-log slope of the "
                        "cost per step against N and the peak memory. Timings go to output/bench/, not to the "
@@ -438,7 +456,7 @@ int main(int argc, char** argv) {
     if (!(sanity.bare_residual < 1e-13 && sanity.eigen_residual < 1e-13))
       throw std::runtime_error("a timed solve is wrong: relative residual " + cli::format_real(sanity.bare_residual) +
                                " (bare), " + cli::format_real(sanity.eigen_residual) + " (eigen)");
-    for (double e : {sanity.cn_energy, sanity.be_energy, sanity.ps_energy})
+    for (double e : sanity.energies)
       if (!(std::isfinite(e) && e > 0 && e < 0.2)) throw std::runtime_error("a timed run has a wrong energy");
 
     // 5. Slopes of the cost per step against N over 2^10 .. 2^20, for every variant.
@@ -472,17 +490,26 @@ int main(int argc, char** argv) {
             << "\neigen_residual = " << cli::format_real(sanity.eigen_residual) << '\n';
 
     std::cout << "# ns per node per step (median of " << repetitions << " batches; min in brackets)\n";
-    std::cout << std::setw(9) << "N";
-    for (int v = 0; v < variants; ++v) std::cout << std::setw(17) << variant_names[v];
-    std::cout << std::setw(9) << "cn/bare" << std::setw(9) << "be/bare" << std::setw(9) << "ps/bare" << std::setw(9)
-              << "errors" << '\n';
-    for (std::size_t k = 0; k < sizes.size(); ++k) {
-      const auto& t = timings[k];
-      std::cout << std::setw(9) << sizes[k];
-      for (int v = 0; v < variants; ++v)
-        std::cout << std::setw(8) << fixed(t[v].median, 2) << " [" << std::setw(5) << fixed(t[v].minimum, 2) << "]";
-      std::cout << std::setw(9) << fixed(ratio(t, v_cn), 2) << std::setw(9) << fixed(ratio(t, v_be), 2)
-                << std::setw(9) << fixed(ratio(t, v_ps), 2) << std::setw(9) << fixed(errors_cost(t), 2) << '\n';
+    {
+      std::vector<std::string> headers{"N"};
+      for (int v = 0; v < variants; ++v) headers.push_back(variant_names[v]);
+      for (const char* h : {"cn/bare", "be/bare", "ps/bare", "errors", "cn_ref/bare", "be_ref/bare", "ps_ref/bare"})
+        headers.push_back(h);
+      mrm::repro::Table screen(headers);
+      for (std::size_t k = 0; k < sizes.size(); ++k) {
+        const auto& t = timings[k];
+        std::vector<std::string> cells{std::to_string(sizes[k])};
+        for (int v = 0; v < variants; ++v) cells.push_back(fixed(t[v].median, 2) + " [" + fixed(t[v].minimum, 2) + "]");
+        for (const std::string& c : {fixed(ratio(t, v_cn), 2), fixed(ratio(t, v_be), 2), fixed(ratio(t, v_ps), 2),
+                                     fixed(errors_cost(t), 2), fixed(ratio(t, v_cn_ref), 2), fixed(ratio(t, v_be_ref), 2),
+                                     fixed(ratio(t, v_ps_ref), 2)})
+          cells.push_back(c);
+        screen.add_row(cells);
+      }
+      std::vector<std::size_t> widths(headers.size(), 15);
+      widths[0] = 7;
+      for (std::size_t c = 1 + variants; c < widths.size(); ++c) widths[c] = 12;
+      screen.write_text(std::cout, widths);
     }
     std::cout << summary.str();
 
@@ -498,29 +525,44 @@ int main(int argc, char** argv) {
         std::replace(name.begin(), name.end(), '+', '_');
         out << ' ' << name << "_median " << name << "_min " << name << "_steps";
       }
-      out << " cn_over_bare be_over_bare ps_over_bare errors_cost\n";
+      out << " cn_over_bare be_over_bare ps_over_bare errors_cost cn_ref_over_bare be_ref_over_bare ps_ref_over_bare\n";
       for (std::size_t k = 0; k < sizes.size(); ++k) {
         const auto& t = timings[k];
         out << std::lround(std::log2(static_cast<double>(sizes[k]))) << ' ' << sizes[k];
         for (int v = 0; v < variants; ++v)
           out << ' ' << fixed(t[v].median, 4) << ' ' << fixed(t[v].minimum, 4) << ' ' << t[v].steps_per_batch;
         out << ' ' << fixed(ratio(t, v_cn), 4) << ' ' << fixed(ratio(t, v_be), 4) << ' ' << fixed(ratio(t, v_ps), 4)
-            << ' ' << fixed(errors_cost(t), 4) << '\n';
+            << ' ' << fixed(errors_cost(t), 4) << ' ' << fixed(ratio(t, v_cn_ref), 4) << ' '
+            << fixed(ratio(t, v_be_ref), 4) << ' ' << fixed(ratio(t, v_ps_ref), 4) << '\n';
       }
     }
 
-    // The row of the table for one N: the median of each scheme and of the limits, the ratios, the errors.
+    // The row of the table for one N: the median of each scheme with the fast and the reference step
+    // and of the limits, the ratios to the bare solve, the errors.
     const auto row_cells = [&](std::size_t k) {
       const auto& t = timings[k];
-      return std::vector<std::string>{
-          std::to_string(sizes[k]),    fixed(t[v_cn].median, 2),   fixed(t[v_be].median, 2),
-          fixed(t[v_ps].median, 2),    fixed(t[v_bare].median, 2), fixed(t[v_bare2].median, 2),
-          fixed(t[v_eigen].median, 2), fixed(ratio(t, v_cn), 2),   fixed(ratio(t, v_be), 2),
-          fixed(ratio(t, v_ps), 2),    fixed(errors_cost(t), 2)};
+      return std::vector<std::string>{std::to_string(sizes[k]),
+                                      fixed(t[v_cn].median, 2),
+                                      fixed(t[v_be].median, 2),
+                                      fixed(t[v_ps].median, 2),
+                                      fixed(t[v_cn_ref].median, 2),
+                                      fixed(t[v_be_ref].median, 2),
+                                      fixed(t[v_ps_ref].median, 2),
+                                      fixed(t[v_bare].median, 2),
+                                      fixed(t[v_bare2].median, 2),
+                                      fixed(t[v_eigen].median, 2),
+                                      fixed(ratio(t, v_cn), 2),
+                                      fixed(ratio(t, v_be), 2),
+                                      fixed(ratio(t, v_ps), 2),
+                                      fixed(ratio(t, v_cn_ref), 2),
+                                      fixed(ratio(t, v_be_ref), 2),
+                                      fixed(ratio(t, v_ps_ref), 2),
+                                      fixed(errors_cost(t), 2)};
     };
     const std::vector<std::string> slope_cells = {
-        "slope", fixed(slope[v_cn], 3),   fixed(slope[v_be], 3),    fixed(slope[v_ps], 3), fixed(slope[v_bare], 3),
-        fixed(slope[v_bare2], 3),          fixed(slope[v_eigen], 3), "", "", "", ""};
+        "slope",                   fixed(slope[v_cn], 3),     fixed(slope[v_be], 3),     fixed(slope[v_ps], 3),
+        fixed(slope[v_cn_ref], 3), fixed(slope[v_be_ref], 3), fixed(slope[v_ps_ref], 3), fixed(slope[v_bare], 3),
+        fixed(slope[v_bare2], 3),  fixed(slope[v_eigen], 3),  "", "", "", "", "", "", ""};
     const std::string memory_line =
         "Peak memory added by a run with the error accumulator (child process, ru_maxrss): CN " +
         std::to_string(mem_cn_big) + " KiB at N = " + std::to_string(big) + " (" +
@@ -534,63 +576,64 @@ int main(int argc, char** argv) {
     const std::string caption_md =
         "Nanoseconds per node per step (median of " + std::to_string(repetitions) + " batches of about " +
         fixed(target_ms, 0) + " ms of " + (clock == "cpu" ? "thread CPU time" : "wall time") + "), Mod 3, Δt = h/2, on " +
-        cpu_model() + " (load average " + load_before + " before the run). *bare*: the same pre-factored tridiagonal solve without the scheme (plain substitution loops); "
+        cpu_model() + " (load average " + load_before + " before the run). CN, BE, PS: the fast step (the fused two-chain kernel every program uses); "
+        "*ref*: the same schemes with the reference step (the scheme written as its derivation: whole matrices "
+        "and vectors, one solve). *bare*: the same pre-factored tridiagonal solve without the scheme (plain substitution loops); "
         "*bare2*: the same with each sweep run as two interleaved chains (the form the schemes use); *eigen*: Eigen's "
         "SimplicialLDLT solve of the same matrix; *errors*: the cost of the error measures (ErrorAccumulator::add). "
         "The slope is that of log(cost per step) against log N over 2^10..2^20.";
 
+    // One table (repro/table), written as Markdown for the README and as LaTeX for the report.
+    mrm::repro::Table table({"N", "CN", "BE", "PS", "CN ref", "BE ref", "PS ref", "bare", "bare2", "Eigen", "CN/bare",
+                             "BE/bare", "PS/bare", "CN ref/bare", "BE ref/bare", "PS ref/bare", "errors"});
+    for (std::size_t k = 0; k < sizes.size(); ++k) table.add_row(row_cells(k));
+    table.add_rule();
+    table.add_row(slope_cells);
     if (table_md) {
       std::ostream& out = table_md->stream();
-      out << caption_md << "\n\n"
-          << "| N | CN | BE | PS | bare | bare2 | eigen | CN/bare | BE/bare | PS/bare | errors |\n"
-          << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-      const auto md_row = [&](const std::vector<std::string>& cells) {
-        out << '|';
-        for (const std::string& c : cells) out << ' ' << c << " |";
-        out << '\n';
-      };
-      for (std::size_t k = 0; k < sizes.size(); ++k) md_row(row_cells(k));
-      md_row(slope_cells);
+      out << caption_md << "\n\n";
+      table.write_markdown(out, std::string(17, 'r'));
       out << '\n' << memory_line << '\n';
     }
     if (table_tex) {
       std::ostream& out = table_tex->stream();
-      out << "% bench_step: generated by `make bench`; timings depend on the machine and its load.\n"
-          << "\\begin{tabular}{rrrrrrrrrrr}\n\\hline\n"
-          << "$N$ & CN & BE & PS & bare & bare2 & Eigen & CN/bare & BE/bare & PS/bare & errors \\\\\n\\hline\n";
-      const auto tex_row = [&](const std::vector<std::string>& cells) {
-        for (std::size_t c = 0; c < cells.size(); ++c) out << (c ? " & " : "") << cells[c];
-        out << " \\\\\n";
-      };
-      for (std::size_t k = 0; k < sizes.size(); ++k) tex_row(row_cells(k));
-      out << "\\hline\n";
-      tex_row(slope_cells);
-      out << "\\hline\n\\end{tabular}\n";
-      // The figures the text quotes, as macros.
+      mrm::repro::LatexLayout layout;
+      layout.before = "% bench_step: generated by `make bench`; timings depend on the machine and its load.\n"
+                      "% CN, BE, PS: the fast step; ref: the reference step (lib/schemes.cpp).\n";
+      layout.columns = std::string(17, 'r');
+      layout.booktabs = false;
+      table.write_latex(out, layout);
       const auto at = [&](Index n) -> const std::array<Timing, variants>* {
         for (std::size_t k = 0; k < sizes.size(); ++k)
           if (sizes[k] == n) return &timings[k];
         return nullptr;
       };
-      out << "% Macros for the text (N = 2^16 where measured).\n";
+      // The figures the text quotes, as the report's values (\mrmdef, like every generated number).
+      out << "% Values for the text (N = 2^16 where measured).\n";
       if (const auto* t = at(Index{1} << 16)) {
-        out << "\\gdef\\BenchCnNs{" << fixed((*t)[v_cn].median, 2) << "}\n"
-            << "\\gdef\\BenchBeNs{" << fixed((*t)[v_be].median, 2) << "}\n"
-            << "\\gdef\\BenchPsNs{" << fixed((*t)[v_ps].median, 2) << "}\n"
-            << "\\gdef\\BenchBareNs{" << fixed((*t)[v_bare].median, 2) << "}\n"
-            << "\\gdef\\BenchBareTwoChainsNs{" << fixed((*t)[v_bare2].median, 2) << "}\n"
-            << "\\gdef\\BenchEigenNs{" << fixed((*t)[v_eigen].median, 2) << "}\n"
-            << "\\gdef\\BenchCnRatio{" << fixed(ratio(*t, v_cn), 2) << "}\n"
-            << "\\gdef\\BenchBeRatio{" << fixed(ratio(*t, v_be), 2) << "}\n"
-            << "\\gdef\\BenchPsRatio{" << fixed(ratio(*t, v_ps), 2) << "}\n"
-            << "\\gdef\\BenchErrorsNs{" << fixed(errors_cost(*t), 2) << "}\n";
+        mrm::tex_define(out, "bench:cn:ns", fixed((*t)[v_cn].median, 2));
+        mrm::tex_define(out, "bench:be:ns", fixed((*t)[v_be].median, 2));
+        mrm::tex_define(out, "bench:ps:ns", fixed((*t)[v_ps].median, 2));
+        mrm::tex_define(out, "bench:bare:ns", fixed((*t)[v_bare].median, 2));
+        mrm::tex_define(out, "bench:bare2:ns", fixed((*t)[v_bare2].median, 2));
+        mrm::tex_define(out, "bench:eigen:ns", fixed((*t)[v_eigen].median, 2));
+        mrm::tex_define(out, "bench:cn:ratio", fixed(ratio(*t, v_cn), 2));
+        mrm::tex_define(out, "bench:be:ratio", fixed(ratio(*t, v_be), 2));
+        mrm::tex_define(out, "bench:ps:ratio", fixed(ratio(*t, v_ps), 2));
+        mrm::tex_define(out, "bench:errors:ns", fixed(errors_cost(*t), 2));
+        mrm::tex_define(out, "bench:cn-ref:ns", fixed((*t)[v_cn_ref].median, 2));
+        mrm::tex_define(out, "bench:be-ref:ns", fixed((*t)[v_be_ref].median, 2));
+        mrm::tex_define(out, "bench:ps-ref:ns", fixed((*t)[v_ps_ref].median, 2));
+        mrm::tex_define(out, "bench:cn-ref:ratio", fixed(ratio(*t, v_cn_ref), 2));
+        mrm::tex_define(out, "bench:be-ref:ratio", fixed(ratio(*t, v_be_ref), 2));
+        mrm::tex_define(out, "bench:ps-ref:ratio", fixed(ratio(*t, v_ps_ref), 2));
       }
-      out << "\\gdef\\BenchSlopeCn{" << fixed(slope[v_cn], 3) << "}\n"
-          << "\\gdef\\BenchSlopeBe{" << fixed(slope[v_be], 3) << "}\n"
-          << "\\gdef\\BenchSlopePs{" << fixed(slope[v_ps], 3) << "}\n"
-          << "\\gdef\\BenchMemoryCnBytesPerNode{" << fixed(bytes_per_node(mem_cn_big, big), 0) << "}\n"
-          << "\\gdef\\BenchMemoryLargestN{" << big << "}\n"
-          << "\\gdef\\BenchMemoryCnMarginal{" << fixed(marginal(mem_cn_big, mem_cn_small), 0) << "}\n";
+      mrm::tex_define(out, "bench:cn:slope", fixed(slope[v_cn], 3));
+      mrm::tex_define(out, "bench:be:slope", fixed(slope[v_be], 3));
+      mrm::tex_define(out, "bench:ps:slope", fixed(slope[v_ps], 3));
+      mrm::tex_define(out, "bench:memory:cn:bytes-per-node", fixed(bytes_per_node(mem_cn_big, big), 0));
+      mrm::tex_define(out, "bench:memory:largest-n", std::to_string(big));
+      mrm::tex_define(out, "bench:memory:cn:marginal", fixed(marginal(mem_cn_big, mem_cn_small), 0));
     }
     if (data) data->commit();
     if (table_tex) table_tex->commit();

@@ -1,6 +1,6 @@
 // fig_contact_history: the paper's Figure 1, the history of the contact point.
 //
-// What it computes. The benchmark of problem.md §2 (bar released at rest from u⁰(x) = (1 − x)/2
+// What it computes. The benchmark of mathematics.md §2 (bar released at rest from u⁰(x) = (1 − x)/2
 // against the obstacle at x = 0) over several periods, with each of the paper's three schemes
 // (Crank–Nicolson, backward Euler, Paoli–Schatzman (¼, 0)) and each of its three mass choices (Mod 1,
 // Mod 2, Mod 3), on one coarse mesh: the displacement of the contact point u₀ⁿ ≈ u(0, tₙ) and the
@@ -26,11 +26,12 @@
 #include <sstream>
 #include <string>
 
-#include "cli.hpp"
+#include "options.hpp"
 #include "errors.hpp"
 #include "exact_solution.hpp"
-#include "figure_runs.hpp"
-#include "latex.hpp"
+#include "configurations.hpp"
+#include "report_values.hpp"
+#include "table.hpp"
 #include "schemes.hpp"
 
 namespace cli = mrm::cli;
@@ -56,7 +57,7 @@ int main(int argc, char** argv) {
                       {"algebraic", "literal"}, &ps_form);
     parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve (>= 10)",
                        &exact_points, cli::at_least(10));
-    figures::FigureOutputs outputs(parser, "fig_contact_history", "also write the values the report quotes, as \\mrmdef lines");
+    mrm::repro::FigureOutputs outputs(parser, "fig_contact_history", "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
     // 2. Outputs, opened before the runs so that a bad path fails at once.
@@ -89,19 +90,17 @@ int main(int argc, char** argv) {
       mrm::tex_define(m, "hist:T", mrm::tex_number(final_time, 3));
       mrm::tex_define(m, "hist:psform", ps_form);
       // The total mass 1ᵀM^mod1 of each choice on this mesh (paper §2: Mod 2 and Mod 3 preserve it).
-      for (const std::string& mass : figures::mass_names())
+      for (const std::string& mass : mrm::repro::mass_names())
         mrm::tex_define(m, "hist:totalmass:" + mass,
                         mrm::tex_number(mrm::total_mass(mesh, mrm::mass_redistribution_by_name(mass)), 6));
     }
-    std::ostringstream table;
-    table << "\\begin{tabular}{llrrr}\n\\toprule\nscheme & mass & $u(0,\\cdot)$, $L^2_t$ & $\\lambda$, $L^2_t$ & "
-             "$u$, $L^2_t H^1$ \\\\\n\\midrule\n";
+    mrm::repro::Table table({"scheme", "mass", "$u(0,\\cdot)$, $L^2_t$", "$\\lambda$, $L^2_t$", "$u$, $L^2_t H^1$"});
     int block = 1;
-    for (const std::string& scheme : figures::scheme_names()) {
-      for (const std::string& mass : figures::mass_names()) {
+    for (const std::string& scheme : mrm::repro::scheme_names()) {
+      for (const std::string& mass : mrm::repro::mass_names()) {
         std::cerr << "fig_contact_history: " << scheme << ' ' << mass << '\n';
         mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(mass),
-                                      figures::scheme_parameters(scheme, ps_form, mass), dt);
+                                      mrm::repro::scheme_parameters(scheme, ps_form, mass), dt);
         mrm::ErrorAccumulator errors(mesh, exact);
         out << "\n\n# block " << block++ << ": scheme = " << scheme << ", mass = " << mass
             << "\n# columns: t u0_h t_lambda lambda_h\n";
@@ -118,15 +117,18 @@ int main(int argc, char** argv) {
           mrm::tex_define(outputs.values(), "hist:" + scheme + ":" + mass + ":err_lambda_L2",
                           mrm::tex_number(e.lambda_L2, 2));
           mrm::tex_define(outputs.values(), "hist:" + scheme + ":" + mass + ":err_u_L2H1", mrm::tex_number(e.u_L2H1, 2));
-          table << (mass == "mod1" ? figures::scheme_label(scheme) : std::string()) << " & Mod " << mass.back() << " & "
-                << mrm::tex_number(e.u0_L2, 2) << " & " << mrm::tex_number(e.lambda_L2, 2) << " & "
-                << mrm::tex_number(e.u_L2H1, 2) << " \\\\\n";
+          table.add_row({mass == "mod1" ? mrm::repro::scheme_label(scheme) : std::string(), std::string("Mod ") + mass.back(),
+                         mrm::tex_number(e.u0_L2, 2), mrm::tex_number(e.lambda_L2, 2), mrm::tex_number(e.u_L2H1, 2)});
         }
       }
-      if (scheme != figures::scheme_names().back()) table << "\\midrule\n";
+      table.add_rule();
     }
-    table << "\\bottomrule\n\\end{tabular}";
-    outputs.values() << "\\mrmdef{hist:table}{" << table.str() << "}\n";
+    std::ostringstream tabular;
+    mrm::repro::LatexLayout layout;
+    layout.columns = "llrrr";
+    layout.final_newline = false;
+    table.write_latex(tabular, layout);
+    outputs.values() << "\\mrmdef{hist:table}{" << tabular.str() << "}\n";
     outputs.commit();
     return 0;
   });

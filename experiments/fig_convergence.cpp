@@ -1,6 +1,6 @@
 // fig_convergence: convergence in space and time, every error measure against h.
 //
-// What it computes. The relative errors of problem.md §5 (u(0,·) and λ in L²(0,T); u in L∞(0,T;L²),
+// What it computes. The relative errors of mathematics.md §5 (u(0,·) and λ in L²(0,T); u in L∞(0,T;L²),
 // L∞(0,T;H¹), L²(0,T;L²), L²(0,T;H¹); u_t in L∞(0,T;L²) and L²(0,T;L²)) against the exact solution of
 // the benchmark, for every scheme (Crank–Nicolson, backward Euler, Paoli–Schatzman (¼, 0)) and every mass
 // choice (Mod 1, 2, 3), on the meshes N = N₀, 2N₀, …, 2^{K−1}N₀ with Δt = h and Δt = h/2 (the paper's
@@ -33,19 +33,20 @@
 #include <thread>
 #include <vector>
 
-#include "cli.hpp"
+#include "options.hpp"
 #include "convergence.hpp"
 #include "errors.hpp"
 #include "exact_solution.hpp"
-#include "figure_runs.hpp"
-#include "latex.hpp"
+#include "configurations.hpp"
+#include "report_values.hpp"
+#include "table.hpp"
 #include "schemes.hpp"
 
 namespace cli = mrm::cli;
 
 namespace {
 
-// The two ratios Δt/h of problem.md §5, with the short names used in keys and their labels.
+// The two ratios Δt/h of mathematics.md §5, with the short names used in keys and their labels.
 const std::array<double, 2> courants{1.0, 0.5};
 const std::array<const char*, 2> courant_keys{"dth", "dth2"};
 const std::array<const char*, 2> courant_labels{"$\\Delta t = h$", "$\\Delta t = h/2$"};
@@ -72,7 +73,7 @@ int main(int argc, char** argv) {
     double final_time = 3.0;
     std::string ps_form = "literal";
     cli::Parser parser("fig_convergence",
-                       "Writes every relative error of problem.md sec. 5 against h, with dt = h and dt = h/2, for "
+                       "Writes every relative error of mathematics.md §5 against h, with dt = h and dt = h/2, for "
                        "every scheme (cn, be, ps) and mass choice (mod1, mod2, mod3), and the observed orders "
                        "(least-squares fit of log error against log h).",
                        {"fig_convergence --output output/data/fig_convergence.dat --tex output/data/fig_convergence.tex",
@@ -86,14 +87,14 @@ int main(int argc, char** argv) {
                       {"algebraic", "literal"}, &ps_form);
     parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it", &threads,
                        cli::at_least(1));
-    figures::FigureOutputs outputs(parser, "fig_convergence", "also write the tables and values the report quotes");
+    mrm::repro::FigureOutputs outputs(parser, "fig_convergence", "also write the tables and values the report quotes");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
     if (refinements > 20) throw cli::UsageError("--refinements: at most 20 (N doubles each time)");
 
     // 2. Outputs.
     outputs.open(parser);
-    const auto& schemes = figures::scheme_names();
-    const auto& masses = figures::mass_names();
+    const auto& schemes = mrm::repro::scheme_names();
+    const auto& masses = mrm::repro::mass_names();
 
     // 3. The runs, longest first.
     std::vector<Run> runs;
@@ -111,7 +112,6 @@ int main(int argc, char** argv) {
 
     // 4. The runs, on `threads` workers taking the next run from a shared counter. Each run writes only
     // its own slot; the first exception stops the others and is rethrown here.
-    const mrm::ExactSolution exact;
     std::atomic<std::size_t> next{0};
     std::atomic<bool> failed{false};
     std::exception_ptr failure;
@@ -122,13 +122,10 @@ int main(int argc, char** argv) {
         if (k >= order.size()) return;
         Run& r = runs[order[k]];
         try {
-          const mrm::UniformMesh mesh(1.0, r.elements);
-          const double dt = courants[r.courant] * mesh.h();
-          mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(masses[r.mass]),
-                                        figures::scheme_parameters(schemes[r.scheme], ps_form, masses[r.mass]), dt);
-          mrm::ErrorAccumulator errors(mesh, exact);
-          mrm::run(simulation, mrm::steps_to_reach(final_time, dt), [&](const mrm::Sample& s) { errors.add(s); });
-          r.errors = mrm::ErrorAccumulator::values(errors.relative());
+          r.errors = mrm::ErrorAccumulator::values(
+              mrm::repro::run_configuration(mrm::repro::paper_configuration(schemes[r.scheme], ps_form, masses[r.mass],
+                                                                            r.elements, courants[r.courant], final_time))
+                  .errors);
           std::lock_guard<std::mutex> lock(log_mutex);
           std::cerr << "fig_convergence: " << k + 1 << '/' << order.size() << ' ' << schemes[r.scheme] << ' '
                     << masses[r.mass] << " dt/h=" << courants[r.courant] << " N=" << r.elements << '\n';
@@ -180,17 +177,12 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "conv:meshes", std::to_string(levels));
     mrm::tex_define(defs, "conv:T", mrm::tex_number(final_time, 3));
     mrm::tex_define(defs, "conv:psform", ps_form);
-    std::ostringstream orders_table, errors_table, ranking_table;
-    const std::string columns = "lll" + std::string(8, 'r');
-    std::ostringstream head;
-    head << "\\begin{tabular}{" << columns << "}\n\\toprule\nscheme & mass & $\\Delta t$";
-    for (const char* label : measure_labels) head << " & \\rotatebox{70}{" << label << "}";
-    head << " \\\\\n\\midrule\n";
-    orders_table << head.str();
-    errors_table << head.str();
-    ranking_table << "\\begin{tabular}{ll" << std::string(8, 'c') << "}\n\\toprule\nscheme & $\\Delta t$";
-    for (const char* label : measure_labels) ranking_table << " & \\rotatebox{70}{" << label << "}";
-    ranking_table << " \\\\\n\\midrule\n";
+    std::vector<std::string> headers{"scheme", "mass", "$\\Delta t$"}, ranking_headers{"scheme", "$\\Delta t$"};
+    for (const char* label : measure_labels) {
+      headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
+      ranking_headers.push_back(headers.back());
+    }
+    mrm::repro::Table orders_table(headers), errors_table(headers), ranking_table(ranking_headers);
 
     std::vector<double> steps(levels);
     for (std::size_t l = 0; l < levels; ++l) steps[l] = 1.0 / static_cast<double>(static_cast<mrm::Index>(coarsest) << l);
@@ -198,10 +190,9 @@ int main(int argc, char** argv) {
       long ordered = 0, cases = 0;
       for (std::size_t m = 0; m < masses.size(); ++m)
         for (std::size_t c = 0; c < courants.size(); ++c) {
-          const std::string row_label = (m == 0 && c == 0 ? figures::scheme_label(schemes[s]) : std::string()) + " & " +
-                                        (c == 0 ? mass_label(m) : std::string()) + " & " + courant_labels[c];
-          orders_table << row_label;
-          errors_table << row_label;
+          std::vector<std::string> orders_row{m == 0 && c == 0 ? mrm::repro::scheme_label(schemes[s]) : std::string(),
+                                              c == 0 ? mass_label(m) : std::string(), courant_labels[c]};
+          std::vector<std::string> errors_row = orders_row;
           for (std::size_t k = 0; k < 8; ++k) {
             std::vector<double> errors(levels);
             for (std::size_t l = 0; l < levels; ++l) errors[l] = at(s, m, c, l).errors[k];
@@ -210,24 +201,24 @@ int main(int argc, char** argv) {
             const bool fittable = std::all_of(errors.begin(), errors.end(), [](double e) { return e > 0 && std::isfinite(e); });
             if (fittable) {
               const mrm::OrderFit fit = mrm::fit_order(steps, errors);
-              orders_table << " & " << mrm::tex_number(fit.order, 2);
+              orders_row.push_back(mrm::tex_number(fit.order, 2));
               mrm::tex_define(defs, "conv:order:" + key, mrm::tex_number(fit.order, 2));
               mrm::tex_define(defs, "conv:stderr:" + key, mrm::tex_number(fit.order_std_error, 1));
             } else {
-              orders_table << " & n/a";
+              orders_row.push_back("n/a");
               mrm::tex_define(defs, "conv:order:" + key, "n/a");
               mrm::tex_define(defs, "conv:stderr:" + key, "n/a");
             }
-            errors_table << " & " << mrm::tex_number(errors.back(), 2);
+            errors_row.push_back(mrm::tex_number(errors.back(), 2));
             mrm::tex_define(defs, "conv:err:" + key, mrm::tex_number(errors.back(), 2));
             mrm::tex_define(defs, "conv:errcoarse:" + key, mrm::tex_number(errors.front(), 2));
           }
-          orders_table << " \\\\\n";
-          errors_table << " \\\\\n";
+          orders_table.add_row(orders_row);
+          errors_table.add_row(errors_row);
         }
       // The paper's claim 3: Mod 3 < Mod 2 < Mod 1 in error. Counted over every measure, mesh and ratio.
       for (std::size_t c = 0; c < courants.size(); ++c) {
-        ranking_table << (c == 0 ? figures::scheme_label(schemes[s]) : std::string()) << " & " << courant_labels[c];
+        std::vector<std::string> ranking_row{c == 0 ? mrm::repro::scheme_label(schemes[s]) : std::string(), courant_labels[c]};
         for (std::size_t k = 0; k < 8; ++k) {
           for (std::size_t l = 0; l < levels; ++l) {
             const double e1 = at(s, 0, c, l).errors[k], e2 = at(s, 1, c, l).errors[k], e3 = at(s, 2, c, l).errors[k];
@@ -240,23 +231,26 @@ int main(int argc, char** argv) {
             return at(s, a, c, levels - 1).errors[k] < at(s, b, c, levels - 1).errors[k];
           });
           const bool paper = rank[0] == 2 && rank[1] == 1 && rank[2] == 0;
-          ranking_table << " & " << (paper ? "\\textbf{" : "") << rank[0] + 1 << rank[1] + 1 << rank[2] + 1
-                        << (paper ? "}" : "");
+          const std::string ranking = std::to_string(rank[0] + 1) + std::to_string(rank[1] + 1) + std::to_string(rank[2] + 1);
+          ranking_row.push_back(paper ? "\\textbf{" + ranking + "}" : ranking);
         }
-        ranking_table << " \\\\\n";
+        ranking_table.add_row(ranking_row);
       }
-      if (s + 1 < schemes.size()) {
-        orders_table << "\\midrule\n";
-        errors_table << "\\midrule\n";
-        ranking_table << "\\midrule\n";
-      }
+      for (mrm::repro::Table* table : {&orders_table, &errors_table, &ranking_table}) table->add_rule();
       mrm::tex_define(defs, "conv:ordered:" + schemes[s], std::to_string(ordered));
       mrm::tex_define(defs, "conv:cases:" + schemes[s], std::to_string(cases));
     }
-    for (std::ostringstream* t : {&orders_table, &errors_table, &ranking_table}) *t << "\\bottomrule\n\\end{tabular}";
-    defs << "\\mrmdef{conv:table:orders}{" << orders_table.str() << "}\n";
-    defs << "\\mrmdef{conv:table:errors}{" << errors_table.str() << "}\n";
-    defs << "\\mrmdef{conv:table:ranking}{" << ranking_table.str() << "}\n";
+    const auto tabular = [](const mrm::repro::Table& table, const std::string& columns) {
+      mrm::repro::LatexLayout layout;
+      layout.columns = columns;
+      layout.final_newline = false;
+      std::ostringstream out;
+      table.write_latex(out, layout);
+      return out.str();
+    };
+    defs << "\\mrmdef{conv:table:orders}{" << tabular(orders_table, "lll" + std::string(8, 'r')) << "}\n";
+    defs << "\\mrmdef{conv:table:errors}{" << tabular(errors_table, "lll" + std::string(8, 'r')) << "}\n";
+    defs << "\\mrmdef{conv:table:ranking}{" << tabular(ranking_table, "ll" + std::string(8, 'c')) << "}\n";
 
     // 7. Commit.
     outputs.commit();

@@ -1,12 +1,12 @@
 // fig_energy: the discrete energy of every scheme and mass choice against the exact energy 1/8.
 //
-// What it computes. On the benchmark of problem.md §2 and the mesh of the paper's Figure 1
+// What it computes. On the benchmark of mathematics.md §2 and the mesh of the paper's Figure 1
 // (fig_contact_history), the discrete energy E_hⁿ of each scheme (Crank–Nicolson, backward Euler,
 // Paoli–Schatzman (¼, 0)) with each mass choice (Mod 1, 2, 3) over several periods. The exact energy is
 // E = 1/8 at all times. Crank–Nicolson conserves E_h exactly while the contact status does not change
 // and jumps at impact and release; backward Euler dissipates; Paoli–Schatzman conserves its own
 // three-level energy between status changes. It also measures the effect of the initial value of the
-// massless contact node (problem.md §4): E_h(0) with u₀(0) solved from its algebraic row, and with the
+// massless contact node (mathematics.md §4): E_h(0) with u₀(0) solved from its algebraic row, and with the
 // nodal interpolant of u⁰, and the errors of Crank–Nicolson with either choice.
 //
 // Sample runs:
@@ -25,11 +25,11 @@
 #include <sstream>
 #include <string>
 
-#include "cli.hpp"
+#include "options.hpp"
 #include "errors.hpp"
 #include "exact_solution.hpp"
-#include "figure_runs.hpp"
-#include "latex.hpp"
+#include "configurations.hpp"
+#include "report_values.hpp"
 #include "schemes.hpp"
 
 namespace cli = mrm::cli;
@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
     parser.add_real("--final-time", "-T", "T", "final time (> 0); the period is 3", &final_time, cli::positive());
     parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
                       {"algebraic", "literal"}, &ps_form);
-    figures::FigureOutputs outputs(parser, "fig_energy", "also write the values the report quotes, as \\mrmdef lines");
+    mrm::repro::FigureOutputs outputs(parser, "fig_energy", "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
     // 2. Outputs.
@@ -72,11 +72,11 @@ int main(int argc, char** argv) {
     // 3. Every scheme with every mass. The energy's largest jump in one step measures the jumps at impact
     // and release (between status changes Crank–Nicolson's energy does not move at all).
     int block = 0;
-    for (const std::string& scheme : figures::scheme_names()) {
-      for (const std::string& mass : figures::mass_names()) {
+    for (const std::string& scheme : mrm::repro::scheme_names()) {
+      for (const std::string& mass : mrm::repro::mass_names()) {
         std::cerr << "fig_energy: " << scheme << ' ' << mass << '\n';
         mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(mass),
-                                      figures::scheme_parameters(scheme, ps_form, mass), dt);
+                                      mrm::repro::scheme_parameters(scheme, ps_form, mass), dt);
         out << (block ? "\n\n" : "") << "# block " << block << ": scheme = " << scheme << ", mass = " << mass
             << "\n# columns: t_energy energy_h\n";
         ++block;
@@ -99,12 +99,12 @@ int main(int argc, char** argv) {
       }
     }
 
-    // 4. The initial value of the massless contact node (problem.md §4): solved from its algebraic row,
+    // 4. The initial value of the massless contact node (mathematics.md §4): solved from its algebraic row,
     // u₀(0) = max(0, u₁(0)), which gives E_h(0) = (1 − h)/8, or the interpolant u⁰(0) = ½, which gives
     // E_h(0) = 1/8 but is not a state of the reduced problem; Crank–Nicolson with Mod 3, errors of both.
     for (const std::string initial : {"consistent", "interpolant"}) {
       mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mod3(),
-                                    figures::scheme_parameters("cn", ps_form, "mod3"), dt,
+                                    mrm::repro::scheme_parameters("cn", ps_form, "mod3"), dt,
                                     mrm::initial_contact_node_by_name(initial));
       mrm::ErrorAccumulator errors(mesh, exact);
       double first = 0, after_one_step = 0;

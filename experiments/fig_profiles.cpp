@@ -1,6 +1,6 @@
 // fig_profiles: the displacement along the bar at a few instants of each phase.
 //
-// What it computes. The profiles x ↦ u(x, t) of the benchmark of problem.md §2 at instants of the free
+// What it computes. The profiles x ↦ u(x, t) of the benchmark of mathematics.md §2 at instants of the free
 // flight towards the obstacle (t < 1), of the contact (1 < t < 2) and of the release (2 < t < 3): the
 // exact solution (a broken line: the rigid motion behind an unloading wave, the tent of the contact
 // phase) and the nodal values of one scheme with Mod 1, Mod 2 and Mod 3 on the coarse mesh of the
@@ -25,11 +25,11 @@
 #include <string>
 #include <vector>
 
-#include "cli.hpp"
+#include "options.hpp"
 #include "errors.hpp"
 #include "exact_solution.hpp"
-#include "figure_runs.hpp"
-#include "latex.hpp"
+#include "configurations.hpp"
+#include "report_values.hpp"
 #include "schemes.hpp"
 
 namespace cli = mrm::cli;
@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
                       &instants_text);
     parser.add_integer("--exact-points", "", "K", "number of intervals of each exact profile (>= 10)", &exact_points,
                        cli::at_least(10));
-    figures::FigureOutputs outputs(parser, "fig_profiles", "also write the values the report quotes, as \\mrmdef lines");
+    mrm::repro::FigureOutputs outputs(parser, "fig_profiles", "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
     std::vector<double> instants;
     {
@@ -82,12 +82,12 @@ int main(int argc, char** argv) {
     }
 
     // 4. One run per mass, keeping Uⁿ at the chosen levels.
-    const auto& masses = figures::mass_names();
+    const auto& masses = mrm::repro::mass_names();
     std::vector<std::vector<Eigen::VectorXd>> profiles(masses.size(), std::vector<Eigen::VectorXd>(levels.size()));
     for (std::size_t m = 0; m < masses.size(); ++m) {
       std::cerr << "fig_profiles: " << scheme << ' ' << masses[m] << '\n';
       mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(masses[m]),
-                                    figures::scheme_parameters(scheme, ps_form, masses[m]), dt);
+                                    mrm::repro::scheme_parameters(scheme, ps_form, masses[m]), dt);
       mrm::run(simulation, last_level, [&](const mrm::Sample& s) {
         for (std::size_t k = 0; k < levels.size(); ++k)
           if (levels[k] == s.level) profiles[m][k] = *s.displacement;
@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
     std::ostream& defs = outputs.values();
     mrm::tex_define(defs, "prof:elements", std::to_string(elements));
     mrm::tex_define(defs, "prof:dt", mrm::tex_number(dt, 3));
-    mrm::tex_define(defs, "prof:scheme", figures::scheme_label(scheme));
+    mrm::tex_define(defs, "prof:scheme", mrm::repro::scheme_label(scheme));
     for (std::size_t k = 0; k < levels.size(); ++k) {
       const double t = static_cast<double>(levels[k]) * dt;
       mrm::tex_define(defs, "prof:t:" + std::to_string(k + 1), mrm::tex_number(t, 3));

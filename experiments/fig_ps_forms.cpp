@@ -6,7 +6,7 @@
 //
 // With a redistributed mass, M₀· = 0: applied literally, the row only asks the β-average of the defect
 // dⁿ = S₀·Uⁿ − F₀ + λ over three levels to vanish, βdⁿ⁺¹ + (1−2β)dⁿ + βdⁿ⁻¹ = 0, whose solutions for
-// β = ¼ are dⁿ = (p + qn)(−1)ⁿ: a sawtooth in u₀ that nothing damps once the contact opens (problem.md
+// β = ¼ are dⁿ = (p + qn)(−1)ⁿ: a sawtooth in u₀ that nothing damps once the contact opens (mathematics.md
 // §4 predicts it; this program shows whether it appears). Imposing the algebraic row at every level
 // removes it (and PS(¼, 0) then coincides with Crank–Nicolson). The consistent mass keeps the inertia of
 // node 0, so its literal row is a true equation of motion: shown for contrast.
@@ -32,11 +32,11 @@
 #include <string>
 #include <vector>
 
-#include "cli.hpp"
+#include "options.hpp"
 #include "errors.hpp"
 #include "exact_solution.hpp"
-#include "figure_runs.hpp"
-#include "latex.hpp"
+#include "configurations.hpp"
+#include "report_values.hpp"
 #include "schemes.hpp"
 
 namespace cli = mrm::cli;
@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
     parser.add_choice("--mass", "-m", "M", "the redistributed mass", {"mod1", "mod2", "mod3"}, &mass);
     parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve (>= 10)",
                        &exact_points, cli::at_least(10));
-    figures::FigureOutputs outputs(parser, "fig_ps_forms", "also write the values the report quotes, as \\mrmdef lines");
+    mrm::repro::FigureOutputs outputs(parser, "fig_ps_forms", "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
     // 2. Outputs.
@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
     for (const Variant& v : variants) {
       std::cerr << "fig_ps_forms: " << v.key << '\n';
       mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(v.mass),
-                                    figures::scheme_parameters("ps", v.form, v.mass), dt);
+                                    mrm::repro::scheme_parameters("ps", v.form, v.mass), dt);
       mrm::ErrorAccumulator errors(mesh, exact);
       out << "\n\n# block " << block++ << ": form = " << v.form << ", mass = " << v.mass
           << "\n# columns: t u0_h t_energy energy_h\n";

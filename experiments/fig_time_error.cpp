@@ -6,7 +6,7 @@
 // a reference run of the same mesh and mass, Crank–Nicolson with a much smaller step Δt_ref = h/R, at
 // the instants they share (mrm::ReferenceComparison). The reference stands for the semi-discrete
 // solution; the differences are the errors of the time discretisation alone, in the eight measures of
-// problem.md §5. The observed order is fitted by least squares (mrm::fit_order) over all steps and
+// mathematics.md §5. The observed order is fitted by least squares (mrm::fit_order) over all steps and
 // over the finer half, and the order between consecutive steps shows the range where it holds.
 //
 // Sample runs:
@@ -27,11 +27,12 @@
 #include <string>
 #include <vector>
 
-#include "cli.hpp"
+#include "options.hpp"
 #include "convergence.hpp"
 #include "errors.hpp"
-#include "figure_runs.hpp"
-#include "latex.hpp"
+#include "configurations.hpp"
+#include "report_values.hpp"
+#include "table.hpp"
 #include "schemes.hpp"
 
 namespace cli = mrm::cli;
@@ -62,7 +63,7 @@ int main(int argc, char** argv) {
                        cli::at_least(2));
     parser.add_real("--final-time", "-T", "T", "final time (> 0); one period is 3", &final_time, cli::positive());
     parser.add_choice("--mass", "-m", "M", "mass choice", {"mod1", "mod2", "mod3"}, &mass);
-    figures::FigureOutputs outputs(parser, "fig_time_error", "also write the table and values the report quotes");
+    mrm::repro::FigureOutputs outputs(parser, "fig_time_error", "also write the table and values the report quotes");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
     auto power_of_two = [](long v) { return v > 0 && (v & (v - 1)) == 0; };
     if (!power_of_two(reference_ratio)) throw cli::UsageError("--reference-ratio: must be a power of 2");
@@ -87,13 +88,13 @@ int main(int argc, char** argv) {
     const mrm::Index coarse_steps = mrm::steps_to_reach(final_time, static_cast<double>(ratio[0]) * dt_ref);
     const mrm::Index reference_steps = coarse_steps * ratio[0];
     mrm::BarSimulation reference(mrm::benchmark_problem(), mesh, redistribution,
-                                 figures::scheme_parameters("cn", "algebraic", mass), dt_ref);
+                                 mrm::repro::scheme_parameters("cn", "algebraic", mass), dt_ref);
     std::vector<std::unique_ptr<mrm::BarSimulation>> runs;
     std::vector<mrm::ReferenceComparison> comparisons;
     for (const std::string& scheme : schemes)
       for (long m : ratio) {
         runs.push_back(std::make_unique<mrm::BarSimulation>(mrm::benchmark_problem(), mesh, redistribution,
-                                                            figures::scheme_parameters(scheme, "algebraic", mass),
+                                                            mrm::repro::scheme_parameters(scheme, "algebraic", mass),
                                                             static_cast<double>(m) * dt_ref));
         comparisons.emplace_back(mesh);
         comparisons.back().add(runs.back()->sample(), reference.sample());
@@ -132,7 +133,6 @@ int main(int argc, char** argv) {
 
     // 5. Orders: the fit over all steps and over the finer half, and the order between consecutive
     // steps, log₂(e_j / e_{j+1}), in a table beside the errors.
-    std::ostringstream table;
     std::ostream& defs = outputs.values();
     mrm::tex_define(defs, "time:elements", std::to_string(elements));
     mrm::tex_define(defs, "time:R", std::to_string(reference_ratio));
@@ -146,27 +146,29 @@ int main(int argc, char** argv) {
     };
     mrm::tex_define(defs, "time:largest", step_text(ratio.front()));
     mrm::tex_define(defs, "time:smallest", step_text(ratio.back()));
-    table << "\\begin{tabular}{ll" << std::string(8, 'r') << "}\n\\toprule\nscheme & $\\Delta t/h$";
-    for (const char* label : measure_labels) table << " & \\rotatebox{70}{" << label << "}";
-    table << " \\\\\n\\midrule\n";
+    std::vector<std::string> headers{"scheme", "$\\Delta t/h$"};
+    for (const char* label : measure_labels) headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
+    mrm::repro::Table table(headers);
     const std::size_t half = ratio.size() / 2;
     for (std::size_t s = 0; s < schemes.size(); ++s) {
       for (std::size_t j = 0; j < ratio.size(); ++j) {
         const double q = static_cast<double>(ratio[j]) / static_cast<double>(reference_ratio);
-        table << (j == 0 ? figures::scheme_label(schemes[s]) : std::string()) << " & "
-              << (q >= 1 ? std::to_string(static_cast<long>(q)) : "1/" + std::to_string(static_cast<long>(1 / q)));
+        std::vector<std::string> cells{
+            j == 0 ? mrm::repro::scheme_label(schemes[s]) : std::string(),
+            q >= 1 ? std::to_string(static_cast<long>(q)) : "1/" + std::to_string(static_cast<long>(1 / q))};
         for (std::size_t k = 0; k < 8; ++k) {
           const double e = differences[s * ratio.size() + j][k];
-          table << " & " << mrm::tex_number(e, 2);
-          if (j > 0) {
+          cells.push_back(mrm::tex_number(e, 2));
+          if (j > 0) {  // the local order of this halving of the step (steps ratio[j−1] → ratio[j])
             const double previous = differences[s * ratio.size() + j - 1][k];
-            const double local = (e > 0 && previous > 0) ? std::log2(previous / e) : std::nan("");
-            table << " (" << mrm::tex_number(local, 2) << ")";
+            const double local = mrm::repro::local_orders({static_cast<double>(ratio[j - 1]), static_cast<double>(ratio[j])},
+                                                          {previous, e})[1];
+            cells.back() += " (" + mrm::tex_number(local, 2) + ")";
           }
         }
-        table << " \\\\\n";
+        table.add_row(cells);
       }
-      if (s + 1 < schemes.size()) table << "\\midrule\n";
+      table.add_rule();
       for (std::size_t k = 0; k < 8; ++k) {
         std::vector<double> steps, errors, fine_steps, fine_errors;
         for (std::size_t j = 0; j < ratio.size(); ++j) {
@@ -183,9 +185,13 @@ int main(int argc, char** argv) {
         mrm::tex_define(defs, "time:errfine:" + key, mrm::tex_number(differences[s * ratio.size() + ratio.size() - 1][k], 2));
       }
     }
-    table << "\\bottomrule\n\\end{tabular}";
     mrm::tex_define(defs, "time:finehalf", step_text(ratio[half]));
-    defs << "\\mrmdef{time:table}{" << table.str() << "}\n";
+    std::ostringstream tabular;
+    mrm::repro::LatexLayout layout;
+    layout.columns = "ll" + std::string(8, 'r');
+    layout.final_newline = false;
+    table.write_latex(tabular, layout);
+    defs << "\\mrmdef{time:table}{" << tabular.str() << "}\n";
 
     // 6. Commit.
     outputs.commit();

@@ -4,7 +4,8 @@
 #   gnuplot -e "data='...'; output='....png'; format='png'" figures/bench_step.gp
 #
 # Input: the data file of experiments/bench_step.cpp, columns
-#   log2N N, then for cn, be, ps, cn+errors, bare, eigen, bare2 in turn: median, minimum, steps per batch.
+#   log2N N, then for cn, be, ps, cn+errors, bare, eigen, bare2, cn_ref, be_ref, ps_ref in turn: median,
+#   minimum, steps per batch (cn, be, ps: the fast step; *_ref: the reference step of lib/schemes.cpp).
 # A flat curve is a cost linear in N; the bare solve is the practical limit of a step.
 if (!exists("data")) data = 'output/bench/bench_step.dat'
 if (!exists("output")) output = 'output/bench/bench_step.pdf'
@@ -33,4 +34,7 @@ plot data using 2:(median(0)) with linespoints lw 2 pt 7 title 'Crank-Nicolson',
      data using 2:(median(3)) with linespoints lw 1 pt 6 dt 2 title 'CN + error measures', \
      data using 2:(median(4)) with linespoints lw 2 pt 4 lc rgb 'black' title 'bare solve (limit)', \
      data using 2:(median(6)) with linespoints lw 1 pt 12 lc rgb 'gray40' dt 3 title 'bare solve, two chains', \
-     data using 2:(median(5)) with linespoints lw 1 pt 3 lc rgb 'dark-red' title 'Eigen SimplicialLDLT'
+     data using 2:(median(5)) with linespoints lw 1 pt 3 lc rgb 'dark-red' title 'Eigen SimplicialLDLT', \
+     data using 2:(median(7)) with linespoints lw 1 pt 6 lc 1 dt 4 title 'CN, reference step', \
+     data using 2:(median(8)) with linespoints lw 1 pt 4 lc 2 dt 4 title 'BE, reference step', \
+     data using 2:(median(9)) with linespoints lw 1 pt 8 lc 3 dt 4 title 'PS, reference step'

@@ -1,4 +1,4 @@
-# Convergence: every relative error of problem.md sec. 5 against h, with dt = h (solid, filled marks)
+# Convergence: every relative error of mathematics.md §5 against h, with dt = h (solid, filled marks)
 # and dt = h/2 (dashed, open marks), Mod 1/2/3 in colour; one page per scheme, one panel per measure;
 # the grey dashed lines are reference slopes h^(1/2) and h^1.
 # Usage: gnuplot -e "data='output/data/fig_convergence.dat'; output='output/figures/fig_convergence.pdf'" figures/fig_convergence.gp

@@ -1,6 +1,6 @@
 # The error estimate in time: at fixed h, the relative difference between Crank-Nicolson (left) or
 # backward Euler (right) with step dt and a Crank-Nicolson reference with a much smaller step, in each
-# measure of problem.md sec. 5; grey lines are reference slopes dt^1 and dt^2.
+# measure of mathematics.md §5; grey lines are reference slopes dt^1 and dt^2.
 # Usage: gnuplot -e "data='output/data/fig_time_error.dat'; output='output/figures/fig_time_error.pdf'" figures/fig_time_error.gp
 if (!exists("data")) data = 'output/data/fig_time_error.dat'
 if (!exists("output")) output = 'output/figures/fig_time_error.pdf'

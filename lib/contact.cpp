@@ -1,4 +1,5 @@
-// The contact node: problem.md §3 (condensation) and §4 (the closed-form contact step).
+/// @file contact.cpp
+/// @brief The contact node: mathematics.md §3 (condensation) and §4 (the closed-form contact step).
 #include "contact.hpp"
 
 #include <cmath>
@@ -14,20 +15,21 @@
 
 namespace mrm {
 
-// ---------------------------------------------------------------------------------------------------
-// Condensation of the massless contact node (paper eq. (6), second and third lines).
-//
-// With the mass redistributed, row 0 of the system has no inertia and reads
-//
-//     S_00 u₀ + Cᵀ Ū = −λ + F₀,   0 ≤ u₀ ⊥ λ ≤ 0,        S_00 = 1/h, Cᵀ Ū = S_01 u₁ = −u₁/h.
-//
-// So λ = F₀ − (u₀ − u₁)/h. If u₀ > 0 then λ = 0 and u₀ = u₁ + h F₀, which requires u₁ + h F₀ > 0;
-// if u₀ = 0 then λ = F₀ + u₁/h, which must be ≤ 0, i.e. u₁ + h F₀ ≤ 0. The two cases join into
-//
-//     u₀ = max(0, u₁ + h F₀),   λ = min(0, F₀ + u₁/h):
-//
-// u₀ is a Lipschitz function of Ū, and the reduced problem M̄ Ū'' + S̄ Ū = −C u₀(Ū) + F̄ is a Lipschitz
-// ODE, which is why the redistributed semi-discrete problem is well posed.
+/// @file contact.cpp
+/// ## Condensation of the massless contact node (paper eq. (6), second and third lines).
+///
+/// With the mass redistributed, row 0 of the system has no inertia and reads
+///
+///     S_00 u₀ + Cᵀ Ū = −λ + F₀,   0 ≤ u₀ ⊥ λ ≤ 0,        S_00 = 1/h, Cᵀ Ū = S_01 u₁ = −u₁/h.
+///
+/// So λ = F₀ − (u₀ − u₁)/h. If u₀ > 0 then λ = 0 and u₀ = u₁ + h F₀, which requires u₁ + h F₀ > 0;
+/// if u₀ = 0 then λ = F₀ + u₁/h, which must be ≤ 0, i.e. u₁ + h F₀ ≤ 0. The two cases join into
+///
+///     u₀ = max(0, u₁ + h F₀),   λ = min(0, F₀ + u₁/h):
+///
+/// u₀ is a Lipschitz function of Ū, and the reduced problem M̄ Ū'' + S̄ Ū = −C u₀(Ū) + F̄ is a Lipschitz
+/// ODE, which is why the redistributed semi-discrete problem is well posed.
+
 CondensedContact condense_contact_node(double u1, double h, double load0) {
   return {std::max(0.0, u1 + h * load0), std::min(0.0, load0 + u1 / h)};
 }
@@ -47,31 +49,33 @@ TEST_CASE("the condensed contact node satisfies its row and the complementarity"
   }
 }
 
-// ---------------------------------------------------------------------------------------------------
-// The closed-form contact step (problem.md §4).
-//
-// Every implicit step of this library (Crank–Nicolson, backward Euler, Paoli–Schatzman) solves
-//
-//     A U = b − κ λ e₀,   0 ≤ u₀ − g ⊥ λ ≤ 0,
-//
-// with A tridiagonal and constant over a run, κ > 0 a constant and g the obstacle (g = 0, or
-// g = −e u₀ⁿ⁻¹ for the Paoli–Schatzman restitution law). problem.md writes the solution with
-// z = A⁻¹ b and the response to the contact force, A⁻¹ e₀: the contact node moves as
-// u₀ = z₀ − κ λ (A⁻¹)₀₀. Since (A⁻¹)₀₀ > 0, the complementarity has the closed-form solution
-//
-//     if z₀ ≥ g :  free,    λ = 0,                    U = z,
-//     else      :  contact, λ = (z₀ − g)/(κ (A⁻¹)₀₀), U = z − κ λ A⁻¹ e₀   (so u₀ = g).
-//
-// Eliminating the tridiagonal system from the far end (node n−1) toward the contact node makes this
-// cheaper than two solves: after the sweep down the last row is d₀ u₀ = y₀ − κ λ, where the pivot
-// d₀ = 1/(A⁻¹)₀₀ is the Schur complement of A onto node 0 and y₀ = d₀ z₀. The contact is decided
-// there, and the sweep up then gives U for the right u₀ at once: one solve per step, whatever the
-// contact status.
-//
-// For a massless contact node this is problem.md's formula in other clothes: with row 0 of A the
-// contact row (S_00, S_01) and Ā = M̄ + θS̄ on the free nodes, z₀ ≥ 0 ⇔ z̄₁ + hF₀ > 0 with z̄ = Ā⁻¹b̄,
-// and the free value u₀ = (hF₀ + z̄₁)/(1 + w₁), w = θĀ⁻¹C, is z₀ (a Schur complement identity); the
-// doctests below check both forms and a direct solve against each other.
+/// @file contact.cpp
+/// ## The closed-form contact step (mathematics.md §4).
+///
+/// Every implicit step of this library (Crank–Nicolson, backward Euler, Paoli–Schatzman) solves
+///
+///     A U = b − κ λ e₀,   0 ≤ u₀ − g ⊥ λ ≤ 0,
+///
+/// (\f$ A U = b - \kappa \lambda e_0 \f$, \f$ 0 \le u_0 - g \perp \lambda \le 0 \f$)
+/// with A tridiagonal and constant over a run, κ > 0 a constant and g the obstacle (g = 0, or
+/// g = −e u₀ⁿ⁻¹ for the Paoli–Schatzman restitution law). mathematics.md writes the solution with
+/// z = A⁻¹ b and the response to the contact force, A⁻¹ e₀: the contact node moves as
+/// u₀ = z₀ − κ λ (A⁻¹)₀₀. Since (A⁻¹)₀₀ > 0, the complementarity has the closed-form solution
+///
+///     if z₀ ≥ g :  free,    λ = 0,                    U = z,
+///     else      :  contact, λ = (z₀ − g)/(κ (A⁻¹)₀₀), U = z − κ λ A⁻¹ e₀   (so u₀ = g).
+///
+/// Eliminating the tridiagonal system from the far end (node n−1) toward the contact node makes this
+/// cheaper than two solves: after the sweep down the last row is d₀ u₀ = y₀ − κ λ, where the pivot
+/// d₀ = 1/(A⁻¹)₀₀ is the Schur complement of A onto node 0 and y₀ = d₀ z₀. The contact is decided
+/// there, and the sweep up then gives U for the right u₀ at once: one solve per step, whatever the
+/// contact status.
+///
+/// For a massless contact node this is mathematics.md's formula in other clothes: with row 0 of A the
+/// contact row (S_00, S_01) and Ā = M̄ + θS̄ on the free nodes, z₀ ≥ 0 ⇔ z̄₁ + hF₀ > 0 with z̄ = Ā⁻¹b̄,
+/// and the free value u₀ = (hF₀ + z̄₁)/(1 + w₁), w = θĀ⁻¹C, is z₀ (a Schur complement identity); the
+/// doctests below check both forms and a direct solve against each other.
+
 ContactSolver::ContactSolver(const Tridiagonal& a)
     : pivot_(a.size()), inverse_pivot_(a.size()), elimination_(Eigen::VectorXd::Zero(a.size())), lower_(a.lower),
       upward_(a.size()) {
@@ -123,7 +127,7 @@ ContactStep ContactSolver::solve(const double* b, double* u, double kappa, doubl
 
 // ---------------------------------------------------------------------------------------------------
 // Checks: the closed-form step against (1) a direct sparse LU solve of the saddle-point system with
-// the active set fixed, for both outcomes, and (2) problem.md's condensed formula on the free nodes.
+// the active set fixed, for both outcomes, and (2) mathematics.md's condensed formula on the free nodes.
 
 namespace {
 
@@ -194,7 +198,7 @@ TEST_CASE("the closed-form contact step agrees with a direct saddle-point solve 
   }
 }
 
-TEST_CASE("the closed-form contact step is problem.md's condensed formula for a massless node") {
+TEST_CASE("the closed-form contact step is mathematics.md's condensed formula for a massless node") {
   const UniformMesh mesh(1.0, 25);
   const double h = mesh.h(), theta = 0.04 * 0.04 / 4;
   const Tridiagonal a = step_matrix(mesh, mod2(), theta, true);

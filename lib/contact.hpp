@@ -1,6 +1,6 @@
 /// @file contact.hpp
 /// @brief The contact node: condensation of the massless contact row and the closed-form contact
-/// step of one implicit time step (problem.md §3–§4).
+/// step of one implicit time step (mathematics.md §3–§4).
 #pragma once
 
 #include "p1.hpp"
@@ -10,17 +10,19 @@ namespace mrm {
 /// The algebraic contact row of the redistributed problem (paper eq. (6)) solved for the massless
 /// contact node given u₁: u₀ = max(0, u₁ + h F₀) and λ = min(0, F₀ + u₁/h).
 struct CondensedContact {
-  double u0;
-  double multiplier;
+  double u0;          ///< the contact-node displacement u₀ ≥ 0
+  double multiplier;  ///< the contact stress λ ≤ 0
 };
+/// The massless contact node's row solved in closed form (see CondensedContact): u₀ = max(0, u₁ + h F₀),
+/// λ = min(0, F₀ + u₁/h), for the node-1 value `u1`, the mesh size `h` and the node-0 load `load0`.
 CondensedContact condense_contact_node(double u1, double h, double load0);
 
 /// The outcome of a contact step: the contact-node value, the multiplier λ ≤ 0 and whether the
 /// constraint is active.
 struct ContactStep {
-  double u0;
-  double multiplier;
-  bool active;
+  double u0;          ///< the new contact-node value u₀
+  double multiplier;  ///< the multiplier λ ≤ 0 (0 when the constraint is inactive)
+  bool active;        ///< whether u₀ sits on the obstacle (λ may then be < 0)
 };
 
 /// Solves A U = b − κ λ e₀ with 0 ≤ u₀ − g ⊥ λ ≤ 0 (g the obstacle position, 0 except for a
@@ -40,6 +42,7 @@ class ContactSolver {
 
   /// The pivot d₀ = 1/(A⁻¹)₀₀, the Schur complement of A onto the contact node.
   double schur_complement() const { return pivot_[0]; }
+  /// The dimension n of the factorised matrix (0 before a factorisation).
   Index size() const { return pivot_.size(); }
 
   // The factors, for fused time-stepping kernels that do the sweeps themselves:
@@ -49,17 +52,17 @@ class ContactSolver {
   //                 = inverse_pivot_[i] y_i − upward_[i] u_{i−1},   upward_[i] = lower_[i] / d_i.
   // The second form of the sweep up is the one used (solve() and the schemes): its chain of
   // dependent operations from u_{i−1} to u_i is one multiplication and one subtraction.
-  const Eigen::VectorXd& elimination() const { return elimination_; }
-  const Eigen::VectorXd& inverse_pivot() const { return inverse_pivot_; }
-  const Eigen::VectorXd& lower() const { return lower_; }
-  const Eigen::VectorXd& upward() const { return upward_; }
+  const Eigen::VectorXd& elimination() const { return elimination_; }      ///< ε_i of the sweep down
+  const Eigen::VectorXd& inverse_pivot() const { return inverse_pivot_; }  ///< 1/d_i
+  const Eigen::VectorXd& lower() const { return lower_; }                  ///< the subdiagonal of A
+  const Eigen::VectorXd& upward() const { return upward_; }                ///< c_i = lower_i/d_i of the sweep up
   // The same recurrences substituted into themselves, two nodes at a time:
   //   y_i = (b_i − ε_i b_{i+1}) + elimination_pair_[i] y_{i+2},          elimination_pair_[i] = ε_i ε_{i+1},
   //   u_i = (z_i − c_i z_{i−1}) + upward_pair_[i] u_{i−2},  z_i = y_i/d_i,  upward_pair_[i] = c_i c_{i−1},
   // so that each sweep is two independent chains (even and odd nodes) of half the length: the
-  // schemes' fused step uses this form (schemes.cpp), solve() the plain one.
-  const Eigen::VectorXd& elimination_pair() const { return elimination_pair_; }
-  const Eigen::VectorXd& upward_pair() const { return upward_pair_; }
+  // schemes' fused step uses this form (fast_step.cpp), solve() the plain one.
+  const Eigen::VectorXd& elimination_pair() const { return elimination_pair_; }  ///< ε_i ε_{i+1}
+  const Eigen::VectorXd& upward_pair() const { return upward_pair_; }            ///< c_i c_{i−1}
   /// The contact decision on the reduced row d₀ u₀ = y₀ − κ λ.
   ContactStep resolve_contact(double y0, double kappa, double obstacle) const;
 

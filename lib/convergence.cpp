@@ -1,13 +1,14 @@
-// Observed orders of convergence and the comparison with a reference run: problem.md §5.
-//
-// Observed order. If an error behaves like e(s) ≈ C s^p in a step s (the mesh size h, or the time
-// step Δt), then log e = log C + p log s is a straight line, and the observed order p is the slope of
-// the least-squares line through the points (log s_k, log e_k). With more than two points this
-// averages out the wobble of the individual ratios log(e_k/e_{k+1}) / log(s_k/s_{k+1}) (in contact
-// problems the errors are rarely monotone in h), and the residuals give a standard error of the slope:
-// a large one says that the errors do not follow a power law on the range fitted. GSL's
-// gsl_fit_linear does the fit; its error handler, which aborts by default, is switched off and its
-// return code checked.
+/// @file convergence.cpp
+/// @brief Observed orders of convergence and the comparison with a reference run: mathematics.md §5.
+///
+/// Observed order. If an error behaves like e(s) ≈ C s^p in a step s (the mesh size h, or the time
+/// step Δt), then log e = log C + p log s is a straight line, and the observed order p is the slope of
+/// the least-squares line through the points (log s_k, log e_k). With more than two points this
+/// averages out the wobble of the individual ratios log(e_k/e_{k+1}) / log(s_k/s_{k+1}) (in contact
+/// problems the errors are rarely monotone in h), and the residuals give a standard error of the slope:
+/// a large one says that the errors do not follow a power law on the range fitted. GSL's
+/// gsl_fit_linear does the fit; its error handler, which aborts by default, is switched off and its
+/// return code checked.
 #include "convergence.hpp"
 
 #include <cmath>
@@ -94,7 +95,7 @@ TEST_CASE("the order fit rejects data it cannot fit") {
 // Comparison with a reference run. To isolate the error of the time discretisation at a fixed mesh,
 // a run with step Δt is compared with a reference run of the same mesh, mass and scheme with a much
 // smaller step Δt_ref = Δt/m (m an integer), at the instants t_n = nΔt the two share. The measures
-// are those of problem.md §5 with the reference in place of the interpolant of the exact solution:
+// are those of mathematics.md §5 with the reference in place of the interpolant of the exact solution:
 // ‖e‖²_L² = eᵀMe and |e|²_H¹ = eᵀSe with the consistent P1 matrices, the maximum over the common
 // instants for L∞ in time and the trapezoidal rule over them for L² in time; every measure relative to
 // the same norm of the reference.

@@ -1,7 +1,7 @@
 /// @file convergence.hpp
 /// @brief Observed orders of convergence (least-squares fit of log error against log step, with GSL)
 /// and the comparison of a run with a reference run of the same mesh at their common time levels
-/// (problem.md §5).
+/// (mathematics.md §5).
 #pragma once
 
 #include <array>
@@ -27,11 +27,12 @@ struct OrderFit {
 OrderFit fit_order(const std::vector<double>& steps, const std::vector<double>& errors);
 
 /// Relative differences ‖U − U_ref‖ / ‖U_ref‖ between a run and a reference run on the same mesh, in
-/// the norms of problem.md §5 (the eight measures of ErrorNorms, in the same order and with the same
+/// the norms of mathematics.md §5 (the eight measures of ErrorNorms, in the same order and with the same
 /// names), taken at the instants the two runs share. The reference plays the part of the exact
 /// solution: this measures the error of the time discretisation alone.
 class ReferenceComparison {
  public:
+  /// Compares runs on `mesh` (both the run and the reference use it).
   explicit ReferenceComparison(const UniformMesh& mesh);
   /// Adds one common instant. Throws std::invalid_argument unless both samples are at the same
   /// instant (displacement, velocity and multiplier times agree to 1e-9 Δt-independent absolute

@@ -1,15 +1,16 @@
-// The error measures: problem.md §5.
-//
-// The discrete solution is compared with the nodal interpolant u_I of the exact solution on the same
-// mesh, in the consistent P1 norms of the full mesh (node N carries zero on both sides):
-//
-//     ‖e‖²_L² = eᵀ M e,    |e|²_H¹ = eᵀ S e,
-//
-// and in time on the scheme's own instants (each quantity at the instant it approximates, see
-// Sample): L∞(0,T; X) is the maximum over the instants, L²(0,T; X) the trapezoidal rule over them.
-// Every error is relative, ‖error‖ / ‖exact‖ in the same norm, the exact solution also being taken
-// through its interpolant and the same instants. Derivatives of the exact solution that jump are
-// given their symmetric value (exact_solution.hpp).
+/// @file errors.cpp
+/// @brief The error measures: mathematics.md §5.
+///
+/// The discrete solution is compared with the nodal interpolant u_I of the exact solution on the same
+/// mesh, in the consistent P1 norms of the full mesh (node N carries zero on both sides):
+///
+///     ‖e‖²_L² = eᵀ M e,    |e|²_H¹ = eᵀ S e,
+///
+/// and in time on the scheme's own instants (each quantity at the instant it approximates, see
+/// Sample): L∞(0,T; X) is the maximum over the instants, L²(0,T; X) the trapezoidal rule over them.
+/// Every error is relative, ‖error‖ / ‖exact‖ in the same norm, the exact solution also being taken
+/// through its interpolant and the same instants. Derivatives of the exact solution that jump are
+/// given their symmetric value (exact_solution.hpp).
 #include "errors.hpp"
 
 #include <cmath>

@@ -1,5 +1,5 @@
 /// @file errors.hpp
-/// @brief The error measures of problem.md §5, accumulated while a scheme runs.
+/// @brief The error measures of mathematics.md §5, accumulated while a scheme runs.
 #pragma once
 
 #include <array>
@@ -13,13 +13,19 @@ namespace mrm {
 /// A quantity sampled in time: its maximum and its integral by the trapezoidal rule over the
 /// instants at which it was sampled; `error` and `exact` are squared norms at one instant.
 struct TimeHistory {
-  bool started = false;
-  double time = 0, error = 0, exact = 0;
-  double error_max = 0, exact_max = 0, error_integral = 0, exact_integral = 0;
+  bool started = false;       ///< whether a sample has been added
+  double time = 0;            ///< the instant of the last sample
+  double error = 0;           ///< the last squared error norm
+  double exact = 0;           ///< the last squared exact norm
+  double error_max = 0;       ///< the largest squared error norm so far
+  double exact_max = 0;       ///< the largest squared exact norm so far
+  double error_integral = 0;  ///< the trapezoidal integral of the squared error norm so far
+  double exact_integral = 0;  ///< the trapezoidal integral of the squared exact norm so far
+  /// Adds the sample at instant t (≥ the previous one) of the squared norms of the error and the exact solution.
   void add(double t, double error_squared, double exact_squared);
 };
 
-/// Relative errors ‖error‖ / ‖exact‖ in the norms of problem.md §5.
+/// Relative errors ‖error‖ / ‖exact‖ in the norms of mathematics.md §5.
 struct ErrorNorms {
   double u0_L2;      ///< L²(0,T) of the contact-point displacement u(0, ·)
   double lambda_L2;  ///< L²(0,T) of the contact stress λ
@@ -43,10 +49,13 @@ class ErrorAccumulator {
   /// Throws std::invalid_argument unless the exact solution and the mesh have the same length L.
   /// `add` expects samples of a simulation on the same mesh (vectors of size mesh.unknowns()).
   ErrorAccumulator(const UniformMesh& mesh, const ExactSolution& exact);
+  /// Adds one time level of a run (its displacement, velocity and multiplier at their own instants).
   void add(const Sample& sample);
+  /// The relative errors of the samples added so far.
   ErrorNorms relative() const;
   /// The names of the measures in the order of `values(ErrorNorms)`: err_u0_L2, err_lambda_L2, …
   static const char* const names[8];
+  /// The eight measures of `e` in the order of `names`.
   static std::array<double, 8> values(const ErrorNorms& e);
 
  private:

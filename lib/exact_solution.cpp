@@ -1,47 +1,48 @@
-// The benchmark with a closed-form solution: problem.md §2.
-//
-// Derivation by characteristics. For f = 0 every solution of u_tt = u_xx is u = P(x + t) + Q(x − t),
-// and for data at rest, u = ½(ũ⁰(x + t) + ũ⁰(x − t)) with ũ⁰ the extension of u⁰ across the ends: an
-// even reflection at an end that is free (u_x = 0 there), an odd one at an end that is held (u = 0).
-// Write the data u⁰(x) = a (L − x); the reference case of the paper is L = 1, a = ½.
-//
-// Phase 1, 0 ≤ t < L, free flight. The end x = 0 is free as long as u(0, t) > 0, so ũ⁰ is even about
-// 0: ũ⁰(y) = a (L − |y|); the line a (L − y) is already odd about L, so the clamp adds nothing. Then
-// for x ≥ t, u = a (L − x), and for x < t, u = ½(a(L − x − t) + a(L − t + x)) = a (L − t):
-//
-//     u = a (L − max(x, t)).
-//
-// An unloading wave leaves the free end; behind it the bar moves rigidly with u_t = −a. At t = L it
-// has reached the clamp: u ≡ 0 and u_t ≡ −a, and the end hits the obstacle with speed a.
-//
-// Phase 2, t = L + s, 0 ≤ s < L, contact. Now u(0, ·) = 0 is held: both ends are held, ũ is odd at
-// both, and with zero displacement and velocity −a the solution is the tent
-//
-//     u = −a · min(x, L − x, s, L − s),
-//
-// (it vanishes at x = 0 and x = L, has u_t = −a at s = 0⁺, and is a sum of travelling kinks). Its
-// strain at the contact point is u_x(0, t) = −a < 0, so λ = −a: a compressive contact pressure a, as
-// Signorini requires. At s = L the velocity has turned into u_t = +a everywhere and u ≡ 0 again: the
-// obstacle releases the end (λ would otherwise have to pull).
-//
-// Phase 3, t = 2L + s, 0 ≤ s < L, free flight back. The end is free again (even reflection), the data
-// are u = 0, u_t = +a, and by the same construction as in phase 1
-//
-//     u = a · min(s, L − x),
-//
-// which at s = L is a (L − x) with u_t = 0: the initial state. The solution is periodic with period
-// 3L. On the contact point: u(0, t) = a(L − t), 0, a s on the three phases, and λ = 0, −a, 0.
-// The energy ½∫(u_t² + u_x²) dx = ½(a² t + a² (L − t)) = a² L / 2 in phase 1, and the same in the
-// others (a = ½, L = 1: E = 1/8).
-//
-// Implementation. Scaling x = L ξ, t = L τ reduces every case to L = 1 and a = ½ times 2aL; on each
-// phase the reference solution is c · min_k(α_k + β_k ξ + γ_k s) of a few affine functions, so u is a
-// minimum and its derivatives are the slopes of the active affine function. Where several are active
-// (on a characteristic), the one-sided derivatives are the smallest and the largest of their slopes,
-// and the symmetric derivative is their mean. At an instant where the phase changes, the mean of
-// the two phases' values is taken. Ties are detected with a tolerance of 1e-12 (in the reference
-// scale), so that grid points x_i = i h, t_n = n Δt that lie on a characteristic in exact arithmetic are
-// recognised after round-off.
+/// @file exact_solution.cpp
+/// @brief The benchmark with a closed-form solution: mathematics.md §2.
+///
+/// Derivation by characteristics. For f = 0 every solution of u_tt = u_xx is u = P(x + t) + Q(x − t),
+/// and for data at rest, u = ½(ũ⁰(x + t) + ũ⁰(x − t)) with ũ⁰ the extension of u⁰ across the ends: an
+/// even reflection at an end that is free (u_x = 0 there), an odd one at an end that is held (u = 0).
+/// Write the data u⁰(x) = a (L − x); the reference case of the paper is L = 1, a = ½.
+///
+/// Phase 1, 0 ≤ t < L, free flight. The end x = 0 is free as long as u(0, t) > 0, so ũ⁰ is even about
+/// 0: ũ⁰(y) = a (L − |y|); the line a (L − y) is already odd about L, so the clamp adds nothing. Then
+/// for x ≥ t, u = a (L − x), and for x < t, u = ½(a(L − x − t) + a(L − t + x)) = a (L − t):
+///
+///     u = a (L − max(x, t)).
+///
+/// An unloading wave leaves the free end; behind it the bar moves rigidly with u_t = −a. At t = L it
+/// has reached the clamp: u ≡ 0 and u_t ≡ −a, and the end hits the obstacle with speed a.
+///
+/// Phase 2, t = L + s, 0 ≤ s < L, contact. Now u(0, ·) = 0 is held: both ends are held, ũ is odd at
+/// both, and with zero displacement and velocity −a the solution is the tent
+///
+///     u = −a · min(x, L − x, s, L − s),
+///
+/// (it vanishes at x = 0 and x = L, has u_t = −a at s = 0⁺, and is a sum of travelling kinks). Its
+/// strain at the contact point is u_x(0, t) = −a < 0, so λ = −a: a compressive contact pressure a, as
+/// Signorini requires. At s = L the velocity has turned into u_t = +a everywhere and u ≡ 0 again: the
+/// obstacle releases the end (λ would otherwise have to pull).
+///
+/// Phase 3, t = 2L + s, 0 ≤ s < L, free flight back. The end is free again (even reflection), the data
+/// are u = 0, u_t = +a, and by the same construction as in phase 1
+///
+///     u = a · min(s, L − x),
+///
+/// which at s = L is a (L − x) with u_t = 0: the initial state. The solution is periodic with period
+/// 3L. On the contact point: u(0, t) = a(L − t), 0, a s on the three phases, and λ = 0, −a, 0.
+/// The energy ½∫(u_t² + u_x²) dx = ½(a² t + a² (L − t)) = a² L / 2 in phase 1, and the same in the
+/// others (a = ½, L = 1: E = 1/8).
+///
+/// Implementation. Scaling x = L ξ, t = L τ reduces every case to L = 1 and a = ½ times 2aL; on each
+/// phase the reference solution is c · min_k(α_k + β_k ξ + γ_k s) of a few affine functions, so u is a
+/// minimum and its derivatives are the slopes of the active affine function. Where several are active
+/// (on a characteristic), the one-sided derivatives are the smallest and the largest of their slopes,
+/// and the symmetric derivative is their mean. At an instant where the phase changes, the mean of
+/// the two phases' values is taken. Ties are detected with a tolerance of 1e-12 (in the reference
+/// scale), so that grid points x_i = i h, t_n = n Δt that lie on a characteristic in exact arithmetic are
+/// recognised after round-off.
 #include "exact_solution.hpp"
 
 #include <algorithm>

@@ -1,11 +1,11 @@
 /// @file exact_solution.hpp
-/// @brief The closed-form solution of the benchmark (problem.md §2).
+/// @brief The closed-form solution of the benchmark (mathematics.md §2).
 #pragma once
 
 namespace mrm {
 
 /// The bar (0, L) released at rest from u⁰(x) = a (L − x) against the obstacle at x = 0, f = 0.
-/// Periodic in time with period 3L: free flight, contact, free flight back (problem.md §2).
+/// Periodic in time with period 3L: free flight, contact, free flight back (mathematics.md §2).
 ///
 /// Derivatives are piecewise constant and jump across characteristics; where a derivative jumps,
 /// the functions here return the mean of the one-sided limits (the symmetric derivative), so that
@@ -29,9 +29,9 @@ class ExactSolution {
   void displacement_at_points(double t, const double* x, long count, double* u) const;
   /// u_t(x_k, t) likewise, with the values of velocity(x_k, t), the symmetric derivative at a kink.
   void velocity_at_points(double t, const double* x, long count, double* v) const;
-  double period() const { return 3.0 * length_; }
-  double length() const { return length_; }
-  double amplitude() const { return amplitude_; }
+  double period() const { return 3.0 * length_; }  ///< the period 3L of the motion
+  double length() const { return length_; }        ///< L
+  double amplitude() const { return amplitude_; }  ///< a
 
  private:
   double length_, amplitude_;

@@ -1,23 +1,24 @@
-// The weighted mass redistribution method: paper §2 and eq. (6), problem.md §3.
-//
-// The paper replaces the mass matrix M of (5) by a matrix M^mod whose row and column of the contact
-// node vanish, so that node 0 has no inertia and the contact condition becomes algebraic. In its
-// weighted form,
-//
-//     M^mod_ij = ∫₀ᴸ φ_i φ_j w_{h,ij} dx,   w_{h,0i} = w_{h,i0} = 0,   w_{h,ij} = 1 + O(h) otherwise.
-//
-// With a weight that is constant on each entry this is M^mod_ij = w_{h,ij} M_ij, and every choice of
-// the paper is an instance (the matrices are this implementation's reconstruction: the paper names
-// them in words only, problem.md §3):
-//
-//   Mod 1  w = 1 for i, j ≥ 1                 the mass 2h/3 of row/column 0 is dropped: total L − 2h/3
-//   Mod 2  w = L/(L − 2h/3) for i, j ≥ 1       spread uniformly: total mass L again
-//   Mod 3  w_11 = 2, w = 1 otherwise           moved to node 1 (M̄_11 = 2h/3 + 2h/3 = 4h/3): total L
-//
-// Removing row and column 0 removes M_00 + 2 M_01 = h/3 + 2 h/6 = 2h/3 of the total mass 1ᵀM1 = L. The
-// total mass counts every node 0..N, the clamped one included, so the matrices are built on all nodes
-// first and node N is eliminated afterwards. The uniform weight is w = 1/(1 − 2h/(3L)) =
-// 1 + 2h/(3L) + O(h²), of the form 1 + O(h) the analysis asks for (the OCR of the paper reads "o(h)").
+/// @file mass_redistribution.cpp
+/// @brief The weighted mass redistribution method: paper §2 and eq. (6), mathematics.md §3.
+///
+/// The paper replaces the mass matrix M of (5) by a matrix M^mod whose row and column of the contact
+/// node vanish, so that node 0 has no inertia and the contact condition becomes algebraic. In its
+/// weighted form,
+///
+///     M^mod_ij = ∫₀ᴸ φ_i φ_j w_{h,ij} dx,   w_{h,0i} = w_{h,i0} = 0,   w_{h,ij} = 1 + O(h) otherwise.
+///
+/// With a weight that is constant on each entry this is M^mod_ij = w_{h,ij} M_ij, and every choice of
+/// the paper is an instance (the matrices are this implementation's reconstruction: the paper names
+/// them in words only, mathematics.md §3):
+///
+///   Mod 1  w = 1 for i, j ≥ 1                 the mass 2h/3 of row/column 0 is dropped: total L − 2h/3
+///   Mod 2  w = L/(L − 2h/3) for i, j ≥ 1       spread uniformly: total mass L again
+///   Mod 3  w_11 = 2, w = 1 otherwise           moved to node 1 (M̄_11 = 2h/3 + 2h/3 = 4h/3): total L
+///
+/// Removing row and column 0 removes M_00 + 2 M_01 = h/3 + 2 h/6 = 2h/3 of the total mass 1ᵀM1 = L. The
+/// total mass counts every node 0..N, the clamped one included, so the matrices are built on all nodes
+/// first and node N is eliminated afterwards. The uniform weight is w = 1/(1 − 2h/(3L)) =
+/// 1 + 2h/(3L) + O(h²), of the form 1 + O(h) the analysis asks for (the OCR of the paper reads "o(h)").
 #include "mass_redistribution.hpp"
 
 #include <charconv>

@@ -1,14 +1,15 @@
-// P1 Lagrange finite elements on a uniform mesh of the bar (0, L): problem.md §3, paper eq. (5).
-//
-// The semi-discrete problem (5) of the paper is M U'' + S U = −λ e₀ + F with the P1 hat functions
-// φ_i, i = 0..N, of the uniform mesh x_i = i h. On one element [x_e, x_e + h] the two hat functions
-// are 1 − ξ and ξ (ξ = (x − x_e)/h), so the element matrices are
-//
-//     ∫ φ_a φ_b dx   = h/6 [2 1; 1 2],        ∫ φ_a' φ_b' dx = 1/h [1 −1; −1 1].
-//
-// Summing the two elements that meet at an interior node gives M_ii = 2h/3, M_{i,i±1} = h/6,
-// S_ii = 2/h, S_{i,i±1} = −1/h; the end nodes 0 and N belong to one element only: M_00 = h/3,
-// S_00 = 1/h. The clamped node N is then eliminated (u_N = 0): the unknowns are nodes 0..N-1.
+/// @file p1.cpp
+/// @brief P1 Lagrange finite elements on a uniform mesh of the bar (0, L): mathematics.md §3, paper eq. (5).
+///
+/// The semi-discrete problem (5) of the paper is M U'' + S U = −λ e₀ + F with the P1 hat functions
+/// φ_i, i = 0..N, of the uniform mesh x_i = i h. On one element [x_e, x_e + h] the two hat functions
+/// are 1 − ξ and ξ (ξ = (x − x_e)/h), so the element matrices are
+///
+///     ∫ φ_a φ_b dx   = h/6 [2 1; 1 2],        ∫ φ_a' φ_b' dx = 1/h [1 −1; −1 1].
+///
+/// Summing the two elements that meet at an interior node gives M_ii = 2h/3, M_{i,i±1} = h/6,
+/// S_ii = 2/h, S_{i,i±1} = −1/h; the end nodes 0 and N belong to one element only: M_00 = h/3,
+/// S_00 = 1/h. The clamped node N is then eliminated (u_N = 0): the unknowns are nodes 0..N-1.
 #include "p1.hpp"
 
 #include <cmath>

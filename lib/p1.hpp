@@ -1,7 +1,7 @@
 /// @file p1.hpp
 /// @brief Uniform mesh of (0, L), tridiagonal matrices and the P1 mass and stiffness matrices.
 ///
-/// problem.md §3: nodes x_i = i h, h = L/N, i = 0..N; node 0 is the contact node, node N is clamped.
+/// mathematics.md §3: nodes x_i = i h, h = L/N, i = 0..N; node 0 is the contact node, node N is clamped.
 /// The unknowns of every discrete problem of this library are the values at nodes 0..N-1.
 #pragma once
 
@@ -15,6 +15,7 @@
 
 namespace mrm {
 
+/// The index type of vectors, matrices and meshes (Eigen's signed index).
 using Index = Eigen::Index;
 
 /// The uniform mesh x_i = i h, h = L/N, of the bar (0, L).
@@ -24,7 +25,9 @@ struct UniformMesh {
 
   double length;   ///< L
   Index elements;  ///< N
+  /// The mesh size h = L/N.
   double h() const { return length / static_cast<double>(elements); }
+  /// The node x_i = i L/N (computed as L i/N, exact at i = N).
   double x(Index i) const { return length * static_cast<double>(i) / static_cast<double>(elements); }
   /// The number of unknowns, N: the nodes 0..N-1 (node N is clamped and eliminated).
   Index unknowns() const { return elements; }
@@ -34,10 +37,14 @@ struct UniformMesh {
 /// `upper[i]` = A(i, i+1); `lower[0]` and `upper[n-1]` are zero. Symmetric matrices have
 /// `lower[i+1] == upper[i]`.
 struct Tridiagonal {
-  Eigen::VectorXd lower, diag, upper;
+  Eigen::VectorXd lower;  ///< the subdiagonal: lower[i] = A(i, i−1), lower[0] = 0
+  Eigen::VectorXd diag;   ///< the diagonal: diag[i] = A(i, i)
+  Eigen::VectorXd upper;  ///< the superdiagonal: upper[i] = A(i, i+1), upper[n−1] = 0
 
+  /// The n×n zero matrix.
   explicit Tridiagonal(Index n = 0)
       : lower(Eigen::VectorXd::Zero(n)), diag(Eigen::VectorXd::Zero(n)), upper(Eigen::VectorXd::Zero(n)) {}
+  /// The dimension n.
   Index size() const { return diag.size(); }
   // The operations below throw std::invalid_argument for an operand whose size is not size(), an
   // index outside [0, size()), and a block size outside [1, size()].
@@ -55,6 +62,7 @@ struct Tridiagonal {
   Tridiagonal scaled(double c) const;
   /// A + c B.
   Tridiagonal plus(double c, const Tridiagonal& b) const;
+  /// The same matrix in Eigen's sparse format (for general-purpose solvers and checks).
   Eigen::SparseMatrix<double> to_sparse() const;
 };
 

@@ -1,6 +1,6 @@
 /// @file schemes.hpp
 /// @brief The time schemes of the paper (Crank–Nicolson, backward Euler, Paoli–Schatzman) for the
-/// P1 bar with a redistributed or consistent mass (problem.md §4).
+/// P1 bar with a redistributed or consistent mass (mathematics.md §4).
 #pragma once
 
 #include <functional>
@@ -14,7 +14,12 @@
 
 namespace mrm {
 
-enum class Scheme { crank_nicolson, backward_euler, paoli_schatzman };
+/// The time schemes of the paper (mathematics.md §4).
+enum class Scheme {
+  crank_nicolson,  ///< Crank–Nicolson (trapezoidal rule), two levels
+  backward_euler,  ///< backward Euler, two levels
+  paoli_schatzman  ///< Paoli–Schatzman (β, e), three levels
+};
 
 /// How the Paoli–Schatzman scheme treats the contact row when the contact node is massless:
 /// `literal` applies the three-level formula to every row, the contact row included;
@@ -25,29 +30,41 @@ enum class ContactRow { algebraic, literal };
 /// u₀(0) = max(0, u₁(0) + hF₀); `interpolant` keeps the nodal value of u⁰.
 enum class InitialContactNode { consistent, interpolant };
 
-std::string to_string(Scheme);
-std::string to_string(ContactRow);
-std::string to_string(InitialContactNode);
+/// Which implementation of one step a BarSimulation runs (mathematics.md §4). Both compute the step
+/// (★) of schemes.cpp and give the same samples up to round-off (doctest "the fast step and the
+/// reference step agree to round-off"):
+/// `reference` is the step written as its derivation (schemes.cpp: the assembled matrices A, B₁, B₂,
+/// one tridiagonal solve with the closed-form contact step, the velocity and the energy from their
+/// definitions); `fast` is the fused two-chain kernel of fast_step.cpp, the default, used by every
+/// program of this project (bench_step times both).
+enum class StepKernel { reference, fast };
+
+std::string to_string(Scheme);              ///< "cn", "be", "ps"
+std::string to_string(ContactRow);          ///< "algebraic", "literal"
+std::string to_string(InitialContactNode);  ///< "consistent", "interpolant"
+std::string to_string(StepKernel);          ///< "reference", "fast"
 /// Parsers of the names above; throw std::invalid_argument listing the allowed names.
 Scheme scheme_by_name(const std::string&);           ///< cn, be, ps
 ContactRow contact_row_by_name(const std::string&);  ///< algebraic, literal
 InitialContactNode initial_contact_node_by_name(const std::string&);  ///< consistent, interpolant
 
+/// A time scheme with its parameters.
 struct SchemeParameters {
-  Scheme scheme = Scheme::crank_nicolson;
+  Scheme scheme = Scheme::crank_nicolson;  ///< the scheme
   double beta = 0.25;         ///< Paoli–Schatzman's β ≥ 0
   double restitution = 0.0;   ///< Paoli–Schatzman's e ∈ [0, 1]
-  ContactRow contact_row = ContactRow::algebraic;
+  ContactRow contact_row = ContactRow::algebraic;  ///< Paoli–Schatzman's contact row (massless node)
+  StepKernel kernel = StepKernel::fast;  ///< the implementation of the step (same results to round-off)
 };
 
-/// The continuous problem (problem.md §1): bar (0, L), data u⁰, v⁰, load f (may be empty: f = 0).
+/// The continuous problem (mathematics.md §1): bar (0, L), data u⁰, v⁰, load f (may be empty: f = 0).
 struct Problem {
-  double length = 1.0;
-  std::function<double(double x)> initial_displacement;
-  std::function<double(double x)> initial_velocity;
-  std::function<double(double x, double t)> load;
+  double length = 1.0;                                    ///< L
+  std::function<double(double x)> initial_displacement;  ///< u⁰(x)
+  std::function<double(double x)> initial_velocity;      ///< v⁰(x)
+  std::function<double(double x, double t)> load;        ///< f(x, t); empty for f = 0
 };
-/// The benchmark of problem.md §2: u⁰(x) = a (L − x), v⁰ = 0, f = 0.
+/// The benchmark of mathematics.md §2: u⁰(x) = a (L − x), v⁰ = 0, f = 0.
 Problem benchmark_problem(double length = 1.0, double amplitude = 0.5);
 
 /// What a scheme knows at one time level, each quantity with the instant it approximates.
@@ -64,8 +81,11 @@ struct Sample {
   double energy;                           ///< the scheme's discrete energy
 };
 
+class FastStep;
+
 /// One run of one scheme on one mesh with one mass: the state, the constant step matrix factorised
-/// once, and the fused step. Memory is O(N): no history is kept.
+/// once, and the step (the reference step of schemes.cpp or the fast kernel of fast_step.cpp, as
+/// SchemeParameters::kernel says). Memory is O(N): no history is kept.
 class BarSimulation {
  public:
   /// Throws std::invalid_argument for a non-positive or non-finite Δt, β < 0, e ∉ [0, 1], an
@@ -77,21 +97,27 @@ class BarSimulation {
 
   /// Advances one time level.
   void step();
+  /// Defined out of line, where FastStep is complete; a simulation moves but is not copied.
+  ~BarSimulation();
+  BarSimulation(BarSimulation&&);             ///< moves the state and the factors
+  BarSimulation& operator=(BarSimulation&&);  ///< moves the state and the factors
   /// The current level's sample (valid until the next step).
   Sample sample() const;
 
-  Index level() const { return level_; }
-  double time() const { return static_cast<double>(level_) * dt_; }
-  double dt() const { return dt_; }
-  const UniformMesh& mesh() const { return mesh_; }
-  const Tridiagonal& mass() const { return mass_; }
-  const Tridiagonal& stiffness() const { return stiffness_; }
-  bool massless_contact_node() const { return massless_; }
-  const SchemeParameters& parameters() const { return parameters_; }
+  Index level() const { return level_; }                               ///< the current level n
+  double time() const { return static_cast<double>(level_) * dt_; }  ///< t_n = n Δt
+  double dt() const { return dt_; }                                    ///< Δt
+  const UniformMesh& mesh() const { return mesh_; }                    ///< the mesh
+  const Tridiagonal& mass() const { return mass_; }                    ///< M (or M^mod) on the unknowns
+  const Tridiagonal& stiffness() const { return stiffness_; }          ///< S on the unknowns
+  bool massless_contact_node() const { return massless_; }             ///< whether row 0 of M vanishes
+  const SchemeParameters& parameters() const { return parameters_; }  ///< the scheme and its parameters
 
  private:
+  friend class FastStep;  // the fast kernel reads and advances the state below
   void load_at(double t, Eigen::VectorXd& f) const;
   double energy_two_level() const;
+  void reference_step(bool has_load);
 
   Problem problem_;
   UniformMesh mesh_;
@@ -99,17 +125,12 @@ class BarSimulation {
   double dt_;
   bool massless_, algebraic_row_, three_level_;
   Tridiagonal mass_, stiffness_;
-  // One step is A U' = B₁ U + B₂ W + G − κ λ e₀ with W = V (two-level) or W = Uⁿ⁻¹ (three-level).
-  // B₁, B₂, M and S are stored by rows: the first rows explicitly (head_: row 0 and the rows the mass
-  // redistribution changes), then one row for the constant (Toeplitz) interior and the last row.
-  struct Row {
-    double b1l, b1d, b1u, b2l, b2d, b2u;  // B₁ and B₂: lower, diagonal, upper
-    double md, ml2, sd, sl2;              // M and S: diagonal and twice the lower entry (energies)
-  };
-  std::vector<Row> head_;
-  Row interior_, last_;
-  template <bool three_level, bool has_load> void fused_step();
+  // One step is A U' = B₁ U + B₂ W + G − κ λ e₀ with W = V (two-level) or W = Uⁿ⁻¹ (three-level),
+  // A factorised in solver_. B₁ and B₂ are kept for the reference step only; the fast kernel keeps
+  // its rows of B₁, B₂, M and S in fast_ (null for the reference step).
+  Tridiagonal b1_, b2_;
   ContactSolver solver_;
+  std::unique_ptr<const FastStep> fast_;
   double kappa_, load_now_, load_next_;   // G = load_now_ Fⁿ + load_next_ Fⁿ⁺¹ (+ row-0 terms)
   double lambda_in_rhs_;                  // Crank–Nicolson with inertia at node 0: −θ λⁿ in row 0
   double velocity_rate_, velocity_memory_;  // two-level: V' = rate (U' − U) − memory V

@@ -1,7 +1,7 @@
 // long_runs: every scheme with every mass over many periods, and with time steps far above the mesh
 // size, on a coarse mesh (issue 6, "long runs").
 //
-// What it checks. The claims of problem.md §6 that concern long times: the schemes with a
+// What it checks. The claims of mathematics.md §6 that concern long times: the schemes with a
 // redistributed mass are stable (claim 1: no blow-up, the energy stays within a fixed factor of its
 // initial value) and backward Euler dissipates (claim 5: its energy never increases), over
 //
@@ -19,13 +19,13 @@
 //
 //   bounded    E_hⁿ ∈ [E_h⁰ / K, K E_h⁰] at every level, K = 2: Crank–Nicolson and Paoli–Schatzman
 //              with the algebraic row and a redistributed mass, Δt = h/2 (the energy of the reduced,
-//              Lipschitz problem is conserved up to O(h) jumps at impact and release, problem.md §4);
+//              Lipschitz problem is conserved up to O(h) jumps at impact and release, mathematics.md §4);
 //   decreasing E_hⁿ⁺¹ ≤ E_hⁿ + 1e-12 E_hⁿ + 1e-14 E_h⁰ at every level: backward Euler, every mass,
 //              every step (the absolute part is round-off once the energy has decayed by many orders
 //              of magnitude: the quadratic forms then carry no relative precision);
 //   recorded   the energy behaviour is printed, not asserted: the consistent mass with
-//              Crank–Nicolson (the known unstable case the method is meant to repair, problem.md §3),
-//              the literal Paoli–Schatzman row (problem.md §4: what it does is a result), and
+//              Crank–Nicolson (the known unstable case the method is meant to repair, mathematics.md §3),
+//              the literal Paoli–Schatzman row (mathematics.md §4: what it does is a result), and
 //              Crank–Nicolson / algebraic Paoli–Schatzman with Δt ≫ h. The last is a finding, not an
 //              expectation: with Δt = 10 h the energy of these schemes grows by orders of magnitude
 //              over 100 periods (the trapezoidal rule is exact for the quadratic energy of each
@@ -52,7 +52,7 @@
 #include <string>
 #include <vector>
 
-#include "cli.hpp"
+#include "options.hpp"
 #include "mass_redistribution.hpp"
 #include "schemes.hpp"
 
@@ -76,7 +76,7 @@ struct LongRun {
 // The energy factor K of the `bounded` check.
 constexpr double energy_factor = 2.0;
 
-// Runs one configuration on the benchmark of problem.md §2 (L = 1, a = ½, period 3) and records the
+// Runs one configuration on the benchmark of mathematics.md §2 (L = 1, a = ½, period 3) and records the
 // energy extremes and the contact-point range. The energy is followed from the first level that
 // carries the scheme's own energy (level 0 for the two-level schemes; Paoli–Schatzman's levels 0 and
 // 1 carry the energy of its Crank–Nicolson start, so its reference E_h⁰ is taken at level 1, the

@@ -18,9 +18,8 @@ packages=(
   g++ make cmake                   # the build
   libeigen3-dev libgsl-dev         # the library
   doctest-dev                      # the embedded unit tests
-  libbenchmark-dev                 # the benchmark program
   gnuplot-nox                      # the figures (any gnuplot with the pdfcairo/cairolatex terminals)
-  doxygen                          # the API documentation
+  doxygen libjs-mathjax            # the API documentation (MathJax renders its formulas offline)
   latexmk texlive-latex-base texlive-latex-recommended texlive-latex-extra
   texlive-fonts-recommended texlive-pictures  # the report
   poppler-utils                    # pdftoppm, to check the report's pages

@@ -1,7 +1,7 @@
-// The claims of the paper as executable checks: problem.md §6.
+// The claims of the paper as executable checks: mathematics.md §6.
 //
 // The paper (Dabaghi, Krejčí, Petrov, Pousin, Renard, CSMA 2015) makes five claims that a reviewer can
-// check on the benchmark of problem.md §2 (L = 1, u⁰ = (1 − x)/2, v⁰ = 0, f = 0, period 3, E = 1/8):
+// check on the benchmark of mathematics.md §2 (L = 1, u⁰ = (1 − x)/2, v⁰ = 0, f = 0, period 3, E = 1/8):
 //
 //   1. mass redistribution gives stable schemes (no blow-up);
 //   2. Mod 2 and Mod 3 preserve the total mass, Mod 1 does not;
@@ -40,7 +40,9 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_fit.h>
 
-#include "cli.hpp"
+#include "configurations.hpp"
+#include "options.hpp"
+#include "table.hpp"
 #include "exact_solution.hpp"
 
 namespace mrm::claims {
@@ -241,7 +243,7 @@ std::string fixed(double x, int decimals) {
   return buffer;
 }
 
-// The short names of the eight error measures of problem.md §5, in ErrorAccumulator::values order.
+// The short names of the eight error measures of mathematics.md §5, in ErrorAccumulator::values order.
 const char* const measure_names[8] = {"u(0,·) L²(0,T)", "λ L²(0,T)",  "u L∞(L²)", "u L∞(H¹)",
                                       "u_t L∞(L²)",     "u L²(L²)",  "u L²(H¹)", "u_t L²(L²)"};
 
@@ -267,16 +269,17 @@ ErrorNorms ErrorCache::errors(const SchemeChoice& scheme, const MassRedistributi
                           cli::format_real(final_time);
   const auto found = cache_.find(key);
   if (found != cache_.end()) return found->second;
-  const UniformMesh mesh(1.0, elements);
-  const double dt = courant * mesh.h();
-  BarSimulation simulation(benchmark_problem(), mesh, mass, scheme.parameters, dt);
-  ErrorAccumulator accumulator(mesh, ExactSolution());
-  run(simulation, steps_to_reach(final_time, dt), [&](const Sample& s) { accumulator.add(s); });
-  return cache_[key] = accumulator.relative();
+  repro::Configuration configuration;
+  configuration.scheme = scheme.parameters;
+  configuration.mass = mass;
+  configuration.elements = elements;
+  configuration.courant = courant;
+  configuration.final_time = final_time;
+  return cache_[key] = repro::run_configuration(configuration).errors;
 }
 
 // ---------------------------------------------------------------------------------------------------
-// The observed order: the slope of the least-squares line through (log x_k, log y_k) (problem.md §5),
+// The observed order: the slope of the least-squares line through (log x_k, log y_k) (mathematics.md §5),
 // lib/convergence's fit (GSL, checked there by its own doctest). Data that admit no order (steps
 // that were not refined, an error that vanished) give NaN, which fails every criterion on the order.
 static double least_squares_order(const std::vector<double>& x, const std::vector<double>& y) {
@@ -299,13 +302,13 @@ static double least_squares_order(const std::vector<double>& x, const std::vecto
 // ½UⁿᵀSUⁿ, under the same bound. (The first version of this check bounded E_hⁿ only; the strain
 // energy was added, making the check stricter, when the errors of claim 3 showed the literal
 // Paoli–Schatzman form with H¹ errors above 100%.) Crank–Nicolson conserves E_h exactly while the contact
-// status is unchanged, and changes it by jumps of size O(h) at impacts and releases (problem.md §4);
+// status is unchanged, and changes it by jumps of size O(h) at impacts and releases (mathematics.md §4);
 // Paoli–Schatzman (¼, 0) with the algebraic row is Crank–Nicolson; its literal form conserves its own
 // energy likewise. Backward Euler never increases it. Hence the bounds, fixed in advance:
 // E_hⁿ ≤ 1.01 E_h(0) for CN and PS over 100 periods (the jumps at h = 1/200 are a fraction of a
 // percent, and an exponential growth of even 1e-4 per period would already exceed 1% over 100
 // periods), and E_hⁿ ≤ (1 + 1e-12) E_h(0) for BE (round-off only). The contrast: the consistent mass
-// with exact contact and CN is known to be ill-behaved (problem.md §3) — the very reason for the
+// with exact contact and CN is known to be ill-behaved (mathematics.md §3) — the very reason for the
 // method — so the same run with the consistent mass is expected to exceed the same bound.
 namespace {
 
@@ -510,7 +513,7 @@ TEST_CASE("the mass check fails for a weight that loses mass and for a wrong cla
 // répartition de la masse du nœud de contact est faite sur un autre nœud proche du nœud de contact").
 //
 // The paper shows curves, not numbers, and does not say in which measure "better" holds; so the claim
-// is checked in each of the eight relative errors of problem.md §5 separately, one row per scheme and
+// is checked in each of the eight relative errors of mathematics.md §5 separately, one row per scheme and
 // measure: it holds in a measure if error(Mod 3) < error(Mod 2) < error(Mod 1) strictly on every mesh
 // tried (N = 50, 100, 200, Δt = h/2, one period: the free flight, the contact and the release that a
 // figure of the contact point shows).
@@ -591,7 +594,7 @@ TEST_CASE("the ordering check fails when the masses are fed in the wrong order o
 // ---------------------------------------------------------------------------------------------------
 // Claim 4: convergence as h, Δt → 0 (paper §2), and an error estimate in time for Crank–Nicolson.
 //
-// In h (with Δt = C h, C = ½ and 1, problem.md §5): the paper proves convergence without a rate. The
+// In h (with Δt = C h, C = ½ and 1, mathematics.md §5): the paper proves convergence without a rate. The
 // exact solution is only Lipschitz (u_x and u_t jump across characteristics, λ jumps at impact and
 // release), so the rates in the energy norms are at best ½. "Converges" is checked as: every one of
 // the eight relative errors decreases at every refinement (N = 50 … 800, doubling), and its least-
@@ -600,7 +603,7 @@ TEST_CASE("the ordering check fails when the masses are fed in the wrong order o
 //
 // In time at fixed h: the paper says an estimate is proved for Crank–Nicolson but gives no order. At
 // fixed h the semi-discrete problem is a Lipschitz ODE; its solution is compared with a reference of
-// the same h and a much smaller Δt (problem.md §5), at the instants of the coarsest Δt. The criterion
+// the same h and a much smaller Δt (mathematics.md §5), at the instants of the coarsest Δt. The criterion
 // is the same (decrease at every halving of Δt, least-squares order ≥ ¼); the observed order and the
 // local order of each halving are reported, so that the range where an order holds can be read off.
 std::vector<ClaimResult> check_convergence(const std::vector<SchemeChoice>& schemes,
@@ -930,7 +933,7 @@ TEST_CASE("the energy checks fail for a scheme that does not conserve, or one th
 //
 // The step is rebuilt from the public state of the run alone — Uⁿ, the velocity (Vⁿ for the two-level
 // schemes, (Uⁿ − Uⁿ⁻¹)/Δt for Paoli–Schatzman, from which Uⁿ⁻¹ is recovered) and λⁿ — with the
-// formulas of problem.md §4 (f = 0 here: the benchmark):
+// formulas of mathematics.md §4 (f = 0 here: the benchmark):
 //
 //   CN   (M + θS)Uⁿ⁺¹ + θλⁿ⁺¹e₀ = (M − θS)Uⁿ + Δt MVⁿ − θλⁿe₀,           θ = Δt²/4,
 //   BE   (M + Δt²S)Uⁿ⁺¹ + Δt²λⁿ⁺¹e₀ = MUⁿ + Δt MVⁿ,
@@ -1120,7 +1123,7 @@ TEST_CASE("the contact-step check fails when the step does not solve the stated 
 }
 
 // ---------------------------------------------------------------------------------------------------
-// Claim 6b: the closed-form solution (problem.md §2) against a very fine numerical solution
+// Claim 6b: the closed-form solution (mathematics.md §2) against a very fine numerical solution
 // (Crank–Nicolson, Mod 3, N = 4000, Δt = h/2, one period).
 //
 // The bound. The exact solution is Lipschitz with derivatives that jump across characteristics, so
@@ -1232,30 +1235,9 @@ std::vector<ClaimResult> check_all(const Expectations& expectations, std::ostrea
 }
 
 // ---------------------------------------------------------------------------------------------------
-// Output: the same rows as a word-wrapped text table (stdout), Markdown and LaTeX (for the report).
+// Output: the same rows as a word-wrapped text table (stdout), Markdown and LaTeX (for the report),
+// all three written by repro/table.
 namespace {
-
-std::size_t display_width(const std::string& s) {
-  std::size_t w = 0;
-  for (unsigned char c : s) w += (c & 0xC0) != 0x80;
-  return w;
-}
-
-// Greedy word wrap to `width` display columns; a word longer than the width gets a line of its own.
-std::vector<std::string> wrap(const std::string& text, std::size_t width) {
-  std::vector<std::string> lines;
-  std::istringstream words(text);
-  std::string word, line;
-  while (words >> word) {
-    if (!line.empty() && display_width(line) + 1 + display_width(word) > width) {
-      lines.push_back(line);
-      line.clear();
-    }
-    line += (line.empty() ? "" : " ") + word;
-  }
-  if (!line.empty() || lines.empty()) lines.push_back(line);
-  return lines;
-}
 
 std::string verdict_text(const ClaimResult& r) {
   return r.reason.empty() ? to_string(r.verdict) : to_string(r.verdict) + " (" + r.reason + ")";
@@ -1266,39 +1248,15 @@ std::string verdict_text(const ClaimResult& r) {
 // Rows of one group share their criterion and often their reason: from the second row on, the text
 // table says "as above" instead of repeating them (the Markdown table repeats everything).
 void write_text_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
-  const std::size_t widths[4] = {34, 58, 40, 30};
-  const char* const headers[4] = {"claim", "measured", "criterion", "verdict"};
-  auto rule = [&] {
-    for (std::size_t w : widths) out << '+' << std::string(w + 2, '-');
-    out << "+\n";
-  };
-  auto print_row = [&](const std::vector<std::string>& cells) {
-    std::vector<std::vector<std::string>> wrapped;
-    std::size_t height = 0;
-    for (std::size_t c = 0; c < 4; ++c) {
-      wrapped.push_back(wrap(cells[c], widths[c]));
-      height = std::max(height, wrapped.back().size());
-    }
-    for (std::size_t l = 0; l < height; ++l) {
-      for (std::size_t c = 0; c < 4; ++c) {
-        const std::string cell = l < wrapped[c].size() ? wrapped[c][l] : "";
-        const std::size_t w = display_width(cell);
-        out << "| " << cell << std::string(w < widths[c] ? widths[c] - w : 0, ' ') << ' ';
-      }
-      out << "|\n";
-    }
-  };
-  rule();
-  print_row({headers[0], headers[1], headers[2], headers[3]});
-  rule();
+  repro::Table table({"claim", "measured", "criterion", "verdict"});
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const ClaimResult& r = rows[k];
     const bool same_criterion = k > 0 && rows[k - 1].criterion == r.criterion;
     const bool same_reason = k > 0 && !r.reason.empty() && rows[k - 1].reason == r.reason;
-    print_row({"[" + r.id + "] " + r.claim, r.measured, same_criterion ? "(as above)" : r.criterion,
-               same_reason ? to_string(r.verdict) + " (as above)" : verdict_text(r)});
-    rule();
+    table.add_row({"[" + r.id + "] " + r.claim, r.measured, same_criterion ? "(as above)" : r.criterion,
+                   same_reason ? to_string(r.verdict) + " (as above)" : verdict_text(r)});
   }
+  table.write_text(out, {34, 58, 40, 30});
   int counts[3] = {0, 0, 0};
   for (const ClaimResult& r : rows) ++counts[static_cast<int>(r.verdict)];
   out << rows.size() << " rows: " << counts[0] << " reproduced, " << counts[1]
@@ -1306,15 +1264,10 @@ void write_text_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
 }
 
 void write_markdown_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
-  auto cell = [](const std::string& s) {
-    std::string t;
-    for (char c : s) t += c == '|' ? std::string("\\|") : std::string(1, c);
-    return t;
-  };
-  out << "| claim | measured | criterion | verdict |\n|---|---|---|---|\n";
+  repro::Table table({"claim", "measured", "criterion", "verdict"});
   for (const ClaimResult& r : rows)
-    out << "| **" << cell(r.id) << "** " << cell(r.claim) << " | " << cell(r.measured) << " | " << cell(r.criterion)
-        << " | " << cell(verdict_text(r)) << " |\n";
+    table.add_row({"**" + r.id + "** " + r.claim, r.measured, r.criterion, verdict_text(r)});
+  table.write_markdown(out);
 }
 
 std::string latex_escape(const std::string& text) {
@@ -1389,16 +1342,18 @@ TEST_CASE("LaTeX escaping handles the special characters and the table's symbols
 // table says "as above" instead of repeating them, and a reason gets a line of its own under its row,
 // across the three last columns, so that the table stays a few pages long.
 void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
-  out << "% The claims of the paper as executable checks: generated by check_claims --tex (do not edit).\n"
-         "% Needs \\usepackage{longtable,booktabs,array}.\n"
-         "{\\footnotesize\\setlength{\\tabcolsep}{3pt}\n"
-         "\\begin{longtable}{>{\\raggedright\\arraybackslash}p{0.20\\linewidth}"
-         ">{\\raggedright\\arraybackslash}p{0.40\\linewidth}"
-         ">{\\raggedright\\arraybackslash}p{0.23\\linewidth}"
-         ">{\\raggedright\\arraybackslash}p{0.11\\linewidth}}\n"
-         "\\toprule\nClaim & Measured & Criterion & Verdict \\\\\n\\midrule\n\\endfirsthead\n"
-         "\\toprule\nClaim & Measured & Criterion & Verdict \\\\\n\\midrule\n\\endhead\n"
-         "\\bottomrule\n\\endfoot\n";
+  const std::string column = ">{\\raggedright\\arraybackslash}p{";
+  repro::LatexLayout layout;
+  layout.before = "% The claims of the paper as executable checks: generated by check_claims --tex (do not edit).\n"
+                  "% Needs \\usepackage{longtable,booktabs,array}.\n"
+                  "{\\footnotesize\\setlength{\\tabcolsep}{3pt}\n";
+  layout.columns = column + "0.20\\linewidth}" + column + "0.40\\linewidth}" + column + "0.23\\linewidth}" + column +
+                   "0.11\\linewidth}";
+  layout.longtable = true;
+  layout.rule_between_rows = true;
+  layout.note_columns = column + "0.76\\linewidth}";
+  layout.after_end = "}";
+  repro::Table table({"Claim", "Measured", "Criterion", "Verdict"});
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const ClaimResult& r = rows[k];
     const bool same_criterion = k > 0 && rows[k - 1].criterion == r.criterion;
@@ -1411,15 +1366,12 @@ void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) 
       id += c;
       if (c == '/' || c == '_') id += "\\allowbreak{}";
     }
-    out << "\\textbf{" << id << "} " << latex_escape(r.claim) << " & " << latex_escape(r.measured)
-        << " & " << (same_criterion ? std::string("\\emph{as above}") : latex_escape(r.criterion)) << " & " << verdict
-        << " \\\\\n";
-    if (!r.reason.empty())
-      out << " & \\multicolumn{3}{>{\\raggedright\\arraybackslash}p{0.76\\linewidth}}{\\emph{Why:} "
-          << (same_reason ? std::string("as above.") : latex_escape(r.reason)) << "} \\\\\n";
-    if (k + 1 < rows.size()) out << "\\midrule\n";
+    table.add_row({"\\textbf{" + id + "} " + latex_escape(r.claim), latex_escape(r.measured),
+                   same_criterion ? std::string("\\emph{as above}") : latex_escape(r.criterion), verdict},
+                  r.reason.empty() ? std::string()
+                                   : "\\emph{Why:} " + (same_reason ? std::string("as above.") : latex_escape(r.reason)));
   }
-  out << "\\end{longtable}}\n";
+  table.write_latex(out, layout);
 }
 
 }  // namespace mrm::claims

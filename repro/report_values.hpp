@@ -1,4 +1,4 @@
-/// @file latex.hpp
+/// @file report_values.hpp
 /// @brief Numbers and tables for the report: every number the report prints comes from a LaTeX
 /// fragment written by a program, never typed by hand.
 #pragma once
@@ -12,6 +12,12 @@ namespace mrm {
 /// 10⁻³ ≤ |v| < 10⁴ ("0.0123", "1.50", "2048"; a negative value starts with "\ensuremath{-}"), otherwise "\ensuremath{1.23\cdot 10^{-5}}";
 /// "0" for zero, "n/a" for a non-finite value. Deterministic (no locale).
 std::string tex_number(double value, int significant = 3);
+
+/// A positive magnitude for math mode, as the report's large-step sentence prints it: three significant
+/// digits ("%.3g": "1", "1.08", "287") below 1000, otherwise two decimals and a power of ten
+/// ("3.57\times10^{5}", the exponent ⌊log x / log 10⌋). Throws std::invalid_argument unless x is finite
+/// and positive.
+std::string tex_magnitude(double x);
 
 /// One definition line `\mrmdef{key}{value}`; the report defines `\mrmdef` to store the value under the
 /// key and `\mrm{key}` to print it (a missing key stops the build). Throws std::invalid_argument for a

@@ -2,7 +2,7 @@
 // fragment and printed in the prose by `\mrm{key}` (paper/report.tex defines both), so that a sentence
 // such as "the observed order is \mrm{conv:order:cn:mod3:1:err_u_L2L2}" cannot disagree with the
 // computation. Rounding to a few significant digits happens here, once.
-#include "latex.hpp"
+#include "report_values.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -44,6 +44,29 @@ TEST_CASE("report numbers are rounded to their significant digits in fixed or sc
   CHECK(tex_number(98765.0, 2) == "\\ensuremath{9.9\\cdot 10^{4}}");
   CHECK(tex_number(0.0) == "0");
   CHECK(tex_number(std::nan("")) == "n/a");
+}
+
+std::string tex_magnitude(double x) {
+  if (!(std::isfinite(x) && x > 0)) throw std::invalid_argument("tex_magnitude: " + std::to_string(x) + " is not a finite positive number");
+  char buffer[64];
+  if (x < 1000) {
+    std::snprintf(buffer, sizeof buffer, "%.3g", x);
+  } else {
+    const int e = static_cast<int>(std::log(x) / std::log(10.0));
+    std::snprintf(buffer, sizeof buffer, "%.2f\\times10^{%d}", x / std::pow(10.0, e), e);
+  }
+  return buffer;
+}
+
+TEST_CASE("a magnitude has three digits below 1000 and a power of ten above") {
+  CHECK(tex_magnitude(1.0) == "1");
+  CHECK(tex_magnitude(1.0841) == "1.08");
+  CHECK(tex_magnitude(287.46) == "287");
+  CHECK(tex_magnitude(999.4) == "999");
+  CHECK(tex_magnitude(1234.5) == "1.23\\times10^{3}");
+  CHECK(tex_magnitude(3.5678e5) == "3.57\\times10^{5}");
+  CHECK_THROWS_AS(tex_magnitude(0.0), std::invalid_argument);
+  CHECK_THROWS_AS(tex_magnitude(std::nan("")), std::invalid_argument);
 }
 
 void tex_define(std::ostream& out, const std::string& key, const std::string& value) {

@@ -1,12 +1,12 @@
-// check_claims: every claim of the paper (problem.md §6) checked by one command.
+// check_claims: every claim of the paper (mathematics.md §6) checked by one command.
 //
-// What it computes. It runs the checks of lib/claims.cpp on the benchmark of problem.md §2 — stability
+// What it computes. It runs the checks of repro/claims.cpp on the benchmark of mathematics.md §2 — stability
 // over 100 periods, total mass, the ordering Mod 3 < Mod 2 < Mod 1 of the paper's Figure 1, convergence
 // in h and in Δt, energy conservation and dissipation, and two comparisons with independent
 // computations (the closed-form contact step against a sparse LU solve of the step's saddle-point
 // system; the closed-form solution against a very fine numerical solution) — and prints one table:
 // claim | what was measured | criterion | verdict. The verdict is "reproduced", "not reproduced" (an
-// expected failure, listed with its reason and numbers in lib/claims.cpp's expectation table) or
+// expected failure, listed with its reason and numbers in repro/claims.cpp's expectation table) or
 // "FAILED". The exit status is 0 iff no row FAILED; an expected failure that unexpectedly holds is a
 // failure too. The table is deterministic; the time each check took goes to stderr only.
 //
@@ -24,7 +24,8 @@
 #include <string>
 
 #include "claims.hpp"
-#include "cli.hpp"
+#include "options.hpp"
+#include "output_file.hpp"
 
 namespace cli = mrm::cli;
 namespace claims = mrm::claims;
@@ -34,7 +35,7 @@ int main(int argc, char** argv) {
     // 1. Options.
     std::string tex, markdown;
     cli::Parser parser("check_claims",
-                       "Checks every claim of the paper (problem.md §6) on the benchmark and prints a table: claim, "
+                       "Checks every claim of the paper (mathematics.md §6) on the benchmark and prints a table: claim, "
                        "what was measured, criterion, verdict (reproduced, not reproduced = expected failure, or "
                        "FAILED). Exits 0 iff no check FAILED.",
                        {"check_claims", "check_claims --tex output/data/claims.tex --markdown output/data/claims.md"});

@@ -1,6 +1,8 @@
-// What the figure programs share: the list of schemes and mass choices of the paper's Figure 1 and the
-// one place where a configuration (scheme, Paoli–Schatzman contact row, mass) becomes a simulation.
+// The paper's named configurations and the one function that runs a configuration and returns its
+// measures (every program and check that needs the errors or the energy range of a run calls it).
 #pragma once
+
+#include <functional>
 
 #include <memory>
 #include <ostream>
@@ -8,12 +10,14 @@
 #include <string>
 #include <vector>
 
-#include "cli.hpp"
+#include "options.hpp"
+#include "output_file.hpp"
 
+#include "errors.hpp"
 #include "mass_redistribution.hpp"
 #include "schemes.hpp"
 
-namespace figures {
+namespace mrm::repro {
 
 /// The three schemes of the paper, in the order of its Figure 1 and of every data file.
 inline const std::vector<std::string>& scheme_names() {
@@ -80,4 +84,39 @@ class FigureOutputs {
   std::ostringstream values_;
 };
 
-}  // namespace figures
+/// One run of the benchmark (mathematics.md §2): the bar (0, L) released from u⁰(x) = a (L − x), a
+/// scheme, a mass, a mesh of N elements and Δt (given, or C h), to the first level t_n ≥ T.
+struct Configuration {
+  SchemeParameters scheme;
+  MassRedistribution mass = mod3();
+  Index elements = 100;
+  double courant = 0.5;  ///< Δt = C h, unless dt > 0
+  double dt = 0.0;       ///< the time step if > 0
+  double final_time = 3.0;
+  double length = 1.0;
+  double amplitude = 0.5;
+  InitialContactNode initial = InitialContactNode::consistent;
+
+  double step() const { return dt > 0 ? dt : courant * UniformMesh(length, elements).h(); }
+};
+
+/// A configuration named as the paper names it: scheme "cn", "be" or "ps" (Paoli–Schatzman (¼, 0) with
+/// the contact row `ps_form`), mass "mod1", "mod2", "mod3" or "consistent", N, Δt = C h, T.
+Configuration paper_configuration(const std::string& scheme, const std::string& ps_form, const std::string& mass,
+                                  Index elements, double courant, double final_time);
+
+/// What a run measures: the eight relative errors against the exact solution (mathematics.md §5), the
+/// range of the discrete energy and the number of steps.
+struct Measures {
+  ErrorNorms errors;
+  double energy_initial = 0, energy_final = 0, energy_min = 0, energy_max = 0;
+  Index steps = 0;
+};
+
+/// Runs the configuration to its final time, calling `observe` (if given) on every sample from level 0
+/// on, and returns its measures. Throws std::runtime_error if the energy becomes non-finite (a value
+/// that cannot be computed is an error, never a nan in a table).
+Measures run_configuration(const Configuration& configuration,
+                           const std::function<void(const Sample&)>& observe = {});
+
+}  // namespace mrm::repro

@@ -1,5 +1,5 @@
 /// @file claims.hpp
-/// @brief The claims of the paper (problem.md §6) as executable checks with stated criteria.
+/// @brief The claims of the paper (mathematics.md §6) as executable checks with stated criteria.
 ///
 /// Each check takes its inputs explicitly (the schemes, the masses, the meshes, the time steps) and
 /// returns table rows: the claim, what was measured (with the numbers), the criterion and a verdict.
@@ -30,8 +30,8 @@ std::string to_string(Verdict);
 
 /// One row of the table.
 struct ClaimResult {
-  std::string id;         ///< "3/cn/err_u0_L2": claim number of problem.md §6, then the case
-  std::string claim;      ///< what the paper (or problem.md) claims, in one sentence
+  std::string id;         ///< "3/cn/err_u0_L2": claim number of mathematics.md §6, then the case
+  std::string claim;      ///< what the paper (or mathematics.md) claims, in one sentence
   std::string measured;   ///< what was measured, with the numbers
   std::string criterion;  ///< the criterion, stated in advance
   Verdict verdict;
@@ -51,7 +51,7 @@ ClaimResult judge(std::string id, std::string claim, std::string measured, std::
                   const Expectations& expectations, std::vector<std::string>* used = nullptr);
 
 /// A time scheme as the paper names it: "cn", "be", "ps" (Paoli–Schatzman (¼, 0), algebraic contact
-/// row) and "ps-literal" (the three-level formula on the contact row too, problem.md §4).
+/// row) and "ps-literal" (the three-level formula on the contact row too, mathematics.md §4).
 struct SchemeChoice {
   std::string label;
   SchemeParameters parameters;
@@ -60,8 +60,8 @@ SchemeChoice scheme_choice(const std::string& label);  ///< throws std::invalid_
 std::vector<SchemeChoice> paper_schemes();             ///< cn, be, ps, ps-literal
 std::vector<MassRedistribution> paper_masses();        ///< mod1, mod2, mod3
 
-/// A memo of benchmark runs (problem.md §2, L = 1, a = ½, Δt = C h) and their relative errors
-/// (problem.md §5), shared by the checks that need the same runs.
+/// A memo of benchmark runs (mathematics.md §2, L = 1, a = ½, Δt = C h) and their relative errors
+/// (mathematics.md §5), shared by the checks that need the same runs.
 class ErrorCache {
  public:
   ErrorNorms errors(const SchemeChoice& scheme, const MassRedistribution& mass, Index elements, double courant,
@@ -169,7 +169,7 @@ std::vector<ClaimResult> check_energy_dissipation(const SchemeChoice& scheme,
 // ---- Claim 6: agreement with independent computations ----------------------------------------------
 
 /// One run whose steps are compared with a general-purpose solve. `model` is the discrete problem the
-/// step is rebuilt from (problem.md §4 formulas); it is the run's own scheme except in the test that
+/// step is rebuilt from (mathematics.md §4 formulas); it is the run's own scheme except in the test that
 /// shows the check fails when the step does not solve the stated problem.
 struct ContactStepCase {
   SchemeChoice run;
@@ -195,7 +195,7 @@ struct FineSolutionSettings {
   Index elements = 4000;
   double courant = 0.5;
   double final_time = 3;
-  double bound = 0.05;  ///< every relative error of problem.md §5 below this
+  double bound = 0.05;  ///< every relative error of mathematics.md §5 below this
 };
 /// The closed-form solution against a very fine numerical solution (Crank–Nicolson, Mod 3).
 /// `exact` is the solution checked (the benchmark's is ExactSolution(1, ½)).

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# ctest install_consumer: installs the method library from the build tree BUILD into a fresh prefix,
+# configures and builds the consumer project SOURCE (tests/consumer) against it with find_package(mrm),
+# runs it, and checks that the Mod 3 total mass it prints equals the length L it prints, to round-off
+# (|total − L| ≤ 64 ε L: a sum of about 3N entries of size h, each with one rounding).
+# Usage: run.sh BUILD SOURCE [CXX [LINK_FLAGS]]
+set -euo pipefail
+build=$1 source=$2 cxx=${3:-c++} link_flags=${4:-}
+work=$(mktemp -d "${TMPDIR:-/tmp}/mrm-consumer.XXXXXX")
+trap 'rm -rf -- "$work"' EXIT
+
+cmake --install "$build" --prefix "$work/prefix" >"$work/install.log" || { cat "$work/install.log"; exit 1; }
+for f in lib/libmrm.a include/mrm/p1.hpp lib/cmake/mrm/mrmConfig.cmake lib/cmake/mrm/mrmConfigVersion.cmake; do
+  [[ -f $work/prefix/$f ]] || { echo "install_consumer: $f was not installed"; exit 1; }
+done
+if grep -lE '^[[:space:]]*#[[:space:]]*include[[:space:]]*[<"]doctest' "$work"/prefix/include/mrm/*.hpp; then
+  echo "install_consumer: an installed header includes doctest (listed above)"; exit 1
+fi
+cmake -S "$source" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_CXX_COMPILER="$cxx" \
+  -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXE_LINKER_FLAGS="$link_flags" >"$work/configure.log" 2>&1 || { cat "$work/configure.log"; exit 1; }
+cmake --build "$work/build" >"$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
+output=$("$work/build/consumer")
+echo "$output"
+awk '/^length = / {l = $3} /^total = / {t = $3}
+     END {
+       if (l == "" || t == "") { print "install_consumer: missing length or total"; exit 1 }
+       d = t - l; if (d < 0) d = -d
+       tol = 64 * 2^-52 * l
+       printf "install_consumer: |total - L| = %.3g, allowed %.3g\n", d, tol
+       exit !(d <= tol)
+     }' <<<"$output"
