@@ -103,9 +103,7 @@ Tridiagonal modified_mass_all_nodes(const UniformMesh& mesh, const MassRedistrib
   return m;
 }
 
-bool contact_node_is_massless(const Tridiagonal& mass) {
-  return mass.diag[0] == 0.0 && mass.upper[0] == 0.0;
-}
+bool contact_node_is_massless(const Tridiagonal& mass) { return mass.diag[0] == 0.0 && mass.upper[0] == 0.0; }
 
 // Positive definiteness of a symmetric tridiagonal matrix is read off its LDLᵀ pivots
 // d_0 = a_0, d_i = a_i − l_i²/d_{i−1}: all of them must be positive.
@@ -184,7 +182,8 @@ TEST_CASE("weights that break symmetry or definiteness are rejected with the red
   MassRedistribution skew{"skew", "", [](Index i, Index j, const UniformMesh&) { return i < j ? 1.0 : 2.0; }};
   CHECK_THROWS_AS(modified_mass(mesh, skew), std::invalid_argument);
   // Zeroing only the diagonal entry of node 0 leaves an indefinite matrix (M_01 ≠ 0): rejected.
-  MassRedistribution half{"half", "", [](Index i, Index j, const UniformMesh&) { return i == 0 && j == 0 ? 0.0 : 1.0; }};
+  MassRedistribution half{"half", "",
+                          [](Index i, Index j, const UniformMesh&) { return i == 0 && j == 0 ? 0.0 : 1.0; }};
   CHECK_THROWS_AS(modified_mass(mesh, half), std::invalid_argument);
   CHECK_THROWS_WITH_AS(mass_redistribution_by_name("mod4"), doctest::Contains("allowed: consistent, mod1, mod2, mod3"),
                        std::invalid_argument);
@@ -197,7 +196,6 @@ TEST_CASE("a redistribution without a weight function is rejected with its name"
                        std::invalid_argument);
   CHECK_THROWS_AS(total_mass(mesh, empty), std::invalid_argument);
 }
-
 
 // ---------------------------------------------------------------------------------------------------
 // More members of the family: a chosen mass on node 1, and a fraction on node 1 with the rest uniform.
@@ -291,8 +289,7 @@ bool parse_fraction(const std::string& text, double& value) {
   const std::size_t slash = text.find('/');
   if (slash == std::string::npos) return parse_decimal(text, value);
   double p = 0.0, q = 0.0;
-  if (!parse_decimal(text.substr(0, slash), p) || !parse_decimal(text.substr(slash + 1), q) || q == 0.0)
-    return false;
+  if (!parse_decimal(text.substr(0, slash), p) || !parse_decimal(text.substr(slash + 1), q) || q == 0.0) return false;
   value = p / q;
   return std::isfinite(value);
 }
@@ -406,7 +403,8 @@ double predicted_period_change(const PeriodLawMasses& m) {
 namespace {
 
 // max over all entries of |A − B|, on all nodes 0..N.
-[[maybe_unused]] double max_entry_difference(const UniformMesh& mesh, const MassRedistribution& a, const MassRedistribution& b) {
+[[maybe_unused]] double max_entry_difference(const UniformMesh& mesh, const MassRedistribution& a,
+                                             const MassRedistribution& b) {
   const Tridiagonal ma = modified_mass_all_nodes(mesh, a), mb = modified_mass_all_nodes(mesh, b);
   return std::max({(ma.diag - mb.diag).cwiseAbs().maxCoeff(), (ma.upper - mb.upper).cwiseAbs().maxCoeff(),
                    (ma.lower - mb.lower).cwiseAbs().maxCoeff()});
@@ -461,8 +459,8 @@ TEST_CASE("the spec strings give the members they name, with the spec as the nam
   const UniformMesh mesh(1.0, 40);
   const double h = mesh.h();
   CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("node1:7/6"), node1(7.0 / 6.0)) <= 1e-16 * h);
-  CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("node1:0.5"), mass_redistribution_from_spec("node1:1/2")) ==
-        0.0);
+  CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("node1:0.5"),
+                             mass_redistribution_from_spec("node1:1/2")) == 0.0);
   CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("beta:1/3"), beta(1.0 / 3.0)) <= 1e-16 * h);
   CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("beta:-1e-1"), beta(-0.1)) == 0.0);
   CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("spread:3", mesh), spread_over_first_nodes(3)) == 0.0);
@@ -475,9 +473,10 @@ TEST_CASE("the spec strings give the members they name, with the spec as the nam
 
 TEST_CASE("bad spec strings are rejected with the allowed forms") {
   const UniformMesh mesh(1.0, 40);
-  for (const char* bad : {"", "mod4", "MOD3", "node1", "node1:", "node1:abc", "node1:7/6x", "node1:1/0", "node1:0",
-                          "node1:-1/3", "node1:inf", "node1:nan", "node1:0x10", "node1: 1", "beta:", "beta:1//3",
-                          "beta:1e400", "spread:0", "spread:-2", "spread:1.5", "spread:", "spread:2x", "mod3:1"}) {
+  for (const char* bad :
+       {"",           "mod4",       "MOD3",      "node1",      "node1:",     "node1:abc", "node1:7/6x", "node1:1/0",
+        "node1:0",    "node1:-1/3", "node1:inf", "node1:nan",  "node1:0x10", "node1: 1",  "beta:",      "beta:1//3",
+        "beta:1e400", "spread:0",   "spread:-2", "spread:1.5", "spread:",    "spread:2x", "mod3:1"}) {
     CAPTURE(bad);
     CHECK_THROWS_WITH_AS(mass_redistribution_from_spec(bad), doctest::Contains("(allowed: consistent, mod1, mod2"),
                          std::invalid_argument);

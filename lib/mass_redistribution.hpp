@@ -47,7 +47,6 @@ double total_mass(const UniformMesh& mesh, const MassRedistribution& redistribut
 /// True when row and column 0 of the mass matrix vanish: the contact node has no inertia.
 bool contact_node_is_massless(const Tridiagonal& mass);
 
-
 /// M̄_11 = X h on node 1 (weight w_11 = 3X/2), every other entry as Mod 1, the total not renormalised:
 /// Mod 1 is node1(2/3), Mod 3 is node1(4/3). Throws std::invalid_argument unless X > 0 is finite.
 MassRedistribution node1(double x);
