@@ -69,8 +69,7 @@ int main(int argc, char** argv) {
                     cli::in_closed_range(1e-100, 1e100));
     parser.add_choice("--scheme", "-s", "S", "time scheme: Crank-Nicolson, backward Euler, Paoli-Schatzman",
                       {"cn", "be", "ps"}, &scheme);
-    parser.add_choice("--mass", "-m", "M", "mass matrix: Mod 1/2/3 or the consistent P1 mass",
-                      {"mod1", "mod2", "mod3", "consistent"}, &mass);
+    parser.add_string("--mass", "-m", "M", mrm::repro::mass_option_help("mass matrix"), &mass);
     parser.add_real("--beta", "-b", "B", "Paoli-Schatzman's beta, in [0, 1e6]", &beta, cli::in_closed_range(0, 1e6));
     parser.add_real("--restitution", "-e", "E", "Paoli-Schatzman's restitution coefficient e in [0, 1]",
                     &restitution, cli::in_closed_range(0, 1));
@@ -88,18 +87,22 @@ int main(int argc, char** argv) {
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
     if (mass == "consistent" && !parser.given("--ps-form")) ps_form = "literal";
     if (mass == "consistent" && scheme == "ps" && ps_form == "algebraic")
-      throw cli::UsageError("--ps-form: algebraic needs a massless contact node (--mass mod1, mod2 or mod3); "
+      throw cli::UsageError("--ps-form: algebraic needs a massless contact node (any --mass but consistent); "
                             "with --mass consistent use --ps-form literal");
     if (scheme == "ps" && ps_form == "literal" && beta == 0.0 && mass != "consistent")
       throw cli::UsageError("--beta: 0 is not allowed with --ps-form literal and a massless contact node "
                             "(the step matrix is singular); use --beta > 0 or --ps-form algebraic");
+
+    // The mass is checked on the mesh of the run (a spread over more nodes than the mesh has, a matrix
+    // that is not positive definite): a bad value fails here, before any file is touched.
+    const mrm::UniformMesh mesh(length, elements);
+    const mrm::MassRedistribution redistribution = mrm::repro::mass_from_option("--mass", mass, mesh);
 
     // 2. The output, opened now so that an unwritable path fails before the run.
     std::unique_ptr<cli::AtomicFile> series;
     if (parser.given("--output")) series = std::make_unique<cli::AtomicFile>(output, "--output");
 
     // 3. Mesh, mass, scheme; Δt derived from h in this one place.
-    const mrm::UniformMesh mesh(length, elements);
     const double step = parser.given("--dt") ? dt : courant * mesh.h();
     if (!(step <= largest_courant * mesh.h()))
       throw cli::UsageError("--dt: " + cli::format_real(step) + " is more than 1e6 h = " +
@@ -114,7 +117,7 @@ int main(int argc, char** argv) {
     configuration.scheme.beta = beta;
     configuration.scheme.restitution = restitution;
     configuration.scheme.contact_row = mrm::contact_row_by_name(ps_form);
-    configuration.mass = mrm::mass_redistribution_by_name(mass);
+    configuration.mass = redistribution;
     configuration.elements = elements;
     configuration.dt = step;
     configuration.final_time = final_time;

@@ -56,15 +56,18 @@ int main(int argc, char** argv) {
     parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), >= 2", &elements, cli::at_least(2));
     parser.add_real("--courant", "-c", "C", "time step dt = C h (C > 0)", &courant, cli::positive());
     parser.add_real("--final-time", "-T", "T", "final time (> 0); the period is 3", &final_time, cli::positive());
-    parser.add_choice("--mass", "-m", "M", "the redistributed mass", {"mod1", "mod2", "mod3"}, &mass);
+    parser.add_string("--mass", "-m", "M", mrm::repro::mass_option_help("the redistributed mass (not consistent)"),
+                      &mass);
     parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve (>= 10)",
                        &exact_points, cli::at_least(10));
     mrm::repro::FigureOutputs outputs(parser, "fig_ps_forms", "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
+    const mrm::UniformMesh mesh(1.0, elements);
+    const mrm::MassRedistribution redistribution = mrm::repro::mass_from_option("--mass", mass, mesh, true);
+
     // 2. Outputs.
     outputs.open(parser);
-    const mrm::UniformMesh mesh(1.0, elements);
     const double dt = courant * mesh.h();
     const mrm::Index steps = mrm::steps_to_reach(final_time, dt);
     const mrm::ExactSolution exact;
@@ -72,6 +75,7 @@ int main(int argc, char** argv) {
     out << "# fig_ps_forms: Paoli-Schatzman (1/4, 0), literal and algebraic contact row (problem.md sec. 4)\n";
     parser.echo(out);
     out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt) << "\n# steps = " << steps
+        << "\n# total_mass = " << cli::format_real(mrm::total_mass(mesh, redistribution))
         << "\n# blocks: 0 exact; 1 algebraic row, " << mass << "; 2 literal row, " << mass
         << "; 3 literal row, consistent mass\n";
 
@@ -95,12 +99,13 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "ps:elements", std::to_string(elements));
     mrm::tex_define(defs, "ps:dt", mrm::tex_number(dt, 3));
     mrm::tex_define(defs, "ps:T", mrm::tex_number(final_time, 3));
-    mrm::tex_define(defs, "ps:mass", mass == "mod1" ? "Mod 1" : mass == "mod2" ? "Mod 2" : "Mod 3");
+    mrm::tex_define(defs, "ps:mass", mrm::repro::mass_label(mass));
     mrm::tex_define(defs, "ps:periods", std::to_string(periods));
     int block = 1;
     for (const Variant& v : variants) {
       std::cerr << "fig_ps_forms: " << v.key << '\n';
-      mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(v.mass),
+      mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh,
+                                    v.mass == "consistent" ? mrm::consistent_mass() : redistribution,
                                     mrm::repro::scheme_parameters("ps", v.form, v.mass), dt);
       mrm::ErrorAccumulator errors(mesh, exact);
       out << "\n\n# block " << block++ << ": form = " << v.form << ", mass = " << v.mass

@@ -23,6 +23,18 @@ Configuration paper_configuration(const std::string& scheme, const std::string& 
   return c;
 }
 
+MassRedistribution mass_from_option(const std::string& option, const std::string& spec, const UniformMesh& mesh,
+                                    bool massless) {
+  try {
+    if (massless && spec == "consistent")
+      throw std::invalid_argument("\"consistent\": this program needs a massless contact node (allowed: " +
+                                  mass_redistribution_forms() + ", except consistent)");
+    return mass_redistribution_from_spec(spec, mesh);
+  } catch (const std::invalid_argument& e) {
+    throw cli::UsageError(option + ": " + e.what());
+  }
+}
+
 Measures run_configuration(const Configuration& c, const std::function<void(const Sample&)>& observe) {
   const UniformMesh mesh(c.length, c.elements);
   const double dt = c.step();
@@ -72,6 +84,20 @@ TEST_CASE("a configuration's measures are those of the same run observed by hand
   CHECK(m.steps == 120);
   CHECK(m.energy_min == lowest);
   CHECK(m.energy_max == highest);
+}
+
+TEST_CASE("a bad mass option names the option and the allowed forms") {
+  const UniformMesh mesh(1.0, 20);
+  CHECK(mass_from_option("--mass", "node1:7/6", mesh).name == "node1:7/6");
+  CHECK_THROWS_WITH_AS(
+      mass_from_option("--mass", "node1:x", mesh),
+      doctest::Contains("--mass: \"node1:x\": \"x\" is not a decimal or a fraction (allowed: consistent"),
+      cli::UsageError);
+  CHECK_THROWS_WITH_AS(mass_from_option("--mass", "spread:20", mesh), doctest::Contains("at most N - 1 = 19"),
+                       cli::UsageError);
+  CHECK_NOTHROW(mass_from_option("--mass", "consistent", mesh));
+  CHECK_THROWS_WITH_AS(mass_from_option("--mass", "consistent", mesh, true), doctest::Contains("except consistent"),
+                       cli::UsageError);
 }
 
 }  // namespace mrm::repro

@@ -48,6 +48,27 @@ inline mrm::SchemeParameters scheme_parameters(const std::string& scheme, const 
   return p;
 }
 
+/// The help text of a program's mass option: the spec forms of mrm::mass_redistribution_from_spec.
+inline std::string mass_option_help(const std::string& what) {
+  return what +
+         ": consistent, mod1, mod2, mod3, node1:X (M11 = X h, Mod 1 elsewhere), spread:K (the lost mass on "
+         "nodes 1..K), beta:B (B h on node 1, the rest uniform); X, B decimals or fractions such as 7/6";
+}
+/// The name of a mass in prose: "Mod 1", "Mod 2", "Mod 3", "the consistent mass", or the spec itself.
+inline std::string mass_label(const std::string& spec) {
+  if (spec == "mod1") return "Mod 1";
+  if (spec == "mod2") return "Mod 2";
+  if (spec == "mod3") return "Mod 3";
+  if (spec == "consistent") return "the consistent mass";
+  return spec;
+}
+/// The redistribution named by the value `spec` of the mass option `option`, checked on the mesh of the run
+/// (mrm::mass_redistribution_from_spec); a bad value throws cli::UsageError "<option>: \"spec\": why (allowed:
+/// ...)", so that the program exits with status 2 before any work. `massless` additionally refuses the
+/// consistent mass (for a program that needs a massless contact node).
+MassRedistribution mass_from_option(const std::string& option, const std::string& spec, const UniformMesh& mesh,
+                                    bool massless = false);
+
 /// The two outputs of every figure program: its data file (--output) and, if asked, the values the
 /// report quotes (--tex, `\mrmdef` lines). Both options are registered on the parser by the
 /// constructor (where the program would have registered them), opened by open() right after parsing,
@@ -116,7 +137,6 @@ struct Measures {
 /// Runs the configuration to its final time, calling `observe` (if given) on every sample from level 0
 /// on, and returns its measures. Throws std::runtime_error if the energy becomes non-finite (a value
 /// that cannot be computed is an error, never a nan in a table).
-Measures run_configuration(const Configuration& configuration,
-                           const std::function<void(const Sample&)>& observe = {});
+Measures run_configuration(const Configuration& configuration, const std::function<void(const Sample&)>& observe = {});
 
 }  // namespace mrm::repro
