@@ -111,7 +111,7 @@ $(DATA)/claims.tex $(DATA)/claims.md &: $(BUILD)/bin/check_claims | $(DATA)
 # One figure = one program experiments/X.cpp = one data file $(DATA)/X.dat (with the LaTeX values the
 # report quotes, $(DATA)/X.tex) = one gnuplot script figures/X.gp = one PDF $(FIGURES)/X.pdf.
 # The report paper/report.tex \input's the .tex fragments and includes the PDFs; latexmk builds it.
-FIGURE_NAMES := fig_contact_history fig_energy fig_convergence fig_time_error fig_ps_forms fig_profiles
+FIGURE_NAMES := fig_contact_history fig_energy fig_convergence fig_time_error fig_ps_forms fig_profiles fig_family
 FIGURE_PDFS := $(FIGURE_NAMES:%=$(FIGURES)/%.pdf)
 FIGURE_DATA := $(FIGURE_NAMES:%=$(DATA)/%.dat)
 FIGURE_TEX := $(FIGURE_NAMES:%=$(DATA)/%.tex)
