@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
       auto in_h = [h](double v) { return std::round(v / h * 1e9) / 1e9 + 0.0; };
       r.local = in_h(masses.local);
       r.uniform = in_h(masses.uniform);
-      r.predicted = in_h(mrm::predicted_period_change(masses));
+      r.predicted = in_h(mrm::predicted_period_change(masses.local, masses.uniform));
       r.predicted_eigen = mrm::predict_period(mesh, configuration.mass).period_error / h;
       r.first_impact_error = phase.first_impact_error / h;
       r.drift = *phase.drift_per_period / h;

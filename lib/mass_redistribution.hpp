@@ -65,20 +65,15 @@ MassRedistribution mass_redistribution_from_spec(const std::string& spec);
 /// the nodes that keep inertia.
 MassRedistribution mass_redistribution_from_spec(const std::string& spec, const UniformMesh& mesh);
 
-/// The two masses of the period law (mathematics.md §8), relative to Mod 3: `local`, added at the
-/// contact end beyond Mod 3's M̄_11 = 4h/3 (δm_loc), and `uniform`, spread uniformly (δm_glob).
+/// The two masses of the period law (mathematics.md §8), relative to Mod 3; the period changes by
+/// ΔP = predicted_period_change(local, uniform) (period_law.hpp) = 2 δm_loc + (3/2) δm_glob.
 struct PeriodLawMasses {
-  double local = 0.0;
-  double uniform = 0.0;
+  double local = 0.0;    ///< δm_loc: the mass at the contact end beyond Mod 3's M̄_11 = 4h/3
+  double uniform = 0.0;  ///< δm_glob: the mass spread uniformly over the bar
 };
 /// The split of a redistribution: the uniform excess read off the far end of the bar, the rest counted
 /// as local (exact for node1, beta, Mod 1/2/3; for spread:K it assumes Kh << L). Throws
 /// std::invalid_argument for N < 4, a massive contact node, or a far quarter without a uniform weight.
 PeriodLawMasses period_law_masses(const UniformMesh& mesh, const MassRedistribution& redistribution);
-/// δℓ_f = δm_loc + δm_glob/2: the change of the free length, and of the first impact time.
-double predicted_free_length_change(const PeriodLawMasses& masses);
-/// δℓ_c = δm_glob/2: the change of the contact length.
-double predicted_contact_length_change(const PeriodLawMasses& masses);
-/// ΔP = 2 δℓ_f + δℓ_c = 2 δm_loc + (3/2) δm_glob: the predicted drift of the impact times per period.
-double predicted_period_change(const PeriodLawMasses& masses);
+
 }  // namespace mrm
