@@ -41,7 +41,8 @@ int main(int argc, char** argv) {
     // 1. Options.
     long elements = 100;
     double courant = 0.5, dt = 0.0, final_time = 6.0, length = 1.0, amplitude = 0.5, beta = 0.25, restitution = 0.0;
-    std::string scheme = "cn", mass = "mod3", ps_form = "algebraic", initial = "consistent", output;
+    std::string scheme = "cn", mass = "mod3", ps_form = "algebraic", initial = "consistent", contact_velocity = "scheme",
+                output;
     bool no_timing = false;
     // The ranges below keep every quantity of the run (h, Δt², the matrices' entries, the energy a²L/2)
     // far from overflow and underflow of a double, and the memory (≈ 250 bytes per element) bounded.
@@ -80,6 +81,10 @@ int main(int argc, char** argv) {
     parser.add_choice("--initial-contact-node", "", "I",
                       "initial value of a massless contact node: solved from its algebraic row, or the interpolant",
                       {"consistent", "interpolant"}, &initial);
+    parser.add_choice("--contact-velocity", "", "V",
+                      "velocity of a massless contact node in the velocity measures: the scheme's own, or the "
+                      "backward difference (u0(t_n) - u0(t_n-1))/dt as GetFEM's demo_dynamic_contact_1D.py",
+                      {"scheme", "backward-difference"}, &contact_velocity);
     parser.add_string("--output", "-o", "FILE", "write the contact-point time series to FILE", &output);
     parser.add_flag("--no-timing", "", "leave out the wall time of the run (wall_seconds, the one value that varies "
                     "from run to run)", &no_timing);
@@ -124,6 +129,7 @@ int main(int argc, char** argv) {
     configuration.length = length;
     configuration.amplitude = amplitude;
     configuration.initial = mrm::initial_contact_node_by_name(initial);
+    configuration.contact_velocity = mrm::repro::contact_velocity_by_name(contact_velocity);
     const mrm::Index steps = mrm::steps_to_reach(final_time, step);
     const mrm::ExactSolution exact(length, amplitude);
     const bool massless = mrm::contact_node_is_massless(mrm::modified_mass(mesh, configuration.mass));

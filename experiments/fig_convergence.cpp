@@ -22,15 +22,12 @@
 // c ∈ (Δt = h, Δt = h/2); columns N h dt and the eight errors.
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <iostream>
 #include <memory>
 #include <mutex>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "options.hpp"
@@ -38,6 +35,7 @@
 #include "errors.hpp"
 #include "exact_solution.hpp"
 #include "configurations.hpp"
+#include "parallel.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
 #include "schemes.hpp"
@@ -110,37 +108,18 @@ int main(int argc, char** argv) {
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
 
-    // 4. The runs, on `threads` workers taking the next run from a shared counter. Each run writes only
-    // its own slot; the first exception stops the others and is rethrown here.
-    std::atomic<std::size_t> next{0};
-    std::atomic<bool> failed{false};
-    std::exception_ptr failure;
-    std::mutex failure_mutex, log_mutex;
-    auto worker = [&] {
-      while (!failed) {
-        const std::size_t k = next++;
-        if (k >= order.size()) return;
-        Run& r = runs[order[k]];
-        try {
-          r.errors = mrm::ErrorAccumulator::values(
-              mrm::repro::run_configuration(mrm::repro::paper_configuration(schemes[r.scheme], ps_form, masses[r.mass],
-                                                                            r.elements, courants[r.courant], final_time))
-                  .errors);
-          std::lock_guard<std::mutex> lock(log_mutex);
-          std::cerr << "fig_convergence: " << k + 1 << '/' << order.size() << ' ' << schemes[r.scheme] << ' '
-                    << masses[r.mass] << " dt/h=" << courants[r.courant] << " N=" << r.elements << '\n';
-        } catch (...) {
-          std::lock_guard<std::mutex> lock(failure_mutex);
-          if (!failure) failure = std::current_exception();
-          failed = true;
-        }
-      }
-    };
-    std::vector<std::thread> pool;
-    for (long t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+    // 4. The runs, on `threads` workers (repro/parallel.hpp). Each run writes only its own slot.
+    std::mutex log_mutex;
+    mrm::repro::parallel_for(order.size(), threads, [&](std::size_t k) {
+      Run& r = runs[order[k]];
+      r.errors = mrm::ErrorAccumulator::values(
+          mrm::repro::run_configuration(mrm::repro::paper_configuration(schemes[r.scheme], ps_form, masses[r.mass],
+                                                                        r.elements, courants[r.courant], final_time))
+              .errors);
+      std::lock_guard<std::mutex> lock(log_mutex);
+      std::cerr << "fig_convergence: " << k + 1 << '/' << order.size() << ' ' << schemes[r.scheme] << ' '
+                << masses[r.mass] << " dt/h=" << courants[r.courant] << " N=" << r.elements << '\n';
+    });
 
     // 5. The data blocks, in the fixed order of `runs` (scheme, mass, ratio, mesh).
     std::ostream& out = outputs.data();

@@ -105,6 +105,14 @@ class FigureOutputs {
   std::ostringstream values_;
 };
 
+/// The velocity of a massless contact node in the velocity measures. `scheme`: the scheme's own
+/// velocity recovery (the default). `backward_difference`: (u₀ⁿ − u₀ⁿ⁻¹)/Δt at every level n ≥ 1, as
+/// GetFEM's demo_dynamic_contact_1D.py does (mathematics.md §13), to compare with that code. A contact
+/// node with inertia keeps the scheme's velocity either way.
+enum class ContactVelocity { scheme, backward_difference };
+/// "scheme" or "backward-difference"; throws std::invalid_argument otherwise.
+ContactVelocity contact_velocity_by_name(const std::string& name);
+
 /// One run of the benchmark (mathematics.md §2): the bar (0, L) released from u⁰(x) = a (L − x), a
 /// scheme, a mass, a mesh of N elements and Δt (given, or C h), to the first level t_n ≥ T (or for a
 /// given number of steps).
@@ -119,6 +127,7 @@ struct Configuration {
   double length = 1.0;
   double amplitude = 0.5;
   InitialContactNode initial = InitialContactNode::consistent;
+  ContactVelocity contact_velocity = ContactVelocity::scheme;  ///< the contact node's velocity in the measures
 
   double step() const { return dt > 0 ? dt : courant * UniformMesh(length, elements).h(); }
 };
@@ -141,8 +150,7 @@ struct Measures {
 /// on, and returns its measures: the errors against `reference` if given (a closed form under test),
 /// else against the configuration's own exact solution. Throws std::runtime_error if the energy becomes
 /// non-finite (a value that cannot be computed is an error, never a nan in a table).
-Measures run_configuration(const Configuration& configuration,
-                           const std::function<void(const Sample&)>& observe = {},
+Measures run_configuration(const Configuration& configuration, const std::function<void(const Sample&)>& observe = {},
                            const ExactSolution* reference = nullptr);
 
 }  // namespace mrm::repro
