@@ -25,7 +25,6 @@
 #include <array>
 #include <cmath>
 #include <iostream>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -39,7 +38,6 @@
 #include "exact_solution.hpp"
 #include "mass_redistribution.hpp"
 #include "period_law.hpp"
-#include "phase.hpp"
 
 namespace cli = mrm::cli;
 
@@ -136,26 +134,26 @@ int main(int argc, char** argv) {
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t p, std::size_t q) { return runs[p].cost > runs[q].cost; });
 
-    // 4. The runs. Each writes only its own slot.
-    std::mutex log_mutex;
-    mrm::repro::parallel_for(order.size(), threads, [&](std::size_t k) {
-      Run& r = runs[order[k]];
+    // 4. The runs, on `threads` workers (repro/parallel.hpp). Each writes only its own slot. The phase
+    // is run_configuration's (lib/phase: the impacts read off the contact indicator, their errors
+    // against the exact impacts L + 3Lk, the least-squares drift per period).
+    mrm::repro::run_in_parallel(
+        order, threads,
+        [&](std::size_t k) {
+      Run& r = runs[k];
       const Member& member = members()[r.member];
       const mrm::Index n = meshes[r.mesh];
       const mrm::UniformMesh mesh(1.0, n);
       const double h = mesh.h();
       mrm::repro::Configuration configuration =
-          mrm::repro::paper_configuration("cn", "algebraic", "mod3", n, courants[r.courant], 3.0 * horizons[r.horizon]);
+          mrm::repro::paper_configuration("cn", "algebraic", member.spec(n), n, courants[r.courant],
+                                          exact.period() * static_cast<double>(horizons[r.horizon]));
       configuration.mass = mrm::mass_redistribution_from_spec(member.spec(n), mesh);
-      mrm::ImpactDetector detector(exact.length());
-      const mrm::repro::Measures measures = mrm::repro::run_configuration(
-          configuration, [&](const mrm::Sample& s) { detector.add(s.time, mrm::contact_indicator(s, h)); });
-      const mrm::PhaseMeasures phase = mrm::phase_measures(
-          detector.impacts(), mrm::benchmark_impact_times(exact, static_cast<std::size_t>(horizons[r.horizon])),
-          exact.period());
-      if (!phase.drift_per_period)
+      const mrm::repro::Measures measures = mrm::repro::run_configuration(configuration);
+      if (!measures.phase || !measures.phase->drift_per_period)
         throw std::runtime_error("fig_family: " + member.spec(n) + " at N = " + std::to_string(n) +
                                  ": fewer than two impacts, no drift can be measured");
+      const mrm::PhaseMeasures& phase = *measures.phase;
       const mrm::PeriodLawMasses masses = mrm::period_law_masses(mesh, configuration.mass);
       r.total_mass = mrm::total_mass(mesh, configuration.mass);
       // The split subtracts L from a sum of 3N + 1 entries (round-off of about N ulps of L, 1e-13 h here):
@@ -168,10 +166,13 @@ int main(int argc, char** argv) {
       r.first_impact_error = phase.first_impact_error / h;
       r.drift = *phase.drift_per_period / h;
       r.errors = mrm::ErrorAccumulator::values(measures.errors);
-      std::lock_guard<std::mutex> lock(log_mutex);
-      std::cerr << "fig_family: " << k + 1 << '/' << order.size() << ' ' << member.spec(n) << " N=" << n
-                << " dt/h=" << courants[r.courant] << " periods=" << horizons[r.horizon] << '\n';
-    });
+        },
+        [&](std::size_t position, std::size_t k) {
+          const Run& r = runs[k];
+          std::cerr << "fig_family: " << position << '/' << order.size() << ' '
+                    << members()[r.member].spec(meshes[r.mesh]) << " N=" << meshes[r.mesh]
+                    << " dt/h=" << courants[r.courant] << " periods=" << horizons[r.horizon] << '\n';
+        });
 
     // 5. The data blocks: block 4a + 2b + c for mesh a, Δt/h b, horizon c; one row per member.
     std::ostream& out = outputs.data();
