@@ -290,9 +290,10 @@ TEST_CASE("a bad mass option names the option and the allowed forms") {
 TEST_CASE("the backward-difference contact velocity changes the velocity measures only") {
   // The prediction: the displacement, stress and H¹ measures do not read the velocity, so they stay
   // bit for bit; the two velocity measures equal those accumulated by hand with V₀ⁿ replaced by
-  // (u₀ⁿ − u₀ⁿ⁻¹)/Δt, and differ from the library's (V₀ from the algebraic row, mathematics.md §7: the
-  // velocity of node 1 in flight, 0 in contact, where the difference quotient jumps at an impact).
-  // A mass with inertia at the contact node is left alone.
+  // (u₀ⁿ − u₀ⁿ⁻¹)/Δt. The L² one differs from the library's (V₀ from the algebraic row, mathematics.md
+  // §7: V₁ in flight, 0 in contact, where the difference quotient jumps at each impact); the L∞ one is a
+  // maximum over the levels and may be reached where both give V₀ = 0 (in contact), so only its
+  // equality with the hand computation is required. A mass with inertia at the contact node is left alone.
   Configuration c = paper_configuration("cn", "algebraic", "node1:7/6", 20, 0.5, 6.0);
   const Measures plain = run_configuration(c);
   c.contact_velocity = contact_velocity_by_name("backward-difference");
@@ -317,7 +318,7 @@ TEST_CASE("the backward-difference contact velocity changes the velocity measure
     CAPTURE(name);
     CHECK(b[k] == hand[k]);
     if (name.find("_v_") == std::string::npos) CHECK(a[k] == b[k]);
-    else CHECK(std::abs(a[k] - b[k]) > 1e-6);
+    if (name == "err_v_L2L2") CHECK(std::abs(a[k] - b[k]) > 1e-4 * a[k]);
   }
   Configuration consistent = paper_configuration("cn", "literal", "consistent", 20, 0.5, 3.0);
   const auto own_velocity = ErrorAccumulator::values(run_configuration(consistent).errors);
