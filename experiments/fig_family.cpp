@@ -129,10 +129,8 @@ int main(int argc, char** argv) {
             runs.push_back(
                 {m, a, b, c,
                  static_cast<double>(meshes[a] * meshes[a]) * static_cast<double>(horizons[c]) / courants[b]});
-    std::vector<std::size_t> order(runs.size());
-    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t p, std::size_t q) { return runs[p].cost > runs[q].cost; });
+    const std::vector<std::size_t> order =
+        mrm::repro::costliest_first(runs.size(), [&](std::size_t k) { return runs[k].cost; });
 
     // 4. The runs, on `threads` workers (repro/parallel.hpp). Each writes only its own slot. The phase
     // is run_configuration's (lib/phase: the impacts read off the contact indicator, their errors
@@ -140,32 +138,32 @@ int main(int argc, char** argv) {
     mrm::repro::run_in_parallel(
         order, threads,
         [&](std::size_t k) {
-      Run& r = runs[k];
-      const Member& member = members()[r.member];
-      const mrm::Index n = meshes[r.mesh];
-      const mrm::UniformMesh mesh(1.0, n);
-      const double h = mesh.h();
-      mrm::repro::Configuration configuration =
-          mrm::repro::paper_configuration("cn", "algebraic", member.spec(n), n, courants[r.courant],
-                                          exact.period() * static_cast<double>(horizons[r.horizon]));
-      configuration.mass = mrm::mass_redistribution_from_spec(member.spec(n), mesh);
-      const mrm::repro::Measures measures = mrm::repro::run_configuration(configuration);
-      if (!measures.phase || !measures.phase->drift_per_period)
-        throw std::runtime_error("fig_family: " + member.spec(n) + " at N = " + std::to_string(n) +
-                                 ": fewer than two impacts, no drift can be measured");
-      const mrm::PhaseMeasures& phase = *measures.phase;
-      const mrm::PeriodLawMasses masses = mrm::period_law_masses(mesh, configuration.mass);
-      r.total_mass = mrm::total_mass(mesh, configuration.mass);
-      // The split subtracts L from a sum of 3N + 1 entries (round-off of about N ulps of L, 1e-13 h here):
-      // rounded to 1e-9 h, far below anything measured.
-      auto in_h = [h](double v) { return std::round(v / h * 1e9) / 1e9 + 0.0; };
-      r.local = in_h(masses.local);
-      r.uniform = in_h(masses.uniform);
-      r.predicted = in_h(mrm::predicted_period_change(masses.local, masses.uniform));
-      r.predicted_eigen = mrm::predict_period(mesh, configuration.mass).period_error / h;
-      r.first_impact_error = phase.first_impact_error / h;
-      r.drift = *phase.drift_per_period / h;
-      r.errors = mrm::ErrorAccumulator::values(measures.errors);
+          Run& r = runs[k];
+          const Member& member = members()[r.member];
+          const mrm::Index n = meshes[r.mesh];
+          const mrm::UniformMesh mesh(1.0, n);
+          const double h = mesh.h();
+          mrm::repro::Configuration configuration =
+              mrm::repro::paper_configuration("cn", "algebraic", member.spec(n), n, courants[r.courant],
+                                              exact.period() * static_cast<double>(horizons[r.horizon]));
+          configuration.mass = mrm::mass_redistribution_from_spec(member.spec(n), mesh);
+          const mrm::repro::Measures measures = mrm::repro::run_configuration(configuration);
+          if (!measures.phase || !measures.phase->drift_per_period)
+            throw std::runtime_error("fig_family: " + member.spec(n) + " at N = " + std::to_string(n) +
+                                     ": fewer than two impacts, no drift can be measured");
+          const mrm::PhaseMeasures& phase = *measures.phase;
+          const mrm::PeriodLawMasses masses = mrm::period_law_masses(mesh, configuration.mass);
+          r.total_mass = mrm::total_mass(mesh, configuration.mass);
+          // The split subtracts L from a sum of 3N + 1 entries (round-off of about N ulps of L, 1e-13 h here):
+          // rounded to 1e-9 h, far below anything measured.
+          auto in_h = [h](double v) { return std::round(v / h * 1e9) / 1e9 + 0.0; };
+          r.local = in_h(masses.local);
+          r.uniform = in_h(masses.uniform);
+          r.predicted = in_h(mrm::predicted_period_change(masses.local, masses.uniform));
+          r.predicted_eigen = mrm::predict_period(mesh, configuration.mass).period_error / h;
+          r.first_impact_error = phase.first_impact_error / h;
+          r.drift = *phase.drift_per_period / h;
+          r.errors = mrm::ErrorAccumulator::values(measures.errors);
         },
         [&](std::size_t position, std::size_t k) {
           const Run& r = runs[k];

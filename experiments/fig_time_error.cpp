@@ -72,7 +72,7 @@ constexpr double order_tolerance = 0.2;
 struct Series {
   long elements, reference_ratio;
   mrm::MassRedistribution mass;  ///< the --mass spec, checked on this mesh
-  std::vector<long> ratio;  ///< m_j
+  std::vector<long> ratio;       ///< m_j
   // Results, per scheme s and step j at s * ratio.size() + j.
   std::vector<std::array<double, 8>> differences;
   std::vector<long> mismatched;

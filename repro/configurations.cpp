@@ -108,7 +108,8 @@ Measures run_configuration(const Configuration& c, const std::function<void(cons
   m.energy_min = std::numeric_limits<double>::infinity();
   m.energy_max = -m.energy_min;
   // The backward difference replaces the contact node's entry of a copy of the velocity (level ≥ 1).
-  const bool difference = c.contact_velocity == ContactVelocity::backward_difference && simulation.massless_contact_node();
+  const bool difference =
+      c.contact_velocity == ContactVelocity::backward_difference && simulation.massless_contact_node();
   Eigen::VectorXd velocity;
   double u0_previous = 0;
   run(simulation, m.steps, [&](const Sample& s) {
