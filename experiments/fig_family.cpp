@@ -248,6 +248,11 @@ int main(int argc, char** argv) {
           mrm::tex_define(defs, "family:" + where + ":gap", mrm::tex_number(worst_gap, 2));
         }
     mrm::tex_define(defs, "family:members", std::to_string(members().size()));
+    // The parameters the prose names (the keys above carry them too, so that a change shows at once).
+    mrm::tex_define(defs, "family:Ncoarse", std::to_string(meshes.front()));
+    mrm::tex_define(defs, "family:Nfine", std::to_string(meshes.back()));
+    mrm::tex_define(defs, "family:Tshort", std::to_string(horizons.front()));
+    mrm::tex_define(defs, "family:Tlong", std::to_string(horizons.back()));
     outputs.commit();
     return 0;
   });
