@@ -177,21 +177,17 @@ int main(int argc, char** argv) {
                             "massless contact node (allowed: beta >= 1/4; below, u0 - u1 grows at every step of free "
                             "flight); use --ps-form algebraic or --mass consistent");
 
-    // The mass is checked on the mesh of the run (a spread over more nodes than the mesh has, a matrix
-    // that is not positive definite): a bad value fails here, before any file is touched.
+    // 2. The output, opened now so that an unwritable path fails before the run.
+    std::unique_ptr<cli::AtomicFile> series;
+    if (parser.given("--output")) series = std::make_unique<cli::AtomicFile>(output, "--output");
+
+    // 3. Mesh, mass, scheme; Δt derived from h in this one place.
     mrm::repro::Configuration configuration;
     configuration.benchmark = benchmark;
     configuration.data = data;
     configuration.length = length;
     configuration.amplitude = amplitude;
     const mrm::UniformMesh mesh(configuration.bar_length(), elements);
-    configuration.mass = mrm::repro::mass_from_option("--mass", mass, mesh);
-
-    // 2. The output, opened now so that an unwritable path fails before the run.
-    std::unique_ptr<cli::AtomicFile> series;
-    if (parser.given("--output")) series = std::make_unique<cli::AtomicFile>(output, "--output");
-
-    // 3. Mesh, mass, scheme; Δt derived from h in this one place.
     const double step = parser.given("--dt") ? dt : courant * mesh.h();
     if (!(step <= largest_courant * mesh.h()))
       throw cli::UsageError("--dt: " + cli::format_real(step) + " is more than 1e6 h = " +
@@ -201,6 +197,10 @@ int main(int argc, char** argv) {
     if (parser.given("--output"))
       cli::require_rows("--final-time", static_cast<double>(steps) + 1,
                         cli::format_real(static_cast<double>(steps)) + " steps");
+    // The mass, checked on the mesh of the run (a spread over more nodes than the mesh has, a matrix
+    // that is not positive definite) once the mesh is known to fit in memory, before the run: a bad
+    // value exits 2 and leaves no output behind.
+    configuration.mass = mrm::repro::mass_from_option("--mass", mass, mesh);
     dt = step;  // the header echoes the effective step
     configuration.scheme.scheme = mrm::scheme_by_name(scheme);
     configuration.scheme.beta = beta;

@@ -18,8 +18,9 @@
 //   fig_family --output output/data/fig_family.dat --tex output/data/fig_family.tex
 //   fig_family --threads 1 --output f.dat
 //
-// Description. Steps: (1) options; (2) outputs; (3) the list of runs, costliest first; (4) the runs,
-// on --threads workers (repro/parallel.hpp); (5) the data blocks, one per (N, Δt/h, horizon), in a
+// Description. Steps: (1) options; (2) outputs; (3) the list of runs, one per (member, N, Δt/h) to the
+// longest horizon (the shorter ones are its prefixes), costliest first; (4) the runs, on --threads
+// workers (repro/parallel.hpp); (5) the data blocks, one per (N, Δt/h, horizon), in a
 // fixed order, and the values the report quotes. The output does not depend on the number of threads.
 #include <algorithm>
 #include <array>
@@ -37,6 +38,7 @@
 #include "errors.hpp"
 #include "exact_solution.hpp"
 #include "mass_redistribution.hpp"
+#include "phase.hpp"
 #include "period_law.hpp"
 
 namespace cli = mrm::cli;
@@ -87,7 +89,6 @@ std::string key_of(const std::string& label) {
 
 struct Run {
   std::size_t member, mesh, courant, horizon;
-  double cost;
   // results
   double total_mass = 0, local = 0, uniform = 0, predicted = 0, predicted_eigen = 0;
   double first_impact_error = 0, drift = 0;
@@ -120,56 +121,85 @@ int main(int argc, char** argv) {
     const std::size_t reference_member = 2;    // Mod 3
     if (members()[reference_member].label != "mod3") throw std::logic_error("fig_family: Mod 3 is not member 2");
 
-    // 3. The runs, costliest first (cost ∝ N² T / C).
+    // 3. One run per (member, mesh, Δt/h), to the longest horizon: a shorter horizon is a prefix of it
+    // (run_configuration's horizons give the errors of the run stopped there, bit for bit, and the
+    // impacts up to its last level are those of the shorter run). `runs` holds the results per
+    // (mesh, Δt/h, horizon, member), in the order of the data blocks; the jobs go costliest first
+    // (cost ∝ N² T / C).
     std::vector<Run> runs;
     for (std::size_t a = 0; a < meshes.size(); ++a)
       for (std::size_t b = 0; b < courants.size(); ++b)
         for (std::size_t c = 0; c < horizons.size(); ++c)
-          for (std::size_t m = 0; m < members().size(); ++m)
-            runs.push_back(
-                {m, a, b, c,
-                 static_cast<double>(meshes[a] * meshes[a]) * static_cast<double>(horizons[c]) / courants[b]});
+          for (std::size_t m = 0; m < members().size(); ++m) runs.push_back({m, a, b, c});
+    const auto run_index = [&](std::size_t a, std::size_t b, std::size_t c, std::size_t m) {
+      return ((a * courants.size() + b) * horizons.size() + c) * members().size() + m;
+    };
+    struct Job {
+      std::size_t member, mesh, courant;
+      double cost;
+    };
+    std::vector<Job> jobs;
+    for (std::size_t a = 0; a < meshes.size(); ++a)
+      for (std::size_t b = 0; b < courants.size(); ++b)
+        for (std::size_t m = 0; m < members().size(); ++m)
+          jobs.push_back(
+              {m, a, b,
+               static_cast<double>(meshes[a] * meshes[a]) * static_cast<double>(horizons.back()) / courants[b]});
     const std::vector<std::size_t> order =
-        mrm::repro::costliest_first(runs.size(), [&](std::size_t k) { return runs[k].cost; });
+        mrm::repro::costliest_first(jobs.size(), [&](std::size_t k) { return jobs[k].cost; });
 
-    // 4. The runs, on `threads` workers (repro/parallel.hpp). Each writes only its own slot. The phase
-    // is run_configuration's (lib/phase: the impacts read off the contact indicator, their errors
-    // against the exact impacts L + 3Lk, the least-squares drift per period).
+    // 4. The runs, on `threads` workers (repro/parallel.hpp). Each writes only its own slots. The phase
+    // is lib/phase's, as in run_configuration: the impacts read off the contact indicator, their errors
+    // against the exact impacts L + 3Lk, the least-squares drift per period.
     mrm::repro::run_in_parallel(
         order, threads,
         [&](std::size_t k) {
-          Run& r = runs[k];
-          const Member& member = members()[r.member];
-          const mrm::Index n = meshes[r.mesh];
+          const Job& job = jobs[k];
+          const Member& member = members()[job.member];
+          const mrm::Index n = meshes[job.mesh];
           const mrm::UniformMesh mesh(1.0, n);
           const double h = mesh.h();
           mrm::repro::Configuration configuration =
-              mrm::repro::paper_configuration("cn", "algebraic", member.spec(n), n, courants[r.courant],
-                                              exact.period() * static_cast<double>(horizons[r.horizon]));
+              mrm::repro::paper_configuration("cn", "algebraic", member.spec(n), n, courants[job.courant],
+                                              exact.period() * static_cast<double>(horizons.back()));
           configuration.mass = mrm::mass_redistribution_from_spec(member.spec(n), mesh);
+          for (std::size_t c = 0; c + 1 < horizons.size(); ++c)
+            configuration.horizons.push_back(exact.period() * static_cast<double>(horizons[c]));
           const mrm::repro::Measures measures = mrm::repro::run_configuration(configuration);
-          if (!measures.phase || !measures.phase->drift_per_period)
-            throw std::runtime_error("fig_family: " + member.spec(n) + " at N = " + std::to_string(n) +
-                                     ": fewer than two impacts, no drift can be measured");
-          const mrm::PhaseMeasures& phase = *measures.phase;
+          const double dt = configuration.step();
           const mrm::PeriodLawMasses masses = mrm::period_law_masses(mesh, configuration.mass);
-          r.total_mass = mrm::total_mass(mesh, configuration.mass);
           // The split subtracts L from a sum of 3N + 1 entries (round-off of about N ulps of L, 1e-13 h here):
           // rounded to 1e-9 h, far below anything measured.
           auto in_h = [h](double v) { return std::round(v / h * 1e9) / 1e9 + 0.0; };
-          r.local = in_h(masses.local);
-          r.uniform = in_h(masses.uniform);
-          r.predicted = in_h(mrm::predicted_period_change(masses.local, masses.uniform));
-          r.predicted_eigen = mrm::predict_period(mesh, configuration.mass).period_error / h;
-          r.first_impact_error = phase.first_impact_error / h;
-          r.drift = *phase.drift_per_period / h;
-          r.errors = mrm::ErrorAccumulator::values(measures.errors);
+          const double predicted_eigen = mrm::predict_period(mesh, configuration.mass).period_error / h;
+          for (std::size_t c = 0; c < horizons.size(); ++c) {
+            Run& r = runs[run_index(job.mesh, job.courant, c, job.member)];
+            const double end =
+                static_cast<double>(mrm::steps_to_reach(exact.period() * static_cast<double>(horizons[c]), dt)) * dt;
+            std::vector<double> impacts;
+            for (double t : measures.impacts)
+              if (t <= end) impacts.push_back(t);
+            if (impacts.size() < 2)
+              throw std::runtime_error("fig_family: " + member.spec(n) + " at N = " + std::to_string(n) +
+                                       ": fewer than two impacts, no drift can be measured");
+            const mrm::PhaseMeasures phase =
+                mrm::phase_measures(impacts, mrm::benchmark_impact_times(exact, impacts.size()), exact.period());
+            r.total_mass = mrm::total_mass(mesh, configuration.mass);
+            r.local = in_h(masses.local);
+            r.uniform = in_h(masses.uniform);
+            r.predicted = in_h(mrm::predicted_period_change(masses.local, masses.uniform));
+            r.predicted_eigen = predicted_eigen;
+            r.first_impact_error = phase.first_impact_error / h;
+            r.drift = *phase.drift_per_period / h;
+            r.errors =
+                mrm::ErrorAccumulator::values(c + 1 < horizons.size() ? measures.horizon_errors[c] : measures.errors);
+          }
         },
         [&](std::size_t position, std::size_t k) {
-          const Run& r = runs[k];
+          const Job& job = jobs[k];
           std::cerr << "fig_family: " << position << '/' << order.size() << ' '
-                    << members()[r.member].spec(meshes[r.mesh]) << " N=" << meshes[r.mesh]
-                    << " dt/h=" << courants[r.courant] << " periods=" << horizons[r.horizon] << '\n';
+                    << members()[job.member].spec(meshes[job.mesh]) << " N=" << meshes[job.mesh]
+                    << " dt/h=" << courants[job.courant] << " periods=" << horizons.back() << '\n';
         });
 
     // 5. The data blocks: block 4a + 2b + c for mesh a, Δt/h b, horizon c; one row per member.
