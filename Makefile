@@ -126,7 +126,7 @@ ENERGY_SCHEMES_VIEWS := history map measures
 # report quotes, $(DATA)/X.tex) = one gnuplot script figures/X.gp = one PDF $(FIGURES)/X.pdf.
 # The report paper/report.tex \input's the .tex fragments and includes the PDFs; latexmk builds it.
 FIGURE_NAMES := fig_contact_history fig_energy fig_convergence fig_time_error fig_ps_forms fig_profiles fig_phase \
-                fig_stability_map fig_smooth_convergence fig_smooth_benchmarks \
+                fig_stability_map fig_smooth_convergence fig_smooth_benchmarks fig_family \
                 $(SWEEP_MAPS) $(ENERGY_SCHEMES_VIEWS:%=fig_energy_schemes_%)
 FIGURE_PDFS := $(FIGURE_NAMES:%=$(FIGURES)/%.pdf)
 FIGURE_DATA := $(FIGURE_NAMES:%=$(DATA)/%.dat)

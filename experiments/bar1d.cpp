@@ -5,7 +5,8 @@
 // solution (mathematics.md §2, the default), or the smooth S1 (smooth-impact) and S2 (grazing) of
 // mathematics.md §11 — or from samples x, u⁰, v⁰ read from a file (--initial-data), discretised with P1
 // elements and a Lagrange multiplier at the contact node, a mass matrix (consistent, or redistributed by
-// Mod 1, 2 or 3) and one time scheme (Crank–Nicolson, backward Euler, Paoli–Schatzman, or the
+// Mod 1, 2 or 3 or another member of the weighted family of mathematics.md §3: node1:X, spread:K,
+// beta:B) and one time scheme (Crank–Nicolson, backward Euler, Paoli–Schatzman, or the
 // energy-conserving Crank–Nicolson and Crank–Nicolson with a θ-step at each status change of
 // mathematics.md §12). It prints the relative errors of mathematics.md §5 against the exact solution (the
 // closed form for the paper's benchmark, the characteristic solution of mathematics.md §10 for any other
@@ -25,6 +26,8 @@
 //   bar1d --scheme be --mass consistent --elements 200 --courant 1
 //   bar1d --scheme ec --mass mod3 --elements 16 --courant 10 --final-time 300
 //   bar1d --scheme cn-switch --switch-theta 0.75 --mass mod1 --elements 400
+//   bar1d --mass node1:7/6 --initial-contact-node interpolant --contact-velocity backward-difference
+//         --elements 20 --dt 0.005 --final-time 12      (GetFEM's demo_dynamic_contact_1D.py, CN)
 //
 // Description. Steps: (1) read the options and the initial-data file (so that bad values fail before
 // any work); (2) open the output file (so that a bad path fails before the run); (3) build the mesh,
@@ -56,7 +59,8 @@ int main(int argc, char** argv) {
     long elements = 100;
     double courant = 0.5, dt = 0.0, final_time = 6.0, length = 1.0, amplitude = 0.5, beta = 0.25, restitution = 0.0,
            switch_theta = 1.0;
-    std::string scheme = "cn", mass = "mod3", ps_form = "algebraic", initial = "consistent", output;
+    std::string scheme = "cn", mass = "mod3", ps_form = "algebraic", initial = "consistent",
+                contact_velocity = "algebraic", output;
     std::string benchmark = "paper", initial_data;
     bool no_timing = false;
     // The ranges below keep every quantity of the run (h, Δt², the matrices' entries, the energy a²L/2)
@@ -110,8 +114,7 @@ int main(int argc, char** argv) {
                     "cn-switch: theta in [0.5, 1] of the step that replaces a Crank-Nicolson step across a change "
                     "of the contact status (1: backward Euler, the energy never increases)",
                     &switch_theta, cli::in_closed_range(0.5, 1));
-    parser.add_choice("--mass", "-m", "M", "mass matrix: Mod 1/2/3 or the consistent P1 mass",
-                      {"mod1", "mod2", "mod3", "consistent"}, &mass);
+    parser.add_string("--mass", "-m", "M", mrm::repro::mass_option_help("mass matrix"), &mass);
     parser.add_real("--beta", "-b", "B",
                     "Paoli-Schatzman's beta, in [0, 1e6]; at least 1/4 with --ps-form literal and a massless "
                     "contact node",
@@ -125,6 +128,11 @@ int main(int argc, char** argv) {
     parser.add_choice("--initial-contact-node", "", "I",
                       "initial value of a massless contact node: solved from its algebraic row, or the interpolant",
                       {"consistent", "interpolant"}, &initial);
+    parser.add_choice("--contact-velocity", "", "V",
+                      "velocity of a massless contact node in the velocity measures: the library's, from the "
+                      "algebraic row (mathematics.md sec. 7), or the backward difference (u0(t_n) - u0(t_n-1))/dt "
+                      "as GetFEM's demo_dynamic_contact_1D.py",
+                      {"algebraic", "backward-difference"}, &contact_velocity);
     parser.add_string("--output", "-o", "FILE", "write the contact-point time series to FILE", &output);
     parser.add_flag("--no-timing", "",
                     "leave out the wall time of the run (wall_seconds, the one value that varies "
@@ -145,11 +153,11 @@ int main(int argc, char** argv) {
     if (mass == "consistent" && !parser.given("--ps-form")) ps_form = "literal";
     if (mass == "consistent" && scheme == "ps" && ps_form == "algebraic")
       throw cli::UsageError(
-          "--ps-form: algebraic needs a massless contact node (--mass mod1, mod2 or mod3); "
+          "--ps-form: algebraic needs a massless contact node (any --mass but consistent); "
           "with --mass consistent use --ps-form literal");
     if (scheme == "ec" && mass == "consistent")
       throw cli::UsageError(
-          "--scheme: ec needs a massless contact node (--mass mod1, mod2 or mod3): with the "
+          "--scheme: ec needs a massless contact node (any --mass but consistent): with the "
           "consistent mass the contact energy has no discrete gradient");
     if (parser.given("--switch-theta") && scheme != "cn-switch")
       throw cli::UsageError("--switch-theta: only with --scheme cn-switch (allowed: omit it)");
@@ -189,17 +197,21 @@ int main(int argc, char** argv) {
     if (parser.given("--output"))
       cli::require_rows("--final-time", static_cast<double>(steps) + 1,
                         cli::format_real(static_cast<double>(steps)) + " steps");
+    // The mass, checked on the mesh of the run (a spread over more nodes than the mesh has, a matrix
+    // that is not positive definite) once the mesh is known to fit in memory, before the run: a bad
+    // value exits 2 and leaves no output behind.
+    configuration.mass = mrm::repro::mass_from_option("--mass", mass, mesh);
     dt = step;  // the header echoes the effective step
     configuration.scheme.scheme = mrm::scheme_by_name(scheme);
     configuration.scheme.beta = beta;
     configuration.scheme.restitution = restitution;
     configuration.scheme.contact_row = mrm::contact_row_by_name(ps_form);
     configuration.scheme.switch_theta = switch_theta;
-    configuration.mass = mrm::mass_redistribution_by_name(mass);
     configuration.elements = elements;
     configuration.dt = step;
     configuration.final_time = final_time;
     configuration.initial = mrm::initial_contact_node_by_name(initial);
+    configuration.contact_velocity = mrm::repro::contact_velocity_by_name(contact_velocity);
     const std::shared_ptr<const mrm::ReferenceSolution> reference =
         mrm::repro::configuration_reference(configuration, mrm::repro::reference_horizon(steps, step));
     const mrm::ReferenceSolution& exact = *reference;

@@ -114,10 +114,8 @@ int main(int argc, char** argv) {
             runs.push_back(
                 {s, m, c, l, n, static_cast<double>(mrm::steps_to_reach(final_time, courants[c] * h)) * n, {}});
           }
-    std::vector<std::size_t> order(runs.size());
-    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
+    const std::vector<std::size_t> order =
+        mrm::repro::costliest_first(runs.size(), [&](std::size_t k) { return runs[k].cost; });
 
     // 4. The runs, on `threads` workers (repro/parallel: each run writes only its own slot).
     mrm::repro::run_in_parallel(

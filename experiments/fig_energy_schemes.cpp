@@ -182,10 +182,8 @@ int main(int argc, char** argv) {
         for (const char* s : schemes)
           for (const std::string& m : masses) runs.push_back(make_run(s, m, n, 0.5, measure_periods * period));
     }
-    std::vector<std::size_t> order(runs.size());
-    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
+    const std::vector<std::size_t> order =
+        mrm::repro::costliest_first(runs.size(), [&](std::size_t k) { return runs[k].cost; });
     mrm::repro::run_in_parallel(
         order, threads, [&](std::size_t k) { execute(runs[k], switch_theta); },
         [&](std::size_t position, std::size_t k) {

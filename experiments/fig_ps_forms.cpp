@@ -57,7 +57,8 @@ int main(int argc, char** argv) {
                        mrm::repro::elements_range());
     parser.add_real("--courant", "-c", "C", "time step dt = C h (0 < C <= 1e6)", &courant, mrm::repro::courant_range());
     parser.add_real("--final-time", "-T", "T", "final time (> 0); the period is 3", &final_time, cli::positive());
-    parser.add_choice("--mass", "-m", "M", "the redistributed mass", {"mod1", "mod2", "mod3"}, &mass);
+    parser.add_string("--mass", "-m", "M", mrm::repro::mass_option_help("the redistributed mass (not consistent)"),
+                      &mass);
     parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve, in [10, 1e6]",
                        &exact_points, cli::in_closed_range(10, cli::max_curve_points));
     mrm::repro::FigureOutputs outputs(parser, "fig_ps_forms",
@@ -65,6 +66,7 @@ int main(int argc, char** argv) {
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
     const mrm::UniformMesh mesh(1.0, elements);
+    const mrm::MassRedistribution redistribution = mrm::repro::mass_from_option("--mass", mass, mesh, true);
     const double dt = courant * mesh.h();
     const mrm::Index steps = cli::checked_steps("--final-time", final_time, dt, "--courant");
     const mrm::ExactSolution exact;
@@ -83,6 +85,7 @@ int main(int argc, char** argv) {
     out << "# fig_ps_forms: Paoli-Schatzman (1/4, 0), literal and algebraic contact row (mathematics.md sec. 4)\n";
     parser.echo(out);
     out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt) << "\n# steps = " << steps
+        << "\n# total_mass = " << cli::format_real(mrm::total_mass(mesh, redistribution))
         << "\n# blocks: 0 exact; 1 algebraic row, " << mass << "; 2 literal row, " << mass
         << "; 3 literal row, consistent mass\n";
 
@@ -106,7 +109,7 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "ps:elements", std::to_string(elements));
     mrm::tex_define(defs, "ps:dt", mrm::tex_number(dt, 3));
     mrm::tex_define(defs, "ps:T", mrm::tex_number(final_time, 3));
-    mrm::tex_define(defs, "ps:mass", mass == "mod1" ? "Mod 1" : mass == "mod2" ? "Mod 2" : "Mod 3");
+    mrm::tex_define(defs, "ps:mass", mrm::repro::mass_label(mass));
     mrm::tex_define(defs, "ps:periods", std::to_string(periods));
     int block = 1;
     for (const Variant& v : variants) {

@@ -62,6 +62,7 @@
 #include "convergence.hpp"
 #include "errors.hpp"
 #include "options.hpp"
+#include "parallel.hpp"
 #include "report_values.hpp"
 #include "smooth_benchmarks.hpp"
 #include "table.hpp"
@@ -166,10 +167,8 @@ int main(int argc, char** argv) {
               runs.push_back(
                   {b, s, m, c, l, n, static_cast<double>(mrm::steps_to_reach(final_time, courants[c] * h)) * n, {}});
             }
-    std::vector<std::size_t> order(runs.size());
-    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
+    const std::vector<std::size_t> order =
+        mrm::repro::costliest_first(runs.size(), [&](std::size_t k) { return runs[k].cost; });
 
     // 4. The runs (repro/configurations: the scheme against the characteristic solution, tabulated on the
     // lattice of h and Δt), on `threads` workers taking the next run from a shared counter. Each run

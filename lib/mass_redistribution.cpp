@@ -21,11 +21,15 @@
 /// 1 + 2h/(3L) + O(h²), of the form 1 + O(h) the analysis asks for (the OCR of the paper reads "o(h)").
 #include "mass_redistribution.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 
 #include <doctest/doctest.h>
+
+#include "period_law.hpp"
 
 namespace mrm {
 
@@ -51,7 +55,7 @@ MassRedistribution mod2() {
 // nodes i = 1..k means the weight w_ii = 1 + 1/k there (node N, clamped, is never among them).
 MassRedistribution spread_over_first_nodes(Index k) {
   if (k < 1) throw std::invalid_argument("spread_over_first_nodes: k must be >= 1");
-  return {"spread" + std::to_string(k),
+  return {"spread:" + std::to_string(k),
           "the contact node's mass spread on the diagonal of nodes 1.." + std::to_string(k),
           [k](Index i, Index j, const UniformMesh& mesh) {
             if (i == 0 || j == 0) return 0.0;
@@ -193,6 +197,347 @@ TEST_CASE("a redistribution without a weight function is rejected with its name"
   CHECK_THROWS_WITH_AS(modified_mass(mesh, empty), doctest::Contains("\"empty\": no weight function"),
                        std::invalid_argument);
   CHECK_THROWS_AS(total_mass(mesh, empty), std::invalid_argument);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// More members of the family: a chosen mass on node 1, and a fraction on node 1 with the rest uniform.
+//
+// node1(X): M̄_11 = X h, every other entry as Mod 1 (no renormalisation of the total mass). Since
+// M_11 = 2h/3 this is the weight w_11 = 3X/2; Mod 1 is node1(2/3), Mod 3 is node1(4/3), and the total
+// mass is L − 2h/3 + (X − 2/3) h. GetFEM's demo_dynamic_contact_1D.py uses X = 7/6 ("redistributed")
+// and X = 7/12 ("singular dynamic"), mathematics.md §13.
+//
+// beta(B): M̄ = w·(Mod 1) + B h e₁e₁ᵀ, a point mass B h on node 1 and the rest of the lost mass spread
+// uniformly. Mod 1's total is L − 2h/3, so keeping the total L asks w (L − 2h/3) + B h = L, i.e.
+//
+//     w = (L − B h) / (L − 2h/3),        w_11 = w + B h / M_11 = w + 3B/2,
+//
+// and w = 1 + (2/3 − B) h / L + O(h²) is of the paper's form 1 + O(h). B = 0 gives w = L/(L − 2h/3),
+// which is Mod 2; B = 2/3 gives w = 1, w_11 = 2, which is Mod 3. The uniform weight multiplies every
+// entry of rows and columns 1..N (node N included, as for Mod 2), so that the total mass is L exactly.
+//
+// Whether a member is admissible depends on the mesh: w > 0 needs B < L/h, and the matrix must be
+// positive definite on nodes 1..N−1 (node1(X) needs X above a threshold that tends to
+// (2 − √3)/6 ≈ 0.045 as N grows). modified_mass checks this for the mesh at hand; the spec parser below
+// calls it when a mesh is given.
+
+namespace {
+
+// The shortest decimal text that reads back to the same double (std::to_chars without a precision).
+std::string shortest_decimal(double value) {
+  char buffer[64];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  if (error != std::errc()) throw std::logic_error("shortest_decimal: buffer too small");
+  return std::string(buffer, end);
+}
+
+}  // namespace
+
+MassRedistribution node1(double x) {
+  if (!(std::isfinite(x) && x > 0.0))
+    throw std::invalid_argument("node1: X must be a positive finite number (M̄_11 = X h)");
+  return {"node1:" + shortest_decimal(x),
+          "M̄_11 = " + shortest_decimal(x) + " h on node 1, every other entry as Mod 1 (total not renormalised)",
+          [x](Index i, Index j, const UniformMesh&) {
+            if (i == 0 || j == 0) return 0.0;
+            return (i == 1 && j == 1) ? 1.5 * x : 1.0;
+          }};
+}
+
+MassRedistribution beta(double b) {
+  if (!std::isfinite(b)) throw std::invalid_argument("beta: B must be a finite number");
+  return {"beta:" + shortest_decimal(b),
+          "a point mass " + shortest_decimal(b) + " h on node 1, the rest of the lost mass spread uniformly (total L)",
+          [b](Index i, Index j, const UniformMesh& mesh) {
+            if (i == 0 || j == 0) return 0.0;
+            const double h = mesh.h();
+            const double w = (mesh.length - b * h) / (mesh.length - 2.0 * h / 3.0);
+            return (i == 1 && j == 1) ? w + 1.5 * b : w;
+          }};
+}
+
+// ---------------------------------------------------------------------------------------------------
+// The spec strings of the command line: mod1 | mod2 | mod3 | consistent | node1:X | spread:K | beta:B.
+// X and B are a decimal ("1.25", "-0.5", "1e-1") or a fraction of two decimals ("7/6"); K is a positive
+// integer. Without a mesh, only what is wrong on every mesh is rejected (unparseable, X ≤ 0, K < 1);
+// with the mesh the run will use, also K > N − 1 and a matrix that is not positive definite on the
+// nodes that keep inertia. The redistribution's name is the spec as given, so that a data header
+// shows what the user typed ("node1:7/6").
+
+std::string mass_redistribution_forms() {
+  return "consistent, mod1, mod2, mod3, node1:X, spread:K, beta:B; X and B decimals or fractions such as "
+         "7/6, X > 0, K an integer in 1..N-1, and the mass positive definite on nodes 1..N-1";
+}
+
+namespace {
+
+[[noreturn]] void reject_spec(const std::string& spec, const std::string& why) {
+  throw std::invalid_argument("\"" + spec + "\": " + why + " (allowed: " + mass_redistribution_forms() + ")");
+}
+
+// A finite decimal, the whole text: digits, one optional sign, point and exponent (no spaces, no
+// "inf", "nan" or hexadecimal). Returns false if the text is not of that form.
+bool parse_decimal(const std::string& text, double& value) {
+  if (text.empty() || text.find_first_not_of("0123456789.eE+-") != std::string::npos) return false;
+  const char* first = text.data();
+  const char* last = first + text.size();
+  if (*first == '+') ++first;  // from_chars does not take a leading '+'
+  const auto [end, error] = std::from_chars(first, last, value);
+  return error == std::errc() && end == last && std::isfinite(value);
+}
+
+// A decimal or a fraction p/q of two decimals with q ≠ 0 and a finite quotient.
+bool parse_fraction(const std::string& text, double& value) {
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos) return parse_decimal(text, value);
+  double p = 0.0, q = 0.0;
+  if (!parse_decimal(text.substr(0, slash), p) || !parse_decimal(text.substr(slash + 1), q) || q == 0.0) return false;
+  value = p / q;
+  return std::isfinite(value);
+}
+
+}  // namespace
+
+MassRedistribution mass_redistribution_from_spec(const std::string& spec) {
+  for (const std::string& name : mass_redistribution_names())
+    if (spec == name) return mass_redistribution_by_name(name);
+  const std::size_t colon = spec.find(':');
+  if (colon == std::string::npos) reject_spec(spec, "unknown mass choice");
+  const std::string kind = spec.substr(0, colon), value = spec.substr(colon + 1);
+  MassRedistribution r;
+  if (kind == "node1" || kind == "beta") {
+    double v = 0.0;
+    if (!parse_fraction(value, v)) reject_spec(spec, "\"" + value + "\" is not a decimal or a fraction");
+    if (kind == "node1" && !(v > 0.0)) reject_spec(spec, "X must be positive");
+    r = kind == "node1" ? node1(v) : beta(v);
+  } else if (kind == "spread") {
+    long long k = 0;
+    const char* last = value.data() + value.size();
+    const auto [end, error] = std::from_chars(value.data(), last, k);
+    if (value.empty() || error != std::errc() || end != last) reject_spec(spec, "K is not an integer");
+    if (k < 1) reject_spec(spec, "K must be at least 1");
+    r = spread_over_first_nodes(static_cast<Index>(k));
+  } else {
+    reject_spec(spec, "unknown mass choice");
+  }
+  r.name = spec;
+  return r;
+}
+
+MassRedistribution mass_redistribution_from_spec(const std::string& spec, const UniformMesh& mesh) {
+  MassRedistribution r = mass_redistribution_from_spec(spec);
+  if (spec.rfind("spread:", 0) == 0 && std::stoll(spec.substr(7)) > mesh.elements - 1)
+    reject_spec(spec, "K must be at most N - 1 = " + std::to_string(mesh.elements - 1));
+  try {
+    (void)modified_mass(mesh, r);
+  } catch (const std::invalid_argument&) {
+    reject_spec(spec, "the mass is not positive definite on nodes 1..N-1 for N = " + std::to_string(mesh.elements));
+  }
+  return r;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// The period law's prediction for any member (mathematics.md §8).
+//
+// In free flight the contact row gives u₀ = u₁, element (0, h) moves rigidly and the free phase is a
+// bar on [h, L] whose end x = h carries a point mass; in contact, node 0 is held. Against Mod 3 (whose
+// free end carries exactly the inertia of the removed element, effective lengths ℓ_f = ℓ_c = L to
+// O(h²)) a redistribution changes the benchmark's period P = 2ℓ_f + ℓ_c through two kinds of mass:
+//
+//   δm_loc   mass added at (or next to) node 1 beyond Mod 3's: it moves the free end of the free phase
+//            by δm_loc (a point mass m at a free end acts, on the low modes, like a free end moved by
+//            m), and nothing in contact, where every mode is O(kh) next to the held node;
+//   δm_glob  mass spread uniformly over the bar (density 1 + δm_glob/L): the wave speed drops by the
+//            factor 1 − δm_glob/(2L), so both lengths grow by δm_glob/2.
+//
+// Hence δℓ_f = δm_loc + δm_glob/2, δℓ_c = δm_glob/2 and ΔP = 2 δm_loc + (3/2) δm_glob, to first order
+// in h. The first impact of the benchmark falls at ℓ_f, so it moves by δℓ_f.
+//
+// Splitting a matrix into the two: the uniform part is read off the far end of the bar, where a member
+// of the family is Mod 1 times a constant weight. With the lumped masses r_i = Σ_j M̄_ij (all nodes
+// 0..N; r_i = h at every interior node of Mod 1), the uniform excess is ε = r_{N−1}/h − 1 and
+//
+//     δm_glob = ε · 1ᵀ(Mod 1)1 = ε (L − 2h/3),       δm_loc = (1ᵀM̄1 − L) − δm_glob,
+//
+// i.e. everything that is not uniform is counted as local to the contact node. For the members here:
+//   node1:X   ε = 0:                       δm_glob = 0,          δm_loc = (X − 4/3) h, ΔP = 2(X − 4/3) h
+//             (Mod 1 −4h/3; GetFEM's 7/6: −h/3; its 7/12: −3h/2);
+//   beta:B    ε = w − 1, total L:          δm_glob = (2/3 − B) h, δm_loc = (B − 2/3) h, ΔP = (B − 2/3) h/2
+//             exactly (Mod 2 = beta:0: −h/3; Mod 3 = beta:2/3: 0);
+//   spread:K  ε = 0 for K < N − 1, total L: δm_glob = δm_loc = 0, ΔP = 0 (the lost mass stays within Kh of
+//             the contact node); spread:N−1 has ε = 2/(3(N − 1)) on every free node: nearly Mod 2.
+// The split is exact for node1 and beta. For spread:K it assumes that the mass on nodes 1..K acts as a
+// point mass at the free end, which holds when Kh ≪ L (the low modes do not vary over Kh); spread over
+// a fixed fraction of the bar (K = N/2) lies outside the derivation, and the family study measures how
+// far the law carries there. The split requires the far quarter of the bar (nodes N − ⌊N/4⌋ .. N − 1)
+// to carry one uniform weight, and a massless contact node.
+
+PeriodLawMasses period_law_masses(const UniformMesh& mesh, const MassRedistribution& redistribution) {
+  if (mesh.elements < 4)
+    throw std::invalid_argument("period_law_masses: the split needs N >= 4 (allowed: a mesh of 4 elements or more)");
+  const Tridiagonal m = modified_mass_all_nodes(mesh, redistribution);
+  if (!contact_node_is_massless(m))
+    throw std::invalid_argument("period_law_masses: \"" + redistribution.name +
+                                "\" keeps the inertia of the contact node (allowed: a redistribution)");
+  const Index n = mesh.elements;
+  const double h = mesh.h();
+  auto lumped = [&m](Index i) { return m.lower[i] + m.diag[i] + m.upper[i]; };
+  const double excess = lumped(n - 1) / h - 1.0;
+  for (Index i = n - n / 4; i < n; ++i)
+    if (std::abs(lumped(i) / h - 1.0 - excess) > 1e-12 * (1.0 + std::abs(excess)))
+      throw std::invalid_argument("period_law_masses: \"" + redistribution.name +
+                                  "\" is not uniform on the far quarter of the bar (allowed: a member that is "
+                                  "Mod 1 times a constant weight away from the contact node)");
+  PeriodLawMasses masses;
+  masses.uniform = excess * (mesh.length - 2.0 * h / 3.0);
+  masses.local = (m.sum() - mesh.length) - masses.uniform;
+  return masses;
+}
+
+// ---------------------------------------------------------------------------------------------------
+
+namespace {
+
+// max over all entries of |A − B|, on all nodes 0..N.
+// ΔP of the period law (period_law.hpp) for a split.
+[[maybe_unused]] double law(const PeriodLawMasses& m) { return predicted_period_change(m.local, m.uniform); }
+
+[[maybe_unused]] double max_entry_difference(const UniformMesh& mesh, const MassRedistribution& a,
+                                             const MassRedistribution& b) {
+  const Tridiagonal ma = modified_mass_all_nodes(mesh, a), mb = modified_mass_all_nodes(mesh, b);
+  return std::max({(ma.diag - mb.diag).cwiseAbs().maxCoeff(), (ma.upper - mb.upper).cwiseAbs().maxCoeff(),
+                   (ma.lower - mb.lower).cwiseAbs().maxCoeff()});
+}
+
+}  // namespace
+
+TEST_CASE("node1(2/3) is Mod 1 and node1(4/3) is Mod 3, entry by entry") {
+  for (Index n : {4, 10, 101, 1000}) {
+    const UniformMesh mesh(1.5, n);
+    const double h = mesh.h();
+    CAPTURE(n);
+    CHECK(max_entry_difference(mesh, node1(2.0 / 3.0), mod1()) <= 4e-16 * h);
+    CHECK(max_entry_difference(mesh, node1(4.0 / 3.0), mod3()) <= 4e-16 * h);
+    // and a different X is a different matrix, on node 1 only
+    CHECK(std::abs(modified_mass(mesh, node1(7.0 / 6.0)).diag[1] - 7.0 * h / 6.0) <= 4e-16 * h);
+    CHECK(max_entry_difference(mesh, node1(7.0 / 6.0), mod3()) > 0.1 * h);
+  }
+}
+
+TEST_CASE("beta(0) is Mod 2 and beta(2/3) is Mod 3 to round-off") {
+  for (Index n : {4, 10, 101, 1000}) {
+    const UniformMesh mesh(1.5, n);
+    const double h = mesh.h();
+    CAPTURE(n);
+    CHECK(max_entry_difference(mesh, beta(0.0), mod2()) <= 4e-16 * h);
+    CHECK(max_entry_difference(mesh, beta(2.0 / 3.0), mod3()) <= 4e-16 * h);
+    CHECK(max_entry_difference(mesh, beta(1.0 / 3.0), mod3()) > 0.1 * h);
+  }
+}
+
+TEST_CASE("total masses: node1(X) is L - 2h/3 + (X - 2/3)h, every beta(B) keeps L") {
+  for (double length : {1.0, 2.5}) {
+    for (Index n : {5, 64, 1000}) {
+      const UniformMesh mesh(length, n);
+      const double h = mesh.h();
+      CAPTURE(length);
+      CAPTURE(n);
+      for (double x : {1.0 / 3.0, 7.0 / 12.0, 7.0 / 6.0, 2.0}) {
+        CAPTURE(x);
+        CHECK(std::abs(total_mass(mesh, node1(x)) - (length - 2 * h / 3 + (x - 2.0 / 3.0) * h)) < 1e-13 * length);
+      }
+      for (double b : {-0.1, 1.0 / 6.0, 1.0 / 3.0, 1.0, 4.0 / 3.0}) {
+        CAPTURE(b);
+        CHECK(std::abs(total_mass(mesh, beta(b)) - length) < 1e-13 * length);
+      }
+    }
+  }
+}
+
+TEST_CASE("the spec strings give the members they name, with the spec as the name") {
+  const UniformMesh mesh(1.0, 40);
+  const double h = mesh.h();
+  CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("node1:7/6"), node1(7.0 / 6.0)) <= 1e-16 * h);
+  CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("node1:0.5"),
+                             mass_redistribution_from_spec("node1:1/2")) == 0.0);
+  CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("beta:1/3"), beta(1.0 / 3.0)) <= 1e-16 * h);
+  CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("beta:-1e-1"), beta(-0.1)) == 0.0);
+  CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("spread:3", mesh), spread_over_first_nodes(3)) == 0.0);
+  CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("mod2"), mod2()) == 0.0);
+  CHECK(mass_redistribution_from_spec("node1:7/6").name == "node1:7/6");
+  CHECK(mass_redistribution_from_spec("spread:39", mesh).name == "spread:39");
+  CHECK(mass_redistribution_from_spec("consistent").name == "consistent");
+  CHECK(node1(0.5).name == "node1:0.5");
+}
+
+TEST_CASE("bad spec strings are rejected with the allowed forms") {
+  const UniformMesh mesh(1.0, 40);
+  for (const char* bad :
+       {"",           "mod4",       "MOD3",      "node1",      "node1:",     "node1:abc", "node1:7/6x", "node1:1/0",
+        "node1:0",    "node1:-1/3", "node1:inf", "node1:nan",  "node1:0x10", "node1: 1",  "beta:",      "beta:1//3",
+        "beta:1e400", "spread:0",   "spread:-2", "spread:1.5", "spread:",    "spread:2x", "mod3:1"}) {
+    CAPTURE(bad);
+    CHECK_THROWS_WITH_AS(mass_redistribution_from_spec(bad), doctest::Contains("(allowed: consistent, mod1, mod2"),
+                         std::invalid_argument);
+  }
+  // On the mesh at hand: K ≤ N − 1 and a definite matrix. The first two pivots of node1(X) are X h and
+  // 2h/3 − h/(36 X), so X = 0.04 fails at node 2 and X = 0.05 passes (the tail then stays positive).
+  CHECK_NOTHROW(mass_redistribution_from_spec("spread:39", mesh));
+  CHECK_THROWS_WITH_AS(mass_redistribution_from_spec("spread:40", mesh), doctest::Contains("at most N - 1 = 39"),
+                       std::invalid_argument);
+  CHECK_NOTHROW(mass_redistribution_from_spec("node1:0.05", mesh));
+  CHECK_THROWS_WITH_AS(mass_redistribution_from_spec("node1:0.04", mesh), doctest::Contains("not positive definite"),
+                       std::invalid_argument);
+  // beta:B needs w = (L − Bh)/(L − 2h/3) > 0, i.e. B < L/h = 40
+  CHECK_NOTHROW(mass_redistribution_from_spec("beta:39", mesh));
+  CHECK_THROWS_WITH_AS(mass_redistribution_from_spec("beta:41", mesh), doctest::Contains("allowed:"),
+                       std::invalid_argument);
+}
+
+TEST_CASE("the period law's split: Mod 1, 2, 3 drift by -4h/3, -h/3, 0 per period") {
+  for (Index n : {20, 100, 400}) {
+    const UniformMesh mesh(1.0, n);
+    const double h = mesh.h();
+    // The split subtracts L from a sum of 3N + 1 entries: round-off up to about N ulps of L.
+    const double tol = 8 * static_cast<double>(n) * 1.1e-16 * mesh.length;
+    CAPTURE(n);
+    // Mod 1, Mod 2 and Mod 3
+    CHECK(std::abs(law(period_law_masses(mesh, mod1())) + 4 * h / 3) < tol);
+    CHECK(std::abs(law(period_law_masses(mesh, mod2())) + h / 3) < tol);
+    CHECK(std::abs(law(period_law_masses(mesh, mod3()))) < tol);
+    CHECK(std::abs(period_law_masses(mesh, mod1()).local + 2 * h / 3) < tol);
+    CHECK(std::abs(period_law_masses(mesh, mod2()).uniform - 2 * h / 3) < tol);
+    // node1:X moves only the local mass: 2(X − 4/3) h; GetFEM's 7/6 drifts like Mod 2, its 7/12 by −3h/2
+    for (double x : {1.0 / 3.0, 7.0 / 12.0, 7.0 / 6.0, 2.0}) {
+      CAPTURE(x);
+      const PeriodLawMasses m = period_law_masses(mesh, node1(x));
+      CHECK(std::abs(m.uniform) < tol);
+      CHECK(std::abs(law(m) - 2 * (x - 4.0 / 3.0) * h) < tol);
+    }
+    // beta:B trades local for uniform mass one for one: (B − 2/3) h / 2
+    for (double b : {1.0 / 6.0, 1.0 / 3.0, 1.0, 4.0 / 3.0}) {
+      CAPTURE(b);
+      const PeriodLawMasses m = period_law_masses(mesh, beta(b));
+      CHECK(std::abs(m.uniform - (2.0 / 3.0 - b) * h) < tol);
+      CHECK(std::abs(law(m) - (b - 2.0 / 3.0) * h / 2) < tol);
+    }
+    // spread:K (K < N − 1) keeps the lost mass near the contact node: no drift predicted
+    for (Index k : {Index(2), Index(10), n / 2}) {
+      CAPTURE(k);
+      CHECK(std::abs(law(period_law_masses(mesh, spread_over_first_nodes(k)))) < tol);
+    }
+  }
+}
+
+TEST_CASE("the period law's split refuses the consistent mass and a weight that varies along the bar") {
+  const UniformMesh mesh(1.0, 20);
+  CHECK_THROWS_WITH_AS(period_law_masses(mesh, consistent_mass()), doctest::Contains("keeps the inertia"),
+                       std::invalid_argument);
+  const MassRedistribution graded{"graded", "", [](Index i, Index j, const UniformMesh& m) {
+                                    return (i == 0 || j == 0) ? 0.0 : 1.0 + 0.01 * m.x(i + j) / m.length;
+                                  }};
+  CHECK_THROWS_WITH_AS(period_law_masses(mesh, graded), doctest::Contains("not uniform"), std::invalid_argument);
+  CHECK_THROWS_AS(period_law_masses(UniformMesh(1.0, 3), mod3()), std::invalid_argument);
 }
 
 }  // namespace mrm

@@ -47,4 +47,33 @@ double total_mass(const UniformMesh& mesh, const MassRedistribution& redistribut
 /// True when row and column 0 of the mass matrix vanish: the contact node has no inertia.
 bool contact_node_is_massless(const Tridiagonal& mass);
 
+/// M̄_11 = X h on node 1 (weight w_11 = 3X/2), every other entry as Mod 1, the total not renormalised:
+/// Mod 1 is node1(2/3), Mod 3 is node1(4/3). Throws std::invalid_argument unless X > 0 is finite.
+MassRedistribution node1(double x);
+/// M̄ = w·(Mod 1) + B h e₁e₁ᵀ with w = (L − Bh)/(L − 2h/3) keeping the total mass L: beta(0) is Mod 2,
+/// beta(2/3) is Mod 3. Throws std::invalid_argument unless B is finite.
+MassRedistribution beta(double b);
+
+/// The spec strings accepted by mass_redistribution_from_spec, in words (for messages and help texts).
+std::string mass_redistribution_forms();
+/// The member named by a spec string: consistent | mod1 | mod2 | mod3 | node1:X | spread:K | beta:B,
+/// X and B decimals or fractions ("7/6"); its name is the spec. Throws std::invalid_argument, with a
+/// message starting with the quoted spec and ending with the allowed forms, for what is wrong on any
+/// mesh (unparseable, X <= 0, K < 1).
+MassRedistribution mass_redistribution_from_spec(const std::string& spec);
+/// The same, checked on the mesh at hand: also K <= N - 1 and a mass that is positive definite on
+/// the nodes that keep inertia.
+MassRedistribution mass_redistribution_from_spec(const std::string& spec, const UniformMesh& mesh);
+
+/// The two masses of the period law (mathematics.md §8), relative to Mod 3; the period changes by
+/// ΔP = predicted_period_change(local, uniform) (period_law.hpp) = 2 δm_loc + (3/2) δm_glob.
+struct PeriodLawMasses {
+  double local = 0.0;    ///< δm_loc: the mass at the contact end beyond Mod 3's M̄_11 = 4h/3
+  double uniform = 0.0;  ///< δm_glob: the mass spread uniformly over the bar
+};
+/// The split of a redistribution: the uniform excess read off the far end of the bar, the rest counted
+/// as local (exact for node1, beta, Mod 1/2/3; for spread:K it assumes Kh << L). Throws
+/// std::invalid_argument for N < 4, a massive contact node, or a far quarter without a uniform weight.
+PeriodLawMasses period_law_masses(const UniformMesh& mesh, const MassRedistribution& redistribution);
+
 }  // namespace mrm

@@ -79,6 +79,27 @@ inline mrm::SchemeParameters scheme_parameters(const std::string& scheme, const 
   return p;
 }
 
+/// The help text of a program's mass option: the spec forms of mrm::mass_redistribution_from_spec.
+inline std::string mass_option_help(const std::string& what) {
+  return what +
+         ": consistent, mod1, mod2, mod3, node1:X (M11 = X h, Mod 1 elsewhere), spread:K (the lost mass on "
+         "nodes 1..K), beta:B (B h on node 1, the rest uniform); X, B decimals or fractions such as 7/6";
+}
+/// The name of a mass in prose: "Mod 1", "Mod 2", "Mod 3", "the consistent mass", or the spec itself.
+inline std::string mass_label(const std::string& spec) {
+  if (spec == "mod1") return "Mod 1";
+  if (spec == "mod2") return "Mod 2";
+  if (spec == "mod3") return "Mod 3";
+  if (spec == "consistent") return "the consistent mass";
+  return spec;
+}
+/// The redistribution named by the value `spec` of the mass option `option`, checked on the mesh of the run
+/// (mrm::mass_redistribution_from_spec); a bad value throws cli::UsageError "<option>: \"spec\": why (allowed:
+/// ...)", so that the program exits with status 2 before any work. `massless` additionally refuses the
+/// consistent mass (for a program that needs a massless contact node).
+MassRedistribution mass_from_option(const std::string& option, const std::string& spec, const UniformMesh& mesh,
+                                    bool massless = false);
+
 /// The two outputs of every figure program: its data file (--output) and, if asked, the values the
 /// report quotes (--tex, `\mrmdef` lines). Both options are registered on the parser by the
 /// constructor (where the program would have registered them), opened by open() right after parsing,
@@ -117,6 +138,15 @@ class FigureOutputs {
   std::ostringstream values_;
 };
 
+/// The velocity of a massless contact node in the velocity measures. `algebraic` (the default): the
+/// library's own, defined from the algebraic contact row (mathematics.md §7; BarSimulation sets V₀ at
+/// every level of a two-level scheme). `backward_difference`: (u₀ⁿ − u₀ⁿ⁻¹)/Δt at every level n ≥ 1,
+/// as GetFEM's demo_dynamic_contact_1D.py does (mathematics.md §13), to compare with that code. A
+/// contact node with inertia keeps the scheme's velocity either way.
+enum class ContactVelocity { algebraic, backward_difference };
+/// "algebraic" or "backward-difference"; throws std::invalid_argument otherwise.
+ContactVelocity contact_velocity_by_name(const std::string& name);
+
 /// The benchmarks a run can start from: "paper" (the closed-form benchmark of mathematics.md §2),
 /// "smooth-impact" and "grazing" (S1 and S2 of mathematics.md §11), in this order.
 inline const std::vector<std::string>& benchmark_names() {
@@ -147,6 +177,8 @@ struct Configuration {
   /// Initial data of one's own (bar1d --initial-data), L = their last x; the reference is then the
   /// characteristic solution.
   std::shared_ptr<const InitialData> data;
+  /// The contact node's velocity in the velocity measures (the library's by default).
+  ContactVelocity contact_velocity = ContactVelocity::algebraic;
 
   /// The length of the bar: L of the data, of the smooth benchmarks (1), or `length`.
   double bar_length() const;
@@ -167,8 +199,9 @@ InitialData configuration_data(const Configuration& configuration);
 std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& configuration, double horizon);
 
 /// A configuration named as the paper names it: scheme "cn", "be" or "ps" (Paoli–Schatzman (¼, 0) with
-/// the contact row `ps_form`), or "ec" or "cn-switch" (mathematics.md §12), mass "mod1", "mod2", "mod3"
-/// or "consistent", N, Δt = C h, T.
+/// the contact row `ps_form`), or "ec" or "cn-switch" (mathematics.md §12), a mass spec of
+/// mrm::mass_redistribution_from_spec ("mod1", "mod2", "mod3", "consistent", "node1:7/6", ...), N,
+/// Δt = C h, T.
 Configuration paper_configuration(const std::string& scheme, const std::string& ps_form, const std::string& mass,
                                   Index elements, double courant, double final_time);
 

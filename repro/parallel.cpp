@@ -1,6 +1,7 @@
 // Independent runs on a few worker threads; see parallel.hpp.
 #include "parallel.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <exception>
 #include <mutex>
@@ -52,6 +53,22 @@ void run_in_parallel(const std::vector<std::size_t>& order, long threads,
   worker();
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
+}
+
+std::vector<std::size_t> costliest_first(std::size_t count, const std::function<double(std::size_t k)>& cost) {
+  std::vector<double> costs(count);
+  for (std::size_t k = 0; k < count; ++k) costs[k] = cost(k);
+  std::vector<std::size_t> order(count);
+  for (std::size_t k = 0; k < count; ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return costs[a] > costs[b]; });
+  return order;
+}
+
+TEST_CASE("costliest_first orders by decreasing cost and keeps the index order of equal costs") {
+  const std::vector<double> costs{2, 5, 2, 7, 5};
+  const std::vector<std::size_t> expected{3, 1, 4, 0, 2};
+  CHECK(costliest_first(costs.size(), [&](std::size_t k) { return costs[k]; }) == expected);
+  CHECK(costliest_first(0, [](std::size_t) { return 1.0; }).empty());
 }
 
 TEST_CASE("run_in_parallel calls the work once per index and rethrows the first failure") {

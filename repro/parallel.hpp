@@ -17,4 +17,8 @@ void run_in_parallel(const std::vector<std::size_t>& order, long threads,
                      const std::function<void(std::size_t k)>& work,
                      const std::function<void(std::size_t position, std::size_t k)>& progress = {});
 
+/// The indices 0..count−1 by decreasing cost(k), equal costs in increasing index: the order in which to
+/// hand independent runs to run_in_parallel, so that the longest start first (it changes no result).
+std::vector<std::size_t> costliest_first(std::size_t count, const std::function<double(std::size_t k)>& cost);
+
 }  // namespace mrm::repro

@@ -20,7 +20,6 @@
 #include <cmath>
 #include <fstream>
 #include <istream>
-#include <numeric>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -29,6 +28,7 @@
 
 #include "convergence.hpp"
 #include "options.hpp"
+#include "parallel.hpp"
 #include "period_law.hpp"
 
 namespace mrm::repro {
@@ -68,13 +68,10 @@ Sweep run_sweep(const SweepGrid& grid, unsigned threads, std::ostream* progress)
   for (Configuration& c : configurations)
     for (double h : grid.horizons) c.horizons.push_back(3 * h);
   // The longest runs first (their order does not change any result).
-  std::vector<std::size_t> order(configurations.size());
-  std::iota(order.begin(), order.end(), 0);
-  const auto cost = [&](std::size_t k) {
+  const std::vector<std::size_t> order = costliest_first(configurations.size(), [&](std::size_t k) {
     const double n = static_cast<double>(configurations[k].elements);
     return n * n / configurations[k].courant;
-  };
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cost(a) > cost(b); });
+  });
   std::vector<Configuration> sorted;
   for (std::size_t k : order) sorted.push_back(configurations[k]);
   if (progress) *progress << "sweep: " << sorted.size() << " runs to " << cli::format_real(periods) << " periods\n";

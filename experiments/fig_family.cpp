@@ -1,0 +1,289 @@
+// fig_family: which redistribution, and why — the weighted family against the period law.
+//
+// What it computes. For some twenty members of the weighted family of mathematics.md §3 (Mod 1/2/3;
+// the lost mass spread over the first 2, 3, 10 and N/2 nodes; beta:B, a point mass B h on node 1 with
+// the rest uniform, B from 1/6 to 4/3; node1:X, M̄_11 = X h without renormalising, X from 1/3 to 2,
+// GetFEM's 7/12 and 7/6 among them), Crank–Nicolson on the benchmark at N = 100 and 400, Δt = h/2 and
+// h, over 10 and 30 periods, each run's
+//   - drift of the impact times per period, measured (lib/phase: least-squares slope of the impact
+//     time errors), beside the period law's prediction ΔP = 2δm_loc + (3/2)δm_glob computed from the
+//     matrix (mass_redistribution.cpp: period_law_masses) and the discrete period from the first
+//     eigenvalues of the reduced pencils (lib/period_law);
+//   - the eight relative errors of mathematics.md §5 and their ratio to Mod 3's in the same
+//     configuration, summed up as the geometric mean over the eight measures.
+// The law predicts that the long-time error is a function of the drift: a V with its tip near zero
+// drift (Mod 3), whatever the member.
+//
+// Sample runs:
+//   fig_family --output output/data/fig_family.dat --tex output/data/fig_family.tex
+//   fig_family --threads 1 --output f.dat
+//
+// Description. Steps: (1) options; (2) outputs; (3) the list of runs, one per (member, N, Δt/h) to the
+// longest horizon (the shorter ones are its prefixes), costliest first; (4) the runs, on --threads
+// workers (repro/parallel.hpp); (5) the data blocks, one per (N, Δt/h, horizon), in a
+// fixed order, and the values the report quotes. The output does not depend on the number of threads.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "configurations.hpp"
+#include "options.hpp"
+#include "parallel.hpp"
+#include "report_values.hpp"
+
+#include "errors.hpp"
+#include "exact_solution.hpp"
+#include "mass_redistribution.hpp"
+#include "phase.hpp"
+#include "period_law.hpp"
+
+namespace cli = mrm::cli;
+
+namespace {
+
+// One member: its spec on a mesh of N elements ("spread:N/2" becomes "spread:50" at N = 100), the
+// family it belongs to and the family's parameter (for the plots).
+struct Member {
+  std::string label;   ///< the name in the data file and the report ("spread:N/2")
+  std::string family;  ///< mod, spread, beta, node1
+  double parameter;    ///< K, B or X (0 for the Mod's)
+  std::string spec(mrm::Index n) const { return label == "spread:N/2" ? "spread:" + std::to_string(n / 2) : label; }
+};
+
+const std::vector<Member>& members() {
+  static const std::vector<Member> list{{"mod1", "mod", 1},
+                                        {"mod2", "mod", 2},
+                                        {"mod3", "mod", 3},
+                                        {"spread:2", "spread", 2},
+                                        {"spread:3", "spread", 3},
+                                        {"spread:10", "spread", 10},
+                                        {"spread:N/2", "spread", 0},
+                                        {"beta:1/6", "beta", 1. / 6},
+                                        {"beta:1/3", "beta", 1. / 3},
+                                        {"beta:1/2", "beta", 0.5},
+                                        {"beta:5/6", "beta", 5. / 6},
+                                        {"beta:1", "beta", 1},
+                                        {"beta:4/3", "beta", 4. / 3},
+                                        {"node1:1/3", "node1", 1. / 3},
+                                        {"node1:1/2", "node1", 0.5},
+                                        {"node1:7/12", "node1", 7. / 12},
+                                        {"node1:5/6", "node1", 5. / 6},
+                                        {"node1:1", "node1", 1},
+                                        {"node1:7/6", "node1", 7. / 6},
+                                        {"node1:3/2", "node1", 1.5},
+                                        {"node1:2", "node1", 2}};
+  return list;
+}
+
+// A report key from a member's label: "node1:7/12" → "node1-7_12" (keys take no '/' or ':').
+std::string key_of(const std::string& label) {
+  std::string k = label;
+  std::replace(k.begin(), k.end(), '/', '_');
+  std::replace(k.begin(), k.end(), ':', '-');
+  return k;
+}
+
+struct Run {
+  std::size_t member, mesh, courant, horizon;
+  // results
+  double total_mass = 0, local = 0, uniform = 0, predicted = 0, predicted_eigen = 0;
+  double first_impact_error = 0, drift = 0;
+  std::array<double, 8> errors{};
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return cli::guarded_main("fig_family", [&] {
+    // 1. Options.
+    long threads = 2;
+    cli::Parser parser("fig_family",
+                       "Writes, for some twenty members of the weighted mass-redistribution family and Crank-Nicolson "
+                       "at N = 100 and 400, dt = h/2 and h, over 10 and 30 periods, the measured drift of the impact "
+                       "times per period beside the period law's prediction, and the errors relative to Mod 3.",
+                       {"fig_family --output output/data/fig_family.dat --tex output/data/fig_family.tex",
+                        "fig_family --threads 1 --output f.dat"});
+    parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it", &threads,
+                       cli::at_least(1));
+    mrm::repro::FigureOutputs outputs(parser, "fig_family", "also write the values the report quotes");
+    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+
+    // 2. Outputs.
+    outputs.open(parser);
+    const std::vector<mrm::Index> meshes{100, 400};
+    const std::vector<double> courants{0.5, 1.0};
+    const std::vector<long> horizons{10, 30};  // periods
+    const mrm::ExactSolution exact;            // L = 1, u⁰ = (1 − x)/2: period 3
+    const std::size_t reference_member = 2;    // Mod 3
+    if (members()[reference_member].label != "mod3") throw std::logic_error("fig_family: Mod 3 is not member 2");
+
+    // 3. One run per (member, mesh, Δt/h), to the longest horizon: a shorter horizon is a prefix of it
+    // (run_configuration's horizons give the errors of the run stopped there, bit for bit, and the
+    // impacts up to its last level are those of the shorter run). `runs` holds the results per
+    // (mesh, Δt/h, horizon, member), in the order of the data blocks; the jobs go costliest first
+    // (cost ∝ N² T / C).
+    std::vector<Run> runs;
+    for (std::size_t a = 0; a < meshes.size(); ++a)
+      for (std::size_t b = 0; b < courants.size(); ++b)
+        for (std::size_t c = 0; c < horizons.size(); ++c)
+          for (std::size_t m = 0; m < members().size(); ++m) runs.push_back({m, a, b, c});
+    const auto run_index = [&](std::size_t a, std::size_t b, std::size_t c, std::size_t m) {
+      return ((a * courants.size() + b) * horizons.size() + c) * members().size() + m;
+    };
+    struct Job {
+      std::size_t member, mesh, courant;
+      double cost;
+    };
+    std::vector<Job> jobs;
+    for (std::size_t a = 0; a < meshes.size(); ++a)
+      for (std::size_t b = 0; b < courants.size(); ++b)
+        for (std::size_t m = 0; m < members().size(); ++m)
+          jobs.push_back(
+              {m, a, b,
+               static_cast<double>(meshes[a] * meshes[a]) * static_cast<double>(horizons.back()) / courants[b]});
+    const std::vector<std::size_t> order =
+        mrm::repro::costliest_first(jobs.size(), [&](std::size_t k) { return jobs[k].cost; });
+
+    // 4. The runs, on `threads` workers (repro/parallel.hpp). Each writes only its own slots. The phase
+    // is lib/phase's, as in run_configuration: the impacts read off the contact indicator, their errors
+    // against the exact impacts L + 3Lk, the least-squares drift per period.
+    mrm::repro::run_in_parallel(
+        order, threads,
+        [&](std::size_t k) {
+          const Job& job = jobs[k];
+          const Member& member = members()[job.member];
+          const mrm::Index n = meshes[job.mesh];
+          const mrm::UniformMesh mesh(1.0, n);
+          const double h = mesh.h();
+          mrm::repro::Configuration configuration =
+              mrm::repro::paper_configuration("cn", "algebraic", member.spec(n), n, courants[job.courant],
+                                              exact.period() * static_cast<double>(horizons.back()));
+          configuration.mass = mrm::mass_redistribution_from_spec(member.spec(n), mesh);
+          for (std::size_t c = 0; c + 1 < horizons.size(); ++c)
+            configuration.horizons.push_back(exact.period() * static_cast<double>(horizons[c]));
+          const mrm::repro::Measures measures = mrm::repro::run_configuration(configuration);
+          const double dt = configuration.step();
+          const mrm::PeriodLawMasses masses = mrm::period_law_masses(mesh, configuration.mass);
+          // The split subtracts L from a sum of 3N + 1 entries (round-off of about N ulps of L, 1e-13 h here):
+          // rounded to 1e-9 h, far below anything measured.
+          auto in_h = [h](double v) { return std::round(v / h * 1e9) / 1e9 + 0.0; };
+          const double predicted_eigen = mrm::predict_period(mesh, configuration.mass).period_error / h;
+          for (std::size_t c = 0; c < horizons.size(); ++c) {
+            Run& r = runs[run_index(job.mesh, job.courant, c, job.member)];
+            const double end =
+                static_cast<double>(mrm::steps_to_reach(exact.period() * static_cast<double>(horizons[c]), dt)) * dt;
+            std::vector<double> impacts;
+            for (double t : measures.impacts)
+              if (t <= end) impacts.push_back(t);
+            if (impacts.size() < 2)
+              throw std::runtime_error("fig_family: " + member.spec(n) + " at N = " + std::to_string(n) +
+                                       ": fewer than two impacts, no drift can be measured");
+            const mrm::PhaseMeasures phase =
+                mrm::phase_measures(impacts, mrm::benchmark_impact_times(exact, impacts.size()), exact.period());
+            r.total_mass = mrm::total_mass(mesh, configuration.mass);
+            r.local = in_h(masses.local);
+            r.uniform = in_h(masses.uniform);
+            r.predicted = in_h(mrm::predicted_period_change(masses.local, masses.uniform));
+            r.predicted_eigen = predicted_eigen;
+            r.first_impact_error = phase.first_impact_error / h;
+            r.drift = *phase.drift_per_period / h;
+            r.errors =
+                mrm::ErrorAccumulator::values(c + 1 < horizons.size() ? measures.horizon_errors[c] : measures.errors);
+          }
+        },
+        [&](std::size_t position, std::size_t k) {
+          const Job& job = jobs[k];
+          std::cerr << "fig_family: " << position << '/' << order.size() << ' '
+                    << members()[job.member].spec(meshes[job.mesh]) << " N=" << meshes[job.mesh]
+                    << " dt/h=" << courants[job.courant] << " periods=" << horizons.back() << '\n';
+        });
+
+    // 5. The data blocks: block 4a + 2b + c for mesh a, Δt/h b, horizon c; one row per member.
+    std::ostream& out = outputs.data();
+    out << "# fig_family: the weighted family against the period law (mathematics.md sec. 8), Crank-Nicolson\n";
+    parser.echo(out);
+    out << "# length = 1\n# amplitude = 0.5\n# period = " << cli::format_real(exact.period())
+        << "\n# scheme = cn\n# initial_contact_node = consistent\n"
+        << "# blocks: 4 a + 2 b + c for N in (100, 400) [a], dt/h in (0.5, 1) [b], periods in (10, 30) [c]\n"
+        << "# All lengths and times are in units of h (dm_loc, dm_glob, predicted rounded to 1e-9). predicted = 2 "
+           "dm_loc + 1.5 dm_glob (the period law);\n"
+        << "# predicted_eigen = 2 l_f + l_c - 3 from the first eigenvalues of the reduced pencils; drift = the\n"
+        << "# measured drift of the impact times per period; drift_rel = drift - Mod 3's drift (same block);\n"
+        << "# ratio = geometric mean over the eight measures of error / Mod 3's error (same block).\n";
+    std::ostream& defs = outputs.values();
+    const std::size_t per_block = members().size();
+    std::size_t block = 0;
+    for (std::size_t a = 0; a < meshes.size(); ++a)
+      for (std::size_t b = 0; b < courants.size(); ++b)
+        for (std::size_t c = 0; c < horizons.size(); ++c, ++block) {
+          const Run* rows = &runs[block * per_block];
+          const Run& reference = rows[reference_member];
+          out << (block ? "\n\n" : "") << "# block " << block << ": N = " << meshes[a]
+              << ", dt/h = " << cli::format_real(courants[b]) << ", periods = " << horizons[c]
+              << "\n# columns: index member family parameter total_mass dm_loc dm_glob predicted predicted_eigen "
+                 "first_impact_error drift drift_rel ratio";
+          for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
+          out << '\n';
+          const std::string where = "N" + std::to_string(meshes[a]) + ":c" + cli::format_real(courants[b]) + ":T" +
+                                    std::to_string(horizons[c]);
+          for (std::size_t m = 0; m < per_block; ++m) {
+            const Run& r = rows[m];
+            const Member& member = members()[m];
+            double log_sum = 0;
+            for (std::size_t q = 0; q < 8; ++q) {
+              if (!(r.errors[q] > 0 && reference.errors[q] > 0))
+                throw std::runtime_error("fig_family: a zero error, no ratio to Mod 3 (" + member.label + ")");
+              log_sum += std::log(r.errors[q] / reference.errors[q]);
+            }
+            const double ratio = std::exp(log_sum / 8), relative = r.drift - reference.drift;
+            out << m << ' ' << member.spec(meshes[a]) << ' ' << member.family << ' '
+                << cli::format_real(member.label == "spread:N/2" ? static_cast<double>(meshes[a] / 2)
+                                                                 : member.parameter)
+                << ' ' << cli::format_real(r.total_mass) << ' ' << cli::format_real(r.local) << ' '
+                << cli::format_real(r.uniform) << ' ' << cli::format_real(r.predicted) << ' '
+                << cli::format_real(r.predicted_eigen) << ' ' << cli::format_real(r.first_impact_error) << ' '
+                << cli::format_real(r.drift) << ' ' << cli::format_real(relative) << ' ' << cli::format_real(ratio);
+            for (double e : r.errors) out << ' ' << cli::format_real(e);
+            out << '\n';
+            const std::string key = "family:" + where + ":" + key_of(member.label);
+            mrm::tex_define(defs, key + ":predicted", mrm::tex_number(r.predicted, 2));
+            mrm::tex_define(defs, key + ":eigen", mrm::tex_number(r.predicted_eigen, 2));
+            mrm::tex_define(defs, key + ":drift", mrm::tex_number(r.drift, 2));
+            mrm::tex_define(defs, key + ":rel", mrm::tex_number(relative, 2));
+            mrm::tex_define(defs, key + ":ratio", mrm::tex_number(ratio, 3));
+          }
+          // The member with the smallest geometric-mean error in this block, and how far the law's
+          // prediction is from the measured drift relative to Mod 3 over the members whose non-uniform
+          // mass sits next to the contact node (all but spread:10 and spread:N/2).
+          std::size_t best = 0;
+          double worst_gap = 0;
+          for (std::size_t m = 0; m < per_block; ++m) {
+            double log_sum = 0;
+            for (std::size_t q = 0; q < 8; ++q) log_sum += std::log(rows[m].errors[q] / reference.errors[q]);
+            double best_sum = 0;
+            for (std::size_t q = 0; q < 8; ++q) best_sum += std::log(rows[best].errors[q] / reference.errors[q]);
+            if (log_sum < best_sum) best = m;
+            const std::string& label = members()[m].label;
+            if (label != "spread:10" && label != "spread:N/2")
+              worst_gap = std::max(worst_gap, std::abs(rows[m].drift - reference.drift - rows[m].predicted));
+          }
+          double best_sum = 0;
+          for (std::size_t q = 0; q < 8; ++q) best_sum += std::log(rows[best].errors[q] / reference.errors[q]);
+          mrm::tex_define(defs, "family:" + where + ":best", members()[best].label);
+          mrm::tex_define(defs, "family:" + where + ":bestratio", mrm::tex_number(std::exp(best_sum / 8), 3));
+          mrm::tex_define(defs, "family:" + where + ":gap", mrm::tex_number(worst_gap, 2));
+        }
+    mrm::tex_define(defs, "family:members", std::to_string(members().size()));
+    // The parameters the prose names (the keys above carry them too, so that a change shows at once).
+    mrm::tex_define(defs, "family:Ncoarse", std::to_string(meshes.front()));
+    mrm::tex_define(defs, "family:Nfine", std::to_string(meshes.back()));
+    mrm::tex_define(defs, "family:Tshort", std::to_string(horizons.front()));
+    mrm::tex_define(defs, "family:Tlong", std::to_string(horizons.back()));
+    outputs.commit();
+    return 0;
+  });
+}
