@@ -141,7 +141,7 @@ $(DATA)/%.dat $(DATA)/%.tex: $(BUILD)/bin/% | $(DATA)
 # Figure X from its gnuplot script and its data (written under a temporary name, then renamed). This
 # cairo ignores SOURCE_DATE_EPOCH: its creation date is replaced by a fixed one of the same length (so
 # the PDF's byte offsets stay valid), and the same data give the same figure, byte for byte.
-$(FIGURES)/%.pdf: figures/%.gp $(DATA)/%.dat | $(FIGURES)
+$(FIGURES)/%.pdf: figures/%.gp figures/style.gp $(DATA)/%.dat | $(FIGURES)
 	$(REPRODUCIBLE) gnuplot -e "data='$(DATA)/$*.dat'; output='$@.tmp'" $<
 	LC_ALL=C sed -i 's|/CreationDate (D:[0-9]\{14\}Z)|/CreationDate (D:19700101000000Z)|' $@.tmp
 	mv $@.tmp $@

@@ -72,6 +72,7 @@ int main(int argc, char** argv) {
     out << "# fig_ps_forms: Paoli-Schatzman (1/4, 0), literal and algebraic contact row (problem.md sec. 4)\n";
     parser.echo(out);
     out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt) << "\n# steps = " << steps
+        << "\n# exact_energy = " << cli::format_real(exact.energy())
         << "\n# blocks: 0 exact; 1 algebraic row, " << mass << "; 2 literal row, " << mass
         << "; 3 literal row, consistent mass\n";
 
