@@ -92,6 +92,24 @@ bench: build | $(BENCH)
 $(BENCH):
 	mkdir -p $@
 
+# ---- The short benchmark (part of `make all`) ------------------------------------------------------
+# The report's Performance section is filled by every `make all`: bench_step on N = 2^8..2^14 with few,
+# short batches (a few seconds), its two tables (the fast step against the bare tridiagonal solve and
+# Eigen's SimplicialLDLT, and the reference step) and the values the text quotes, in
+# $(BENCH_SHORT)/bench_short.tex. Timings are not deterministic: like $(BENCH), this directory is
+# outside the results that CI compares byte for byte (.ci/run). A full `make bench` takes precedence in
+# the report when its table exists.
+BENCH_SHORT := $(OUT)/bench-short
+BENCH_SHORT_OPTIONS := --min-log2 8 --max-log2 14 --repetitions 3 --batch-ms 5
+
+all: $(BENCH_SHORT)/bench_short.tex
+
+$(BENCH_SHORT)/bench_short.tex: $(BUILD)/bin/bench_step | $(BENCH_SHORT)
+	$< $(BENCH_SHORT_OPTIONS) --clock $(BENCH_CLOCK) --tex $@ > $(BENCH_SHORT)/bench_short.txt
+
+$(BENCH_SHORT):
+	mkdir -p $@
+
 # ---- The claims of the paper (mathematics.md §6) ----------------------------------------------------
 # `make check-claims` runs every check of repro/claims.cpp (the program experiments/check_claims.cpp)
 # and prints the table claim | measured | criterion | verdict; it fails iff a check FAILED (expected
@@ -146,15 +164,25 @@ $(FIGURES)/%.pdf: figures/%.gp figures/style.gp $(DATA)/%.dat | $(FIGURES)
 	LC_ALL=C sed -i 's|/CreationDate (D:[0-9]\{14\}Z)|/CreationDate (D:19700101000000Z)|' $@.tmp
 	mv $@.tmp $@
 
+# The report's title page: the authors and version of CITATION.cff and the date of the last commit
+# (tools/report_meta.sh). Remade on every run, but rewritten only when it changes, so that the report is
+# not rebuilt for nothing; the same commit gives the same bytes.
+.PHONY: FORCE
+$(DATA)/report_meta.tex: FORCE | $(DATA)
+	tools/report_meta.sh CITATION.cff > $@.tmp
+	if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv $@.tmp $@; fi
+
 # Crank–Nicolson's largest energy for Δt ≫ h, relative to E_h(0) (experiments/cn_large_step.cpp).
 $(DATA)/cn_large_step.tex: $(BUILD)/bin/cn_large_step | $(DATA)
 	$< --tex $@
 
 # The report: every figure and fragment is found through TEXINPUTS (so OUT=dir works); latexmk keeps its
-# auxiliary files in $(OUT)/latex. The benchmark's table and plot (make bench) are included if present.
+# auxiliary files in $(OUT)/latex. The full benchmark's table and plot (make bench) are included if
+# present, the short benchmark's otherwise.
 $(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/cn_large_step.tex \
+           $(DATA)/report_meta.tex $(BENCH_SHORT)/bench_short.tex \
            $(wildcard $(OUT)/bench/bench_step.tex $(OUT)/bench/bench_step.pdf) | $(DATA)
-	TEXINPUTS=paper:$(DATA):$(FIGURES):$(OUT)/bench: $(REPRODUCIBLE) \
+	TEXINPUTS=paper:$(DATA):$(FIGURES):$(OUT)/bench:$(BENCH_SHORT): $(REPRODUCIBLE) \
 	  latexmk -pdf -silent -interaction=nonstopmode -halt-on-error -outdir=$(OUT)/latex paper/report.tex
 	cp $(OUT)/latex/report.pdf $@.tmp
 	mv $@.tmp $@

@@ -248,9 +248,19 @@ int main(int argc, char** argv) {
       table.write_latex(out, layout);
       return out.str();
     };
-    defs << "\\mrmdef{conv:table:orders}{" << tabular(orders_table, "lll" + std::string(8, 'r')) << "}\n";
-    defs << "\\mrmdef{conv:table:errors}{" << tabular(errors_table, "lll" + std::string(8, 'r')) << "}\n";
-    defs << "\\mrmdef{conv:table:ranking}{" << tabular(ranking_table, "ll" + std::string(8, 'c')) << "}\n";
+    // Each table in two halves at the text size (measures 1-4, then 5-8 of mathematics.md §5), not shrunk.
+    const auto halves = [&](const std::string& key, const mrm::repro::Table& table, std::size_t lead, char align) {
+      for (std::size_t half = 0; half < 2; ++half) {
+        std::vector<std::size_t> keep;
+        for (std::size_t c = 0; c < lead; ++c) keep.push_back(c);
+        for (std::size_t k = 4 * half; k < 4 * half + 4; ++k) keep.push_back(lead + k);
+        defs << "\\mrmdef{" << key << (half == 0 ? ":a" : ":b") << "}{"
+             << tabular(table.columns_subset(keep), std::string(lead, 'l') + std::string(4, align)) << "}\n";
+      }
+    };
+    halves("conv:table:orders", orders_table, 3, 'r');
+    halves("conv:table:errors", errors_table, 3, 'r');
+    halves("conv:table:ranking", ranking_table, 2, 'c');
 
     // 7. Commit.
     outputs.commit();
