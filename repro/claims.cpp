@@ -1398,7 +1398,7 @@ TEST_CASE("a row id reads in the report's notation") {
 void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
   const std::string column = ">{\\raggedright\\arraybackslash}p{";
   repro::LatexLayout layout;
-  layout.before = "{\\small\\setlength{\\tabcolsep}{3pt}\n";
+  layout.before = "{\\footnotesize\\setlength{\\tabcolsep}{3pt}\n";
   layout.columns = column + "0.20\\linewidth}" + column + "0.40\\linewidth}" + column + "0.23\\linewidth}" + column +
                    "0.11\\linewidth}";
   layout.longtable = true;
