@@ -99,20 +99,17 @@ int main(int argc, char** argv) {
     for (const std::string& scheme : mrm::repro::scheme_names()) {
       for (const std::string& mass : mrm::repro::mass_names()) {
         std::cerr << "fig_contact_history: " << scheme << ' ' << mass << '\n';
-        mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(mass),
-                                      mrm::repro::scheme_parameters(scheme, ps_form, mass), dt);
-        mrm::ErrorAccumulator errors(mesh, exact);
         out << "\n\n# block " << block++ << ": scheme = " << scheme << ", mass = " << mass
             << "\n# columns: t u0_h t_lambda lambda_h\n";
-        mrm::run(simulation, steps, [&](const mrm::Sample& s) {
-          errors.add(s);
+        const mrm::repro::Configuration configuration =
+            mrm::repro::paper_configuration(scheme, ps_form, mass, elements, courant, final_time);
+        const mrm::ErrorNorms e = mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
           const double lambda = s.has_multiplier ? s.multiplier : std::numeric_limits<double>::quiet_NaN();
           out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
               << cli::format_real(s.multiplier_time) << ' ' << cli::format_real(lambda) << '\n';
-        });
+        }).errors;
         // 5. The errors of the contact point, quoted by the report beside the figure.
         {
-          const mrm::ErrorNorms e = errors.relative();
           mrm::tex_define(outputs.values(), "hist:" + scheme + ":" + mass + ":err_u0_L2", mrm::tex_number(e.u0_L2, 2));
           mrm::tex_define(outputs.values(), "hist:" + scheme + ":" + mass + ":err_lambda_L2",
                           mrm::tex_number(e.lambda_L2, 2));

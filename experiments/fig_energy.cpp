@@ -75,20 +75,19 @@ int main(int argc, char** argv) {
     for (const std::string& scheme : mrm::repro::scheme_names()) {
       for (const std::string& mass : mrm::repro::mass_names()) {
         std::cerr << "fig_energy: " << scheme << ' ' << mass << '\n';
-        mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(mass),
-                                      mrm::repro::scheme_parameters(scheme, ps_form, mass), dt);
         out << (block ? "\n\n" : "") << "# block " << block << ": scheme = " << scheme << ", mass = " << mass
             << "\n# columns: t_energy energy_h\n";
         ++block;
-        double initial = 0, last = 0, largest_jump = 0, lowest = 1e300, highest = -1e300;
-        mrm::run(simulation, steps, [&](const mrm::Sample& s) {
-          if (s.level == 0) initial = last = s.energy;
-          largest_jump = std::max(largest_jump, std::abs(s.energy - last));
-          last = s.energy;
-          lowest = std::min(lowest, s.energy);
-          highest = std::max(highest, s.energy);
-          out << cli::format_real(s.energy_time) << ' ' << cli::format_real(s.energy) << '\n';
-        });
+        double last = 0, largest_jump = 0;
+        const mrm::repro::Measures measures = mrm::repro::run_configuration(
+            mrm::repro::paper_configuration(scheme, ps_form, mass, elements, courant, final_time),
+            [&](const mrm::Sample& s) {
+              if (s.level == 0) last = s.energy;
+              largest_jump = std::max(largest_jump, std::abs(s.energy - last));
+              last = s.energy;
+              out << cli::format_real(s.energy_time) << ' ' << cli::format_real(s.energy) << '\n';
+            });
+        const double initial = measures.energy_initial, lowest = measures.energy_min, highest = measures.energy_max;
         const std::string key = "energy:" + scheme + ":" + mass + ":";
         mrm::tex_define(defs, key + "initial", mrm::tex_number(initial, 4));
         mrm::tex_define(defs, key + "final", mrm::tex_number(last, 4));
@@ -103,17 +102,14 @@ int main(int argc, char** argv) {
     // u₀(0) = max(0, u₁(0)), which gives E_h(0) = (1 − h)/8, or the interpolant u⁰(0) = ½, which gives
     // E_h(0) = 1/8 but is not a state of the reduced problem; Crank–Nicolson with Mod 3, errors of both.
     for (const std::string initial : {"consistent", "interpolant"}) {
-      mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mod3(),
-                                    mrm::repro::scheme_parameters("cn", ps_form, "mod3"), dt,
-                                    mrm::initial_contact_node_by_name(initial));
-      mrm::ErrorAccumulator errors(mesh, exact);
+      mrm::repro::Configuration configuration =
+          mrm::repro::paper_configuration("cn", ps_form, "mod3", elements, courant, final_time);
+      configuration.initial = mrm::initial_contact_node_by_name(initial);
       double first = 0, after_one_step = 0;
-      mrm::run(simulation, steps, [&](const mrm::Sample& s) {
-        errors.add(s);
-        if (s.level == 0) first = s.energy;
-        if (s.level == 1) after_one_step = s.energy;
-      });
-      const mrm::ErrorNorms e = errors.relative();
+      const mrm::ErrorNorms e = mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
+                                  if (s.level == 0) first = s.energy;
+                                  if (s.level == 1) after_one_step = s.energy;
+                                }).errors;
       const std::string key = "energy:initial:" + initial + ":";
       mrm::tex_define(defs, key + "E0", mrm::tex_number(first, 4));
       mrm::tex_define(defs, key + "E1", mrm::tex_number(after_one_step, 4));

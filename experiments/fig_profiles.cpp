@@ -86,9 +86,11 @@ int main(int argc, char** argv) {
     std::vector<std::vector<Eigen::VectorXd>> profiles(masses.size(), std::vector<Eigen::VectorXd>(levels.size()));
     for (std::size_t m = 0; m < masses.size(); ++m) {
       std::cerr << "fig_profiles: " << scheme << ' ' << masses[m] << '\n';
-      mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(masses[m]),
-                                    mrm::repro::scheme_parameters(scheme, ps_form, masses[m]), dt);
-      mrm::run(simulation, last_level, [&](const mrm::Sample& s) {
+      mrm::repro::Configuration configuration =
+          mrm::repro::paper_configuration(scheme, ps_form, masses[m], elements, courant,
+                                          static_cast<double>(last_level) * dt);
+      configuration.steps = last_level;  // exactly the last chosen level (it may be level 0)
+      mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
         for (std::size_t k = 0; k < levels.size(); ++k)
           if (levels[k] == s.level) profiles[m][k] = *s.displacement;
       });

@@ -101,16 +101,14 @@ int main(int argc, char** argv) {
     int block = 1;
     for (const Variant& v : variants) {
       std::cerr << "fig_ps_forms: " << v.key << '\n';
-      mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(v.mass),
-                                    mrm::repro::scheme_parameters("ps", v.form, v.mass), dt);
-      mrm::ErrorAccumulator errors(mesh, exact);
       out << "\n\n# block " << block++ << ": form = " << v.form << ", mass = " << v.mass
           << "\n# columns: t u0_h t_energy energy_h\n";
       std::vector<double> sawtooth(static_cast<std::size_t>(periods), 0.0);
       double u_before = std::nan(""), u_prev = std::nan("");
       double energy_first = std::nan(""), energy_last = 0, energy_max = -1e300, energy_min = 1e300;
-      mrm::run(simulation, steps, [&](const mrm::Sample& s) {
-        errors.add(s);
+      const mrm::repro::Configuration configuration =
+          mrm::repro::paper_configuration("ps", v.form, v.mass, elements, courant, final_time);
+      const mrm::ErrorNorms e = mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
         const double u0 = (*s.displacement)[0];
         if (s.level >= 2) {
           const double t_mid = s.time - dt, t_first = s.time - 2 * dt;
@@ -133,8 +131,7 @@ int main(int argc, char** argv) {
         }
         out << cli::format_real(s.time) << ' ' << cli::format_real(u0) << ' ' << cli::format_real(s.energy_time) << ' '
             << cli::format_real(s.energy) << '\n';
-      });
-      const mrm::ErrorNorms e = errors.relative();
+      }).errors;
       const std::string key = "ps:" + v.key + ":";
       mrm::tex_define(defs, key + "err_u0_L2", mrm::tex_number(e.u0_L2, 2));
       mrm::tex_define(defs, key + "err_u_L2H1", mrm::tex_number(e.u_L2H1, 2));

@@ -1134,12 +1134,13 @@ TEST_CASE("the contact-step check fails when the step does not solve the stated 
 // order 1 in most measures, far above it.
 ClaimResult check_exact_solution(const ExactSolution& exact, const FineSolutionSettings& settings,
                                  const Expectations& expectations, std::vector<std::string>* used) {
-  const UniformMesh mesh(1.0, settings.elements);
-  const double dt = settings.courant * mesh.h();
-  BarSimulation simulation(benchmark_problem(), mesh, mod3(), scheme_choice("cn").parameters, dt);
-  ErrorAccumulator accumulator(mesh, exact);
-  run(simulation, steps_to_reach(settings.final_time, dt), [&](const Sample& s) { accumulator.add(s); });
-  const auto values = ErrorAccumulator::values(accumulator.relative());
+  repro::Configuration configuration;
+  configuration.scheme = scheme_choice("cn").parameters;
+  configuration.mass = mod3();
+  configuration.elements = settings.elements;
+  configuration.courant = settings.courant;
+  configuration.final_time = settings.final_time;
+  const auto values = ErrorAccumulator::values(repro::run_configuration(configuration, {}, &exact).errors);
   bool holds = true;
   std::vector<std::string> measured;
   for (std::size_t q = 0; q < 8; ++q) {

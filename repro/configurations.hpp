@@ -85,7 +85,8 @@ class FigureOutputs {
 };
 
 /// One run of the benchmark (mathematics.md §2): the bar (0, L) released from u⁰(x) = a (L − x), a
-/// scheme, a mass, a mesh of N elements and Δt (given, or C h), to the first level t_n ≥ T.
+/// scheme, a mass, a mesh of N elements and Δt (given, or C h), to the first level t_n ≥ T (or for a
+/// given number of steps).
 struct Configuration {
   SchemeParameters scheme;
   MassRedistribution mass = mod3();
@@ -93,6 +94,7 @@ struct Configuration {
   double courant = 0.5;  ///< Δt = C h, unless dt > 0
   double dt = 0.0;       ///< the time step if > 0
   double final_time = 3.0;
+  Index steps = -1;  ///< the number of steps if ≥ 0 (final_time is then unused)
   double length = 1.0;
   double amplitude = 0.5;
   InitialContactNode initial = InitialContactNode::consistent;
@@ -114,9 +116,11 @@ struct Measures {
 };
 
 /// Runs the configuration to its final time, calling `observe` (if given) on every sample from level 0
-/// on, and returns its measures. Throws std::runtime_error if the energy becomes non-finite (a value
-/// that cannot be computed is an error, never a nan in a table).
+/// on, and returns its measures: the errors against `reference` if given (a closed form under test),
+/// else against the configuration's own exact solution. Throws std::runtime_error if the energy becomes
+/// non-finite (a value that cannot be computed is an error, never a nan in a table).
 Measures run_configuration(const Configuration& configuration,
-                           const std::function<void(const Sample&)>& observe = {});
+                           const std::function<void(const Sample&)>& observe = {},
+                           const ExactSolution* reference = nullptr);
 
 }  // namespace mrm::repro

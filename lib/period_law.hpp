@@ -1,0 +1,56 @@
+/// @file period_law.hpp
+/// @brief The period law (mathematics.md §8): the effective free and contact lengths of a mass
+/// redistribution from the first eigenvalue of its reduced pencils, the discrete period of the
+/// benchmark and its error, and the leading-order rule ΔP = 2 δm_loc + (3/2) δm_glob.
+#pragma once
+
+#include "mass_redistribution.hpp"
+#include "p1.hpp"
+
+namespace mrm {
+
+/// The smallest eigenvalue μ of the symmetric tridiagonal pencil K x = μ M x, K and M positive
+/// definite, by bisection on Sylvester's inertia count of K − μM (to a relative width 1e-15).
+/// Throws std::invalid_argument for sizes that differ, an empty pencil, or a K or M that is not
+/// positive definite.
+double smallest_eigenvalue(const Tridiagonal& stiffness, const Tridiagonal& mass);
+
+/// The two linear systems a bar with a massless contact node alternates between (f = 0), on the
+/// nodes 1..N−1 (mathematics.md §8): free flight, u₀ = u₁, stiffness S̄ − e₁e₁ᵀ/h (the element
+/// (0, h) moves rigidly: a free end at node 1); contact, u₀ = 0, stiffness S̄ (held at both ends).
+/// The mass is M̄, the redistributed mass without row and column 0. For a contact node with inertia
+/// (the consistent mass) the free pencil is (S, M) on nodes 0..N−1 and the contact pencil the same
+/// as above with M's block on 1..N−1.
+struct ReducedPencils {
+  Tridiagonal mass_free, stiffness_free;        ///< the free-flight pencil
+  Tridiagonal mass_contact, stiffness_contact;  ///< the contact pencil (u₀ = 0)
+};
+/// Throws std::invalid_argument for a mesh with N < 3 (the reduced pencils need two free nodes).
+ReducedPencils reduced_pencils(const UniformMesh& mesh, const MassRedistribution& redistribution);
+
+/// The lengths of the continuous bars whose first frequency is that of the reduced pencils:
+/// ℓ_f = π/(2ω_f) (free–clamped, a quarter wave), ℓ_c = π/ω_c (clamped–clamped, a half wave).
+struct EffectiveLengths {
+  double free;     ///< ℓ_f
+  double contact;  ///< ℓ_c
+  /// The discrete period of the benchmark (free flight, contact, free flight back): 2ℓ_f + ℓ_c.
+  double period() const { return 2 * free + contact; }
+};
+EffectiveLengths effective_lengths(const UniformMesh& mesh, const MassRedistribution& redistribution);
+
+/// The period law's prediction for the benchmark (u⁰ = a(L − x), period 3L) on a mesh: the discrete
+/// period 2ℓ_f + ℓ_c, its error against 3L (the drift of the impact times per period), and the error
+/// of the first impact time, ℓ_f − L. Negative errors mean early impacts.
+struct PeriodPrediction {
+  EffectiveLengths lengths;
+  double period_error;        ///< 2ℓ_f + ℓ_c − 3L
+  double first_impact_error;  ///< ℓ_f − L
+};
+PeriodPrediction predict_period(const UniformMesh& mesh, const MassRedistribution& redistribution);
+
+/// The leading-order period change of a redistribution that adds the mass `local` at node 1 beyond
+/// Mod 3's M̄₁₁ = 4h/3 and spreads the mass `global` uniformly over the bar: ΔP = 2 δm_loc +
+/// (3/2) δm_glob (the effective lengths change by δℓ_f = δm_loc + δm_glob/2, δℓ_c = δm_glob/2).
+double predicted_period_change(double local, double global);
+
+}  // namespace mrm

@@ -1,0 +1,58 @@
+/// @file phase.hpp
+/// @brief Phase diagnostics of a run (mathematics.md §8): the impact times read off the contact
+/// node's time series, their errors against the exact impact times, the error of the first impact
+/// and the drift of the impact times per period.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "exact_solution.hpp"
+#include "schemes.hpp"
+
+namespace mrm {
+
+/// The signed contact indicator of one level: g = u₀ + hλ when the multiplier belongs to the same
+/// instant as the displacement (every scheme with the algebraic contact row; then g = u₁ + hF₀
+/// exactly), u₀ otherwise. g > 0: the gap is open; g ≤ 0: the contact is active.
+double contact_indicator(const Sample& sample, double h);
+
+/// Reads the impact times off a time series of the contact indicator, one level at a time, in O(1)
+/// memory per level. An impact is a level n with gₙ ≤ 0 after a level with gₙ₋₁ > 0; its time is the
+/// zero of the straight line through (tₙ₋₁, gₙ₋₁) and (tₙ, gₙ). A contact that starts less than
+/// `minimum_free_interval` after the previous one ended (chatter) continues that contact instead.
+class ImpactDetector {
+ public:
+  /// Throws std::invalid_argument for a negative or non-finite interval.
+  explicit ImpactDetector(double minimum_free_interval = 0.0);
+  /// Adds the level (t, g); the times must increase. Throws std::invalid_argument otherwise or for a
+  /// non-finite value.
+  void add(double time, double indicator);
+  const std::vector<double>& impacts() const { return impacts_; }
+
+ private:
+  double minimum_free_interval_;
+  bool started_ = false, in_contact_ = false, contact_seen_ = false;
+  double time_ = 0, indicator_ = 0, release_ = 0;
+  std::vector<double> impacts_;
+};
+
+/// The phase of a run against the exact solution. The k-th measured impact is compared with the
+/// k-th exact one (k = 0 … min(counts) − 1); errors eₖ = t̂ₖ − tₖ, negative when the run hits early.
+struct PhaseMeasures {
+  std::size_t matched;        ///< the number of impacts compared
+  double first_impact_error;  ///< e₀
+  /// P times the least-squares slope of eₖ against tₖ: the time the impacts gain (> 0) or lose
+  /// (< 0, early) per period P, in time units. Needs two impacts at least (std::nullopt otherwise).
+  std::optional<double> drift_per_period;
+};
+/// Throws std::invalid_argument when no impact can be compared, for a non-positive period, or for
+/// exact impact times that do not increase.
+PhaseMeasures phase_measures(const std::vector<double>& impacts, const std::vector<double>& exact_impacts,
+                             double period);
+
+/// The first `count` impact times of the benchmark's exact solution: L + 3L k (problem.md §2).
+std::vector<double> benchmark_impact_times(const ExactSolution& exact, std::size_t count);
+
+}  // namespace mrm
