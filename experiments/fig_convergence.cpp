@@ -177,6 +177,8 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "conv:meshes", std::to_string(levels));
     mrm::tex_define(defs, "conv:T", mrm::tex_number(final_time, 3));
     mrm::tex_define(defs, "conv:psform", ps_form);
+    // The two steps of the study, for the prose ("\mrm{conv:dt:dth2}" prints "$\Delta t = h/2$").
+    for (std::size_t c = 0; c < courants.size(); ++c) mrm::tex_define(defs, std::string("conv:dt:") + courant_keys[c], courant_labels[c]);
     std::vector<std::string> headers{"scheme", "mass", "$\\Delta t$"}, ranking_headers{"scheme", "$\\Delta t$"};
     for (const char* label : measure_labels) {
       headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
