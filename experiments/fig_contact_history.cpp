@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
           mrm::tex_define(outputs.values(), "hist:" + scheme + ":" + mass + ":err_lambda_L2",
                           mrm::tex_number(e.lambda_L2, 2));
           mrm::tex_define(outputs.values(), "hist:" + scheme + ":" + mass + ":err_u_L2H1", mrm::tex_number(e.u_L2H1, 2));
-          table.add_row({mass == "mod1" ? mrm::repro::scheme_label(scheme) : std::string(), std::string("Mod ") + mass.back(),
+          table.add_row({mass == "mod1" ? mrm::repro::scheme_label(scheme, ps_form) : std::string(), std::string("Mod ") + mass.back(),
                          mrm::tex_number(e.u0_L2, 2), mrm::tex_number(e.lambda_L2, 2), mrm::tex_number(e.u_L2H1, 2)});
         }
       }

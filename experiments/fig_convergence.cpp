@@ -192,7 +192,7 @@ int main(int argc, char** argv) {
       long ordered = 0, cases = 0;
       for (std::size_t m = 0; m < masses.size(); ++m)
         for (std::size_t c = 0; c < courants.size(); ++c) {
-          std::vector<std::string> orders_row{m == 0 && c == 0 ? mrm::repro::scheme_label(schemes[s]) : std::string(),
+          std::vector<std::string> orders_row{m == 0 && c == 0 ? mrm::repro::scheme_label(schemes[s], ps_form) : std::string(),
                                               c == 0 ? mass_label(m) : std::string(), courant_labels[c]};
           std::vector<std::string> errors_row = orders_row;
           for (std::size_t k = 0; k < 8; ++k) {
@@ -220,7 +220,7 @@ int main(int argc, char** argv) {
         }
       // The paper's claim 3: Mod 3 < Mod 2 < Mod 1 in error. Counted over every measure, mesh and ratio.
       for (std::size_t c = 0; c < courants.size(); ++c) {
-        std::vector<std::string> ranking_row{c == 0 ? mrm::repro::scheme_label(schemes[s]) : std::string(), courant_labels[c]};
+        std::vector<std::string> ranking_row{c == 0 ? mrm::repro::scheme_label(schemes[s], ps_form) : std::string(), courant_labels[c]};
         for (std::size_t k = 0; k < 8; ++k) {
           for (std::size_t l = 0; l < levels; ++l) {
             const double e1 = at(s, 0, c, l).errors[k], e2 = at(s, 1, c, l).errors[k], e3 = at(s, 2, c, l).errors[k];

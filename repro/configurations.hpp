@@ -35,6 +35,11 @@ inline std::string scheme_label(const std::string& scheme) {
   if (scheme == "be") return "backward Euler";
   return "Paoli-Schatzman (1/4, 0)";
 }
+/// The label of a table row: Paoli–Schatzman's says which contact row it uses ("…, literal row"), so
+/// that a row of the literal form is never read as the scheme's algebraic form.
+inline std::string scheme_label(const std::string& scheme, const std::string& ps_form) {
+  return scheme == "ps" ? scheme_label(scheme) + ", " + ps_form + " row" : scheme_label(scheme);
+}
 
 /// The scheme's parameters; Paoli–Schatzman with β = ¼, e = 0 and the given contact row (a mass that
 /// keeps the contact node's inertia always takes the literal row: it has no algebraic one).
