@@ -22,8 +22,10 @@ double smallest_eigenvalue(const Tridiagonal& stiffness, const Tridiagonal& mass
 /// (the consistent mass) the free pencil is (S, M) on nodes 0..N−1 and the contact pencil the same
 /// as above with M's block on 1..N−1.
 struct ReducedPencils {
-  Tridiagonal mass_free, stiffness_free;        ///< the free-flight pencil
-  Tridiagonal mass_contact, stiffness_contact;  ///< the contact pencil (u₀ = 0)
+  Tridiagonal mass_free;          ///< the mass of the free-flight pencil
+  Tridiagonal stiffness_free;     ///< the stiffness of the free-flight pencil
+  Tridiagonal mass_contact;       ///< the mass of the contact pencil (u₀ = 0)
+  Tridiagonal stiffness_contact;  ///< the stiffness of the contact pencil (u₀ = 0)
 };
 /// Throws std::invalid_argument for a mesh with N < 3 (the reduced pencils need two free nodes).
 ReducedPencils reduced_pencils(const UniformMesh& mesh, const MassRedistribution& redistribution);
@@ -36,16 +38,18 @@ struct EffectiveLengths {
   /// The discrete period of the benchmark (free flight, contact, free flight back): 2ℓ_f + ℓ_c.
   double period() const { return 2 * free + contact; }
 };
+/// ℓ_f and ℓ_c of a redistribution on a mesh, from the smallest eigenvalues of its reduced pencils.
 EffectiveLengths effective_lengths(const UniformMesh& mesh, const MassRedistribution& redistribution);
 
 /// The period law's prediction for the benchmark (u⁰ = a(L − x), period 3L) on a mesh: the discrete
 /// period 2ℓ_f + ℓ_c, its error against 3L (the drift of the impact times per period), and the error
 /// of the first impact time, ℓ_f − L. Negative errors mean early impacts.
 struct PeriodPrediction {
-  EffectiveLengths lengths;
+  EffectiveLengths lengths;   ///< ℓ_f and ℓ_c
   double period_error;        ///< 2ℓ_f + ℓ_c − 3L
   double first_impact_error;  ///< ℓ_f − L
 };
+/// The prediction of the period law for a redistribution on a mesh (see PeriodPrediction).
 PeriodPrediction predict_period(const UniformMesh& mesh, const MassRedistribution& redistribution);
 
 /// The leading-order period change of a redistribution that adds the mass `local` at node 1 beyond

@@ -29,6 +29,7 @@ class ImpactDetector {
   /// Adds the level (t, g); the times must increase. Throws std::invalid_argument otherwise or for a
   /// non-finite value.
   void add(double time, double indicator);
+  /// The impact times found so far, in increasing order.
   const std::vector<double>& impacts() const { return impacts_; }
 
  private:
