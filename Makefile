@@ -224,6 +224,7 @@ help:
 	@echo '  test     build, then run the test suite with ctest and the claims table'
 	@echo '  check-claims  build, then check every claim of the paper and print the table'
 	@echo '  bench    build, then time one step per node for N = 2^6..2^20 ($(OUT)/bench/bench_step.*)'
+	@echo '           (all runs a short one, N = 2^8..2^14, into $(OUT)/bench-short/ for the report)'
 	@echo '  deps     check the Debian packages, installing the missing ones if root (tools/deps.sh)'
 	@echo '  figures  the figures in $(FIGURES)/ (part of all)'
 	@echo '  report   the report $(REPORT) (part of all)'
