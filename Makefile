@@ -114,28 +114,44 @@ $(BENCH_SHORT):
 # `make check-claims` runs every check of repro/claims.cpp (the program experiments/check_claims.cpp)
 # and prints the table claim | measured | criterion | verdict; it fails iff a check FAILED (expected
 # failures, listed with their reasons in repro/claims.cpp, do not fail it). `make test` runs it
-# (TEST_EXTRA). The same table for the report, as LaTeX and Markdown:
-# $(DATA)/claims.tex and $(DATA)/claims.md, part of `make all`.
+# (TEST_EXTRA). The same table for the report, as LaTeX and Markdown: $(DATA)/claims.tex and
+# $(DATA)/claims.md; its summary (at most 12 lines: verdict and region of each claim) as \mrmdef values
+# and as a table, $(DATA)/claims_summary.tex and $(DATA)/claims_summary_table.tex; and the sweep behind
+# claims 3 and 4 (every measure of every run), $(DATA)/sweep.dat, which the two maps below read: all
+# part of `make all`, from one run of check_claims.
 .PHONY: check-claims
 check-claims: build
 	$(BUILD)/bin/check_claims
 
-all: $(DATA)/claims.tex $(DATA)/claims.md
+CLAIMS_OUTPUTS := $(DATA)/claims.tex $(DATA)/claims.md $(DATA)/claims_summary.tex \
+                  $(DATA)/claims_summary_table.tex $(DATA)/sweep.dat
+all: $(CLAIMS_OUTPUTS)
 
-$(DATA)/claims.tex $(DATA)/claims.md &: $(BUILD)/bin/check_claims | $(DATA)
-	$< --tex $(DATA)/claims.tex --markdown $(DATA)/claims.md > /dev/null
+$(CLAIMS_OUTPUTS) &: $(BUILD)/bin/check_claims | $(DATA)
+	$< --tex $(DATA)/claims.tex --markdown $(DATA)/claims.md --summary-tex $(DATA)/claims_summary.tex \
+	  --summary-table $(DATA)/claims_summary_table.tex --sweep $(DATA)/sweep.dat > /dev/null
+
+# The maps of claims 3 and 4 read the sweep (one computation for the claims and the maps).
+SWEEP_MAPS := fig_ordering_map fig_order_map
+$(SWEEP_MAPS:%=$(DATA)/%.dat): $(DATA)/%.dat: $(BUILD)/bin/% $(DATA)/sweep.dat | $(DATA)
+	$< --sweep $(DATA)/sweep.dat --output $@ --tex $(DATA)/$*.tex
+$(SWEEP_MAPS:%=$(DATA)/%.tex): $(DATA)/%.tex: $(DATA)/%.dat ;
 
 # ---- Figures, report and API documentation ------------------------------------------------------
+# The views of experiments/fig_energy_schemes.cpp (its rule is below).
+ENERGY_SCHEMES_VIEWS := history map measures
 # One figure = one program experiments/X.cpp = one data file $(DATA)/X.dat (with the LaTeX values the
 # report quotes, $(DATA)/X.tex) = one gnuplot script figures/X.gp = one PDF $(FIGURES)/X.pdf.
 # The report paper/report.tex \input's the .tex fragments and includes the PDFs; latexmk builds it.
-FIGURE_NAMES := fig_contact_history fig_energy fig_convergence fig_time_error fig_ps_forms fig_profiles
+FIGURE_NAMES := fig_contact_history fig_energy fig_convergence fig_time_error fig_ps_forms fig_profiles fig_phase \
+                fig_stability_map fig_smooth_convergence fig_smooth_benchmarks \
+                $(SWEEP_MAPS) $(ENERGY_SCHEMES_VIEWS:%=fig_energy_schemes_%)
 FIGURE_PDFS := $(FIGURE_NAMES:%=$(FIGURES)/%.pdf)
 FIGURE_DATA := $(FIGURE_NAMES:%=$(DATA)/%.dat)
 FIGURE_TEX := $(FIGURE_NAMES:%=$(DATA)/%.tex)
 REPORT_SOURCES := $(wildcard paper/*.tex)
 # The claims table (experiments/check_claims.cpp, see the claims section above).
-CLAIMS_TEX := $(DATA)/claims.tex
+CLAIMS_TEX := $(DATA)/claims.tex $(DATA)/claims_summary.tex $(DATA)/claims_summary_table.tex
 # Fixed dates in the PDFs (pdfTeX and cairo honour SOURCE_DATE_EPOCH).
 REPRODUCIBLE := SOURCE_DATE_EPOCH=0 FORCE_SOURCE_DATE=1
 
@@ -171,6 +187,13 @@ $(FIGURES)/%.pdf: figures/%.gp figures/style.gp $(DATA)/%.dat | $(FIGURES)
 $(DATA)/report_meta.tex: FORCE | $(DATA)
 	tools/report_meta.sh CITATION.cff > $@.tmp
 	if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv $@.tmp $@; fi
+
+# EC and CN-switch against Crank–Nicolson and backward Euler (mathematics.md §12): one program,
+# experiments/fig_energy_schemes.cpp, three views, each its own run, data file, values and figure
+# (a pattern rule more specific than the one above: make takes the one with the shorter stem).
+.SECONDARY: $(BUILD)/bin/fig_energy_schemes
+$(DATA)/fig_energy_schemes_%.dat $(DATA)/fig_energy_schemes_%.tex: $(BUILD)/bin/fig_energy_schemes | $(DATA)
+	$< --view $* --output $(DATA)/fig_energy_schemes_$*.dat --tex $(DATA)/fig_energy_schemes_$*.tex
 
 # Crank–Nicolson's largest energy for Δt ≫ h, relative to E_h(0) (experiments/cn_large_step.cpp).
 $(DATA)/cn_large_step.tex: $(BUILD)/bin/cn_large_step | $(DATA)

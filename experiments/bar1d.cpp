@@ -1,24 +1,35 @@
-// bar1d: one run of one configuration on the benchmark of mathematics.md §2.
+// bar1d: one run of one configuration on a benchmark or on initial data of one's own.
 //
-// What it computes. The elastic bar (0, L), clamped at x = L and released at rest from
-// u⁰(x) = a (L − x) against the rigid obstacle at x = 0, discretised with P1 elements and a
-// Lagrange multiplier at the contact node, a mass matrix (consistent, or redistributed by Mod 1, 2
-// or 3) and one time scheme (Crank–Nicolson, backward Euler or Paoli–Schatzman). It prints the
-// relative errors of mathematics.md §5 against the exact solution, the energy range and the run's size
-// and time, one `name = value` line each, and optionally writes the time series of the contact
-// point (u(0,t), λ(t), the energy, and the exact values beside them). Its standard output is the
-// same bytes for the same command except the wall time of the run (wall_seconds), which
+// What it computes. The elastic bar (0, L), clamped at x = L, released against the rigid obstacle at
+// x = 0 from the initial data of a benchmark — the paper's u⁰(x) = a (L − x), v⁰ = 0 with its closed-form
+// solution (mathematics.md §2, the default), or the smooth S1 (smooth-impact) and S2 (grazing) of
+// mathematics.md §11 — or from samples x, u⁰, v⁰ read from a file (--initial-data), discretised with P1
+// elements and a Lagrange multiplier at the contact node, a mass matrix (consistent, or redistributed by
+// Mod 1, 2 or 3) and one time scheme (Crank–Nicolson, backward Euler, Paoli–Schatzman, or the
+// energy-conserving Crank–Nicolson and Crank–Nicolson with a θ-step at each status change of
+// mathematics.md §12). It prints the relative errors of mathematics.md §5 against the exact solution (the
+// closed form for the paper's benchmark, the characteristic solution of mathematics.md §10 for any other
+// data), the energy range, the run's size and time, and its phase (mathematics.md §8: the number of
+// impacts, first_impact_error = the error of the first impact time, phase_drift_per_period = the
+// least-squares drift of the impact times per period, negative when the impacts come early, beside the
+// period law's predictions of both), one `name = value` line each, and optionally writes the time series
+// of the contact point (u(0,t), λ(t), the energy, and the exact values beside them). Its standard output
+// is the same bytes for the same command except the wall time of the run (wall_seconds), which
 // `--no-timing` leaves out.
 //
 // Sample runs:
 //   bar1d --scheme cn --mass mod3 --elements 50 --courant 0.5 --final-time 12
 //   bar1d --scheme ps --ps-form literal --mass mod2 --elements 100 --dt 0.004 --output ps.dat
+//   bar1d --benchmark grazing --scheme cn --mass mod1 --elements 400
+//   bar1d --initial-data tests/data/initial_data/left_going_wave.dat --elements 200 --final-time 4
 //   bar1d --scheme be --mass consistent --elements 200 --courant 1
+//   bar1d --scheme ec --mass mod3 --elements 16 --courant 10 --final-time 300
+//   bar1d --scheme cn-switch --switch-theta 0.75 --mass mod1 --elements 400
 //
-// Description. Steps: (1) read the options; (2) open the output file (so that a bad path fails
-// before the run); (3) build the mesh, the mass and the scheme, Δt = C h unless --dt is given;
-// (4) run to the final time, accumulating the errors and, if asked, the time series; (5) print the
-// figures and commit the output.
+// Description. Steps: (1) read the options and the initial-data file (so that bad values fail before
+// any work); (2) open the output file (so that a bad path fails before the run); (3) build the mesh,
+// the mass, the scheme and the reference, Δt = C h unless --dt is given; (4) run to the final time,
+// accumulating the errors and, if asked, the time series; (5) print the figures and commit the output.
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -30,8 +41,11 @@
 #include "options.hpp"
 #include "output_file.hpp"
 #include "configurations.hpp"
+#include "run_limits.hpp"
+#include "initial_data_file.hpp"
 #include "errors.hpp"
 #include "exact_solution.hpp"
+#include "period_law.hpp"
 #include "schemes.hpp"
 
 namespace cli = mrm::cli;
@@ -40,40 +54,70 @@ int main(int argc, char** argv) {
   return cli::guarded_main("bar1d", [&] {
     // 1. Options.
     long elements = 100;
-    double courant = 0.5, dt = 0.0, final_time = 6.0, length = 1.0, amplitude = 0.5, beta = 0.25, restitution = 0.0;
+    double courant = 0.5, dt = 0.0, final_time = 6.0, length = 1.0, amplitude = 0.5, beta = 0.25, restitution = 0.0,
+           switch_theta = 1.0;
     std::string scheme = "cn", mass = "mod3", ps_form = "algebraic", initial = "consistent", output;
+    std::string benchmark = "paper", initial_data;
     bool no_timing = false;
     // The ranges below keep every quantity of the run (h, Δt², the matrices' entries, the energy a²L/2)
-    // far from overflow and underflow of a double, and the memory (≈ 250 bytes per element) bounded.
-    constexpr double largest_courant = 1e6, largest_steps = 1e12;
+    // far from overflow and underflow of a double (the energy and the errors are computed scale-free:
+    // errors.cpp, schemes.cpp), and the memory bounded: the peak memory of a run, measured at N = 1e6
+    // and 2e6, is 205 bytes per element (the scheme's vectors and factors, the error accumulator's
+    // interpolants and matrices); 256 with a margin, compared with what the process may use.
+    constexpr double largest_courant = cli::max_courant, bytes_per_element = 256;
     const cli::Check courant_range = [&](std::string_view option, double value) {
       cli::require_positive(option, value);
       cli::require_in_closed_range(option, value, 0, largest_courant);
     };
-    cli::Parser parser("bar1d",
-                       "Runs one scheme with one mass matrix on the bar hitting an obstacle (the benchmark with "
-                       "a closed-form solution) and prints the relative errors against the exact solution, "
-                       "the energy range, the number of steps and the run time, one `name = value` line each.",
-                       {"bar1d --scheme cn --mass mod3 --elements 50 --courant 0.5 --final-time 12",
-                        "bar1d --scheme ps --ps-form literal --mass mod2 --elements 100 --dt 0.004 --output ps.dat"});
+    cli::Parser parser(
+        "bar1d",
+        "Runs one scheme with one mass matrix on the bar hitting an obstacle (the paper's benchmark "
+        "with a closed-form solution, a smooth benchmark, or initial data from a file) and prints the "
+        "relative errors against the exact solution, the energy range, the number of steps and the "
+        "run time, one `name = value` line each.",
+        {"bar1d --scheme cn --mass mod3 --elements 50 --courant 0.5 --final-time 12",
+         "bar1d --scheme ps --ps-form literal --mass mod2 --elements 100 --dt 0.004 --output ps.dat",
+         "bar1d --benchmark grazing --scheme cn --mass mod1 --elements 400",
+         "bar1d --initial-data tests/data/initial_data/left_going_wave.dat --elements 200 --final-time 4"});
     parser.add_integer("--elements", "-n", "N", "number of elements N of the mesh (h = L/N), an integer in [2, 1e7]",
-                       &elements, cli::in_closed_range(2, 1e7));
+                       &elements, cli::in_closed_range(2, cli::max_elements));
     parser.add_real("--courant", "-c", "C", "time step as a multiple of h: dt = C h (0 < C <= 1e6)", &courant,
                     courant_range);
     parser.add_real("--dt", "", "X", "time step (0 < dt <= 1e6 h); excludes --courant", &dt, cli::positive());
-    parser.add_real("--final-time", "-T", "T", "final time (> 0); the period of the benchmark is 3L", &final_time,
-                    cli::positive());
-    parser.add_real("--length", "-L", "L", "length of the bar, in [1e-100, 1e100]", &length,
+    parser.add_real("--final-time", "-T", "T",
+                    "final time (> 0); the period of the paper's benchmark is 3L; default 6, or 2 for the smooth "
+                    "benchmarks",
+                    &final_time, cli::positive());
+    parser.add_choice("--benchmark", "", "B",
+                      "initial data: the paper's (closed-form solution), S1 with an impact, S2 with a grazing contact "
+                      "(mathematics.md sec. 11, L = 1)",
+                      mrm::repro::benchmark_names(), &benchmark);
+    parser.add_string("--initial-data", "", "FILE",
+                      "read the initial data from FILE (columns x u0 v0, linearly interpolated, on [0, L] with L the "
+                      "last x); excludes --benchmark",
+                      &initial_data);
+    parser.add_real("--length", "-L", "L", "length of the bar, in [1e-100, 1e100] (--benchmark paper only)", &length,
                     cli::in_closed_range(1e-100, 1e100));
-    parser.add_real("--amplitude", "-a", "A", "initial datum u0(x) = A (L - x), A in [1e-100, 1e100]", &amplitude,
+    parser.add_real("--amplitude", "-a", "A",
+                    "initial datum u0(x) = A (L - x), A in [1e-100, 1e100] (--benchmark paper only)", &amplitude,
                     cli::in_closed_range(1e-100, 1e100));
-    parser.add_choice("--scheme", "-s", "S", "time scheme: Crank-Nicolson, backward Euler, Paoli-Schatzman",
-                      {"cn", "be", "ps"}, &scheme);
+    parser.add_choice("--scheme", "-s", "S",
+                      "time scheme: Crank-Nicolson, backward Euler, Paoli-Schatzman, energy-conserving "
+                      "Crank-Nicolson (massless contact node), Crank-Nicolson with a theta-step at each change of "
+                      "the contact status",
+                      {"cn", "be", "ps", "ec", "cn-switch"}, &scheme);
+    parser.add_real("--switch-theta", "", "TH",
+                    "cn-switch: theta in [0.5, 1] of the step that replaces a Crank-Nicolson step across a change "
+                    "of the contact status (1: backward Euler, the energy never increases)",
+                    &switch_theta, cli::in_closed_range(0.5, 1));
     parser.add_choice("--mass", "-m", "M", "mass matrix: Mod 1/2/3 or the consistent P1 mass",
                       {"mod1", "mod2", "mod3", "consistent"}, &mass);
-    parser.add_real("--beta", "-b", "B", "Paoli-Schatzman's beta, in [0, 1e6]", &beta, cli::in_closed_range(0, 1e6));
-    parser.add_real("--restitution", "-e", "E", "Paoli-Schatzman's restitution coefficient e in [0, 1]",
-                    &restitution, cli::in_closed_range(0, 1));
+    parser.add_real("--beta", "-b", "B",
+                    "Paoli-Schatzman's beta, in [0, 1e6]; at least 1/4 with --ps-form literal and a massless "
+                    "contact node",
+                    &beta, cli::in_closed_range(0, 1e6));
+    parser.add_real("--restitution", "-e", "E", "Paoli-Schatzman's restitution coefficient e in [0, 1]", &restitution,
+                    cli::in_closed_range(0, 1));
     parser.add_choice("--ps-form", "", "F",
                       "Paoli-Schatzman's contact row: algebraic at every level, or the literal three-level formula "
                       "(the consistent mass needs literal, which is then the default)",
@@ -82,54 +126,95 @@ int main(int argc, char** argv) {
                       "initial value of a massless contact node: solved from its algebraic row, or the interpolant",
                       {"consistent", "interpolant"}, &initial);
     parser.add_string("--output", "-o", "FILE", "write the contact-point time series to FILE", &output);
-    parser.add_flag("--no-timing", "", "leave out the wall time of the run (wall_seconds, the one value that varies "
-                    "from run to run)", &no_timing);
+    parser.add_flag("--no-timing", "",
+                    "leave out the wall time of the run (wall_seconds, the one value that varies "
+                    "from run to run)",
+                    &no_timing);
     parser.add_conflict("--dt", "--courant");
+    parser.add_conflict("--initial-data", "--benchmark");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    const bool own_data = parser.given("--initial-data");
+    for (const char* option : {"--length", "--amplitude"})
+      if (parser.given(option) && (own_data || benchmark != "paper"))
+        throw cli::UsageError(std::string(option) +
+                              ": only with --benchmark paper (the smooth benchmarks have L = 1, " +
+                              "and --initial-data gives L as its last x)");
+    std::shared_ptr<const mrm::InitialData> data;
+    if (own_data) data = std::make_shared<const mrm::InitialData>(mrm::repro::read_initial_data(initial_data));
+    if (!parser.given("--final-time") && !own_data && benchmark != "paper") final_time = 2.0;
     if (mass == "consistent" && !parser.given("--ps-form")) ps_form = "literal";
     if (mass == "consistent" && scheme == "ps" && ps_form == "algebraic")
-      throw cli::UsageError("--ps-form: algebraic needs a massless contact node (--mass mod1, mod2 or mod3); "
-                            "with --mass consistent use --ps-form literal");
+      throw cli::UsageError(
+          "--ps-form: algebraic needs a massless contact node (--mass mod1, mod2 or mod3); "
+          "with --mass consistent use --ps-form literal");
+    if (scheme == "ec" && mass == "consistent")
+      throw cli::UsageError(
+          "--scheme: ec needs a massless contact node (--mass mod1, mod2 or mod3): with the "
+          "consistent mass the contact energy has no discrete gradient");
+    if (parser.given("--switch-theta") && scheme != "cn-switch")
+      throw cli::UsageError("--switch-theta: only with --scheme cn-switch (allowed: omit it)");
     if (scheme == "ps" && ps_form == "literal" && beta == 0.0 && mass != "consistent")
-      throw cli::UsageError("--beta: 0 is not allowed with --ps-form literal and a massless contact node "
-                            "(the step matrix is singular); use --beta > 0 or --ps-form algebraic");
+      throw cli::UsageError(
+          "--beta: 0 is not allowed with --ps-form literal and a massless contact node "
+          "(the step matrix is singular); use --beta > 0 or --ps-form algebraic");
+    // With the literal row and a massless contact node, row 0 off contact reads
+    // β d^{n+1} + (1 − 2β) d^n + β d^{n−1} = 0 for d = u₀ − u₁ (S's row 0 is (1, −1)/h): the roots of
+    // β r² + (1 − 2β) r + β have product 1 and are real and distinct when β < ¼, so one exceeds 1 in
+    // modulus and d grows geometrically at every step of free flight (by 1.5 per step at β = 0.24,
+    // overflowing within a few thousand steps; faster for smaller β): no finite or meaningful value
+    // can come out. β ≥ ¼ puts both roots on the unit circle.
+    if (scheme == "ps" && ps_form == "literal" && beta > 0.0 && beta < 0.25 && mass != "consistent")
+      throw cli::UsageError("--beta: " + cli::format_real(beta) +
+                            " is not allowed with --ps-form literal and a "
+                            "massless contact node (allowed: beta >= 1/4; below, u0 - u1 grows at every step of free "
+                            "flight); use --ps-form algebraic or --mass consistent");
 
     // 2. The output, opened now so that an unwritable path fails before the run.
     std::unique_ptr<cli::AtomicFile> series;
     if (parser.given("--output")) series = std::make_unique<cli::AtomicFile>(output, "--output");
 
     // 3. Mesh, mass, scheme; Δt derived from h in this one place.
-    const mrm::UniformMesh mesh(length, elements);
+    mrm::repro::Configuration configuration;
+    configuration.benchmark = benchmark;
+    configuration.data = data;
+    configuration.length = length;
+    configuration.amplitude = amplitude;
+    const mrm::UniformMesh mesh(configuration.bar_length(), elements);
     const double step = parser.given("--dt") ? dt : courant * mesh.h();
     if (!(step <= largest_courant * mesh.h()))
       throw cli::UsageError("--dt: " + cli::format_real(step) + " is more than 1e6 h = " +
                             cli::format_real(largest_courant * mesh.h()) + " (allowed: 0 < dt <= 1e6 h, h = L/N)");
-    if (!(final_time / step <= largest_steps))
-      throw cli::UsageError("--final-time: " + cli::format_real(final_time) + " needs " +
-                            cli::format_real(std::ceil(final_time / step)) + " steps of " + cli::format_real(step) +
-                            " (allowed: at most 1e12 steps; lower --final-time or raise --dt or --courant)");
+    const mrm::Index steps = cli::checked_steps("--final-time", final_time, step, "--dt or --courant");
+    cli::require_mesh_memory("--elements", static_cast<double>(elements), bytes_per_element);
+    if (parser.given("--output"))
+      cli::require_rows("--final-time", static_cast<double>(steps) + 1,
+                        cli::format_real(static_cast<double>(steps)) + " steps");
     dt = step;  // the header echoes the effective step
-    mrm::repro::Configuration configuration;
     configuration.scheme.scheme = mrm::scheme_by_name(scheme);
     configuration.scheme.beta = beta;
     configuration.scheme.restitution = restitution;
     configuration.scheme.contact_row = mrm::contact_row_by_name(ps_form);
+    configuration.scheme.switch_theta = switch_theta;
     configuration.mass = mrm::mass_redistribution_by_name(mass);
     configuration.elements = elements;
     configuration.dt = step;
     configuration.final_time = final_time;
-    configuration.length = length;
-    configuration.amplitude = amplitude;
     configuration.initial = mrm::initial_contact_node_by_name(initial);
-    const mrm::Index steps = mrm::steps_to_reach(final_time, step);
-    const mrm::ExactSolution exact(length, amplitude);
+    const std::shared_ptr<const mrm::ReferenceSolution> reference =
+        mrm::repro::configuration_reference(configuration, mrm::repro::reference_horizon(steps, step));
+    const mrm::ReferenceSolution& exact = *reference;
     const bool massless = mrm::contact_node_is_massless(mrm::modified_mass(mesh, configuration.mass));
 
     if (series) {
       std::ostream& out = series->stream();
-      out << "# bar1d: time series at the contact point x = 0 (problem.md §2 benchmark)\n";
+      out << "# bar1d: time series at the contact point x = 0 ("
+          << (own_data ? std::string("initial data from a file") : benchmark + " benchmark") << "; exact values: "
+          << (own_data || benchmark != "paper" ? "characteristic solution, mathematics.md sec. 10"
+                                               : "closed form, mathematics.md sec. 2")
+          << ")\n";
       parser.echo(out);
-      out << "# h = " << cli::format_real(mesh.h()) << "\n# steps = " << steps << "\n# total_mass = " << cli::format_real(mrm::total_mass(mesh, configuration.mass))
+      out << "# h = " << cli::format_real(mesh.h()) << "\n# steps = " << steps
+          << "\n# total_mass = " << cli::format_real(mrm::total_mass(mesh, configuration.mass))
           << "\n# massless_contact_node = " << (massless ? "true" : "false")
           << "\n# exact_energy = " << cli::format_real(exact.energy()) << '\n'
           << "# Each quantity is given at the instant it approximates: t for u0, t_lambda for lambda,\n"
@@ -140,18 +225,21 @@ int main(int argc, char** argv) {
 
     // 4. The run (repro/configurations: the errors and the energy range), writing the series if asked.
     const auto start = std::chrono::steady_clock::now();
-    const mrm::repro::Measures measures = mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
-      if (series) {
-        std::ostream& out = series->stream();
-        const double nan = std::numeric_limits<double>::quiet_NaN();
-        out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
-            << cli::format_real(exact.contact_displacement(s.time)) << ' ' << cli::format_real(s.multiplier_time)
-            << ' ' << cli::format_real(s.has_multiplier ? s.multiplier : nan) << ' '
-            << cli::format_real(exact.contact_multiplier(s.multiplier_time)) << ' '
-            << cli::format_real(s.energy_time) << ' ' << cli::format_real(s.energy) << ' '
-            << cli::format_real(exact.energy()) << '\n';
-      }
-    });
+    const mrm::repro::Measures measures = mrm::repro::run_configuration(
+        configuration,
+        [&](const mrm::Sample& s) {
+          if (series) {
+            std::ostream& out = series->stream();
+            const double nan = std::numeric_limits<double>::quiet_NaN();
+            out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
+                << cli::format_real(exact.contact_displacement(s.time)) << ' ' << cli::format_real(s.multiplier_time)
+                << ' ' << cli::format_real(s.has_multiplier ? s.multiplier : nan) << ' '
+                << cli::format_real(exact.contact_multiplier(s.multiplier_time)) << ' '
+                << cli::format_real(s.energy_time) << ' ' << cli::format_real(s.energy) << ' '
+                << cli::format_real(exact.energy()) << '\n';
+          }
+        },
+        reference.get());
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     // 5. The figures, then the output file.
@@ -163,6 +251,20 @@ int main(int argc, char** argv) {
               << "energy_min = " << cli::format_real(measures.energy_min) << '\n'
               << "energy_max = " << cli::format_real(measures.energy_max) << '\n'
               << "steps = " << measures.steps << '\n';
+    // The phase (mathematics.md §8): the impacts found, the error of the first one and the drift of
+    // the impact times per period (time units per period, early = negative), each printed only when it
+    // can be computed (one impact, two impacts), beside the period law's prediction for this mass.
+    std::cout << "impacts = " << measures.impacts.size() << '\n';
+    if (measures.phase) {
+      std::cout << "first_impact_error = " << cli::format_real(measures.phase->first_impact_error) << '\n';
+      if (measures.phase->drift_per_period)
+        std::cout << "phase_drift_per_period = " << cli::format_real(*measures.phase->drift_per_period) << '\n';
+    }
+    if (elements >= 3) {
+      const mrm::PeriodPrediction law = mrm::predict_period(mesh, configuration.mass);
+      std::cout << "period_law_first_impact_error = " << cli::format_real(law.first_impact_error) << '\n'
+                << "period_law_drift_per_period = " << cli::format_real(law.period_error) << '\n';
+    }
     if (!no_timing) std::cout << "wall_seconds = " << cli::format_real(std::round(wall * 1e4) / 1e4) << '\n';
     if (series) series->commit();
     return 0;

@@ -21,7 +21,8 @@
 //                fused step uses, contact.hpp): what the dependency chain of the substitution costs;
 //   eigen        Eigen's SimplicialLDLT solve (factorised once) of the same matrix, symmetrised by
 //                scaling its algebraic contact row 0 by θ (same sparsity, same cost).
-// Then the ratio of each scheme (fast and reference steps) to the bare solve, the log-log slope of the cost per step against N
+// Then the ratio of each scheme (fast and reference steps) and of a run with its error measures (cn+errors:
+// the budget of issue 11 is 1.5) to the bare solve, the log-log slope of the cost per step against N
 // over 2^10 … 2^20 (least squares), and the peak resident memory of a Crank–Nicolson and of a
 // Paoli–Schatzman run at the largest N and at N/4, each in a fresh child process, to show that the
 // memory is linear in N.
@@ -65,6 +66,7 @@
 
 #include "options.hpp"
 #include "output_file.hpp"
+#include "run_limits.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
 #include "contact.hpp"
@@ -167,7 +169,8 @@ Eigen::VectorXd random_vector(Index n, unsigned seed) {
 
 // The reference-step variants come last, so that the columns of the others keep their places in the
 // data file (figures/bench_step.gp reads them by index).
-const char* const variant_names[] = {"cn", "be", "ps", "cn+errors", "bare", "eigen", "bare2", "cn_ref", "be_ref", "ps_ref"};
+const char* const variant_names[] = {"cn",    "be",    "ps",     "cn+errors", "bare",
+                                     "eigen", "bare2", "cn_ref", "be_ref",    "ps_ref"};
 constexpr int variants = 10;
 constexpr int v_cn = 0, v_be = 1, v_ps = 2, v_errors = 3, v_bare = 4, v_eigen = 5, v_bare2 = 6, v_cn_ref = 7,
               v_be_ref = 8, v_ps_ref = 9;
@@ -225,7 +228,11 @@ std::array<Timing, variants> time_all(Index elements, int repetitions, double ta
     for (const mrm::StepKernel kernel : {mrm::StepKernel::fast, mrm::StepKernel::reference}) {
       const int v = kernel == mrm::StepKernel::fast ? fast_variants[k] : reference_variants[k];
       mrm::BarSimulation simulation(problem, mesh, mrm::mod3(), parameters_of(schemes[k], kernel), dt);
-      t[v] = measure([&](long s) { for (long i = 0; i < s; ++i) simulation.step(); }, n, repetitions, target);
+      t[v] = measure(
+          [&](long s) {
+            for (long i = 0; i < s; ++i) simulation.step();
+          },
+          n, repetitions, target);
       sanity.energies.push_back(simulation.sample().energy);
     }
   }
@@ -248,8 +255,11 @@ std::array<Timing, variants> time_all(Index elements, int repetitions, double ta
     Eigen::VectorXd u(n);
     const double kappa = 1.0;  // the algebraic row's κ
     mrm::ContactStep last{};
-    t[v_bare] = measure([&](long k) { for (long s = 0; s < k; ++s) last = solver.solve(b.data(), u.data(), kappa); },
-                        n, repetitions, target);
+    t[v_bare] = measure(
+        [&](long k) {
+          for (long s = 0; s < k; ++s) last = solver.solve(b.data(), u.data(), kappa);
+        },
+        n, repetitions, target);
     // The residual of the solve with the contact force it found: A u = b − κ λ e₀.
     Eigen::VectorXd rhs = b;
     rhs[0] -= kappa * last.multiplier;
@@ -257,8 +267,10 @@ std::array<Timing, variants> time_all(Index elements, int repetitions, double ta
 
     Eigen::VectorXd u2(n);
     t[v_bare2] = measure(
-        [&](long k) { for (long s = 0; s < k; ++s) last = two_chain_solve(solver, b.data(), u2.data(), kappa); }, n,
-        repetitions, target);
+        [&](long k) {
+          for (long s = 0; s < k; ++s) last = two_chain_solve(solver, b.data(), u2.data(), kappa);
+        },
+        n, repetitions, target);
     rhs = b;
     rhs[0] -= kappa * last.multiplier;
     sanity.bare_residual = std::max(sanity.bare_residual, relative_residual(a, u2, rhs));
@@ -270,7 +282,11 @@ std::array<Timing, variants> time_all(Index elements, int repetitions, double ta
     if (ldlt.info() != Eigen::Success) throw std::runtime_error("Eigen's SimplicialLDLT failed to factorise A");
     const Eigen::VectorXd b = random_vector(n, 2);
     Eigen::VectorXd u(n);
-    t[v_eigen] = measure([&](long k) { for (long s = 0; s < k; ++s) u = ldlt.solve(b); }, n, repetitions, target);
+    t[v_eigen] = measure(
+        [&](long k) {
+          for (long s = 0; s < k; ++s) u = ldlt.solve(b);
+        },
+        n, repetitions, target);
     sanity.eigen_residual = std::max(sanity.eigen_residual, relative_residual(a, u, b));
   }
   return t;
@@ -408,6 +424,9 @@ int main(int argc, char** argv) {
     }
     if (min_log2 > max_log2)
       throw cli::UsageError("--min-log2: must not exceed --max-log2 (" + std::to_string(max_log2) + ")");
+    // The peak memory at the largest mesh, measured at N = 2^20: 420 bytes per element (the schemes,
+    // the solvers compared, the error accumulator); 512 with a margin.
+    cli::require_mesh_memory("--max-log2", std::ldexp(1.0, static_cast<int>(max_log2)), 512);
     gsl_set_error_handler_off();
     use_thread_cpu_time = clock == "cpu";
 
@@ -473,17 +492,17 @@ int main(int argc, char** argv) {
     std::ostringstream summary;
     summary << "cpu = " << cpu_model() << '\n'
             << "mass = mod3\ncourant = " << cli::format_real(courant) << '\n'
-            << "clock = " << clock << "\nrepetitions = " << repetitions << "\nbatch_ms = " << cli::format_real(target_ms)
-            << '\n'
+            << "clock = " << clock << "\nrepetitions = " << repetitions
+            << "\nbatch_ms = " << cli::format_real(target_ms) << '\n'
             << "load_average_before = " << load_before << "\nload_average_after = " << load_average() << '\n';
     for (int v = 0; v < variants; ++v) summary << "slope_" << variant_names[v] << " = " << fixed(slope[v], 3) << '\n';
     summary << "memory_cn_kib_N" << big << " = " << mem_cn_big << "\nmemory_cn_kib_N" << small << " = " << mem_cn_small
             << "\nmemory_ps_kib_N" << big << " = " << mem_ps_big << "\nmemory_ps_kib_N" << small << " = "
             << mem_ps_small << "\nmemory_cn_bytes_per_node_N" << big << " = "
-            << fixed(bytes_per_node(mem_cn_big, big), 1)
-            << "\nmemory_cn_bytes_per_node_N" << small << " = " << fixed(bytes_per_node(mem_cn_small, small), 1)
-            << "\nmemory_ps_bytes_per_node_N" << big << " = " << fixed(bytes_per_node(mem_ps_big, big), 1)
-            << "\nmemory_ps_bytes_per_node_N" << small << " = " << fixed(bytes_per_node(mem_ps_small, small), 1)
+            << fixed(bytes_per_node(mem_cn_big, big), 1) << "\nmemory_cn_bytes_per_node_N" << small << " = "
+            << fixed(bytes_per_node(mem_cn_small, small), 1) << "\nmemory_ps_bytes_per_node_N" << big << " = "
+            << fixed(bytes_per_node(mem_ps_big, big), 1) << "\nmemory_ps_bytes_per_node_N" << small << " = "
+            << fixed(bytes_per_node(mem_ps_small, small), 1)
             << "\nmemory_cn_marginal_bytes_per_node = " << fixed(marginal(mem_cn_big, mem_cn_small), 1)
             << "\nmemory_ps_marginal_bytes_per_node = " << fixed(marginal(mem_ps_big, mem_ps_small), 1)
             << "\nbare_residual = " << cli::format_real(sanity.bare_residual)
@@ -493,16 +512,18 @@ int main(int argc, char** argv) {
     {
       std::vector<std::string> headers{"N"};
       for (int v = 0; v < variants; ++v) headers.push_back(variant_names[v]);
-      for (const char* h : {"cn/bare", "be/bare", "ps/bare", "errors", "cn_ref/bare", "be_ref/bare", "ps_ref/bare"})
+      for (const char* h :
+           {"cn/bare", "be/bare", "ps/bare", "errors", "cn_ref/bare", "be_ref/bare", "ps_ref/bare", "cn+errors/bare"})
         headers.push_back(h);
       mrm::repro::Table screen(headers);
       for (std::size_t k = 0; k < sizes.size(); ++k) {
         const auto& t = timings[k];
         std::vector<std::string> cells{std::to_string(sizes[k])};
         for (int v = 0; v < variants; ++v) cells.push_back(fixed(t[v].median, 2) + " [" + fixed(t[v].minimum, 2) + "]");
-        for (const std::string& c : {fixed(ratio(t, v_cn), 2), fixed(ratio(t, v_be), 2), fixed(ratio(t, v_ps), 2),
-                                     fixed(errors_cost(t), 2), fixed(ratio(t, v_cn_ref), 2), fixed(ratio(t, v_be_ref), 2),
-                                     fixed(ratio(t, v_ps_ref), 2)})
+        for (const std::string& c :
+             {fixed(ratio(t, v_cn), 2), fixed(ratio(t, v_be), 2), fixed(ratio(t, v_ps), 2), fixed(errors_cost(t), 2),
+              fixed(ratio(t, v_cn_ref), 2), fixed(ratio(t, v_be_ref), 2), fixed(ratio(t, v_ps_ref), 2),
+              fixed(ratio(t, v_errors), 2)})
           cells.push_back(c);
         screen.add_row(cells);
       }
@@ -525,7 +546,8 @@ int main(int argc, char** argv) {
         std::replace(name.begin(), name.end(), '+', '_');
         out << ' ' << name << "_median " << name << "_min " << name << "_steps";
       }
-      out << " cn_over_bare be_over_bare ps_over_bare errors_cost cn_ref_over_bare be_ref_over_bare ps_ref_over_bare\n";
+      out << " cn_over_bare be_over_bare ps_over_bare errors_cost cn_ref_over_bare be_ref_over_bare ps_ref_over_bare"
+             " cn_errors_over_bare\n";
       for (std::size_t k = 0; k < sizes.size(); ++k) {
         const auto& t = timings[k];
         out << std::lround(std::log2(static_cast<double>(sizes[k]))) << ' ' << sizes[k];
@@ -533,7 +555,8 @@ int main(int argc, char** argv) {
           out << ' ' << fixed(t[v].median, 4) << ' ' << fixed(t[v].minimum, 4) << ' ' << t[v].steps_per_batch;
         out << ' ' << fixed(ratio(t, v_cn), 4) << ' ' << fixed(ratio(t, v_be), 4) << ' ' << fixed(ratio(t, v_ps), 4)
             << ' ' << fixed(errors_cost(t), 4) << ' ' << fixed(ratio(t, v_cn_ref), 4) << ' '
-            << fixed(ratio(t, v_be_ref), 4) << ' ' << fixed(ratio(t, v_ps_ref), 4) << '\n';
+            << fixed(ratio(t, v_be_ref), 4) << ' ' << fixed(ratio(t, v_ps_ref), 4) << ' '
+            << fixed(ratio(t, v_errors), 4) << '\n';
       }
     }
 
@@ -541,44 +564,50 @@ int main(int argc, char** argv) {
     // and of the limits, the ratios to the bare solve, the errors.
     const auto row_cells = [&](std::size_t k) {
       const auto& t = timings[k];
-      return std::vector<std::string>{std::to_string(sizes[k]),
-                                      fixed(t[v_cn].median, 2),
-                                      fixed(t[v_be].median, 2),
-                                      fixed(t[v_ps].median, 2),
-                                      fixed(t[v_cn_ref].median, 2),
-                                      fixed(t[v_be_ref].median, 2),
-                                      fixed(t[v_ps_ref].median, 2),
-                                      fixed(t[v_bare].median, 2),
-                                      fixed(t[v_bare2].median, 2),
-                                      fixed(t[v_eigen].median, 2),
-                                      fixed(ratio(t, v_cn), 2),
-                                      fixed(ratio(t, v_be), 2),
-                                      fixed(ratio(t, v_ps), 2),
-                                      fixed(ratio(t, v_cn_ref), 2),
-                                      fixed(ratio(t, v_be_ref), 2),
-                                      fixed(ratio(t, v_ps_ref), 2),
-                                      fixed(errors_cost(t), 2)};
+      return std::vector<std::string>{
+          std::to_string(sizes[k]),     fixed(t[v_cn].median, 2),     fixed(t[v_be].median, 2),
+          fixed(t[v_ps].median, 2),     fixed(t[v_cn_ref].median, 2), fixed(t[v_be_ref].median, 2),
+          fixed(t[v_ps_ref].median, 2), fixed(t[v_bare].median, 2),   fixed(t[v_bare2].median, 2),
+          fixed(t[v_eigen].median, 2),  fixed(ratio(t, v_cn), 2),     fixed(ratio(t, v_be), 2),
+          fixed(ratio(t, v_ps), 2),     fixed(ratio(t, v_cn_ref), 2), fixed(ratio(t, v_be_ref), 2),
+          fixed(ratio(t, v_ps_ref), 2), fixed(errors_cost(t), 2)};
     };
-    const std::vector<std::string> slope_cells = {
-        "slope",                   fixed(slope[v_cn], 3),     fixed(slope[v_be], 3),     fixed(slope[v_ps], 3),
-        fixed(slope[v_cn_ref], 3), fixed(slope[v_be_ref], 3), fixed(slope[v_ps_ref], 3), fixed(slope[v_bare], 3),
-        fixed(slope[v_bare2], 3),  fixed(slope[v_eigen], 3),  "", "", "", "", "", "", ""};
+    const std::vector<std::string> slope_cells = {"slope",
+                                                  fixed(slope[v_cn], 3),
+                                                  fixed(slope[v_be], 3),
+                                                  fixed(slope[v_ps], 3),
+                                                  fixed(slope[v_cn_ref], 3),
+                                                  fixed(slope[v_be_ref], 3),
+                                                  fixed(slope[v_ps_ref], 3),
+                                                  fixed(slope[v_bare], 3),
+                                                  fixed(slope[v_bare2], 3),
+                                                  fixed(slope[v_eigen], 3),
+                                                  "",
+                                                  "",
+                                                  "",
+                                                  "",
+                                                  "",
+                                                  "",
+                                                  ""};
     const std::string memory_line =
         "Peak memory added by a run with the error accumulator (child process, ru_maxrss): CN " +
         std::to_string(mem_cn_big) + " KiB at N = " + std::to_string(big) + " (" +
-        fixed(bytes_per_node(mem_cn_big, big), 0) + " B/node), " + std::to_string(mem_cn_small) + " KiB at N = " +
-        std::to_string(small) + " (" + fixed(bytes_per_node(mem_cn_small, small), 0) + " B/node); PS " +
-        std::to_string(mem_ps_big) + " KiB at N = " + std::to_string(big) + " (" +
-        fixed(bytes_per_node(mem_ps_big, big), 0) + " B/node), " + std::to_string(mem_ps_small) + " KiB at N = " +
-        std::to_string(small) + " (" + fixed(bytes_per_node(mem_ps_small, small), 0) + " B/node). Marginal cost " +
-        "(memory(N) − memory(N/4))/(3N/4): CN " + fixed(marginal(mem_cn_big, mem_cn_small), 0) + " B/node, PS " +
-        fixed(marginal(mem_ps_big, mem_ps_small), 0) + " B/node.";
+        fixed(bytes_per_node(mem_cn_big, big), 0) + " B/node), " + std::to_string(mem_cn_small) +
+        " KiB at N = " + std::to_string(small) + " (" + fixed(bytes_per_node(mem_cn_small, small), 0) +
+        " B/node); PS " + std::to_string(mem_ps_big) + " KiB at N = " + std::to_string(big) + " (" +
+        fixed(bytes_per_node(mem_ps_big, big), 0) + " B/node), " + std::to_string(mem_ps_small) +
+        " KiB at N = " + std::to_string(small) + " (" + fixed(bytes_per_node(mem_ps_small, small), 0) +
+        " B/node). Marginal cost " + "(memory(N) − memory(N/4))/(3N/4): CN " +
+        fixed(marginal(mem_cn_big, mem_cn_small), 0) + " B/node, PS " + fixed(marginal(mem_ps_big, mem_ps_small), 0) +
+        " B/node.";
     const std::string caption_md =
         "Nanoseconds per node per step (median of " + std::to_string(repetitions) + " batches of about " +
-        fixed(target_ms, 0) + " ms of " + (clock == "cpu" ? "thread CPU time" : "wall time") + "), Mod 3, Δt = h/2, on " +
-        cpu_model() + " (load average " + load_before + " before the run). CN, BE, PS: the fast step (the fused two-chain kernel every program uses); "
+        fixed(target_ms, 0) + " ms of " + (clock == "cpu" ? "thread CPU time" : "wall time") +
+        "), Mod 3, Δt = h/2, on " + cpu_model() + " (load average " + load_before +
+        " before the run). CN, BE, PS: the fast step (the fused two-chain kernel every program uses); "
         "*ref*: the same schemes with the reference step (the scheme written as its derivation: whole matrices "
-        "and vectors, one solve). *bare*: the same pre-factored tridiagonal solve without the scheme (plain substitution loops); "
+        "and vectors, one solve). *bare*: the same pre-factored tridiagonal solve without the scheme (plain "
+        "substitution loops); "
         "*bare2*: the same with each sweep run as two interleaved chains (the form the schemes use); *eigen*: Eigen's "
         "SimplicialLDLT solve of the same matrix; *errors*: the cost of the error measures (ErrorAccumulator::add). "
         "The slope is that of log(cost per step) against log N over 2^10..2^20.";
@@ -660,6 +689,7 @@ int main(int argc, char** argv) {
         mrm::tex_define(out, "bench:ps:ratio", fixed(ratio(*t, v_ps), 2));
         mrm::tex_define(out, "bench:cn:eigen-ratio", fixed((*t)[v_cn].median / (*t)[v_eigen].median, 2));
         mrm::tex_define(out, "bench:errors:ns", fixed(errors_cost(*t), 2));
+        mrm::tex_define(out, "bench:measures:ratio", fixed(ratio(*t, v_errors), 2));
         mrm::tex_define(out, "bench:cn-ref:ns", fixed((*t)[v_cn_ref].median, 2));
         mrm::tex_define(out, "bench:be-ref:ns", fixed((*t)[v_be_ref].median, 2));
         mrm::tex_define(out, "bench:ps-ref:ns", fixed((*t)[v_ps_ref].median, 2));
@@ -676,9 +706,7 @@ int main(int argc, char** argv) {
       mrm::tex_define(out, "bench:memory:largest-n", std::to_string(big));
       mrm::tex_define(out, "bench:memory:cn:marginal", fixed(marginal(mem_cn_big, mem_cn_small), 0));
     }
-    if (data) data->commit();
-    if (table_tex) table_tex->commit();
-    if (table_md) table_md->commit();
+    cli::commit_all({data.get(), table_tex.get(), table_md.get()});  // all three or none
     return 0;
   });
 }

@@ -11,8 +11,9 @@
 //   cn_large_step --tex output/data/cn_large_step.tex
 //   cn_large_step --elements 32 --final-time 30 --tex large.tex
 //
-// Description. Steps: (1) read the options; (2) open the output (a bad path fails before the runs);
-// (3) run each ratio with repro/configurations' run_configuration; (4) write the values and commit.
+// Description. Steps: (1) read the options, check that every run takes a step; (2) open the output (a
+// bad path fails before the runs); (3) run each ratio with repro/configurations' run_configuration;
+// (4) write the values and commit.
 #include <iostream>
 #include <string>
 
@@ -20,6 +21,7 @@
 #include "options.hpp"
 #include "output_file.hpp"
 #include "report_values.hpp"
+#include "run_limits.hpp"
 
 namespace cli = mrm::cli;
 
@@ -35,10 +37,14 @@ int main(int argc, char** argv) {
                        {"cn_large_step --tex output/data/cn_large_step.tex"});
     parser.add_integer("--elements", "-n", "N", "number of elements N of the mesh, an integer in [2, 1e5]", &elements,
                        cli::in_closed_range(2, 1e5));
-    parser.add_real("--final-time", "-T", "T", "final time, in (0, 1e4]; the period of the benchmark is 3",
-                    &final_time, cli::in_closed_range(1e-300, 1e4));
+    parser.add_real("--final-time", "-T", "T", "final time, in (0, 1e4]; the period of the benchmark is 3", &final_time,
+                    cli::in_closed_range(1e-300, 1e4));
     parser.add_string("--tex", "", "FILE", "write the values for the report (\\mrmdef lines) to FILE", &tex);
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    // Every run takes at least one step: the one with the largest step, dt = 40 h (the smallest,
+    // dt = h/2, takes at most 1e4 / (0.5 / 1e5) = 2e9 steps by the ranges).
+    cli::checked_steps("--final-time", final_time, 40.0 / static_cast<double>(elements),
+                       "dt = 40 h (raise --elements)");
 
     // 2. The output, opened before the runs.
     cli::AtomicFile out(tex, "--tex");

@@ -11,9 +11,9 @@
 //   fig_contact_history --output output/data/fig_contact_history.dat --tex output/data/fig_contact_history.tex
 //   fig_contact_history --elements 40 --courant 1 --final-time 6 --output h.dat
 //
-// Description. Steps: (1) read the options; (2) open the outputs; (3) write the exact history; (4) run
-// every scheme × mass, writing one block each and accumulating the errors; (5) write the values the
-// report quotes and commit.
+// Description. Steps: (1) read the options, check the limits of the run; (2) open the outputs; (3) write
+// the exact history; (4) run every scheme × mass, writing one block each and accumulating the errors;
+// (5) write the values the report quotes and commit.
 //
 // Data file: gnuplot blocks separated by two blank lines (select with `index`). Block 0 is the exact
 // solution (t u0 lambda); block 1 + 3 s + m is scheme s ∈ (cn, be, ps), mass m ∈ (mod1, mod2, mod3),
@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
     // 1. Options.
     long elements = 20, exact_points = 3600;
     double courant = 0.5, final_time = 9.0;
-    std::string ps_form = "literal";
+    std::string ps_form = "algebraic";
     cli::Parser parser("fig_contact_history",
                        "Writes the history of the contact point, u(0,t) and the contact stress lambda(t), of the "
                        "exact solution and of every scheme (cn, be, ps) with every mass choice (mod1, mod2, mod3): "
@@ -49,28 +49,38 @@ int main(int argc, char** argv) {
                        {"fig_contact_history --output output/data/fig_contact_history.dat "
                         "--tex output/data/fig_contact_history.tex",
                         "fig_contact_history --elements 40 --courant 1 --final-time 6 --output h.dat"});
-    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), >= 2; coarse so that the masses differ",
-                       &elements, cli::at_least(2));
-    parser.add_real("--courant", "-c", "C", "time step dt = C h (C > 0)", &courant, cli::positive());
+    parser.add_integer("--elements", "-n", "N",
+                       "number of elements N (h = 1/N), in [2, 1e7]; coarse so that the masses differ", &elements,
+                       mrm::repro::elements_range());
+    parser.add_real("--courant", "-c", "C", "time step dt = C h (0 < C <= 1e6)", &courant, mrm::repro::courant_range());
     parser.add_real("--final-time", "-T", "T", "final time (> 0); the period is 3", &final_time, cli::positive());
-    parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
+    parser.add_choice("--ps-form", "", "F",
+                      "Paoli-Schatzman's contact row (algebraic, the form the report believes the paper used, "
+                      "coincides with cn in u and lambda)",
                       {"algebraic", "literal"}, &ps_form);
-    parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve (>= 10)",
-                       &exact_points, cli::at_least(10));
-    mrm::repro::FigureOutputs outputs(parser, "fig_contact_history", "also write the values the report quotes, as \\mrmdef lines");
+    parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve, in [10, 1e6]",
+                       &exact_points, cli::in_closed_range(10, cli::max_curve_points));
+    mrm::repro::FigureOutputs outputs(parser, "fig_contact_history",
+                                      "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+
+    const mrm::UniformMesh mesh(1.0, elements);
+    const double dt = courant * mesh.h();  // Δt derived from h here only
+    const mrm::Index steps = cli::checked_steps("--final-time", final_time, dt, "--courant");
+    // Ten contact histories of steps + 1 lines each.
+    cli::require_rows("--final-time", 10 * (static_cast<double>(steps) + 1),
+                      cli::format_real(static_cast<double>(steps)) + " steps of 10 runs");
+    cli::require_mesh_memory("--elements", static_cast<double>(elements), mrm::repro::bytes_per_element);
 
     // 2. Outputs, opened before the runs so that a bad path fails at once.
     outputs.open(parser);
-    const mrm::UniformMesh mesh(1.0, elements);
-    const double dt = courant * mesh.h();  // Δt derived from h here only
-    const mrm::Index steps = mrm::steps_to_reach(final_time, dt);
     const mrm::ExactSolution exact;
     std::ostream& out = outputs.data();
-    out << "# fig_contact_history: u(0,t) and lambda(t), exact and computed (problem.md sec. 2; paper Figure 1)\n";
+    out << "# fig_contact_history: u(0,t) and lambda(t), exact and computed (mathematics.md sec. 2; paper Figure 1)\n";
     parser.echo(out);
     out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt) << "\n# steps = " << steps
-        << "\n# blocks: 0 exact (t u0 lambda); 1 + 3 s + m: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3)\n";
+        << "\n# blocks: 0 exact (t u0 lambda); 1 + 3 s + m: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3);"
+           "\n# 10: the baseline, Paoli-Schatzman with the consistent mass (literal contact row)\n";
 
     // 3. The exact history on a fine, uniform grid of instants.
     out << "# block 0: exact\n# columns: t u0 lambda\n";
@@ -96,36 +106,37 @@ int main(int argc, char** argv) {
     }
     mrm::repro::Table table({"scheme", "mass", "$u(0,\\cdot)$, $L^2_t$", "$\\lambda$, $L^2_t$", "$u$, $L^2_t H^1$"});
     int block = 1;
+    // One run written as one block, its errors quoted by the report (\mrmdef hist:KEY:…) and its table row.
+    const auto run_block = [&](const std::string& scheme, const std::string& form, const std::string& mass,
+                               const std::string& key, const std::string& row_scheme, const std::string& row_mass) {
+      std::cerr << "fig_contact_history: " << scheme << ' ' << mass << '\n';
+      out << "\n\n# block " << block++ << ": scheme = " << scheme << ", mass = " << mass
+          << "\n# columns: t u0_h t_lambda lambda_h\n";
+      const mrm::repro::Configuration configuration =
+          mrm::repro::paper_configuration(scheme, form, mass, elements, courant, final_time);
+      const mrm::ErrorNorms e =
+          mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
+            const double lambda = s.has_multiplier ? s.multiplier : std::numeric_limits<double>::quiet_NaN();
+            out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
+                << cli::format_real(s.multiplier_time) << ' ' << cli::format_real(lambda) << '\n';
+          }).errors;
+      // 5. The errors of the contact point, quoted by the report beside the figure.
+      mrm::tex_define(outputs.values(), "hist:" + key + ":err_u0_L2", mrm::tex_number(e.u0_L2, 2));
+      mrm::tex_define(outputs.values(), "hist:" + key + ":err_lambda_L2", mrm::tex_number(e.lambda_L2, 2));
+      mrm::tex_define(outputs.values(), "hist:" + key + ":err_u_L2H1", mrm::tex_number(e.u_L2H1, 2));
+      table.add_row({row_scheme, row_mass, mrm::tex_number(e.u0_L2, 2), mrm::tex_number(e.lambda_L2, 2),
+                     mrm::tex_number(e.u_L2H1, 2)});
+    };
     for (const std::string& scheme : mrm::repro::scheme_names()) {
-      for (const std::string& mass : mrm::repro::mass_names()) {
-        std::cerr << "fig_contact_history: " << scheme << ' ' << mass << '\n';
-        out << "\n\n# block " << block++ << ": scheme = " << scheme << ", mass = " << mass
-            << "\n# columns: t u0_h t_lambda lambda_h\n";
-        const mrm::repro::Configuration configuration =
-            mrm::repro::paper_configuration(scheme, ps_form, mass, elements, courant, final_time);
-        const mrm::ErrorNorms e = mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
-          const double lambda = s.has_multiplier ? s.multiplier : std::numeric_limits<double>::quiet_NaN();
-          out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
-              << cli::format_real(s.multiplier_time) << ' ' << cli::format_real(lambda) << '\n';
-        }).errors;
-        // 5. The errors of the contact point, quoted by the report beside the figure.
-        {
-          mrm::tex_define(outputs.values(), "hist:" + scheme + ":" + mass + ":err_u0_L2", mrm::tex_number(e.u0_L2, 2));
-          mrm::tex_define(outputs.values(), "hist:" + scheme + ":" + mass + ":err_lambda_L2",
-                          mrm::tex_number(e.lambda_L2, 2));
-          mrm::tex_define(outputs.values(), "hist:" + scheme + ":" + mass + ":err_u_L2H1", mrm::tex_number(e.u_L2H1, 2));
-          table.add_row({mass == "mod1" ? mrm::repro::scheme_label(scheme, ps_form) : std::string(), std::string("Mod ") + mass.back(),
-                         mrm::tex_number(e.u0_L2, 2), mrm::tex_number(e.lambda_L2, 2), mrm::tex_number(e.u_L2H1, 2)});
-        }
-      }
+      for (const std::string& mass : mrm::repro::mass_names())
+        run_block(scheme, ps_form, mass, scheme + ":" + mass,
+                  mass == "mod1" ? mrm::repro::scheme_label(scheme, ps_form) : std::string(), std::string("Mod ") + mass.back());
       table.add_rule();
     }
-    std::ostringstream tabular;
-    mrm::repro::LatexLayout layout;
-    layout.columns = "llrrr";
-    layout.final_newline = false;
-    table.write_latex(tabular, layout);
-    outputs.values() << "\\mrmdef{hist:table}{" << tabular.str() << "}\n";
+    // 6. The baseline: Paoli–Schatzman (¼, 0) with the full consistent mass (its only contact row is the
+    // literal one), stable and the method's natural point of comparison (block 10, last row of the table).
+    run_block("ps", "literal", "consistent", "ps:consistent", mrm::repro::scheme_label("ps", "literal"), "consistent");
+    outputs.values() << "\\mrmdef{hist:table}{" << mrm::repro::latex_tabular(table, "llrrr") << "}\n";
     outputs.commit();
     return 0;
   });

@@ -22,15 +22,11 @@
 // c ∈ (Δt = h, Δt = h/2); columns N h dt and the eight errors.
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <iostream>
 #include <memory>
-#include <mutex>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "options.hpp"
@@ -38,6 +34,7 @@
 #include "errors.hpp"
 #include "exact_solution.hpp"
 #include "configurations.hpp"
+#include "parallel.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
 #include "schemes.hpp"
@@ -50,10 +47,6 @@ namespace {
 const std::array<double, 2> courants{1.0, 0.5};
 const std::array<const char*, 2> courant_keys{"dth", "dth2"};
 const std::array<const char*, 2> courant_labels{"$\\Delta t = h$", "$\\Delta t = h/2$"};
-// The measures in the order of mrm::ErrorAccumulator::names, as the report prints them.
-const std::array<const char*, 8> measure_labels{
-    "$u(0,\\cdot)$, $L^2_t$", "$\\lambda$, $L^2_t$",      "$u$, $L^\\infty_t L^2$", "$u$, $L^\\infty_t H^1$",
-    "$u_t$, $L^\\infty_t L^2$", "$u$, $L^2_t L^2$", "$u$, $L^2_t H^1$",       "$u_t$, $L^2_t L^2$"};
 
 struct Run {
   std::size_t scheme, mass, courant, level;
@@ -72,24 +65,38 @@ int main(int argc, char** argv) {
     long coarsest = 128, refinements = 6, threads = 2;
     double final_time = 3.0;
     std::string ps_form = "literal";
-    cli::Parser parser("fig_convergence",
-                       "Writes every relative error of mathematics.md §5 against h, with dt = h and dt = h/2, for "
-                       "every scheme (cn, be, ps) and mass choice (mod1, mod2, mod3), and the observed orders "
-                       "(least-squares fit of log error against log h).",
-                       {"fig_convergence --output output/data/fig_convergence.dat --tex output/data/fig_convergence.tex",
-                        "fig_convergence --coarsest 16 --refinements 4 --threads 1 --output c.dat"});
-    parser.add_integer("--coarsest", "-n", "N0", "number of elements of the coarsest mesh (>= 2)", &coarsest,
-                       cli::at_least(2));
-    parser.add_integer("--refinements", "-k", "K", "number of meshes N0, 2 N0, ..., 2^(K-1) N0 (>= 2)", &refinements,
-                       cli::at_least(2));
+    cli::Parser parser(
+        "fig_convergence",
+        "Writes every relative error of mathematics.md §5 against h, with dt = h and dt = h/2, for "
+        "every scheme (cn, be, ps) and mass choice (mod1, mod2, mod3), and the observed orders "
+        "(least-squares fit of log error against log h).",
+        {"fig_convergence --output output/data/fig_convergence.dat --tex output/data/fig_convergence.tex",
+         "fig_convergence --coarsest 16 --refinements 4 --threads 1 --output c.dat"});
+    parser.add_integer("--coarsest", "-n", "N0", "number of elements of the coarsest mesh, in [2, 1e7]", &coarsest,
+                       mrm::repro::elements_range());
+    parser.add_integer("--refinements", "-k", "K",
+                       "number of meshes N0, 2 N0, ..., 2^(K-1) N0, in [2, 20]; the finest has at most 1e7 elements",
+                       &refinements, cli::in_closed_range(2, 20));
     parser.add_real("--final-time", "-T", "T", "final time (> 0); one period is 3", &final_time, cli::positive());
     parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
                       {"algebraic", "literal"}, &ps_form);
-    parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it", &threads,
-                       cli::at_least(1));
+    parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
+                       &threads, cli::in_closed_range(1, cli::max_threads));
     mrm::repro::FigureOutputs outputs(parser, "fig_convergence", "also write the tables and values the report quotes");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
-    if (refinements > 20) throw cli::UsageError("--refinements: at most 20 (N doubles each time)");
+    // The finest mesh (K ≤ 20 and N0 ≤ 1e7: the product is exact in a double), its steps at Δt = h/2, the
+    // coarsest run's at Δt = h (at least one), and the memory of the runs that may run at once: the
+    // longest go first, so up to `threads` of the 18 finest ones.
+    const double finest_elements = std::ldexp(static_cast<double>(coarsest), static_cast<int>(refinements) - 1);
+    if (!(finest_elements <= cli::max_elements))
+      throw cli::UsageError("--refinements: " + std::to_string(refinements) + " meshes from N0 = " +
+                            std::to_string(coarsest) + " end at " + cli::format_real(finest_elements) +
+                            " elements (allowed: at most 1e7; lower --coarsest or --refinements)");
+    cli::checked_steps("--final-time", final_time, 0.5 / finest_elements,
+                       "the finest mesh size (lower --coarsest or --refinements)");
+    cli::checked_steps("--final-time", final_time, 1.0 / static_cast<double>(coarsest), "--coarsest");
+    cli::require_mesh_memory("--coarsest", finest_elements, mrm::repro::bytes_per_element,
+                             std::min<double>(static_cast<double>(threads), 18));
 
     // 2. Outputs.
     outputs.open(parser);
@@ -104,49 +111,37 @@ int main(int argc, char** argv) {
           for (std::size_t l = 0; l < static_cast<std::size_t>(refinements); ++l) {
             const mrm::Index n = static_cast<mrm::Index>(coarsest) << l;
             const double h = 1.0 / static_cast<double>(n);
-            runs.push_back({s, m, c, l, n, static_cast<double>(mrm::steps_to_reach(final_time, courants[c] * h)) * n, {}});
+            runs.push_back(
+                {s, m, c, l, n, static_cast<double>(mrm::steps_to_reach(final_time, courants[c] * h)) * n, {}});
           }
     std::vector<std::size_t> order(runs.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
 
-    // 4. The runs, on `threads` workers taking the next run from a shared counter. Each run writes only
-    // its own slot; the first exception stops the others and is rethrown here.
-    std::atomic<std::size_t> next{0};
-    std::atomic<bool> failed{false};
-    std::exception_ptr failure;
-    std::mutex failure_mutex, log_mutex;
-    auto worker = [&] {
-      while (!failed) {
-        const std::size_t k = next++;
-        if (k >= order.size()) return;
-        Run& r = runs[order[k]];
-        try {
+    // 4. The runs, on `threads` workers (repro/parallel: each run writes only its own slot).
+    mrm::repro::run_in_parallel(
+        order, threads,
+        [&](std::size_t k) {
+          Run& r = runs[k];
           r.errors = mrm::ErrorAccumulator::values(
               mrm::repro::run_configuration(mrm::repro::paper_configuration(schemes[r.scheme], ps_form, masses[r.mass],
-                                                                            r.elements, courants[r.courant], final_time))
+                                                                            r.elements, courants[r.courant],
+                                                                            final_time))
                   .errors);
-          std::lock_guard<std::mutex> lock(log_mutex);
-          std::cerr << "fig_convergence: " << k + 1 << '/' << order.size() << ' ' << schemes[r.scheme] << ' '
+        },
+        [&](std::size_t position, std::size_t k) {
+          const Run& r = runs[k];
+          std::cerr << "fig_convergence: " << position << '/' << order.size() << ' ' << schemes[r.scheme] << ' '
                     << masses[r.mass] << " dt/h=" << courants[r.courant] << " N=" << r.elements << '\n';
-        } catch (...) {
-          std::lock_guard<std::mutex> lock(failure_mutex);
-          if (!failure) failure = std::current_exception();
-          failed = true;
-        }
-      }
-    };
-    std::vector<std::thread> pool;
-    for (long t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+        });
 
     // 5. The data blocks, in the fixed order of `runs` (scheme, mass, ratio, mesh).
     std::ostream& out = outputs.data();
-    out << "# fig_convergence: relative errors against h (problem.md sec. 5)\n";
+    out << "# fig_convergence: relative errors against h (mathematics.md sec. 5)\n";
     parser.echo(out);
-    out << "# blocks: 2 (3 s + m) + c: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3), c in (dt = h, dt = h/2)\n";
+    out << "# blocks: 2 (3 s + m) + c: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3), c in (dt = h, dt = "
+           "h/2)\n";
     const std::size_t levels = static_cast<std::size_t>(refinements);
     auto at = [&](std::size_t s, std::size_t m, std::size_t c, std::size_t l) -> const Run& {
       return runs[((s * masses.size() + m) * courants.size() + c) * levels + l];
@@ -180,14 +175,15 @@ int main(int argc, char** argv) {
     // The two steps of the study, for the prose ("\mrm{conv:dt:dth2}" prints "$\Delta t = h/2$").
     for (std::size_t c = 0; c < courants.size(); ++c) mrm::tex_define(defs, std::string("conv:dt:") + courant_keys[c], courant_labels[c]);
     std::vector<std::string> headers{"scheme", "mass", "$\\Delta t$"}, ranking_headers{"scheme", "$\\Delta t$"};
-    for (const char* label : measure_labels) {
+    for (const char* label : mrm::repro::measure_labels()) {
       headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
       ranking_headers.push_back(headers.back());
     }
     mrm::repro::Table orders_table(headers), errors_table(headers), ranking_table(ranking_headers);
 
     std::vector<double> steps(levels);
-    for (std::size_t l = 0; l < levels; ++l) steps[l] = 1.0 / static_cast<double>(static_cast<mrm::Index>(coarsest) << l);
+    for (std::size_t l = 0; l < levels; ++l)
+      steps[l] = 1.0 / static_cast<double>(static_cast<mrm::Index>(coarsest) << l);
     for (std::size_t s = 0; s < schemes.size(); ++s) {
       long ordered = 0, cases = 0;
       for (std::size_t m = 0; m < masses.size(); ++m)
@@ -198,9 +194,10 @@ int main(int argc, char** argv) {
           for (std::size_t k = 0; k < 8; ++k) {
             std::vector<double> errors(levels);
             for (std::size_t l = 0; l < levels; ++l) errors[l] = at(s, m, c, l).errors[k];
-            const std::string key = schemes[s] + ":" + masses[m] + ":" + courant_keys[c] + ":" +
-                                    mrm::ErrorAccumulator::names[k];
-            const bool fittable = std::all_of(errors.begin(), errors.end(), [](double e) { return e > 0 && std::isfinite(e); });
+            const std::string key =
+                schemes[s] + ":" + masses[m] + ":" + courant_keys[c] + ":" + mrm::ErrorAccumulator::names[k];
+            const bool fittable =
+                std::all_of(errors.begin(), errors.end(), [](double e) { return e > 0 && std::isfinite(e); });
             if (fittable) {
               const mrm::OrderFit fit = mrm::fit_order(steps, errors);
               orders_row.push_back(mrm::tex_number(fit.order, 2));
@@ -233,7 +230,8 @@ int main(int argc, char** argv) {
             return at(s, a, c, levels - 1).errors[k] < at(s, b, c, levels - 1).errors[k];
           });
           const bool paper = rank[0] == 2 && rank[1] == 1 && rank[2] == 0;
-          const std::string ranking = std::to_string(rank[0] + 1) + std::to_string(rank[1] + 1) + std::to_string(rank[2] + 1);
+          const std::string ranking =
+              std::to_string(rank[0] + 1) + std::to_string(rank[1] + 1) + std::to_string(rank[2] + 1);
           ranking_row.push_back(paper ? "\\textbf{" + ranking + "}" : ranking);
         }
         ranking_table.add_row(ranking_row);
@@ -242,14 +240,6 @@ int main(int argc, char** argv) {
       mrm::tex_define(defs, "conv:ordered:" + schemes[s], std::to_string(ordered));
       mrm::tex_define(defs, "conv:cases:" + schemes[s], std::to_string(cases));
     }
-    const auto tabular = [](const mrm::repro::Table& table, const std::string& columns) {
-      mrm::repro::LatexLayout layout;
-      layout.columns = columns;
-      layout.final_newline = false;
-      std::ostringstream out;
-      table.write_latex(out, layout);
-      return out.str();
-    };
     // Each table in two halves at the text size (measures 1-4, then 5-8 of mathematics.md §5), not shrunk.
     const auto halves = [&](const std::string& key, const mrm::repro::Table& table, std::size_t lead, char align) {
       for (std::size_t half = 0; half < 2; ++half) {
@@ -257,7 +247,7 @@ int main(int argc, char** argv) {
         for (std::size_t c = 0; c < lead; ++c) keep.push_back(c);
         for (std::size_t k = 4 * half; k < 4 * half + 4; ++k) keep.push_back(lead + k);
         defs << "\\mrmdef{" << key << (half == 0 ? ":a" : ":b") << "}{"
-             << tabular(table.columns_subset(keep), std::string(lead, 'l') + std::string(4, align)) << "}\n";
+             << mrm::repro::latex_tabular(table.columns_subset(keep), std::string(lead, 'l') + std::string(4, align)) << "}\n";
       }
     };
     halves("conv:table:orders", orders_table, 3, 'r');

@@ -13,7 +13,7 @@
 //   fig_energy --output output/data/fig_energy.dat --tex output/data/fig_energy.tex
 //   fig_energy --elements 40 --final-time 30 --output e.dat
 //
-// Description. Steps: (1) options; (2) outputs; (3) every scheme × mass, one block each (t_energy
+// Description. Steps: (1) options and the limits of the run; (2) outputs; (3) every scheme × mass, one block each (t_energy
 // energy_h), with the energy's range and its jumps; (4) the initial-datum comparison; (5) commit.
 //
 // Data file: block 3 s + m is scheme s ∈ (cn, be, ps), mass m ∈ (mod1, mod2, mod3); columns
@@ -45,22 +45,29 @@ int main(int argc, char** argv) {
                        "(mod1, mod2, mod3) on the benchmark; the exact energy is 1/8.",
                        {"fig_energy --output output/data/fig_energy.dat --tex output/data/fig_energy.tex",
                         "fig_energy --elements 40 --final-time 30 --output e.dat"});
-    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), >= 2", &elements, cli::at_least(2));
-    parser.add_real("--courant", "-c", "C", "time step dt = C h (C > 0)", &courant, cli::positive());
+    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), in [2, 1e7]", &elements,
+                       mrm::repro::elements_range());
+    parser.add_real("--courant", "-c", "C", "time step dt = C h (0 < C <= 1e6)", &courant, mrm::repro::courant_range());
     parser.add_real("--final-time", "-T", "T", "final time (> 0); the period is 3", &final_time, cli::positive());
     parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
                       {"algebraic", "literal"}, &ps_form);
-    mrm::repro::FigureOutputs outputs(parser, "fig_energy", "also write the values the report quotes, as \\mrmdef lines");
+    mrm::repro::FigureOutputs outputs(parser, "fig_energy",
+                                      "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+
+    const mrm::UniformMesh mesh(1.0, elements);
+    const double dt = courant * mesh.h();
+    const mrm::Index steps = cli::checked_steps("--final-time", final_time, dt, "--courant");
+    // Nine energy histories of steps + 1 lines each.
+    cli::require_rows("--final-time", 9 * (static_cast<double>(steps) + 1),
+                      cli::format_real(static_cast<double>(steps)) + " steps of 9 runs");
+    cli::require_mesh_memory("--elements", static_cast<double>(elements), mrm::repro::bytes_per_element);
 
     // 2. Outputs.
     outputs.open(parser);
-    const mrm::UniformMesh mesh(1.0, elements);
-    const double dt = courant * mesh.h();
-    const mrm::Index steps = mrm::steps_to_reach(final_time, dt);
     const mrm::ExactSolution exact;
     std::ostream& out = outputs.data();
-    out << "# fig_energy: discrete energy E_h(t) against the exact 1/8 (problem.md sec. 4-5)\n";
+    out << "# fig_energy: discrete energy E_h(t) against the exact 1/8 (mathematics.md sec. 4-5)\n";
     parser.echo(out);
     out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt) << "\n# steps = " << steps
         << "\n# exact_energy = " << cli::format_real(exact.energy())

@@ -11,9 +11,9 @@
 //   fig_profiles --output output/data/fig_profiles.dat --tex output/data/fig_profiles.tex
 //   fig_profiles --scheme be --instants 0.5,1.5,2.5 --output p.dat
 //
-// Description. Steps: (1) options; (2) outputs; (3) the instants, rounded to time levels; (4) one run
-// per mass, keeping the profiles at those levels; (5) the blocks: exact and computed per instant;
-// (6) commit.
+// Description. Steps: (1) options; (2) the instants, rounded to time levels, the limits of the run and
+// the outputs; (3) one run per mass, keeping the profiles at those levels; (4) the blocks: exact and
+// computed per instant; (5) commit.
 //
 // Data file: for instant k (in the order given), block 2k is the exact profile (x u) on a fine grid and
 // block 2k+1 the nodal values (x u_mod1 u_mod2 u_mod3), node N (clamped, u = 0) included.
@@ -38,23 +38,33 @@ int main(int argc, char** argv) {
   return cli::guarded_main("fig_profiles", [&] {
     // 1. Options.
     long elements = 20, exact_points = 400;
-    double courant = 0.5;
+    double courant = 0.5, switch_theta = 1.0;
     std::string scheme = "cn", ps_form = "literal", instants_text = "0.5,1.5,2.5,6.5,7.5,8.5";
     cli::Parser parser("fig_profiles",
                        "Writes the displacement along the bar at a few instants (free flight, contact, release): "
                        "exact, and one scheme with Mod 1, Mod 2 and Mod 3.",
                        {"fig_profiles --output output/data/fig_profiles.dat --tex output/data/fig_profiles.tex",
                         "fig_profiles --scheme be --instants 0.5,1.5,2.5 --output p.dat"});
-    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), >= 2", &elements, cli::at_least(2));
-    parser.add_real("--courant", "-c", "C", "time step dt = C h (C > 0)", &courant, cli::positive());
-    parser.add_choice("--scheme", "-s", "S", "time scheme", {"cn", "be", "ps"}, &scheme);
+    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), in [2, 1e7]", &elements,
+                       mrm::repro::elements_range());
+    parser.add_real("--courant", "-c", "C", "time step dt = C h (0 < C <= 1e6)", &courant, mrm::repro::courant_range());
+    parser.add_choice("--scheme", "-s", "S",
+                      "time scheme (ec: energy-conserving Crank-Nicolson; cn-switch: "
+                      "Crank-Nicolson with a theta-step at each change of the contact status)",
+                      {"cn", "be", "ps", "ec", "cn-switch"}, &scheme);
+    parser.add_real("--switch-theta", "", "TH", "cn-switch: theta of its switching step, in [0.5, 1]", &switch_theta,
+                    cli::in_closed_range(0.5, 1));
     parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row", {"algebraic", "literal"}, &ps_form);
-    parser.add_string("--instants", "-t", "LIST", "comma-separated instants t >= 0, each rounded to a time level",
+    parser.add_string("--instants", "-t", "LIST",
+                      "comma-separated instants t >= 0, each rounded to a time level (at most 1e12 steps away)",
                       &instants_text);
-    parser.add_integer("--exact-points", "", "K", "number of intervals of each exact profile (>= 10)", &exact_points,
-                       cli::at_least(10));
-    mrm::repro::FigureOutputs outputs(parser, "fig_profiles", "also write the values the report quotes, as \\mrmdef lines");
+    parser.add_integer("--exact-points", "", "K", "number of intervals of each exact profile, in [10, 1e6]",
+                       &exact_points, cli::in_closed_range(10, cli::max_curve_points));
+    mrm::repro::FigureOutputs outputs(parser, "fig_profiles",
+                                      "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    if (parser.given("--switch-theta") && scheme != "cn-switch")
+      throw cli::UsageError("--switch-theta: only with --scheme cn-switch (allowed: omit it)");
     std::vector<double> instants;
     {
       std::stringstream list(instants_text);
@@ -67,28 +77,32 @@ int main(int argc, char** argv) {
       if (instants.empty()) throw cli::UsageError("--instants: give at least one instant, e.g. 0.5,1.5,2.5");
     }
 
-    // 2. Outputs.
-    outputs.open(parser);
+    // 2. The instants, rounded to the nearest time level; the limits; the outputs.
     const mrm::UniformMesh mesh(1.0, elements);
     const double dt = courant * mesh.h();
     const mrm::ExactSolution exact;
-
-    // 3. The instants, rounded to the nearest time level.
     std::vector<mrm::Index> levels;
     mrm::Index last_level = 0;
     for (double t : instants) {
-      levels.push_back(static_cast<mrm::Index>(std::llround(t / dt)));
+      levels.push_back(cli::checked_level("--instants", t, dt, "--courant"));
       last_level = std::max(last_level, levels.back());
     }
+    const double count = static_cast<double>(instants.size());
+    cli::require_rows("--instants", count * (static_cast<double>(exact_points) + static_cast<double>(elements) + 2),
+                      cli::format_real(count) + " instants of " + cli::format_real(static_cast<double>(exact_points)) +
+                          " exact points and " + cli::format_real(static_cast<double>(elements)) + " nodes");
+    // A run at a time, and the profiles kept: three masses times the instants, 8 bytes a node each.
+    cli::require_mesh_memory("--elements", static_cast<double>(elements), mrm::repro::bytes_per_element + 24 * count);
+    outputs.open(parser);
 
-    // 4. One run per mass, keeping Uⁿ at the chosen levels.
+    // 3. One run per mass, keeping Uⁿ at the chosen levels.
     const auto& masses = mrm::repro::mass_names();
     std::vector<std::vector<Eigen::VectorXd>> profiles(masses.size(), std::vector<Eigen::VectorXd>(levels.size()));
     for (std::size_t m = 0; m < masses.size(); ++m) {
       std::cerr << "fig_profiles: " << scheme << ' ' << masses[m] << '\n';
-      mrm::repro::Configuration configuration =
-          mrm::repro::paper_configuration(scheme, ps_form, masses[m], elements, courant,
-                                          static_cast<double>(last_level) * dt);
+      mrm::repro::Configuration configuration = mrm::repro::paper_configuration(
+          scheme, ps_form, masses[m], elements, courant, static_cast<double>(last_level) * dt);
+      configuration.scheme.switch_theta = switch_theta;
       configuration.steps = last_level;  // exactly the last chosen level (it may be level 0)
       mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
         for (std::size_t k = 0; k < levels.size(); ++k)
@@ -96,9 +110,9 @@ int main(int argc, char** argv) {
       });
     }
 
-    // 5. The blocks.
+    // 4. The blocks.
     std::ostream& out = outputs.data();
-    out << "# fig_profiles: u(x,t) at a few instants, exact and computed (problem.md sec. 2)\n";
+    out << "# fig_profiles: u(x,t) at a few instants, exact and computed (mathematics.md sec. 2)\n";
     parser.echo(out);
     out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt)
         << "\n# blocks: 2k exact profile at instant k (x u); 2k+1 nodal values (x u_mod1 u_mod2 u_mod3)\n";
@@ -131,7 +145,7 @@ int main(int argc, char** argv) {
       }
     }
 
-    // 6. Commit.
+    // 5. Commit.
     outputs.commit();
     return 0;
   });

@@ -19,7 +19,7 @@
 //   fig_ps_forms --output output/data/fig_ps_forms.dat --tex output/data/fig_ps_forms.tex
 //   fig_ps_forms --mass mod1 --elements 50 --final-time 30 --output ps.dat
 //
-// Description. Steps: (1) options; (2) outputs; (3) the exact u(0,t); (4) the three variants, one block
+// Description. Steps: (1) options and the limits of the run; (2) outputs; (3) the exact u(0,t); (4) the three variants, one block
 // each, with the sawtooth per period; (5) commit.
 //
 // Data file: block 0 exact (t u0); blocks 1, 2, 3: algebraic row with the redistributed mass, literal row
@@ -53,23 +53,34 @@ int main(int argc, char** argv) {
                        "the sawtooth in u(0,t) per period.",
                        {"fig_ps_forms --output output/data/fig_ps_forms.dat --tex output/data/fig_ps_forms.tex",
                         "fig_ps_forms --mass mod1 --elements 50 --final-time 30 --output ps.dat"});
-    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), >= 2", &elements, cli::at_least(2));
-    parser.add_real("--courant", "-c", "C", "time step dt = C h (C > 0)", &courant, cli::positive());
+    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), in [2, 1e7]", &elements,
+                       mrm::repro::elements_range());
+    parser.add_real("--courant", "-c", "C", "time step dt = C h (0 < C <= 1e6)", &courant, mrm::repro::courant_range());
     parser.add_real("--final-time", "-T", "T", "final time (> 0); the period is 3", &final_time, cli::positive());
     parser.add_choice("--mass", "-m", "M", "the redistributed mass", {"mod1", "mod2", "mod3"}, &mass);
-    parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve (>= 10)",
-                       &exact_points, cli::at_least(10));
-    mrm::repro::FigureOutputs outputs(parser, "fig_ps_forms", "also write the values the report quotes, as \\mrmdef lines");
+    parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve, in [10, 1e6]",
+                       &exact_points, cli::in_closed_range(10, cli::max_curve_points));
+    mrm::repro::FigureOutputs outputs(parser, "fig_ps_forms",
+                                      "also write the values the report quotes, as \\mrmdef lines");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+
+    const mrm::UniformMesh mesh(1.0, elements);
+    const double dt = courant * mesh.h();
+    const mrm::Index steps = cli::checked_steps("--final-time", final_time, dt, "--courant");
+    const mrm::ExactSolution exact;
+    // Three histories of steps + 1 lines each, and one sawtooth value per period and variant.
+    cli::require_rows("--final-time", 3 * (static_cast<double>(steps) + 1),
+                      cli::format_real(static_cast<double>(steps)) + " steps of 3 runs");
+    if (!(final_time / exact.period() <= 1e6))
+      throw cli::UsageError("--final-time: " + cli::format_real(final_time) + " spans " +
+                            cli::format_real(std::ceil(final_time / exact.period())) +
+                            " periods (allowed: at most 1e6 periods, each with its own values)");
+    cli::require_mesh_memory("--elements", static_cast<double>(elements), mrm::repro::bytes_per_element);
 
     // 2. Outputs.
     outputs.open(parser);
-    const mrm::UniformMesh mesh(1.0, elements);
-    const double dt = courant * mesh.h();
-    const mrm::Index steps = mrm::steps_to_reach(final_time, dt);
-    const mrm::ExactSolution exact;
     std::ostream& out = outputs.data();
-    out << "# fig_ps_forms: Paoli-Schatzman (1/4, 0), literal and algebraic contact row (problem.md sec. 4)\n";
+    out << "# fig_ps_forms: Paoli-Schatzman (1/4, 0), literal and algebraic contact row (mathematics.md sec. 4)\n";
     parser.echo(out);
     out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt) << "\n# steps = " << steps
         << "\n# exact_energy = " << cli::format_real(exact.energy())
@@ -89,8 +100,8 @@ int main(int argc, char** argv) {
     struct Variant {
       std::string key, mass, form;
     };
-    const std::vector<Variant> variants{{"algebraic", mass, "algebraic"}, {"literal", mass, "literal"},
-                                        {"consistent", "consistent", "literal"}};
+    const std::vector<Variant> variants{
+        {"algebraic", mass, "algebraic"}, {"literal", mass, "literal"}, {"consistent", "consistent", "literal"}};
     const long periods = static_cast<long>(std::ceil(final_time / exact.period() - 1e-9));
     std::ostream& defs = outputs.values();
     mrm::tex_define(defs, "ps:elements", std::to_string(elements));
@@ -108,30 +119,31 @@ int main(int argc, char** argv) {
       double energy_first = std::nan(""), energy_last = 0, energy_max = -1e300, energy_min = 1e300;
       const mrm::repro::Configuration configuration =
           mrm::repro::paper_configuration("ps", v.form, v.mass, elements, courant, final_time);
-      const mrm::ErrorNorms e = mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
-        const double u0 = (*s.displacement)[0];
-        if (s.level >= 2) {
-          const double t_mid = s.time - dt, t_first = s.time - 2 * dt;
-          const double period_start = exact.period() * std::floor(t_first / exact.period());
-          const double a = t_first - period_start, b = s.time - period_start;  // the three instants, in [a, b]
-          const double margin = 2 * dt;
-          const bool free_flight = (b <= 1 - margin) || (a >= 2 + margin && b <= 3 - margin);
-          const auto period = static_cast<std::size_t>(std::floor(t_mid / exact.period()));
-          if (free_flight && a >= 0 && period < sawtooth.size())
-            sawtooth[period] = std::max(sawtooth[period], std::abs(u0 - 2 * u_prev + u_before));
-        }
-        u_before = u_prev;
-        u_prev = u0;
-        // Paoli–Schatzman's three-level energy exists from level 2 on (levels 0, 1 carry the start's).
-        if (s.level >= 2) {
-          if (std::isnan(energy_first)) energy_first = s.energy;
-          energy_last = s.energy;
-          energy_max = std::max(energy_max, s.energy);
-          energy_min = std::min(energy_min, s.energy);
-        }
-        out << cli::format_real(s.time) << ' ' << cli::format_real(u0) << ' ' << cli::format_real(s.energy_time) << ' '
-            << cli::format_real(s.energy) << '\n';
-      }).errors;
+      const mrm::ErrorNorms e =
+          mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
+            const double u0 = (*s.displacement)[0];
+            if (s.level >= 2) {
+              const double t_mid = s.time - dt, t_first = s.time - 2 * dt;
+              const double period_start = exact.period() * std::floor(t_first / exact.period());
+              const double a = t_first - period_start, b = s.time - period_start;  // the three instants, in [a, b]
+              const double margin = 2 * dt;
+              const bool free_flight = (b <= 1 - margin) || (a >= 2 + margin && b <= 3 - margin);
+              const auto period = static_cast<std::size_t>(std::floor(t_mid / exact.period()));
+              if (free_flight && a >= 0 && period < sawtooth.size())
+                sawtooth[period] = std::max(sawtooth[period], std::abs(u0 - 2 * u_prev + u_before));
+            }
+            u_before = u_prev;
+            u_prev = u0;
+            // Paoli–Schatzman's three-level energy exists from level 2 on (levels 0, 1 carry the start's).
+            if (s.level >= 2) {
+              if (std::isnan(energy_first)) energy_first = s.energy;
+              energy_last = s.energy;
+              energy_max = std::max(energy_max, s.energy);
+              energy_min = std::min(energy_min, s.energy);
+            }
+            out << cli::format_real(s.time) << ' ' << cli::format_real(u0) << ' ' << cli::format_real(s.energy_time)
+                << ' ' << cli::format_real(s.energy) << '\n';
+          }).errors;
       const std::string key = "ps:" + v.key + ":";
       mrm::tex_define(defs, key + "err_u0_L2", mrm::tex_number(e.u0_L2, 2));
       mrm::tex_define(defs, key + "err_u_L2H1", mrm::tex_number(e.u_L2H1, 2));

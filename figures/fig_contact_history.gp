@@ -1,6 +1,9 @@
 # The paper's Figure 1: u(0,t) (left) and the contact stress lambda(t) (right), one row per scheme,
-# the exact solution (black) against Mod 1, Mod 2, Mod 3. Titles, masses and the time axis are read from
-# the data file's header (blocks "scheme = s, mass = m"); the y-axes are set by the data.
+# the exact solution (black) against Mod 1, Mod 2, Mod 3, and the baseline: Paoli-Schatzman with the
+# consistent mass (purple, dashed; the data file's last block). The third row is Paoli-Schatzman with the
+# contact row the report believes the paper used (the data file's ps_form). Titles, masses and the time
+# axis are read from the data file's header (blocks "scheme = s, mass = m"); the y-axes are set by the
+# data: no curve is clipped.
 # Usage: gnuplot -e "data='output/data/fig_contact_history.dat'; output='output/figures/fig_contact_history.pdf'" figures/fig_contact_history.gp
 if (!exists("data")) data = 'output/data/fig_contact_history.dat'
 if (!exists("output")) output = 'output/figures/fig_contact_history.pdf'
@@ -11,12 +14,16 @@ set terminal pdfcairo size 16cm,20cm font font(10) linewidth 1.5 enhanced
 set output output
 set datafile missing NaN
 
-# Block 1 + 3 s + m - 1 is scheme s, mass m: the schemes and masses in the file's order.
+# Block 1 + 3 s + m - 1 is scheme s, mass m: the schemes and masses in the file's order; the last block
+# is the baseline.
 blocks = system(sprintf("sed -n 's/^# block [0-9]*: scheme = \\([a-z]*\\), mass = \\([a-z0-9]*\\)$/\\1 \\2/p' '%s'", data))
 scheme_id(s) = word(blocks, 2 * (3 * s) + 1)
 mass_id(m) = word(blocks, 2 * (m - 1) + 2)
+baseline = words(blocks) / 2
+baseline_title = scheme_name(word(blocks, words(blocks) - 1)).", ".mass_name(word(blocks, words(blocks)))." (baseline)"
 ps_form = header("ps_form")
-title(s) = scheme_id(s) eq "ps" ? scheme_name("ps").", ".ps_form." contact row" : scheme_name(scheme_id(s))
+title(s) = scheme_id(s) eq "ps" ? scheme_name("ps").", ".ps_form." contact row". \
+  (ps_form eq "algebraic" ? " (= Crank–Nicolson in ".italic("u").", ".lambda_.")" : "") : scheme_name(scheme_id(s))
 final_time = header("final_time") + 0
 
 set multiplot layout 3,2 margins 0.08,0.98,0.05,0.93 spacing 0.08,0.09
@@ -29,11 +36,13 @@ set key at screen 0.5,0.985 center top vertical maxrows 1 samplen 3 width 2
 do for [s=0:2] {
   set title title(s)
   set ylabel italic("u")."(0,".italic("t").")"
-  plot for [m=1:3] data index 1+3*s+m-1 using 1:2 with lines lc rgb mass_colour(m) lw 1.0 title mass_name(mass_id(m)), \
+  plot data index baseline using 1:2 with lines lc rgb mass_colour(4) lw 1.0 dt 2 title baseline_title, \
+       for [m=1:3] data index 1+3*s+m-1 using 1:2 with lines lc rgb mass_colour(m) lw 1.0 title mass_name(mass_id(m)), \
        data index 0 using 1:2 with lines lc rgb "black" lw 2.0 title "exact"
   unset key
   set ylabel lambda_."(".italic("t").")"
-  plot for [m=1:3] data index 1+3*s+m-1 using 3:4 with lines lc rgb mass_colour(m) lw 1.0 notitle, \
+  plot data index baseline using 3:4 with lines lc rgb mass_colour(4) lw 1.0 dt 2 notitle, \
+       for [m=1:3] data index 1+3*s+m-1 using 3:4 with lines lc rgb mass_colour(m) lw 1.0 notitle, \
        data index 0 using 1:3 with lines lc rgb "black" lw 2.0 notitle
 }
 unset multiplot

@@ -77,7 +77,10 @@ TEST_CASE("the condensed contact node satisfies its row and the complementarity"
 /// doctests below check both forms and a direct solve against each other.
 
 ContactSolver::ContactSolver(const Tridiagonal& a)
-    : pivot_(a.size()), inverse_pivot_(a.size()), elimination_(Eigen::VectorXd::Zero(a.size())), lower_(a.lower),
+    : pivot_(a.size()),
+      inverse_pivot_(a.size()),
+      elimination_(Eigen::VectorXd::Zero(a.size())),
+      lower_(a.lower),
       upward_(a.size()) {
   const Index n = a.size();
   if (n < 1) throw std::invalid_argument("contact solver: empty matrix");
@@ -112,17 +115,25 @@ ContactStep ContactSolver::solve(const double* b, double* u, double kappa, doubl
     throw std::invalid_argument("contact solver: kappa = " + std::to_string(kappa) +
                                 " (allowed: a positive finite number)");
   if (size() == 0) throw std::invalid_argument("contact solver: solve before factorising a matrix");
-  const Index n = size();
-  double y = b[n - 1];
-  u[n - 1] = y;
-  for (Index i = n - 2; i >= 0; --i) {
-    y = b[i] - elimination_[i] * y;
-    u[i] = y;
-  }
+  sweep_down(b, u);
   const ContactStep step = resolve_contact(u[0], kappa, obstacle);
-  u[0] = step.u0;
-  for (Index i = 1; i < n; ++i) u[i] = inverse_pivot_[i] * u[i] - upward_[i] * u[i - 1];
+  sweep_up(step.u0, u);
   return step;
+}
+
+void ContactSolver::sweep_down(const double* b, double* y) const {
+  const Index n = size();
+  double yi = b[n - 1];
+  y[n - 1] = yi;
+  for (Index i = n - 2; i >= 0; --i) {
+    yi = b[i] - elimination_[i] * yi;
+    y[i] = yi;
+  }
+}
+
+void ContactSolver::sweep_up(double u0, double* y) const {
+  y[0] = u0;
+  for (Index i = 1; i < size(); ++i) y[i] = inverse_pivot_[i] * y[i] - upward_[i] * y[i - 1];
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -132,8 +143,8 @@ ContactStep ContactSolver::solve(const double* b, double* u, double kappa, doubl
 namespace {
 
 // A U + κ λ e₀ = b with, if active, the constraint row u₀ = g; solved by Eigen's SparseLU.
-[[maybe_unused]] Eigen::VectorXd saddle_point_solve(const Tridiagonal& a, const Eigen::VectorXd& b, double kappa, double g,
-                                   bool active) {
+[[maybe_unused]] Eigen::VectorXd saddle_point_solve(const Tridiagonal& a, const Eigen::VectorXd& b, double kappa,
+                                                    double g, bool active) {
   const Index n = a.size();
   Eigen::SparseMatrix<double> k(n + 1, n + 1);
   std::vector<Eigen::Triplet<double>> t;
@@ -141,8 +152,10 @@ namespace {
   for (Index j = 0; j < as.outerSize(); ++j)
     for (Eigen::SparseMatrix<double>::InnerIterator it(as, j); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
   t.emplace_back(0, n, kappa);
-  if (active) t.emplace_back(n, 0, 1.0);
-  else t.emplace_back(n, n, 1.0);  // λ = 0
+  if (active)
+    t.emplace_back(n, 0, 1.0);
+  else
+    t.emplace_back(n, n, 1.0);  // λ = 0
   k.setFromTriplets(t.begin(), t.end());
   Eigen::VectorXd rhs(n + 1);
   rhs << b, (active ? g : 0.0);
@@ -151,7 +164,8 @@ namespace {
   return lu.solve(rhs);
 }
 
-[[maybe_unused]] Tridiagonal step_matrix(const UniformMesh& mesh, const MassRedistribution& r, double theta, bool contact_row) {
+[[maybe_unused]] Tridiagonal step_matrix(const UniformMesh& mesh, const MassRedistribution& r, double theta,
+                                         bool contact_row) {
   const Tridiagonal s = p1_stiffness(mesh);
   Tridiagonal a = modified_mass(mesh, r).plus(theta, s);
   if (contact_row) {  // row 0 is the algebraic contact row S_00 u₀ + S_01 u₁ = F₀ − λ

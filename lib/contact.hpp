@@ -40,6 +40,12 @@ class ContactSolver {
   /// kappa > 0 (finite) and a matrix has been factorised.
   ContactStep solve(const double* b, double* u, double kappa, double obstacle = 0.0) const;
 
+  /// The two halves of solve() for a step that decides the contact itself (the energy-conserving
+  /// scheme, schemes.cpp): sweep_down writes y (size n; may alias b) with y₀ the reduced contact row;
+  /// sweep_up turns y into u (in place) starting from u₀ = `u0` (no check of the contact).
+  void sweep_down(const double* b, double* y) const;
+  void sweep_up(double u0, double* y) const;  ///< see sweep_down
+
   /// The pivot d₀ = 1/(A⁻¹)₀₀, the Schur complement of A onto the contact node.
   double schur_complement() const { return pivot_[0]; }
   /// The dimension n of the factorised matrix (0 before a factorisation).

@@ -15,10 +15,10 @@ namespace mrm {
 
 /// The straight line log e = log C + p log s fitted by least squares to points (s_k, e_k).
 struct OrderFit {
-  double order;           ///< p, the observed order
-  double log_constant;    ///< log C
-  double order_std_error; ///< the standard error of p from the residuals (0 for two points)
-  std::size_t points;     ///< the number of points fitted
+  double order;            ///< p, the observed order
+  double log_constant;     ///< log C
+  double order_std_error;  ///< the standard error of p from the residuals (0 for two points)
+  std::size_t points;      ///< the number of points fitted
 };
 
 /// Fits e ≈ C s^p by least squares on (log s, log e) with GSL's gsl_fit_linear. Throws

@@ -3,8 +3,10 @@
 #pragma once
 
 #include <array>
+#include <memory>
 
 #include "exact_solution.hpp"
+#include "reference_solution.hpp"
 #include "p1.hpp"
 #include "schemes.hpp"
 
@@ -43,12 +45,20 @@ struct ErrorNorms {
 ErrorNorms relative_norms(const TimeHistory& u0, const TimeHistory& lambda, const TimeHistory& u_l2,
                           const TimeHistory& u_h1, const TimeHistory& v_l2);
 
-/// Accumulates the errors of a run against the exact solution, one sample at a time, in O(N) memory.
+/// Accumulates the errors of a run against an exact solution, one sample at a time, in O(N) memory.
+/// The reference is the closed form of the benchmark (mathematics.md §2) or any other ReferenceSolution,
+/// such as the characteristic solution for any data (mathematics.md §10). The squared norms are taken
+/// on values scaled by powers of two (errors.cpp), so that any length and amplitude accepted by the
+/// programs, [1e-100, 1e100], gives the right finite relative errors.
 class ErrorAccumulator {
  public:
-  /// Throws std::invalid_argument unless the exact solution and the mesh have the same length L.
-  /// `add` expects samples of a simulation on the same mesh (vectors of size mesh.unknowns()).
+  /// Against the closed form (copied). Throws std::invalid_argument unless the exact solution and the
+  /// mesh have the same length L. `add` expects samples of a simulation on the same mesh (vectors of
+  /// size mesh.unknowns()).
   ErrorAccumulator(const UniformMesh& mesh, const ExactSolution& exact);
+  /// Against any reference solution (shared, read only: accumulators of runs in parallel may share
+  /// one). Throws std::invalid_argument for a null reference or one of another length than the mesh's.
+  ErrorAccumulator(const UniformMesh& mesh, std::shared_ptr<const ReferenceSolution> reference);
   /// Adds one time level of a run (its displacement, velocity and multiplier at their own instants).
   void add(const Sample& sample);
   /// The relative errors of the samples added so far.
@@ -60,9 +70,11 @@ class ErrorAccumulator {
 
  private:
   UniformMesh mesh_;
-  ExactSolution exact_;
-  Tridiagonal mass_, stiffness_;
+  std::shared_ptr<const ReferenceSolution> exact_;
+  const ExactSolution* closed_form_ = nullptr;  // exact_ when it is the paper's closed form (its runs)
+  Tridiagonal mass_, stiffness_;                                // scaled by 2^−e_L and 2^e_L (errors.cpp: Scale)
   Eigen::VectorXd nodes_, interpolant_, velocity_interpolant_;  // x_i; u_I and (u_t)_I at one level
+  double u_scale_, v_scale_, time_scale_;                       // σ_u, σ_v and 2^−e_L: powers of two
   TimeHistory u_l2_, u_h1_, v_l2_, u0_, lambda_;
 };
 

@@ -65,16 +65,16 @@ struct Affine {
 };
 
 struct Phase {
-  double c;                // u = c · min_k(affine_k)
+  double c;  // u = c · min_k(affine_k)
   int count;
   Affine affine[4];
 };
 
 // The three phases of the reference solution (L = 1, a = ½), with s the time since the phase began.
 constexpr Phase phases[3] = {
-    {0.5, 2, {{1, -1, 0}, {1, 0, -1}, {}, {}}},                  // ½ min(1 − ξ, 1 − s)
-    {-0.5, 4, {{0, 1, 0}, {1, -1, 0}, {0, 0, 1}, {1, 0, -1}}},   // −½ min(ξ, 1 − ξ, s, 1 − s)
-    {0.5, 2, {{0, 0, 1}, {1, -1, 0}, {}, {}}},                   // ½ min(s, 1 − ξ)
+    {0.5, 2, {{1, -1, 0}, {1, 0, -1}, {}, {}}},                 // ½ min(1 − ξ, 1 − s)
+    {-0.5, 4, {{0, 1, 0}, {1, -1, 0}, {0, 0, 1}, {1, 0, -1}}},  // −½ min(ξ, 1 − ξ, s, 1 − s)
+    {0.5, 2, {{0, 0, 1}, {1, -1, 0}, {}, {}}},                  // ½ min(s, 1 − ξ)
 };
 
 struct PhaseTime {
@@ -169,8 +169,8 @@ double ExactSolution::energy() const { return 0.5 * amplitude_ * amplitude_ * le
 // parallel: they tie everywhere or nowhere). Away from every crossing by more than δ = 1e-9 (in ξ),
 // two non-parallel a_k differ by at least δ ≫ the tie tolerance 1e-12, so the set of active functions
 // is the same all along each run of points between two crossings: there u is the one active function,
-// evaluated with the same expression as displacement(), and u_t the same constant, computed once per
-// run by velocity(). At a phase change u_t averages two phases: the kinks of both count. Points
+// one affine function of x (intercept and slope computed once per run), and u_t the same constant,
+// computed once per run by velocity(). At a phase change u_t averages two phases: the kinks of both count. Points
 // within δ of a crossing go through the generic functions, which decide the ties. So the values are
 // those of the generic functions (the doctest below checks it at points on the characteristics, at
 // the phase changes and elsewhere), at the cost of one affine function per point for u and a copy
@@ -221,41 +221,71 @@ void split_at_kinks(const double* kinks, int kink_count, double length, const do
 
 }  // namespace
 
-void ExactSolution::displacement_at_points(double t, const double* x, long count, double* u) const {
+// The split as runs of one affine function each, for the error measures (errors.cpp), which then
+// need no array of values: on a run between kinks u = scale · c · (α + β x/L + γ s), that is
+// intercept scale·c·(α + γs) and slope scale·c·β/L, and u_t is the constant that velocity() gives.
+int ExactSolution::displacement_runs(double t, const double* x, long count, AffineRun* runs, int capacity) const {
   const PhaseTime pt = locate(t / length_);
   const Phase& p = phases[pt.phase];
   double kinks[12];
   const int kink_count = append_crossings(p, pt.s, kinks, 0);
   const double scale = 2.0 * amplitude_ * length_;
+  int n = 0;
+  const auto push = [&](AffineRun r) {
+    if (n == capacity) throw std::length_error("ExactSolution::displacement_runs: more runs than the capacity");
+    runs[n++] = r;
+  };
   split_at_kinks(
       kinks, kink_count, length_, x, count,
       [&](long first, long end) {
-        // The active function: the smallest at the run's first point (strictly, by more than 1e-9).
         const double xi = x[first] / length_;
         int active = 0;
         for (int k = 1; k < p.count; ++k)
           if (p.affine[k].at(xi, pt.s) < p.affine[active].at(xi, pt.s)) active = k;
-        // The same expression as displacement() (with x·(1/L) for x/L: the same for L = 1, else within
-        // an ulp of ξ).
         const Affine a = p.affine[active];
-        const double inverse_length = 1.0 / length_;
-        for (long i = first; i < end; ++i) u[i] = scale * (p.c * a.at(x[i] * inverse_length, pt.s));
+        push({first, end, scale * p.c * (a.alpha + a.gamma * pt.s), scale * p.c * a.beta / length_});
       },
-      [&](long i) { u[i] = displacement(x[i], t); });
+      [&](long i) {
+        push({i, i + 1, displacement(x[i], t), 0.0});
+      });
+  return n;
 }
 
-void ExactSolution::velocity_at_points(double t, const double* x, long count, double* v) const {
+int ExactSolution::velocity_runs(double t, const double* x, long count, AffineRun* runs, int capacity) const {
   const PhaseTime pt = locate(t / length_);
   double kinks[12];
   int kink_count = append_crossings(phases[pt.phase], pt.s, kinks, 0);
   if (pt.at_boundary) kink_count = append_crossings(phases[(pt.phase + 2) % 3], 1.0, kinks, kink_count);
+  int n = 0;
+  const auto push = [&](AffineRun r) {
+    if (n == capacity) throw std::length_error("ExactSolution::velocity_runs: more runs than the capacity");
+    runs[n++] = r;
+  };
   split_at_kinks(
       kinks, kink_count, length_, x, count,
       [&](long first, long end) {
-        const double value = velocity(x[first], t);
-        for (long i = first; i < end; ++i) v[i] = value;
+        push({first, end, velocity(x[first], t), 0.0});
       },
-      [&](long i) { v[i] = velocity(x[i], t); });
+      [&](long i) {
+        push({i, i + 1, velocity(x[i], t), 0.0});
+      });
+  return n;
+}
+
+// The values at many points from the runs: one affine function (or the generic value, near a kink) per
+// point. The doctest below checks them, and so the runs, against the generic functions.
+void ExactSolution::displacement_at_points(double t, const double* x, long count, double* u) const {
+  AffineRun runs[32];
+  const int n = displacement_runs(t, x, count, runs, 32);
+  for (int r = 0; r < n; ++r)
+    for (long i = runs[r].first; i < runs[r].end; ++i) u[i] = runs[r].intercept + runs[r].slope * x[i];
+}
+
+void ExactSolution::velocity_at_points(double t, const double* x, long count, double* v) const {
+  AffineRun runs[32];
+  const int n = velocity_runs(t, x, count, runs, 32);
+  for (int r = 0; r < n; ++r)
+    for (long i = runs[r].first; i < runs[r].end; ++i) v[i] = runs[r].intercept;
 }
 
 TEST_CASE("the evaluation at many points gives the values of the generic functions, kinks and phase changes included") {

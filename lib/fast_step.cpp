@@ -6,9 +6,11 @@
 #include "fast_step.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <type_traits>
 
 #include "contact.hpp"
+#include "energy_step.hpp"
 #include "schemes.hpp"
 
 namespace mrm {
@@ -19,16 +21,19 @@ namespace mrm {
 // row from which on all rows up to n−2 are equal, compared exactly, so any weights are handled
 // (Mod 1 and Mod 2 give head = 2, Mod 3 and the consistent mass 2 and 1; a weight that varies
 // along the bar gives head = n−1, every row explicit).
-FastStep::FastStep(const Tridiagonal& b1, const Tridiagonal& b2, const Tridiagonal& m, const Tridiagonal& s) {
+FastStep::FastStep(const Tridiagonal& b1, const Tridiagonal& b2, const Tridiagonal& m, const Tridiagonal& s,
+                   Index minimum_head) {
   const Index rows = m.size();
   const auto row = [&](Index i) {
     const bool last = i + 1 == rows;
-    return Row{b1.lower[i], b1.diag[i], last ? 0.0 : b1.upper[i], b2.lower[i], b2.diag[i],
-               last ? 0.0 : b2.upper[i], m.diag[i], 2 * m.lower[i], s.diag[i], 2 * s.lower[i]};
+    return Row{b1.lower[i],   b1.diag[i],     last ? 0.0 : b1.upper[i],
+               b2.lower[i],   b2.diag[i],     last ? 0.0 : b2.upper[i],
+               m.diag[i],     2 * m.lower[i], s.diag[i],
+               2 * s.lower[i]};
   };
   const auto same = [](const Row& x, const Row& y) {
-    return x.b1l == y.b1l && x.b1d == y.b1d && x.b1u == y.b1u && x.b2l == y.b2l && x.b2d == y.b2d &&
-           x.b2u == y.b2u && x.md == y.md && x.ml2 == y.ml2 && x.sd == y.sd && x.sl2 == y.sl2;
+    return x.b1l == y.b1l && x.b1d == y.b1d && x.b1u == y.b1u && x.b2l == y.b2l && x.b2d == y.b2d && x.b2u == y.b2u &&
+           x.md == y.md && x.ml2 == y.ml2 && x.sd == y.sd && x.sl2 == y.sl2;
   };
   last_ = row(rows - 1);
   interior_ = last_;
@@ -39,19 +44,20 @@ FastStep::FastStep(const Tridiagonal& b1, const Tridiagonal& b2, const Tridiagon
     while (head > 1 && same(row(head - 1), interior_)) --head;
     // The interior loop uses the symmetry of B₁ and B₂ there; without it, every row is explicit.
     if (!(interior_.b1l == interior_.b1u && interior_.b2l == interior_.b2u)) head = rows - 1;
+    head = std::max(head, std::min(minimum_head, rows - 1));
   }
   head_.clear();
   for (Index i = 0; i < head; ++i) head_.push_back(row(i));
 }
 
-void FastStep::step(BarSimulation& simulation, bool has_load) const {
+bool FastStep::step(BarSimulation& simulation, bool has_load) const {
+  const bool scaled = simulation.scaled_;
   if (simulation.three_level_) {
-    if (has_load) fused_step<true, true>(simulation);
-    else fused_step<true, false>(simulation);
-  } else {
-    if (has_load) fused_step<false, true>(simulation);
-    else fused_step<false, false>(simulation);
+    if (has_load) return scaled ? fused_step<true, true, true>(simulation) : fused_step<true, true, false>(simulation);
+    return scaled ? fused_step<true, false, true>(simulation) : fused_step<true, false, false>(simulation);
   }
+  if (has_load) return scaled ? fused_step<false, true, true>(simulation) : fused_step<false, true, false>(simulation);
+  return scaled ? fused_step<false, false, true>(simulation) : fused_step<false, false, false>(simulation);
 }
 
 // One step of (★), fused into the two sweeps of the solve, with no allocation and no refactorisation:
@@ -81,8 +87,8 @@ void FastStep::step(BarSimulation& simulation, bool has_load) const {
 // (expand PᵀSP and QᵀSQ), so E = ½ XᵀMX + ⅛ (PᵀSP − (1−4β) QᵀSQ), and for β = ¼ only PᵀSP counts.
 // The scheme (two or three levels) and the presence of a load are template parameters, so that the
 // loops carry no dead work.
-template <bool three_level, bool has_load>
-void FastStep::fused_step(BarSimulation& sim) const {
+template <bool three_level, bool has_load, bool scaled>
+bool FastStep::fused_step(BarSimulation& sim) const {
   const Index n = sim.mesh_.unknowns();
   const Index head = static_cast<Index>(head_.size());
   const double* u = sim.u_.data();
@@ -136,9 +142,26 @@ void FastStep::fused_step(BarSimulation& sim) const {
     b0 = r0.b1d * u[0] + r0.b1u * u[1] + r0.b2d * w[0] + r0.b2u * w[1] - sim.lambda_in_rhs_ * sim.lambda_;
     if constexpr (has_load) b0 += g_now * f_now[0] + g_next * f_next[0];
   }
+  // EC decides the contact on row 1 instead (energy_step.cpp: its sweep up starts from the value u₀
+  // that carries the discrete-gradient force, which is not the contact node's new value at a status
+  // change); CN-switch returns before writing anything when the status changes.
   const double obstacle = three_level ? -sim.parameters_.restitution * w[0] : 0.0;
-  const ContactStep contact = sim.solver_.resolve_contact(b0 - elimination[0] * y_next, sim.kappa_, obstacle);
+  ContactStep contact;
+  double recurrence_u0;
+  if (sim.energy_conserving_) {
+    const double h = sim.mesh_.h();
+    const double load0_now = has_load ? f_now[0] : 0.0, load0_next = has_load ? f_next[0] : 0.0;
+    const EnergyConservingContact c =
+        energy_conserving_contact(inverse_pivot[1] * y_next, -upward[1], u[0], u[1] + h * load0_now, h, load0_next);
+    contact = {c.u0, c.multiplier, c.active};
+    recurrence_u0 = c.recurrence_u0;
+  } else {
+    contact = sim.solver_.resolve_contact(b0 - elimination[0] * y_next, sim.kappa_, obstacle);
+    if (sim.switch_ && contact.active != sim.active_) return false;
+    recurrence_u0 = contact.u0;
+  }
   sim.lambda_ = contact.multiplier;
+  sim.active_ = contact.active;
 
   // Sweep up. Two-level: V' = rate (U' − U) − memory V, written over W, kinetic form V'ᵀMV',
   // potential U'ᵀSU'. Three-level: X = (U' − U)/Δt, forms XᵀMX, PᵀSP, QᵀSQ; W' = Uⁿ by a swap below.
@@ -156,13 +179,21 @@ void FastStep::fused_step(BarSimulation& sim) const {
   // squared differences, free of the cancellation of Σ z_i² against Σ z_{i−1} z_i (relative error
   // O(ε) instead of O(ε N²): the energy of Crank–Nicolson stays constant to round-off).
   double k_d = 0, k_q = 0, p_d = 0, p_q = 0, q_d = 0, q_q = 0;
+  // The values entering the forms: as they are, or times σ_u and σ_v when the simulation scales its
+  // energy (schemes.cpp: Scale of the energy); uf_prev is the previous scaled displacement (un_prev
+  // itself serves the solve). With `scaled` false the code is the unscaled one.
+  const double sigma_u = std::ldexp(1.0, -sim.displacement_exponent_);
+  const double sigma_v = std::ldexp(1.0, -sim.velocity_exponent_);
+  double uf_prev = 0;
   const auto emit = [&](const Row& r, Index i, double un, auto toeplitz) {
     constexpr bool sums = decltype(toeplitz)::value;
     const double uo = u[i];
     y[i] = un;
     if constexpr (three_level) {
-      const double x = rate * (un - uo), p = un + uo, q = un - uo;
-      x_out[i] = x;
+      const double x_raw = rate * (un - uo), p_raw = un + uo, q_raw = un - uo;
+      x_out[i] = x_raw;
+      const double x = scaled ? sigma_v * x_raw : x_raw, p = scaled ? sigma_u * p_raw : p_raw,
+                   q = scaled ? sigma_u * q_raw : q_raw;
       if constexpr (sums) {
         const double dx = x - v_prev, dp = p - p_prev, dq = q - q_prev;
         k_d += dx * dx, k_q += x * x;
@@ -175,17 +206,20 @@ void FastStep::fused_step(BarSimulation& sim) const {
       }
       v_prev = x, p_prev = p, q_prev = q;
     } else {
-      const double v = rate * (un - uo) - memory * w[i];
-      w_out[i] = v;
+      const double v_raw = rate * (un - uo) - memory * w[i];
+      w_out[i] = v_raw;
+      const double v = scaled ? sigma_v * v_raw : v_raw, uf = scaled ? sigma_u * un : un;
+      const double uf_before = scaled ? uf_prev : un_prev;
       if constexpr (sums) {
-        const double dv = v - v_prev, du = un - un_prev;
+        const double dv = v - v_prev, du = uf - uf_before;
         k_d += dv * dv, k_q += v * v;
-        p_d += du * du, p_q += un * un;
+        p_d += du * du, p_q += uf * uf;
       } else {
         kinetic += r.md * v * v + r.ml2 * v_prev * v;
-        potential += r.sd * un * un + r.sl2 * un_prev * un;
+        potential += r.sd * uf * uf + r.sl2 * uf_before * uf;
       }
       v_prev = v;
+      if constexpr (scaled) uf_prev = uf;
     }
     un_prev2 = un_prev, un_prev = un;
   };
@@ -199,16 +233,21 @@ void FastStep::fused_step(BarSimulation& sim) const {
     z_prev = z;
     return un;
   };
+  // Node 0's value enters the energy and the velocity; the recurrence runs from recurrence_u0 (the same
+  // number except for EC at a status change): z₀ for node 1, and Uⁿ⁺¹_{i−2} for node 2, set after node 1
+  // (EC keeps row 1 among the explicit rows for this: minimum_head = 2).
   emit(r0, 0, contact.u0, explicit_row);
-  z_prev = contact.u0;
-  for (Index i = 1; i < std::min(head, n - 1); ++i)
+  z_prev = recurrence_u0;
+  for (Index i = 1; i < std::min(head, n - 1); ++i) {
     emit(head_[static_cast<std::size_t>(i)], i, solve_up(i), explicit_row);
+    if (i == 1) un_prev2 = recurrence_u0;
+  }
   if (head < n - 1) {
     const Row r = interior_;
     // The values z_{a−1} at row head − 1 (the first of the kinetic, the potential and the second forms).
-    const double ka = v_prev, pa = three_level ? p_prev : un_prev, qa = q_prev;
+    const double ka = v_prev, pa = three_level ? p_prev : (scaled ? uf_prev : un_prev), qa = q_prev;
     for (Index i = head; i < n - 1; ++i) emit(r, i, solve_up(i), toeplitz_row);
-    const double kb = v_prev, pb = three_level ? p_prev : un_prev, qb = q_prev;
+    const double kb = v_prev, pb = three_level ? p_prev : (scaled ? uf_prev : un_prev), qb = q_prev;
     const auto form = [](double d, double l2, double sum_d, double sum_q, double za, double zb) {
       const double l = 0.5 * l2;
       return -l * sum_d + (d + l2) * sum_q - l * zb * zb + l * za * za;
@@ -219,15 +258,18 @@ void FastStep::fused_step(BarSimulation& sim) const {
   }
   emit(last_, n - 1, solve_up(n - 1), explicit_row);
 
+  const auto back = [](double half, int exponent) { return scaled ? std::ldexp(half, 2 * exponent) : half; };
   if constexpr (three_level) {
-    sim.energy_ = 0.5 * kinetic + 0.125 * (potential - (1 - 4 * sim.parameters_.beta) * potential_q);
+    sim.energy_ = back(0.5 * kinetic, sim.velocity_exponent_) +
+                  back(0.125 * (potential - (1 - 4 * sim.parameters_.beta) * potential_q), sim.displacement_exponent_);
     sim.u_.swap(sim.w_);      // W' = Uⁿ
     sim.u_.swap(sim.u_new_);  // U = Uⁿ⁺¹
   } else {
-    sim.energy_ = 0.5 * kinetic + 0.5 * potential;
+    sim.energy_ = back(0.5 * kinetic, sim.velocity_exponent_) + back(0.5 * potential, sim.displacement_exponent_);
     sim.u_.swap(sim.u_new_);
   }
   if constexpr (has_load) sim.f_now_.swap(sim.f_next_);
+  return true;
 }
 
 }  // namespace mrm

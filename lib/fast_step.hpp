@@ -21,12 +21,16 @@ class BarSimulation;
 class FastStep {
  public:
   /// Reads the rows of B₁, B₂ (the step's right-hand side matrices), M and S (the energies), all of
-  /// size N, and finds the Toeplitz interior (rows compared exactly).
-  FastStep(const Tridiagonal& b1, const Tridiagonal& b2, const Tridiagonal& mass, const Tridiagonal& stiffness);
+  /// size N, and finds the Toeplitz interior (rows compared exactly). Rows below `minimum_head` are
+  /// kept explicit whatever their values (the energy-conserving scheme needs row 1 explicit).
+  FastStep(const Tridiagonal& b1, const Tridiagonal& b2, const Tridiagonal& mass, const Tridiagonal& stiffness,
+           Index minimum_head = 1);
 
   /// Advances `simulation` by one step of its scheme: Uⁿ⁺¹, the velocity, λ and the energy replace
   /// the current state. `has_load` tells whether the problem has a load (then Fⁿ⁺¹ has been filled in).
-  void step(BarSimulation& simulation, bool has_load) const;
+  /// Returns false, with the state untouched, where CN-switch must take its θ-step instead (a change
+  /// of the contact status across the Crank–Nicolson step).
+  bool step(BarSimulation& simulation, bool has_load) const;
 
  private:
   // One row of B₁ and B₂ (lower, diagonal, upper) and of M and S (diagonal and twice the lower entry).
@@ -34,9 +38,10 @@ class FastStep {
     double b1l, b1d, b1u, b2l, b2d, b2u;
     double md, ml2, sd, sl2;
   };
-  std::vector<Row> head_;  // rows 0 … head−1, explicitly
+  std::vector<Row> head_;    // rows 0 … head−1, explicitly
   Row interior_{}, last_{};  // the common row of head … N−2, and row N−1
-  template <bool three_level, bool has_load> void fused_step(BarSimulation& simulation) const;
+  template <bool three_level, bool has_load, bool scaled>
+  bool fused_step(BarSimulation& simulation) const;
 };
 
 }  // namespace mrm

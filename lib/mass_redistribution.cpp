@@ -101,9 +101,7 @@ Tridiagonal modified_mass_all_nodes(const UniformMesh& mesh, const MassRedistrib
   return m;
 }
 
-bool contact_node_is_massless(const Tridiagonal& mass) {
-  return mass.diag[0] == 0.0 && mass.upper[0] == 0.0;
-}
+bool contact_node_is_massless(const Tridiagonal& mass) { return mass.diag[0] == 0.0 && mass.upper[0] == 0.0; }
 
 // Positive definiteness of a symmetric tridiagonal matrix is read off its LDLᵀ pivots
 // d_0 = a_0, d_i = a_i − l_i²/d_{i−1}: all of them must be positive.
@@ -182,7 +180,8 @@ TEST_CASE("weights that break symmetry or definiteness are rejected with the red
   MassRedistribution skew{"skew", "", [](Index i, Index j, const UniformMesh&) { return i < j ? 1.0 : 2.0; }};
   CHECK_THROWS_AS(modified_mass(mesh, skew), std::invalid_argument);
   // Zeroing only the diagonal entry of node 0 leaves an indefinite matrix (M_01 ≠ 0): rejected.
-  MassRedistribution half{"half", "", [](Index i, Index j, const UniformMesh&) { return i == 0 && j == 0 ? 0.0 : 1.0; }};
+  MassRedistribution half{"half", "",
+                          [](Index i, Index j, const UniformMesh&) { return i == 0 && j == 0 ? 0.0 : 1.0; }};
   CHECK_THROWS_AS(modified_mass(mesh, half), std::invalid_argument);
   CHECK_THROWS_WITH_AS(mass_redistribution_by_name("mod4"), doctest::Contains("allowed: consistent, mod1, mod2, mod3"),
                        std::invalid_argument);

@@ -25,8 +25,8 @@ namespace mrm {
 
 UniformMesh::UniformMesh(double length_, Index elements_) : length(length_), elements(elements_) {
   if (!(std::isfinite(length_) && length_ > 0))
-    throw std::invalid_argument("mesh: the length L must be a positive finite number (got " +
-                                std::to_string(length_) + ")");
+    throw std::invalid_argument("mesh: the length L must be a positive finite number (got " + std::to_string(length_) +
+                                ")");
   if (elements_ < 2)
     throw std::invalid_argument("mesh: the number of elements N must be an integer >= 2 (got " +
                                 std::to_string(elements_) + ")");
@@ -72,8 +72,8 @@ double Tridiagonal::sum() const { return lower.sum() + diag.sum() + upper.sum();
 
 Tridiagonal Tridiagonal::leading_block(Index n) const {
   if (!(1 <= n && n <= size()))
-    throw std::invalid_argument("Tridiagonal::leading_block: block size " + std::to_string(n) +
-                                " (allowed: 1 to " + std::to_string(size()) + ")");
+    throw std::invalid_argument("Tridiagonal::leading_block: block size " + std::to_string(n) + " (allowed: 1 to " +
+                                std::to_string(size()) + ")");
   Tridiagonal block(n);
   block.lower = lower.head(n);
   block.diag = diag.head(n);

@@ -17,7 +17,7 @@
 //
 //     ℓ_f = π / (2 √μ_f),   ℓ_c = π / √μ_c,   μ the smallest eigenvalue of the pencil.
 //
-// The benchmark's solution (problem.md §2) spends L in free flight (the unloading wave runs to the
+// The benchmark's solution (mathematics.md §2) spends L in free flight (the unloading wave runs to the
 // clamp: a quarter of the free–clamped period 4L), L in contact (half the clamped–clamped period 2L)
 // and L flying back, so the period is 3L; the discrete bar spends ℓ_f, ℓ_c and ℓ_f, up to the
 // dispersion of P1 (relative O((kh)²) on the low modes):
@@ -124,16 +124,18 @@ double smallest_eigenvalue(const Tridiagonal& stiffness, const Tridiagonal& mass
   while (negative_pivots(stiffness, mass, hi) < 1) hi *= 2;  // the quotient is a bound; round-off aside
   for (int iteration = 0; iteration < 200 && hi - lo > 1e-15 * hi; ++iteration) {
     const double mid = 0.5 * (lo + hi);
-    if (negative_pivots(stiffness, mass, mid) >= 1) hi = mid;
-    else lo = mid;
+    if (negative_pivots(stiffness, mass, mid) >= 1)
+      hi = mid;
+    else
+      lo = mid;
   }
   return 0.5 * (lo + hi);
 }
 
 ReducedPencils reduced_pencils(const UniformMesh& mesh, const MassRedistribution& redistribution) {
   if (mesh.elements < 3)
-    throw std::invalid_argument("period law: the reduced pencils need N >= 3 (got N = " +
-                                std::to_string(mesh.elements) + ")");
+    throw std::invalid_argument(
+        "period law: the reduced pencils need N >= 3 (got N = " + std::to_string(mesh.elements) + ")");
   const Tridiagonal mass = modified_mass(mesh, redistribution);
   const Tridiagonal stiffness = p1_stiffness(mesh);
   ReducedPencils p;
@@ -179,8 +181,8 @@ TEST_CASE("the smallest eigenvalue by bisection is that of Eigen's dense general
     for (const MassRedistribution& r : {mod1(), mod2(), mod3(), consistent_mass(), spread_over_first_nodes(2)}) {
       const UniformMesh mesh(1.5, n);
       const ReducedPencils p = reduced_pencils(mesh, r);
-      for (const auto& [k, m] : {std::pair{&p.stiffness_free, &p.mass_free},
-                                 std::pair{&p.stiffness_contact, &p.mass_contact}}) {
+      for (const auto& [k, m] :
+           {std::pair{&p.stiffness_free, &p.mass_free}, std::pair{&p.stiffness_contact, &p.mass_contact}}) {
         const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(dense(*k), dense(*m));
         REQUIRE(solver.info() == Eigen::Success);
         const double reference = solver.eigenvalues().minCoeff();
@@ -190,7 +192,8 @@ TEST_CASE("the smallest eigenvalue by bisection is that of Eigen's dense general
         // Both solvers are backward stable: an eigenvalue's absolute error is a modest multiple of ε
         // times the largest eigenvalue, 12/h² for the P1 pencils (round-off; the lengths need 1e-8).
         const double h = mesh.h();
-        CHECK(std::abs(smallest_eigenvalue(*k, *m) - reference) < 16 * std::numeric_limits<double>::epsilon() * 12 / (h * h));
+        CHECK(std::abs(smallest_eigenvalue(*k, *m) - reference) <
+              16 * std::numeric_limits<double>::epsilon() * 12 / (h * h));
       }
     }
   }
@@ -233,10 +236,11 @@ TEST_CASE("the reduced pencils are the scheme's system with u0 = u1 (free flight
 // first-order formulas, measured on N = 160 and N = 320, is below h²/(2L) on both meshes and halving h
 // divides it by 4 (local order log₂(r(h)/r(h/2)) within 2 ± 0.15; the O(h³) term of Mod 3's contact
 // length, (2/3)π² h³/L² from its extra mass at node 1, still shows at N = 80, where that order is 1.8).
-TEST_CASE("the effective lengths of Mod 1, 2, 3 are L - 2h/3, L - h/3, L (free) and L, L + h/3, L (contact) to O(h^2)") {
+TEST_CASE(
+    "the effective lengths of Mod 1, 2, 3 are L - 2h/3, L - h/3, L (free) and L, L + h/3, L (contact) to O(h^2)") {
   struct Case {
     MassRedistribution mass;
-    double free_h, contact_h;  // the coefficients of h in ℓ_f − L and ℓ_c − L
+    double free_h, contact_h;    // the coefficients of h in ℓ_f − L and ℓ_c − L
     double free_h2, contact_h2;  // the predicted coefficients of h²/L of the remainders
   };
   const double dispersion_free = -pi * pi / 96, dispersion_contact = -pi * pi / 24;

@@ -166,7 +166,8 @@ TEST_CASE("the phase diagnostics recover a known first-impact error and drift fr
   }
 }
 
-TEST_CASE("the drift is the least-squares slope: early impacts give a negative drift, scattered ones their mean trend") {
+TEST_CASE(
+    "the drift is the least-squares slope: early impacts give a negative drift, scattered ones their mean trend") {
   // Errors e = (−0.1, 0.05, −0.2, −0.15) at t = 1, 4, 7, 10: t̄ = 5.5, ē = −0.1,
   // Σ(t − t̄)(e − ē) = −4.5·0 − 1.5·0.15 + 1.5·(−0.1) + 4.5·(−0.05) = −0.6, Σ(t − t̄)² = 45, so the
   // slope is −1/75 and the drift over a period of 3 is −0.04.

@@ -53,7 +53,7 @@ struct PhaseMeasures {
 PhaseMeasures phase_measures(const std::vector<double>& impacts, const std::vector<double>& exact_impacts,
                              double period);
 
-/// The first `count` impact times of the benchmark's exact solution: L + 3L k (problem.md §2).
+/// The first `count` impact times of the benchmark's exact solution: L + 3L k (mathematics.md §2).
 std::vector<double> benchmark_impact_times(const ExactSolution& exact, std::size_t count);
 
 }  // namespace mrm

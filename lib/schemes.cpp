@@ -31,6 +31,22 @@
 /// that is (M + βΔt²S) Uⁿ⁺¹ = (2M − (1−2β)Δt²S) Uⁿ − (M + βΔt²S) Uⁿ⁻¹ + Δt²Fⁿ − Δt²λⁿe₀ with the
 /// obstacle g = −e u₀ⁿ⁻¹.
 ///
+/// Energy-conserving Crank–Nicolson (EC) and CN-switch (mathematics.md §12, derived in energy_step.cpp).
+/// Crank–Nicolson creates energy at every release of a massless contact node. EC keeps Crank–Nicolson's
+/// (★) and replaces the contact force of the step, the trapezoidal average of ψ'(sⁿ) and ψ'(sⁿ⁺¹)
+/// (s = u₁ + hF₀, ψ(s) = max(0, s)²/2h), by the discrete gradient (ψ(sⁿ⁺¹) − ψ(sⁿ))/(sⁿ⁺¹ − sⁿ): the
+/// contact is then decided on row 1 after the sweep down, by the closed-form root of a monotone scalar
+/// equation, and the sweep up starts from the value of u₀ that carries that force
+/// (energy_conserving_contact). It needs the condensed contact row (a massless contact node). CN-switch
+/// takes Crank–Nicolson's step unless the contact status changes across it (decided after the sweep
+/// down, before anything is written), and then takes a θ-step of the θ-rule instead,
+///
+///     Uⁿ⁺¹ − Uⁿ = Δt((1 − θ)Vⁿ + θVⁿ⁺¹),   M(Vⁿ⁺¹ − Vⁿ) = Δt((1 − θ)Gⁿ + θGⁿ⁺¹),   G = −SU − λe₀ + F,
+///
+/// that is (M + θ²Δt²S) Uⁿ⁺¹ = (M − θ(1−θ)Δt²S) Uⁿ + Δt M Vⁿ + θ(1−θ)Δt²(Fⁿ − λⁿe₀) + θ²Δt²(Fⁿ⁺¹ − λⁿ⁺¹e₀),
+/// Vⁿ⁺¹ = (Uⁿ⁺¹ − Uⁿ)/(θΔt) − ((1−θ)/θ)Vⁿ: θ = ½ is Crank–Nicolson, θ = 1 backward Euler (the default,
+/// whose energy provably never increases), with the same contact rows as they.
+///
 /// The massless contact row. With a redistributed mass, row 0 of the system has no inertia: it is
 /// the algebraic contact row S₀·U = F₀ − λ, 0 ≤ u₀ ⊥ λ ≤ 0 (paper eq. (6)), to hold at every time level.
 /// Crank–Nicolson's row 0 is then (S₀·Uⁿ⁺¹ − F₀ⁿ⁺¹ + λⁿ⁺¹) + (S₀·Uⁿ − F₀ⁿ + λⁿ) = 0 and backward Euler's
@@ -50,8 +66,25 @@
 ///     Eⁿ⁺½ = ½ DᵀMD + ½ (β Uⁿ⁺¹ᵀSUⁿ⁺¹ + (1−2β) Uⁿ⁺¹ᵀSUⁿ + β UⁿᵀSUⁿ),
 ///
 /// (for β = ¼ the familiar ½DᵀMD + ½ ŪᵀSŪ with Ū = (Uⁿ⁺¹ + Uⁿ)/2), attached to the instant t_{n+½}.
+///
+/// The velocity of the massless node (mathematics.md §7). Node 0 has no inertia: V₀ is not a state of
+/// any scheme, and no equation of the step needs it (row 0 of B₂ vanishes with the algebraic row, and
+/// so does M̄'s entry between nodes 0 and 1). Recovering it with a two-level scheme's velocity formula,
+/// Crank–Nicolson's V₀ⁿ⁺¹ = 2(u₀ⁿ⁺¹ − u₀ⁿ)/Δt − V₀ⁿ, gives it a memory: the kink of u₀ at an impact
+/// leaves an alternation V₀ⁿ = ±c that nothing damps, and the P1 norms weigh node 0 with h/3, so it
+/// dominates every velocity error and keeps Crank–Nicolson's velocity from converging in Δt. The
+/// consistent definition is the time derivative of the algebraic row at the same level:
+///
+///     free (u₀ = u₁ + hF₀ > 0):  V₀ = V₁ + h Ḟ₀;        contact (u₀ = 0):  V₀ = 0,
+///
+/// used by both two-level schemes at every level from level 1 on (at level 0 too when the initial
+/// value of u₀ is the consistent one; with the interpolant, V₀(0) is the datum v⁰(0)). Ḟ₀ is the rate
+/// of the load's contact entry F₀(t) = ∫ f(x, t) φ₀ dx, by a one-sided second-order difference over
+/// half steps (contact_load_rate), second order like the schemes. Paoli–Schatzman's velocity (Uⁿ⁺¹ − Uⁿ)/Δt has no memory:
+/// with the algebraic row its entry 0 is already the difference quotient of the row.
 #include "schemes.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <type_traits>
@@ -59,6 +92,7 @@
 
 #include <doctest/doctest.h>
 
+#include "energy_step.hpp"
 #include "exact_solution.hpp"
 #include "fast_step.hpp"
 
@@ -66,21 +100,32 @@ namespace mrm {
 
 std::string to_string(Scheme s) {
   switch (s) {
-    case Scheme::crank_nicolson: return "cn";
-    case Scheme::backward_euler: return "be";
-    case Scheme::paoli_schatzman: return "ps";
+    case Scheme::crank_nicolson:
+      return "cn";
+    case Scheme::backward_euler:
+      return "be";
+    case Scheme::paoli_schatzman:
+      return "ps";
+    case Scheme::energy_conserving:
+      return "ec";
+    case Scheme::switching:
+      return "cn-switch";
   }
   return "?";
 }
 std::string to_string(ContactRow r) { return r == ContactRow::algebraic ? "algebraic" : "literal"; }
-std::string to_string(InitialContactNode i) { return i == InitialContactNode::consistent ? "consistent" : "interpolant"; }
+std::string to_string(InitialContactNode i) {
+  return i == InitialContactNode::consistent ? "consistent" : "interpolant";
+}
 std::string to_string(StepKernel k) { return k == StepKernel::reference ? "reference" : "fast"; }
 
 Scheme scheme_by_name(const std::string& name) {
   if (name == "cn") return Scheme::crank_nicolson;
   if (name == "be") return Scheme::backward_euler;
   if (name == "ps") return Scheme::paoli_schatzman;
-  throw std::invalid_argument("unknown scheme \"" + name + "\" (allowed: cn, be, ps)");
+  if (name == "ec") return Scheme::energy_conserving;
+  if (name == "cn-switch") return Scheme::switching;
+  throw std::invalid_argument("unknown scheme \"" + name + "\" (allowed: cn, be, ps, ec, cn-switch)");
 }
 ContactRow contact_row_by_name(const std::string& name) {
   if (name == "algebraic") return ContactRow::algebraic;
@@ -102,7 +147,8 @@ Problem benchmark_problem(double length, double amplitude) {
 }
 
 Index steps_to_reach(double final_time, double dt) {
-  if (!(std::isfinite(final_time) && final_time > 0)) throw std::invalid_argument("the final time must be positive and finite");
+  if (!(std::isfinite(final_time) && final_time > 0))
+    throw std::invalid_argument("the final time must be positive and finite");
   if (!(std::isfinite(dt) && dt > 0)) throw std::invalid_argument("the time step must be positive and finite");
   const double ratio = final_time / dt;
   if (ratio > 1e12) throw std::invalid_argument("the final time needs more than 1e12 time steps");
@@ -116,6 +162,8 @@ void validate(const SchemeParameters& p, double dt) {
   if (!(std::isfinite(p.beta) && p.beta >= 0)) throw std::invalid_argument("beta must be a finite number >= 0");
   if (!(p.restitution >= 0 && p.restitution <= 1))
     throw std::invalid_argument("the restitution coefficient e must lie in [0, 1]");
+  if (!(p.switch_theta >= 0.5 && p.switch_theta <= 1))
+    throw std::invalid_argument("the switch theta of cn-switch must lie in [0.5, 1]");
 }
 
 void zero_row0(Tridiagonal& a) {
@@ -128,22 +176,34 @@ void zero_row0(Tridiagonal& a) {
 // Setting up (★) for the chosen scheme: the coefficients of the comment at the top of this file.
 BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, const MassRedistribution& mass,
                              const SchemeParameters& parameters, double dt, InitialContactNode initial)
-    : problem_(problem), mesh_(mesh), parameters_((validate(parameters, dt), parameters)), dt_(dt),
-      mass_(modified_mass(mesh, mass)), stiffness_(p1_stiffness(mesh)) {
+    : problem_(problem),
+      mesh_(mesh),
+      parameters_((validate(parameters, dt), parameters)),
+      dt_(dt),
+      mass_(modified_mass(mesh, mass)),
+      stiffness_(p1_stiffness(mesh)) {
   if (!problem.initial_displacement)
     throw std::invalid_argument("problem: no initial displacement u0 (allowed: a function of x)");
   if (problem.length != mesh.length)
-    throw std::invalid_argument("problem: the bar has L = " + std::to_string(problem.length) + ", the mesh L = " +
-                                std::to_string(mesh.length) + " (allowed: the same L)");
+    throw std::invalid_argument("problem: the bar has L = " + std::to_string(problem.length) +
+                                ", the mesh L = " + std::to_string(mesh.length) + " (allowed: the same L)");
   massless_ = contact_node_is_massless(mass_);
   three_level_ = parameters.scheme == Scheme::paoli_schatzman;
   if (three_level_ && parameters.contact_row == ContactRow::algebraic && !massless_)
-    throw std::invalid_argument("the algebraic contact row needs a massless contact node (mass mod1, mod2 or mod3); "
-                                "use the literal Paoli–Schatzman form with the consistent mass");
+    throw std::invalid_argument(
+        "the algebraic contact row needs a massless contact node (mass mod1, mod2 or mod3); "
+        "use the literal Paoli–Schatzman form with the consistent mass");
   algebraic_row_ = massless_ && (!three_level_ || parameters.contact_row == ContactRow::algebraic);
+  energy_conserving_ = parameters.scheme == Scheme::energy_conserving;
+  if (energy_conserving_ && !massless_)
+    throw std::invalid_argument(
+        "the energy-conserving scheme (ec) needs a massless contact node (mass mod1, mod2 "
+        "or mod3): with inertia at the contact node the contact energy is not a function "
+        "of u1");
   if (massless_ && three_level_ && !algebraic_row_ && parameters.beta == 0.0)
-    throw std::invalid_argument("the literal Paoli–Schatzman form with beta = 0 and a massless contact node is "
-                                "singular (row 0 of the step matrix vanishes): use beta > 0 or the algebraic form");
+    throw std::invalid_argument(
+        "the literal Paoli–Schatzman form with beta = 0 and a massless contact node is "
+        "singular (row 0 of the step matrix vanishes): use beta > 0 or the algebraic form");
 
   // The matrices and scalars of (★), scheme by scheme, as derived at the top of this file
   // (mathematics.md §4): M the mass (consistent or redistributed), S the stiffness, A the step matrix.
@@ -153,7 +213,9 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   Tridiagonal A;
   lambda_in_rhs_ = 0.0;
   switch (parameters.scheme) {
-    case Scheme::crank_nicolson: {
+    case Scheme::crank_nicolson:
+    case Scheme::energy_conserving:
+    case Scheme::switching: {
       // (M + θS) Uⁿ⁺¹ = (M − θS) Uⁿ + Δt M Vⁿ + θ(Fⁿ + Fⁿ⁺¹) − θλⁿe₀ − θλⁿ⁺¹e₀,  θ = Δt²/4;
       // Vⁿ⁺¹ = 2(Uⁿ⁺¹ − Uⁿ)/Δt − Vⁿ.
       const double theta = dt2 / 4;
@@ -193,19 +255,39 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   }
   // The algebraic contact row S₀·Uⁿ⁺¹ = F₀ⁿ⁺¹ − λⁿ⁺¹: row 0 of A is S₀·, rows 0 of B₁ and B₂ vanish,
   // κ = 1 (G₀ = F₀ⁿ⁺¹ is set by the step).
-  if (algebraic_row_) {
-    A.diag[0] = S.diag[0];
-    A.upper[0] = S.upper[0];
-    zero_row0(b1_);
-    zero_row0(b2_);
-    kappa_ = 1.0;
-    lambda_in_rhs_ = 0.0;
-  }
+  const auto algebraic_contact_row = [&](Tridiagonal& a, Tridiagonal& b1, Tridiagonal& b2, double& kappa,
+                                         double& lambda_in_rhs) {
+    a.diag[0] = S.diag[0];
+    a.upper[0] = S.upper[0];
+    zero_row0(b1);
+    zero_row0(b2);
+    kappa = 1.0;
+    lambda_in_rhs = 0.0;
+  };
+  if (algebraic_row_) algebraic_contact_row(A, b1_, b2_, kappa_, lambda_in_rhs_);
   solver_ = ContactSolver(A);
+  // CN-switch's θ-step (top of this file): (M + θ²Δt²S) Uⁿ⁺¹ = (M − θ(1−θ)Δt²S) Uⁿ + Δt M Vⁿ
+  // + θ(1−θ)Δt²(Fⁿ − λⁿe₀) + θ²Δt²(Fⁿ⁺¹ − λⁿ⁺¹e₀), Vⁿ⁺¹ = (Uⁿ⁺¹ − Uⁿ)/(θΔt) − ((1−θ)/θ)Vⁿ, with its own
+  // factorisation (once per run, like A's).
+  if (parameters.scheme == Scheme::switching) {
+    const double theta = parameters.switch_theta, t1 = theta * (1 - theta) * dt2, t2 = theta * theta * dt2;
+    SwitchStep redo;
+    Tridiagonal a = M.plus(t2, S);
+    redo.b1 = M.plus(-t1, S);
+    redo.b2 = M.scaled(dt);
+    redo.kappa = t2;
+    redo.load_now = t1;
+    redo.load_next = t2;
+    redo.lambda_in_rhs = t1;
+    redo.velocity_rate = 1 / (theta * dt), redo.velocity_memory = (1 - theta) / theta;
+    if (algebraic_row_) algebraic_contact_row(a, redo.b1, redo.b2, redo.kappa, redo.lambda_in_rhs);
+    redo.solver = ContactSolver(a);
+    switch_ = std::make_unique<const SwitchStep>(std::move(redo));
+  }
   // The fast path reads B₁, B₂, M and S from its own rows (fast_step.cpp): B₁ and B₂ are kept only
   // for the reference step, so that the fast path's memory is that of the state and the factors.
   if (parameters.kernel == StepKernel::fast) {
-    fast_ = std::make_unique<const FastStep>(b1_, b2_, M, S);
+    fast_ = std::make_unique<const FastStep>(b1_, b2_, M, S, energy_conserving_ ? 2 : 1);
     b1_ = Tridiagonal();
     b2_ = Tridiagonal();
   }
@@ -226,16 +308,20 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
     x_[i] = problem.initial_velocity ? problem.initial_velocity(mesh.x(i)) : 0.0;
   }
   if (!(u_.allFinite() && x_.allFinite()))
-    throw std::invalid_argument("problem: the initial data u0, v0 are not finite at every node (allowed: finite values)");
+    throw std::invalid_argument(
+        "problem: the initial data u0, v0 are not finite at every node (allowed: finite values)");
   load_at(0.0, f_now_);
   if (massless_) {
     const CondensedContact c = condense_contact_node(u_[1], mesh.h(), problem.load ? f_now_[0] : 0.0);
     if (initial == InitialContactNode::consistent) u_[0] = c.u0;
     lambda_ = c.multiplier;
+    active_ = contact_is_active(u_[1] + mesh.h() * (problem.load ? f_now_[0] : 0.0));
   } else {
     lambda_ = 0.0;  // an inertial contact node starts without contact force
+    active_ = false;
   }
   has_lambda_ = true;
+  choose_energy_scale();
   energy_ = energy_two_level();
 
   // W = V⁰ for the two-level schemes. The three-level scheme is started by one Crank–Nicolson step
@@ -244,6 +330,7 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   // the three-level formula with β = ¼ on every free row; checked below).
   // The two-level schemes' velocity is W itself: X is not kept.
   w_ = x_;
+  if (algebraic_row_ && !three_level_ && initial == InitialContactNode::consistent) w_[0] = massless_node_velocity(0.0);
   if (three_level_) {
     SchemeParameters start = parameters;
     start.scheme = Scheme::crank_nicolson;
@@ -259,11 +346,77 @@ BarSimulation& BarSimulation::operator=(BarSimulation&&) = default;
 
 void BarSimulation::load_at(double t, Eigen::VectorXd& f) const {
   if (!problem_.load) return;
-  p1_load(mesh_, [&](double x) { return problem_.load(x, t); }, f);
+  p1_load(
+      mesh_, [&](double x) { return problem_.load(x, t); }, f);
+}
+
+// F₀(t) = ∫₀ʰ f(x, t) φ₀(x) dx by the two-point Gauss rule of p1_load (the same number as its entry 0).
+double BarSimulation::contact_load(double t) const {
+  const double h = mesh_.h(), g = 0.5 / 1.7320508075688772935;
+  double f0 = 0;
+  for (double xi : {0.5 - g, 0.5 + g}) f0 += problem_.load(xi * h, t) * 0.5 * h * (1.0 - xi);
+  if (!std::isfinite(f0))
+    throw std::invalid_argument("the load f(x, t) is not finite near x = 0 at t = " + std::to_string(t) +
+                                " (allowed: finite values)");
+  return f0;
+}
+
+// Ḟ₀ at a level t: the second-order one-sided differences over the half steps d = Δt/2 behind t (so
+// that only instants the run has reached are used), ahead of t at t = 0.
+double BarSimulation::contact_load_rate(double t) const {
+  if (!problem_.load) return 0.0;
+  const double d = 0.5 * dt_;
+  if (t < 2 * d) return (-3 * contact_load(t) + 4 * contact_load(t + d) - contact_load(t + 2 * d)) / (2 * d);
+  return (3 * contact_load(t) - 4 * contact_load(t - d) + contact_load(t - 2 * d)) / (2 * d);
+}
+
+double BarSimulation::massless_node_velocity(double t) const {
+  return u_[0] > 0 ? w_[1] + mesh_.h() * contact_load_rate(t) : 0.0;
+}
+
+// Scale of the energy. The energy's quadratic forms square the nodal values: on the benchmark,
+// u ~ aL and v ~ a, so that the squares reach (aL)² ~ 1e400 or fall to (aL/N)² ~ 1e-414 over the
+// lengths and amplitudes that bar1d accepts ([1e-100, 1e100] each), although the energy itself,
+// a²L/2, is a representable number. The forms are therefore taken on scaled values σ_u U and σ_v V,
+// with σ_u = 2^−e_u and σ_v = 2^−e_v powers of two chosen from the data at t = 0: e_u is the binary
+// exponent of the size of the displacements, the largest of |u⁰_i|, L |v⁰_i| and L²|f_i|/h (the
+// displacement that the initial velocity or the load produce over the time L a wave takes to cross
+// the bar; wave speed 1), and e_v = e_u − e_L, e_L that of L. Each half of the energy is then
+// brought back by an exact ldexp. Scaling by a power of two is exact wherever nothing over- or
+// underflows, so the scaled forms give the same doubles as the unscaled ones whenever both are
+// representable: the choice affects only the cost (two or three multiplications per node in the fast
+// step). It is made only when an exponent (e_u, e_v, or that of h) exceeds 200 in magnitude; below
+// that, with at most 2^30 nodes, every square and every form stays between 2^−700 and 2^700 (ratios of
+// u between nodes of order N, of v of order 1, over a run whose energy does not grow by 2^100).
+void BarSimulation::choose_energy_scale() {
+  const int length_exponent = std::ilogb(mesh_.length);
+  const int step_exponent = std::ilogb(mesh_.h());
+  bool any = false;
+  int exponent = 0;
+  const auto consider = [&](const Eigen::VectorXd& values, int shift) {
+    if (values.size() == 0) return;
+    const double largest = values.cwiseAbs().maxCoeff();
+    if (!(largest > 0) || !std::isfinite(largest)) return;
+    const int e = std::ilogb(largest) + shift;
+    exponent = any ? std::max(exponent, e) : e;
+    any = true;
+  };
+  consider(u_, 0);
+  consider(x_, length_exponent);
+  if (problem_.load) consider(f_now_, 2 * length_exponent - step_exponent);
+  displacement_exponent_ = exponent;
+  velocity_exponent_ = exponent - length_exponent;
+  constexpr int band = 200;
+  scaled_ =
+      std::abs(displacement_exponent_) > band || std::abs(velocity_exponent_) > band || std::abs(step_exponent) > band;
 }
 
 double BarSimulation::energy_two_level() const {
-  return 0.5 * mass_.bilinear(x_, x_) + 0.5 * stiffness_.bilinear(u_, u_);
+  if (!scaled_) return 0.5 * mass_.bilinear(x_, x_) + 0.5 * stiffness_.bilinear(u_, u_);
+  const Eigen::VectorXd v = std::ldexp(1.0, -velocity_exponent_) * x_;
+  const Eigen::VectorXd u = std::ldexp(1.0, -displacement_exponent_) * u_;
+  return std::ldexp(0.5 * mass_.bilinear(v, v), 2 * velocity_exponent_) +
+         std::ldexp(0.5 * stiffness_.bilinear(u, u), 2 * displacement_exponent_);
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -303,6 +456,17 @@ double stiffness_form(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double
 
 }  // namespace
 
+Eigen::VectorXd BarSimulation::right_hand_side(const Tridiagonal& b1, const Tridiagonal& b2, double load_now,
+                                               double load_next, double lambda_in_rhs, bool has_load) const {
+  Eigen::VectorXd rhs = b1 * u_ + b2 * w_;
+  if (has_load) rhs += load_now * f_now_ + load_next * f_next_;
+  if (algebraic_row_)
+    rhs[0] = has_load ? f_next_[0] : 0.0;
+  else
+    rhs[0] -= lambda_in_rhs * lambda_;
+  return rhs;
+}
+
 void BarSimulation::reference_step(bool has_load) {
   const double dt = dt_, h = mesh_.h();
   const Tridiagonal& M = mass_;
@@ -310,33 +474,83 @@ void BarSimulation::reference_step(bool has_load) {
   const Eigen::VectorXd& w = w_;  // W: Vⁿ (two levels) or Uⁿ⁻¹ (Paoli–Schatzman)
 
   // 1. The right-hand side.
-  Eigen::VectorXd rhs = b1_ * u + b2_ * w;
-  if (has_load) rhs += load_now_ * f_now_ + load_next_ * f_next_;
-  if (algebraic_row_) rhs[0] = has_load ? f_next_[0] : 0.0;
-  else rhs[0] -= lambda_in_rhs_ * lambda_;
+  const Eigen::VectorXd rhs = right_hand_side(b1_, b2_, load_now_, load_next_, lambda_in_rhs_, has_load);
 
-  // 2. One solve with the closed-form contact step.
+  // 2. One solve with the closed-form contact step. EC decides the contact on row 1 after the sweep
+  // down and starts the sweep up from the u₀ that carries its discrete-gradient force (energy_step.cpp);
+  // CN-switch decides it as Crank–Nicolson does, and if the status changes, takes its θ-step instead
+  // (nothing has been written yet).
   const double obstacle = three_level_ ? -parameters_.restitution * w[0] : 0.0;
   Eigen::VectorXd& u_next = u_new_;  // Uⁿ⁺¹
-  const ContactStep contact = solver_.solve(rhs.data(), u_next.data(), kappa_, obstacle);
-  const double contact_multiplier = contact.multiplier;
+  double contact_multiplier;
+  if (energy_conserving_) {
+    solver_.sweep_down(rhs.data(), u_next.data());
+    const double load0_now = has_load ? f_now_[0] : 0.0, load0_next = has_load ? f_next_[0] : 0.0;
+    const EnergyConservingContact contact = energy_conserving_contact(
+        solver_.inverse_pivot()[1] * u_next[1], -solver_.upward()[1], u[0], u[1] + h * load0_now, h, load0_next);
+    solver_.sweep_up(contact.recurrence_u0, u_next.data());
+    u_next[0] = contact.u0;
+    contact_multiplier = contact.multiplier;
+    active_ = contact.active;
+  } else if (switch_) {
+    solver_.sweep_down(rhs.data(), u_next.data());
+    const ContactStep contact = solver_.resolve_contact(u_next[0], kappa_, obstacle);
+    if (contact.active != active_) return switch_step(has_load);
+    solver_.sweep_up(contact.u0, u_next.data());
+    contact_multiplier = contact.multiplier;
+    active_ = contact.active;
+  } else {
+    const ContactStep contact = solver_.solve(rhs.data(), u_next.data(), kappa_, obstacle);
+    contact_multiplier = contact.multiplier;
+    active_ = contact.active;
+  }
 
-  // 3 and 4. The velocity and the energy.
+  // 3 and 4. The velocity and the energy, its forms on the values scaled by σ_u and σ_v when the
+  // data call for it (Scale of the energy, above): each half brought back by an exact ldexp.
+  const double sigma_u = std::ldexp(1.0, -displacement_exponent_), sigma_v = std::ldexp(1.0, -velocity_exponent_);
+  const auto kinetic = [&](const Eigen::VectorXd& v) {
+    if (!scaled_) return 0.5 * M.bilinear(v, v);
+    const Eigen::VectorXd scaled = sigma_v * v;
+    return std::ldexp(0.5 * M.bilinear(scaled, scaled), 2 * velocity_exponent_);
+  };
   if (three_level_) {
     const double beta = parameters_.beta;
     x_ = (u_next - u) / dt;
-    energy_ = 0.5 * M.bilinear(x_, x_) +
-              0.5 * (beta * stiffness_form(u_next, u_next, h) + (1 - 2 * beta) * stiffness_form(u_next, u, h) +
-                     beta * stiffness_form(u, u, h));
+    const auto potential = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+      return 0.5 * (beta * stiffness_form(a, a, h) + (1 - 2 * beta) * stiffness_form(a, b, h) +
+                    beta * stiffness_form(b, b, h));
+    };
+    energy_ = kinetic(x_) + (scaled_ ? std::ldexp(potential(sigma_u * u_next, sigma_u * u), 2 * displacement_exponent_)
+                                     : potential(u_next, u));
     w_ = u_;  // W' = Uⁿ
   } else {
     Eigen::VectorXd& v_next = w_;  // Vⁿ⁺¹ overwrites Vⁿ, entry by entry
-    if (parameters_.scheme == Scheme::crank_nicolson) v_next = 2 * (u_next - u) / dt - w;
-    else v_next = (u_next - u) / dt;
-    energy_ = 0.5 * M.bilinear(v_next, v_next) + 0.5 * stiffness_form(u_next, u_next, h);
+    if (parameters_.scheme != Scheme::backward_euler)
+      v_next = 2 * (u_next - u) / dt - w;  // Crank–Nicolson's
+    else
+      v_next = (u_next - u) / dt;
+    const double potential =
+        scaled_ ? std::ldexp(0.5 * stiffness_form(sigma_u * u_next, sigma_u * u_next, h), 2 * displacement_exponent_)
+                : 0.5 * stiffness_form(u_next, u_next, h);
+    energy_ = kinetic(v_next) + potential;
   }
   u_.swap(u_new_);  // U = Uⁿ⁺¹
   lambda_ = contact_multiplier;
+  if (has_load) f_now_.swap(f_next_);
+}
+
+// CN-switch's θ-step, steps 1–4 of the reference step with the θ-step's matrices (both kernels call it:
+// it replaces a Crank–Nicolson step at a change of the contact status only, a few steps per period).
+void BarSimulation::switch_step(bool has_load) {
+  const SwitchStep& theta_step = *switch_;
+  const Eigen::VectorXd rhs = right_hand_side(theta_step.b1, theta_step.b2, theta_step.load_now, theta_step.load_next,
+                                              theta_step.lambda_in_rhs, has_load);
+  const ContactStep contact = theta_step.solver.solve(rhs.data(), u_new_.data(), theta_step.kappa);
+  w_ = theta_step.velocity_rate * (u_new_ - u_) - theta_step.velocity_memory * w_;
+  energy_ = 0.5 * mass_.bilinear(w_, w_) + 0.5 * stiffness_form(u_new_, u_new_, mesh_.h());
+  u_.swap(u_new_);
+  lambda_ = contact.multiplier;
+  active_ = contact.active;
   if (has_load) f_now_.swap(f_next_);
 }
 
@@ -352,6 +566,7 @@ void BarSimulation::step() {
     has_lambda_ = algebraic_row_;  // the literal form's λ¹ comes with its first own step
     energy_ = start_->energy_;
     energy_time_ = start_->energy_time_;
+    active_ = start_->active_;
     start_.reset();
     ++level_;
     return;
@@ -360,8 +575,11 @@ void BarSimulation::step() {
   const double t_next = static_cast<double>(level_ + 1) * dt_;
   const bool has_load = static_cast<bool>(problem_.load);
   if (has_load) load_at(t_next, f_next_);
-  if (fast_) fast_->step(*this, has_load);
-  else reference_step(has_load);
+  if (!fast_)
+    reference_step(has_load);
+  else if (!fast_->step(*this, has_load))
+    switch_step(has_load);  // CN-switch at a change of status
+  if (algebraic_row_ && !three_level_) w_[0] = massless_node_velocity(t_next);
 
   has_lambda_ = true;
   if (three_level_) {
@@ -378,8 +596,16 @@ Sample BarSimulation::sample() const {
   const double t = time();
   const double velocity_time = (three_level_ && level_ > 1) ? t - 0.5 * dt_ : t;
   const Eigen::VectorXd* velocity = three_level_ ? &x_ : &w_;  // the two-level velocity is W
-  return {level_, t, &u_, velocity_time, velocity, has_lambda_, level_ == 0 ? 0.0 : lambda_time_, lambda_,
-          level_ == 0 ? 0.0 : energy_time_, energy_};
+  return {level_,
+          t,
+          &u_,
+          velocity_time,
+          velocity,
+          has_lambda_,
+          level_ == 0 ? 0.0 : lambda_time_,
+          lambda_,
+          level_ == 0 ? 0.0 : energy_time_,
+          energy_};
 }
 
 void run(BarSimulation& simulation, Index steps, const std::function<void(const Sample&)>& observe) {
@@ -398,18 +624,19 @@ void run(BarSimulation& simulation, Index steps, const std::function<void(const 
 namespace mrm {
 namespace {
 
-[[maybe_unused]] std::vector<double> energy_history(const MassRedistribution& mass, const SchemeParameters& p, Index elements,
-                                   double courant, double final_time) {
-  const UniformMesh mesh(1.0, elements);
+[[maybe_unused]] std::vector<double> energy_history(const MassRedistribution& mass, const SchemeParameters& p,
+                                                    Index elements, double courant, double final_time,
+                                                    double length = 1.0, double amplitude = 0.5) {
+  const UniformMesh mesh(length, elements);
   const double dt = courant * mesh.h();
-  BarSimulation simulation(benchmark_problem(), mesh, mass, p, dt);
+  BarSimulation simulation(benchmark_problem(length, amplitude), mesh, mass, p, dt);
   std::vector<double> energy;
   run(simulation, steps_to_reach(final_time, dt), [&](const Sample& s) { energy.push_back(s.energy); });
   return energy;
 }
 
 [[maybe_unused]] SchemeParameters with(Scheme scheme, ContactRow row = ContactRow::algebraic,
-                                      StepKernel kernel = StepKernel::fast) {
+                                       StepKernel kernel = StepKernel::fast) {
   SchemeParameters p;
   p.scheme = scheme;
   p.contact_row = row;
@@ -423,44 +650,96 @@ TEST_CASE("Crank–Nicolson conserves the discrete energy to round-off while the
   // The benchmark's first free flight lasts until t = 1: no status change before t = 0.9. Both step
   // kernels (their energies are summed in different orders).
   for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference})
-  for (const MassRedistribution& mass : {mod1(), mod2(), mod3(), consistent_mass()}) {
-    for (double courant : {0.5, 1.0, 3.0}) {
-      const std::vector<double> e =
-          energy_history(mass, with(Scheme::crank_nicolson, ContactRow::algebraic, kernel), 40, courant, 0.9 - 0.075);
-      CAPTURE(to_string(kernel));
-      CAPTURE(mass.name);
-      CAPTURE(courant);
-      // Round-off grows at most linearly with the number of steps k: |E_k − E_0| ≤ 1e-14 + k · 1e-15 (E ≈ 1/8).
-      REQUIRE(e.size() > 2);
-      for (std::size_t k = 0; k < e.size(); ++k) CHECK(std::abs(e[k] - e.front()) <= 1e-14 + k * 1e-15);
+    for (const MassRedistribution& mass : {mod1(), mod2(), mod3(), consistent_mass()}) {
+      for (double courant : {0.5, 1.0, 3.0}) {
+        const std::vector<double> e =
+            energy_history(mass, with(Scheme::crank_nicolson, ContactRow::algebraic, kernel), 40, courant, 0.9 - 0.075);
+        CAPTURE(to_string(kernel));
+        CAPTURE(mass.name);
+        CAPTURE(courant);
+        // Round-off grows at most linearly with the number of steps k: |E_k − E_0| ≤ 1e-14 + k · 1e-15 (E ≈ 1/8).
+        REQUIRE(e.size() > 2);
+        for (std::size_t k = 0; k < e.size(); ++k) CHECK(std::abs(e[k] - e.front()) <= 1e-14 + k * 1e-15);
+      }
     }
-  }
 }
 
 TEST_CASE("Paoli–Schatzman with beta = 1/4 conserves its energy while the contact status is unchanged") {
   for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference})
-  for (ContactRow row : {ContactRow::algebraic, ContactRow::literal}) {
-    // From level 2 on: levels 0 and 1 carry the two-level energy of the Crank–Nicolson start.
-    const std::vector<double> e = energy_history(mod3(), with(Scheme::paoli_schatzman, row, kernel), 40, 0.5, 0.85);
-    CAPTURE(to_string(kernel));
-    CAPTURE(to_string(row));
-    REQUIRE(e.size() > 10);
-    for (std::size_t k = 2; k < e.size(); ++k) CHECK(std::abs(e[k] - e[2]) <= 1e-14 + k * 1e-15);
-  }
+    for (ContactRow row : {ContactRow::algebraic, ContactRow::literal}) {
+      // From level 2 on: levels 0 and 1 carry the two-level energy of the Crank–Nicolson start.
+      const std::vector<double> e = energy_history(mod3(), with(Scheme::paoli_schatzman, row, kernel), 40, 0.5, 0.85);
+      CAPTURE(to_string(kernel));
+      CAPTURE(to_string(row));
+      REQUIRE(e.size() > 10);
+      for (std::size_t k = 2; k < e.size(); ++k) CHECK(std::abs(e[k] - e[2]) <= 1e-14 + k * 1e-15);
+    }
 }
 
 TEST_CASE("backward Euler never increases the discrete energy") {
   for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference})
-  for (const MassRedistribution& mass : {mod1(), mod2(), mod3(), consistent_mass()}) {
-    const std::vector<double> e =
-        energy_history(mass, with(Scheme::backward_euler, ContactRow::algebraic, kernel), 30, 0.5, 9.0);
-    CAPTURE(to_string(kernel));
-    CAPTURE(mass.name);
-    int increases = 0;
-    for (std::size_t k = 1; k < e.size(); ++k) increases += e[k] > e[k - 1] * (1 + 1e-14);
-    CHECK(increases == 0);
-    CHECK(e.back() < 0.9 * e.front());  // and it does dissipate
-  }
+    for (const MassRedistribution& mass : {mod1(), mod2(), mod3(), consistent_mass()}) {
+      const std::vector<double> e =
+          energy_history(mass, with(Scheme::backward_euler, ContactRow::algebraic, kernel), 30, 0.5, 9.0);
+      CAPTURE(to_string(kernel));
+      CAPTURE(mass.name);
+      int increases = 0;
+      for (std::size_t k = 1; k < e.size(); ++k) increases += e[k] > e[k - 1] * (1 + 1e-14);
+      CHECK(increases == 0);
+      CHECK(e.back() < 0.9 * e.front());  // and it does dissipate
+    }
+}
+
+TEST_CASE("the discrete energy is right at the ends of the accepted lengths and amplitudes") {
+  // Under x → Lx, t → Lt, u → aLu the benchmark with (L, a) is the one with (1, 1), and its energy is
+  // a²L times that one. With L = 2^±332 and a = 2^±332 (≈ 8.7e99 and 1.1e-100, inside bar1d's
+  // [1e-100, 1e100]) every rounding of the run is the same as with (1, 1) up to the power of two, so
+  // the energies must be those of (1, 1) times a²L exactly; the squares of the unscaled forms would
+  // overflow ((aL)² = 2^1328) or underflow ((aL/N)² ≈ 2^−1337). At the decimal ends 1e±100 the data
+  // themselves are rounded differently (relative 1e-16 each, over a few hundred steps): the energy
+  // divided by a²L must agree with the (1, 1) run to 1e-12 relative. Both kernels.
+  struct Case {
+    Scheme scheme;
+    ContactRow row;
+    const MassRedistribution* mass;
+  };
+  const MassRedistribution m3 = mod3(), m1 = mod1(), consistent = consistent_mass();
+  for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference})
+    for (const Case c : {Case{Scheme::crank_nicolson, ContactRow::algebraic, &m3},
+                         Case{Scheme::backward_euler, ContactRow::algebraic, &m1},
+                         Case{Scheme::paoli_schatzman, ContactRow::algebraic, &m3},
+                         Case{Scheme::paoli_schatzman, ContactRow::literal, &consistent}}) {
+      const SchemeParameters p = with(c.scheme, c.row, kernel);
+      const std::vector<double> base = energy_history(*c.mass, p, 12, 0.5, 6.0, 1.0, 1.0);
+      CAPTURE(to_string(kernel));
+      CAPTURE(to_string(c.scheme));
+      CAPTURE(c.mass->name);
+      for (const int length_exponent : {-332, 332})
+        for (const int amplitude_exponent : {-332, 332}) {
+          const double length = std::ldexp(1.0, length_exponent), amplitude = std::ldexp(1.0, amplitude_exponent);
+          const std::vector<double> e = energy_history(*c.mass, p, 12, 0.5, 6.0 * length, length, amplitude);
+          CAPTURE(length_exponent);
+          CAPTURE(amplitude_exponent);
+          REQUIRE(e.size() == base.size());
+          for (std::size_t k = 0; k < e.size(); ++k) {
+            CAPTURE(k);
+            CHECK(e[k] == std::ldexp(base[k], 2 * amplitude_exponent + length_exponent));
+          }
+        }
+      for (const double length : {1e-100, 1e100})
+        for (const double amplitude : {1e-100, 1e100}) {
+          const std::vector<double> e = energy_history(*c.mass, p, 12, 0.5, 6.0 * length, length, amplitude);
+          CAPTURE(length);
+          CAPTURE(amplitude);
+          REQUIRE(e.size() == base.size());
+          for (std::size_t k = 0; k < e.size(); ++k) {
+            CAPTURE(k);
+            const double scaled = e[k] / (amplitude * amplitude * length);
+            CHECK(std::isfinite(scaled));
+            CHECK(std::abs(scaled - base[k]) <= 1e-12 * base[k]);
+          }
+        }
+    }
 }
 
 TEST_CASE("the massless contact node starts on its algebraic row: E_h(0) = (1 - h)/8") {
@@ -491,6 +770,240 @@ TEST_CASE("Paoli–Schatzman (1/4, 0) with the algebraic contact row coincides w
   }
 }
 
+// ---------------------------------------------------------------------------------------------------
+// Checks of EC and CN-switch in the library's step (mathematics.md §12; the derivation and the checks
+// of its scalar pieces and of the reduced problem are in energy_step.cpp). Both kernels are run.
+
+namespace {
+
+// A problem whose initial data are the nodal values (U, V) of another run's level: the massless
+// contact node takes its algebraic value again, so a two-level scheme restarts exactly from (Ū, V).
+[[maybe_unused]] Problem restart_problem(const Sample& sample, const UniformMesh& mesh) {
+  Problem p = benchmark_problem(mesh.length);
+  const Eigen::VectorXd u = *sample.displacement, v = *sample.velocity;
+  const double h = mesh.h();
+  const auto node = [h, n = u.size()](double x) { return std::min<Index>(static_cast<Index>(std::lround(x / h)), n); };
+  p.initial_displacement = [u, node](double x) {
+    const Index i = node(x);
+    return i < u.size() ? u[i] : 0.0;
+  };
+  p.initial_velocity = [v, node](double x) {
+    const Index i = node(x);
+    return i < v.size() ? v[i] : 0.0;
+  };
+  return p;
+}
+
+struct EnergyRun {
+  double largest_drift = 0;     // max |Eⁿ − E⁰| / E⁰
+  double largest_increase = 0;  // max (Eⁿ⁺¹ − Eⁿ) / E⁰, or −∞ … as the largest one-step change
+  double final_ratio = 0;       // E(T)/E⁰
+  int status_changes = 0;
+  Index steps = 0;
+};
+
+[[maybe_unused]] EnergyRun energy_run(const SchemeParameters& p, const MassRedistribution& mass, Index elements,
+                                      double courant, double final_time) {
+  const UniformMesh mesh(1.0, elements);
+  const double dt = courant * mesh.h();
+  BarSimulation simulation(benchmark_problem(), mesh, mass, p, dt);
+  EnergyRun r;
+  r.largest_increase = -HUGE_VAL;
+  r.steps = steps_to_reach(final_time, dt);
+  const double e0 = simulation.sample().energy;
+  double previous = e0;
+  bool active = simulation.sample().multiplier < 0;
+  for (Index k = 0; k < r.steps; ++k) {
+    simulation.step();
+    const Sample s = simulation.sample();
+    r.largest_drift = std::max(r.largest_drift, std::abs(s.energy - e0) / e0);
+    r.largest_increase = std::max(r.largest_increase, (s.energy - previous) / e0);
+    previous = s.energy;
+    r.status_changes += (s.multiplier < 0) != active;
+    active = s.multiplier < 0;
+  }
+  r.final_ratio = previous / e0;
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("EC conserves the discrete energy to round-off at every step, status changes included") {
+  // Crank–Nicolson gains orders of magnitude on the first run (N = 16, Δt = 10h, 100 periods) and a few
+  // E₀ on the second (N = 20, Δt = h, 1000 periods). EC's energy changes only by round-off: one step
+  // conserves E up to the residual of its solve, a few ε times the condition of A = M + θS relative to
+  // M, which grows like 1 + (Δt/h)², and these errors accumulate at most linearly in the number of
+  // steps k: |E_k − E₀| ≤ k · 1e-15 (1 + (Δt/h)²) E₀.
+  struct Case {
+    Index elements;
+    double courant, final_time;
+  };
+  for (const Case& c : {Case{16, 10.0, 300.0}, Case{20, 1.0, 3000.0}}) {
+    for (const MassRedistribution& mass : {mod1(), mod2(), mod3()}) {
+      for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
+        const EnergyRun r = energy_run(with(Scheme::energy_conserving, ContactRow::algebraic, kernel), mass, c.elements,
+                                       c.courant, c.final_time);
+        CAPTURE(c.elements);
+        CAPTURE(c.courant);
+        CAPTURE(mass.name);
+        CAPTURE(to_string(kernel));
+        CAPTURE(r.largest_drift);
+        CHECK(r.largest_drift <= static_cast<double>(r.steps) * 1e-15 * (1 + c.courant * c.courant));
+        CHECK(r.status_changes >= static_cast<int>(2 * c.final_time / 3) - 2);  // an impact and a release per period
+      }
+    }
+  }
+}
+
+TEST_CASE("one EC step is Crank–Nicolson's without a status change, and conserves E across one") {
+  // From the states of a Crank–Nicolson run (every level over 3 periods, Δt = h/2 and 3h), one step of
+  // each scheme: without a change of the contact status the two steps agree to round-off (the same
+  // linear system; the contact is decided on another row); across one, Crank–Nicolson's energy changes by
+  // ab/2h at an impact and −ab/2h at a release (a, b = u₁ before and after) and EC's does not.
+  for (const double courant : {0.5, 3.0}) {
+    for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
+      const UniformMesh mesh(1.0, 24);
+      const double dt = courant * mesh.h(), h = mesh.h();
+      BarSimulation run(benchmark_problem(), mesh, mod3(), with(Scheme::crank_nicolson), dt);
+      int same = 0, changed = 0;
+      CAPTURE(courant);
+      CAPTURE(to_string(kernel));
+      for (Index k = 0; k < steps_to_reach(9.0, dt); ++k, run.step()) {
+        const Problem restart = restart_problem(run.sample(), mesh);
+        BarSimulation cn(restart, mesh, mod3(), with(Scheme::crank_nicolson, ContactRow::algebraic, kernel), dt);
+        BarSimulation ec(restart, mesh, mod3(), with(Scheme::energy_conserving, ContactRow::algebraic, kernel), dt);
+        const double e0 = cn.sample().energy, a = (*cn.sample().displacement)[1];
+        cn.step();
+        ec.step();
+        const double b = (*cn.sample().displacement)[1];
+        const double scale = 1 + cn.sample().displacement->cwiseAbs().maxCoeff();
+        CAPTURE(k);
+        CHECK(std::abs(ec.sample().energy - e0) <= 1e-14);
+        if (contact_is_active(a) == contact_is_active(b)) {
+          CHECK((*ec.sample().displacement - *cn.sample().displacement).cwiseAbs().maxCoeff() <= 1e-14 * scale);
+          CHECK((*ec.sample().velocity - *cn.sample().velocity).cwiseAbs().maxCoeff() <= 1e-14 * scale / dt);
+          ++same;
+        } else {
+          CHECK(std::abs(cn.sample().energy - e0 - contact_energy_defect(a, b, h, 0.5)) <= 1e-14);
+          CHECK(std::abs(contact_energy_defect(a, b, h, 0.5)) > 1e-9);  // a real status change, not a graze
+          ++changed;
+        }
+      }
+      CHECK(same > 5 * changed);
+      CHECK(changed >= 6);  // an impact and a release per period
+    }
+  }
+}
+
+TEST_CASE("EC with a load: the energy changes by the work of the loads only") {
+  // energy_step.cpp: with E = ½VᵀM̄V + ½ŪᵀS̄Ū − ψ(s), s = u₁ + hF₀, one EC step changes E by
+  // ½(F̄ⁿ + F̄ⁿ⁺¹)·(Ūⁿ⁺¹ − Ūⁿ) − ½χ(sⁿ, sⁿ⁺¹)(F₀ⁿ⁺¹ − F₀ⁿ); the library's energy is that E plus F₀u₀.
+  const UniformMesh mesh(1.0, 20);
+  const double h = mesh.h(), dt = 2 * h;
+  Problem problem = benchmark_problem();
+  problem.load = [](double x, double t) { return -1.0 + 0.7 * std::sin(3 * x + 5 * t); };
+  for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
+    BarSimulation ec(problem, mesh, mod2(), with(Scheme::energy_conserving, ContactRow::algebraic, kernel), dt);
+    const auto load = [&](double t) { return p1_load(mesh, [&](double x) { return problem.load(x, t); }); };
+    int changes = 0;
+    CAPTURE(to_string(kernel));
+    for (Index k = 0; k < 200; ++k) {
+      const Sample before = ec.sample();
+      const Eigen::VectorXd u = *before.displacement, f = load(before.time);
+      const double e = before.energy;
+      ec.step();
+      const Sample after = ec.sample();
+      const Eigen::VectorXd& u_next = *after.displacement;
+      const Eigen::VectorXd f_next = load(after.time);
+      const double a = u[1] + h * f[0], b = u_next[1] + h * f_next[0];
+      const Index m = u.size() - 1;
+      const double work = 0.5 * (f + f_next).tail(m).dot((u_next - u).tail(m)) -
+                          0.5 * contact_secant(a, b) * (f_next[0] - f[0]) + f_next[0] * u_next[0] - f[0] * u[0];
+      CAPTURE(k);
+      CHECK(std::abs(after.energy - e - work) <= 1e-13 * (1 + std::abs(e)));
+      changes += contact_is_active(a) != contact_is_active(b);
+    }
+    CHECK(changes >= 4);
+  }
+}
+
+TEST_CASE("CN-switch never increases the energy, dissipating O(h) per status change") {
+  // mathematics.md §12, energy_step.cpp §4: a Crank–Nicolson step without a status change conserves E, a
+  // backward-Euler step dissipates at least ½‖ΔV‖²_M̄. So no step gains more than round-off (a few
+  // hundred ulps of E₀), on the runs where Crank–Nicolson gains most.
+  struct Case {
+    Index elements;
+    double courant, final_time;
+  };
+  for (const Case& c : {Case{16, 10.0, 300.0}, Case{20, 1.0, 3000.0}}) {
+    for (const MassRedistribution& mass : {mod1(), mod2(), mod3(), consistent_mass()}) {
+      for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
+        const EnergyRun r = energy_run(with(Scheme::switching, ContactRow::algebraic, kernel), mass, c.elements,
+                                       c.courant, c.final_time);
+        CAPTURE(c.elements);
+        CAPTURE(mass.name);
+        CAPTURE(to_string(kernel));
+        CAPTURE(r.largest_increase);
+        CHECK(r.largest_increase <= 1e-13);
+        CHECK(r.final_ratio < 1);
+      }
+    }
+  }
+  // The dissipation. An impact or a release changes the velocity by O(1) on the elements the front
+  // crosses in one step, of mass O(Δt) = O(h) at fixed Δt/h: the backward-Euler step there dissipates
+  // O(h), every other step nothing. Over 10 periods (20 status changes), Δt = h/2, the loss
+  // E₀ − E(T) should halve when h halves: the ratio of the losses at N and 2N is 2 up to the O(h)
+  // corrections, measured within 2 ± 0.3 on N = 100, 200, 400.
+  for (const MassRedistribution& mass : {mod1(), mod2(), mod3()}) {
+    double previous_loss = 0;
+    for (const Index elements : {100, 200, 400}) {
+      const EnergyRun r = energy_run(with(Scheme::switching), mass, elements, 0.5, 30.0);
+      const double loss = 1 - r.final_ratio;
+      CAPTURE(mass.name);
+      CAPTURE(elements);
+      CAPTURE(loss);
+      CAPTURE(r.status_changes);
+      MESSAGE("loss " << mass.name << " " << elements << " " << loss);
+      CHECK(loss > 0);
+      if (previous_loss > 0) CHECK(std::abs(previous_loss / loss - 2) <= 0.3);
+      CHECK(r.status_changes == 20);
+      previous_loss = loss;
+    }
+  }
+}
+
+TEST_CASE("CN-switch with theta = 1/2 is Crank–Nicolson, and theta outside 1/2 ... 1 is refused") {
+  const UniformMesh mesh(1.0, 20);
+  SchemeParameters p = with(Scheme::switching);
+  p.switch_theta = 0.5;
+  for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
+    p.kernel = kernel;
+    BarSimulation cn(benchmark_problem(), mesh, mod1(), with(Scheme::crank_nicolson, ContactRow::algebraic, kernel),
+                     0.05);
+    BarSimulation sw(benchmark_problem(), mesh, mod1(), p, 0.05);
+    double difference = 0;
+    for (Index k = 0; k < 240; ++k) {
+      cn.step();
+      sw.step();
+      difference = std::max(difference, (*cn.sample().displacement - *sw.sample().displacement).cwiseAbs().maxCoeff());
+    }
+    CAPTURE(to_string(kernel));
+    CHECK(difference <= 1e-13);
+  }
+  for (const double theta : {0.49, 1.01, std::nan("")}) {
+    p.switch_theta = theta;
+    CAPTURE(theta);
+    CHECK_THROWS_WITH_AS(BarSimulation(benchmark_problem(), mesh, mod3(), p, 0.1), doctest::Contains("[0.5, 1]"),
+                         std::invalid_argument);
+  }
+  CHECK_THROWS_WITH_AS(
+      BarSimulation(benchmark_problem(), mesh, consistent_mass(), with(Scheme::energy_conserving), 0.1),
+      doctest::Contains("massless contact node"), std::invalid_argument);
+  CHECK(scheme_by_name("ec") == Scheme::energy_conserving);
+  CHECK(scheme_by_name("cn-switch") == Scheme::switching);
+  CHECK(to_string(Scheme::switching) == "cn-switch");
+}
+
 // The fast step against the reference step (mathematics.md §4). Both compute (★) with the same
 // factorised A; they differ only in the order of the floating-point operations: the fast kernel
 // forms b on the fly and runs each sweep as two chains (products of two elimination factors), sums
@@ -515,7 +1028,8 @@ TEST_CASE("Paoli–Schatzman (1/4, 0) with the algebraic contact row coincides w
 //   energy       τ A (‖M‖∞ (U*/Δt)² + ‖S‖∞ U*²), the sizes of the terms of ½VᵀMV + ½UᵀSU;
 // and the instants of every sample, computed by the same code, exactly equal. A wrong term in either
 // step would differ by O(h) or more at the first step, far above these bounds. The cases: every
-// scheme, every mass of the paper (consistent, Mod 1–3) and two more that exercise every region of
+// scheme (EC and CN-switch included; EC without the consistent mass, which it refuses), every mass of
+// the paper (consistent, Mod 1–3) and two more that exercise every region of
 // the fast kernel (the lost mass spread over 3 nodes; a weight varying along the bar, no Toeplitz
 // interior at all), both Paoli–Schatzman forms (β = ¼, e = 0 at Δt = 0.7h; β = 0.3, e = 0.5 at
 // Δt = 4h), with and without a load; every run has impacts.
@@ -540,11 +1054,11 @@ TEST_CASE("the fast step and the reference step agree to round-off for every sch
     Scheme scheme;
     ContactRow row;
   };
-  const std::vector<Form> forms = {{Scheme::crank_nicolson, ContactRow::algebraic},
-                                   {Scheme::backward_euler, ContactRow::algebraic},
-                                   {Scheme::paoli_schatzman, ContactRow::algebraic},
-                                   {Scheme::paoli_schatzman, ContactRow::literal}};
-  const std::vector<MassRedistribution> masses = {consistent_mass(), mod1(), mod2(), mod3(),
+  const std::vector<Form> forms = {
+      {Scheme::crank_nicolson, ContactRow::algebraic},    {Scheme::backward_euler, ContactRow::algebraic},
+      {Scheme::paoli_schatzman, ContactRow::algebraic},   {Scheme::paoli_schatzman, ContactRow::literal},
+      {Scheme::energy_conserving, ContactRow::algebraic}, {Scheme::switching, ContactRow::algebraic}};
+  const std::vector<MassRedistribution> masses = {consistent_mass(),          mod1(),          mod2(), mod3(),
                                                   spread_over_first_nodes(3), varying_weight()};
   const double tolerance = 1e-12, perturbation = 1e-10;
   const double load_bound = 1.7;  // |f| ≤ 1.7 below, so ‖F‖∞ ≤ 1.7 h
@@ -558,6 +1072,7 @@ TEST_CASE("the fast step and the reference step agree to round-off for every sch
         // The algebraic Paoli–Schatzman row needs a massless contact node (refused otherwise, checked below).
         if (form.row == ContactRow::algebraic && form.scheme == Scheme::paoli_schatzman && mass.name == "consistent")
           continue;
+        if (form.scheme == Scheme::energy_conserving && mass.name == "consistent") continue;  // refused likewise
         for (const double courant : {0.7, 4.0}) {
           Problem problem = benchmark_problem();
           if (loaded) problem.load = [](double x, double t) { return -1.0 + 0.7 * std::sin(3 * x + 5 * t); };
@@ -569,7 +1084,9 @@ TEST_CASE("the fast step and the reference step agree to round-off for every sch
           p.kernel = StepKernel::fast;
           BarSimulation fast(problem, mesh, mass, p, dt);
           Problem perturbed_problem = problem;
-          perturbed_problem.initial_displacement = [&](double x) { return problem.initial_displacement(x) + perturbation * std::sin(5 * x); };
+          perturbed_problem.initial_displacement = [&](double x) {
+            return problem.initial_displacement(x) + perturbation * std::sin(5 * x);
+          };
           BarSimulation perturbed(perturbed_problem, mesh, mass, p, dt);
           p.kernel = StepKernel::reference;
           BarSimulation reference(problem, mesh, mass, p, dt);
@@ -627,7 +1144,7 @@ TEST_CASE("the fast step and the reference step agree to round-off for every sch
     }
   }
   CAPTURE(worst);
-  CHECK(runs == 2 * 2 * (3 * 6 + 5));
+  CHECK(runs == 2 * 2 * (6 * 6 - 2));
   CHECK(worst <= 1.0);
 }
 
@@ -682,8 +1199,16 @@ TEST_CASE("a problem without initial data, with non-finite data or on another ba
   problem.load = [](double x, double) { return 1.0 / x; };  // singular at x = 0, which no Gauss point is
   CHECK_NOTHROW(BarSimulation(problem, mesh, mod3(), p, 0.1));
   problem.load = [](double, double t) { return t > 0 ? HUGE_VAL : 0.0; };
-  BarSimulation simulation(problem, mesh, mod3(), p, 0.1);
-  CHECK_THROWS_WITH_AS(simulation.step(), doctest::Contains("p1_load"), std::invalid_argument);
+  // Rejected by the first evaluation after t = 0: the rate of the contact load (the massless node's
+  // velocity at level 0) or the load vector of the first step.
+  const auto first_step = [&](const MassRedistribution& mass, InitialContactNode initial) {
+    BarSimulation simulation(problem, mesh, mass, p, 0.1, initial);
+    simulation.step();
+  };
+  CHECK_THROWS_WITH_AS(first_step(mod3(), InitialContactNode::consistent), doctest::Contains("not finite"),
+                       std::invalid_argument);
+  CHECK_THROWS_WITH_AS(first_step(mod3(), InitialContactNode::interpolant), doctest::Contains("p1_load"),
+                       std::invalid_argument);
 }
 
 TEST_CASE("the number of steps to reach T needs T > 0, dt > 0 finite and at most 1e12 steps") {
@@ -694,6 +1219,59 @@ TEST_CASE("the number of steps to reach T needs T > 0, dt > 0 finite and at most
   CHECK_THROWS_AS(steps_to_reach(std::nan(""), 0.1), std::invalid_argument);
   CHECK_THROWS_AS(steps_to_reach(1.0, HUGE_VAL), std::invalid_argument);
   CHECK_THROWS_WITH_AS(steps_to_reach(1.0, 1e-13), doctest::Contains("more than 1e12"), std::invalid_argument);
+}
+
+// The massless node's velocity (mathematics.md §7): at every level it is the time derivative of the
+// algebraic row, V₀ = V₁ + hḞ₀ (free) or 0 (contact), for Crank–Nicolson and backward Euler, both
+// kernels, with either initial value of u₀ (from level 1 on with the interpolant). The contrast is
+// the recovery by Crank–Nicolson's velocity formula, computed here from the same run's u₀: after the
+// first impact it alternates by about the impact speed a = ½ for ever (measured: ±0.5).
+TEST_CASE(
+    "the massless node's velocity is the time derivative of its algebraic row, without the recovery's alternation") {
+  const UniformMesh mesh(1.0, 24);
+  const double dt = 0.5 * mesh.h();
+  for (const Scheme scheme : {Scheme::crank_nicolson, Scheme::backward_euler}) {
+    for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
+      for (const InitialContactNode initial : {InitialContactNode::consistent, InitialContactNode::interpolant}) {
+        SchemeParameters p = with(scheme);
+        p.kernel = kernel;
+        BarSimulation simulation(benchmark_problem(), mesh, mod3(), p, dt, initial);
+        double worst = 0, recovered = 0, largest_alternation = 0;
+        bool contact_seen = false;
+        double u0_previous = 0;
+        run(simulation, steps_to_reach(6.0, dt), [&](const Sample& s) {
+          const double u0 = (*s.displacement)[0], v0 = (*s.velocity)[0], v1 = (*s.velocity)[1];
+          if (s.level >= 1 || initial == InitialContactNode::consistent)
+            worst = std::max(worst, std::abs(v0 - (u0 > 0 ? v1 : 0.0)));
+          // Crank–Nicolson's recovery V₀ⁿ⁺¹ = 2(u₀ⁿ⁺¹ − u₀ⁿ)/Δt − V₀ⁿ, started from the datum.
+          recovered = s.level == 0 ? v0 : 2 * (u0 - u0_previous) / dt - recovered;
+          contact_seen = contact_seen || u0 == 0.0;
+          if (contact_seen && u0 == 0.0) largest_alternation = std::max(largest_alternation, std::abs(recovered));
+          u0_previous = u0;
+        });
+        CAPTURE(to_string(scheme));
+        CAPTURE(to_string(kernel));
+        CAPTURE(to_string(initial));
+        CHECK(worst == 0.0);
+        CHECK(contact_seen);
+        CHECK(largest_alternation > 0.4);  // what the old definition measured while V₀ should be 0
+      }
+    }
+  }
+  // With a load f = sin t (1 + x): F₀(t) = sin t ∫₀ʰ (1 + x)(1 − x/h) dx = sin t (h/2 + h²/6) and
+  // V₀ − V₁ = h cos t (h/2 + h²/6) while free, to O(Δt²) (the difference formula).
+  Problem loaded = benchmark_problem();
+  loaded.initial_displacement = [](double x) { return 0.5 * (1 - x) + 0.1; };  // keeps the gap open at first
+  loaded.load = [](double x, double t) { return std::sin(t) * (1 + x); };
+  const double h = mesh.h();
+  BarSimulation simulation(loaded, mesh, mod1(), with(Scheme::crank_nicolson), dt);
+  double worst = 0;
+  run(simulation, 20, [&](const Sample& s) {
+    if ((*s.displacement)[0] > 0)
+      worst =
+          std::max(worst, std::abs((*s.velocity)[0] - (*s.velocity)[1] - h * std::cos(s.time) * (h / 2 + h * h / 6)));
+  });
+  CHECK(worst < h * h * dt * dt);
 }
 
 }  // namespace mrm

@@ -16,9 +16,11 @@ namespace mrm {
 
 /// The time schemes of the paper (mathematics.md §4).
 enum class Scheme {
-  crank_nicolson,  ///< Crank–Nicolson (trapezoidal rule), two levels
-  backward_euler,  ///< backward Euler, two levels
-  paoli_schatzman  ///< Paoli–Schatzman (β, e), three levels
+  crank_nicolson,     ///< Crank–Nicolson (trapezoidal rule), two levels
+  backward_euler,     ///< backward Euler, two levels
+  paoli_schatzman,    ///< Paoli–Schatzman (β, e), three levels
+  energy_conserving,  ///< EC: Crank–Nicolson with the discrete gradient of the contact energy (mathematics.md §12)
+  switching           ///< CN-switch: Crank–Nicolson, a θ-step where the contact status changes (mathematics.md §12)
 };
 
 /// How the Paoli–Schatzman scheme treats the contact row when the contact node is massless:
@@ -39,27 +41,30 @@ enum class InitialContactNode { consistent, interpolant };
 /// program of this project (bench_step times both).
 enum class StepKernel { reference, fast };
 
-std::string to_string(Scheme);              ///< "cn", "be", "ps"
+std::string to_string(Scheme);              ///< "cn", "be", "ps", "ec", "cn-switch"
 std::string to_string(ContactRow);          ///< "algebraic", "literal"
 std::string to_string(InitialContactNode);  ///< "consistent", "interpolant"
 std::string to_string(StepKernel);          ///< "reference", "fast"
 /// Parsers of the names above; throw std::invalid_argument listing the allowed names.
-Scheme scheme_by_name(const std::string&);           ///< cn, be, ps
-ContactRow contact_row_by_name(const std::string&);  ///< algebraic, literal
+Scheme scheme_by_name(const std::string&);                            ///< cn, be, ps, ec, cn-switch
+ContactRow contact_row_by_name(const std::string&);                   ///< algebraic, literal
 InitialContactNode initial_contact_node_by_name(const std::string&);  ///< consistent, interpolant
 
 /// A time scheme with its parameters.
 struct SchemeParameters {
-  Scheme scheme = Scheme::crank_nicolson;  ///< the scheme
-  double beta = 0.25;         ///< Paoli–Schatzman's β ≥ 0
-  double restitution = 0.0;   ///< Paoli–Schatzman's e ∈ [0, 1]
+  Scheme scheme = Scheme::crank_nicolson;          ///< the scheme
+  double beta = 0.25;                              ///< Paoli–Schatzman's β ≥ 0
+  double restitution = 0.0;                        ///< Paoli–Schatzman's e ∈ [0, 1]
   ContactRow contact_row = ContactRow::algebraic;  ///< Paoli–Schatzman's contact row (massless node)
-  StepKernel kernel = StepKernel::fast;  ///< the implementation of the step (same results to round-off)
+  StepKernel kernel = StepKernel::fast;            ///< the implementation of the step (same results to round-off)
+  /// CN-switch's θ ∈ [½, 1] of the step that replaces a Crank–Nicolson step across which the contact
+  /// status changes: 1 is backward Euler, the only value for which the energy provably never increases.
+  double switch_theta = 1.0;
 };
 
 /// The continuous problem (mathematics.md §1): bar (0, L), data u⁰, v⁰, load f (may be empty: f = 0).
 struct Problem {
-  double length = 1.0;                                    ///< L
+  double length = 1.0;                                   ///< L
   std::function<double(double x)> initial_displacement;  ///< u⁰(x)
   std::function<double(double x)> initial_velocity;      ///< v⁰(x)
   std::function<double(double x, double t)> load;        ///< f(x, t); empty for f = 0
@@ -69,16 +74,16 @@ Problem benchmark_problem(double length = 1.0, double amplitude = 0.5);
 
 /// What a scheme knows at one time level, each quantity with the instant it approximates.
 struct Sample {
-  Index level;                             ///< n
-  double time;                             ///< t_n, the instant of `displacement`
-  const Eigen::VectorXd* displacement;     ///< Uⁿ on nodes 0..N−1
-  double velocity_time;                    ///< t_n (two-level schemes, n ≤ 1) or t_{n−½} (Paoli–Schatzman)
-  const Eigen::VectorXd* velocity;         ///< Vⁿ, or (Uⁿ − Uⁿ⁻¹)/Δt for Paoli–Schatzman (n ≥ 2)
-  bool has_multiplier;                     ///< false where the level has no multiplier yet
-  double multiplier_time;                  ///< the instant of `multiplier`
-  double multiplier;                       ///< λ ≤ 0
-  double energy_time;                      ///< the instant of `energy`
-  double energy;                           ///< the scheme's discrete energy
+  Index level;                          ///< n
+  double time;                          ///< t_n, the instant of `displacement`
+  const Eigen::VectorXd* displacement;  ///< Uⁿ on nodes 0..N−1
+  double velocity_time;                 ///< t_n (two-level schemes, n ≤ 1) or t_{n−½} (Paoli–Schatzman)
+  const Eigen::VectorXd* velocity;      ///< Vⁿ, or (Uⁿ − Uⁿ⁻¹)/Δt for Paoli–Schatzman (n ≥ 2)
+  bool has_multiplier;                  ///< false where the level has no multiplier yet
+  double multiplier_time;               ///< the instant of `multiplier`
+  double multiplier;                    ///< λ ≤ 0
+  double energy_time;                   ///< the instant of `energy`
+  double energy;                        ///< the scheme's discrete energy
 };
 
 class FastStep;
@@ -89,8 +94,9 @@ class FastStep;
 class BarSimulation {
  public:
   /// Throws std::invalid_argument for a non-positive or non-finite Δt, β < 0, e ∉ [0, 1], an
-  /// algebraic contact row with a contact node that has inertia, or a literal Paoli–Schatzman contact
-  /// row with β = 0 and a massless contact node (singular).
+  /// algebraic contact row with a contact node that has inertia, a literal Paoli–Schatzman contact
+  /// row with β = 0 and a massless contact node (singular), CN-switch's θ ∉ [½, 1], or the
+  /// energy-conserving scheme with a contact node that has inertia (it needs the condensed row).
   BarSimulation(const Problem& problem, const UniformMesh& mesh, const MassRedistribution& mass,
                 const SchemeParameters& parameters, double dt,
                 InitialContactNode initial = InitialContactNode::consistent);
@@ -104,20 +110,28 @@ class BarSimulation {
   /// The current level's sample (valid until the next step).
   Sample sample() const;
 
-  Index level() const { return level_; }                               ///< the current level n
-  double time() const { return static_cast<double>(level_) * dt_; }  ///< t_n = n Δt
-  double dt() const { return dt_; }                                    ///< Δt
-  const UniformMesh& mesh() const { return mesh_; }                    ///< the mesh
-  const Tridiagonal& mass() const { return mass_; }                    ///< M (or M^mod) on the unknowns
-  const Tridiagonal& stiffness() const { return stiffness_; }          ///< S on the unknowns
-  bool massless_contact_node() const { return massless_; }             ///< whether row 0 of M vanishes
+  Index level() const { return level_; }                              ///< the current level n
+  double time() const { return static_cast<double>(level_) * dt_; }   ///< t_n = n Δt
+  double dt() const { return dt_; }                                   ///< Δt
+  const UniformMesh& mesh() const { return mesh_; }                   ///< the mesh
+  const Tridiagonal& mass() const { return mass_; }                   ///< M (or M^mod) on the unknowns
+  const Tridiagonal& stiffness() const { return stiffness_; }         ///< S on the unknowns
+  bool massless_contact_node() const { return massless_; }            ///< whether row 0 of M vanishes
   const SchemeParameters& parameters() const { return parameters_; }  ///< the scheme and its parameters
 
  private:
   friend class FastStep;  // the fast kernel reads and advances the state below
   void load_at(double t, Eigen::VectorXd& f) const;
   double energy_two_level() const;
+  double contact_load(double t) const;
+  double contact_load_rate(double t) const;
+  double massless_node_velocity(double t) const;
+  void choose_energy_scale();
   void reference_step(bool has_load);
+  void switch_step(bool has_load);  // CN-switch's θ-step, replacing a Crank–Nicolson step
+  // B₁U + B₂W + G with the algebraic contact row or −κ'λⁿ in row 0 (the reference step's step 1).
+  Eigen::VectorXd right_hand_side(const Tridiagonal& b1, const Tridiagonal& b2, double load_now, double load_next,
+                                  double lambda_in_rhs, bool has_load) const;
 
   Problem problem_;
   UniformMesh mesh_;
@@ -131,9 +145,23 @@ class BarSimulation {
   Tridiagonal b1_, b2_;
   ContactSolver solver_;
   std::unique_ptr<const FastStep> fast_;
-  double kappa_, load_now_, load_next_;   // G = load_now_ Fⁿ + load_next_ Fⁿ⁺¹ (+ row-0 terms)
-  double lambda_in_rhs_;                  // Crank–Nicolson with inertia at node 0: −θ λⁿ in row 0
+  double kappa_, load_now_, load_next_;     // G = load_now_ Fⁿ + load_next_ Fⁿ⁺¹ (+ row-0 terms)
+  double lambda_in_rhs_;                    // Crank–Nicolson with inertia at node 0: −θ λⁿ in row 0
   double velocity_rate_, velocity_memory_;  // two-level: V' = rate (U' − U) − memory V
+  // The energy's quadratic forms on values scaled by σ_u = 2^−e_u (displacements) and σ_v = 2^−e_v
+  // (velocities) when the data are far from 1 (schemes.cpp: Scale of the energy); scaled_ = false
+  // otherwise, and the forms take the values as they are.
+  bool scaled_ = false;
+  int displacement_exponent_ = 0, velocity_exponent_ = 0;
+  // CN-switch: the θ-step's matrices and scalars, the same roles as above (schemes.cpp).
+  struct SwitchStep {
+    Tridiagonal b1, b2;
+    ContactSolver solver;
+    double kappa, load_now, load_next, lambda_in_rhs, velocity_rate, velocity_memory;
+  };
+  std::unique_ptr<const SwitchStep> switch_;
+  bool energy_conserving_ = false;
+  bool active_ = false;  // the contact status at the current level (λ < 0, or s < 0 for a massless node)
 
   Index level_ = 0;
   // U, the scratch for the sweeps (then U'), W, and X = (Uⁿ⁺¹ − Uⁿ)/Δt (three-level only: the

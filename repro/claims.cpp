@@ -26,6 +26,7 @@
 #include "convergence.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -43,8 +44,11 @@
 
 #include "configurations.hpp"
 #include "options.hpp"
+#include "report_values.hpp"
 #include "table.hpp"
 #include "exact_solution.hpp"
+#include "period_law.hpp"
+#include "regions.hpp"
 
 namespace mrm::claims {
 
@@ -57,114 +61,84 @@ namespace mrm::claims {
 const Expectations& paper_expectations() {
   // Reasons shared by several rows.
   const std::string sawtooth =
-      "the literal Paoli-Schatzman contact row lets a sawtooth in u₀ grow after each release (problem.md §4), which "
-      "dominates the H¹ and velocity errors";
-  const std::string be_order =
-      "every error decreases at every refinement, but the H¹, velocity (and for some, λ) errors have least-squares "
-      "orders at or just below the margin ¼ fixed in advance: about ¼ is what a first-order dissipative scheme gives "
-      "when it smears the jumps of u_t over a width ∝ √Δt";
-  const std::string velocity_order =
-      "every error decreases at every refinement, but the velocity errors have least-squares orders just below the "
-      "margin ¼ fixed in advance";
-  const std::string mod2_beats_mod3_everywhere = "Mod 2 beats Mod 3 on every mesh";
+      "the literal Paoli-Schatzman contact row lets a sawtooth in u₀ grow after each release (mathematics.md §4), "
+      "which dominates the H¹ and velocity errors";
+  const std::string be_ranking =
+      "backward Euler's dissipation smears the fronts over (Δt t)^{1/2}, far more than the drift of the impact times "
+      "(mathematics.md §8); the mass changes its errors by a few percent and ranks them in 0 to 6 of 8 measures, in no "
+      "systematic order";
+  const std::string late_release =
+      "at Δt ≥ ¾h Crank-Nicolson's own release is late (a drift of +0.1h to +0.2h per period, the same for every "
+      "mass) and partly compensates Mod 2's drift of −h/3: Mod 2 and Mod 3 swap in some energy-type measures on "
+      "the finer meshes, while Mod 1 stays the worst";
+  const std::string cn_mod3_half =
+      "Crank-Nicolson with Mod 3 at Δt = h/2 falls just outside the bands: u_t in L²(L²) at 0.16 over 1 and 4 periods, "
+      "u(0,·) and u at 0.45-0.5 over 10 and 30 periods. Its impact times drift by −0.04h to −0.16h per period with a "
+      "coefficient that grows with N (mechanism row), an error of the scheme that the smearing prediction leaves "
+      "out; every other (mass, Δt/h) cell is in its band";
   static const Expectations table = {
       // Claim 1. ps-literal, N = 200, Δt = h/2, T = 300: ½UⁿᵀSUⁿ/E_h(0) first above 1.01 at t = 2.36 (mod1),
-      // 2.70 (mod2), 2.64 (mod3), after the first release at t = 2, and up to 66, 96, 43 over the run, while
-      // the scheme's own energy stays in [0.61, 1] E_h(0).
+      // 2.70 (mod2), 2.64 (mod3), after the first release at t = 2, and up to 66, 96, 43 over the run.
       {"1/ps-literal", sawtooth +
                            ": the strain energy of the iterate leaves the bound soon after the first release and "
                            "keeps growing, while the scheme's own β-energy, blind to the sawtooth, stays bounded"},
+      // cn, mod3, N = 16 … 128, 100 periods, largest E/E(0) per Δt/h: 1 (¼), 1.01 (½), 1.02 (1), 1.16 (2),
+      // 23.4 (5), 1.1e7 (10), 3.1e11 (20), 3.8e12 (40).
+      {"1/cn/large-steps",
+       "Crank-Nicolson with a massless contact node gains energy at every release, up to c²h v²/8 (mathematics.md "
+       "§12): for Δt/h ≥ 5 the gains outweigh the losses at impacts and the energy grows by orders of magnitude"},
+      // cn, Δt = h, 1000 periods: mod1 2.9 (N = 20), 1.14 (N = 64); mod2 9.97, 1.39; mod3 1.62, 1.02.
+      {"1/cn/1000-periods",
+       "the same gains at releases accumulate over 1000 periods on the coarse mesh N = 20 (Mod 1 2.9, Mod 2 10 times "
+       "E_h(0)); on N = 64 they stay below 1.4 E_h(0): the jumps are O(h)"},
 
-      // Claim 3, errors mod3 / mod2 / mod1 at N = 50, 100, 200 (Δt = h/2, T = 3).
-      // cn: u(0) L²: 0.017/0.0164/0.0216, 0.0113/0.00969/0.00959, 0.00753/0.00607/0.00446.
-      {"3/cn/err_u0_L2", "Mod 3 is the worst at N = 100 and 200: the ordering reverses as h decreases"},
-      // cn: λ L²: 0.19/0.2/0.228, 0.166/0.166/0.184, 0.14/0.137/0.148.
-      {"3/cn/err_lambda_L2", "Mod 2 ties or beats Mod 3 at N = 100 and 200"},
-      // cn: u L∞(L²): 0.0244/0.013/0.0247, 0.0162/0.00829/0.0123, 0.0108/0.00613/0.0063.
-      {"3/cn/err_u_LinfL2", "Mod 2 is the best on every mesh and Mod 3 the worst at N = 100 and 200"},
-      // cn: u_t L∞(L²): 0.155/0.183/0.286, 0.171/0.144/0.206, 0.135/0.122/0.137.
-      {"3/cn/err_v_LinfL2", "Mod 2 beats Mod 3 at N = 100 and 200"},
-      // cn: u L²(L²): 0.0163/0.0147/0.0269, 0.0108/0.00866/0.0134, 0.00719/0.00543/0.00695.
-      {"3/cn/err_u_L2L2", mod2_beats_mod3_everywhere},
-      // cn: u_t L²(L²): 0.145/0.163/0.206, 0.138/0.137/0.161, 0.115/0.115/0.126.
-      {"3/cn/err_v_L2L2", "Mod 2 ties or beats Mod 3 at N = 100 and 200"},
-      // be: u(0) L²: 0.144/0.135/0.122, 0.101/0.0959/0.0882, 0.0706/0.0681/0.0638.
-      {"3/be/err_u0_L2", "reversed: Mod 1 is the best and Mod 3 the worst on every mesh"},
-      // be: λ L²: 0.262/0.254/0.275, 0.219/0.214/0.227, 0.183/0.181/0.188.
-      {"3/be/err_lambda_L2", mod2_beats_mod3_everywhere + " (by a few percent)"},
-      // be: u L∞(L²): 0.2/0.184/0.186, 0.141/0.132/0.132, 0.099/0.0941/0.0942.
-      {"3/be/err_u_LinfL2", "Mod 3 is the worst on every mesh"},
-      // be: u_t L∞(L²): 0.315/0.316/0.312, 0.27/0.271/0.269, 0.23/0.231/0.23.
-      {"3/be/err_v_LinfL2", "the three masses agree to 1%, in no consistent order"},
-      // be: u L²(L²): 0.135/0.126/0.12, 0.0946/0.0893/0.0859, 0.0664/0.0635/0.0617.
-      {"3/be/err_u_L2L2", "reversed: Mod 1 is the best and Mod 3 the worst on every mesh"},
-      // be: u L²(H¹): 0.267/0.263/0.265, 0.227/0.224/0.225, 0.192/0.19/0.191.
-      {"3/be/err_u_L2H1", "Mod 2 is the best and Mod 3 the worst on every mesh (within 2%)"},
-      // be: u_t L²(L²): 0.256/0.252/0.256, 0.22/0.217/0.219, 0.188/0.186/0.187.
-      {"3/be/err_v_L2L2", "Mod 2 is the best on every mesh (within 2%)"},
-      // ps (algebraic row): its displacements are those of cn (doctest in schemes.cpp), hence the same four
-      // displacement rows; its velocity (Uⁿ − Uⁿ⁻¹)/Δt differs from cn's and does follow the ordering.
-      {"3/ps/err_u0_L2", "Mod 3 is the worst at N = 100 and 200: the ordering reverses as h decreases"},
-      {"3/ps/err_lambda_L2", "Mod 2 ties or beats Mod 3 at N = 100 and 200"},
-      {"3/ps/err_u_LinfL2", "Mod 2 is the best on every mesh and Mod 3 the worst at N = 100 and 200"},
-      {"3/ps/err_u_L2L2", mod2_beats_mod3_everywhere},
-      // ps-literal: u(0) L²: 0.303/0.0657/0.294, 0.182/0.161/0.264, 0.0493/0.0401/0.109; u L∞(H¹):
-      // 3.15/0.704/3.03, 2.6/2.3/3.8, 1.01/0.834/2.2; u_t L∞(L²): 7.07/1.53/6.84, 5.95/5.26/8.66,
-      // 2.29/1.88/5.06; λ L²: 0.185/0.195/0.224, 0.162/0.163/0.181, 0.137/0.135/0.146. Mod 2 is the best
-      // on every mesh in the seven other measures.
-      {"3/ps-literal/err_u0_L2", mod2_beats_mod3_everywhere + "; " + sawtooth},
-      {"3/ps-literal/err_lambda_L2", "Mod 2 beats Mod 3 at N = 200"},
-      {"3/ps-literal/err_u_LinfL2", mod2_beats_mod3_everywhere + "; " + sawtooth},
-      {"3/ps-literal/err_u_LinfH1", mod2_beats_mod3_everywhere + "; " + sawtooth},
-      {"3/ps-literal/err_v_LinfL2", mod2_beats_mod3_everywhere + "; " + sawtooth},
-      {"3/ps-literal/err_u_L2L2", mod2_beats_mod3_everywhere + "; " + sawtooth},
-      {"3/ps-literal/err_u_L2H1", mod2_beats_mod3_everywhere + "; " + sawtooth},
-      {"3/ps-literal/err_v_L2L2", mod2_beats_mod3_everywhere + "; " + sawtooth},
+      // Claim 3, sweep N = 25 … 800, 30 periods. cn Δt = ¾h: 8 8 8 8 7 7 measures; Δt = h: 8 7 5 5 5 3.
+      {"3/cn/dt=0.75h", late_release},
+      {"3/cn/dt=1h", late_release},
+      // be, 30 periods: Δt = ¼h: 6 5 5 5 3 1; ½h: 1 3 2 1 1 1; ¾h: 0 0 1 1 1 1; h: 0 0 0 1 1 1.
+      {"3/be/dt=0.25h", be_ranking},
+      {"3/be/dt=0.5h", be_ranking},
+      {"3/be/dt=0.75h", be_ranking},
+      {"3/be/dt=1h", be_ranking},
+      // ps velocity, 30 periods, Δt = h: 2 2 1 1 1 0 of 2.
+      {"3/ps/dt=1h",
+       "Paoli-Schatzman's velocity, a difference quotient at the half step, is an energy-type "
+       "measure: at Δt = h it sees the swap of Mod 2 and Mod 3 that Crank-Nicolson's late release "
+       "causes (see 3/cn/dt=1h)"},
 
-      // Claim 4 in h (N = 50 … 800, T = 3). cn/mod1/C=1: u_t orders 0.248 (L∞(L²)) and 0.246 (L²(L²)),
-      // ratios ≤ 0.87.
-      {"4/cn/mod1/C=1", velocity_order},
-      // cn/mod3/C=0.5: u_t L∞(L²) ratio 1.10 at one refinement (0.155 → 0.0855 overall), orders u L²(H¹)
-      // 0.21, u_t L²(L²) 0.23.
-      {"4/cn/mod3/C=0.5", "the L∞(L²) velocity error increases at one refinement, and the L²(H¹) and L²(L²) "
-                          "velocity errors decrease with least-squares orders below the margin ¼ fixed in advance"},
-      // be, all masses and C: orders 0.23–0.25 in u L∞(H¹), u L²(H¹), u_t and λ, ratios 0.84–0.87; u(0) and
-      // u L²-type orders ≈ 0.5.
-      {"4/be/mod1/C=0.5", be_order},
-      {"4/be/mod1/C=1", be_order},
-      {"4/be/mod2/C=0.5", be_order},
-      {"4/be/mod2/C=1", be_order},
-      {"4/be/mod3/C=0.5", be_order},
-      {"4/be/mod3/C=1", be_order},
-      // ps/mod1/C=1: u_t L²(L²) order 0.247, ratios ≤ 0.85.
-      {"4/ps/mod1/C=1", velocity_order},
-      // ps/mod3/C=0.5: orders u_t L∞(L²) 0.19, u L²(H¹) 0.21, u_t L²(L²) 0.20, ratios ≤ 0.97.
-      {"4/ps/mod3/C=0.5", "every error decreases at every refinement, but the velocity errors and the L²(H¹) error "
-                          "have least-squares orders below the margin ¼ fixed in advance"},
-      // ps-literal: H¹ and velocity relative errors above 100% that grow with N at C = 0.5 (orders −0.1 to
-      // −0.45) and jump by factors up to 18 between meshes at C = 1.
-      {"4/ps-literal/mod1/C=0.5", sawtooth},
-      {"4/ps-literal/mod1/C=1", sawtooth},
-      {"4/ps-literal/mod2/C=0.5", sawtooth},
-      {"4/ps-literal/mod2/C=1", sawtooth},
-      {"4/ps-literal/mod3/C=0.5", sawtooth},
-      {"4/ps-literal/mod3/C=1", sawtooth},
+      // Claim 4 in h, sweep N = 25 … 800. cn: every (mass, Δt/h) cell in its band except mod3 at Δt = h/2:
+      // u_t L²(L²) 0.16 (1 and 4 periods), u(0,·) and u 0.45–0.49 (10 and 30 periods); its drift per period
+      // −0.04h, −0.05h, −0.06h, −0.09h, −0.16h, −0.09h for N = 25 … 800.
+      {"4/cn/T=1p", cn_mod3_half},
+      {"4/cn/T=4p", cn_mod3_half},
+      {"4/cn/T=10p", cn_mod3_half},
+      {"4/cn/T=30p", cn_mod3_half},
+      // be, 30 periods: displacement orders 0.20–0.41, energy-type 0.16–0.28 for Δt ≥ h/2, every mass.
+      {"4/be/T=30p",
+       "over 30 periods backward Euler dissipates most of the energy on the coarse meshes (E_h down to "
+       "a few percent of E_h(0)), so the relative errors there approach 1 and the fit over N = 25 … 800 "
+       "is pre-asymptotic: displacement orders 0.2–0.4 instead of ½ for Δt ≥ h/2 (at Δt = h/4 and "
+       "over 1 to 10 periods every cell is in its band)"},
 
-      // Claim 6b, N = 4000: λ 0.0564 above the bound 0.05; u L∞(H¹) 0.0495, u_t 0.049, u L²(H¹) 0.048 just
+      // Claim 6b, N = 4000: λ 0.0564 above the bound 0.05; u L∞(H¹) 0.0495, u_t 0.048, u L²(H¹) 0.048 just
       // below it; u(0), u L∞(L²), u L²(L²) 0.001–0.0015.
-      {"6/exact", "λ's error is above the bound, which assumed rates h^½ in the roughest measures; the orders "
-                  "measured for claim 4 (about 1/3 for λ with cn) make an error of this size the discretisation "
-                  "error at N = 4000, not a defect of the closed form, whose displacement errors are more than "
-                  "an order of magnitude smaller"},
+      {"6/exact",
+       "λ's error is above the bound, which assumed rates h^½ in the roughest measures; the orders "
+       "measured for claim 4 (about 1/3 for λ with cn) make an error of this size the discretisation "
+       "error at N = 4000, not a defect of the closed form, whose displacement errors are more than "
+       "an order of magnitude smaller"},
   };
   return table;
 }
 
 std::string to_string(Verdict v) {
   switch (v) {
-    case Verdict::reproduced: return "reproduced";
-    case Verdict::not_reproduced: return "not reproduced";
-    case Verdict::failed: return "FAILED";
+    case Verdict::reproduced:
+      return "reproduced";
+    case Verdict::not_reproduced:
+      return "not reproduced";
+    case Verdict::failed:
+      return "FAILED";
   }
   return "?";
 }
@@ -184,8 +158,9 @@ ClaimResult judge(std::string id, std::string claim, std::string measured, std::
     row.reason = "the criterion does not hold";
   } else {
     row.verdict = Verdict::failed;
-    row.reason = "unexpected pass: the criterion holds although the expectation table lists this row as not "
-                 "reproduced; update the table";
+    row.reason =
+        "unexpected pass: the criterion holds although the expectation table lists this row as not "
+        "reproduced; update the table";
   }
   return row;
 }
@@ -209,8 +184,10 @@ TEST_CASE("a row's verdict follows its criterion and the expectation table, both
 
 SchemeChoice scheme_choice(const std::string& label) {
   SchemeParameters p;
-  if (label == "cn") p.scheme = Scheme::crank_nicolson;
-  else if (label == "be") p.scheme = Scheme::backward_euler;
+  if (label == "cn")
+    p.scheme = Scheme::crank_nicolson;
+  else if (label == "be")
+    p.scheme = Scheme::backward_euler;
   else if (label == "ps" || label == "ps-literal") {
     p.scheme = Scheme::paoli_schatzman;
     p.beta = 0.25;
@@ -245,7 +222,7 @@ std::string fixed(double x, int decimals) {
 }
 
 // The short names of the eight error measures of mathematics.md §5, in ErrorAccumulator::values order.
-const char* const measure_names[8] = {"u(0,·) L²(0,T)", "λ L²(0,T)",  "u L∞(L²)", "u L∞(H¹)",
+const char* const measure_names[8] = {"u(0,·) L²(0,T)", "λ L²(0,T)", "u L∞(L²)", "u L∞(H¹)",
                                       "u_t L∞(L²)",     "u L²(L²)",  "u L²(H¹)", "u_t L²(L²)"};
 
 std::string join(const std::vector<std::string>& parts, const std::string& separator) {
@@ -261,23 +238,6 @@ std::string list_elements(const std::vector<Index>& elements) {
 }
 
 }  // namespace
-
-ErrorNorms ErrorCache::errors(const SchemeChoice& scheme, const MassRedistribution& mass, Index elements,
-                              double courant, double final_time) {
-  const std::string key = scheme.label + "|" + to_string(scheme.parameters.scheme) + "|" +
-                          cli::format_real(scheme.parameters.beta) + "|" + to_string(scheme.parameters.contact_row) +
-                          "|" + mass.name + "|" + std::to_string(elements) + "|" + cli::format_real(courant) + "|" +
-                          cli::format_real(final_time);
-  const auto found = cache_.find(key);
-  if (found != cache_.end()) return found->second;
-  repro::Configuration configuration;
-  configuration.scheme = scheme.parameters;
-  configuration.mass = mass;
-  configuration.elements = elements;
-  configuration.courant = courant;
-  configuration.final_time = final_time;
-  return cache_[key] = repro::run_configuration(configuration).errors;
-}
 
 // ---------------------------------------------------------------------------------------------------
 // The observed order: the slope of the least-squares line through (log x_k, log y_k) (mathematics.md §5),
@@ -359,8 +319,10 @@ bool is_dissipative(const SchemeChoice& scheme) { return scheme.parameters.schem
 std::string stability_criterion(const StabilitySettings& st) {
   return "every value finite, and E_hⁿ and ½UⁿᵀSUⁿ ≤ " + sig(st.bound_conserving) +
          " E_h(0) (CN, PS: energy conserved up to O(h) jumps at status changes) or ≤ (1 + " +
-         sig(st.bound_dissipative - 1) + ") E_h(0) (BE: dissipative) at every step, "
-         "N = " + std::to_string(st.elements) + ", Δt = " + sig(st.courant) + "h, T = " + sig(st.final_time);
+         sig(st.bound_dissipative - 1) +
+         ") E_h(0) (BE: dissipative) at every step, "
+         "N = " +
+         std::to_string(st.elements) + ", Δt = " + sig(st.courant) + "h, T = " + sig(st.final_time);
 }
 
 std::string describe(const StabilityRun& r) {
@@ -391,8 +353,9 @@ std::vector<ClaimResult> check_stability(const std::vector<SchemeChoice>& scheme
       measured.push_back(mass.name + ": " + describe(r));
       names.push_back(mass.name);
     }
-    rows.push_back(judge("1/" + scheme.label, "Stability: " + scheme.label + " with " + join(names, ", ") +
-                                                  " does not blow up over " + sig(settings.final_time / 3) + " periods",
+    rows.push_back(judge("1/" + scheme.label,
+                         "Stability: " + scheme.label + " with " + join(names, ", ") + " does not blow up over " +
+                             sig(settings.final_time / 3) + " periods",
                          join(measured, "; "), stability_criterion(settings), holds, expectations, used));
   }
   return rows;
@@ -404,7 +367,7 @@ ClaimResult check_consistent_mass_blows_up(const SchemeChoice& scheme, const Sta
   const StabilityRun r =
       stability_run(scheme, consistent_mass(), settings.elements, settings.courant, settings.final_time, bound);
   return judge("1/" + scheme.label + "/consistent",
-               "Contrast (the method's motivation, problem.md §3): " + scheme.label +
+               "Contrast (the method's motivation, mathematics.md §3): " + scheme.label +
                    " with the consistent mass and exact contact is unstable",
                "consistent: " + describe(r),
                "the same run (N = " + std::to_string(settings.elements) + ", Δt = " + sig(settings.courant) +
@@ -439,8 +402,8 @@ TEST_CASE("the stability check fails on an unstable configuration and passes on 
 namespace {
 
 struct MassDeviation {
-  double worst_ratio = 0;      // max |deviation| / tolerance
-  double worst_relative = 0;   // max |deviation| / L
+  double worst_ratio = 0;     // max |deviation| / tolerance
+  double worst_relative = 0;  // max |deviation| / L
   std::string worst_mesh;
 };
 
@@ -511,248 +474,556 @@ TEST_CASE("the mass check fails for a weight that loses mass and for a wrong cla
 
 // ---------------------------------------------------------------------------------------------------
 // Claim 3: the ordering of the paper's Figure 1 ("la solution approchée est d'autant meilleure que la
-// répartition de la masse du nœud de contact est faite sur un autre nœud proche du nœud de contact").
+// répartition de la masse du nœud de contact est faite sur un autre nœud proche du nœud de contact"),
+// judged over regions of parameters.
 //
-// The paper shows curves, not numbers, and does not say in which measure "better" holds; so the claim
-// is checked in each of the eight relative errors of mathematics.md §5 separately, one row per scheme and
-// measure: it holds in a measure if error(Mod 3) < error(Mod 2) < error(Mod 1) strictly on every mesh
-// tried (N = 50, 100, 200, Δt = h/2, one period: the free flight, the contact and the release that a
-// figure of the contact point shows).
-std::vector<ClaimResult> check_ordering(const std::vector<SchemeChoice>& schemes,
-                                        const std::vector<MassRedistribution>& ordered,
-                                        const OrderingSettings& settings, ErrorCache& cache,
+// The paper shows curves, not numbers, and names neither the measure nor the horizon. The mechanism
+// (mathematics.md §8, lib/period_law.cpp) says what to expect: each redistribution shifts the period of
+// the benchmark by ΔP = 2δm_loc + (3/2)δm_glob, −4h/3 (Mod 1), −h/3 (Mod 2), 0 (Mod 3), so the impact
+// times drift linearly and the mass-dependent error grows with the horizon, while the
+// mass-independent error (the smearing of the fronts, O((h²t)^{1/3}) for Crank–Nicolson) grows more
+// slowly. Over one period on a fine mesh the two are comparable and the ranking can go either way;
+// after enough periods it should hold. So the claim is judged per cell (scheme, Δt/h, N, horizon): the
+// cell holds when error(Mod 3) < error(Mod 2) < error(Mod 1) strictly in every measure the scheme is
+// judged in (all eight; Paoli–Schatzman's displacement-type measures and λ are Crank–Nicolson's and are
+// merged into its rows, so only its velocity is its own). A row per scheme and Δt/h holds when every
+// mesh ranks all its measures at the longest horizon (30 periods); its measured text gives the counts
+// at every horizon, and the summary states the region (from which horizon on, for which Δt/h and N).
+namespace {
+
+std::string ordering_claim_text(const std::string& scheme, const std::vector<std::string>& ordered) {
+  std::vector<std::string> best_first(ordered.rbegin(), ordered.rend());
+  return "with " + scheme + ", " + join(best_first, " < ") +
+         (scheme == "ps" ? " in the velocity (its displacements and λ are cn's, merged into cn's rows)" : "");
+}
+
+std::string list_reals(const std::vector<double>& values) {
+  std::vector<std::string> s;
+  for (double v : values) s.push_back(sig(v));
+  return join(s, ", ");
+}
+
+}  // namespace
+
+std::vector<ClaimResult> check_ordering(const repro::Sweep& sweep, const std::vector<std::string>& ordered,
                                         const Expectations& expectations, std::vector<std::string>* used) {
-  if (ordered.size() < 2) throw std::invalid_argument("check_ordering: needs at least two masses");
-  std::vector<std::string> names;
-  for (const MassRedistribution& m : ordered) names.push_back(m.name);
-  std::vector<std::string> best_first(names.rbegin(), names.rend());
+  const std::vector<repro::OrderingCell> cells = repro::ordering_cells(sweep, ordered);
+  const repro::SweepGrid& g = sweep.grid;
+  const std::size_t longest = g.horizons.size() - 1;
   std::vector<ClaimResult> rows;
-  for (const SchemeChoice& scheme : schemes) {
-    // errors[mesh][mass][measure]
-    std::vector<std::vector<std::array<double, 8>>> errors;
-    for (Index n : settings.elements) {
-      errors.emplace_back();
-      for (const MassRedistribution& m : ordered)
-        errors.back().push_back(
-            ErrorAccumulator::values(cache.errors(scheme, m, n, settings.courant, settings.final_time)));
-    }
-    for (std::size_t q = 0; q < 8; ++q) {
+  for (const std::string& scheme : g.schemes) {
+    const std::vector<std::size_t> measures = repro::judged_measures(scheme);
+    std::vector<std::string> measure_list;
+    for (std::size_t q : measures) measure_list.push_back(measure_names[q]);
+    for (double c : g.courants) {
       bool holds = true;
-      std::vector<std::string> measured;
-      for (std::size_t i = 0; i < settings.elements.size(); ++i) {
-        std::vector<std::string> values;
-        for (std::size_t k = ordered.size(); k-- > 0;) values.push_back(sig(errors[i][k][q]));
-        for (std::size_t k = 0; k + 1 < ordered.size(); ++k) holds = holds && errors[i][k + 1][q] < errors[i][k][q];
-        measured.push_back("N = " + std::to_string(settings.elements[i]) + ": " + join(values, " / "));
+      std::vector<std::string> per_horizon;
+      for (std::size_t k = 0; k < g.horizons.size(); ++k) {
+        std::vector<std::string> counts;
+        for (Index n : g.elements)
+          for (const repro::OrderingCell& cell : cells) {
+            if (cell.scheme != scheme || cell.courant != c || cell.elements != n || cell.horizon != k) continue;
+            const int count = cell.count(measures);
+            counts.push_back(std::to_string(count));
+            if (k == longest) holds = holds && count == static_cast<int>(measures.size());
+          }
+        per_horizon.push_back(sig(g.horizons[k]) + " period(s): " + join(counts, " "));
       }
-      rows.push_back(judge("3/" + scheme.label + "/" + ErrorAccumulator::names[q],
-                           "Ordering (Figure 1): with " + scheme.label + ", " + join(best_first, " < ") + " in " +
-                               measure_names[q],
-                           join(best_first, " / ") + " errors: " + join(measured, "; "),
-                           "error(" + join(best_first, ") < error(") + ") strictly on every mesh, N = " +
-                               list_elements(settings.elements) + ", Δt = " + sig(settings.courant) +
-                               "h, T = " + sig(settings.final_time),
-                           holds, expectations, used));
+      rows.push_back(
+          judge("3/" + scheme + "/dt=" + sig(c) + "h",
+                "Ordering (Figure 1) at Δt = " + sig(c) + "h: " + ordering_claim_text(scheme, ordered),
+                "measures ranked (of " + std::to_string(measures.size()) + ") for N = " + list_elements(g.elements) +
+                    ", per horizon: " + join(per_horizon, "; "),
+                "strictly in each of " + join(measure_list, ", ") + " on every mesh N ∈ {" + list_elements(g.elements) +
+                    "} over " + sig(g.horizons.back()) +
+                    " periods of 3L, the horizon where the period law's drift has had the longest to act (the counts "
+                    "at shorter horizons show from when it holds)",
+                holds, expectations, used));
     }
   }
   return rows;
 }
 
-TEST_CASE("the ordering check fails when the masses are fed in the wrong order or replaced by a bad one") {
-  OrderingSettings st;
-  st.elements = {20, 40};
-  ErrorCache cache;
-  const Expectations none;
-  // The true order (Mod 1 worst … Mod 3 best) and the swapped one give opposite verdicts in every
-  // measure where the errors differ: whatever holds for one fails for the other.
-  const SchemeChoice cn = scheme_choice("cn");
-  const std::vector<ClaimResult> right = check_ordering({cn}, {mod1(), mod2(), mod3()}, st, cache, none);
-  const std::vector<ClaimResult> swapped = check_ordering({cn}, {mod3(), mod2(), mod1()}, st, cache, none);
-  REQUIRE(right.size() == 8);
-  REQUIRE(swapped.size() == 8);
-  int right_pass = 0, swapped_pass = 0;
-  for (std::size_t q = 0; q < 8; ++q) {
-    CAPTURE(right[q].measured);
-    right_pass += right[q].verdict == Verdict::reproduced;
-    swapped_pass += swapped[q].verdict == Verdict::reproduced;
-    CHECK(!(right[q].verdict == Verdict::reproduced && swapped[q].verdict == Verdict::reproduced));
+SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& scheme,
+                               const std::vector<std::string>& ordered) {
+  const std::vector<repro::OrderingCell> cells = repro::ordering_cells(sweep, ordered);
+  const repro::SweepGrid& g = sweep.grid;
+  const std::vector<std::size_t> measures = repro::judged_measures(scheme);
+  const int all = static_cast<int>(measures.size());
+  const auto cell_count = [&](double c, Index n, std::size_t k) {
+    for (const repro::OrderingCell& cell : cells)
+      if (cell.scheme == scheme && cell.courant == c && cell.elements == n && cell.horizon == k)
+        return cell.count(measures);
+    throw std::logic_error("ordering summary: missing cell");
+  };
+  std::vector<std::string> holds, fails, per_horizon;
+  int ranked_anywhere = 0, cells_total = 0;
+  for (double c : g.courants) {
+    // The first horizon from which every mesh is ranked at every longer horizon.
+    std::size_t from = g.horizons.size();
+    for (std::size_t k = g.horizons.size(); k-- > 0;) {
+      bool every = true;
+      for (Index n : g.elements) every = every && cell_count(c, n, k) == all;
+      if (!every) break;
+      from = k;
+    }
+    if (from < g.horizons.size()) {
+      holds.push_back("Δt/h = " + sig(c) + " from " + sig(g.horizons[from]) + " period(s) on, every N");
+    } else {
+      std::vector<std::string> ns;
+      for (Index n : g.elements)
+        if (cell_count(c, n, g.horizons.size() - 1) == all) ns.push_back(std::to_string(n));
+      if (!ns.empty())
+        holds.push_back("Δt/h = " + sig(c) + " at " + sig(g.horizons.back()) + " periods for N = " + join(ns, ", ") +
+                        " only");
+    }
   }
-  CHECK(right_pass > 0);  // the real ordering holds somewhere, so the swapped one fails there
-  CHECK(right_pass + swapped_pass <= 8);
-  // A "Mod 3" that puts the lost mass far from the contact node (spread over the first half of the bar)
-  // must not beat the real Mod 3 in the measures where Mod 3 beats Mod 2.
-  const MassRedistribution far = spread_over_first_nodes(10);
-  const std::vector<ClaimResult> wrong = check_ordering({scheme_choice("cn")}, {far, mod3()}, st, cache, none);
-  const std::vector<ClaimResult> reversed = check_ordering({scheme_choice("cn")}, {mod3(), far}, st, cache, none);
-  int wrong_pass = 0, reversed_pass = 0;
-  for (std::size_t q = 0; q < 8; ++q) {
-    wrong_pass += wrong[q].verdict == Verdict::reproduced;
-    reversed_pass += reversed[q].verdict == Verdict::reproduced;
+  for (std::size_t k = 0; k < g.horizons.size(); ++k) {
+    int ranked = 0, total = 0;
+    for (double c : g.courants)
+      for (Index n : g.elements) {
+        ranked += cell_count(c, n, k) == all;
+        ++total;
+      }
+    ranked_anywhere += ranked;
+    cells_total += total;
+    per_horizon.push_back(std::to_string(ranked) + "/" + std::to_string(total) + " at " + sig(g.horizons[k]) + "p");
+    if (ranked < total) {
+      int fewest = all;
+      for (double c : g.courants)
+        for (Index n : g.elements) fewest = std::min(fewest, cell_count(c, n, k));
+      fails.push_back("at " + sig(g.horizons[k]) + " period(s) " + std::to_string(total - ranked) + " of " +
+                      std::to_string(total) + " cells are not ranked in every measure (down to " +
+                      std::to_string(fewest) + " of " + std::to_string(all) + ")");
+    }
   }
-  CHECK(reversed_pass < wrong_pass);
+  SummaryLine line;
+  line.key = "ordering-" + scheme;
+  line.claim = "3 Ordering Mod 3 < Mod 2 < Mod 1, " + scheme + (scheme == "ps" ? " (velocity; rest = cn)" : "");
+  line.verdict = ranked_anywhere == cells_total ? "reproduced"
+                 : ranked_anywhere == 0         ? "not reproduced"
+                                                : "partly reproduced";
+  line.holds = holds.empty() ? "in no (Δt/h) for every N" : join(holds, "; ");
+  line.fails = fails.empty() ? "nowhere in the grid" : join(fails, "; ");
+  line.numbers = "cells ranked in all " + std::to_string(all) + " measures: " + join(per_horizon, ", ") +
+                 " (N = " + list_elements(g.elements) + ", Δt/h = " + list_reals(g.courants) + ")";
+  return line;
+}
+
+TEST_CASE("the ordering check fails when the masses are fed in the wrong order") {
+  repro::SweepGrid grid;
+  grid.schemes = {"cn"};
+  grid.courants = {0.5};
+  grid.elements = {20, 40};
+  grid.horizons = {1, 10};
+  grid.baseline = false;
+  const repro::Sweep sweep = repro::run_sweep(grid, 2);
+  const std::vector<ClaimResult> right = check_ordering(sweep, {"mod1", "mod2", "mod3"}, {});
+  const std::vector<ClaimResult> swapped = check_ordering(sweep, {"mod3", "mod2", "mod1"}, {});
+  REQUIRE(right.size() == 1);
+  REQUIRE(swapped.size() == 1);
+  // After 10 periods the drift of Mod 1 and Mod 2 dominates (N = 20, 40: 8 of 8 measures when this test
+  // was written): the paper's ranking holds there and the swapped one cannot.
+  CAPTURE(right[0].measured);
+  CHECK(right[0].verdict == Verdict::reproduced);
+  CHECK(swapped[0].verdict == Verdict::failed);
+  const SummaryLine line = summarize_ordering(sweep, "cn", {"mod1", "mod2", "mod3"});
+  CHECK(line.holds.find("from") != std::string::npos);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// The mechanism of claim 3: the drift of the impact times (mathematics.md §8).
+//
+// The period law predicts the mass-dependent part of the drift per period, 2ℓ_f + ℓ_c − 3L from the
+// first eigenvalues of the reduced pencils (lib/period_law.cpp: −4h/3, −h/3, 0 + O(h²)). A scheme adds
+// a drift of its own, the same for every mass (Crank–Nicolson's release of a smeared front: up to
+// about +0.2h at Δt = h, measured when the phase diagnostics were written, lib/phase.cpp). Hence two
+// criteria per cell (Δt/h, N) of the scheme, fixed before the sweep: each mass's drift within 0.25h of
+// the law, and the differences Mod 1 − Mod 3 and Mod 2 − Mod 3, where the scheme's share cancels,
+// within 0.1h of the law's.
+namespace {
+
+double law_drift(const std::string& mass, Index elements) {
+  return predict_period(UniformMesh(1.0, elements), mass_redistribution_by_name(mass)).period_error;
+}
+
+}  // namespace
+
+std::vector<ClaimResult> check_phase_drift(const repro::Sweep& sweep, const PhaseDriftSettings& st,
+                                           const Expectations& expectations, std::vector<std::string>* used) {
+  const repro::SweepGrid& g = sweep.grid;
+  bool holds = true;
+  double worst = 0, worst_difference = 0;
+  std::vector<std::string> per_mass;
+  for (const std::string& mass : g.masses) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (double c : g.courants)
+      for (Index n : g.elements) {
+        const double h = 1.0 / static_cast<double>(n);
+        const double d = *sweep.find(st.scheme, mass, c, n).drift_per_period;
+        lo = std::min(lo, d / h);
+        hi = std::max(hi, d / h);
+        worst = std::max(worst, std::abs(d - law_drift(mass, n)) / h);
+        const double d3 = *sweep.find(st.scheme, "mod3", c, n).drift_per_period;
+        worst_difference =
+            std::max(worst_difference, std::abs((d - d3) - (law_drift(mass, n) - law_drift("mod3", n))) / h);
+      }
+    per_mass.push_back(mass + " " + fixed(lo, 2) + "h to " + fixed(hi, 2) + "h (law " +
+                       fixed(law_drift(mass, g.elements.back()) * static_cast<double>(g.elements.back()), 2) + "h)");
+  }
+  holds = worst <= st.tolerance && worst_difference <= st.difference_tolerance;
+  return {judge(
+      "3/mechanism/" + st.scheme,
+      "Mechanism of claim 3 (period law, mathematics.md §8): with " + st.scheme +
+          ", the impact times drift per period as 2ℓ_f + ℓ_c − 3L predicts (−4h/3, −h/3, 0)",
+      "drift per period over every Δt/h and N: " + join(per_mass, "; ") + "; largest deviation from the law " +
+          fixed(worst, 3) + "h, of the differences to mod3 " + fixed(worst_difference, 3) + "h",
+      "in every cell Δt/h ∈ {" + list_reals(g.courants) + "}, N ∈ {" + list_elements(g.elements) + "} over " +
+          sig(g.horizons.back()) + " periods: |drift − law| ≤ " + sig(st.tolerance) +
+          "h for each mass, and |(drift − drift_mod3) − (law − law_mod3)| ≤ " + sig(st.difference_tolerance) + "h",
+      holds, expectations, used)};
+}
+
+SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSettings& st) {
+  const repro::SweepGrid& g = sweep.grid;
+  std::vector<std::string> at_100;
+  const Index n = std::find(g.elements.begin(), g.elements.end(), Index{100}) != g.elements.end() ? 100 : g.elements[0];
+  const double c = std::find(g.courants.begin(), g.courants.end(), 0.5) != g.courants.end() ? 0.5 : g.courants[0];
+  const double h = 1.0 / static_cast<double>(n);
+  for (const std::string& mass : g.masses)
+    at_100.push_back(mass + " " + fixed(*sweep.find(st.scheme, mass, c, n).drift_per_period / h, 3) + "h (law " +
+                     fixed(law_drift(mass, n) / h, 3) + "h)");
+  double worst = 0;
+  for (const std::string& mass : g.masses)
+    for (double cc : g.courants)
+      for (Index m : g.elements)
+        worst = std::max(worst, std::abs(*sweep.find(st.scheme, mass, cc, m).drift_per_period - law_drift(mass, m)) *
+                                    static_cast<double>(m));
+  SummaryLine line;
+  line.key = "mechanism";
+  line.claim = "3 Mechanism: impact times drift −4h/3, −h/3, 0 per period (" + st.scheme + ")";
+  line.verdict = worst <= st.tolerance ? "reproduced" : "partly reproduced";
+  line.holds = "every Δt/h, N of the sweep within " + fixed(worst, 2) + "h of the period law";
+  line.fails = worst <= st.tolerance ? "nowhere in the grid" : "cells beyond " + sig(st.tolerance) + "h";
+  line.numbers = "N = " + std::to_string(n) + ", Δt = " + sig(c) + "h, " + sig(g.horizons.back()) +
+                 " periods: " + join(at_100, ", ");
+  return line;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// The sensitivity of claim 3 to the reconstruction. The paper describes its masses in words only
+// (mathematics.md §3); the matrices are this project's reconstruction. Other readings of the words:
+// Mod 2 "redistributed uniformly on the other nodes" as the lost mass 2h/3 shared in equal parts by
+// the diagonal entries of nodes 1..N−1 (instead of scaling every entry); Mod 3 "on the node next to
+// the contact node" spread over nodes 1 and 2 (½, ½) or ¾ on node 1 and ¼ on node 2. The period law
+// predicts the same drifts (the lost mass stays within O(h) of the new free end for the Mod 3 variants,
+// δm_loc = 0 + O(h); the diagonal Mod 2 has δm_loc = −2h/3, δm_glob = 2h/3 like Mod 2), so the verdict
+// should not depend on the reading: the criterion is that each variant, in place of the reconstruction,
+// ranks the masses in as many measures as the reconstruction in every cell checked.
+namespace {
+
+MassRedistribution mod2_diagonal() {
+  return {"mod2-diagonal", "the lost mass 2h/3 shared by the diagonal entries of nodes 1..N-1",
+          [](Index i, Index j, const UniformMesh& mesh) {
+            if (i == 0 || j == 0) return 0.0;
+            return i == j ? 1.0 + 1.0 / static_cast<double>(mesh.elements - 1) : 1.0;
+          }};
+}
+
+MassRedistribution mod3_three_quarters() {
+  return {"mod3-3/4", "3/4 of the lost mass on node 1, 1/4 on node 2", [](Index i, Index j, const UniformMesh&) {
+            if (i == 0 || j == 0) return 0.0;
+            if (i == j && i == 1) return 1.75;
+            if (i == j && i == 2) return 1.25;
+            return 1.0;
+          }};
+}
+
+}  // namespace
+
+std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySettings& st,
+                                                          const Expectations& expectations,
+                                                          std::vector<std::string>* used) {
+  MassRedistribution spread2 = spread_over_first_nodes(2);
+  spread2.name = "mod3-spread2";
+  const std::vector<std::vector<MassRedistribution>> triples = {{mod1(), mod2(), mod3()},
+                                                                {mod1(), mod2_diagonal(), mod3()},
+                                                                {mod1(), mod2(), spread2},
+                                                                {mod1(), mod2(), mod3_three_quarters()}};
+  // All runs at once (threads), then the counts per triple and mesh.
+  std::vector<repro::Configuration> configurations;
+  std::vector<std::string> names;
+  for (const std::vector<MassRedistribution>& triple : triples)
+    for (const MassRedistribution& m : triple)
+      for (Index n : st.elements) {
+        if (std::find(names.begin(), names.end(), m.name + "/" + std::to_string(n)) != names.end()) continue;
+        repro::Configuration c =
+            repro::paper_configuration(st.scheme, "algebraic", "mod3", n, st.courant, 3 * st.periods);
+        c.mass = m;
+        configurations.push_back(c);
+        names.push_back(m.name + "/" + std::to_string(n));
+      }
+  const std::vector<repro::Measures> measures = repro::run_configurations(configurations);
+  const auto errors = [&](const std::string& mass, Index n) {
+    const std::size_t k =
+        static_cast<std::size_t>(std::find(names.begin(), names.end(), mass + "/" + std::to_string(n)) - names.begin());
+    return measures[k];
+  };
+  const std::vector<std::size_t> judged = repro::judged_measures(st.scheme);
+  const auto ranked = [&](const std::vector<MassRedistribution>& t, Index n) {
+    int count = 0;
+    for (std::size_t q : judged) {
+      const auto e = [&](std::size_t k) { return ErrorAccumulator::values(errors(t[k].name, n).errors)[q]; };
+      count += e(2) < e(1) && e(1) < e(0);
+    }
+    return count;
+  };
+  std::vector<ClaimResult> rows;
+  for (std::size_t k = 1; k < triples.size(); ++k) {
+    const MassRedistribution& variant = triples[k][k == 1 ? 1 : 2];
+    bool holds = true;
+    std::vector<std::string> measured;
+    for (Index n : st.elements) {
+      const int reconstruction = ranked(triples[0], n), with_variant = ranked(triples[k], n);
+      holds = holds && reconstruction == with_variant;
+      const double h = 1.0 / static_cast<double>(n);
+      measured.push_back("N = " + std::to_string(n) + ": " + std::to_string(with_variant) + " measures ranked (" +
+                         std::to_string(reconstruction) + " with the reconstruction), drift " +
+                         fixed(*errors(variant.name, n).phase->drift_per_period / h, 3) + "h (law " +
+                         fixed(predict_period(UniformMesh(1.0, n), variant).period_error / h, 3) + "h)");
+    }
+    rows.push_back(judge("3/sensitivity/" + variant.name,
+                         "Claim 3 does not depend on the reconstruction: " + variant.description + " in place of " +
+                             (k == 1 ? "Mod 2" : "Mod 3"),
+                         join(measured, "; "),
+                         "with " + st.scheme + ", Δt = " + sig(st.courant) + "h, " + sig(st.periods) +
+                             " periods: the same number of measures ranked Mod 3 < Mod 2 < Mod 1 as with the "
+                             "reconstruction on every mesh N = " +
+                             list_elements(st.elements),
+                         holds, expectations, used));
+  }
+  return rows;
 }
 
 // ---------------------------------------------------------------------------------------------------
 // Claim 4: convergence as h, Δt → 0 (paper §2), and an error estimate in time for Crank–Nicolson.
 //
-// In h (with Δt = C h, C = ½ and 1, mathematics.md §5): the paper proves convergence without a rate. The
-// exact solution is only Lipschitz (u_x and u_t jump across characteristics, λ jumps at impact and
-// release), so the rates in the energy norms are at best ½. "Converges" is checked as: every one of
-// the eight relative errors decreases at every refinement (N = 50 … 800, doubling), and its least-
-// squares order in h is at least ¼ — a margin above 0 so that an error that stagnates, or decreases
-// by round-off only, does not pass.
-//
-// In time at fixed h: the paper says an estimate is proved for Crank–Nicolson but gives no order. At
-// fixed h the semi-discrete problem is a Lipschitz ODE; its solution is compared with a reference of
-// the same h and a much smaller Δt (mathematics.md §5), at the instants of the coarsest Δt. The criterion
-// is the same (decrease at every halving of Δt, least-squares order ≥ ¼); the observed order and the
-// local order of each halving are reported, so that the range where an order holds can be read off.
-std::vector<ClaimResult> check_convergence(const std::vector<SchemeChoice>& schemes,
-                                           const std::vector<MassRedistribution>& masses,
-                                           const ConvergenceSettings& settings, ErrorCache& cache,
-                                           const Expectations& expectations, std::vector<std::string>* used) {
-  std::vector<double> h;
-  for (Index n : settings.elements) h.push_back(1.0 / static_cast<double>(n));
+// In h. The paper proves convergence without a rate. The exact solution is only Lipschitz: u_x and
+// u_t jump across characteristics and λ jumps at impact and release. For such data the orders are
+// the regularity limit of the benchmark (mathematics.md §9): a stable scheme with phase error of order
+// μ smears a jump over a width W; for Crank–Nicolson (μ = 2) W ≈ (h²t)^{1/3}, which gives h^{1/3} in the
+// energy-type measures (H¹ of u, L² of u_t) and for λ, and h^{2/3} in the displacement measures (u,
+// u(0,·): the release moves by O(W)); for backward Euler (W ≈ (Δt t)^{1/2}) h^{1/2} and h^{1/4}. The
+// criterion compares the least-squares order over the sweep's meshes with these predictions, with a
+// tolerance of half the distance between a scheme's two predicted orders (1/6 for Crank–Nicolson, 1/8
+// for backward Euler): a measured order is attributed to the nearer of the two classes, and an order
+// 0 (no convergence) or 1 (a smooth solution) belongs to neither. (The previous criterion, "order ≥ ¼",
+// sat on the data: backward Euler's orders are ¼ by this very mechanism.) A mass whose period is off by
+// O(h) (Mod 1, Mod 2, mathematics.md §8) adds a phase error δ ∝ h t, of orders 1 (displacement) and ½
+// (energy-type, λ: a jump displaced by δ), which for Crank–Nicolson overtakes the smearing after
+// t ∝ h^{−1/2}: its orders may lie anywhere between the two mechanisms' (repro::allowed_order). One row
+// per scheme and horizon: every (mass, Δt/h) cell within. Paoli–Schatzman with the consistent mass (the baseline, with
+// Crank–Nicolson's phase error) is judged against Crank–Nicolson's predictions.
+std::vector<ClaimResult> check_convergence(const repro::Sweep& sweep, const Expectations& expectations,
+                                           std::vector<std::string>* used) {
+  const std::vector<repro::OrderCell> cells = repro::order_cells(sweep);
+  const repro::SweepGrid& g = sweep.grid;
+  std::vector<std::string> schemes = g.schemes;
+  if (g.baseline) schemes.push_back("ps-consistent");
   std::vector<ClaimResult> rows;
-  for (const SchemeChoice& scheme : schemes) {
-    for (const MassRedistribution& mass : masses) {
-      for (double courant : settings.courants) {
-        std::vector<std::array<double, 8>> e;
-        for (Index n : settings.elements)
-          e.push_back(ErrorAccumulator::values(cache.errors(scheme, mass, n, courant, settings.final_time)));
-        bool holds = true;
-        std::vector<std::string> orders, broken;
-        for (std::size_t q = 0; q < 8; ++q) {
-          std::vector<double> y;
-          for (const auto& v : e) y.push_back(v[q]);
-          bool decreasing = true;
-          double worst_ratio = 0;
-          for (std::size_t i = 0; i + 1 < y.size(); ++i) {
-            decreasing = decreasing && y[i + 1] < y[i];
-            worst_ratio = std::max(worst_ratio, y[i + 1] / y[i]);
-          }
-          const bool positive = std::all_of(y.begin(), y.end(), [](double v) { return v > 0 && std::isfinite(v); });
-          const double order = positive ? least_squares_order(h, y) : std::numeric_limits<double>::quiet_NaN();
-          const bool ok = decreasing && positive && order >= settings.minimum_order;
-          holds = holds && ok;
-          orders.push_back(std::string(measure_names[q]) + " " + fixed(order, 3));
-          if (!ok)
-            broken.push_back(std::string(measure_names[q]) + " (errors " + sig(y.front()) + " → " + sig(y.back()) +
-                             ", worst ratio e(h/2)/e(h) = " + fixed(worst_ratio, 2) + ")");
+  for (const std::string& scheme : schemes) {
+    const std::vector<std::size_t> judged = repro::judged_measures(scheme);
+    const repro::PredictedOrders predicted = repro::predicted_orders(scheme);
+    for (std::size_t k = 0; k < g.horizons.size(); ++k) {
+      bool holds = true;
+      int within = 0, total = 0;
+      std::vector<std::string> per_cell;
+      for (const repro::OrderCell& cell : cells) {
+        if (cell.scheme != scheme || cell.horizon != k) continue;
+        double d_lo = INFINITY, d_hi = -INFINITY, e_lo = INFINITY, e_hi = -INFINITY;
+        std::vector<std::string> outside;
+        for (std::size_t q : judged) {
+          const double p = cell.order[q];
+          if (repro::displacement_measure(q))
+            d_lo = std::min(d_lo, p), d_hi = std::max(d_hi, p);
+          else
+            e_lo = std::min(e_lo, p), e_hi = std::max(e_hi, p);
+          if (!cell.within[q]) outside.push_back(std::string(measure_names[q]) + " " + fixed(p, 2));
+          holds = holds && cell.within[q];
+          within += cell.within[q];
+          ++total;
         }
-        std::string measured = "orders: " + join(orders, ", ");
-        if (!broken.empty()) measured += ". Criterion not met by: " + join(broken, "; ");
-        rows.push_back(judge("4/" + scheme.label + "/" + mass.name + "/C=" + sig(courant),
-                             "Convergence in h: " + scheme.label + " with " + mass.name + ", Δt = " + sig(courant) +
-                                 "h",
-                             measured,
-                             "each of the 8 errors decreases at every refinement N = " +
-                                 list_elements(settings.elements) + " and its least-squares order in h is ≥ " +
-                                 sig(settings.minimum_order) + " (T = " + sig(settings.final_time) + ")",
-                             holds, expectations, used));
+        std::string text = cell.mass + " Δt/h = " + sig(cell.courant) + ": ";
+        if (d_lo <= d_hi) text += "u " + fixed(d_lo, 2) + "–" + fixed(d_hi, 2) + ", ";
+        text += "energy-type " + fixed(e_lo, 2) + "–" + fixed(e_hi, 2);
+        if (!outside.empty()) text += " (outside: " + join(outside, ", ") + ")";
+        per_cell.push_back(text);
       }
+      rows.push_back(judge(
+          "4/" + scheme + "/T=" + sig(g.horizons[k]) + "p",
+          "Convergence in h over " + sig(g.horizons[k]) + " period(s): " + scheme + " at the predicted orders" +
+              (scheme == "ps" ? " (velocity; the rest is cn's)" : ""),
+          "least-squares orders, N = " + list_elements(g.elements) + ": " + join(per_cell, "; ") + "; " +
+              std::to_string(within) + " of " + std::to_string(total) + " within",
+          "every order within " + fixed(predicted.tolerance, 3) + " of the prediction (displacement measures " +
+              fixed(predicted.displacement, 3) + ", energy-type and λ " + fixed(predicted.energy, 3) +
+              ", mathematics.md §9)" +
+              (scheme == "be" ? std::string()
+                              : ", or for a mass whose period is off by O(h) (Mod 1, Mod 2) up to the drift's orders "
+                                "1 and ½ (+ the same tolerance)") +
+              " in every (mass, Δt/h ∈ {" + list_reals(g.courants) + "}) cell, T = " + sig(g.horizons[k]) +
+              " period(s)",
+          holds, expectations, used));
     }
   }
   return rows;
 }
 
+SummaryLine summarize_convergence(const repro::Sweep& sweep) {
+  const std::vector<repro::OrderCell> cells = repro::order_cells(sweep);
+  const repro::SweepGrid& g = sweep.grid;
+  std::vector<std::string> schemes = g.schemes;
+  if (g.baseline) schemes.push_back("ps-consistent");
+  std::vector<std::string> holds, fails, numbers;
+  int all_within = 0, all_total = 0;
+  for (const std::string& scheme : schemes) {
+    const std::vector<std::size_t> judged = repro::judged_measures(scheme);
+    int within = 0, total = 0;
+    std::vector<std::string> bad_horizons;
+    for (std::size_t k = 0; k < g.horizons.size(); ++k) {
+      int w = 0, t = 0;
+      for (const repro::OrderCell& cell : cells)
+        if (cell.scheme == scheme && cell.horizon == k)
+          for (std::size_t q : judged) w += cell.within[q], ++t;
+      within += w, total += t;
+      if (w < t)
+        bad_horizons.push_back(std::to_string(t - w) + " of " + std::to_string(t) + " orders outside at " +
+                               sig(g.horizons[k]) + " period(s)");
+    }
+    all_within += within, all_total += total;
+    holds.push_back(scheme + " " + std::to_string(within) + "/" + std::to_string(total));
+    if (!bad_horizons.empty()) fails.push_back(scheme + ": " + join(bad_horizons, ", "));
+  }
+  for (const std::string& scheme : {std::string("cn"), std::string("be")}) {
+    for (const repro::OrderCell& cell : cells)
+      if (cell.scheme == scheme && cell.mass == "mod3" && cell.courant == 0.5 && cell.horizon == 0)
+        numbers.push_back(scheme + " mod3 Δt = h/2, 1 period: u(0,·) " + fixed(cell.order[0], 2) + ", u L∞(L²) " +
+                          fixed(cell.order[2], 2) + ", λ " + fixed(cell.order[1], 2) + ", u L∞(H¹) " +
+                          fixed(cell.order[3], 2) + ", u_t L²(L²) " + fixed(cell.order[7], 2));
+  }
+  SummaryLine line;
+  line.key = "convergence";
+  line.claim = "4 Convergence in h at the predicted orders (cn 2/3, 1/3; be 1/2, 1/4)";
+  line.verdict = all_within == all_total ? "reproduced" : all_within == 0 ? "not reproduced" : "partly reproduced";
+  line.holds = "orders within tolerance (measure × mass × Δt/h × horizon): " + join(holds, ", ");
+  line.fails = fails.empty() ? "nowhere in the grid" : join(fails, "; ");
+  line.numbers = join(numbers, "; ");
+  return line;
+}
+
 TEST_CASE("the convergence check fails for a weight that is not 1 + O(h)") {
-  // Doubling every weight doubles the mass: the discrete waves travel at 1/√2 and the errors stagnate.
-  MassRedistribution heavy = mod1();
-  heavy.name = "heavy";
-  heavy.weight = [](Index i, Index j, const UniformMesh&) { return (i == 0 || j == 0) ? 0.0 : 2.0; };
-  ConvergenceSettings st;
-  st.elements = {20, 40, 80};
-  st.courants = {0.5};
-  ErrorCache cache;
-  const std::vector<ClaimResult> rows = check_convergence({scheme_choice("cn")}, {heavy, mod3()}, st, cache, {});
-  REQUIRE(rows.size() == 2);
+  // Doubling every weight doubles the mass: the discrete waves travel at 1/√2 and the errors stagnate;
+  // its orders are far from the predicted ones. Fed to the check as "mod3" of a hand-made sweep.
+  repro::SweepGrid grid;
+  grid.schemes = {"cn"};
+  grid.masses = {"mod3"};
+  grid.baseline = false;
+  grid.courants = {0.5};
+  grid.elements = {20, 40, 80};
+  grid.horizons = {1};
+  repro::Sweep heavy;
+  heavy.grid = grid;
+  for (Index n : grid.elements) {
+    repro::Configuration c = repro::paper_configuration("cn", "algebraic", "mod3", n, 0.5, 3.0);
+    c.mass.weight = [](Index i, Index j, const UniformMesh&) { return (i == 0 || j == 0) ? 0.0 : 2.0; };
+    const repro::Measures m = repro::run_configuration(c);
+    heavy.runs.push_back({"cn", "mod3", 0.5, n, {ErrorAccumulator::values(m.errors)}, 0.0, 0.0});
+  }
+  const std::vector<ClaimResult> rows = check_convergence(heavy, {});
+  REQUIRE(rows.size() == 1);
   CAPTURE(rows[0].measured);
-  CAPTURE(rows[1].measured);
   CHECK(rows[0].verdict == Verdict::failed);
 }
 
 namespace {
 
-// The displacement of a run at the instants k Δt₀ (Δt₀ the coarsest step), k = 0 … K.
-std::vector<Eigen::VectorXd> snapshots(const SchemeChoice& scheme, const MassRedistribution& mass,
-                                       const UniformMesh& mesh, double courant, double coarsest, Index count) {
-  const double ratio = coarsest / courant;
-  const Index stride = static_cast<Index>(std::llround(ratio));
-  if (stride < 1 || std::abs(ratio - static_cast<double>(stride)) > 1e-9 * ratio)
-    throw std::invalid_argument("check_time_convergence: every Courant number must divide the coarsest one");
-  BarSimulation simulation(benchmark_problem(), mesh, mass, scheme.parameters, courant * mesh.h());
-  std::vector<Eigen::VectorXd> u;
-  run(simulation, stride * count, [&](const Sample& s) {
-    if (s.level % stride == 0) u.push_back(*s.displacement);
-  });
-  return u;
+// One run in lockstep with a reference run of the same mesh and mass and a step `ratio` times smaller,
+// compared at the common instants in the eight measures (ReferenceComparison).
+std::array<double, 8> against_reference(const SchemeChoice& scheme, const MassRedistribution& mass,
+                                        const UniformMesh& mesh, double dt_ref, Index ratio, double final_time) {
+  BarSimulation reference(benchmark_problem(), mesh, mass, scheme.parameters, dt_ref);
+  BarSimulation coarse(benchmark_problem(), mesh, mass, scheme.parameters, static_cast<double>(ratio) * dt_ref);
+  ReferenceComparison comparison(mesh);
+  comparison.add(coarse.sample(), reference.sample());
+  const Index steps = steps_to_reach(final_time, static_cast<double>(ratio) * dt_ref);
+  for (Index n = 0; n < steps; ++n) {
+    for (Index k = 0; k < ratio; ++k) reference.step();
+    coarse.step();
+    comparison.add(coarse.sample(), reference.sample());
+  }
+  return comparison.relative();
 }
 
 }  // namespace
 
+// In time at fixed h. At fixed h the semi-discrete problem is a Lipschitz ODE whose right-hand side
+// switches at impacts and releases; the trapezoidal rule keeps its second order (mathematics.md §9),
+// and with the massless node's velocity from its algebraic row (mathematics.md §7) the velocity too.
+// The run is compared with a reference of the same h and a much smaller Δt at the instants they share,
+// in the eight measures; the criterion is the local order of the finest halving of Δt (the asymptotic
+// order), within 2 ± ¼. The least-squares order over the three finest steps and every local order are
+// reported: a coarser step can put a level of both runs between their impacts (the first impact of
+// Mod 3 falls within O(h²) of t = L, a level of every run), where V₀ is V₁ in one run and 0 in the
+// other, and the sampled velocity norms then show one O(1) outlier.
 std::vector<ClaimResult> check_time_convergence(const SchemeChoice& scheme,
                                                 const std::vector<MassRedistribution>& masses,
-                                                const TimeConvergenceSettings& settings,
-                                                const Expectations& expectations, std::vector<std::string>* used) {
-  const UniformMesh mesh(1.0, settings.elements);
-  const double coarsest = settings.courants.front();
-  const Index count = steps_to_reach(settings.final_time, coarsest * mesh.h());
-  const Tridiagonal m = p1_mass(mesh), s = p1_stiffness(mesh);
+                                                const TimeConvergenceSettings& st, const Expectations& expectations,
+                                                std::vector<std::string>* used) {
+  const UniformMesh mesh(1.0, st.elements);
+  const double h = mesh.h(), dt_ref = st.reference_courant * h;
   std::vector<double> dt;
-  for (double c : settings.courants) dt.push_back(c * mesh.h());
-  const char* const names[3] = {"u L∞(L²)", "u L∞(H¹)", "u(0,·) L∞"};
+  std::vector<Index> ratio;
+  for (double c : st.courants) {
+    const double r = c / st.reference_courant;
+    if (std::abs(r - std::round(r)) > 1e-9 * r || r < 2)
+      throw std::invalid_argument("check_time_convergence: every Δt must be an integer multiple >= 2 of the reference");
+    ratio.push_back(static_cast<Index>(std::llround(r)));
+    dt.push_back(c * h);
+  }
   std::vector<ClaimResult> rows;
   for (const MassRedistribution& mass : masses) {
-    const std::vector<Eigen::VectorXd> reference =
-        snapshots(scheme, mass, mesh, settings.reference_courant, coarsest, count);
-    double ref_l2 = 0, ref_h1 = 0, ref_u0 = 0;
-    for (const Eigen::VectorXd& r : reference) {
-      ref_l2 = std::max(ref_l2, std::sqrt(m.bilinear(r, r)));
-      ref_h1 = std::max(ref_h1, std::sqrt(s.bilinear(r, r)));
-      ref_u0 = std::max(ref_u0, std::abs(r[0]));
-    }
-    std::vector<std::vector<double>> errors(3);
-    for (double c : settings.courants) {
-      const std::vector<Eigen::VectorXd> u = snapshots(scheme, mass, mesh, c, coarsest, count);
-      double l2 = 0, h1 = 0, u0 = 0;
-      for (std::size_t k = 0; k < u.size(); ++k) {
-        const Eigen::VectorXd d = u[k] - reference[k];
-        l2 = std::max(l2, std::sqrt(m.bilinear(d, d)));
-        h1 = std::max(h1, std::sqrt(s.bilinear(d, d)));
-        u0 = std::max(u0, std::abs(d[0]));
-      }
-      errors[0].push_back(l2 / ref_l2);
-      errors[1].push_back(h1 / ref_h1);
-      errors[2].push_back(u0 / ref_u0);
-    }
+    std::vector<std::array<double, 8>> e;
+    for (Index r : ratio) e.push_back(against_reference(scheme, mass, mesh, dt_ref, r, st.final_time));
     bool holds = true;
     std::vector<std::string> measured;
-    for (int q = 0; q < 3; ++q) {
-      const std::vector<double>& y = errors[q];
-      bool decreasing = true;
+    for (std::size_t q = 0; q < 8; ++q) {
+      std::vector<double> y;
+      for (const auto& v : e) y.push_back(v[q]);
       std::vector<std::string> local;
+      double finest = std::nan("");
       for (std::size_t i = 0; i + 1 < y.size(); ++i) {
-        decreasing = decreasing && y[i + 1] < y[i];
-        local.push_back(y[i + 1] > 0 && y[i] > 0 ? fixed(std::log(y[i] / y[i + 1]) / std::log(dt[i] / dt[i + 1]), 2)
-                                                 : "nan");
+        const double p =
+            y[i + 1] > 0 && y[i] > 0 ? std::log(y[i] / y[i + 1]) / std::log(dt[i] / dt[i + 1]) : std::nan("");
+        local.push_back(fixed(p, 2));
+        finest = p;
       }
-      const bool positive = std::all_of(y.begin(), y.end(), [](double v) { return v > 0 && std::isfinite(v); });
-      const double order = positive ? least_squares_order(dt, y) : std::numeric_limits<double>::quiet_NaN();
-      holds = holds && decreasing && positive && order >= settings.minimum_order;
-      measured.push_back(std::string(names[q]) + ": order " + fixed(order, 2) + " (local " + join(local, ", ") +
-                         "; errors " + sig(y.front()) + " → " + sig(y.back()) + ")");
+      const std::size_t n = y.size(), first = n >= 3 ? n - 3 : 0;
+      const double tail = least_squares_order(std::vector<double>(dt.begin() + static_cast<long>(first), dt.end()),
+                                              std::vector<double>(y.begin() + static_cast<long>(first), y.end()));
+      holds = holds && std::abs(finest - st.predicted_order) <= st.tolerance;
+      measured.push_back(std::string(measure_names[q]) + ": finest " + fixed(finest, 2) + ", three finest " +
+                         fixed(tail, 2) + " (local " + join(local, ", ") + ")");
     }
-    std::vector<std::string> ratios;
-    for (double c : settings.courants) ratios.push_back(sig(c));
+    std::vector<std::string> steps;
+    for (double c : st.courants) steps.push_back("h/" + sig(1 / c));
     rows.push_back(judge(
         "4t/" + scheme.label + "/" + mass.name,
-        "Error estimate in time: " + scheme.label + " with " + mass.name + " converges in Δt at fixed h",
+        "Error estimate in time: " + scheme.label + " with " + mass.name + " converges at order 2 in Δt at fixed h",
         join(measured, "; "),
-        "against a reference with Δt = h/" + sig(1 / settings.reference_courant) + " (same h = 1/" +
-            std::to_string(settings.elements) + "), at the instants of the coarsest Δt up to T = " +
-            sig(settings.final_time) + ", each error decreases at every refinement Δt/h = " + join(ratios, ", ") +
-            " and its least-squares order in Δt is ≥ " + sig(settings.minimum_order),
+        "against a reference with Δt = h/" + sig(1 / st.reference_courant) + " (same h = 1/" +
+            std::to_string(st.elements) + ") at the common instants up to T = " + sig(st.final_time) +
+            ", Δt = " + join(steps, ", ") + ": the order of the finest halving within " + sig(st.predicted_order) +
+            " ± " + sig(st.tolerance) + " in each of the 8 measures",
         holds, expectations, used));
   }
   return rows;
@@ -761,17 +1032,12 @@ std::vector<ClaimResult> check_time_convergence(const SchemeChoice& scheme,
 TEST_CASE("the convergence-in-time check fails when the time step is not refined") {
   TimeConvergenceSettings st;
   st.elements = 20;
-  st.courants = {1, 1, 1};
+  st.courants = {0.5, 0.5, 0.5};
   st.reference_courant = 1.0 / 16;
   const std::vector<ClaimResult> stagnant = check_time_convergence(scheme_choice("cn"), {mod3()}, st, {});
   REQUIRE(stagnant.size() == 1);
   CHECK(stagnant[0].verdict == Verdict::failed);
-  st.courants = {1, 0.5, 0.25};
-  const std::vector<ClaimResult> refined = check_time_convergence(scheme_choice("cn"), {mod3()}, st, {});
-  CAPTURE(refined[0].measured);
-  CHECK(refined[0].verdict == Verdict::reproduced);
 }
-
 // ---------------------------------------------------------------------------------------------------
 // Claim 5: energy. Crank–Nicolson's discrete energy Eⁿ = ½VᵀMV + ½UᵀSU is exactly conserved by a step
 // that keeps the contact status (in contact both levels have u₀ = 0, free both have λ = 0: the contact
@@ -794,17 +1060,17 @@ namespace {
 
 struct EnergyTrace {
   double e0 = 0, e_final = 0, round_off = 0;
-  double max_same_status = 0;   // max |ΔE| / E(0) over steps that keep the status
-  double jump_sum = 0;          // Σ |ΔE| / E(0) over steps that change it
-  double max_increase = 0;      // max (ΔE) / E(0)
+  double max_same_status = 0;  // max |ΔE| / E(0) over steps that keep the status
+  double jump_sum = 0;         // Σ |ΔE| / E(0) over steps that change it
+  double max_increase = 0;     // max (ΔE) / E(0)
   int changes = 0;
-  int increases = 0;            // steps with ΔE > round-off
+  int increases = 0;  // steps with ΔE > round-off
 };
 
 // The round-off allowance of an energy change, relative to E(0): factor · ε √N (L/Δt).
 double energy_round_off(const UniformMesh& mesh, double dt, double factor) {
-  return factor * std::numeric_limits<double>::epsilon() * std::sqrt(static_cast<double>(mesh.elements)) *
-         mesh.length / dt;
+  return factor * std::numeric_limits<double>::epsilon() * std::sqrt(static_cast<double>(mesh.elements)) * mesh.length /
+         dt;
 }
 
 std::string round_off_text(const EnergySettings& settings) {
@@ -868,17 +1134,18 @@ std::vector<ClaimResult> check_energy_conservation(const SchemeChoice& scheme,
     const bool positive = std::all_of(jumps.begin(), jumps.end(), [](double v) { return v > 0 && std::isfinite(v); });
     const std::string order = positive ? ", order in h " + fixed(least_squares_order(h, jumps), 2) : "";
     const bool holds = worst_share <= 1.0 && shrinking;
-    rows.push_back(judge("5/" + scheme.label + "/" + mass.name,
-                         "Energy: " + scheme.label + " with " + mass.name +
-                             " conserves E_h up to jumps at status changes that shrink with h",
-                         "max |ΔE|/E_h(0) over steps keeping the status: " + sig(max_same) + " (at most " +
-                             fixed(worst_share, 3) + " × the round-off allowance); Σ|ΔE|/E_h(0) at status changes: " +
-                             join(per_mesh, "; ") + order,
-                         "|ΔE| ≤ " + round_off_text(settings) +
-                             " (round-off) at every step keeping the contact status, and Σ|ΔE| over the steps changing "
-                             "it decreases at every refinement N = " + list_elements(settings.elements) +
-                             " (Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time) + ")",
-                         holds, expectations, used));
+    rows.push_back(
+        judge("5/" + scheme.label + "/" + mass.name,
+              "Energy: " + scheme.label + " with " + mass.name +
+                  " conserves E_h up to jumps at status changes that shrink with h",
+              "max |ΔE|/E_h(0) over steps keeping the status: " + sig(max_same) + " (at most " + fixed(worst_share, 3) +
+                  " × the round-off allowance); Σ|ΔE|/E_h(0) at status changes: " + join(per_mesh, "; ") + order,
+              "|ΔE| ≤ " + round_off_text(settings) +
+                  " (round-off) at every step keeping the contact status, and Σ|ΔE| over the steps changing "
+                  "it decreases at every refinement N = " +
+                  list_elements(settings.elements) + " (Δt = " + sig(settings.courant) +
+                  "h, T = " + sig(settings.final_time) + ")",
+              holds, expectations, used));
   }
   return rows;
 }
@@ -902,9 +1169,9 @@ std::vector<ClaimResult> check_energy_dissipation(const SchemeChoice& scheme,
                          "Energy: " + scheme.label + " with " + mass.name + " never increases the energy",
                          std::to_string(increases) + " steps with an increase; largest ΔE/E_h(0) = " +
                              sig(max_increase) + "; " + join(per_mesh, "; "),
-                         "Eⁿ⁺¹ ≤ Eⁿ + " + round_off_text(settings) + " (round-off) at every step, N = " +
-                             list_elements(settings.elements) + " (Δt = " + sig(settings.courant) +
-                             "h, T = " + sig(settings.final_time) + ")",
+                         "Eⁿ⁺¹ ≤ Eⁿ + " + round_off_text(settings) +
+                             " (round-off) at every step, N = " + list_elements(settings.elements) +
+                             " (Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time) + ")",
                          increases == 0, expectations, used));
   }
   return rows;
@@ -992,6 +1259,9 @@ RebuiltStep rebuild_step(const SchemeParameters& p, const Tridiagonal& m, const 
       r.obstacle = -p.restitution * u_previous[0];
       break;
     }
+    case Scheme::energy_conserving:
+    case Scheme::switching:  // not schemes of the paper: their steps are checked in lib/energy_step.cpp
+      throw std::invalid_argument("check_contact_step: the paper's schemes only (allowed: cn, be, ps)");
   }
   const bool algebraic = massless && (p.scheme != Scheme::paoli_schatzman || p.contact_row == ContactRow::algebraic);
   if (algebraic) {
@@ -1046,8 +1316,8 @@ StepComparison compare_steps(const ContactStepCase& c, const ContactStepSettings
     const double multiplier = before.multiplier;
     simulation.step();
     const Sample after = simulation.sample();
-    const RebuiltStep r = rebuild_step(c.model.parameters, simulation.mass(), simulation.stiffness(), dt, u, velocity,
-                                       multiplier);
+    const RebuiltStep r =
+        rebuild_step(c.model.parameters, simulation.mass(), simulation.stiffness(), dt, u, velocity, multiplier);
     const double u0 = (*after.displacement)[0];
     const bool active = u0 == r.obstacle;
     const bool changed = active != contact;
@@ -1097,8 +1367,8 @@ std::vector<ClaimResult> check_contact_step(const std::vector<ContactStepCase>& 
                              ") solves the step's saddle-point system",
                          join(measured, "; "),
                          "against Eigen's SparseLU on the full (U, λ) system rebuilt from (Uⁿ, Vⁿ or Uⁿ⁻¹, λⁿ) with "
-                         "the active set fixed: max|ΔU|/max|U| and max|Δλ|/max|λ| ≤ " + sig(settings.tolerance) +
-                             ", complementarity exact; every status change and every " +
+                         "the active set fixed: max|ΔU|/max|U| and max|Δλ|/max|λ| ≤ " +
+                             sig(settings.tolerance) + ", complementarity exact; every status change and every " +
                              std::to_string(settings.every) + "th step, N = " + std::to_string(settings.elements) +
                              ", Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time),
                          holds, expectations, used));
@@ -1149,9 +1419,9 @@ ClaimResult check_exact_solution(const ExactSolution& exact, const FineSolutionS
   }
   return judge("6/exact", "The closed-form solution agrees with a very fine numerical solution",
                "relative errors: " + join(measured, ", "),
-               "all 8 relative errors ≤ " + sig(settings.bound) + " (≈ 3h^½) for cn, mod3, N = " +
-                   std::to_string(settings.elements) + ", Δt = " + sig(settings.courant) + "h, T = " +
-                   sig(settings.final_time),
+               "all 8 relative errors ≤ " + sig(settings.bound) +
+                   " (≈ 3h^½) for cn, mod3, N = " + std::to_string(settings.elements) +
+                   ", Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time),
                holds, expectations, used);
 }
 
@@ -1186,12 +1456,149 @@ TEST_CASE("an expectation that no check uses is reported as a failure") {
 }
 
 // ---------------------------------------------------------------------------------------------------
-// All the checks, with the settings of this repository (chosen so that they run in well under a
-// minute on a small machine; the stability runs dominate).
-std::vector<ClaimResult> check_all(const Expectations& expectations, std::ostream* progress) {
-  std::vector<ClaimResult> rows;
+// Claim 1 over a region: Crank–Nicolson at large steps and over long runs.
+//
+// The check above runs 100 periods at Δt = h/2. The paper says the method gives stable schemes; the
+// energy balance of Crank–Nicolson with a massless contact node (mathematics.md §12) says more: a step
+// that keeps the contact status conserves E_h, an impact loses energy and a release gains some, at most
+// c²h v²/8 per switch (c = Δt/h). For Δt ≲ h the gains and losses nearly cancel; for Δt ≫ h the
+// gains win. So "no blow-up", E_hⁿ ≤ 2 E_h(0), is checked over a region: Δt/h from ¼ to 40 on
+// N = 16 … 128 over 100 periods (Mod 3), and 1000 periods at Δt = h (Mod 1, 2, 3) on N = 20 and 64.
+namespace {
+
+struct StabilityCell {
+  Index elements;
+  double courant;
+  std::string mass;
+  double periods;
+  double largest;  // max E_hⁿ / E_h(0)
+};
+
+std::vector<StabilityCell> stability_cells(const std::vector<Index>& elements, const std::vector<double>& courants,
+                                           const std::vector<std::string>& masses, double periods) {
+  std::vector<StabilityCell> cells;
+  std::vector<repro::Configuration> configurations;
+  for (const std::string& mass : masses)
+    for (Index n : elements)
+      for (double c : courants) {
+        cells.push_back({n, c, mass, periods, 0});
+        configurations.push_back(repro::paper_configuration("cn", "algebraic", mass, n, c, 3 * periods));
+      }
+  const std::vector<repro::Measures> m = repro::run_configurations(configurations);
+  for (std::size_t k = 0; k < cells.size(); ++k) cells[k].largest = m[k].energy_max / m[k].energy_initial;
+  return cells;
+}
+
+std::string magnitude(double x) { return x < 1000 ? sig(x, 3) : sig(x, 2); }
+
+}  // namespace
+
+// The rows' ids in the report's notation: the claims table of the appendix names each row by them, and
+// the summary names the rows where a claim holds or fails by them, without the claim number.
+namespace {
+
+// The report's name of one segment of a row id ("cn" → "CN", "mod3" → "Mod 3", "err_u0_L2" →
+// "u(0,·) in L²(0,T)", "C=0.5" → "Δt = 0.5h", "dt=0.5h" → "Δt = 0.5h", "T=10p" → "T = 10 periods"), in the
+// report's notation; an unknown segment is kept.
+std::string readable_segment(const std::string& segment) {
+  static const std::pair<const char*, const char*> names[] = {
+      {"cn", "CN"},
+      {"be", "BE"},
+      {"ps", "PS(¼, 0), algebraic row"},
+      {"ps-literal", "PS(¼, 0), literal row"},
+      {"ps-consistent", "PS(¼, 0), consistent mass"},
+      {"mod1", "Mod 1"},
+      {"mod2", "Mod 2"},
+      {"mod3", "Mod 3"},
+      {"consistent", "consistent mass"},
+      {"err_u0_L2", "u(0,·) in L²(0,T)"},
+      {"err_lambda_L2", "λ in L²(0,T)"},
+      {"err_u_LinfL2", "u in L∞(0,T;L²)"},
+      {"err_u_LinfH1", "u in L∞(0,T;H¹)"},
+      {"err_v_LinfL2", "uₜ in L∞(0,T;L²)"},
+      {"err_u_L2L2", "u in L²(0,T;L²)"},
+      {"err_u_L2H1", "u in L²(0,T;H¹)"},
+      {"err_v_L2L2", "uₜ in L²(0,T;L²)"},
+      {"step", "contact step"},
+      {"exact", "exact solution"},
+      {"large-steps", "large steps"},
+      {"1000-periods", "1000 periods"},
+      {"mechanism", "mechanism (period law)"},
+      {"sensitivity", "sensitivity"},
+      {"mod2-diagonal", "Mod 2 spread on the diagonal"},
+      {"mod3-spread2", "Mod 3 spread on nodes 1, 2"},
+      {"mod3-3/4", "Mod 3 as ¾ and ¼ on nodes 1, 2"},
+  };
+  for (const auto& [id, name] : names)
+    if (segment == id) return name;
+  if (segment.rfind("C=", 0) == 0) return "Δt = " + segment.substr(2) + "h";
+  if (segment.rfind("dt=", 0) == 0) return "Δt = " + segment.substr(3);
+  if (segment.rfind("T=", 0) == 0 && segment.back() == 'p') {
+    const std::string periods = segment.substr(2, segment.size() - 3);
+    return "T = " + periods + (periods == "1" ? " period" : " periods");
+  }
+  return segment;
+}
+
+// The segments of an id, split at '/' except inside a segment that contains one ("mod3-3/4").
+std::vector<std::string> id_segments(const std::string& id) {
+  static const char* const with_slash[] = {"mod3-3/4"};
+  std::vector<std::string> segments;
+  std::size_t begin = 0;
+  for (;;) {
+    std::size_t end = id.find('/', begin);
+    for (const char* s : with_slash)
+      if (id.compare(begin, std::string(s).size(), s) == 0) end = id.find('/', begin + std::string(s).size());
+    segments.push_back(id.substr(begin, end == std::string::npos ? std::string::npos : end - begin));
+    if (end == std::string::npos) return segments;
+    begin = end + 1;
+  }
+}
+
+std::string readable_id(const std::string& id) {
+  const std::vector<std::string> segments = id_segments(id);
+  std::string out = segments.front() == "4t" ? std::string("4 (time)") : segments.front();
+  for (std::size_t k = 1; k < segments.size(); ++k) out += ", " + readable_segment(segments[k]);
+  return out;
+}
+
+// The same without the claim number: the name of a row within its claim ("2/mod2" → "Mod 2").
+std::string readable_row(const std::string& id) {
+  const std::vector<std::string> segments = id_segments(id);
+  std::string out;
+  for (std::size_t k = 1; k < segments.size(); ++k) out += (k > 1 ? ", " : "") + readable_segment(segments[k]);
+  return out.empty() ? readable_id(id) : out;
+}
+
+TEST_CASE("a row id reads in the report's notation") {
+  CHECK(readable_id("3/ps-literal/err_u_LinfH1") == "3, PS(¼, 0), literal row, u in L∞(0,T;H¹)");
+  CHECK(readable_id("4/cn/mod1/C=0.5") == "4, CN, Mod 1, Δt = 0.5h");
+  CHECK(readable_id("4t/cn/mod3") == "4 (time), CN, Mod 3");
+  CHECK(readable_id("6/exact") == "6, exact solution");
+  CHECK(readable_id("3/cn/dt=0.25h") == "3, CN, Δt = 0.25h");
+  CHECK(readable_id("4/ps-consistent/T=1p") == "4, PS(¼, 0), consistent mass, T = 1 period");
+  CHECK(readable_id("4/be/T=30p") == "4, BE, T = 30 periods");
+  CHECK(readable_id("3/sensitivity/mod3-3/4") == "3, sensitivity, Mod 3 as ¾ and ¼ on nodes 1, 2");
+  CHECK(readable_id("9/new-case") == "9, new-case");  // an unknown segment is kept as it is
+  CHECK(readable_row("2/mod2") == "Mod 2");
+  CHECK(readable_row("6/step/cn") == "contact step, CN");
+  CHECK(readable_row("7") == "7");  // an id without segments keeps its number
+  // Every id of the current table has a LaTeX form.
+  for (const auto& [id, reason] : paper_expectations()) {
+    CAPTURE(id);
+    CHECK_NOTHROW(latex_escape(readable_id(id)));
+  }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------------
+// All of them, and the summary that opens the table.
+
+ClaimsReport check_all(const Expectations& expectations, std::ostream* progress) {
+  ClaimsReport report;
+  std::vector<ClaimResult>& rows = report.rows;
   std::vector<std::string> used;
-  ErrorCache cache;
   auto timed = [&](const char* name, const std::function<void()>& body) {
     const auto start = std::chrono::steady_clock::now();
     body();
@@ -1200,11 +1607,78 @@ std::vector<ClaimResult> check_all(const Expectations& expectations, std::ostrea
                 << fixed(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2) << " s\n";
   };
   auto append = [&](std::vector<ClaimResult> more) { rows.insert(rows.end(), more.begin(), more.end()); };
+  const auto rows_with = [&](const std::string& prefix) {
+    std::vector<const ClaimResult*> r;
+    for (const ClaimResult& row : rows)
+      if (row.id.compare(0, prefix.size(), prefix) == 0) r.push_back(&row);
+    return r;
+  };
+  const auto verdict_of = [&](const std::vector<const ClaimResult*>& r) {
+    int reproduced = 0;
+    for (const ClaimResult* row : r) reproduced += row->verdict == Verdict::reproduced;
+    return reproduced == static_cast<int>(r.size()) ? std::string("reproduced")
+           : reproduced == 0                        ? std::string("not reproduced")
+                                                    : std::string("partly reproduced");
+  };
 
+  timed("sweep (claims 3 and 4)", [&] { report.sweep = repro::run_sweep(repro::SweepGrid(), 0, progress); });
+  const repro::Sweep& sweep = report.sweep;
+
+  SummaryLine stability_line;
   timed("1 stability", [&] {
     const StabilitySettings st;
     append(check_stability(paper_schemes(), paper_masses(), st, expectations, &used));
     rows.push_back(check_consistent_mass_blows_up(scheme_choice("cn"), st, expectations, &used));
+    // Over a region the meshes are coarse (N = 16: the O(h) jumps at impacts and releases are a few
+    // percent of E_h(0)), so "no blow-up" is the energy staying below twice its initial value.
+    const double blow_up = 2;
+    const std::vector<double> courants = {0.25, 0.5, 1, 2, 5, 10, 20, 40};
+    const std::vector<Index> meshes = {16, 32, 64, 128};
+    const std::vector<StabilityCell> large = stability_cells(meshes, courants, {"mod3"}, 100);
+    const std::vector<StabilityCell> long_runs = stability_cells({20, 64}, {1.0}, {"mod1", "mod2", "mod3"}, 1000);
+    double bounded_up_to = 0;
+    bool large_holds = true;
+    std::vector<std::string> per_courant;
+    for (double c : courants) {
+      double worst = 0;
+      for (const StabilityCell& cell : large)
+        if (cell.courant == c) worst = std::max(worst, cell.largest);
+      per_courant.push_back(sig(c) + ": " + magnitude(worst));
+      // The ratios are increasing: the bound holds up to the first one where some mesh exceeds it.
+      if (large_holds && worst <= blow_up) bounded_up_to = c;
+      large_holds = large_holds && worst <= blow_up;
+    }
+    rows.push_back(
+        judge("1/cn/large-steps", "Stability over a region: cn with mod3 for Δt/h from ¼ to 40",
+              "largest E_hⁿ/E_h(0) over N = 16, 32, 64, 128 and 100 periods, per Δt/h: " + join(per_courant, ", "),
+              "E_hⁿ ≤ " + sig(blow_up) + " E_h(0) at every step, every N and Δt/h", large_holds, expectations, &used));
+    bool long_holds = true;
+    std::vector<std::string> per_mass;
+    for (const StabilityCell& cell : long_runs) {
+      long_holds = long_holds && cell.largest <= blow_up;
+      per_mass.push_back(cell.mass + " N = " + std::to_string(cell.elements) + ": " + magnitude(cell.largest));
+    }
+    rows.push_back(judge("1/cn/1000-periods", "Stability over a long run: cn at Δt = h over 1000 periods",
+                         "largest E_hⁿ/E_h(0): " + join(per_mass, ", "),
+                         "E_hⁿ ≤ " + sig(blow_up) + " E_h(0) at every step", long_holds, expectations, &used));
+    stability_line.key = "stability";
+    stability_line.claim = "1 Stability (no blow-up)";
+    stability_line.verdict = verdict_of(rows_with("1/"));
+    stability_line.holds = "cn, be, ps (algebraic row) with Mod 1–3, N = " + std::to_string(st.elements) +
+                           ", Δt = " + sig(st.courant) + "h, 100 periods (E ≤ " + sig(st.bound_conserving) +
+                           " E(0)); cn, Mod 3, N = 16–128, 100 periods: E ≤ 2 E(0) for Δt/h ≤ " + sig(bounded_up_to);
+    std::vector<std::string> beyond, long_failures;
+    for (double c : courants)
+      if (c > bounded_up_to) beyond.push_back(sig(c));
+    for (const StabilityCell& cell : long_runs)
+      if (cell.largest > blow_up)
+        long_failures.push_back(cell.mass + " N = " + std::to_string(cell.elements) + " (" + magnitude(cell.largest) +
+                                " E(0))");
+    stability_line.fails = "cn at Δt/h = " + join(beyond, ", ") + "; 1000 periods at Δt = h: " +
+                           (long_failures.empty() ? std::string("none") : join(long_failures, ", ")) +
+                           "; ps with the literal row (sawtooth); cn with the consistent mass (the contrast)";
+    stability_line.numbers = "largest E/E(0), cn Mod 3, 100 periods, per Δt/h: " + join(per_courant, ", ") +
+                             "; 1000 periods, Δt = h: " + join(per_mass, ", ");
   });
   timed("2 mass", [&] {
     std::vector<UniformMesh> meshes;
@@ -1213,11 +1687,11 @@ std::vector<ClaimResult> check_all(const Expectations& expectations, std::ostrea
     append(check_mass({mod2(), mod3()}, {mod1()}, meshes, expectations, &used));
   });
   timed("3 ordering", [&] {
-    append(check_ordering(paper_schemes(), paper_masses(), OrderingSettings(), cache, expectations, &used));
+    append(check_ordering(sweep, sweep.grid.masses, expectations, &used));
+    append(check_phase_drift(sweep, PhaseDriftSettings(), expectations, &used));
+    append(check_reconstruction_sensitivity(SensitivitySettings(), expectations, &used));
   });
-  timed("4 convergence in h", [&] {
-    append(check_convergence(paper_schemes(), paper_masses(), ConvergenceSettings(), cache, expectations, &used));
-  });
+  timed("4 convergence in h", [&] { append(check_convergence(sweep, expectations, &used)); });
   timed("4 convergence in time", [&] {
     append(check_time_convergence(scheme_choice("cn"), paper_masses(), TimeConvergenceSettings(), expectations, &used));
   });
@@ -1225,15 +1699,67 @@ std::vector<ClaimResult> check_all(const Expectations& expectations, std::ostrea
     append(check_energy_conservation(scheme_choice("cn"), paper_masses(), EnergySettings(), expectations, &used));
     append(check_energy_dissipation(scheme_choice("be"), paper_masses(), EnergySettings(), expectations, &used));
   });
-  timed("6 contact step", [&] {
-    append(check_contact_step(paper_contact_step_cases(), ContactStepSettings(), expectations, &used));
-  });
+  timed("6 contact step",
+        [&] { append(check_contact_step(paper_contact_step_cases(), ContactStepSettings(), expectations, &used)); });
   timed("6 exact solution", [&] {
     rows.push_back(check_exact_solution(ExactSolution(1.0, 0.5), FineSolutionSettings(), expectations, &used));
   });
-
   append(stale_expectations(expectations, used));
-  return rows;
+
+  // The summary: one line per claim (claim 3 per scheme, with its mechanism and its sensitivity).
+  const auto ids = [&](const std::vector<const ClaimResult*>& r, Verdict v) {
+    std::vector<std::string> s;
+    for (const ClaimResult* row : r)
+      if ((row->verdict == Verdict::reproduced) == (v == Verdict::reproduced)) s.push_back(readable_row(row->id));
+    return s.empty() ? std::string("none") : join(s, "; ");
+  };
+  std::vector<SummaryLine>& summary = report.summary;
+  summary.push_back(stability_line);
+  {
+    const auto r = rows_with("2/");
+    summary.push_back({"mass", "2 Mod 2, Mod 3 keep the total mass, Mod 1 loses 2h/3", verdict_of(r),
+                       ids(r, Verdict::reproduced), ids(r, Verdict::failed), r.front()->measured});
+  }
+  for (const std::string& scheme : sweep.grid.schemes)
+    summary.push_back(summarize_ordering(sweep, scheme, sweep.grid.masses));
+  summary.push_back(summarize_phase_drift(sweep, PhaseDriftSettings()));
+  {
+    const auto r = rows_with("3/sensitivity/");
+    std::vector<std::string> numbers;
+    for (const ClaimResult* row : r) numbers.push_back(readable_segment(row->id.substr(14)) + ": " + row->measured);
+    summary.push_back({"sensitivity", "3 Verdict independent of the reconstruction (Mod 2, Mod 3 variants)",
+                       verdict_of(r), ids(r, Verdict::reproduced), ids(r, Verdict::failed), join(numbers, "; ")});
+  }
+  summary.push_back(summarize_convergence(sweep));
+  {
+    const auto r = rows_with("4t/");
+    std::vector<std::string> numbers;  // the velocity's orders: what the massless node's row changed
+    for (const ClaimResult* row : r) {
+      std::vector<std::string> velocity;
+      std::istringstream parts(row->measured);
+      for (std::string part; std::getline(parts, part, ';');) {
+        const std::size_t start = part.find_first_not_of(' ');
+        if (start != std::string::npos && part.compare(start, 3, "u_t") == 0) velocity.push_back(part.substr(start));
+      }
+      numbers.push_back(readable_segment(row->id.substr(6)) + ": " + join(velocity, ", "));
+    }
+    summary.push_back({"time",
+                       "4 Error estimate in time: cn at order 2 in Δt (h = 1/" +
+                           std::to_string(TimeConvergenceSettings().elements) + ")",
+                       verdict_of(r), ids(r, Verdict::reproduced), ids(r, Verdict::failed), join(numbers, "; ")});
+  }
+  {
+    const auto r = rows_with("5/");
+    summary.push_back({"energy", "5 cn conserves E between contact events, be dissipates", verdict_of(r),
+                       ids(r, Verdict::reproduced), ids(r, Verdict::failed), r.front()->measured});
+  }
+  {
+    const auto r = rows_with("6/");
+    summary.push_back({"independent", "6 Contact step vs sparse LU; closed form vs fine solution", verdict_of(r),
+                       ids(r, Verdict::reproduced), ids(r, Verdict::failed), r.back()->measured});
+  }
+  if (summary.size() > 12) throw std::logic_error("the claims summary has more than 12 lines");
+  return report;
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -1246,6 +1772,38 @@ std::string verdict_text(const ClaimResult& r) {
 }
 
 }  // namespace
+
+void write_text_summary(std::ostream& out, const std::vector<SummaryLine>& summary) {
+  repro::Table table({"claim", "verdict", "holds", "fails", "decisive numbers"});
+  for (const SummaryLine& l : summary) table.add_row({l.claim, l.verdict, l.holds, l.fails, l.numbers});
+  table.write_text(out, {26, 11, 34, 30, 60});
+}
+
+void write_latex_summary(std::ostream& out, const std::vector<SummaryLine>& summary) {
+  for (const SummaryLine& l : summary) {
+    tex_define(out, "claim:" + l.key + ":verdict", latex_escape(l.verdict));
+    tex_define(out, "claim:" + l.key + ":holds", latex_escape(l.holds));
+    tex_define(out, "claim:" + l.key + ":fails", latex_escape(l.fails));
+    tex_define(out, "claim:" + l.key + ":numbers", latex_escape(l.numbers));
+  }
+}
+
+void write_latex_summary_table(std::ostream& out, const std::vector<SummaryLine>& summary) {
+  repro::Table table({"claim", "verdict", "holds", "fails"});
+  for (const SummaryLine& l : summary)
+    table.add_row({latex_escape(l.claim), latex_escape(l.verdict), latex_escape(l.holds), latex_escape(l.fails)},
+                  "\\emph{" + latex_escape(l.numbers) + "}");
+  repro::LatexLayout layout;
+  layout.columns =
+      ">{\\raggedright}p{0.19\\textwidth}>{\\raggedright}p{0.115\\textwidth}>{\\raggedright}p{0.295\\textwidth}"
+      ">{\\raggedright\\arraybackslash}p{0.3\\textwidth}";
+  layout.longtable = true;
+  layout.rule_between_rows = true;
+  layout.note_columns = ">{\\raggedright\\arraybackslash}p{0.75\\textwidth}";
+  layout.before = "{\\small\\setlength{\\tabcolsep}{3pt}\n";
+  layout.after_end = "}";
+  table.write_latex(out, layout);
+}
 
 // Rows of one group share their criterion and often their reason: from the second row on, the text
 // table says "as above" instead of repeating them (the Markdown table repeats everything).
@@ -1274,16 +1832,46 @@ void write_markdown_table(std::ostream& out, const std::vector<ClaimResult>& row
 
 std::string latex_escape(const std::string& text) {
   static const std::pair<const char*, const char*> symbols[] = {
-      {"λ", "\\ensuremath{\\lambda}"}, {"Δ", "\\ensuremath{\\Delta}"}, {"≤", "\\ensuremath{\\le}"},
-      {"≥", "\\ensuremath{\\ge}"}, {"×", "\\ensuremath{\\times}"}, {"∞", "\\ensuremath{\\infty}"},
-      {"²", "\\ensuremath{^2}"}, {"¹", "\\ensuremath{^1}"}, {"ⁿ", "\\ensuremath{^n}"}, {"⁺", "\\ensuremath{^+}"},
-      {"⁻", "\\ensuremath{^-}"}, {"ᵀ", "\\ensuremath{^T}"}, {"½", "\\ensuremath{\\frac12}"},
-      {"¼", "\\ensuremath{\\frac14}"}, {"·", "\\ensuremath{\\cdot}"}, {"−", "\\ensuremath{-}"},
-      {"→", "\\ensuremath{\\to}"}, {"ε", "\\ensuremath{\\varepsilon}"}, {"θ", "\\ensuremath{\\theta}"},
-      {"β", "\\ensuremath{\\beta}"}, {"₀", "\\ensuremath{_0}"}, {"≈", "\\ensuremath{\\approx}"}, {"–", "--"},
-      {"—", "---"}, {"…", "\\dots{}"}, {"§", "\\S{}"}, {"é", "\\'e"}, {"√", "\\ensuremath{\\surd}"},
-      {"Σ", "\\ensuremath{\\Sigma}"}, {"∝", "\\ensuremath{\\propto}"}, {"è", "\\`e"}, {"č", "\\v{c}"},
-      {"œ", "\\oe{}"}, {"ₜ", "\\ensuremath{_t}"},
+      {"λ", "\\ensuremath{\\lambda}"},
+      {"Δ", "\\ensuremath{\\Delta}"},
+      {"≤", "\\ensuremath{\\le}"},
+      {"≥", "\\ensuremath{\\ge}"},
+      {"×", "\\ensuremath{\\times}"},
+      {"∞", "\\ensuremath{\\infty}"},
+      {"²", "\\ensuremath{^2}"},
+      {"¹", "\\ensuremath{^1}"},
+      {"ⁿ", "\\ensuremath{^n}"},
+      {"⁺", "\\ensuremath{^+}"},
+      {"⁻", "\\ensuremath{^-}"},
+      {"ᵀ", "\\ensuremath{^T}"},
+      {"½", "\\ensuremath{\\frac12}"},
+      {"¼", "\\ensuremath{\\frac14}"},
+      {"·", "\\ensuremath{\\cdot}"},
+      {"−", "\\ensuremath{-}"},
+      {"→", "\\ensuremath{\\to}"},
+      {"ε", "\\ensuremath{\\varepsilon}"},
+      {"θ", "\\ensuremath{\\theta}"},
+      {"β", "\\ensuremath{\\beta}"},
+      {"₀", "\\ensuremath{_0}"},
+      {"≈", "\\ensuremath{\\approx}"},
+      {"–", "--"},
+      {"—", "---"},
+      {"…", "\\dots{}"},
+      {"§", "\\S{}"},
+      {"é", "\\'e"},
+      {"√", "\\ensuremath{\\surd}"},
+      {"Σ", "\\ensuremath{\\Sigma}"},
+      {"∝", "\\ensuremath{\\propto}"},
+      {"è", "\\`e"},
+      {"č", "\\v{c}"},
+      {"œ", "\\oe{}"},
+      {"¾", "\\ensuremath{\\frac34}"},
+      {"ℓ", "\\ensuremath{\\ell}"},
+      {"₁", "\\ensuremath{_1}"},
+      {"ą", "\\k{a}"},
+      {"∈", "\\ensuremath{\\in}"},
+      {"±", "\\ensuremath{\\pm}"},
+      {"ₜ", "\\ensuremath{_t}"},
   };
 
   std::string out;
@@ -1294,20 +1882,46 @@ std::string latex_escape(const std::string& text) {
       i += 3;
       continue;
     }
+    // The velocity's symbol u_t, likewise (not inside a longer name such as err_u_t).
+    if (text.compare(i, 3, "u_t") == 0 && (i == 0 || !(std::isalnum(static_cast<unsigned char>(text[i - 1])) ||
+                                                      text[i - 1] == '_'))) {
+      out += "\\ensuremath{u_t}";
+      i += 3;
+      continue;
+    }
     const unsigned char c = static_cast<unsigned char>(text[i]);
     if (c < 0x80) {
       switch (c) {
-        case '\\': out += "\\textbackslash{}"; break;
-        case '{': case '}': case '$': case '&': case '#': case '_': case '%':
+        case '\\':
+          out += "\\textbackslash{}";
+          break;
+        case '{':
+        case '}':
+        case '$':
+        case '&':
+        case '#':
+        case '_':
+        case '%':
           out += '\\';
           out += static_cast<char>(c);
           break;
-        case '^': out += "\\textasciicircum{}"; break;
-        case '~': out += "\\textasciitilde{}"; break;
-        case '<': out += "\\ensuremath{<}"; break;
-        case '>': out += "\\ensuremath{>}"; break;
-        case '|': out += "\\ensuremath{|}"; break;
-        default: out += static_cast<char>(c);
+        case '^':
+          out += "\\textasciicircum{}";
+          break;
+        case '~':
+          out += "\\textasciitilde{}";
+          break;
+        case '<':
+          out += "\\ensuremath{<}";
+          break;
+        case '>':
+          out += "\\ensuremath{>}";
+          break;
+        case '|':
+          out += "\\ensuremath{|}";
+          break;
+        default:
+          out += static_cast<char>(c);
       }
       ++i;
       continue;
@@ -1338,6 +1952,37 @@ TEST_CASE("every reason of the expectation table has a LaTeX form") {
   }
 }
 
+TEST_CASE("every text of the region checks and of their summary lines has a LaTeX form") {
+  repro::SweepGrid grid;
+  grid.courants = {0.5};
+  grid.elements = {10, 20};
+  grid.horizons = {1, 2};
+  const repro::Sweep sweep = repro::run_sweep(grid, 2);
+  std::vector<ClaimResult> rows = check_ordering(sweep, grid.masses, {});
+  for (ClaimResult& r : check_phase_drift(sweep, PhaseDriftSettings(), {})) rows.push_back(r);
+  for (ClaimResult& r : check_convergence(sweep, {})) rows.push_back(r);
+  SensitivitySettings sensitivity;
+  sensitivity.elements = {10};
+  sensitivity.periods = 2;
+  for (ClaimResult& r : check_reconstruction_sensitivity(sensitivity, {})) rows.push_back(r);
+  TimeConvergenceSettings time;
+  time.elements = 8;
+  time.courants = {0.5, 0.25};
+  time.reference_courant = 1.0 / 16;
+  for (ClaimResult& r : check_time_convergence(scheme_choice("cn"), {mod3()}, time, {})) rows.push_back(r);
+  for (const ClaimResult& r : rows)
+    for (const std::string* text : {&r.claim, &r.measured, &r.criterion}) {
+      CAPTURE(*text);
+      CHECK_NOTHROW(latex_escape(*text));
+    }
+  std::vector<SummaryLine> lines = {summarize_convergence(sweep), summarize_phase_drift(sweep, PhaseDriftSettings())};
+  for (const std::string& scheme : grid.schemes) lines.push_back(summarize_ordering(sweep, scheme, grid.masses));
+  std::ostringstream tex, table;
+  CHECK_NOTHROW(write_latex_summary(tex, lines));
+  CHECK_NOTHROW(write_latex_summary_table(table, lines));
+  CHECK(tex.str().find("\\mrmdef{claim:convergence:verdict}") != std::string::npos);
+}
+
 TEST_CASE("LaTeX escaping handles the special characters and the table's symbols") {
   CHECK(latex_escape("a_b & 50% #1 {x} $") == "a\\_b \\& 50\\% \\#1 \\{x\\} \\$");
   CHECK(latex_escape("λ ≤ 0.5h^½") ==
@@ -1345,57 +1990,13 @@ TEST_CASE("LaTeX escaping handles the special characters and the table's symbols
   CHECK(latex_escape("a\\b ~") == "a\\textbackslash{}b \\textasciitilde{}");
   CHECK_THROWS_AS(latex_escape("日本"), std::invalid_argument);
   CHECK(latex_escape("E_hⁿ/E_h(0)") == "\\ensuremath{E_h}\\ensuremath{^n}/\\ensuremath{E_h}(0)");
+  CHECK(latex_escape("u_t L²") == "\\ensuremath{u_t} L\\ensuremath{^2}");
+  CHECK(latex_escape("err_u_t") == "err\\_u\\_t");  // inside a name: escaped underscores
 }
 
 // Rows of one group share their criterion and often their reason: from the second row on, the LaTeX
 // table says "as above" instead of repeating them, and a reason gets a line of its own under its row,
 // across the three last columns, so that the table stays a few pages long.
-namespace {
-
-// The report's name of one segment of a row id ("cn" → "CN", "mod3" → "Mod 3", "err_u0_L2" →
-// "u(0,·) in L²(0,T)", "C=0.5" → "Δt = 0.5h"), in the report's notation; an unknown segment is kept.
-std::string readable_segment(const std::string& segment) {
-  static const std::pair<const char*, const char*> names[] = {
-      {"cn", "CN"}, {"be", "BE"}, {"ps", "PS(¼, 0), algebraic row"}, {"ps-literal", "PS(¼, 0), literal row"},
-      {"mod1", "Mod 1"}, {"mod2", "Mod 2"}, {"mod3", "Mod 3"}, {"consistent", "consistent mass"},
-      {"err_u0_L2", "u(0,·) in L²(0,T)"}, {"err_lambda_L2", "λ in L²(0,T)"}, {"err_u_LinfL2", "u in L∞(0,T;L²)"},
-      {"err_u_LinfH1", "u in L∞(0,T;H¹)"}, {"err_v_LinfL2", "uₜ in L∞(0,T;L²)"}, {"err_u_L2L2", "u in L²(0,T;L²)"},
-      {"err_u_L2H1", "u in L²(0,T;H¹)"}, {"err_v_L2L2", "uₜ in L²(0,T;L²)"}, {"step", "contact step"},
-      {"exact", "exact solution"},
-  };
-  for (const auto& [id, name] : names)
-    if (segment == id) return name;
-  if (segment.rfind("C=", 0) == 0) return "Δt = " + segment.substr(2) + "h";
-  return segment;
-}
-
-std::string readable_id(const std::string& id) {
-  std::string out;
-  std::size_t begin = 0;
-  for (bool first = true;; first = false) {
-    const std::size_t end = id.find('/', begin);
-    const std::string segment = id.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
-    out += first ? (segment == "4t" ? std::string("4 (time)") : segment) : ", " + readable_segment(segment);
-    if (end == std::string::npos) return out;
-    begin = end + 1;
-  }
-}
-
-TEST_CASE("a row id reads in the report's notation") {
-  CHECK(readable_id("3/ps-literal/err_u_LinfH1") == "3, PS(¼, 0), literal row, u in L∞(0,T;H¹)");
-  CHECK(readable_id("4/cn/mod1/C=0.5") == "4, CN, Mod 1, Δt = 0.5h");
-  CHECK(readable_id("4t/cn/mod3") == "4 (time), CN, Mod 3");
-  CHECK(readable_id("6/exact") == "6, exact solution");
-  CHECK(readable_id("9/new-case") == "9, new-case");  // an unknown segment is kept as it is
-  // Every id of the current table has a LaTeX form.
-  for (const auto& [id, reason] : paper_expectations()) {
-    CAPTURE(id);
-    CHECK_NOTHROW(latex_escape(readable_id(id)));
-  }
-}
-
-}  // namespace
-
 void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
   const std::string column = ">{\\raggedright\\arraybackslash}p{";
   repro::LatexLayout layout;
@@ -1416,51 +2017,17 @@ void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) 
                                                                        : "\\textbf{FAILED}";
     table.add_row({"\\textbf{" + latex_escape(readable_id(r.id)) + ".} " + latex_escape(r.claim), latex_escape(r.measured),
                    same_criterion ? std::string("\\emph{as above}") : latex_escape(r.criterion), verdict},
-                  r.reason.empty() ? std::string()
-                                   : "\\emph{Why:} " + (same_reason ? std::string("as above.") : latex_escape(r.reason)));
+                  r.reason.empty()
+                      ? std::string()
+                      : "\\emph{Why:} " + (same_reason ? std::string("as above.") : latex_escape(r.reason)));
   }
-  // Everything as the report's values: the report reads this file in its preamble, prints the summary
-  // before the detail (\mrm{claims:summary}) and the table in its appendix (\mrm{claims:table}).
+  // The table as a report value: the report reads this file in its preamble and prints the table in its
+  // appendix (\mrm{claims:table}); the summary before it comes from write_latex_summary_table.
   out << "% The claims of the paper as executable checks: generated by check_claims --tex (do not edit).\n"
          "% Needs \\usepackage{longtable,booktabs,array} and the report's \\mrmdef.\n";
   std::ostringstream table_tex;
   table.write_latex(table_tex, layout);
   out << "\\mrmdef{claims:table}{" << table_tex.str() << "}\n";
-
-  // The summary the report puts before the detail: per claim number, how many rows, how many
-  // reproduced, how many not (all of them expected failures, or the run would have failed) and how
-  // many failed; as a tabular (\mrm{claims:summary}) and as values (\mrm{claims:K:reproduced}, ...).
-  std::vector<std::string> numbers;
-  for (const ClaimResult& r : rows) {
-    const std::string number = r.id.substr(0, r.id.find('/'));
-    if (std::find(numbers.begin(), numbers.end(), number) == numbers.end()) numbers.push_back(number);
-  }
-  repro::Table summary({"claim", "rows", "reproduced", "not reproduced (expected)", "failed"});
-  for (const std::string& number : numbers) {
-    long total = 0, reproduced = 0, expected = 0, failed = 0;
-    for (const ClaimResult& r : rows) {
-      if (r.id.substr(0, r.id.find('/')) != number) continue;
-      ++total;
-      reproduced += r.verdict == Verdict::reproduced;
-      expected += r.verdict == Verdict::not_reproduced;
-      failed += r.verdict == Verdict::failed;
-    }
-    // The verdict word of the claim: every row reproduced, none, or some.
-    const std::string verdict = reproduced == total ? "reproduced" : reproduced == 0 ? "not reproduced"
-                                                                                     : "partly reproduced";
-    tex_define(out, "claims:" + number + ":verdict", verdict);
-    summary.add_row({number == "4t" ? "4 (time)" : number, std::to_string(total), std::to_string(reproduced),
-                     std::to_string(expected), std::to_string(failed)});
-    for (const auto& [key, value] : {std::pair<const char*, long>{"rows", total}, {"reproduced", reproduced},
-                                     {"expected", expected}, {"failed", failed}})
-      tex_define(out, "claims:" + number + ":" + key, std::to_string(value));
-  }
-  repro::LatexLayout summary_layout;
-  summary_layout.columns = "lrrrr";
-  summary_layout.final_newline = false;
-  std::ostringstream summary_tex;
-  summary.write_latex(summary_tex, summary_layout);
-  out << "\\mrmdef{claims:summary}{" << summary_tex.str() << "}\n";
 }
 
 }  // namespace mrm::claims

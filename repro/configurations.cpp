@@ -4,13 +4,51 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <numeric>
 #include <stdexcept>
+#include <thread>
 
 #include <doctest/doctest.h>
 
 #include "exact_solution.hpp"
+#include "parallel.hpp"
+#include "smooth_benchmarks.hpp"
 
 namespace mrm::repro {
+
+double Configuration::bar_length() const {
+  if (data) return data->length();
+  return benchmark == "paper" ? length : 1.0;
+}
+
+InitialData configuration_data(const Configuration& c) {
+  if (c.data) return *c.data;
+  if (c.benchmark == "paper") return benchmark_initial_data(c.length, c.amplitude);
+  if (c.benchmark == "smooth-impact") return smooth_benchmark(SmoothBenchmark::generic_impact).data;
+  if (c.benchmark == "grazing") return smooth_benchmark(SmoothBenchmark::grazing).data;
+  throw std::invalid_argument("unknown benchmark '" + c.benchmark + "' (allowed: paper, smooth-impact, grazing)");
+}
+
+// The paper's benchmark keeps its own problem (the closed-form data as functions), so that its runs are
+// the same bits as before the benchmarks became a choice.
+Problem configuration_problem(const Configuration& c) {
+  if (!c.data && c.benchmark == "paper") return benchmark_problem(c.length, c.amplitude);
+  return configuration_data(c).problem();
+}
+
+// The lattice: δ = min(h, Δt) when max/min is a whole number (to 1e-9), which puts every node and level
+// on it (characteristics.hpp: TabulatedSolution); otherwise the characteristic solution is evaluated
+// directly.
+std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& c, double horizon) {
+  if (!c.data && c.benchmark == "paper") return std::make_shared<const ExactSolution>(c.length, c.amplitude);
+  CharacteristicSolution solution(configuration_data(c), horizon);
+  const double h = UniformMesh(c.bar_length(), c.elements).h(), dt = c.step();
+  const double small = std::min(h, dt), ratio = std::max(h, dt) / small;
+  if (std::abs(ratio - std::round(ratio)) <= 1e-9 * ratio && horizon / small <= 1e7)
+    return std::make_shared<const TabulatedSolution>(std::move(solution), small);
+  return std::make_shared<const CharacteristicSolution>(std::move(solution));
+}
 
 Configuration paper_configuration(const std::string& scheme, const std::string& ps_form, const std::string& mass,
                                   Index elements, double courant, double final_time) {
@@ -23,18 +61,39 @@ Configuration paper_configuration(const std::string& scheme, const std::string& 
   return c;
 }
 
+// The horizons are levels of the same run: the errors over [0, T_k] are the accumulator's relative
+// errors right after the level steps_to_reach(T_k, Δt) was added (the L∞ maxima and the L² integrals
+// of a prefix). The impacts come from the contact indicator of every level (phase.cpp), with the
+// chatter filter set to L, half the exact free flight 2L between two contacts; their errors are
+// measured on the paper's benchmark only, whose exact impacts are L + 3Lk.
 Measures run_configuration(const Configuration& c, const std::function<void(const Sample&)>& observe,
-                           const ExactSolution* reference) {
-  const UniformMesh mesh(c.length, c.elements);
+                           const ReferenceSolution* reference) {
+  const UniformMesh mesh(c.bar_length(), c.elements);
   const double dt = c.step();
-  BarSimulation simulation(benchmark_problem(c.length, c.amplitude), mesh, c.mass, c.scheme, dt, c.initial);
-  ErrorAccumulator errors(mesh, reference ? *reference : ExactSolution(c.length, c.amplitude));
+  for (std::size_t k = 0; k < c.horizons.size(); ++k)
+    if (!(c.horizons[k] > 0 && c.horizons[k] <= c.final_time && (k == 0 || c.horizons[k] > c.horizons[k - 1])))
+      throw std::invalid_argument("run_configuration: the horizons must increase within (0, T]");
+  BarSimulation simulation(configuration_problem(c), mesh, c.mass, c.scheme, dt, c.initial);
+  ImpactDetector impacts(mesh.length);
+  std::vector<Index> horizon_levels;
+  for (double t : c.horizons) horizon_levels.push_back(steps_to_reach(t, dt));
+  std::size_t next_horizon = 0;
+  const double h = mesh.h();
   Measures m;
   m.steps = c.steps >= 0 ? c.steps : steps_to_reach(c.final_time, dt);
+  // A given reference is the caller's (not owned: an aliasing pointer with no owner); otherwise the
+  // configuration's own, kept for the run.
+  ErrorAccumulator errors(mesh, reference ? std::shared_ptr<const ReferenceSolution>(std::shared_ptr<void>(), reference)
+                                          : configuration_reference(c, reference_horizon(m.steps, dt)));
   m.energy_min = std::numeric_limits<double>::infinity();
   m.energy_max = -m.energy_min;
   run(simulation, m.steps, [&](const Sample& s) {
     errors.add(s);
+    impacts.add(s.time, contact_indicator(s, h));
+    while (next_horizon < horizon_levels.size() && s.level == horizon_levels[next_horizon]) {
+      m.horizon_errors.push_back(errors.relative());
+      ++next_horizon;
+    }
     if (s.level == 0) m.energy_initial = s.energy;
     m.energy_final = s.energy;
     m.energy_min = std::min(m.energy_min, s.energy);
@@ -43,7 +102,24 @@ Measures run_configuration(const Configuration& c, const std::function<void(cons
     if (observe) observe(s);
   });
   m.errors = errors.relative();
+  m.impacts = impacts.impacts();
+  if (!m.impacts.empty() && !c.data && c.benchmark == "paper") {
+    const ExactSolution exact(c.length, c.amplitude);
+    m.phase = phase_measures(m.impacts, benchmark_impact_times(exact, m.impacts.size()), exact.period());
+  }
   return m;
+}
+
+// The configurations on the shared worker pool (parallel.hpp), in the order given; each result goes to
+// its own slot, so the order of completion does not matter.
+std::vector<Measures> run_configurations(const std::vector<Configuration>& configurations, unsigned threads) {
+  std::vector<Measures> results(configurations.size());
+  std::vector<std::size_t> order(configurations.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  run_in_parallel(order, static_cast<long>(threads),
+                  [&](std::size_t k) { results[k] = run_configuration(configurations[k]); });
+  return results;
 }
 
 TEST_CASE("a configuration's measures are those of the same run observed by hand") {
@@ -75,6 +151,71 @@ TEST_CASE("a configuration's measures are those of the same run observed by hand
   CHECK(m.energy_max == highest);
 }
 
+TEST_CASE("the errors at a horizon are those of the run stopped there, and threads change nothing") {
+  // The prediction: a prefix of a run is the shorter run (same levels, same accumulator), so the
+  // errors at the horizon T = 3 of a run to T = 9 equal, bit for bit, those of the run to T = 3; the
+  // parallel runner returns the sequential measures in the order given.
+  Configuration longer = paper_configuration("cn", "algebraic", "mod2", 16, 0.5, 9.0);
+  longer.horizons = {3.0, 6.0};
+  Configuration shorter = longer;
+  shorter.final_time = 3.0;
+  shorter.horizons.clear();
+  const Measures a = run_configuration(longer), b = run_configuration(shorter);
+  REQUIRE(a.horizon_errors.size() == 2);
+  const auto at_horizon = ErrorAccumulator::values(a.horizon_errors[0]), whole = ErrorAccumulator::values(b.errors);
+  for (std::size_t k = 0; k < 8; ++k) CHECK(at_horizon[k] == whole[k]);
+  const std::vector<Measures> parallel = run_configurations({shorter, longer, shorter}, 2);
+  REQUIRE(parallel.size() == 3);
+  const auto p0 = ErrorAccumulator::values(parallel[0].errors), p1 = ErrorAccumulator::values(parallel[1].errors);
+  const auto s1 = ErrorAccumulator::values(a.errors);
+  for (std::size_t k = 0; k < 8; ++k) {
+    CHECK(p0[k] == whole[k]);
+    CHECK(p1[k] == s1[k]);
+  }
+  // Three impacts in [0, 9] (at about 1, 4, 7), a drift measured, the first error about −h/3 (Mod 2).
+  CHECK(a.impacts.size() == 3);
+  REQUIRE(a.phase.has_value());
+  CHECK(a.phase->drift_per_period.has_value());
+  CHECK(std::abs(a.phase->first_impact_error + (1.0 / 16) / 3) < 0.05 / 16);
+  longer.horizons = {6.0, 3.0};
+  CHECK_THROWS_AS(run_configuration(longer), std::invalid_argument);
+  longer.horizons = {12.0};
+  CHECK_THROWS_AS(run_configurations({shorter, longer}, 2), std::invalid_argument);
+}
+
+TEST_CASE("every benchmark runs with its reference, and the smooth ones converge") {
+  // The prediction (mathematics.md §11): on the smooth benchmarks Crank–Nicolson with Mod 3 converges at
+  // order 2 in u(0,·); doubling N must divide its error by more than 3 (order > 1.58) on both.
+  for (const std::string& benchmark : {std::string("smooth-impact"), std::string("grazing")}) {
+    double previous = 0;
+    for (const Index elements : {40, 80}) {
+      Configuration c = paper_configuration("cn", "algebraic", "mod3", elements, 0.5, 2.0);
+      c.benchmark = benchmark;
+      const Measures m = run_configuration(c);
+      CAPTURE(benchmark);
+      CAPTURE(elements);
+      for (double e : ErrorAccumulator::values(m.errors)) CHECK((std::isfinite(e) && e > 0 && e < 1));
+      if (previous > 0) CHECK(m.errors.u0_L2 < previous / 3);
+      previous = m.errors.u0_L2;
+    }
+  }
+  Configuration c = paper_configuration("cn", "algebraic", "mod3", 10, 0.5, 1.0);
+  c.benchmark = "nonsense";
+  CHECK_THROWS_WITH_AS(run_configuration(c), doctest::Contains("allowed: paper, smooth-impact, grazing"),
+                       std::invalid_argument);
+  // Data of one's own: the paper's benchmark as data gives the paper's measures (the characteristic
+  // solution equals the closed form; Δt = 0.37 h keeps the levels off the corners t = kL).
+  c = paper_configuration("cn", "algebraic", "mod3", 30, 0.37, 4.0);
+  const Measures paper = run_configuration(c);
+  c.data = std::make_shared<const InitialData>(benchmark_initial_data(1.0, 0.5));
+  const Measures own = run_configuration(c);
+  const auto a = ErrorAccumulator::values(paper.errors), b = ErrorAccumulator::values(own.errors);
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    CAPTURE(std::string(ErrorAccumulator::names[k]));
+    CHECK(std::abs(a[k] - b[k]) <= 1e-9 * a[k]);
+  }
+}
+
 TEST_CASE("a configuration run for a given number of steps is measured against the reference given") {
   // The prediction: with steps = 7 the observer sees the levels 0..7 whatever T says, and the errors
   // against a reference that is not the data's solution (amplitude 0.4 for data of amplitude 0.5) are,
@@ -83,7 +224,8 @@ TEST_CASE("a configuration run for a given number of steps is measured against t
   c.steps = 7;
   const ExactSolution other(1.0, 0.4);
   Index observed = 0;
-  const Measures m = run_configuration(c, [&](const Sample&) { ++observed; }, &other);
+  const Measures m = run_configuration(
+      c, [&](const Sample&) { ++observed; }, &other);
   CHECK(m.steps == 7);
   CHECK(observed == 8);
   const UniformMesh mesh(1.0, 16);

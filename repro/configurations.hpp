@@ -2,7 +2,9 @@
 // measures (every program and check that needs the errors or the energy range of a run calls it).
 #pragma once
 
+#include <array>
 #include <functional>
+#include <optional>
 
 #include <memory>
 #include <ostream>
@@ -12,12 +14,29 @@
 
 #include "options.hpp"
 #include "output_file.hpp"
+#include "run_limits.hpp"
 
+#include "characteristics.hpp"
 #include "errors.hpp"
 #include "mass_redistribution.hpp"
+#include "phase.hpp"
+#include "reference_solution.hpp"
 #include "schemes.hpp"
 
 namespace mrm::repro {
+
+/// The range of --elements and --courant in every figure program (run_limits.hpp): N in [2, 1e7],
+/// 0 < C <= 1e6.
+inline mrm::cli::Check elements_range() { return mrm::cli::in_closed_range(2, mrm::cli::max_elements); }
+inline mrm::cli::Check courant_range() {
+  return [](std::string_view option, double value) {
+    mrm::cli::require_positive(option, value);
+    mrm::cli::require_in_closed_range(option, value, 0, mrm::cli::max_courant);
+  };
+}
+/// The peak memory of the figure programs that hold one run at a time with its error accumulator and
+/// the exact solution's interpolants, measured at N = 1e6: 410 bytes per element; 512 with a margin.
+constexpr double bytes_per_element = 512;
 
 /// The three schemes of the paper, in the order of its Figure 1 and of every data file.
 inline const std::vector<std::string>& scheme_names() {
@@ -30,10 +49,22 @@ inline const std::vector<std::string>& mass_names() {
   return names;
 }
 
+/// The eight measures of mathematics.md §5 as the report's tables head them, in the order of
+/// ErrorAccumulator::names.
+inline const std::array<const char*, 8>& measure_labels() {
+  static const std::array<const char*, 8> labels{
+      "$u(0,\\cdot)$, $L^2_t$",   "$\\lambda$, $L^2_t$", "$u$, $L^\\infty_t L^2$", "$u$, $L^\\infty_t H^1$",
+      "$u_t$, $L^\\infty_t L^2$", "$u$, $L^2_t L^2$",    "$u$, $L^2_t H^1$",       "$u_t$, $L^2_t L^2$"};
+  return labels;
+}
+
+/// The report's name of a scheme, as LaTeX (the tables and values of the report print it).
 inline std::string scheme_label(const std::string& scheme) {
-  if (scheme == "cn") return "Crank-Nicolson";
+  if (scheme == "cn") return "Crank--Nicolson";
   if (scheme == "be") return "backward Euler";
-  return "Paoli-Schatzman (1/4, 0)";
+  if (scheme == "ec") return "energy-conserving Crank--Nicolson";
+  if (scheme == "cn-switch") return "Crank--Nicolson with a $\\theta$-step at each status change";
+  return "Paoli--Schatzman $(\\frac14, 0)$";
 }
 /// The label of a table row: Paoli–Schatzman's says which contact row it uses ("…, literal row"), so
 /// that a row of the literal form is never read as the scheme's algebraic form.
@@ -42,7 +73,8 @@ inline std::string scheme_label(const std::string& scheme, const std::string& ps
 }
 
 /// The scheme's parameters; Paoli–Schatzman with β = ¼, e = 0 and the given contact row (a mass that
-/// keeps the contact node's inertia always takes the literal row: it has no algebraic one).
+/// keeps the contact node's inertia always takes the literal row: it has no algebraic one). CN-switch's
+/// θ keeps its default (1, backward Euler); a program that offers it sets SchemeParameters::switch_theta.
 inline mrm::SchemeParameters scheme_parameters(const std::string& scheme, const std::string& ps_form,
                                                const std::string& mass) {
   mrm::SchemeParameters p;
@@ -75,11 +107,13 @@ class FigureOutputs {
   std::ostream& data() { return data_->stream(); }
   /// The report's values; always writable, written out only when --tex was given.
   std::ostream& values() { return values_; }
+  /// Both outputs or neither (mrm::cli::commit_all).
   void commit() {
-    data_->commit();
     if (values_file_) {
       values_file_->stream() << values_.str();
-      values_file_->commit();
+      mrm::cli::commit_all({data_.get(), values_file_.get()});
+    } else {
+      data_->commit();
     }
   }
 
@@ -89,9 +123,16 @@ class FigureOutputs {
   std::ostringstream values_;
 };
 
-/// One run of the benchmark (mathematics.md §2): the bar (0, L) released from u⁰(x) = a (L − x), a
-/// scheme, a mass, a mesh of N elements and Δt (given, or C h), to the first level t_n ≥ T (or for a
-/// given number of steps).
+/// The benchmarks a run can start from: "paper" (the closed-form benchmark of mathematics.md §2),
+/// "smooth-impact" and "grazing" (S1 and S2 of mathematics.md §11), in this order.
+inline const std::vector<std::string>& benchmark_names() {
+  static const std::vector<std::string> names{"paper", "smooth-impact", "grazing"};
+  return names;
+}
+
+/// One run: the bar (0, L) released from the initial data of a benchmark (the paper's u⁰(x) = a (L − x)
+/// by default) or of a file, a scheme, a mass, a mesh of N elements and Δt (given, or C h), to the first
+/// level t_n ≥ T (or for a given number of steps).
 struct Configuration {
   SchemeParameters scheme;
   MassRedistribution mass = mod3();
@@ -103,29 +144,72 @@ struct Configuration {
   double length = 1.0;
   double amplitude = 0.5;
   InitialContactNode initial = InitialContactNode::consistent;
+  /// Horizons T_k (increasing, each ≤ final_time) at which the errors over [0, T_k] are also measured,
+  /// from the same run: a prefix of the run is the run to T_k.
+  std::vector<double> horizons;
+  /// One of benchmark_names(); `length` and `amplitude` apply to "paper" only (the smooth benchmarks have
+  /// L = 1). Ignored when `data` is set.
+  std::string benchmark = "paper";
+  /// Initial data of one's own (bar1d --initial-data), L = their last x; the reference is then the
+  /// characteristic solution.
+  std::shared_ptr<const InitialData> data;
 
-  double step() const { return dt > 0 ? dt : courant * UniformMesh(length, elements).h(); }
+  /// The length of the bar: L of the data, of the smooth benchmarks (1), or `length`.
+  double bar_length() const;
+  double step() const { return dt > 0 ? dt : courant * UniformMesh(bar_length(), elements).h(); }
 };
 
+/// The problem (f = 0) of a configuration's initial data. Throws std::invalid_argument for an unknown
+/// benchmark name.
+Problem configuration_problem(const Configuration& configuration);
+
+/// The initial data of a configuration as piecewise polynomials (the paper's, a smooth benchmark's or
+/// the file's).
+InitialData configuration_data(const Configuration& configuration);
+
+/// The exact solution a configuration's errors are measured against: the closed form for "paper"
+/// (mathematics.md §2), otherwise the characteristic solution of its data (mathematics.md §10) up to
+/// `horizon`, tabulated on the lattice of h and Δt when one of them is a whole multiple of the other.
+std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& configuration, double horizon);
+
 /// A configuration named as the paper names it: scheme "cn", "be" or "ps" (Paoli–Schatzman (¼, 0) with
-/// the contact row `ps_form`), mass "mod1", "mod2", "mod3" or "consistent", N, Δt = C h, T.
+/// the contact row `ps_form`), or "ec" or "cn-switch" (mathematics.md §12), mass "mod1", "mod2", "mod3"
+/// or "consistent", N, Δt = C h, T.
 Configuration paper_configuration(const std::string& scheme, const std::string& ps_form, const std::string& mass,
                                   Index elements, double courant, double final_time);
 
-/// What a run measures: the eight relative errors against the exact solution (mathematics.md §5), the
-/// range of the discrete energy and the number of steps.
+/// What a run measures: the eight relative errors against the exact solution (mathematics.md §5; the
+/// configuration's reference, see configuration_reference), the same over [0, T_k] for each horizon of
+/// the configuration, the range of the discrete energy, the number of steps, and the phase
+/// (mathematics.md §8): the impact times read off the contact indicator (phase.hpp; a contact that
+/// starts less than L after the previous one ended continues it) and, on the paper's benchmark, their
+/// errors against the exact impacts L + 3Lk.
 struct Measures {
   ErrorNorms errors;
+  std::vector<ErrorNorms> horizon_errors;  ///< one per Configuration::horizons, in order
   double energy_initial = 0, energy_final = 0, energy_min = 0, energy_max = 0;
   Index steps = 0;
+  std::vector<double> impacts;
+  std::optional<PhaseMeasures> phase;  ///< absent when the run has no impact
 };
 
 /// Runs the configuration to its final time, calling `observe` (if given) on every sample from level 0
-/// on, and returns its measures: the errors against `reference` if given (a closed form under test),
-/// else against the configuration's own exact solution. Throws std::runtime_error if the energy becomes
-/// non-finite (a value that cannot be computed is an error, never a nan in a table).
-Measures run_configuration(const Configuration& configuration,
-                           const std::function<void(const Sample&)>& observe = {},
-                           const ExactSolution* reference = nullptr);
+/// on, and returns its measures: the errors against `reference` if given (not owned: it must outlive
+/// the call; a closed form under test, or a reference shared by several runs), else against
+/// configuration_reference up to reference_horizon. Throws std::runtime_error if the energy becomes
+/// non-finite (a value that cannot be computed is an error, never a nan in a table),
+/// std::invalid_argument for horizons that do not increase or exceed the final time.
+Measures run_configuration(const Configuration& configuration, const std::function<void(const Sample&)>& observe = {},
+                           const ReferenceSolution* reference = nullptr);
+
+/// The instant up to which a reference must be known for a run of `steps` steps of size dt: the last
+/// level plus one step (the schemes' staggered instants stay below it).
+inline double reference_horizon(Index steps, double dt) { return static_cast<double>(steps + 1) * dt; }
+
+/// Runs independent configurations on `threads` threads (0: one per hardware thread) and returns their
+/// measures in the order given: the same numbers as one run_configuration each (every run is
+/// deterministic and shares nothing). The first exception of a run, in the order given, is rethrown
+/// after every thread has finished.
+std::vector<Measures> run_configurations(const std::vector<Configuration>& configurations, unsigned threads = 0);
 
 }  // namespace mrm::repro

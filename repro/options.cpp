@@ -3,6 +3,7 @@
 // numbers, atomic output files and the guard of main. See options.hpp for the interface and for a
 // complete example of a program's main function.
 #include "options.hpp"
+#include "output_file.hpp"
 
 #include <doctest/doctest.h>
 
@@ -39,49 +40,56 @@ TEST_SUITE_BEGIN("cli");
 // JSON string: between double quotes, with quotes, backslashes and control characters escaped.
 // An empty value stays visible ("") and a stray newline cannot break a header line.
 std::string json_string(std::string_view text) {
-    std::string result = "\"";
-    for (const char character : text) {
-        switch (character) {
-        case '"': result += "\\\""; break;
-        case '\\': result += "\\\\"; break;
-        case '\n': result += "\\n"; break;
-        case '\t': result += "\\t"; break;
-        case '\r': result += "\\r"; break;
-        default:
-            if (static_cast<unsigned char>(character) < 0x20) {
-                char escape[8];
-                std::snprintf(escape, sizeof escape, "\\u%04x",
-                              static_cast<unsigned>(static_cast<unsigned char>(character)));
-                result += escape;
-            } else {
-                result += character;
-            }
+  std::string result = "\"";
+  for (const char character : text) {
+    switch (character) {
+      case '"':
+        result += "\\\"";
+        break;
+      case '\\':
+        result += "\\\\";
+        break;
+      case '\n':
+        result += "\\n";
+        break;
+      case '\t':
+        result += "\\t";
+        break;
+      case '\r':
+        result += "\\r";
+        break;
+      default:
+        if (static_cast<unsigned char>(character) < 0x20) {
+          char escape[8];
+          std::snprintf(escape, sizeof escape, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(character)));
+          result += escape;
+        } else {
+          result += character;
         }
     }
-    return result + "\"";
+  }
+  return result + "\"";
 }
 
 namespace {
-
 
 // std::from_chars, which does the strict parsing below, refuses a leading '+' although people
 // write "+2" naturally. One '+' directly followed by a digit or a decimal point is skipped, so
 // that "+2" and "+.5" are read but "+-2", "++2" and "+" still are not.
 std::string_view without_plus_sign(std::string_view text) {
-    if (text.size() >= 2 && text[0] == '+' &&
-        (std::isdigit(static_cast<unsigned char>(text[1])) || text[1] == '.')) {
-        return text.substr(1);
-    }
-    return text;
+  if (text.size() >= 2 && text[0] == '+' && (std::isdigit(static_cast<unsigned char>(text[1])) || text[1] == '.')) {
+    return text.substr(1);
+  }
+  return text;
 }
 
 }  // namespace
 
 TEST_CASE("command-line text is quoted as a JSON string") {
-    CHECK(json_string("results.dat") == "\"results.dat\"");
-    CHECK(json_string("") == "\"\"");
-    CHECK(json_string("a\"b\\c") == "\"a\\\"b\\\\c\"");
-    CHECK(json_string("line\nbreak\t\x01") == "\"line\\nbreak\\t\\u0001\"");
+  CHECK(json_string("results.dat") == "\"results.dat\"");
+  CHECK(json_string("") == "\"\"");
+  CHECK(json_string("a\"b\\c") == "\"a\\\"b\\\\c\"");
+  CHECK(json_string("line\nbreak\t\x01") == "\"line\\nbreak\\t\\u0001\"");
 }
 
 // A real value must be a finite decimal number and nothing else. std::from_chars in its general
@@ -90,143 +98,132 @@ TEST_CASE("command-line text is quoted as a JSON string") {
 // large or too small for a double apart from a text that is no number at all. The whole text must
 // be consumed, so that "1e" or "12abc" are not read as 1 and 12.
 double parse_real(std::string_view option, std::string_view text) {
-    const std::string_view number = without_plus_sign(text);
-    const char* const end = number.data() + number.size();
-    double value = 0.0;
-    const auto [stop, error] = std::from_chars(number.data(), end, value);
-    if (error == std::errc::result_out_of_range && stop == end) {
-        throw UsageError(std::string(option) + ": " + json_string(text) +
-                         " is out of the range of double-precision numbers");
-    }
-    if (error != std::errc() || stop != end || !std::isfinite(value)) {
-        throw UsageError(std::string(option) + ": " + json_string(text) +
-                         " is not a finite decimal number (expected e.g. 0.25, -3 or 1e-3)");
-    }
-    return value;
+  const std::string_view number = without_plus_sign(text);
+  const char* const end = number.data() + number.size();
+  double value = 0.0;
+  const auto [stop, error] = std::from_chars(number.data(), end, value);
+  if (error == std::errc::result_out_of_range && stop == end) {
+    throw UsageError(std::string(option) + ": " + json_string(text) +
+                     " is out of the range of double-precision numbers");
+  }
+  if (error != std::errc() || stop != end || !std::isfinite(value)) {
+    throw UsageError(std::string(option) + ": " + json_string(text) +
+                     " is not a finite decimal number (expected e.g. 0.25, -3 or 1e-3)");
+  }
+  return value;
 }
 
 TEST_CASE("decimal numbers in the usual forms are read exactly") {
-    CHECK(parse_real("--dt", "1e-3") == 1e-3);
-    CHECK(parse_real("--dt", "-0.5") == -0.5);
-    CHECK(parse_real("--dt", "42") == 42.0);
-    CHECK(parse_real("--dt", "+2.5") == 2.5);
-    CHECK(parse_real("--dt", ".5") == 0.5);
-    CHECK(parse_real("--dt", "1E3") == 1000.0);
-    CHECK(parse_real("--dt", "0.1") == 0.1);
-    CHECK(parse_real("--dt", "4.9e-324") == std::numeric_limits<double>::denorm_min());
+  CHECK(parse_real("--dt", "1e-3") == 1e-3);
+  CHECK(parse_real("--dt", "-0.5") == -0.5);
+  CHECK(parse_real("--dt", "42") == 42.0);
+  CHECK(parse_real("--dt", "+2.5") == 2.5);
+  CHECK(parse_real("--dt", ".5") == 0.5);
+  CHECK(parse_real("--dt", "1E3") == 1000.0);
+  CHECK(parse_real("--dt", "0.1") == 0.1);
+  CHECK(parse_real("--dt", "4.9e-324") == std::numeric_limits<double>::denorm_min());
 }
 
 TEST_CASE("a malformed real number is rejected with the option's name") {
-    for (const std::string text : {"", "1e", "12abc", " 1", "1 ", "0x10", "0x1p3", "+-1", "--1",
-                                   "++1", "+", "-", "1,5", "1.2.3", "e3", "one"}) {
-        CAPTURE(text);
-        CHECK_THROWS_WITH_AS(parse_real("--dt", text),
-                             ("--dt: " + json_string(text) +
-                              " is not a finite decimal number (expected e.g. 0.25, -3 or 1e-3)")
-                                 .c_str(),
-                             UsageError);
-    }
+  for (const std::string text :
+       {"", "1e", "12abc", " 1", "1 ", "0x10", "0x1p3", "+-1", "--1", "++1", "+", "-", "1,5", "1.2.3", "e3", "one"}) {
+    CAPTURE(text);
+    CHECK_THROWS_WITH_AS(
+        parse_real("--dt", text),
+        ("--dt: " + json_string(text) + " is not a finite decimal number (expected e.g. 0.25, -3 or 1e-3)").c_str(),
+        UsageError);
+  }
 }
 
 TEST_CASE("infinities and NaN are rejected as real values") {
-    for (const std::string text : {"nan", "NaN", "-nan", "nan(1)", "inf", "-inf", "+inf",
-                                   "infinity", "INF"}) {
-        CAPTURE(text);
-        CHECK_THROWS_WITH_AS(parse_real("--final-time", text),
-                             doctest::Contains("--final-time: "), UsageError);
-        CHECK_THROWS_WITH_AS(parse_real("--final-time", text),
-                             doctest::Contains("is not a finite decimal number"), UsageError);
-    }
+  for (const std::string text : {"nan", "NaN", "-nan", "nan(1)", "inf", "-inf", "+inf", "infinity", "INF"}) {
+    CAPTURE(text);
+    CHECK_THROWS_WITH_AS(parse_real("--final-time", text), doctest::Contains("--final-time: "), UsageError);
+    CHECK_THROWS_WITH_AS(parse_real("--final-time", text), doctest::Contains("is not a finite decimal number"),
+                         UsageError);
+  }
 }
 
 TEST_CASE("a real number beyond the range of a double is rejected as out of range") {
-    for (const std::string text : {"1e400", "-1e400", "1e-400"}) {
-        CAPTURE(text);
-        CHECK_THROWS_WITH_AS(parse_real("--dt", text),
-                             ("--dt: " + json_string(text) +
-                              " is out of the range of double-precision numbers")
-                                 .c_str(),
-                             UsageError);
-    }
+  for (const std::string text : {"1e400", "-1e400", "1e-400"}) {
+    CAPTURE(text);
+    CHECK_THROWS_WITH_AS(parse_real("--dt", text),
+                         ("--dt: " + json_string(text) + " is out of the range of double-precision numbers").c_str(),
+                         UsageError);
+  }
 }
 
 // An integer value must be a base-10 integer that fits in a long. std::from_chars reads exactly
 // that and reports overflow separately; again the whole text must be consumed, so that "1.5" and
 // "1e3" are errors instead of 1.
 long parse_integer(std::string_view option, std::string_view text) {
-    const std::string_view number = without_plus_sign(text);
-    const char* const end = number.data() + number.size();
-    long value = 0;
-    const auto [stop, error] = std::from_chars(number.data(), end, value, 10);
-    if (error == std::errc::result_out_of_range && stop == end) {
-        throw UsageError(std::string(option) + ": " + json_string(text) +
-                         " is out of the integer range [" +
-                         std::to_string(std::numeric_limits<long>::min()) + ", " +
-                         std::to_string(std::numeric_limits<long>::max()) + "]");
-    }
-    if (error != std::errc() || stop != end) {
-        throw UsageError(std::string(option) + ": " + json_string(text) +
-                         " is not an integer (expected base-10 digits, e.g. 42)");
-    }
-    return value;
+  const std::string_view number = without_plus_sign(text);
+  const char* const end = number.data() + number.size();
+  long value = 0;
+  const auto [stop, error] = std::from_chars(number.data(), end, value, 10);
+  if (error == std::errc::result_out_of_range && stop == end) {
+    throw UsageError(std::string(option) + ": " + json_string(text) + " is out of the integer range [" +
+                     std::to_string(std::numeric_limits<long>::min()) + ", " +
+                     std::to_string(std::numeric_limits<long>::max()) + "]");
+  }
+  if (error != std::errc() || stop != end) {
+    throw UsageError(std::string(option) + ": " + json_string(text) +
+                     " is not an integer (expected base-10 digits, e.g. 42)");
+  }
+  return value;
 }
 
 TEST_CASE("base-10 integers are read exactly, up to the limits of a long") {
-    CHECK(parse_integer("--elements", "42") == 42);
-    CHECK(parse_integer("--elements", "-7") == -7);
-    CHECK(parse_integer("--elements", "+3") == 3);
-    CHECK(parse_integer("--elements", "0") == 0);
-    CHECK(parse_integer("--elements", "9223372036854775807") == std::numeric_limits<long>::max());
-    CHECK(parse_integer("--elements", "-9223372036854775808") == std::numeric_limits<long>::min());
+  CHECK(parse_integer("--elements", "42") == 42);
+  CHECK(parse_integer("--elements", "-7") == -7);
+  CHECK(parse_integer("--elements", "+3") == 3);
+  CHECK(parse_integer("--elements", "0") == 0);
+  CHECK(parse_integer("--elements", "9223372036854775807") == std::numeric_limits<long>::max());
+  CHECK(parse_integer("--elements", "-9223372036854775808") == std::numeric_limits<long>::min());
 }
 
 TEST_CASE("a malformed integer is rejected with the option's name") {
-    for (const std::string text : {"1.5", "1e3", "", "12abc", " 1", "1 ", "0x10", "+-1", "--1", "-",
-                             "1,000", "nan"}) {
-        CAPTURE(text);
-        CHECK_THROWS_WITH_AS(parse_integer("--elements", text),
-                             ("--elements: " + json_string(text) +
-                              " is not an integer (expected base-10 digits, e.g. 42)")
-                                 .c_str(),
-                             UsageError);
-    }
+  for (const std::string text : {"1.5", "1e3", "", "12abc", " 1", "1 ", "0x10", "+-1", "--1", "-", "1,000", "nan"}) {
+    CAPTURE(text);
+    CHECK_THROWS_WITH_AS(
+        parse_integer("--elements", text),
+        ("--elements: " + json_string(text) + " is not an integer (expected base-10 digits, e.g. 42)").c_str(),
+        UsageError);
+  }
 }
 
 TEST_CASE("an integer that overflows a long is rejected with the allowed range") {
-    for (const std::string text : {"9223372036854775808", "-9223372036854775809",
-                             "99999999999999999999"}) {
-        CAPTURE(text);
-        CHECK_THROWS_WITH_AS(parse_integer("--elements", text),
-                             ("--elements: " + json_string(text) +
-                              " is out of the integer range [-9223372036854775808, "
-                              "9223372036854775807]")
-                                 .c_str(),
-                             UsageError);
-    }
+  for (const std::string text : {"9223372036854775808", "-9223372036854775809", "99999999999999999999"}) {
+    CAPTURE(text);
+    CHECK_THROWS_WITH_AS(parse_integer("--elements", text),
+                         ("--elements: " + json_string(text) +
+                          " is out of the integer range [-9223372036854775808, "
+                          "9223372036854775807]")
+                             .c_str(),
+                         UsageError);
+  }
 }
 
 // A choice is one of a fixed list of words. The message lists them all, so that the user does not
 // have to look up the help.
-std::string parse_choice(std::string_view option, std::string_view text,
-                         const std::vector<std::string>& allowed) {
-    if (std::find(allowed.begin(), allowed.end(), text) != allowed.end()) {
-        return std::string(text);
-    }
-    std::string list;
-    for (const std::string& value : allowed) {
-        list += (list.empty() ? "" : ", ") + value;
-    }
-    throw UsageError(std::string(option) + ": unknown value " + json_string(text) + " (allowed: " +
-                     list + ")");
+std::string parse_choice(std::string_view option, std::string_view text, const std::vector<std::string>& allowed) {
+  if (std::find(allowed.begin(), allowed.end(), text) != allowed.end()) {
+    return std::string(text);
+  }
+  std::string list;
+  for (const std::string& value : allowed) {
+    list += (list.empty() ? "" : ", ") + value;
+  }
+  throw UsageError(std::string(option) + ": unknown value " + json_string(text) + " (allowed: " + list + ")");
 }
 
 TEST_CASE("a choice accepts exactly the listed words and names them when rejecting") {
-    CHECK(parse_choice("--scheme", "be", {"cn", "be", "ps"}) == "be");
-    CHECK_THROWS_WITH_AS(parse_choice("--scheme", "xx", {"cn", "be", "ps"}),
-                         "--scheme: unknown value \"xx\" (allowed: cn, be, ps)", UsageError);
-    CHECK_THROWS_WITH_AS(parse_choice("--scheme", "CN", {"cn", "be", "ps"}),
-                         "--scheme: unknown value \"CN\" (allowed: cn, be, ps)", UsageError);
-    CHECK_THROWS_AS(parse_choice("--scheme", "", {"cn", "be", "ps"}), UsageError);
+  CHECK(parse_choice("--scheme", "be", {"cn", "be", "ps"}) == "be");
+  CHECK_THROWS_WITH_AS(parse_choice("--scheme", "xx", {"cn", "be", "ps"}),
+                       "--scheme: unknown value \"xx\" (allowed: cn, be, ps)", UsageError);
+  CHECK_THROWS_WITH_AS(parse_choice("--scheme", "CN", {"cn", "be", "ps"}),
+                       "--scheme: unknown value \"CN\" (allowed: cn, be, ps)", UsageError);
+  CHECK_THROWS_AS(parse_choice("--scheme", "", {"cn", "be", "ps"}), UsageError);
 }
 
 // Real numbers are written by std::to_chars without a precision, which gives the shortest decimal
@@ -234,120 +231,111 @@ TEST_CASE("a choice accepts exactly the listed words and names them when rejecti
 // exact and free of noise digits ("0.1", not "0.10000000000000001"), and it does not depend on the
 // locale, so that the same values always give the same data-file headers.
 std::string format_real(double value) {
-    char buffer[64];
-    const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value);
-    if (error != std::errc()) {
-        throw std::logic_error("format_real: buffer too small");
-    }
-    return std::string(buffer, end);
+  char buffer[64];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  if (error != std::errc()) {
+    throw std::logic_error("format_real: buffer too small");
+  }
+  return std::string(buffer, end);
 }
 
 TEST_CASE("real numbers are formatted in their shortest form") {
-    CHECK(format_real(0.1) == "0.1");
-    CHECK(format_real(12.0) == "12");
-    CHECK(format_real(0.0) == "0");
-    CHECK(format_real(-0.0) == "-0");
-    CHECK(format_real(1.0 / 3.0) == "0.3333333333333333");
-    CHECK(format_real(1e-300) == "1e-300");
-    CHECK(format_real(-2.5e10) == "-2.5e+10");
-    CHECK(format_real(std::numeric_limits<double>::infinity()) == "inf");
+  CHECK(format_real(0.1) == "0.1");
+  CHECK(format_real(12.0) == "12");
+  CHECK(format_real(0.0) == "0");
+  CHECK(format_real(-0.0) == "-0");
+  CHECK(format_real(1.0 / 3.0) == "0.3333333333333333");
+  CHECK(format_real(1e-300) == "1e-300");
+  CHECK(format_real(-2.5e10) == "-2.5e+10");
+  CHECK(format_real(std::numeric_limits<double>::infinity()) == "inf");
 }
 
 TEST_CASE("a formatted real number reads back to the same double bit for bit") {
-    const auto bits = [](double value) {
-        std::uint64_t representation = 0;
-        std::memcpy(&representation, &value, sizeof value);
-        return representation;
-    };
-    for (const double value :
-         {0.1, 1.0 / 3.0, 2.0 / 3.0, 1e-300, -2.5e10, 0.0, -0.0, 1.0, 12.0, 123456789.125,
-          std::nextafter(1.0, 2.0), std::numeric_limits<double>::denorm_min(),
-          3 * std::numeric_limits<double>::denorm_min(), std::numeric_limits<double>::min() / 3,
-          std::numeric_limits<double>::min(), std::numeric_limits<double>::max(),
-          -std::numeric_limits<double>::max(), std::numeric_limits<double>::epsilon()}) {
-        CAPTURE(value);
-        CHECK(bits(parse_real("--x", format_real(value))) == bits(value));
-    }
+  const auto bits = [](double value) {
+    std::uint64_t representation = 0;
+    std::memcpy(&representation, &value, sizeof value);
+    return representation;
+  };
+  for (const double value :
+       {0.1, 1.0 / 3.0, 2.0 / 3.0, 1e-300, -2.5e10, 0.0, -0.0, 1.0, 12.0, 123456789.125, std::nextafter(1.0, 2.0),
+        std::numeric_limits<double>::denorm_min(), 3 * std::numeric_limits<double>::denorm_min(),
+        std::numeric_limits<double>::min() / 3, std::numeric_limits<double>::min(), std::numeric_limits<double>::max(),
+        -std::numeric_limits<double>::max(), std::numeric_limits<double>::epsilon()}) {
+    CAPTURE(value);
+    CHECK(bits(parse_real("--x", format_real(value))) == bits(value));
+  }
 }
 
 // The range requirements. The allowed range in the message is written with format_real, like every
 // number the user sees, so that `[0, 1]` reads as the user would have typed it. The comparisons are
 // written so that NaN fails every requirement.
 void require_positive(std::string_view option, double value) {
-    if (!(value > 0)) {
-        throw UsageError(std::string(option) + ": " + format_real(value) +
-                         " is not allowed (expected a value > 0)");
-    }
+  if (!(value > 0)) {
+    throw UsageError(std::string(option) + ": " + format_real(value) + " is not allowed (expected a value > 0)");
+  }
 }
 
 void require_at_least(std::string_view option, double value, double minimum) {
-    if (!(value >= minimum)) {
-        throw UsageError(std::string(option) + ": " + format_real(value) +
-                         " is not allowed (expected a value >= " + format_real(minimum) + ")");
-    }
+  if (!(value >= minimum)) {
+    throw UsageError(std::string(option) + ": " + format_real(value) +
+                     " is not allowed (expected a value >= " + format_real(minimum) + ")");
+  }
 }
 
-void require_in_closed_range(std::string_view option, double value, double lowest,
-                             double highest) {
-    if (!(lowest <= value && value <= highest)) {
-        throw UsageError(std::string(option) + ": " + format_real(value) +
-                         " is outside the allowed range [" + format_real(lowest) + ", " +
-                         format_real(highest) + "]");
-    }
+void require_in_closed_range(std::string_view option, double value, double lowest, double highest) {
+  if (!(lowest <= value && value <= highest)) {
+    throw UsageError(std::string(option) + ": " + format_real(value) + " is outside the allowed range [" +
+                     format_real(lowest) + ", " + format_real(highest) + "]");
+  }
 }
 
 TEST_CASE("range requirements accept their bounds and name the option and the range otherwise") {
-    const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
 
-    CHECK_NOTHROW(require_positive("--dt", 1e-300));
-    CHECK_THROWS_WITH_AS(require_positive("--dt", 0.0),
-                         "--dt: 0 is not allowed (expected a value > 0)", UsageError);
-    CHECK_THROWS_WITH_AS(require_positive("--dt", -2.5),
-                         "--dt: -2.5 is not allowed (expected a value > 0)", UsageError);
-    CHECK_THROWS_AS(require_positive("--dt", nan), UsageError);
+  CHECK_NOTHROW(require_positive("--dt", 1e-300));
+  CHECK_THROWS_WITH_AS(require_positive("--dt", 0.0), "--dt: 0 is not allowed (expected a value > 0)", UsageError);
+  CHECK_THROWS_WITH_AS(require_positive("--dt", -2.5), "--dt: -2.5 is not allowed (expected a value > 0)", UsageError);
+  CHECK_THROWS_AS(require_positive("--dt", nan), UsageError);
 
-    CHECK_NOTHROW(require_at_least("--elements", 2, 2));
-    CHECK_THROWS_WITH_AS(require_at_least("--elements", 1, 2),
-                         "--elements: 1 is not allowed (expected a value >= 2)", UsageError);
-    CHECK_THROWS_AS(require_at_least("--elements", nan, 2), UsageError);
+  CHECK_NOTHROW(require_at_least("--elements", 2, 2));
+  CHECK_THROWS_WITH_AS(require_at_least("--elements", 1, 2), "--elements: 1 is not allowed (expected a value >= 2)",
+                       UsageError);
+  CHECK_THROWS_AS(require_at_least("--elements", nan, 2), UsageError);
 
-    CHECK_NOTHROW(require_in_closed_range("--restitution", 0.0, 0, 1));
-    CHECK_NOTHROW(require_in_closed_range("--restitution", 1.0, 0, 1));
-    CHECK_THROWS_WITH_AS(require_in_closed_range("--restitution", 1.5, 0, 1),
-                         "--restitution: 1.5 is outside the allowed range [0, 1]", UsageError);
-    CHECK_THROWS_WITH_AS(require_in_closed_range("--restitution", -0.1, 0, 1),
-                         "--restitution: -0.1 is outside the allowed range [0, 1]", UsageError);
-    CHECK_THROWS_AS(require_in_closed_range("--restitution", nan, 0, 1), UsageError);
+  CHECK_NOTHROW(require_in_closed_range("--restitution", 0.0, 0, 1));
+  CHECK_NOTHROW(require_in_closed_range("--restitution", 1.0, 0, 1));
+  CHECK_THROWS_WITH_AS(require_in_closed_range("--restitution", 1.5, 0, 1),
+                       "--restitution: 1.5 is outside the allowed range [0, 1]", UsageError);
+  CHECK_THROWS_WITH_AS(require_in_closed_range("--restitution", -0.1, 0, 1),
+                       "--restitution: -0.1 is outside the allowed range [0, 1]", UsageError);
+  CHECK_THROWS_AS(require_in_closed_range("--restitution", nan, 0, 1), UsageError);
 }
 
 // The same requirements as checks to attach to an option when registering it; the parser passes
 // the option's long name and its value.
 Check positive() {
-    return [](std::string_view option, double value) { require_positive(option, value); };
+  return [](std::string_view option, double value) { require_positive(option, value); };
 }
 
 Check at_least(double minimum) {
-    return [minimum](std::string_view option, double value) {
-        require_at_least(option, value, minimum);
-    };
+  return [minimum](std::string_view option, double value) { require_at_least(option, value, minimum); };
 }
 
 Check in_closed_range(double lowest, double highest) {
-    return [lowest, highest](std::string_view option, double value) {
-        require_in_closed_range(option, value, lowest, highest);
-    };
+  return [lowest, highest](std::string_view option, double value) {
+    require_in_closed_range(option, value, lowest, highest);
+  };
 }
 
 TEST_CASE("packaged checks apply the corresponding range requirement") {
-    CHECK_NOTHROW(positive()("--dt", 0.5));
-    CHECK_THROWS_WITH_AS(positive()("--dt", 0.0),
-                         "--dt: 0 is not allowed (expected a value > 0)", UsageError);
-    CHECK_NOTHROW(at_least(2)("--elements", 2));
-    CHECK_THROWS_WITH_AS(at_least(2)("--elements", 1),
-                         "--elements: 1 is not allowed (expected a value >= 2)", UsageError);
-    CHECK_NOTHROW(in_closed_range(0, 1)("--restitution", 1));
-    CHECK_THROWS_WITH_AS(in_closed_range(0, 1)("--restitution", 1.5),
-                         "--restitution: 1.5 is outside the allowed range [0, 1]", UsageError);
+  CHECK_NOTHROW(positive()("--dt", 0.5));
+  CHECK_THROWS_WITH_AS(positive()("--dt", 0.0), "--dt: 0 is not allowed (expected a value > 0)", UsageError);
+  CHECK_NOTHROW(at_least(2)("--elements", 2));
+  CHECK_THROWS_WITH_AS(at_least(2)("--elements", 1), "--elements: 1 is not allowed (expected a value >= 2)",
+                       UsageError);
+  CHECK_NOTHROW(in_closed_range(0, 1)("--restitution", 1));
+  CHECK_THROWS_WITH_AS(in_closed_range(0, 1)("--restitution", 1.5),
+                       "--restitution: 1.5 is outside the allowed range [0, 1]", UsageError);
 }
 
 namespace {
@@ -356,184 +344,192 @@ namespace {
 // name is "-" and one letter (never a digit, so that a negative number is never taken for an
 // option). The help and version options are built in.
 bool is_long_name(std::string_view name) {
-    if (name.size() < 3 || name.substr(0, 2) != "--" || name.back() == '-' || name[2] == '-') {
-        return false;
-    }
-    return std::all_of(name.begin() + 2, name.end(), [](char character) {
-        return std::isalnum(static_cast<unsigned char>(character)) || character == '-';
-    });
+  if (name.size() < 3 || name.substr(0, 2) != "--" || name.back() == '-' || name[2] == '-') {
+    return false;
+  }
+  return std::all_of(name.begin() + 2, name.end(), [](char character) {
+    return std::isalnum(static_cast<unsigned char>(character)) || character == '-';
+  });
 }
 
 bool is_short_name(std::string_view name) {
-    return name.size() == 2 && name[0] == '-' && std::isalpha(static_cast<unsigned char>(name[1]));
+  return name.size() == 2 && name[0] == '-' && std::isalpha(static_cast<unsigned char>(name[1]));
 }
 
-bool is_builtin_name(std::string_view name) {
-    return name == "--help" || name == "-h" || name == "--version";
-}
+bool is_builtin_name(std::string_view name) { return name == "--help" || name == "-h" || name == "--version"; }
 
 // The key under which an option's value is echoed: "--final-time" gives "final_time".
 std::string echo_key(std::string_view long_name) {
-    std::string key(long_name.substr(2));
-    std::replace(key.begin(), key.end(), '-', '_');
-    return key;
+  std::string key(long_name.substr(2));
+  std::replace(key.begin(), key.end(), '-', '_');
+  return key;
 }
 
 // The description in the help is one paragraph, folded at word boundaries into lines of at most
 // `width` characters (a longer word gets a line of its own).
 std::string wrapped(std::string_view paragraph, std::size_t width) {
-    std::istringstream words{std::string(paragraph)};
-    std::string result, line, word;
-    while (words >> word) {
-        if (!line.empty() && line.size() + 1 + word.size() > width) {
-            result += line + '\n';
-            line.clear();
-        }
-        line += (line.empty() ? "" : " ") + word;
+  std::istringstream words{std::string(paragraph)};
+  std::string result, line, word;
+  while (words >> word) {
+    if (!line.empty() && line.size() + 1 + word.size() > width) {
+      result += line + '\n';
+      line.clear();
     }
-    if (!line.empty()) {
-        result += line + '\n';
-    }
-    return result;
+    line += (line.empty() ? "" : " ") + word;
+  }
+  if (!line.empty()) {
+    result += line + '\n';
+  }
+  return result;
 }
 
 }  // namespace
 
 TEST_CASE("option names are recognised by their form") {
-    CHECK(is_long_name("--elements"));
-    CHECK(is_long_name("--final-time"));
-    CHECK(is_long_name("--p2"));
-    CHECK_FALSE(is_long_name("--"));
-    CHECK_FALSE(is_long_name("-elements"));
-    CHECK_FALSE(is_long_name("--final_time"));
-    CHECK_FALSE(is_long_name("--final-"));
-    CHECK_FALSE(is_long_name("---x"));
-    CHECK(is_short_name("-n"));
-    CHECK_FALSE(is_short_name("-5"));
-    CHECK_FALSE(is_short_name("-nn"));
-    CHECK_FALSE(is_short_name("n"));
-    CHECK(echo_key("--final-time") == "final_time");
+  CHECK(is_long_name("--elements"));
+  CHECK(is_long_name("--final-time"));
+  CHECK(is_long_name("--p2"));
+  CHECK_FALSE(is_long_name("--"));
+  CHECK_FALSE(is_long_name("-elements"));
+  CHECK_FALSE(is_long_name("--final_time"));
+  CHECK_FALSE(is_long_name("--final-"));
+  CHECK_FALSE(is_long_name("---x"));
+  CHECK(is_short_name("-n"));
+  CHECK_FALSE(is_short_name("-5"));
+  CHECK_FALSE(is_short_name("-nn"));
+  CHECK_FALSE(is_short_name("n"));
+  CHECK(echo_key("--final-time") == "final_time");
 }
 
 TEST_CASE("a paragraph is folded at word boundaries within the width") {
-    CHECK(wrapped("the  quick brown\nfox jumps", 10) == "the quick\nbrown fox\njumps\n");
-    CHECK(wrapped("a verylongword b", 5) == "a\nverylongword\nb\n");
-    CHECK(wrapped("", 10).empty());
+  CHECK(wrapped("the  quick brown\nfox jumps", 10) == "the quick\nbrown fox\njumps\n");
+  CHECK(wrapped("a verylongword b", 5) == "a\nverylongword\nb\n");
+  CHECK(wrapped("", 10).empty());
 }
 
 // The parser keeps the program's name, its description and its sample runs for the help.
-Parser::Parser(std::string program, std::string description,
-               std::vector<std::string> sample_runs)
-    : program_(std::move(program)),
-      description_(std::move(description)),
-      sample_runs_(std::move(sample_runs)) {}
+Parser::Parser(std::string program, std::string description, std::vector<std::string> sample_runs)
+    : program_(std::move(program)), description_(std::move(description)), sample_runs_(std::move(sample_runs)) {}
 
 // Every registration goes through add_option, which rejects the programming errors: malformed,
 // reserved or duplicate names, a value option without a placeholder, a null variable. The
 // default shown in the help is taken now, from the variable's value before any parsing.
 void Parser::add_option(Option option) {
-    const std::string& name = option.long_name;
-    if (!is_long_name(name) || is_builtin_name(name)) {
-        throw std::logic_error("Parser: invalid long option name " + json_string(name));
-    }
-    if (!option.short_name.empty() &&
-        (!is_short_name(option.short_name) || is_builtin_name(option.short_name))) {
-        throw std::logic_error("Parser: invalid short option name " +
-                               json_string(option.short_name) + " for " + name);
-    }
-    if (find(name) != nullptr || (!option.short_name.empty() && find(option.short_name))) {
-        throw std::logic_error("Parser: option " + name + " registered twice");
-    }
-    const bool is_flag = std::holds_alternative<bool*>(option.target);
-    if (is_flag != option.metavar.empty()) {
-        throw std::logic_error("Parser: " + name +
-                               (is_flag ? " is a flag and takes no placeholder"
-                                        : " needs a placeholder for its value"));
-    }
-    std::visit(
-        [&](auto* target) {
-            using Target = std::remove_pointer_t<decltype(target)>;
-            if (target == nullptr) {
-                throw std::logic_error("Parser: " + name + " is bound to a null pointer");
-            }
-            if constexpr (std::is_same_v<Target, double>) {
-                option.default_text = format_real(*target);
-            } else if constexpr (std::is_same_v<Target, long>) {
-                option.default_text = std::to_string(*target);
-            } else if constexpr (std::is_same_v<Target, std::string>) {
-                option.default_text = *target;
-            }
-        },
-        option.target);
-    options_.push_back(std::move(option));
+  const std::string& name = option.long_name;
+  if (!is_long_name(name) || is_builtin_name(name)) {
+    throw std::logic_error("Parser: invalid long option name " + json_string(name));
+  }
+  if (!option.short_name.empty() && (!is_short_name(option.short_name) || is_builtin_name(option.short_name))) {
+    throw std::logic_error("Parser: invalid short option name " + json_string(option.short_name) + " for " + name);
+  }
+  if (find(name) != nullptr || (!option.short_name.empty() && find(option.short_name))) {
+    throw std::logic_error("Parser: option " + name + " registered twice");
+  }
+  const bool is_flag = std::holds_alternative<bool*>(option.target);
+  if (is_flag != option.metavar.empty()) {
+    throw std::logic_error("Parser: " + name +
+                           (is_flag ? " is a flag and takes no placeholder" : " needs a placeholder for its value"));
+  }
+  std::visit(
+      [&](auto* target) {
+        using Target = std::remove_pointer_t<decltype(target)>;
+        if (target == nullptr) {
+          throw std::logic_error("Parser: " + name + " is bound to a null pointer");
+        }
+        if constexpr (std::is_same_v<Target, double>) {
+          option.default_text = format_real(*target);
+        } else if constexpr (std::is_same_v<Target, long>) {
+          option.default_text = std::to_string(*target);
+        } else if constexpr (std::is_same_v<Target, std::string>) {
+          option.default_text = *target;
+        }
+      },
+      option.target);
+  options_.push_back(std::move(option));
 }
 
 // The registration of each kind of option only fills in the description of the option: the kind
 // is the type of the bound variable, a choice is a string with allowed values, a flag is the one
 // kind without a placeholder.
-void Parser::add_real(std::string long_name, std::string short_name, std::string metavar,
-                      std::string help, double* target, Check check) {
-    add_option({std::move(long_name), std::move(short_name), std::move(metavar), std::move(help),
-                target, {}, std::move(check), {}, false});
+void Parser::add_real(std::string long_name, std::string short_name, std::string metavar, std::string help,
+                      double* target, Check check) {
+  add_option({std::move(long_name),
+              std::move(short_name),
+              std::move(metavar),
+              std::move(help),
+              target,
+              {},
+              std::move(check),
+              {},
+              false});
 }
 
-void Parser::add_integer(std::string long_name, std::string short_name, std::string metavar,
-                         std::string help, long* target, Check check) {
-    add_option({std::move(long_name), std::move(short_name), std::move(metavar), std::move(help),
-                target, {}, std::move(check), {}, false});
+void Parser::add_integer(std::string long_name, std::string short_name, std::string metavar, std::string help,
+                         long* target, Check check) {
+  add_option({std::move(long_name),
+              std::move(short_name),
+              std::move(metavar),
+              std::move(help),
+              target,
+              {},
+              std::move(check),
+              {},
+              false});
 }
 
-void Parser::add_string(std::string long_name, std::string short_name, std::string metavar,
-                        std::string help, std::string* target) {
-    add_option({std::move(long_name), std::move(short_name), std::move(metavar), std::move(help),
-                target, {}, {}, {}, false});
+void Parser::add_string(std::string long_name, std::string short_name, std::string metavar, std::string help,
+                        std::string* target) {
+  add_option(
+      {std::move(long_name), std::move(short_name), std::move(metavar), std::move(help), target, {}, {}, {}, false});
 }
 
 // A choice is a string option with a non-empty list of allowed values; its default must be one of
 // them.
-void Parser::add_choice(std::string long_name, std::string short_name, std::string metavar,
-                        std::string help, std::vector<std::string> allowed,
-                        std::string* target) {
-    if (allowed.empty() || (target != nullptr && std::find(allowed.begin(), allowed.end(),
-                                                           *target) == allowed.end())) {
-        throw std::logic_error("Parser: the default of " + long_name +
-                               " is not one of its allowed values");
-    }
-    add_option({std::move(long_name), std::move(short_name), std::move(metavar), std::move(help),
-                target, std::move(allowed), {}, {}, false});
+void Parser::add_choice(std::string long_name, std::string short_name, std::string metavar, std::string help,
+                        std::vector<std::string> allowed, std::string* target) {
+  if (allowed.empty() || (target != nullptr && std::find(allowed.begin(), allowed.end(), *target) == allowed.end())) {
+    throw std::logic_error("Parser: the default of " + long_name + " is not one of its allowed values");
+  }
+  add_option({std::move(long_name),
+              std::move(short_name),
+              std::move(metavar),
+              std::move(help),
+              target,
+              std::move(allowed),
+              {},
+              {},
+              false});
 }
 
-void Parser::add_flag(std::string long_name, std::string short_name, std::string help,
-                      bool* target) {
-    add_option({std::move(long_name), std::move(short_name), {}, std::move(help), target, {}, {},
-                {}, false});
+void Parser::add_flag(std::string long_name, std::string short_name, std::string help, bool* target) {
+  add_option({std::move(long_name), std::move(short_name), {}, std::move(help), target, {}, {}, {}, false});
 }
 
 // A conflict links two options that are already registered.
 void Parser::add_conflict(std::string_view first_long_name, std::string_view second_long_name) {
-    registered(first_long_name);
-    registered(second_long_name);
-    conflicts_.emplace_back(first_long_name, second_long_name);
+  registered(first_long_name);
+  registered(second_long_name);
+  conflicts_.emplace_back(first_long_name, second_long_name);
 }
 
 // Looking up an option by its long or short name; `registered` is the lookup of a name that the
 // program itself supplies, where an unknown name is a programming error.
 Parser::Option* Parser::find(std::string_view name) {
-    for (Option& option : options_) {
-        if (option.long_name == name || (!option.short_name.empty() && option.short_name == name)) {
-            return &option;
-        }
+  for (Option& option : options_) {
+    if (option.long_name == name || (!option.short_name.empty() && option.short_name == name)) {
+      return &option;
     }
-    return nullptr;
+  }
+  return nullptr;
 }
 
 const Parser::Option& Parser::registered(std::string_view long_name) const {
-    for (const Option& option : options_) {
-        if (option.long_name == long_name) {
-            return option;
-        }
+  for (const Option& option : options_) {
+    if (option.long_name == long_name) {
+      return option;
     }
-    throw std::logic_error("Parser: no option " + json_string(long_name) + " is registered");
+  }
+  throw std::logic_error("Parser: no option " + json_string(long_name) + " is registered");
 }
 
 bool Parser::given(std::string_view long_name) const { return registered(long_name).given; }
@@ -541,22 +537,20 @@ bool Parser::given(std::string_view long_name) const { return registered(long_na
 // Storing the text given for an option into its variable, parsed according to the variable's type.
 // The error messages name the option by its long name, whichever name the user typed.
 void Parser::store(Option& option, std::string_view text) {
-    std::visit(
-        [&](auto* target) {
-            using Target = std::remove_pointer_t<decltype(target)>;
-            if constexpr (std::is_same_v<Target, double>) {
-                *target = parse_real(option.long_name, text);
-            } else if constexpr (std::is_same_v<Target, long>) {
-                *target = parse_integer(option.long_name, text);
-            } else if constexpr (std::is_same_v<Target, std::string>) {
-                *target = option.allowed.empty()
-                              ? std::string(text)
-                              : parse_choice(option.long_name, text, option.allowed);
-            } else {
-                *target = true;
-            }
-        },
-        option.target);
+  std::visit(
+      [&](auto* target) {
+        using Target = std::remove_pointer_t<decltype(target)>;
+        if constexpr (std::is_same_v<Target, double>) {
+          *target = parse_real(option.long_name, text);
+        } else if constexpr (std::is_same_v<Target, long>) {
+          *target = parse_integer(option.long_name, text);
+        } else if constexpr (std::is_same_v<Target, std::string>) {
+          *target = option.allowed.empty() ? std::string(text) : parse_choice(option.long_name, text, option.allowed);
+        } else {
+          *target = true;
+        }
+      },
+      option.target);
 }
 
 // Reading the command line, one argument at a time. A long option may carry its value after '=';
@@ -565,153 +559,161 @@ void Parser::store(Option& option, std::string_view text) {
 // number is not an option, since short names are letters. Help and version stop the reading at
 // once. When all arguments are read, the conflicts and then the checks of the given options apply.
 Outcome Parser::parse(const std::vector<std::string>& arguments, std::ostream& out) {
-    for (Option& option : options_) {
-        option.given = false;
+  for (Option& option : options_) {
+    option.given = false;
+  }
+  const auto is_option = [this](std::string_view argument) {
+    return is_builtin_name(argument) || argument.substr(0, 2) == "--" || find(argument) != nullptr;
+  };
+
+  for (std::size_t index = 0; index < arguments.size(); ++index) {
+    const std::string& argument = arguments[index];
+    if (argument == "--help" || argument == "-h") {
+      print_help(out);
+      return Outcome::exit_success;
     }
-    const auto is_option = [this](std::string_view argument) {
-        return is_builtin_name(argument) || argument.substr(0, 2) == "--" ||
-               find(argument) != nullptr;
-    };
-
-    for (std::size_t index = 0; index < arguments.size(); ++index) {
-        const std::string& argument = arguments[index];
-        if (argument == "--help" || argument == "-h") {
-            print_help(out);
-            return Outcome::exit_success;
-        }
-        if (argument == "--version") {
-            out << program_ << ' ' << MRM_VERSION << '\n';
-            return Outcome::exit_success;
-        }
-        if (argument.size() < 2 || argument[0] != '-') {
-            throw UsageError("unexpected argument " + json_string(argument) +
-                             " (this program takes options only; see --help)");
-        }
-
-        std::string_view name = argument;
-        const std::size_t equals = argument.find('=');
-        const bool has_inline_value = argument.substr(0, 2) == "--" && equals != std::string::npos;
-        if (has_inline_value) {
-            name = name.substr(0, equals);
-        }
-        Option* const option = find(name);
-        if (option == nullptr) {
-            throw UsageError("unknown option " + json_string(name) + " (see --help)");
-        }
-        if (option->given) {
-            throw UsageError(option->long_name + ": given more than once");
-        }
-        option->given = true;
-
-        if (std::holds_alternative<bool*>(option->target)) {
-            if (has_inline_value) {
-                throw UsageError(option->long_name + ": takes no value (got " +
-                                 json_string(argument) + ")");
-            }
-            store(*option, "");
-        } else if (has_inline_value) {
-            store(*option, std::string_view(argument).substr(equals + 1));
-        } else if (index + 1 < arguments.size() && !is_option(arguments[index + 1])) {
-            store(*option, arguments[++index]);
-        } else {
-            throw UsageError(option->long_name + ": missing value (expected " + option->metavar +
-                             ")");
-        }
+    if (argument == "--version") {
+      out << program_ << ' ' << MRM_VERSION << '\n';
+      return Outcome::exit_success;
+    }
+    if (argument.size() < 2 || argument[0] != '-') {
+      throw UsageError("unexpected argument " + json_string(argument) +
+                       " (this program takes options only; see --help)");
     }
 
-    for (const auto& [first, second] : conflicts_) {
-        if (given(first) && given(second)) {
-            throw UsageError(first + " and " + second + " cannot be given together");
-        }
+    std::string_view name = argument;
+    const std::size_t equals = argument.find('=');
+    const bool has_inline_value = argument.substr(0, 2) == "--" && equals != std::string::npos;
+    if (has_inline_value) {
+      name = name.substr(0, equals);
     }
-    for (const Option& option : options_) {
-        if (option.given && option.check) {
-            if (const auto* real = std::get_if<double*>(&option.target)) {
-                option.check(option.long_name, **real);
-            } else if (const auto* integer = std::get_if<long*>(&option.target)) {
-                option.check(option.long_name, static_cast<double>(**integer));
-            }
-        }
+    Option* const option = find(name);
+    if (option == nullptr) {
+      throw UsageError("unknown option " + json_string(name) + " (see --help)");
     }
-    return Outcome::run;
+    if (option->given) {
+      throw UsageError(option->long_name + ": given more than once");
+    }
+    option->given = true;
+
+    if (std::holds_alternative<bool*>(option->target)) {
+      if (has_inline_value) {
+        throw UsageError(option->long_name + ": takes no value (got " + json_string(argument) + ")");
+      }
+      store(*option, "");
+    } else if (has_inline_value) {
+      store(*option, std::string_view(argument).substr(equals + 1));
+    } else if (index + 1 < arguments.size() && !is_option(arguments[index + 1])) {
+      store(*option, arguments[++index]);
+    } else {
+      throw UsageError(option->long_name + ": missing value (expected " + option->metavar + ")");
+    }
+  }
+
+  for (const auto& [first, second] : conflicts_) {
+    if (given(first) && given(second)) {
+      throw UsageError(first + " and " + second + " cannot be given together");
+    }
+  }
+  for (const Option& option : options_) {
+    if (option.given && option.check) {
+      if (const auto* real = std::get_if<double*>(&option.target)) {
+        option.check(option.long_name, **real);
+      } else if (const auto* integer = std::get_if<long*>(&option.target)) {
+        option.check(option.long_name, static_cast<double>(**integer));
+      }
+    }
+  }
+  return Outcome::run;
 }
 
 Outcome Parser::parse(int argc, const char* const* argv, std::ostream& out) {
-    return parse(std::vector<std::string>(argv + std::min(argc, 1), argv + argc), out);
+  return parse(std::vector<std::string>(argv + std::min(argc, 1), argv + argc), out);
 }
 
 // The help: usage line, description, one line per option with its default, and the sample runs.
 // The option lines are aligned on the longest "-n, --name VALUE" column.
 void Parser::print_help(std::ostream& out) const {
-    const auto left_column = [](std::string_view short_name, std::string_view long_name,
-                                std::string_view metavar) {
-        std::string column = "  ";
-        column += short_name.empty() ? "    " : std::string(short_name) + ", ";
-        column += long_name;
-        if (!metavar.empty()) {
-            column += " " + std::string(metavar);
-        }
-        return column;
-    };
+  const auto left_column = [](std::string_view short_name, std::string_view long_name, std::string_view metavar) {
+    std::string column = "  ";
+    column += short_name.empty() ? "    " : std::string(short_name) + ", ";
+    column += long_name;
+    if (!metavar.empty()) {
+      column += " " + std::string(metavar);
+    }
+    return column;
+  };
 
-    std::vector<std::pair<std::string, std::string>> lines;
-    for (const Option& option : options_) {
-        std::string help = option.help;
-        if (!option.allowed.empty()) {
-            std::string list;
-            for (const std::string& value : option.allowed) {
-                list += (list.empty() ? "" : ", ") + value;
-            }
-            help += " (one of: " + list + "; default: " + option.default_text + ")";
-        } else if (!option.default_text.empty()) {
-            help += " (default: " + option.default_text + ")";
-        }
-        lines.emplace_back(left_column(option.short_name, option.long_name, option.metavar), help);
+  std::vector<std::pair<std::string, std::string>> lines;
+  for (const Option& option : options_) {
+    std::string help = option.help;
+    if (!option.allowed.empty()) {
+      std::string list;
+      for (const std::string& value : option.allowed) {
+        list += (list.empty() ? "" : ", ") + value;
+      }
+      help += " (one of: " + list + "; default: " + option.default_text + ")";
+    } else if (!option.default_text.empty()) {
+      help += " (default: " + option.default_text + ")";
     }
-    lines.emplace_back(left_column("-h", "--help", ""), "print this help and exit");
-    lines.emplace_back(left_column("", "--version", ""), "print the version and exit");
+    lines.emplace_back(left_column(option.short_name, option.long_name, option.metavar), help);
+  }
+  lines.emplace_back(left_column("-h", "--help", ""), "print this help and exit");
+  lines.emplace_back(left_column("", "--version", ""), "print the version and exit");
 
-    std::size_t width = 0;
-    for (const auto& line : lines) {
-        width = std::max(width, line.first.size());
-    }
+  std::size_t width = 0;
+  for (const auto& line : lines) {
+    width = std::max(width, line.first.size());
+  }
 
-    out << "Usage: " << program_ << " [options]\n";
-    if (!description_.empty()) {
-        out << '\n' << wrapped(description_, 80);
+  out << "Usage: " << program_ << " [options]\n";
+  if (!description_.empty()) {
+    out << '\n' << wrapped(description_, 80);
+  }
+  out << "\nOptions:\n";
+  for (const auto& [column, help] : lines) {
+    out << column << std::string(width + 2 - column.size(), ' ') << help << '\n';
+  }
+  // What an output option does with the path it is given (output_file.hpp), said once for all the
+  // options whose value is a FILE.
+  if (std::any_of(options_.begin(), options_.end(), [](const Option& option) { return option.metavar == "FILE"; })) {
+    out << "\nOutput files:\n"
+        << wrapped(
+               "Each FILE is written under a hidden temporary name in its directory and renamed over FILE "
+               "only when complete: an interrupted or failed run leaves FILE as it was. A character device "
+               "or a FIFO (/dev/null, /dev/stdout, a named pipe whose reader is running) is written in "
+               "place. A directory, a socket, a block device, any other symbolic link, and one file named "
+               "by two options are refused.",
+               80);
+  }
+  if (!sample_runs_.empty()) {
+    out << "\nSample runs:\n";
+    for (const std::string& run : sample_runs_) {
+      out << "  " << run << '\n';
     }
-    out << "\nOptions:\n";
-    for (const auto& [column, help] : lines) {
-        out << column << std::string(width + 2 - column.size(), ' ') << help << '\n';
-    }
-    if (!sample_runs_.empty()) {
-        out << "\nSample runs:\n";
-        for (const std::string& run : sample_runs_) {
-            out << "  " << run << '\n';
-        }
-    }
+  }
 }
 
 // The effective values, one `key = value` line each, in registration order.
 void Parser::echo(std::ostream& out, std::string_view prefix) const {
-    for (const Option& option : options_) {
-        out << prefix << echo_key(option.long_name) << " = ";
-        std::visit(
-            [&](const auto* target) {
-                using Target = std::remove_cv_t<std::remove_pointer_t<decltype(target)>>;
-                if constexpr (std::is_same_v<Target, double>) {
-                    out << format_real(*target);
-                } else if constexpr (std::is_same_v<Target, long>) {
-                    out << *target;
-                } else if constexpr (std::is_same_v<Target, std::string>) {
-                    out << json_string(*target);
-                } else {
-                    out << (*target ? "true" : "false");
-                }
-            },
-            option.target);
-        out << '\n';
-    }
+  for (const Option& option : options_) {
+    out << prefix << echo_key(option.long_name) << " = ";
+    std::visit(
+        [&](const auto* target) {
+          using Target = std::remove_cv_t<std::remove_pointer_t<decltype(target)>>;
+          if constexpr (std::is_same_v<Target, double>) {
+            out << format_real(*target);
+          } else if constexpr (std::is_same_v<Target, long>) {
+            out << *target;
+          } else if constexpr (std::is_same_v<Target, std::string>) {
+            out << json_string(*target);
+          } else {
+            out << (*target ? "true" : "false");
+          }
+        },
+        option.target);
+    out << '\n';
+  }
 }
 
 namespace {
@@ -719,319 +721,328 @@ namespace {
 // The options of a small imaginary program, shared by the parser's tests below; `parse` reads a
 // command line given as a vector and fails the test if anything is printed.
 struct ExampleProgram {
-    long elements = 100;
-    double final_time = 12.0;
-    double dt = 0.0;
-    double courant = 0.5;
-    double restitution = 0.0;
-    std::string scheme = "cn";
-    std::string output = "contact.dat";
-    bool verbose = false;
-    Parser parser{"contact", "Computes the motion of an elastic bar hitting a rigid obstacle.",
-                  {"contact -n 400 --scheme be", "contact --dt 1e-4 -o run.dat"}};
+  long elements = 100;
+  double final_time = 12.0;
+  double dt = 0.0;
+  double courant = 0.5;
+  double restitution = 0.0;
+  std::string scheme = "cn";
+  std::string output = "contact.dat";
+  bool verbose = false;
+  Parser parser{"contact",
+                "Computes the motion of an elastic bar hitting a rigid obstacle.",
+                {"contact -n 400 --scheme be", "contact --dt 1e-4 -o run.dat"}};
 
-    ExampleProgram() {
-        parser.add_integer("--elements", "-n", "N", "number of elements of the mesh", &elements,
-                           at_least(2));
-        parser.add_real("--final-time", "-T", "T", "end of the simulated interval", &final_time,
-                        positive());
-        parser.add_real("--dt", "", "DT", "time step", &dt, positive());
-        parser.add_real("--courant", "", "C", "time step as a fraction of the CFL limit",
-                        &courant, positive());
-        parser.add_real("--restitution", "-e", "E", "coefficient of restitution", &restitution,
-                        in_closed_range(0, 1));
-        parser.add_choice("--scheme", "", "S", "time integration scheme", {"cn", "be", "ps"},
-                          &scheme);
-        parser.add_string("--output", "-o", "FILE", "data file to write", &output);
-        parser.add_flag("--verbose", "-v", "print the progress", &verbose);
-        parser.add_conflict("--dt", "--courant");
-    }
+  ExampleProgram() {
+    parser.add_integer("--elements", "-n", "N", "number of elements of the mesh", &elements, at_least(2));
+    parser.add_real("--final-time", "-T", "T", "end of the simulated interval", &final_time, positive());
+    parser.add_real("--dt", "", "DT", "time step", &dt, positive());
+    parser.add_real("--courant", "", "C", "time step as a fraction of the CFL limit", &courant, positive());
+    parser.add_real("--restitution", "-e", "E", "coefficient of restitution", &restitution, in_closed_range(0, 1));
+    parser.add_choice("--scheme", "", "S", "time integration scheme", {"cn", "be", "ps"}, &scheme);
+    parser.add_string("--output", "-o", "FILE", "data file to write", &output);
+    parser.add_flag("--verbose", "-v", "print the progress", &verbose);
+    parser.add_conflict("--dt", "--courant");
+  }
 
-    Outcome parse(const std::vector<std::string>& arguments) {
-        std::ostringstream printed;
-        const Outcome outcome = parser.parse(arguments, printed);
-        CHECK(printed.str().empty());
-        return outcome;
-    }
+  Outcome parse(const std::vector<std::string>& arguments) {
+    std::ostringstream printed;
+    const Outcome outcome = parser.parse(arguments, printed);
+    CHECK(printed.str().empty());
+    return outcome;
+  }
 };
 
 }  // namespace
 
 TEST_CASE("without arguments every option keeps its default and the program runs") {
-    ExampleProgram program;
-    CHECK(program.parse({}) == Outcome::run);
-    CHECK(program.elements == 100);
-    CHECK(program.final_time == 12.0);
-    CHECK(program.scheme == "cn");
-    CHECK(program.output == "contact.dat");
-    CHECK_FALSE(program.verbose);
-    CHECK_FALSE(program.parser.given("--elements"));
-    CHECK_FALSE(program.parser.given("--verbose"));
+  ExampleProgram program;
+  CHECK(program.parse({}) == Outcome::run);
+  CHECK(program.elements == 100);
+  CHECK(program.final_time == 12.0);
+  CHECK(program.scheme == "cn");
+  CHECK(program.output == "contact.dat");
+  CHECK_FALSE(program.verbose);
+  CHECK_FALSE(program.parser.given("--elements"));
+  CHECK_FALSE(program.parser.given("--verbose"));
 }
 
 TEST_CASE("values are read after long names, short names and '='") {
-    ExampleProgram program;
-    SUBCASE("separate arguments") {
-        CHECK(program.parse({"--elements", "400", "-T", "3.5", "--scheme", "be", "-o", "a.dat",
-                             "-v"}) == Outcome::run);
-    }
-    SUBCASE("'=' after long names") {
-        CHECK(program.parse({"--elements=400", "--final-time=3.5", "--scheme=be", "--output=a.dat",
-                             "--verbose"}) == Outcome::run);
-    }
-    CHECK(program.elements == 400);
-    CHECK(program.final_time == 3.5);
-    CHECK(program.scheme == "be");
-    CHECK(program.output == "a.dat");
-    CHECK(program.verbose);
-    CHECK(program.parser.given("--elements"));
-    CHECK(program.parser.given("--verbose"));
-    CHECK_FALSE(program.parser.given("--dt"));
+  ExampleProgram program;
+  SUBCASE("separate arguments") {
+    CHECK(program.parse({"--elements", "400", "-T", "3.5", "--scheme", "be", "-o", "a.dat", "-v"}) == Outcome::run);
+  }
+  SUBCASE("'=' after long names") {
+    CHECK(program.parse({"--elements=400", "--final-time=3.5", "--scheme=be", "--output=a.dat", "--verbose"}) ==
+          Outcome::run);
+  }
+  CHECK(program.elements == 400);
+  CHECK(program.final_time == 3.5);
+  CHECK(program.scheme == "be");
+  CHECK(program.output == "a.dat");
+  CHECK(program.verbose);
+  CHECK(program.parser.given("--elements"));
+  CHECK(program.parser.given("--verbose"));
+  CHECK_FALSE(program.parser.given("--dt"));
 }
 
 TEST_CASE("a negative number is taken as the value of the option before it") {
-    ExampleProgram program;
-    program.parser.add_real("--shift", "", "X", "shift of the obstacle", &program.dt);
-    CHECK(program.parse({"--shift", "-0.5"}) == Outcome::run);
-    CHECK(program.dt == -0.5);
+  ExampleProgram program;
+  program.parser.add_real("--shift", "", "X", "shift of the obstacle", &program.dt);
+  CHECK(program.parse({"--shift", "-0.5"}) == Outcome::run);
+  CHECK(program.dt == -0.5);
 }
 
 TEST_CASE("'=' may give an empty string or a string containing '='") {
-    ExampleProgram program;
-    SUBCASE("empty") {
-        program.parse({"--output="});
-        CHECK(program.output.empty());
-    }
-    SUBCASE("containing '='") {
-        program.parse({"--output=a=b.dat"});
-        CHECK(program.output == "a=b.dat");
-    }
+  ExampleProgram program;
+  SUBCASE("empty") {
+    program.parse({"--output="});
+    CHECK(program.output.empty());
+  }
+  SUBCASE("containing '='") {
+    program.parse({"--output=a=b.dat"});
+    CHECK(program.output == "a=b.dat");
+  }
 }
 
 TEST_CASE("an unknown option is rejected with a pointer to the help") {
-    ExampleProgram program;
-    CHECK_THROWS_WITH_AS(program.parse({"--foo"}), "unknown option \"--foo\" (see --help)",
-                         UsageError);
-    CHECK_THROWS_WITH_AS(program.parse({"--foo=3"}), "unknown option \"--foo\" (see --help)",
-                         UsageError);
-    CHECK_THROWS_WITH_AS(program.parse({"-x", "1"}), "unknown option \"-x\" (see --help)",
-                         UsageError);
-    CHECK_THROWS_WITH_AS(program.parse({"--elem", "1"}), "unknown option \"--elem\" (see --help)",
-                         UsageError);
+  ExampleProgram program;
+  CHECK_THROWS_WITH_AS(program.parse({"--foo"}), "unknown option \"--foo\" (see --help)", UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"--foo=3"}), "unknown option \"--foo\" (see --help)", UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"-x", "1"}), "unknown option \"-x\" (see --help)", UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"--elem", "1"}), "unknown option \"--elem\" (see --help)", UsageError);
 }
 
 TEST_CASE("an option without its value is rejected with the expected placeholder") {
-    ExampleProgram program;
-    SUBCASE("at the end of the command line") {
-        CHECK_THROWS_WITH_AS(program.parse({"--elements"}),
-                             "--elements: missing value (expected N)", UsageError);
-    }
-    SUBCASE("followed by another option") {
-        CHECK_THROWS_WITH_AS(program.parse({"--output", "--elements", "5"}),
-                             "--output: missing value (expected FILE)", UsageError);
-        CHECK_THROWS_WITH_AS(program.parse({"-o", "-v"}),
-                             "--output: missing value (expected FILE)", UsageError);
-    }
+  ExampleProgram program;
+  SUBCASE("at the end of the command line") {
+    CHECK_THROWS_WITH_AS(program.parse({"--elements"}), "--elements: missing value (expected N)", UsageError);
+  }
+  SUBCASE("followed by another option") {
+    CHECK_THROWS_WITH_AS(program.parse({"--output", "--elements", "5"}), "--output: missing value (expected FILE)",
+                         UsageError);
+    CHECK_THROWS_WITH_AS(program.parse({"-o", "-v"}), "--output: missing value (expected FILE)", UsageError);
+  }
 }
 
 TEST_CASE("a malformed number on the command line is rejected with the option's name") {
-    ExampleProgram program;
-    CHECK_THROWS_WITH_AS(
-        program.parse({"-n", "12abc"}),
-        "--elements: \"12abc\" is not an integer (expected base-10 digits, e.g. 42)", UsageError);
-    CHECK_THROWS_WITH_AS(program.parse({"--final-time=nan"}),
-                         doctest::Contains("--final-time: \"nan\" is not a finite decimal number"),
-                         UsageError);
-    CHECK_THROWS_WITH_AS(program.parse({"--scheme", "xx"}),
-                         "--scheme: unknown value \"xx\" (allowed: cn, be, ps)", UsageError);
+  ExampleProgram program;
+  CHECK_THROWS_WITH_AS(program.parse({"-n", "12abc"}),
+                       "--elements: \"12abc\" is not an integer (expected base-10 digits, e.g. 42)", UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"--final-time=nan"}),
+                       doctest::Contains("--final-time: \"nan\" is not a finite decimal number"), UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"--scheme", "xx"}), "--scheme: unknown value \"xx\" (allowed: cn, be, ps)",
+                       UsageError);
 }
 
 TEST_CASE("an option given twice is rejected, whichever names are used") {
-    ExampleProgram program;
-    CHECK_THROWS_WITH_AS(program.parse({"-n", "4", "--elements", "5"}),
-                         "--elements: given more than once", UsageError);
-    CHECK_THROWS_WITH_AS(program.parse({"-v", "-v"}), "--verbose: given more than once",
-                         UsageError);
+  ExampleProgram program;
+  CHECK_THROWS_WITH_AS(program.parse({"-n", "4", "--elements", "5"}), "--elements: given more than once", UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"-v", "-v"}), "--verbose: given more than once", UsageError);
 }
 
 TEST_CASE("conflicting options are rejected together but accepted alone") {
-    ExampleProgram program;
-    CHECK_THROWS_WITH_AS(program.parse({"--dt", "1e-3", "--courant", "0.9"}),
-                         "--dt and --courant cannot be given together", UsageError);
-    CHECK(program.parse({"--dt", "1e-3"}) == Outcome::run);
-    CHECK(program.parse({"--courant", "0.9"}) == Outcome::run);
-    CHECK_FALSE(program.parser.given("--dt"));
+  ExampleProgram program;
+  CHECK_THROWS_WITH_AS(program.parse({"--dt", "1e-3", "--courant", "0.9"}),
+                       "--dt and --courant cannot be given together", UsageError);
+  CHECK(program.parse({"--dt", "1e-3"}) == Outcome::run);
+  CHECK(program.parse({"--courant", "0.9"}) == Outcome::run);
+  CHECK_FALSE(program.parser.given("--dt"));
 }
 
 TEST_CASE("positional arguments and values given to flags are rejected") {
-    ExampleProgram program;
-    CHECK_THROWS_WITH_AS(program.parse({"-n", "4", "5"}),
-                         "unexpected argument \"5\" (this program takes options only; see --help)",
-                         UsageError);
-    CHECK_THROWS_WITH_AS(program.parse({"-"}),
-                         "unexpected argument \"-\" (this program takes options only; see --help)",
-                         UsageError);
-    CHECK_THROWS_WITH_AS(program.parse({"--verbose=yes"}),
-                         "--verbose: takes no value (got \"--verbose=yes\")", UsageError);
+  ExampleProgram program;
+  CHECK_THROWS_WITH_AS(program.parse({"-n", "4", "5"}),
+                       "unexpected argument \"5\" (this program takes options only; see --help)", UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"-"}), "unexpected argument \"-\" (this program takes options only; see --help)",
+                       UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"--verbose=yes"}), "--verbose: takes no value (got \"--verbose=yes\")",
+                       UsageError);
 }
 
 TEST_CASE("checks reject given values out of range but not the defaults") {
-    ExampleProgram program;
-    CHECK_THROWS_WITH_AS(program.parse({"--restitution", "1.5"}),
-                         "--restitution: 1.5 is outside the allowed range [0, 1]", UsageError);
-    CHECK_THROWS_WITH_AS(program.parse({"-n", "1"}),
-                         "--elements: 1 is not allowed (expected a value >= 2)", UsageError);
-    CHECK_THROWS_WITH_AS(program.parse({"--dt=0"}), "--dt: 0 is not allowed (expected a value > 0)",
-                         UsageError);
-    ExampleProgram untouched;
-    CHECK(untouched.dt == 0.0);
-    CHECK(untouched.parse({}) == Outcome::run);
+  ExampleProgram program;
+  CHECK_THROWS_WITH_AS(program.parse({"--restitution", "1.5"}),
+                       "--restitution: 1.5 is outside the allowed range [0, 1]", UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"-n", "1"}), "--elements: 1 is not allowed (expected a value >= 2)", UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"--dt=0"}), "--dt: 0 is not allowed (expected a value > 0)", UsageError);
+  ExampleProgram untouched;
+  CHECK(untouched.dt == 0.0);
+  CHECK(untouched.parse({}) == Outcome::run);
 }
 
 TEST_CASE("the help lists every option with its default and stops the program") {
-    ExampleProgram program;
-    program.elements = 7;
-    for (const std::string help : {"--help", "-h"}) {
-        CAPTURE(help);
-        std::ostringstream printed;
-        CHECK(program.parser.parse({"-n", "5", help, "--unknown"}, printed) ==
-              Outcome::exit_success);
-        CHECK(printed.str() ==
-              "Usage: contact [options]\n"
-              "\n"
-              "Computes the motion of an elastic bar hitting a rigid obstacle.\n"
-              "\n"
-              "Options:\n"
-              "  -n, --elements N     number of elements of the mesh (default: 100)\n"
-              "  -T, --final-time T   end of the simulated interval (default: 12)\n"
-              "      --dt DT          time step (default: 0)\n"
-              "      --courant C      time step as a fraction of the CFL limit (default: 0.5)\n"
-              "  -e, --restitution E  coefficient of restitution (default: 0)\n"
-              "      --scheme S       time integration scheme (one of: cn, be, ps; default: "
-              "cn)\n"
-              "  -o, --output FILE    data file to write (default: contact.dat)\n"
-              "  -v, --verbose        print the progress\n"
-              "  -h, --help           print this help and exit\n"
-              "      --version        print the version and exit\n"
-              "\n"
-              "Sample runs:\n"
-              "  contact -n 400 --scheme be\n"
-              "  contact --dt 1e-4 -o run.dat\n");
-    }
+  ExampleProgram program;
+  program.elements = 7;
+  for (const std::string help : {"--help", "-h"}) {
+    CAPTURE(help);
+    std::ostringstream printed;
+    CHECK(program.parser.parse({"-n", "5", help, "--unknown"}, printed) == Outcome::exit_success);
+    CHECK(printed.str() ==
+          "Usage: contact [options]\n"
+          "\n"
+          "Computes the motion of an elastic bar hitting a rigid obstacle.\n"
+          "\n"
+          "Options:\n"
+          "  -n, --elements N     number of elements of the mesh (default: 100)\n"
+          "  -T, --final-time T   end of the simulated interval (default: 12)\n"
+          "      --dt DT          time step (default: 0)\n"
+          "      --courant C      time step as a fraction of the CFL limit (default: 0.5)\n"
+          "  -e, --restitution E  coefficient of restitution (default: 0)\n"
+          "      --scheme S       time integration scheme (one of: cn, be, ps; default: "
+          "cn)\n"
+          "  -o, --output FILE    data file to write (default: contact.dat)\n"
+          "  -v, --verbose        print the progress\n"
+          "  -h, --help           print this help and exit\n"
+          "      --version        print the version and exit\n"
+          "\n"
+          "Output files:\n"
+          "Each FILE is written under a hidden temporary name in its directory and renamed\n"
+          "over FILE only when complete: an interrupted or failed run leaves FILE as it\n"
+          "was. A character device or a FIFO (/dev/null, /dev/stdout, a named pipe whose\n"
+          "reader is running) is written in place. A directory, a socket, a block device,\n"
+          "any other symbolic link, and one file named by two options are refused.\n"
+          "\n"
+          "Sample runs:\n"
+          "  contact -n 400 --scheme be\n"
+          "  contact --dt 1e-4 -o run.dat\n");
+  }
 }
 
 TEST_CASE("the version is printed after the program's name and stops the program") {
-    ExampleProgram program;
-    std::ostringstream printed;
-    CHECK(program.parser.parse({"--version"}, printed) == Outcome::exit_success);
-    CHECK(printed.str() == std::string("contact ") + MRM_VERSION + "\n");
+  ExampleProgram program;
+  std::ostringstream printed;
+  CHECK(program.parser.parse({"--version"}, printed) == Outcome::exit_success);
+  CHECK(printed.str() == std::string("contact ") + MRM_VERSION + "\n");
 }
 
 TEST_CASE("argv is read without the program's own name") {
-    ExampleProgram program;
-    const char* const argv[] = {"/usr/bin/contact", "-n", "9", "--verbose"};
-    std::ostringstream printed;
-    CHECK(program.parser.parse(4, argv, printed) == Outcome::run);
-    CHECK(program.elements == 9);
-    CHECK(program.verbose);
-    CHECK(program.parser.parse(1, argv, printed) == Outcome::run);
-    CHECK(printed.str().empty());
+  ExampleProgram program;
+  const char* const argv[] = {"/usr/bin/contact", "-n", "9", "--verbose"};
+  std::ostringstream printed;
+  CHECK(program.parser.parse(4, argv, printed) == Outcome::run);
+  CHECK(program.elements == 9);
+  CHECK(program.verbose);
+  CHECK(program.parser.parse(1, argv, printed) == Outcome::run);
+  CHECK(printed.str().empty());
 }
 
 TEST_CASE("the echo writes every effective value as a deterministic header line") {
-    ExampleProgram program;
-    program.parse({"-n", "400", "--dt", "0.1", "-o", "run \"1\".dat", "-v", "--scheme=ps"});
-    std::ostringstream echoed;
-    program.parser.echo(echoed);
-    CHECK(echoed.str() ==
-          "# elements = 400\n"
-          "# final_time = 12\n"
-          "# dt = 0.1\n"
-          "# courant = 0.5\n"
-          "# restitution = 0\n"
-          "# scheme = \"ps\"\n"
-          "# output = \"run \\\"1\\\".dat\"\n"
-          "# verbose = true\n");
-    std::ostringstream with_prefix;
-    program.parser.echo(with_prefix, "% ");
-    CHECK(with_prefix.str().substr(0, 17) == "% elements = 400\n");
+  ExampleProgram program;
+  program.parse({"-n", "400", "--dt", "0.1", "-o", "run \"1\".dat", "-v", "--scheme=ps"});
+  std::ostringstream echoed;
+  program.parser.echo(echoed);
+  CHECK(echoed.str() ==
+        "# elements = 400\n"
+        "# final_time = 12\n"
+        "# dt = 0.1\n"
+        "# courant = 0.5\n"
+        "# restitution = 0\n"
+        "# scheme = \"ps\"\n"
+        "# output = \"run \\\"1\\\".dat\"\n"
+        "# verbose = true\n");
+  std::ostringstream with_prefix;
+  program.parser.echo(with_prefix, "% ");
+  CHECK(with_prefix.str().substr(0, 17) == "% elements = 400\n");
 }
 
 TEST_CASE("registration mistakes are reported as logic errors") {
-    long number = 0;
-    double real = 0;
-    bool flag = false;
-    std::string text = "a";
-    Parser parser("p", "", {});
-    parser.add_integer("--elements", "-n", "N", "", &number);
-    CHECK_THROWS_AS(parser.add_integer("--elements", "", "N", "", &number), std::logic_error);
-    CHECK_THROWS_AS(parser.add_real("--other", "-n", "X", "", &real), std::logic_error);
-    CHECK_THROWS_AS(parser.add_real("elements", "", "X", "", &real), std::logic_error);
-    CHECK_THROWS_AS(parser.add_real("--final_time", "", "X", "", &real), std::logic_error);
-    CHECK_THROWS_AS(parser.add_real("--x", "-5", "X", "", &real), std::logic_error);
-    CHECK_THROWS_AS(parser.add_flag("--help", "", "", &flag), std::logic_error);
-    CHECK_THROWS_AS(parser.add_flag("--quiet", "-h", "", &flag), std::logic_error);
-    CHECK_THROWS_AS(parser.add_real("--x", "", "", "", &real), std::logic_error);
-    CHECK_THROWS_AS(parser.add_real("--x", "", "X", "", nullptr), std::logic_error);
-    CHECK_THROWS_AS(parser.add_choice("--scheme", "", "S", "", {"cn", "be"}, &text),
-                    std::logic_error);
-    CHECK_THROWS_AS(parser.add_conflict("--elements", "--missing"), std::logic_error);
-    CHECK_THROWS_AS(parser.given("--missing"), std::logic_error);
-    CHECK_NOTHROW(parser.add_real("--x", "", "X", "", &real));
+  long number = 0;
+  double real = 0;
+  bool flag = false;
+  std::string text = "a";
+  Parser parser("p", "", {});
+  parser.add_integer("--elements", "-n", "N", "", &number);
+  CHECK_THROWS_AS(parser.add_integer("--elements", "", "N", "", &number), std::logic_error);
+  CHECK_THROWS_AS(parser.add_real("--other", "-n", "X", "", &real), std::logic_error);
+  CHECK_THROWS_AS(parser.add_real("elements", "", "X", "", &real), std::logic_error);
+  CHECK_THROWS_AS(parser.add_real("--final_time", "", "X", "", &real), std::logic_error);
+  CHECK_THROWS_AS(parser.add_real("--x", "-5", "X", "", &real), std::logic_error);
+  CHECK_THROWS_AS(parser.add_flag("--help", "", "", &flag), std::logic_error);
+  CHECK_THROWS_AS(parser.add_flag("--quiet", "-h", "", &flag), std::logic_error);
+  CHECK_THROWS_AS(parser.add_real("--x", "", "", "", &real), std::logic_error);
+  CHECK_THROWS_AS(parser.add_real("--x", "", "X", "", nullptr), std::logic_error);
+  CHECK_THROWS_AS(parser.add_choice("--scheme", "", "S", "", {"cn", "be"}, &text), std::logic_error);
+  CHECK_THROWS_AS(parser.add_conflict("--elements", "--missing"), std::logic_error);
+  CHECK_THROWS_AS(parser.given("--missing"), std::logic_error);
+  CHECK_NOTHROW(parser.add_real("--x", "", "X", "", &real));
 }
 
 // A program's main function delegates to guarded_main, which maps the exceptions to an exit
 // status and a single line of message. The final check of the output stream catches a failure to
 // write the results to standard output (a full disk, a closed pipe), which would otherwise go
 // unnoticed, since a C++ stream reports write errors only through its state.
+//
+// Before the body runs, the standard descriptors are made to be open (prepare_standard_descriptors,
+// output_file.hpp): otherwise the first file the program opens would take the place of a closed one,
+// and whatever is written to standard error (progress lines) or standard output would go into it.
+// After the body, both streams are checked: a body whose diagnostics could not be written also ends
+// with status 1.
 int guarded_main(std::string_view program, const std::function<int()>& body, std::ostream& output,
                  std::ostream& errors) {
-    try {
-        const int status = body();
-        output.flush();
-        if (!output) {
-            errors << program << ": error: writing the standard output failed\n";
-            return status != 0 ? status : 1;
-        }
-        return status;
-    } catch (const UsageError& error) {
-        errors << program << ": " << error.what() << '\n';
-        return 2;
-    } catch (const std::exception& error) {
-        errors << program << ": error: " << error.what() << '\n';
-        return 1;
-    } catch (...) {
-        errors << program << ": error: unknown exception\n";
-        return 1;
+  const bool output_closed = prepare_standard_descriptors();
+  try {
+    const int status = body();
+    output.flush();
+    if (!output) {
+      errors << program << ": error: writing the standard output failed"
+             << (output_closed && &output == &std::cout ? ": it is closed" : "") << '\n';
+      return status != 0 ? status : 1;
     }
+    errors.flush();
+    if (!errors) {
+      return status != 0 ? status : 1;
+    }
+    return status;
+  } catch (const UsageError& error) {
+    errors << program << ": " << error.what() << '\n';
+    return 2;
+  } catch (const std::exception& error) {
+    errors << program << ": error: " << error.what() << '\n';
+    return 1;
+  } catch (...) {
+    errors << program << ": error: unknown exception\n";
+    return 1;
+  }
 }
 
 TEST_CASE("guarded_main maps usage errors to status 2 and other failures to status 1") {
-    std::ostringstream output, errors;
-    SUBCASE("success") {
-        CHECK(guarded_main("p", [] { return 0; }, output, errors) == 0);
-        CHECK(guarded_main("p", [] { return 3; }, output, errors) == 3);
-        CHECK(errors.str().empty());
-    }
-    SUBCASE("usage error") {
-        CHECK(guarded_main("p", []() -> int { throw UsageError("--dt: bad"); }, output, errors) ==
-              2);
-        CHECK(errors.str() == "p: --dt: bad\n");
-    }
-    SUBCASE("other error") {
-        CHECK(guarded_main("p", []() -> int { throw std::runtime_error("no convergence"); },
-                           output, errors) == 1);
-        CHECK(errors.str() == "p: error: no convergence\n");
-    }
-    SUBCASE("not a standard exception") {
-        CHECK(guarded_main("p", []() -> int { throw 42; }, output, errors) == 1);
-        CHECK(errors.str() == "p: error: unknown exception\n");
-    }
-    SUBCASE("failed output") {
-        output.setstate(std::ios::badbit);
-        CHECK(guarded_main("p", [] { return 0; }, output, errors) == 1);
-        CHECK(errors.str() == "p: error: writing the standard output failed\n");
-    }
+  std::ostringstream output, errors;
+  SUBCASE("success") {
+    CHECK(guarded_main(
+              "p", [] { return 0; }, output, errors) == 0);
+    CHECK(guarded_main(
+              "p", [] { return 3; }, output, errors) == 3);
+    CHECK(errors.str().empty());
+  }
+  SUBCASE("usage error") {
+    CHECK(guarded_main(
+              "p", []() -> int { throw UsageError("--dt: bad"); }, output, errors) == 2);
+    CHECK(errors.str() == "p: --dt: bad\n");
+  }
+  SUBCASE("other error") {
+    CHECK(guarded_main(
+              "p", []() -> int { throw std::runtime_error("no convergence"); }, output, errors) == 1);
+    CHECK(errors.str() == "p: error: no convergence\n");
+  }
+  SUBCASE("not a standard exception") {
+    CHECK(guarded_main(
+              "p", []() -> int { throw 42; }, output, errors) == 1);
+    CHECK(errors.str() == "p: error: unknown exception\n");
+  }
+  SUBCASE("failed output") {
+    output.setstate(std::ios::badbit);
+    CHECK(guarded_main(
+              "p", [] { return 0; }, output, errors) == 1);
+    CHECK(errors.str() == "p: error: writing the standard output failed\n");
+  }
+  SUBCASE("failed diagnostics") {
+    errors.setstate(std::ios::badbit);
+    CHECK(guarded_main(
+              "p", [] { return 0; }, output, errors) == 1);
+    CHECK(guarded_main(
+              "p", [] { return 3; }, output, errors) == 3);
+  }
 }
 
 TEST_SUITE_END();

@@ -58,8 +58,8 @@ namespace mrm::cli {
 // unwritable output path. Its message starts with the option concerned and says what is allowed;
 // `guarded_main` prints it after the program name and exits with status 2.
 class UsageError : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 // Strict parsing of one option value. `option` is the option's name, used only in the message of
@@ -74,8 +74,7 @@ public:
 //   --scheme: unknown value "xx" (allowed: cn, be, ps)
 double parse_real(std::string_view option, std::string_view text);
 long parse_integer(std::string_view option, std::string_view text);
-std::string parse_choice(std::string_view option, std::string_view text,
-                         const std::vector<std::string>& allowed);
+std::string parse_choice(std::string_view option, std::string_view text, const std::vector<std::string>& allowed);
 
 // Range requirements on a parsed value, throwing a UsageError that names the option and the
 // allowed range, e.g. `--restitution: 1.5 is outside the allowed range [0, 1]`. NaN never
@@ -83,8 +82,7 @@ std::string parse_choice(std::string_view option, std::string_view text,
 // integer an option can reasonably hold converts exactly).
 void require_positive(std::string_view option, double value);
 void require_at_least(std::string_view option, double value, double minimum);
-void require_in_closed_range(std::string_view option, double value, double lowest,
-                             double highest);
+void require_in_closed_range(std::string_view option, double value, double lowest, double highest);
 
 // The same requirements packaged as checks that `Parser::add_real` and `Parser::add_integer`
 // attach to an option; any callable with this signature that throws UsageError will do.
@@ -117,82 +115,84 @@ enum class Outcome { run, exit_success };
 // Registration mistakes (a malformed or duplicate name, a null variable, a choice default that is
 // not allowed) are programming errors and throw std::logic_error.
 class Parser {
-public:
-    // `description` is one paragraph saying what the program computes; `sample_runs` are complete
-    // command lines, shown in the help as they are.
-    Parser(std::string program, std::string description, std::vector<std::string> sample_runs);
+ public:
+  // `description` is one paragraph saying what the program computes; `sample_runs` are complete
+  // command lines, shown in the help as they are.
+  Parser(std::string program, std::string description, std::vector<std::string> sample_runs);
 
-    // Options with a value. The check, if any, is applied to a value given on the command line
-    // (not to the default) after all arguments are read.
-    void add_real(std::string long_name, std::string short_name, std::string metavar,
-                  std::string help, double* target, Check check = {});
-    void add_integer(std::string long_name, std::string short_name, std::string metavar,
-                     std::string help, long* target, Check check = {});
-    void add_string(std::string long_name, std::string short_name, std::string metavar,
-                    std::string help, std::string* target);
-    void add_choice(std::string long_name, std::string short_name, std::string metavar,
-                    std::string help, std::vector<std::string> allowed, std::string* target);
+  // Options with a value. The check, if any, is applied to a value given on the command line
+  // (not to the default) after all arguments are read.
+  void add_real(std::string long_name, std::string short_name, std::string metavar, std::string help, double* target,
+                Check check = {});
+  void add_integer(std::string long_name, std::string short_name, std::string metavar, std::string help, long* target,
+                   Check check = {});
+  void add_string(std::string long_name, std::string short_name, std::string metavar, std::string help,
+                  std::string* target);
+  void add_choice(std::string long_name, std::string short_name, std::string metavar, std::string help,
+                  std::vector<std::string> allowed, std::string* target);
 
-    // An option without a value: giving it sets the variable to true.
-    void add_flag(std::string long_name, std::string short_name, std::string help, bool* target);
+  // An option without a value: giving it sets the variable to true.
+  void add_flag(std::string long_name, std::string short_name, std::string help, bool* target);
 
-    // Two registered options that exclude each other:
-    //   --dt and --courant cannot be given together
-    void add_conflict(std::string_view first_long_name, std::string_view second_long_name);
+  // Two registered options that exclude each other:
+  //   --dt and --courant cannot be given together
+  void add_conflict(std::string_view first_long_name, std::string_view second_long_name);
 
-    // Reads the arguments (argv[0] is the program's own name and is skipped; the vector form has
-    // the arguments only). Prints the help or the version on `out` and returns exit_success if
-    // asked to; otherwise stores the values, applies the conflicts and the checks, and returns
-    // run. Throws UsageError on: an unknown option, a missing value, an option given twice, a
-    // malformed or rejected value, a value given to a flag, a positional argument.
-    Outcome parse(int argc, const char* const* argv, std::ostream& out);
-    Outcome parse(const std::vector<std::string>& arguments, std::ostream& out);
+  // Reads the arguments (argv[0] is the program's own name and is skipped; the vector form has
+  // the arguments only). Prints the help or the version on `out` and returns exit_success if
+  // asked to; otherwise stores the values, applies the conflicts and the checks, and returns
+  // run. Throws UsageError on: an unknown option, a missing value, an option given twice, a
+  // malformed or rejected value, a value given to a flag, a positional argument.
+  Outcome parse(int argc, const char* const* argv, std::ostream& out);
+  Outcome parse(const std::vector<std::string>& arguments, std::ostream& out);
 
-    // Whether the option was given on the command line by the last parse.
-    bool given(std::string_view long_name) const;
+  // Whether the option was given on the command line by the last parse.
+  bool given(std::string_view long_name) const;
 
-    void print_help(std::ostream& out) const;
+  void print_help(std::ostream& out) const;
 
-    // One line per option, in registration order, with its effective value: `# elements = 400`.
-    // The key is the long name without its dashes and with '-' turned into '_'; the value is a
-    // JSON literal (numbers as by format_real, strings quoted, flags true/false; only a non-finite
-    // default would print as inf or nan), so that the header lines of a data file are
-    // deterministic and easy to read back.
-    void echo(std::ostream& out, std::string_view prefix = "# ") const;
+  // One line per option, in registration order, with its effective value: `# elements = 400`.
+  // The key is the long name without its dashes and with '-' turned into '_'; the value is a
+  // JSON literal (numbers as by format_real, strings quoted, flags true/false; only a non-finite
+  // default would print as inf or nan), so that the header lines of a data file are
+  // deterministic and easy to read back.
+  void echo(std::ostream& out, std::string_view prefix = "# ") const;
 
-    const std::string& program() const { return program_; }
+  const std::string& program() const { return program_; }
 
-private:
-    struct Option {
-        std::string long_name;
-        std::string short_name;
-        std::string metavar;
-        std::string help;
-        std::variant<double*, long*, std::string*, bool*> target;
-        std::vector<std::string> allowed;
-        Check check;
-        std::string default_text;
-        bool given = false;
-    };
+ private:
+  struct Option {
+    std::string long_name;
+    std::string short_name;
+    std::string metavar;
+    std::string help;
+    std::variant<double*, long*, std::string*, bool*> target;
+    std::vector<std::string> allowed;
+    Check check;
+    std::string default_text;
+    bool given = false;
+  };
 
-    void add_option(Option option);
-    Option* find(std::string_view name);
-    const Option& registered(std::string_view long_name) const;
-    void store(Option& option, std::string_view text);
+  void add_option(Option option);
+  Option* find(std::string_view name);
+  const Option& registered(std::string_view long_name) const;
+  void store(Option& option, std::string_view text);
 
-    std::string program_;
-    std::string description_;
-    std::vector<std::string> sample_runs_;
-    std::vector<Option> options_;
-    std::vector<std::pair<std::string, std::string>> conflicts_;
+  std::string program_;
+  std::string description_;
+  std::vector<std::string> sample_runs_;
+  std::vector<Option> options_;
+  std::vector<std::pair<std::string, std::string>> conflicts_;
 };
 
 // Runs a program's body and turns its exceptions into an exit status and one line on `errors`:
 //   UsageError            "<program>: <message>"         status 2
 //   other std::exception  "<program>: error: <what>"     status 1
 // A body that succeeds but whose writes to `output` (standard output) failed, for example on a
-// full disk, also ends with status 1. Otherwise the body's own return value is returned.
-int guarded_main(std::string_view program, const std::function<int()>& body,
-                 std::ostream& output = std::cout, std::ostream& errors = std::cerr);
+// full disk or a closed standard output, also ends with status 1, and so does one whose writes to
+// `errors` failed. Otherwise the body's own return value is returned. Before the body runs, closed
+// standard descriptors are reopened (prepare_standard_descriptors, output_file.hpp).
+int guarded_main(std::string_view program, const std::function<int()>& body, std::ostream& output = std::cout,
+                 std::ostream& errors = std::cerr);
 
 }  // namespace mrm::cli

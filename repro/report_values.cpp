@@ -47,7 +47,8 @@ TEST_CASE("report numbers are rounded to their significant digits in fixed or sc
 }
 
 std::string tex_magnitude(double x) {
-  if (!(std::isfinite(x) && x > 0)) throw std::invalid_argument("tex_magnitude: " + std::to_string(x) + " is not a finite positive number");
+  if (!(std::isfinite(x) && x > 0))
+    throw std::invalid_argument("tex_magnitude: " + std::to_string(x) + " is not a finite positive number");
   char buffer[64];
   if (x < 1000) {
     std::snprintf(buffer, sizeof buffer, "%.3g", x);
@@ -74,7 +75,9 @@ void tex_define(std::ostream& out, const std::string& key, const std::string& va
   for (char c : key) {
     const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
                     c == ':' || c == '.' || c == '_';
-    if (!ok) throw std::invalid_argument("tex_define: key \"" + key + "\" has a character other than letters, digits, -, :, ., _");
+    if (!ok)
+      throw std::invalid_argument("tex_define: key \"" + key +
+                                  "\" has a character other than letters, digits, -, :, ., _");
   }
   out << "\\mrmdef{" << key << "}{" << value << "}\n";
 }

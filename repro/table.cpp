@@ -155,13 +155,23 @@ void Table::write_text(std::ostream& out, const std::vector<std::size_t>& widths
   }
 }
 
+std::string latex_tabular(const Table& table, const std::string& columns) {
+  LatexLayout layout;
+  layout.columns = columns;
+  layout.final_newline = false;
+  std::ostringstream out;
+  table.write_latex(out, layout);
+  return out.str();
+}
+
 std::vector<double> local_orders(const std::vector<double>& steps, const std::vector<double>& errors) {
   if (steps.size() != errors.size())
     throw std::invalid_argument("local_orders: " + std::to_string(steps.size()) + " steps for " +
                                 std::to_string(errors.size()) + " errors");
   std::vector<double> orders(errors.size(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t k = 1; k < errors.size(); ++k)
-    if (errors[k] > 0 && errors[k - 1] > 0) orders[k] = std::log2(errors[k - 1] / errors[k]) / std::log2(steps[k - 1] / steps[k]);
+    if (errors[k] > 0 && errors[k - 1] > 0)
+      orders[k] = std::log2(errors[k - 1] / errors[k]) / std::log2(steps[k - 1] / steps[k]);
   return orders;
 }
 
@@ -180,6 +190,7 @@ TEST_CASE("the same rows give a Markdown table, a booktabs tabular and a text gr
   CHECK(tex.str() ==
         "\\begin{tabular}{rr}\n\\toprule\nN & error \\\\\n\\midrule\n8 & 0.5 \\\\\n16 & 0.25 \\\\\n\\midrule\n"
         "a|b & x \\\\\n\\bottomrule\n\\end{tabular}");
+  CHECK(latex_tabular(t, "rr") == tex.str());  // the same, as a \mrmdef value
   t.write_text(text, {3, 5});
   CHECK(text.str() ==
         "+-----+-------+\n| N   | error |\n+-----+-------+\n| 8   | 0.5   |\n+-----+-------+\n| 16  | 0.25  |\n"

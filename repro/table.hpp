@@ -14,14 +14,14 @@ namespace mrm::repro {
 
 /// How write_latex lays out a table.
 struct LatexLayout {
-  std::string columns;           ///< the column specification, e.g. "llrrr"
-  bool booktabs = true;          ///< \toprule, \midrule, \bottomrule (else \hline)
-  bool longtable = false;        ///< a longtable whose header is repeated on every page (booktabs)
+  std::string columns;             ///< the column specification, e.g. "llrrr"
+  bool booktabs = true;            ///< \toprule, \midrule, \bottomrule (else \hline)
+  bool longtable = false;          ///< a longtable whose header is repeated on every page (booktabs)
   bool rule_between_rows = false;  ///< a \midrule between every two rows
-  std::string note_columns;      ///< the p{} specification of a note spanning all columns but the first
-  std::string before;            ///< text before \begin (comments, a group opened)
-  std::string after_end;         ///< text right after \end{…} (a group closed)
-  bool final_newline = true;     ///< a newline after the last line (false inside a \mrmdef value)
+  std::string note_columns;        ///< the p{} specification of a note spanning all columns but the first
+  std::string before;              ///< text before \begin (comments, a group opened)
+  std::string after_end;           ///< text right after \end{…} (a group closed)
+  bool final_newline = true;       ///< a newline after the last line (false inside a \mrmdef value)
 };
 
 /// Rows of cells under a header, with rules between groups of rows and optional notes under a row.
@@ -62,6 +62,10 @@ class Table {
   std::vector<std::string> headers_;
   std::vector<Row> rows_;
 };
+
+/// The table as a LaTeX tabular (booktabs) with the given column specification, without the final
+/// newline: the value of a `\mrmdef` that the report prints where it wants the table.
+std::string latex_tabular(const Table& table, const std::string& columns);
 
 /// The observed order between successive rows, as ConvergenceTable's reduction rate: for k ≥ 1,
 /// log(e_{k−1}/e_k) / log(s_{k−1}/s_k) (for halved steps, log₂ of the error ratio); NaN for k = 0 and

@@ -8,13 +8,14 @@ trap 'rm -rf "$dir"' EXIT
 
 "$bin/bench_step" --quick --min-log2 6 --max-log2 7 --repetitions 1 --batch-ms 0.5 \
   --output "$dir/b.dat" --tex "$dir/b.tex" --markdown "$dir/b.md" > "$dir/stdout" 2> /dev/null
-# Two sizes: two data rows of 2 + 10*3 + 7 = 39 columns each (10 variants: the fast and the reference
-# step of each scheme among them; 7 ratios and costs), all numbers, the reference step's timings positive.
-rows=$(grep -v '^#' "$dir/b.dat" | awk 'NF == 39' | wc -l)
-[[ $rows == 2 ]] || { echo "expected 2 data rows of 39 columns, got $rows"; cat "$dir/b.dat"; exit 1; }
-grep -q '^# columns: .* cn_ref_median .* ps_ref_median .* ps_ref_over_bare$' "$dir/b.dat" \
+# Two sizes: two data rows of 2 + 10*3 + 8 = 40 columns each (10 variants: the fast and the reference
+# step of each scheme among them; 8 ratios and costs, the last the run with its error measures over the
+# bare solve), all numbers, the reference step's timings positive.
+rows=$(grep -v '^#' "$dir/b.dat" | awk 'NF == 40' | wc -l)
+[[ $rows == 2 ]] || { echo "expected 2 data rows of 40 columns, got $rows"; cat "$dir/b.dat"; exit 1; }
+grep -q '^# columns: .* cn_ref_median .* ps_ref_median .* ps_ref_over_bare cn_errors_over_bare$' "$dir/b.dat" \
   || { echo "no reference-step columns in the data file"; cat "$dir/b.dat"; exit 1; }
-positive=$(grep -v '^#' "$dir/b.dat" | awk '$24 > 0 && $27 > 0 && $30 > 0 && $37 > 0 && $39 > 0' | wc -l)
+positive=$(grep -v '^#' "$dir/b.dat" | awk '$24 > 0 && $27 > 0 && $30 > 0 && $37 > 0 && $39 > 0 && $40 > 0' | wc -l)
 [[ $positive == 2 ]] || { echo "reference-step timings or ratios missing"; cat "$dir/b.dat"; exit 1; }
 grep -q '^| N | CN | BE | PS | CN ref | BE ref | PS ref |' "$dir/b.md" || { echo "no reference columns in the Markdown table"; exit 1; }
 # The LaTeX file: two tables as report values, the fast step (with the ratio to Eigen) and the reference step.

@@ -41,11 +41,14 @@ target=$work/series.dat
 printf '# the previous output\n1 2 3\n' >"$work/reference"
 cp "$work/reference" "$target"
 
-# Waits (up to 30 s) until FILE exists and its size has grown twice; prints its last size.
+# Waits (up to 30 s) until the temporary file of process PID exists and its size has grown twice;
+# prints its path and its last size. Its name is `.series.dat.tmp.PID.` and random characters
+# (cli::AtomicFile).
 wait_until_growing() {
-  local file=$1 size=-1 growths=0 new tries=0
+  local pid=$1 file='' size=-1 growths=0 new tries=0 candidates
   while ((growths < 2 && tries < 600)); do
-    if [[ -e $file ]]; then
+    [[ -z $file ]] && candidates=("$work/.series.dat.tmp.$pid."*) && [[ -e ${candidates[0]} ]] && file=${candidates[0]}
+    if [[ -n $file && -e $file ]]; then
       new=$(stat -c %s "$file")
       if ((new > size && new > 0)); then
         ((size >= 0)) && growths=$((growths + 1))
@@ -55,16 +58,15 @@ wait_until_growing() {
     sleep 0.05
     tries=$((tries + 1))
   done
-  ((growths >= 2)) && echo "$size"
+  ((growths >= 2)) && echo "$file $size"
 }
 
 for signal in TERM INT HUP KILL; do
   "$bar1d" --elements 2000 --courant 0.5 --final-time 1000 --output "$target" >/dev/null 2>"$work/stderr" &
   pid=$!
-  temporary=$work/.series.dat.tmp.$pid.0
-  size=$(wait_until_growing "$temporary")
+  read -r temporary size < <(wait_until_growing "$pid")
   if [[ -z $size ]]; then
-    fail "SIG$signal: the temporary file $temporary did not appear and grow within 30 s"
+    fail "SIG$signal: the temporary file .series.dat.tmp.$pid.* did not appear and grow within 30 s"
     kill -KILL "$pid" 2>/dev/null
     wait "$pid" 2>/dev/null
     pid=''

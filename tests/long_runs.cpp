@@ -93,8 +93,8 @@ LongRun run_one(mrm::Scheme scheme, mrm::ContactRow row, const std::string& labe
   mrm::SchemeParameters parameters;
   parameters.scheme = scheme;
   parameters.contact_row = row;
-  mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(mass_name),
-                                parameters, dt);
+  mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(mass_name), parameters,
+                                dt);
   r.steps = mrm::steps_to_reach(3.0 * periods, dt);
   const mrm::Index reference_level = scheme == mrm::Scheme::paoli_schatzman ? 1 : 0;
   double previous = std::numeric_limits<double>::quiet_NaN();
@@ -165,8 +165,8 @@ int main(int argc, char** argv) {
                        {"long_runs", "long_runs --elements 20 --periods 200"});
     parser.add_integer("--elements", "-n", "N", "number of elements N of the coarse mesh, in [2, 1000]", &elements,
                        cli::in_closed_range(2, 1000));
-    parser.add_real("--periods", "-p", "P", "periods (of length 3) of the runs with dt = h/2, in [1, 10000]",
-                    &periods, cli::in_closed_range(1, 10000));
+    parser.add_real("--periods", "-p", "P", "periods (of length 3) of the runs with dt = h/2, in [1, 10000]", &periods,
+                    cli::in_closed_range(1, 10000));
     parser.add_real("--large-step-periods", "", "P", "periods of the runs with dt = 10 h and 40 h, in [1, 10000]",
                     &large_step_periods, cli::in_closed_range(1, 10000));
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
@@ -209,9 +209,8 @@ int main(int argc, char** argv) {
     // 3. The table and the verdict.
     std::printf("# long_runs: N = %ld (h = %s), K = %s; energies relative to E_h0\n", elements,
                 cli::format_real(1.0 / static_cast<double>(elements)).c_str(), cli::format_real(energy_factor).c_str());
-    std::printf("%-13s %-10s %7s %7s %8s %12s %12s %12s %10s %10s %9s %-10s %s\n", "scheme", "mass", "dt/h",
-                "periods", "steps", "E_min/E0", "E_max/E0", "E_end/E0", "u0_min", "u0_max", "E_up", "check",
-                "verdict");
+    std::printf("%-13s %-10s %7s %7s %8s %12s %12s %12s %10s %10s %9s %-10s %s\n", "scheme", "mass", "dt/h", "periods",
+                "steps", "E_min/E0", "E_max/E0", "E_end/E0", "u0_min", "u0_max", "E_up", "check", "verdict");
     for (const LongRun& r : runs) {
       std::printf("%-13s %-10s %7s %7s %8ld %12.6g %12.6g %12.6g %10.3g %10.3g %9ld %-10s %s\n", r.scheme_label.c_str(),
                   r.mass.c_str(), cli::format_real(r.courant).c_str(), cli::format_real(r.periods).c_str(),
@@ -219,12 +218,12 @@ int main(int argc, char** argv) {
                   r.energy_final / r.energy_initial, r.u0_min, r.u0_max, r.energy_increases, r.check.c_str(),
                   r.verdict.c_str());
     }
-    const auto above = std::count_if(runs.begin(), runs.end(), [](const LongRun& r) {
-      return !(r.energy_max <= energy_factor * r.energy_initial);
-    });
-    std::printf("# %zu runs, %d failed, %ld with the energy above K E0 at some level (recorded or failed); %d refused "
-                "configurations (ps-algebraic with the consistent mass)\n",
-                runs.size(), failed, static_cast<long>(above), refused);
+    const auto above = std::count_if(
+        runs.begin(), runs.end(), [](const LongRun& r) { return !(r.energy_max <= energy_factor * r.energy_initial); });
+    std::printf(
+        "# %zu runs, %d failed, %ld with the energy above K E0 at some level (recorded or failed); %d refused "
+        "configurations (ps-algebraic with the consistent mass)\n",
+        runs.size(), failed, static_cast<long>(above), refused);
     for (const std::string& p : problems) std::printf("# FAILED: %s\n", p.c_str());
     std::fflush(stdout);
     return failed == 0 && problems.empty() ? 0 : 1;

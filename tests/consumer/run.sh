@@ -3,9 +3,9 @@
 # configures and builds the consumer project SOURCE (tests/consumer) against it with find_package(mrm),
 # runs it, and checks that the Mod 3 total mass it prints equals the length L it prints, to round-off
 # (|total − L| ≤ 64 ε L: a sum of about 3N entries of size h, each with one rounding).
-# Usage: run.sh BUILD SOURCE [CXX [LINK_FLAGS]]
+# Usage: run.sh BUILD SOURCE [CXX [FLAGS]]   (FLAGS: compile and link flags of a sanitized build)
 set -euo pipefail
-build=$1 source=$2 cxx=${3:-c++} link_flags=${4:-}
+build=$1 source=$2 cxx=${3:-c++} flags=${4:-}
 work=$(mktemp -d "${TMPDIR:-/tmp}/mrm-consumer.XXXXXX")
 trap 'rm -rf -- "$work"' EXIT
 
@@ -17,7 +17,7 @@ if grep -lE '^[[:space:]]*#[[:space:]]*include[[:space:]]*[<"]doctest' "$work"/p
   echo "install_consumer: an installed header includes doctest (listed above)"; exit 1
 fi
 cmake -S "$source" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_CXX_COMPILER="$cxx" \
-  -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXE_LINKER_FLAGS="$link_flags" >"$work/configure.log" 2>&1 || { cat "$work/configure.log"; exit 1; }
+  -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" >"$work/configure.log" 2>&1 || { cat "$work/configure.log"; exit 1; }
 cmake --build "$work/build" >"$work/build.log" 2>&1 || { cat "$work/build.log"; exit 1; }
 output=$("$work/build/consumer")
 echo "$output"

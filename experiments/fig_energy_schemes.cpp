@@ -1,0 +1,352 @@
+// fig_energy_schemes: Crank–Nicolson's energy and the two schemes that fix it (mathematics.md §12).
+//
+// What it computes. The discrete energy E_hⁿ of Crank–Nicolson (cn), energy-conserving Crank–Nicolson
+// (ec), Crank–Nicolson with a θ-step at each change of the contact status (cn-switch, θ = --switch-theta,
+// 1: backward Euler) and backward Euler (be) on the benchmark of mathematics.md §2, and what each costs
+// in accuracy, in three views, one data file each (--view):
+//   history   E_hⁿ/E_h(0) over 10 periods (T = 30) at Δt = h/2, h and 5h, on one mesh and mass
+//             (--elements, --mass);
+//   map       the largest E_hⁿ/E_h(0) over 100 periods (T = 300) against Δt/h = ¼ … 40 for N = 16, 32,
+//             64, 128 (--mass), with the smallest and the final ratio and the largest one-step increase;
+//             then the two long runs the report quotes, for Mod 1, 2 and 3: N = 16, Δt = 10h over 100
+//             periods and N = 20, Δt = h over 1000 periods, where Crank–Nicolson gains most;
+//   measures  the eight relative errors of mathematics.md §5 of each scheme with Mod 1, 2 and 3 at
+//             N = 100 and 400, Δt = h/2, T = 30, their ratios to Crank–Nicolson's, and the energy lost,
+//             1 − E_h(T)/E_h(0) (in the data file; in per cent in the report's values).
+// Every run is repro/configurations' run_configuration, observed step by step for the energy; the runs
+// of a view are independent and shared among --threads workers (repro/parallel): the output does not
+// depend on their number. EC needs a massless contact node: every mass here is Mod 1, 2 or 3.
+//
+// Sample runs:
+//   fig_energy_schemes --view history --output output/data/fig_energy_schemes_history.dat
+//   fig_energy_schemes --view map --threads 1 --output map.dat --tex map.tex
+//
+// Description. Steps: (1) options; (2) outputs; (3) the runs of the view, longest first, on the workers;
+// (4) the data blocks; (5) the values and tables the report quotes; (6) commit.
+//
+// Data files. history: block 4 c + s is ratio c ∈ (1/2, 1, 5), scheme s ∈ (cn, ec, cn-switch, be),
+// columns t_energy energy_ratio. map: block 4 s + k is scheme s, mesh k ∈ (16, 32, 64, 128), columns
+// dt_over_h largest smallest final largest_increase; block 16 the long runs, columns run scheme mass N
+// dt_over_h periods drift largest_increase largest final. measures: block k is N ∈ (100, 400), columns
+// scheme mass, the eight measures, the eight ratios to Crank–Nicolson's (same mass), energy_lost.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "configurations.hpp"
+#include "options.hpp"
+#include "parallel.hpp"
+#include "report_values.hpp"
+#include "table.hpp"
+
+namespace cli = mrm::cli;
+
+namespace {
+
+// The schemes compared, in the order of every block and table.
+const std::array<const char*, 4> schemes{"cn", "ec", "cn-switch", "be"};
+// The tables' short names (the report's captions spell out CN and BE).
+const std::array<const char*, 4> scheme_labels{"CN", "EC", "CN-switch", "BE"};
+
+// One run and what the views read from it.
+struct Run {
+  std::string scheme, mass;
+  mrm::Index elements = 0;
+  double courant = 0, final_time = 0;
+  bool history = false;  // keep (t, Eⁿ/E⁰) at every level
+  double cost = 0;       // steps × unknowns, to start the longest runs first
+  mrm::repro::Measures measures;
+  double largest_increase = 0;  // max over the steps of (Eⁿ⁺¹ − Eⁿ)/E⁰
+  std::vector<std::pair<double, double>> energy;
+};
+
+Run make_run(const std::string& scheme, const std::string& mass, mrm::Index elements, double courant, double final_time,
+             bool history = false) {
+  Run r;
+  r.scheme = scheme, r.mass = mass, r.elements = elements, r.courant = courant, r.final_time = final_time;
+  r.history = history;
+  r.cost = static_cast<double>(mrm::steps_to_reach(final_time, courant / static_cast<double>(elements))) *
+           static_cast<double>(elements);
+  return r;
+}
+
+void execute(Run& r, double switch_theta) {
+  mrm::repro::Configuration c =
+      mrm::repro::paper_configuration(r.scheme, "algebraic", r.mass, r.elements, r.courant, r.final_time);
+  c.scheme.switch_theta = switch_theta;
+  double initial = 0, previous = 0;
+  r.largest_increase = -std::numeric_limits<double>::infinity();
+  r.measures = mrm::repro::run_configuration(c, [&](const mrm::Sample& s) {
+    if (s.level == 0)
+      initial = previous = s.energy;
+    else
+      r.largest_increase = std::max(r.largest_increase, (s.energy - previous) / initial);
+    previous = s.energy;
+    if (r.history) r.energy.emplace_back(s.energy_time, s.energy / initial);
+  });
+}
+
+double ratio(const Run& r, double energy) { return energy / r.measures.energy_initial; }
+// max over the run of |Eⁿ − E⁰|/E⁰
+double drift(const Run& r) {
+  return std::max(ratio(r, r.measures.energy_max) - 1, 1 - ratio(r, r.measures.energy_min));
+}
+
+std::string mass_label(const std::string& mass) { return "Mod~" + mass.substr(3); }
+
+// A step as a multiple of h, for the prose (math mode): "h/2", "h", "5h".
+std::string step_text(double courant) {
+  if (courant == 1) return "h";
+  return courant < 1 ? "h/" + cli::format_real(1 / courant) : cli::format_real(courant) + "h";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return cli::guarded_main("fig_energy_schemes", [&] {
+    // 1. Options.
+    long elements = 20, threads = 2;
+    double switch_theta = 1.0;
+    std::string view = "history", mass = "mod3";
+    cli::Parser parser("fig_energy_schemes",
+                       "Writes the energy of Crank-Nicolson, energy-conserving Crank-Nicolson (ec), Crank-Nicolson "
+                       "with a theta-step at each status change (cn-switch) and backward Euler on the benchmark: "
+                       "their histories, the largest energy against dt/h, or their errors against Crank-Nicolson's.",
+                       {"fig_energy_schemes --view history --output output/data/fig_energy_schemes_history.dat",
+                        "fig_energy_schemes --view map --threads 1 --output map.dat --tex map.tex"});
+    parser.add_choice("--view", "", "V",
+                      "history: E/E0 over 10 periods at dt = h/2, h, 5h; map: the largest E/E0 over 100 periods "
+                      "against dt/h, and the long runs; measures: the errors at N = 100 and 400",
+                      {"history", "map", "measures"}, &view);
+    parser.add_integer("--elements", "-n", "N", "history: number of elements N (h = 1/N), in [2, 1e5]", &elements,
+                       cli::in_closed_range(2, 1e5));
+    parser.add_choice("--mass", "-m", "M", "history and map: the mass (a massless contact node, which ec needs)",
+                      {"mod1", "mod2", "mod3"}, &mass);
+    parser.add_real("--switch-theta", "", "TH", "cn-switch: theta in [0.5, 1] of its switching step", &switch_theta,
+                    cli::in_closed_range(0.5, 1));
+    parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 64]; the output does not depend on it", &threads,
+                       cli::in_closed_range(1, 64));
+    mrm::repro::FigureOutputs outputs(parser, "fig_energy_schemes",
+                                      "also write the values and tables the report quotes, as \\mrmdef lines");
+    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    if (view != "history" && parser.given("--elements"))
+      throw cli::UsageError("--elements: only with --view history (the other views fix their meshes)");
+    if (view == "measures" && parser.given("--mass"))
+      throw cli::UsageError("--mass: not with --view measures (it runs Mod 1, 2 and 3)");
+
+    // 2. Outputs.
+    outputs.open(parser);
+    std::ostream& out = outputs.data();
+    std::ostream& defs = outputs.values();
+    out << "# fig_energy_schemes: the energy of cn, ec, cn-switch and be (mathematics.md sec. 12), view " << view
+        << '\n';
+    parser.echo(out);
+    const std::string theta_text = mrm::tex_number(switch_theta, 3);
+    mrm::tex_define(defs, "ecs:theta", theta_text);
+
+    // 3. The runs of the view.
+    const std::vector<double> history_ratios{0.5, 1.0, 5.0};
+    const std::vector<double> map_ratios{0.25, 0.5, 1, 2, 5, 10, 20, 40};
+    const std::vector<mrm::Index> map_meshes{16, 32, 64, 128}, measure_meshes{100, 400};
+    const double measure_courant = 0.5;
+    const std::vector<std::string> masses{"mod1", "mod2", "mod3"};
+    struct LongRun {
+      const char* key;
+      mrm::Index elements;
+      double courant, periods;
+    };
+    const std::array<LongRun, 2> long_runs{LongRun{"coarse", 16, 10.0, 100}, LongRun{"long", 20, 1.0, 1000}};
+    const double period = 3.0;
+    std::vector<Run> runs;
+    if (view == "history") {
+      for (double c : history_ratios)
+        for (const char* s : schemes) runs.push_back(make_run(s, mass, elements, c, 10 * period, true));
+    } else if (view == "map") {
+      for (const char* s : schemes)
+        for (mrm::Index n : map_meshes)
+          for (double c : map_ratios) runs.push_back(make_run(s, mass, n, c, 100 * period));
+      for (const LongRun& l : long_runs)
+        for (const char* s : schemes)
+          for (const std::string& m : masses) runs.push_back(make_run(s, m, l.elements, l.courant, l.periods * period));
+    } else {
+      for (mrm::Index n : measure_meshes)
+        for (const char* s : schemes)
+          for (const std::string& m : masses) runs.push_back(make_run(s, m, n, measure_courant, 10 * period));
+    }
+    std::vector<std::size_t> order(runs.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return runs[a].cost > runs[b].cost; });
+    mrm::repro::run_in_parallel(
+        order, threads, [&](std::size_t k) { execute(runs[k], switch_theta); },
+        [&](std::size_t position, std::size_t k) {
+          const Run& r = runs[k];
+          std::cerr << "fig_energy_schemes: " << position << '/' << order.size() << ' ' << r.scheme << ' ' << r.mass
+                    << " N=" << r.elements << " dt/h=" << r.courant << '\n';
+        });
+
+    // 4 and 5. The blocks, the values and the tables, view by view (runs in the order they were made).
+    std::size_t next = 0;
+    std::size_t block = 0;
+    const auto start_block = [&](const std::string& title, const std::string& columns) {
+      out << (block ? "\n\n" : "") << "# block " << block << ": " << title << "\n# columns: " << columns << '\n';
+      ++block;
+    };
+    if (view == "history") {
+      out << "# mass = " << mass << "\n# N = " << elements << "\n# T = " << cli::format_real(10 * period) << '\n';
+      mrm::tex_define(defs, "ecs:hist:N", std::to_string(elements));
+      mrm::tex_define(defs, "ecs:hist:mass", mass_label(mass));
+      mrm::tex_define(defs, "ecs:hist:T", mrm::tex_number(10 * period, 2));
+      for (std::size_t j = 0; j < history_ratios.size(); ++j)
+        mrm::tex_define(defs, "ecs:hist:dt:" + std::to_string(j), step_text(history_ratios[j]));
+      for (double c : history_ratios)
+        for (const char* s : schemes) {
+          const Run& r = runs[next++];
+          start_block(std::string("scheme = ") + s + ", dt/h = " + cli::format_real(c), "t_energy energy_ratio");
+          for (const auto& [t, e] : r.energy) out << cli::format_real(t) << ' ' << cli::format_real(e) << '\n';
+          const std::string key = std::string("ecs:hist:") + s + ":" + cli::format_real(c);
+          mrm::tex_define(defs, key + ":final", mrm::tex_number(ratio(r, r.measures.energy_final), 4));
+          mrm::tex_define(defs, key + ":largest", mrm::tex_number(ratio(r, r.measures.energy_max), 4));
+        }
+    } else if (view == "map") {
+      out << "# mass = " << mass << "\n# T = " << cli::format_real(100 * period) << '\n';
+      mrm::tex_define(defs, "ecs:map:mass", mass_label(mass));
+      mrm::tex_define(defs, "ecs:map:T", mrm::tex_number(100 * period, 2));
+      mrm::tex_define(defs, "ecs:map:Nmin", std::to_string(map_meshes.front()));
+      mrm::tex_define(defs, "ecs:map:Nmax", std::to_string(map_meshes.back()));
+      mrm::tex_define(defs, "ecs:map:ratiomin", mrm::tex_number(map_ratios.front(), 2));
+      mrm::tex_define(defs, "ecs:map:ratiomax", mrm::tex_number(map_ratios.back(), 2));
+      for (const char* s : schemes) {
+        double largest = 0, largest_drift = 0, largest_increase = -std::numeric_limits<double>::infinity();
+        for (mrm::Index n : map_meshes) {
+          start_block(std::string("scheme = ") + s + ", N = " + std::to_string(n),
+                      "dt_over_h largest smallest final largest_increase");
+          for (double c : map_ratios) {
+            const Run& r = runs[next++];
+            out << cli::format_real(c) << ' ' << cli::format_real(ratio(r, r.measures.energy_max)) << ' '
+                << cli::format_real(ratio(r, r.measures.energy_min)) << ' '
+                << cli::format_real(ratio(r, r.measures.energy_final)) << ' ' << cli::format_real(r.largest_increase)
+                << '\n';
+            largest = std::max(largest, ratio(r, r.measures.energy_max));
+            largest_drift = std::max(largest_drift, drift(r));
+            largest_increase = std::max(largest_increase, r.largest_increase);
+            if (std::string(s) == "cn")
+              mrm::tex_define(defs, "ecs:map:cn:" + std::to_string(n) + ":" + cli::format_real(c),
+                              mrm::tex_magnitude(ratio(r, r.measures.energy_max)));
+          }
+        }
+        const std::string key = std::string("ecs:map:") + s;
+        mrm::tex_define(defs, key + ":largest", mrm::tex_magnitude(largest));
+        mrm::tex_define(defs, key + ":drift", mrm::tex_number(largest_drift, 2));
+        mrm::tex_define(defs, key + ":increase", mrm::tex_number(largest_increase, 2));
+      }
+      // The long runs: a block and a table (run, scheme, mass: drift, largest increase, largest, final).
+      start_block("the long runs", "run scheme mass N dt_over_h periods drift largest_increase largest final");
+      mrm::repro::Table table({"$N$, $\\Delta t$, periods", "scheme", "mass",
+                               "\\rotatebox{70}{$\\max_n |E_h^n/E_h(0) - 1|$}",
+                               "\\rotatebox{70}{$\\max_n (E_h^{n+1} - E_h^n)/E_h(0)$}",
+                               "\\rotatebox{70}{$\\max_n E_h^n/E_h(0)$}", "\\rotatebox{70}{$E_h(T)/E_h(0)$}"});
+      for (const LongRun& l : long_runs) {
+        const std::string run_label =
+            std::to_string(l.elements) + ", $" + step_text(l.courant) + "$, " + cli::format_real(l.periods);
+        mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":N", std::to_string(l.elements));
+        mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":courant", cli::format_real(l.courant));
+        mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":dt", step_text(l.courant));
+        mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":periods", cli::format_real(l.periods));
+        for (std::size_t s = 0; s < schemes.size(); ++s) {
+          for (const std::string& m : masses) {
+            const Run& r = runs[next++];
+            out << l.key << ' ' << schemes[s] << ' ' << m << ' ' << l.elements << ' ' << cli::format_real(l.courant)
+                << ' ' << cli::format_real(l.periods) << ' ' << cli::format_real(drift(r)) << ' '
+                << cli::format_real(r.largest_increase) << ' ' << cli::format_real(ratio(r, r.measures.energy_max))
+                << ' ' << cli::format_real(ratio(r, r.measures.energy_final)) << '\n';
+            const std::string key = std::string("ecs:long:") + l.key + ":" + schemes[s] + ":" + m;
+            mrm::tex_define(defs, key + ":drift", mrm::tex_number(drift(r), 2));
+            mrm::tex_define(defs, key + ":increase", mrm::tex_number(r.largest_increase, 2));
+            mrm::tex_define(defs, key + ":largest", mrm::tex_magnitude(ratio(r, r.measures.energy_max)));
+            mrm::tex_define(defs, key + ":final", mrm::tex_number(ratio(r, r.measures.energy_final), 3));
+            table.add_row({s == 0 && m == masses.front() ? run_label : std::string(),
+                           m == masses.front() ? scheme_labels[s] : std::string(), mass_label(m),
+                           mrm::tex_number(drift(r), 2), mrm::tex_number(r.largest_increase, 2),
+                           "$" + mrm::tex_magnitude(ratio(r, r.measures.energy_max)) + "$",
+                           mrm::tex_number(ratio(r, r.measures.energy_final), 3)});
+          }
+          table.add_rule();
+        }
+      }
+      mrm::tex_define(defs, "ecs:long:table", mrm::repro::latex_tabular(table, "lllrrrr"));
+    } else {
+      out << "# dt/h = " << cli::format_real(measure_courant) << "\n# T = " << cli::format_real(10 * period) << '\n';
+      mrm::tex_define(defs, "ecs:meas:T", mrm::tex_number(10 * period, 2));
+      mrm::tex_define(defs, "ecs:meas:dt", step_text(measure_courant));
+      mrm::tex_define(defs, "ecs:meas:coarse", std::to_string(measure_meshes[0]));
+      mrm::tex_define(defs, "ecs:meas:fine", std::to_string(measure_meshes[1]));
+      std::vector<double> switch_lost;  // CN-switch with Mod 3, per mesh: the loss is O(h) per event
+      for (mrm::Index n : measure_meshes) {
+        start_block("N = " + std::to_string(n),
+                    "scheme mass (8 measures) (8 ratios to cn) energy_lost; measures in the order of mathematics.md "
+                    "sec. 5: u0_L2 lambda_L2 u_LinfL2 u_LinfH1 v_LinfL2 u_L2L2 u_L2H1 v_L2L2");
+        std::vector<std::string> headers{"scheme", "mass"};
+        for (const char* label : mrm::repro::measure_labels())
+          headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
+        headers.push_back("\\rotatebox{70}{energy lost, \\%}");
+        mrm::repro::Table table(headers);
+        const std::size_t first = next;  // Crank–Nicolson's runs come first, one per mass
+        for (std::size_t s = 0; s < schemes.size(); ++s) {
+          double largest_ratio = 0, largest_deviation = 0;  // over the measures and the masses
+          for (std::size_t m = 0; m < masses.size(); ++m) {
+            const Run& r = runs[next++];
+            const auto errors = mrm::ErrorAccumulator::values(r.measures.errors);
+            const auto reference = mrm::ErrorAccumulator::values(runs[first + m].measures.errors);
+            const double lost = 1 - ratio(r, r.measures.energy_final);
+            out << schemes[s] << ' ' << masses[m];
+            for (double e : errors) out << ' ' << cli::format_real(e);
+            for (std::size_t k = 0; k < errors.size(); ++k) out << ' ' << cli::format_real(errors[k] / reference[k]);
+            out << ' ' << cli::format_real(lost) << '\n';
+            std::vector<std::string> row{m == 0 ? scheme_labels[s] : std::string(), mass_label(masses[m])};
+            const std::string key = "ecs:meas:" + std::to_string(n) + ":" + schemes[s] + ":" + masses[m];
+            for (std::size_t k = 0; k < errors.size(); ++k) {
+              const std::string value = mrm::tex_number(errors[k], 3);
+              // Beside Crank–Nicolson's row, each other scheme's error relative to it, in per cent.
+              const std::string relative = mrm::tex_number(100 * (errors[k] / reference[k] - 1), 2);
+              // Crank–Nicolson's row gives the error, the others its change against it (the table stays at
+              // the text size in two halves).
+              row.push_back(s == 0 ? value : std::string(errors[k] >= reference[k] ? "+" : "") + relative + "\\%");
+              mrm::tex_define(defs, key + ":" + mrm::ErrorAccumulator::names[k], value);
+              mrm::tex_define(defs, key + ":" + mrm::ErrorAccumulator::names[k] + ":vs_cn", relative);
+              largest_ratio = std::max(largest_ratio, errors[k] / reference[k]);
+              largest_deviation = std::max(largest_deviation, std::abs(errors[k] / reference[k] - 1));
+            }
+            if (std::string(schemes[s]) == "cn-switch" && masses[m] == "mod3") switch_lost.push_back(lost);
+            row.push_back(mrm::tex_number(100 * lost, 2));
+            mrm::tex_define(defs, key + ":lost", mrm::tex_number(100 * lost, 2));
+            table.add_row(row);
+          }
+          table.add_rule();
+          const std::string key = "ecs:meas:" + std::to_string(n) + ":" + schemes[s];
+          mrm::tex_define(defs, key + ":largest_ratio", mrm::tex_number(largest_ratio, 2));
+          mrm::tex_define(defs, key + ":largest_deviation", mrm::tex_number(100 * largest_deviation, 2));
+        }
+        // In two halves at the text size (measures 1-4; measures 5-8 and the energy lost), not shrunk.
+        for (std::size_t part = 0; part < 2; ++part) {
+          std::vector<std::size_t> keep{0, 1};
+          for (std::size_t k = 4 * part; k < 4 * part + 4; ++k) keep.push_back(2 + k);
+          if (part == 1) keep.push_back(10);
+          mrm::tex_define(defs, "ecs:meas:table:" + std::to_string(n) + (part == 0 ? ":a" : ":b"),
+                          mrm::repro::latex_tabular(table.columns_subset(keep), "ll" + std::string(keep.size() - 2, 'r')));
+        }
+      }
+      mrm::tex_define(defs, "ecs:meas:cn-switch:mod3:lost_ratio", mrm::tex_number(switch_lost[0] / switch_lost[1], 2));
+      mrm::tex_define(defs, "ecs:meas:mesh_ratio", std::to_string(measure_meshes[1] / measure_meshes[0]));
+    }
+
+    // 6. Commit.
+    outputs.commit();
+    return 0;
+  });
+}

@@ -1,0 +1,185 @@
+// fig_smooth_benchmarks: the smooth benchmarks S1 and S2 at the contact point, exact against Mod 1/2/3.
+//
+// What it computes. For S1 (generic impact) and S2 (grazing contact) of mathematics.md §11, the contact
+// point's displacement u(0, t) and the contact stress λ(t) of Crank–Nicolson with Mod 1, 2 and 3 on a
+// coarse mesh (N = 40, Δt = h/2 by default), beside the exact values of the characteristic solution
+// (mathematics.md §10), on [0, T], T = 2. The report also quotes the benchmarks' computed constants (K,
+// t*, t_r), the largest error of u(0, ·) of each mass, and a check of the characteristic solution itself:
+// its largest difference from the closed form of the paper's benchmark (mathematics.md §2) over 10
+// periods (below).
+//
+// Sample runs:
+//   fig_smooth_benchmarks --output output/data/fig_smooth_benchmarks.dat --tex output/data/fig_smooth_benchmarks.tex
+//   fig_smooth_benchmarks --elements 20 --output s.dat
+//
+// Description. Steps: (1) options; (2) outputs; (3) the closed-form check; (4) for each benchmark, the
+// three runs and the exact values at their levels, one data block, and the values the report quotes;
+// (5) commit.
+//
+// Data file: block b ∈ (S1, S2); columns t u0_exact lambda_exact, then u0_h and lambda_h for Mod 1, 2, 3.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "characteristics.hpp"
+#include "configurations.hpp"
+#include "exact_solution.hpp"
+#include "options.hpp"
+#include "report_values.hpp"
+#include "smooth_benchmarks.hpp"
+
+namespace cli = mrm::cli;
+
+namespace {
+
+// The largest difference between the characteristic solution and the closed form over 10 periods,
+// relative to aL for u and to a for u_x, u_t and λ, for three bars (L, a) = (1, ½), (2.5, 0.3),
+// (0.7, 1.7), at the points of two grids on [0, L] × [0, 30 L]: 81 × 3001 points x_i = iL/80,
+// t_n = 30L n/3000 (on the characteristics, where both give the mean of the one-sided derivatives) and
+// 41 × 429 points off them. The corners x ∈ {0, L}, t = kL, where u_x and u_t have no limit and the
+// two conventions differ (characteristics.cpp), are left out of the derivatives.
+// The bars (L, a) and the horizon in periods (3L) of that comparison, which the report states.
+const std::array<std::pair<double, double>, 3> closed_form_bars{{{1.0, 0.5}, {2.5, 0.3}, {0.7, 1.7}}};
+constexpr int closed_form_periods = 10;
+
+double closed_form_difference() {
+  double largest = 0;
+  for (const auto& [length, amplitude] : closed_form_bars) {
+    const double horizon = 3.0 * closed_form_periods * length;
+    const mrm::CharacteristicSolution solution(mrm::benchmark_initial_data(length, amplitude), horizon);
+    const mrm::ExactSolution exact(length, amplitude);
+    const auto compare = [&](double x, double t, bool derivatives) {
+      largest =
+          std::max(largest, std::abs(solution.displacement(x, t) - exact.displacement(x, t)) / (amplitude * length));
+      if (!derivatives) return;
+      largest = std::max(largest, std::abs(solution.strain(x, t) - exact.strain(x, t)) / amplitude);
+      largest = std::max(largest, std::abs(solution.velocity(x, t) - exact.velocity(x, t)) / amplitude);
+    };
+    for (int n = 0; n <= 3000; ++n) {
+      const double t = horizon * n / 3000.0;
+      largest = std::max(largest, std::abs(solution.contact_multiplier(t) - exact.contact_multiplier(t)) / amplitude);
+      for (int i = 0; i <= 80; ++i) compare(length * i / 80.0, t, !((i == 0 || i == 80) && n % 100 == 0));
+    }
+    for (int i = 0; i <= 40; ++i)
+      for (int n = 0; n <= 3000; n += 7) compare(length * (i + 0.37) / 41.3, horizon * (n + 0.123) / 3000.5, true);
+  }
+  return largest;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return cli::guarded_main("fig_smooth_benchmarks", [&] {
+    // 1. Options.
+    long elements = 40;
+    double courant = 0.5;
+    cli::Parser parser("fig_smooth_benchmarks",
+                       "Writes u(0,t) and lambda(t) of the smooth benchmarks S1 and S2 (mathematics.md sec. 11): "
+                       "Crank-Nicolson with mod1, mod2, mod3 on a coarse mesh beside the characteristic solution.",
+                       {"fig_smooth_benchmarks --output output/data/fig_smooth_benchmarks.dat --tex "
+                        "output/data/fig_smooth_benchmarks.tex",
+                        "fig_smooth_benchmarks --elements 20 --output s.dat"});
+    parser.add_integer("--elements", "-n", "N", "number of elements of the mesh, in [2, 1e5]", &elements,
+                       cli::in_closed_range(2, 1e5));
+    parser.add_real("--courant", "-c", "C", "time step dt = C h, C in (0, 100]", &courant,
+                    [](std::string_view option, double value) {
+                      cli::require_positive(option, value);
+                      cli::require_in_closed_range(option, value, 0, 100);
+                    });
+    mrm::repro::FigureOutputs outputs(parser, "fig_smooth_benchmarks", "also write the values the report quotes");
+    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+
+    // 2. Outputs.
+    outputs.open(parser);
+    std::ostream& out = outputs.data();
+    std::ostream& defs = outputs.values();
+    out << "# fig_smooth_benchmarks: u(0,t) and lambda(t) of the smooth benchmarks (mathematics.md sec. 11), "
+           "Crank-Nicolson\n";
+    parser.echo(out);
+    const auto& masses = mrm::repro::mass_names();
+
+    // 3. The characteristic solution against the closed form over 10 periods (a check of the reference).
+    const double difference = closed_form_difference();
+    if (!(difference <= 1e-12))
+      throw std::runtime_error("the characteristic solution differs from the closed form by " +
+                               cli::format_real(difference) + " (expected round-off, below 1e-12)");
+    out << "# closed_form_difference = " << cli::format_real(difference) << '\n'
+        << "# lambda_h = nan at a level without a multiplier\n";
+    mrm::tex_define(defs, "smoothbench:closedform", mrm::tex_number(difference, 2));
+    mrm::tex_define(defs, "smoothbench:closedform:periods", std::to_string(closed_form_periods));
+    mrm::tex_define(defs, "smoothbench:closedform:bars", std::to_string(closed_form_bars.size()));
+
+    // 4. One block per benchmark: the three runs sampled at their levels, the exact values beside them.
+    const std::array<mrm::SmoothBenchmark, 2> which{mrm::SmoothBenchmark::generic_impact,
+                                                    mrm::SmoothBenchmark::grazing};
+    const std::array<const char*, 2> names{"smooth-impact", "grazing"}, keys{"s1", "s2"};
+    for (std::size_t b = 0; b < which.size(); ++b) {
+      const mrm::SmoothBenchmarkData benchmark = mrm::smooth_benchmark(which[b]);
+      std::vector<std::vector<double>> columns(2 + 2 * masses.size());
+      std::vector<double> times;
+      std::shared_ptr<const mrm::ReferenceSolution> reference;
+      for (std::size_t m = 0; m < masses.size(); ++m) {
+        mrm::repro::Configuration c =
+            mrm::repro::paper_configuration("cn", "algebraic", masses[m], elements, courant, benchmark.final_time);
+        c.benchmark = names[b];
+        if (!reference) {
+          const double dt = c.step();
+          reference = mrm::repro::configuration_reference(
+              c, mrm::repro::reference_horizon(mrm::steps_to_reach(c.final_time, dt), dt));
+        }
+        std::size_t level = 0;
+        mrm::repro::run_configuration(
+            c,
+            [&](const mrm::Sample& s) {
+              if (m == 0) {
+                times.push_back(s.time);
+                columns[0].push_back(reference->contact_displacement(s.time));
+                columns[1].push_back(reference->contact_multiplier(s.multiplier_time));
+              } else if (level >= times.size() || times[level] != s.time) {
+                throw std::logic_error("the three runs of a benchmark must share their levels");
+              }
+              columns[2 + 2 * m].push_back((*s.displacement)[0]);
+              columns[3 + 2 * m].push_back(s.has_multiplier ? s.multiplier : std::nan(""));
+              ++level;
+            },
+            reference.get());
+      }
+      out << (b ? "\n\n" : "") << "# block " << b << ": benchmark = " << names[b]
+          << "\n# K = " << cli::format_real(benchmark.scale)
+          << "\n# touch_time = " << cli::format_real(benchmark.touch_time) << "\n# release_time = "
+          << (std::isfinite(benchmark.release_time) ? cli::format_real(benchmark.release_time)
+                                                    : std::string("none before T (held until the reflected wave)"))
+          << "\n# exact_energy = " << cli::format_real(reference->energy())
+          << "\n# columns: t u0_exact lambda_exact u0_mod1 lambda_mod1 u0_mod2 lambda_mod2 u0_mod3 lambda_mod3\n";
+      for (std::size_t n = 0; n < times.size(); ++n) {
+        out << cli::format_real(times[n]);
+        for (const std::vector<double>& column : columns) out << ' ' << cli::format_real(column[n]);
+        out << '\n';
+      }
+      mrm::tex_define(defs, std::string("smoothbench:") + keys[b] + ":K", mrm::tex_number(benchmark.scale, 4));
+      mrm::tex_define(defs, std::string("smoothbench:") + keys[b] + ":touch", mrm::tex_number(benchmark.touch_time, 4));
+      if (std::isfinite(benchmark.release_time))
+        mrm::tex_define(defs, std::string("smoothbench:") + keys[b] + ":release",
+                        mrm::tex_number(benchmark.release_time, 4));
+      mrm::tex_define(defs, std::string("smoothbench:") + keys[b] + ":energy", mrm::tex_number(reference->energy(), 4));
+      for (std::size_t m = 0; m < masses.size(); ++m) {
+        double largest = 0;
+        for (std::size_t n = 0; n < times.size(); ++n)
+          largest = std::max(largest, std::abs(columns[2 + 2 * m][n] - columns[0][n]));
+        mrm::tex_define(defs, std::string("smoothbench:") + keys[b] + ":" + masses[m] + ":u0error",
+                        mrm::tex_number(largest, 2));
+      }
+    }
+    mrm::tex_define(defs, "smoothbench:N", std::to_string(elements));
+    mrm::tex_define(defs, "smoothbench:courant", mrm::tex_number(courant, 3));
+
+    // 5. Commit.
+    outputs.commit();
+    return 0;
+  });
+}

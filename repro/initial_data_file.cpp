@@ -1,0 +1,135 @@
+// Initial data read from a text file; see initial_data_file.hpp.
+//
+// The checks on the samples are the library's (characteristics.cpp: initial_data_from_samples, which
+// names the offending row); this file only reads the numbers, remembers the line of every row, and
+// turns a row into a line in the message, so that a user sees "FILE:LINE: what is wrong".
+#include "initial_data_file.hpp"
+
+#include <charconv>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <system_error>
+#include <sstream>
+#include <vector>
+
+#include <doctest/doctest.h>
+
+#include "options.hpp"
+
+namespace mrm::repro {
+
+namespace {
+
+// One whitespace-separated number, the whole token (std::from_chars: no locale, "nan" and "inf" are
+// read as such and refused later as not finite).
+bool read_number(const std::string& token, double& value) {
+  const char* end = token.data() + token.size();
+  const auto [ptr, error] = std::from_chars(token.data(), end, value);
+  return error == std::errc() && ptr == end;
+}
+
+}  // namespace
+
+InitialData read_initial_data(const std::string& path, std::string_view option) {
+  const std::string where = std::string(option) + ": " + path;
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw cli::UsageError(where + ": is a directory, not a file");
+  std::ifstream in(path);
+  if (!in) throw cli::UsageError(where + ": cannot open the file (expected columns x u0 v0)");
+  std::vector<double> x, u0, v0;
+  std::vector<long> lines;  // the line of each sample
+  std::string line;
+  long number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    const std::size_t hash = line.find('#');
+    if (hash != std::string::npos) line.erase(hash);
+    std::istringstream fields(line);
+    std::vector<std::string> tokens;
+    for (std::string token; fields >> token;) tokens.push_back(token);
+    if (tokens.empty()) continue;
+    if (tokens.size() != 3)
+      throw cli::UsageError(where + ":" + std::to_string(number) + ": expected 3 columns x u0 v0, got " +
+                            std::to_string(tokens.size()));
+    double values[3];
+    for (std::size_t k = 0; k < 3; ++k)
+      if (!read_number(tokens[k], values[k]))
+        throw cli::UsageError(where + ":" + std::to_string(number) + ": \"" + tokens[k] + "\" is not a number");
+    x.push_back(values[0]);
+    u0.push_back(values[1]);
+    v0.push_back(values[2]);
+    lines.push_back(number);
+  }
+  if (in.bad()) throw cli::UsageError(where + ": read error");
+  try {
+    return initial_data_from_samples(x, u0, v0);
+  } catch (const SampleError& e) {
+    const long at = e.row() < lines.size() ? lines[e.row()] : number;
+    std::string what = e.what();
+    const std::string prefix = "initial data: ";
+    if (what.compare(0, prefix.size(), prefix) == 0) what.erase(0, prefix.size());
+    throw cli::UsageError(where + ":" + std::to_string(at) + ": " + what);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------
+
+namespace {
+
+// A file with the given text in the temporary directory, removed at the end of the scope.
+struct TemporaryFile {
+  std::string path;
+  explicit TemporaryFile(const std::string& text) {
+    char name[] = "/tmp/mrm-initial-data-XXXXXX";
+    const int fd = mkstemp(name);
+    REQUIRE(fd >= 0);
+    path = name;
+    std::FILE* f = fdopen(fd, "w");
+    REQUIRE(f != nullptr);
+    std::fputs(text.c_str(), f);
+    std::fclose(f);
+  }
+  ~TemporaryFile() { std::remove(path.c_str()); }
+};
+
+[[maybe_unused]] std::string message_of(const std::string& text) {
+  const TemporaryFile file(text);
+  try {
+    read_initial_data(file.path);
+  } catch (const cli::UsageError& e) {
+    const std::string what = e.what();
+    // The message names the file; keep what follows it.
+    const std::size_t at = what.find(file.path);
+    REQUIRE(at != std::string::npos);
+    return what.substr(at + file.path.size());
+  }
+  return "accepted";
+}
+
+}  // namespace
+
+TEST_CASE("an initial-data file is read with comments and blank lines, and bad files are refused with their line") {
+  const TemporaryFile good("# x u0 v0\n\n0 0.25 0   # the contact point\n0.5 0.1 -0.2\n\n1 0 0\n");
+  const InitialData data = read_initial_data(good.path);
+  CHECK(data.length() == 1.0);
+  CHECK(std::abs(data.displacement(0.25) - 0.175) < 1e-16);
+  CHECK(std::abs(data.velocity(0.75) + 0.1) < 1e-16);
+  CHECK(message_of("# x u0 v0\n0 0.25 0\n0.5 0.1 0\n0.4 0.05 0\n1 0 0\n") ==
+        ":4: x must increase strictly (0.4 after 0.5)");
+  CHECK(message_of("0 0.25 0\n\n1 0.01 0\n").find(":3: u0(L) must be 0") == 0);
+  CHECK(message_of("0 -0.1 0\n1 0 0\n").find(":1: u0(0) must be >= 0") == 0);
+  CHECK(message_of("0 0.25 0\n0.5 nan 0\n1 0 0\n").find(":2: x, u0 and v0 must be finite") == 0);
+  CHECK(message_of("0 0.25 0\n0.5 0.1 inf\n1 0 0\n").find(":2: x, u0 and v0 must be finite") == 0);
+  CHECK(message_of("# one row\n0 0 0\n").find(":2: at least 2 rows are needed (got 1)") == 0);
+  CHECK(message_of("# no row\n").find(":1: at least 2 rows are needed (got 0)") == 0);
+  CHECK(message_of("0 0.25 0\n0.5 0.1\n1 0 0\n") == ":2: expected 3 columns x u0 v0, got 2");
+  CHECK(message_of("0 0.25 0\n0.5 0.1x 0\n1 0 0\n") == ":2: \"0.1x\" is not a number");
+  CHECK(message_of("0.1 0.25 0\n1 0 0\n").find(":1: the first x must be 0") == 0);
+  CHECK_THROWS_WITH_AS(read_initial_data("/tmp"), doctest::Contains("--initial-data: /tmp: is a directory"),
+                       cli::UsageError);
+  CHECK_THROWS_WITH_AS(read_initial_data("/nonexistent/file.dat"),
+                       doctest::Contains("--initial-data: /nonexistent/file.dat: cannot open"), cli::UsageError);
+}
+
+}  // namespace mrm::repro

@@ -1,0 +1,80 @@
+// Limits of the runs: see run_limits.hpp.
+#include "run_limits.hpp"
+
+#include <cmath>
+#include <string>
+
+#include <doctest/doctest.h>
+
+#include "options.hpp"
+#include "output_file.hpp"
+
+namespace mrm::cli {
+
+// steps_to_reach counts ceil(T/Δt − 1e-9): zero when T ≤ 1e-9 Δt, and it refuses T/Δt > 1e12 with a
+// std::invalid_argument, which would end the program with status 1 after it has started. The same
+// count is made here first, as a usage error.
+Index checked_steps(std::string_view time_option, double final_time, double dt, std::string_view step_options) {
+  const double ratio = final_time / dt;
+  if (!(ratio <= max_steps))
+    throw UsageError(std::string(time_option) + ": " + format_real(final_time) + " needs " +
+                     format_real(std::ceil(ratio)) + " steps of " + format_real(dt) +
+                     " (allowed: at most 1e12 steps; lower " + std::string(time_option) + " or raise " +
+                     std::string(step_options) + ")");
+  const Index steps = steps_to_reach(final_time, dt);
+  if (steps < 1)
+    throw UsageError(std::string(time_option) + ": " + format_real(final_time) + " is reached in 0 steps of " +
+                     format_real(dt) + " (allowed: at least one step; raise " + std::string(time_option) +
+                     " or lower " + std::string(step_options) + ")");
+  return steps;
+}
+
+void require_rows(std::string_view option, double rows, std::string_view cause) {
+  if (!(rows <= max_rows))
+    throw UsageError(std::string(option) + ": " + std::string(cause) + " make " + format_real(rows) +
+                     " lines of data (allowed: at most 1e8 lines in a data file)");
+}
+
+Index checked_level(std::string_view option, double t, double dt, std::string_view step_options) {
+  const double level = std::round(t / dt);
+  if (!(level <= max_steps))
+    throw UsageError(std::string(option) + ": " + format_real(t) + " is " + format_real(level) + " steps of " +
+                     format_real(dt) + " away (allowed: instants within 1e12 steps; lower " + std::string(option) +
+                     " or raise " + std::string(step_options) + ")");
+  return static_cast<Index>(level);
+}
+
+void require_mesh_memory(std::string_view option, double elements, double bytes_per_element, double copies) {
+  require_memory(option, format_real(elements) + " elements", elements * bytes_per_element * copies);
+}
+
+TEST_CASE("the steps of a run are refused before the run unless between 1 and 1e12") {
+  CHECK(checked_steps("--final-time", 6.0, 0.005, "--courant") == 1200);
+  CHECK(checked_steps("--final-time", 2e-9, 1.0, "--courant") == 1);  // T just above 1e-9 Δt: one step
+  CHECK_THROWS_WITH_AS(checked_steps("--final-time", 6.0, 1e-300, "--courant"),
+                       "--final-time: 6 needs 6e+300 steps of 1e-300 (allowed: at most 1e12 steps; lower "
+                       "--final-time or raise --courant)",
+                       UsageError);
+  CHECK_THROWS_WITH_AS(checked_steps("--final-time", 1e-300, 0.005, "--courant"),
+                       "--final-time: 1e-300 is reached in 0 steps of 0.005 (allowed: at least one step; raise "
+                       "--final-time or lower --courant)",
+                       UsageError);
+  CHECK_THROWS_AS(checked_steps("--final-time", 1e300, 1e-300, "--courant"), UsageError);  // T/Δt = inf
+}
+
+TEST_CASE("data files, levels and memory beyond the limits are refused naming the option") {
+  CHECK_NOTHROW(require_rows("--final-time", 1e8, "1e8 steps"));
+  CHECK_THROWS_WITH_AS(require_rows("--final-time", 3.6e8, "4e+07 steps of 9 runs"),
+                       "--final-time: 4e+07 steps of 9 runs make 3.6e+08 lines of data (allowed: at most 1e8 lines "
+                       "in a data file)",
+                       UsageError);
+  CHECK(checked_level("--instants", 0.5, 0.025, "--courant") == 20);
+  CHECK_THROWS_WITH_AS(checked_level("--instants", 1e20, 0.025, "--courant"),
+                       "--instants: 1e+20 is 4e+21 steps of 0.025 away (allowed: instants within 1e12 steps; lower "
+                       "--instants or raise --courant)",
+                       UsageError);
+  CHECK_THROWS_AS(require_mesh_memory("--elements", 1e7, 1e30), UsageError);
+  CHECK_NOTHROW(require_mesh_memory("--elements", 100, 256));
+}
+
+}  // namespace mrm::cli

@@ -1,0 +1,832 @@
+#!/usr/bin/env bash
+# Hostile input, odd outputs and closed descriptors (ctest runs `bash tests/hostile.sh BIN_DIR`).
+#
+# The programs are run as a careless user or an attacker would run them, one class of attack at a
+# time, each with cases of its own. What every case demands, whatever the class:
+#
+#   - nothing lost: an output that existed keeps its old bytes unless the run succeeds;
+#   - nothing overwritten that the user did not name, and nothing left behind (no temporary file);
+#   - no wrong number printed: a run that cannot compute its values fails with a message, it never
+#     exits 0 with a non-finite or a wrong value;
+#   - a bad request is refused at once (exit status 2, one line naming the option), before any work;
+#   - no crash (death by a signal) and no hang: every run has a time limit.
+#
+# The classes (the summary at the end counts the cases of each):
+#
+#   temporary      the temporary file of an output: a symbolic link or a file planted at a name the
+#                  program could use is never followed, truncated or adopted; the name is not
+#                  predictable; the finished output has the permissions the umask gives;
+#   nonregular     outputs that are not regular files: character devices and FIFOs are written in
+#                  place (/dev/null, /dev/full, /dev/stdout, a FIFO with its reader); a FIFO without
+#                  a reader, a directory, a socket and a block device are refused with status 2; a
+#                  symbolic link as an output is refused, unless it leads to a character device, a
+#                  FIFO or the file open on standard output;
+#   descriptors    closed standard descriptors (<&-, >&-, 2>&-) never let an output file take their
+#                  place; a program whose standard output cannot be written fails (status 1) and
+#                  commits nothing;
+#   numbers        the ends of the documented ranges of the bar's length and amplitude give the same
+#                  relative errors and scaled energies as the unit bar, all finite;
+#   ranges         values inside the documented ranges (or refused with status 2) never crash nor hang;
+#   late           sizes, step counts and resources that cannot run are refused with status 2 naming
+#                  the option, at once (no late std::bad_alloc, no pivot message, no zero-step run);
+#   two_outputs    two outputs naming the same file (same path, ./path, a hard link) are refused;
+#                  when the second output fails, the first keeps its old content (all or nothing);
+#   leftovers      a run ended by any catchable terminating signal leaves no temporary file and the
+#                  old output intact; a valid long file name (up to NAME_MAX) is accepted.
+#
+# Cases that need root (device nodes, files owned by another user, a full file system) are skipped
+# with a note when not run as root; device nodes are always private ones made with mknod in the
+# scratch directory, so that a failing program can never replace the system's /dev/null.
+set -u
+set -m  # background runs get the default SIGINT/SIGQUIT, as from a terminal (see kill_during_write.sh)
+ulimit -c 0
+
+if (($# != 1)) || [[ ! -x $1/bar1d ]]; then
+  echo "usage: bash tests/hostile.sh BIN_DIR (with BIN_DIR/bar1d)" >&2
+  exit 2
+fi
+bin=$(cd "$1" && pwd)
+work=$(mktemp -d "${TMPDIR:-/tmp}/hostile.XXXXXX")
+background=()
+cleanup() {
+  local p
+  for p in "${background[@]}"; do kill -KILL "$p" 2>/dev/null; done
+  chmod -R u+rwx "$work" 2>/dev/null
+  if [[ -n ${full_mount:-} ]]; then umount "$full_mount" 2>/dev/null; fi
+  rm -rf -- "$work"
+}
+trap cleanup EXIT
+
+# Time limits: a refusal must come at once; a small run takes well under a second (more under the
+# sanitizers).
+quick=10
+small=60
+ranges_limit=30
+root=0
+((EUID == 0)) && root=1
+# AddressSanitizer keeps its own handlers for SIGSEGV, SIGBUS and SIGFPE and reserves terabytes of
+# address space (no memory limit can be set): the cases that depend on those are skipped under it.
+sanitized=0
+grep -q -a __asan_init "$bin/bar1d" && sanitized=1
+
+start_seconds=$SECONDS
+declare -A cases failures skips milliseconds
+class='' name='' case_failed=0 case_start=0
+now_ms() { local t=${EPOCHREALTIME/./}; echo $((t / 1000)); }
+finish_case() {
+  if [[ -n $name ]] && ((case_failed)); then failures[$class]=$((${failures[$class]:-0} + 1)); fi
+  [[ -n $class ]] && milliseconds[$class]=$((${milliseconds[$class]:-0} + $(now_ms) - case_start))
+  name=''
+}
+# begin CLASS NAME: a new case (in a fresh directory, which becomes the working directory).
+case_number=0
+begin() {
+  finish_case
+  class=$1 name=$2 case_failed=0 case_start=$(now_ms)
+  cases[$class]=$((${cases[$class]:-0} + 1))
+  case_number=$((case_number + 1))
+  dir=$work/case.$case_number
+  mkdir -p "$dir"
+  cd "$dir" || exit 1
+}
+fail() {
+  printf 'FAIL [%s] %s: %s\n' "$class" "$name" "$*"
+  case_failed=1
+}
+skip() {
+  printf 'SKIP [%s] %s: %s\n' "$class" "$name" "$*"
+  cases[$class]=$((${cases[$class]} - 1))
+  skips[$class]=$((${skips[$class]:-0} + 1))
+  name=''
+}
+
+out=$work/stdout
+err=$work/stderr
+# run LIMIT PROGRAM ARGS...: runs BIN_DIR/PROGRAM in the case's directory, stdout and stderr to files.
+run() {
+  local limit=$1 program=$2
+  shift 2
+  timeout -k 5 "$limit" "$bin/$program" "$@" >"$out" 2>"$err"
+  status=$?
+}
+shown_error() { head -c 300 "$err" | tr '\n' ' '; }
+
+# The entries of the case's directory, hidden ones included, one per line.
+entries() { ls -A "$dir" | LC_ALL=C sort; }
+expect_entries() {
+  local expected got
+  expected=$(printf '%s\n' "$@" | LC_ALL=C sort | sed '/^$/d')
+  got=$(entries)
+  [[ $got == "$expected" ]] || fail "files in the directory: [$(echo $got)], expected [$(echo $expected)]"
+}
+expect_status() {
+  local expected=$1
+  if ((status == 124 || status == 137)); then
+    fail "did not finish within the time limit"
+  elif ((status != expected)); then
+    fail "exit status $status, expected $expected ($(shown_error))"
+  fi
+}
+# A refusal: status 2, one line on stderr "PROGRAM: ..." containing FRAGMENT, nothing on stdout.
+expect_refusal() {
+  local program=$1 fragment=$2
+  expect_status 2
+  local lines message
+  lines=$(wc -l <"$err")
+  message=$(head -n 1 "$err")
+  ((lines == 1)) || fail "stderr has $lines lines, expected 1: $(shown_error)"
+  [[ $message == "$program: "*"$fragment"* ]] || fail "the message does not contain \"$fragment\": $message"
+  [[ -s $out ]] && fail "wrote to stdout: $(head -c 200 "$out")"
+}
+# usage_case CLASS NAME PROGRAM FRAGMENT ARGS...: refused at once, nothing created.
+usage_case() {
+  local case_class=$1 case_name=$2 program=$3 fragment=$4
+  shift 4
+  begin "$case_class" "$case_name"
+  run "$quick" "$program" "$@"
+  expect_refusal "$program" "$fragment"
+  expect_entries
+}
+old_content() { printf '# the previous output\n1 2 3\n'; }
+# A file with the previous output in it, and its reference copy outside the case's directory.
+plant_old() {
+  old_content >"$1"
+  old_content >"$work/reference"
+}
+is_old() { cmp -s "$1" "$work/reference"; }
+
+# Small runs of each program (a second or less).
+declare -A small_args=(
+  [bar1d]="-n 10 -T 1"
+  [fig_energy]="-n 10 -T 3"
+  [fig_contact_history]="-n 10 -T 3 --exact-points 100"
+  [fig_profiles]="-n 10 --instants 0.5,1.5 --exact-points 50"
+  [fig_ps_forms]="-n 10 -T 3 --exact-points 100"
+  [fig_time_error]="-n 8 -r 16 --largest 2 -k 2 -T 1"
+  [fig_convergence]="-n 4 -k 2 -T 1 -j 1"
+)
+figure_programs=(fig_energy fig_contact_history fig_profiles fig_ps_forms fig_time_error fig_convergence)
+# The reference outputs of the small runs, made once in their own directory with nothing unusual.
+reference_dir=$work/references
+mkdir -p "$reference_dir"
+for program in bar1d "${figure_programs[@]}"; do
+  [[ -x $bin/$program ]] || continue
+  # shellcheck disable=SC2086
+  (cd "$reference_dir" && timeout -k 5 "$small" "$bin/$program" ${small_args[$program]} \
+    --output "$program.dat" >"$program.stdout" 2>"$program.stderr") ||
+    echo "note: the reference run of $program failed: $(head -c 300 "$reference_dir/$program.stderr")"
+done
+# The small run of PROGRAM with extra arguments: run_small LIMIT PROGRAM ARGS...
+run_small() {
+  local limit=$1 program=$2
+  shift 2
+  # shellcheck disable=SC2086
+  run "$limit" "$program" ${small_args[$program]} "$@"
+}
+# same_as_reference FILE PROGRAM: FILE holds the data of the reference run (the header lines that
+# echo the output options, `# output = "..."` and `# tex = "..."`, aside).
+without_output_names() { grep -v -E '^# (output|tex) = ' "$1"; }
+same_as_reference() {
+  cmp -s <(without_output_names "$1") <(without_output_names "$reference_dir/$2.dat") ||
+    fail "${1##*/} differs from the data of a normal run"
+}
+
+# Waits (up to 30 s) until a new hidden file appears in DIR and has grown twice; prints its name.
+wait_for_temporary() {
+  local directory=$1 tries=0 file size=-1 growths=0 new
+  while ((tries < 600)); do
+    file=$(cd "$directory" && ls -A | grep '^\.' | head -n 1)
+    if [[ -n $file ]]; then
+      new=$(stat -c %s "$directory/$file" 2>/dev/null || echo -1)
+      if ((new > size && new > 0)); then
+        ((size >= 0)) && growths=$((growths + 1))
+        size=$new
+      fi
+      ((growths >= 2)) && { echo "$file"; return 0; }
+    fi
+    sleep 0.05
+    tries=$((tries + 1))
+  done
+  return 1
+}
+# A run long enough to be interrupted: minutes of work writing its series.
+long_run=(--elements 2000 --courant 0.5 --final-time 1000)
+
+# ==== temporary: the temporary file of an output ===================================================
+
+# A symbolic link planted at the temporary names the program would use if they were derived from
+# its pid: the shell's pid is known before exec, so the links are in place when the program starts.
+for program in bar1d fig_energy; do
+  begin temporary "$program: symbolic links planted at pid-derived temporary names are not followed"
+  printf 'victim\n' >"$work/victim"
+  # shellcheck disable=SC2016
+  timeout -k 5 "$small" bash -c '
+    for n in 0 1 2 3; do ln -s "$1" ".out.dat.tmp.$$.$n"; ln -s "$1" ".out.dat.$$.$n.tmp"; done
+    ln -s "$1" ".out.dat.$$.tmp"; ln -s "$1" ".out.dat.tmp"; ln -s "$1" ".out.dat.$$"
+    program=$2; shift 2; exec "$program" "$@"' _ "$work/victim" "$bin/$program" ${small_args[$program]} --output out.dat \
+    >"$out" 2>"$err"
+  status=$?
+  expect_status 0
+  [[ $(cat "$work/victim") == victim ]] || fail "the file a planted link points to was written"
+  [[ -f out.dat && ! -L out.dat ]] || fail "out.dat is not a regular file"
+  [[ $program == bar1d ]] || same_as_reference out.dat "$program"
+  links=$(find . -maxdepth 1 -type l | wc -l)
+  ((links == 11)) || fail "the planted links were removed or replaced ($links of 11 left)"
+done
+
+begin temporary "a regular file planted at a pid-derived temporary name is not adopted as the output"
+# shellcheck disable=SC2016
+timeout -k 5 "$small" bash -c 'printf "planted\n" > ".out.dat.tmp.$$.0"; exec "$1" -n 10 -T 1 --output out.dat' _ \
+  "$bin/bar1d" >"$out" 2>"$err"
+status=$?
+expect_status 0
+planted=$(ls -A | grep '^\.out\.dat\.tmp\.' | head -n 1)
+[[ -n $planted && $(cat "$planted" 2>/dev/null) == planted ]] || fail "the planted file was changed or removed"
+head -n 1 out.dat | grep -q '^# bar1d' || fail "out.dat does not hold the series"
+
+begin temporary "a file planted by another user is not adopted (the output belongs to the runner)"
+if ((root)) && id nobody >/dev/null 2>&1; then
+  chmod 1777 "$dir"
+  # shellcheck disable=SC2016
+  timeout -k 5 "$small" bash -c 'for n in 0 1; do printf "planted\n" > ".out.dat.tmp.$$.$n"; chown nobody ".out.dat.tmp.$$.$n"; done
+    exec "$1" -n 10 -T 1 --output out.dat' _ "$bin/bar1d" >"$out" 2>"$err"
+  status=$?
+  expect_status 0
+  [[ $(stat -c %u out.dat 2>/dev/null) == 0 ]] || fail "out.dat is owned by uid $(stat -c %u out.dat 2>/dev/null), not by the runner"
+  head -n 1 out.dat | grep -q '^# bar1d' || fail "out.dat does not hold the series"
+else
+  skip "needs root and the user nobody"
+fi
+
+begin temporary "the temporary name is not derived from the pid alone, and is private while written"
+bash -c 'exec "$@"' _ "$bin/bar1d" "${long_run[@]}" --output out.dat >/dev/null 2>"$err" &
+pid=$!
+background+=("$pid")
+temporary=$(wait_for_temporary "$dir")
+if [[ -z $temporary ]]; then
+  fail "no temporary file appeared within 30 s"
+else
+  for n in 0 1 2 3; do
+    [[ $temporary == ".out.dat.tmp.$pid.$n" ]] && fail "the temporary name $temporary is the pid and a counter"
+  done
+  mode=$(stat -c %a "$temporary" 2>/dev/null)
+  [[ $mode == 600 ]] || fail "the temporary file has mode $mode while written (expected 600: no one else reads it)"
+fi
+kill -KILL "$pid" 2>/dev/null
+wait "$pid" 2>/dev/null
+
+for mask in 022 077 002; do
+  begin temporary "the output has the permissions of the umask $mask"
+  (umask "$mask" && cd "$dir" && timeout -k 5 "$small" "$bin/bar1d" -n 10 -T 1 --output out.dat >"$out" 2>"$err")
+  status=$?
+  expect_status 0
+  expected=$(printf '%o' $((0666 & ~8#$mask)))
+  mode=$(stat -c %a out.dat 2>/dev/null)
+  [[ $mode == "$expected" ]] || fail "out.dat has mode $mode, expected $expected"
+done
+
+begin temporary "an existing output keeps its permissions' source: a new file from the umask, not from the old one"
+old_content >out.dat
+chmod 600 out.dat
+(umask 022 && cd "$dir" && timeout -k 5 "$small" "$bin/bar1d" -n 10 -T 1 --output out.dat >"$out" 2>"$err")
+status=$?
+expect_status 0
+mode=$(stat -c %a out.dat 2>/dev/null)
+[[ $mode == 600 || $mode == 644 ]] || fail "out.dat has mode $mode"
+expect_entries out.dat
+
+# ==== nonregular: outputs that are not regular files ===============================================
+
+# Character devices, written in place: a private /dev/null and /dev/full when root, the system's
+# when not (a user cannot replace them, so nothing can go wrong there).
+# Made again before each case that uses them (a failing program may have replaced them).
+devices() {
+  if ((root)); then
+    rm -rf -- "$work/null" "$work/full" "$work/stdout-link" "$work/stderr-link"
+    mknod "$work/null" c 1 3 2>/dev/null
+    mknod "$work/full" c 1 7 2>/dev/null
+    ln -s /proc/self/fd/1 "$work/stdout-link"
+    ln -s /proc/self/fd/2 "$work/stderr-link"
+  fi
+}
+if ((root)); then
+  null_device=$work/null full_device=$work/full stdout_path=$work/stdout-link stderr_path=$work/stderr-link
+else
+  null_device=/dev/null full_device=/dev/full stdout_path=/dev/stdout stderr_path=/dev/stderr
+fi
+for program in bar1d fig_energy fig_profiles; do
+  begin nonregular "$program --output $null_device: written in place, still the device"
+  devices
+  if [[ ! -c $null_device ]]; then skip "cannot make a device node"; continue; fi
+  run_small "$small" "$program" --output "$null_device"
+  expect_status 0
+  [[ -c $null_device ]] || fail "$null_device is no longer a character device"
+  [[ $(stat -c %t:%T "$null_device" 2>/dev/null) == 1:3 ]] || fail "$null_device is no longer the null device"
+  expect_entries
+  ls -A "$(dirname "$null_device")" | grep -q "^\.$(basename "$null_device")" &&
+    fail "a temporary file was left beside $null_device"
+done
+
+begin nonregular "fig_energy --tex $null_device with a regular --output: both written"
+devices
+if [[ -c $null_device ]]; then
+  run_small "$small" fig_energy --output out.dat --tex "$null_device"
+  expect_status 0
+  same_as_reference out.dat fig_energy
+  [[ -c $null_device ]] || fail "$null_device is no longer a character device"
+  expect_entries out.dat
+else
+  skip "cannot make a device node"
+fi
+
+for program in bar1d fig_energy; do
+  begin nonregular "$program --output $full_device: the write fails, status 1, the device stays"
+  devices
+  if [[ ! -c $full_device ]]; then skip "cannot make a device node"; continue; fi
+  run_small "$small" "$program" --output "$full_device"
+  expect_status 1
+  grep -q "$full_device" "$err" || fail "the message does not name $full_device: $(shown_error)"
+  [[ -c $full_device && $(stat -c %t:%T "$full_device") == 1:7 ]] || fail "$full_device is no longer the full device"
+  expect_entries
+done
+
+# /dev/stdout: the system's (a symbolic link to /proc/self/fd/1) when not root, a private link to
+# /proc/self/fd/1 when root. Standard output a file, then a pipe.
+begin nonregular "fig_energy --output $stdout_path > file: the data on standard output"
+devices
+run_small "$small" fig_energy --output "$stdout_path"
+expect_status 0
+same_as_reference "$out" fig_energy
+[[ -L $stdout_path ]] || fail "$stdout_path is no longer a symbolic link"
+expect_entries
+
+begin nonregular "fig_energy --output $stdout_path | cat: the data through the pipe"
+devices
+# shellcheck disable=SC2086
+timeout -k 5 "$small" "$bin/fig_energy" ${small_args[fig_energy]} --output "$stdout_path" 2>"$err" | cat >"$out"
+status=${PIPESTATUS[0]}
+expect_status 0
+same_as_reference "$out" fig_energy
+[[ -L $stdout_path ]] || fail "$stdout_path is no longer a symbolic link"
+
+begin nonregular "bar1d --output /dev/stderr-like link: the series on standard error"
+devices
+run_small "$small" bar1d --output "$stderr_path" --no-timing
+expect_status 0
+grep -q '^# bar1d' "$err" || fail "the series is not on standard error"
+grep -q '^err_u0_L2 = ' "$out" || fail "the summary is not on standard output"
+[[ -L $stderr_path ]] || fail "$stderr_path is no longer a symbolic link"
+
+begin nonregular "a FIFO with a reader: the reader gets the data, the FIFO stays"
+# The test holds the FIFO open for reading (and writing, so that the open does not block) before the
+# run, as a reader waiting on it would; the data (less than the 64 KiB a pipe holds) are read after.
+mkfifo fifo
+exec 3<>fifo
+run_small "$small" fig_energy --output fifo
+expect_status 0
+timeout 10 dd if=fifo iflag=nonblock bs=1M of="$work/fifo_data" 2>/dev/null
+exec 3<&-
+[[ -p fifo ]] || fail "fifo is no longer a FIFO"
+same_as_reference "$work/fifo_data" fig_energy
+expect_entries fifo
+
+begin nonregular "a FIFO without a reader: refused at once with status 2, no hang"
+mkfifo fifo
+run_small "$quick" fig_energy --output fifo
+expect_refusal fig_energy --output
+[[ -p fifo ]] || fail "fifo is no longer a FIFO"
+expect_entries fifo
+
+for target in . .. sub sub/ "$work"; do
+  begin nonregular "a directory as the output ($target): refused with status 2"
+  mkdir sub
+  run_small "$quick" bar1d --output "$target"
+  expect_refusal bar1d --output
+  expect_entries sub
+done
+
+begin nonregular "a socket as the output: refused with status 2, still a socket"
+if command -v python3 >/dev/null && python3 -c 'import socket,sys; socket.socket(socket.AF_UNIX).bind(sys.argv[1])' sock 2>/dev/null; then
+  run_small "$quick" fig_energy --output sock
+  expect_refusal fig_energy --output
+  [[ -S sock ]] || fail "sock is no longer a socket"
+  expect_entries sock
+else
+  skip "cannot make a socket (python3)"
+fi
+
+begin nonregular "a block device as the output: refused with status 2, still the device"
+# loop device 250: almost surely absent, so that nothing could be written to a real disk.
+if ((root)) && mknod blk b 7 250 2>/dev/null; then
+  run_small "$quick" fig_energy --output blk
+  expect_refusal fig_energy --output
+  [[ -b blk ]] || fail "blk is no longer a block device"
+  expect_entries blk
+else
+  skip "needs root to make a device node"
+fi
+
+begin nonregular "a symbolic link to a regular file as the output: refused, the link and its file unchanged"
+plant_old real.dat
+ln -s real.dat link.dat
+run_small "$quick" bar1d --output link.dat
+expect_refusal bar1d --output
+[[ -L link.dat ]] || fail "link.dat is no longer a symbolic link"
+is_old real.dat || fail "real.dat was changed"
+expect_entries real.dat link.dat
+
+begin nonregular "a dangling symbolic link as the output: refused, nothing created where it points"
+ln -s "$dir/missing.dat" link.dat
+run_small "$quick" fig_energy --output link.dat
+expect_refusal fig_energy --output
+[[ -L link.dat ]] || fail "link.dat is no longer a symbolic link"
+expect_entries link.dat
+
+begin nonregular "a symbolic link to a character device: written in place"
+devices
+if [[ -c $null_device ]]; then
+  ln -s "$null_device" link
+  run_small "$small" fig_energy --output link
+  expect_status 0
+  [[ -L link && -c $null_device ]] || fail "the link or the device was replaced"
+  expect_entries link
+else
+  skip "cannot make a device node"
+fi
+
+# ==== descriptors: closed standard descriptors ====================================================
+
+begin descriptors "fig_energy 2>&-: exit 0, no progress line in the data file"
+# shellcheck disable=SC2086
+timeout -k 5 "$small" "$bin/fig_energy" ${small_args[fig_energy]} --output out.dat >"$out" 2>&-
+status=$?
+expect_status 0
+same_as_reference out.dat fig_energy
+expect_entries out.dat
+
+begin descriptors "fig_energy --tex t.tex 2>&-: neither output takes the place of stderr"
+# shellcheck disable=SC2086
+timeout -k 5 "$small" "$bin/fig_energy" ${small_args[fig_energy]} --output out.dat --tex t.tex >"$out" 2>&-
+status=$?
+expect_status 0
+same_as_reference out.dat fig_energy
+grep -q 'fig_energy:' t.tex && fail "progress lines in t.tex"
+expect_entries out.dat t.tex
+
+begin descriptors "fig_energy >&- (writes nothing on stdout): exit 0, data intact"
+# shellcheck disable=SC2086
+timeout -k 5 "$small" "$bin/fig_energy" ${small_args[fig_energy]} --output out.dat >&- 2>"$err"
+status=$?
+expect_status 0
+same_as_reference out.dat fig_energy
+
+begin descriptors "fig_energy <&- >&- 2>&-: exit 0, data intact, nothing else created"
+# shellcheck disable=SC2086
+timeout -k 5 "$small" "$bin/fig_energy" ${small_args[fig_energy]} --output out.dat <&- >&- 2>&-
+status=$?
+expect_status 0
+same_as_reference out.dat fig_energy
+expect_entries out.dat
+
+begin descriptors "fig_profiles <&-: exit 0, data intact"
+# shellcheck disable=SC2086
+timeout -k 5 "$small" "$bin/fig_profiles" ${small_args[fig_profiles]} --output out.dat <&- >"$out" 2>"$err"
+status=$?
+expect_status 0
+same_as_reference out.dat fig_profiles
+
+begin descriptors "bar1d >&- (its results go to stdout): status 1, the series not committed"
+plant_old out.dat
+timeout -k 5 "$small" "$bin/bar1d" -n 10 -T 1 --output out.dat >&- 2>"$err"
+status=$?
+expect_status 1
+grep -q 'standard output' "$err" || fail "the message does not mention the standard output: $(shown_error)"
+is_old out.dat || fail "out.dat was replaced although the results could not be delivered"
+expect_entries out.dat
+
+begin descriptors "bar1d >&- 2>&-: status 1, no summary inside the series"
+timeout -k 5 "$small" "$bin/bar1d" -n 10 -T 1 --output out.dat >&- 2>&-
+status=$?
+expect_status 1
+[[ -e out.dat ]] && grep -q '^err_' out.dat && fail "the summary went into out.dat"
+expect_entries
+
+begin descriptors "bar1d > /dev/full: status 1 and a message"
+plant_old out.dat
+timeout -k 5 "$small" "$bin/bar1d" -n 10 -T 1 --output out.dat >/dev/full 2>"$err"
+status=$?
+expect_status 1
+grep -q 'standard output' "$err" || fail "the message does not mention the standard output: $(shown_error)"
+is_old out.dat || fail "out.dat was replaced although the results could not be delivered"
+
+for request in --help --version; do
+  begin descriptors "bar1d $request > /dev/full: status 1"
+  timeout -k 5 "$quick" "$bin/bar1d" "$request" >/dev/full 2>"$err"
+  status=$?
+  expect_status 1
+  begin descriptors "fig_energy $request >&-: status 1"
+  timeout -k 5 "$quick" "$bin/fig_energy" "$request" >&- 2>"$err"
+  status=$?
+  expect_status 1
+done
+
+begin descriptors "fig_energy 2> /dev/full (its progress lines fail): status 1, nothing committed"
+plant_old out.dat
+# shellcheck disable=SC2086
+timeout -k 5 "$small" "$bin/fig_energy" ${small_args[fig_energy]} --output out.dat >"$out" 2>/dev/full
+status=$?
+expect_status 1
+is_old out.dat || fail "out.dat was replaced"
+expect_entries out.dat
+
+begin descriptors "a refusal with stderr closed still exits 2 and creates nothing"
+timeout -k 5 "$quick" "$bin/bar1d" --elements 1 --output out.dat >"$out" 2>&-
+status=$?
+expect_status 2
+expect_entries
+
+# ==== numbers: the ends of the documented ranges ==================================================
+# bar1d accepts L and a in [1e-100, 1e100]. Under x → Lx, t → Lt, u → aLu the benchmark is the one
+# with L = a = 1 whatever L and a: the relative errors must be those of the unit bar and the
+# energies those of the unit bar times a²L, up to the rounding of the data (1e-16 relative each,
+# over 120 steps: 1e-9 is far above it, and far below any real error).
+compare_with_unit() {  # compare_with_unit L A: the summary in $out against the unit bar's
+  local length=$1 amplitude=$2
+  awk -v L="$length" -v a="$amplitude" -v unit="$work/unit_summary" '
+    function finite(x) { return x ~ /^-?[0-9]+(\.[0-9]+)?(e[-+][0-9]+)?$/ }
+    BEGIN { while ((getline line < unit) > 0) { split(line, f, " = "); base[f[1]] = f[2] } }
+    {
+      split($0, f, " = "); key = f[1]; value = f[2]
+      if (!finite(value)) { printf "%s = %s is not a finite number\n", key, value; next }
+      if (!(key in base)) next
+      expected = base[key] + 0
+      if (key ~ /^energy_/) { value = value / (a * a * L) }
+      if (key == "steps") { if (value != expected) printf "steps = %s, the unit bar takes %s\n", value, expected; next }
+      tolerance = 1e-9 * (expected < 0 ? -expected : expected) + 1e-300
+      difference = value - expected; if (difference < 0) difference = -difference
+      if (difference > tolerance) printf "%s = %s (scaled), the unit bar gives %s\n", key, value, expected
+    }' "$out"
+}
+(cd "$work" && timeout -k 5 "$small" "$bin/bar1d" -n 20 -L 1 -a 1 -T 3 --no-timing >"$work/unit_summary" 2>/dev/null)
+for length in 1e-100 1e100 1; do
+  for amplitude in 1e-100 1e100 1; do
+    [[ $length == 1 && $amplitude == 1 ]] && continue
+    begin numbers "bar1d -L $length -a $amplitude: the unit bar's relative errors and scaled energies"
+    final_time=$(awk -v L="$length" 'BEGIN { printf "%.17g", 3 * L }')
+    run "$small" bar1d -n 20 -L "$length" -a "$amplitude" -T "$final_time" --no-timing
+    expect_status 0
+    problems=$(compare_with_unit "$length" "$amplitude")
+    [[ -z $problems ]] || fail "$(echo "$problems" | head -n 3 | tr '\n' ';')"
+  done
+done
+for scheme in be ps; do
+  begin numbers "bar1d -s $scheme -L 1e100 -a 1e100: every value finite"
+  run "$small" bar1d -s "$scheme" -n 20 -L 1e100 -a 1e100 -T 3e100 --no-timing
+  expect_status 0
+  grep -v -E '^[A-Za-z_0-9]+ = -?[0-9.]+(e[-+][0-9]+)?$' "$out" | grep -q . && fail "non-finite values: $(grep -v -E '= -?[0-9]' "$out" | head -n 2 | tr '\n' ' ')"
+  begin numbers "bar1d -s $scheme -L 1e-100 -a 1e-100 --output: every value of the series finite"
+  run "$small" bar1d -s "$scheme" -n 20 -L 1e-100 -a 1e-100 -T 3e-100 --no-timing --output s.dat
+  expect_status 0
+  # Column 5 (lambda_h) is nan where a level has no multiplier yet (documented); nothing else.
+  bad=$(grep -v '^#' s.dat | awk '{ for (i = 1; i <= NF; ++i) if (i != 5 && $i !~ /^-?[0-9.]+(e[-+][0-9]+)?$/) { print; exit } }')
+  [[ -z $bad ]] || fail "a non-finite value in the series: $bad"
+  grep -q ' = 0$' "$out" && fail "an error of exactly 0: $(grep ' = 0$' "$out" | head -n 1)"
+done
+begin numbers "bar1d at the ends of the other ranges (-c 1e6, -b 1e6): finite values or a refusal"
+for arguments in "-c 1e6 -n 2 -T 3" "-s ps -b 1e6 -T 3" "-s ps -b 1e6 -c 1e6 -n 2 -T 1e6" "-s be -c 1e6 -n 1000 -T 3" \
+  "-s ps --ps-form literal -b 1e-300 -T 3" "-s ps --ps-form literal -b 4.9e-324 -n 4 -T 1" "-e 1 -s ps -T 3"; do
+  # shellcheck disable=SC2086
+  run "$small" bar1d $arguments --no-timing
+  if ((status == 0)); then
+    grep -v -E '^[A-Za-z_0-9]+ = -?[0-9.]+(e[-+][0-9]+)?$' "$out" | grep -q . && fail "bar1d $arguments: non-finite values"
+  elif ((status == 2)); then
+    [[ $(wc -l <"$err") == 1 ]] || fail "bar1d $arguments: refusal without one line"
+  else
+    fail "bar1d $arguments: exit status $status ($(shown_error)), expected 0 or a refusal (2)"
+  fi
+done
+
+# ==== ranges: inside the documented ranges, no crash and no hang ==================================
+# Each value is allowed by the help. Whatever the program does with it, it must not die by a
+# signal, hang, or leave a file: it either runs (status 0) or refuses the value (status 2) naming the
+# option.
+range_case() {  # range_case PROGRAM OPTION-NAME ARGS...
+  local program=$1 option=$2
+  shift 2
+  begin ranges "$program $*"
+  run "$ranges_limit" "$program" "$@" --output out.dat
+  if ((status == 0)); then
+    [[ -s out.dat ]] || fail "status 0 but no output"
+    expect_entries out.dat
+  elif ((status == 2)); then
+    expect_refusal "$program" "$option"
+    expect_entries
+  else
+    expect_status 2
+    expect_entries
+  fi
+}
+range_case fig_profiles --instants --instants 1e20
+range_case fig_profiles --instants --instants 1e12
+range_case fig_profiles --instants --instants 0,1e300
+range_case fig_profiles --exact-points --exact-points 2000000000
+range_case fig_profiles --exact-points --exact-points 9223372036854775807
+range_case fig_contact_history --exact-points --exact-points 2000000000
+range_case fig_ps_forms --exact-points --exact-points 2000000000
+range_case fig_ps_forms --final-time --final-time 1e-300
+range_case fig_contact_history --final-time --final-time 1e-300
+range_case fig_energy --final-time --final-time 1e300
+range_case fig_time_error --reference-ratio -r 1099511627776
+range_case fig_time_error --reference-ratio -r 4611686018427387904
+range_case fig_time_error --largest --largest 4611686018427387904
+range_case fig_time_error --steps -k 9223372036854775807
+range_case fig_time_error --elements -n 9223372036854775807
+range_case fig_convergence --threads -n 4 -k 2 -T 1 -j 100000
+range_case fig_convergence --threads -n 4 -k 2 -T 1 -j 9223372036854775807
+range_case fig_convergence --coarsest -n 4611686018427387904 -k 2
+range_case fig_convergence --coarsest -n 1099511627776 -k 20
+range_case fig_convergence --refinements -n 2 -k 9223372036854775807
+range_case fig_energy --elements -n 9223372036854775807
+range_case fig_contact_history --elements -n 4611686018427387904
+range_case fig_profiles --elements -n 9223372036854775807 --instants 0
+range_case fig_ps_forms --courant -c 1e-320
+
+# ==== late: what cannot run is refused at once, naming the option ==================================
+for program in fig_energy fig_contact_history fig_profiles fig_ps_forms fig_time_error; do
+  usage_case late "$program --elements 100000000: refused before any work" "$program" --elements --elements 100000000
+done
+usage_case late "fig_convergence --coarsest 100000000: refused before any work" fig_convergence --coarsest --coarsest 100000000
+for program in fig_energy fig_contact_history fig_profiles fig_ps_forms; do
+  usage_case late "$program --courant 1e300: refused" "$program" --courant --courant 1e300
+  usage_case late "$program --courant 1e-300: refused" "$program" --courant --courant 1e-300
+done
+usage_case late "bar1d --final-time 1e-300: zero steps refused" bar1d --final-time --final-time 1e-300
+usage_case late "bar1d --final-time 1e-12 (zero steps) refused" bar1d --final-time --final-time 1e-12
+usage_case late "bar1d -L 1e100 --final-time 1: zero steps refused" bar1d --final-time -L 1e100 --final-time 1
+usage_case late "fig_energy --final-time 1e-300: zero steps refused" fig_energy --final-time --final-time 1e-300
+usage_case late "fig_convergence --final-time 1e-300: zero steps refused" fig_convergence --final-time --final-time 1e-300 -n 4 -k 2
+usage_case late "fig_time_error --final-time 1e-300: zero steps refused" fig_time_error --final-time --final-time 1e-300
+usage_case late "fig_profiles --instants 1e300: refused" fig_profiles --instants --instants 1e300
+usage_case late "cn_large_step --final-time 1e-300: zero steps refused" cn_large_step --final-time --final-time 1e-300
+usage_case late "bench_step --repetitions 4611686018427387904: refused" bench_step --repetitions --repetitions 4611686018427387904
+usage_case late "bench_step --batch-ms 1e300: refused" bench_step --batch-ms --batch-ms 1e300
+
+# Memory: a run that needs more memory than the process may have is refused before it starts.
+begin late "bar1d --elements 1e7 with 300 MB of address space: refused, naming --elements"
+if ((sanitized)); then
+  skip "AddressSanitizer reserves its shadow memory: no address-space limit can be set"
+else
+  (ulimit -v 300000 && cd "$dir" && timeout -k 5 "$quick" "$bin/bar1d" --elements 10000000 -T 1e-6 -c 1e-6 >"$out" 2>"$err")
+  status=$?
+  expect_refusal bar1d --elements
+  expect_entries
+fi
+begin late "fig_convergence -n 65536 -k 8 with 300 MB: refused, naming the option"
+if ((sanitized)); then
+  skip "AddressSanitizer reserves its shadow memory: no address-space limit can be set"
+else
+  (ulimit -v 300000 && cd "$dir" && timeout -k 5 "$quick" "$bin/fig_convergence" -n 65536 -k 8 -j 1 >"$out" 2>"$err")
+  status=$?
+  expect_refusal fig_convergence --
+  expect_entries
+fi
+
+# ==== two_outputs: the same file twice; all or nothing =============================================
+for spelling in out.dat ./out.dat sub/../out.dat ABSOLUTE; do
+  begin two_outputs "fig_energy --output out.dat --tex $spelling: refused, naming --tex"
+  mkdir sub
+  [[ $spelling == ABSOLUTE ]] && spelling=$dir/out.dat
+  plant_old out.dat
+  run_small "$quick" fig_energy --output out.dat --tex "$spelling"
+  expect_refusal fig_energy --tex
+  is_old out.dat || fail "out.dat was changed"
+  expect_entries out.dat sub
+done
+begin two_outputs "fig_energy --output a.dat --tex b.dat, b.dat a hard link of a.dat: refused"
+plant_old a.dat
+ln a.dat b.dat
+run_small "$quick" fig_energy --output a.dat --tex b.dat
+expect_refusal fig_energy --tex
+is_old a.dat || fail "a.dat was changed"
+expect_entries a.dat b.dat
+begin two_outputs "fig_energy --output d/out.dat --tex l/out.dat, l a link to the directory d: refused"
+mkdir d
+ln -s d l
+run_small "$quick" fig_energy --output d/out.dat --tex l/out.dat
+expect_refusal fig_energy --tex
+expect_entries d l
+begin two_outputs "check_claims --tex t --markdown t: refused before its checks"
+run "$quick" check_claims --tex t --markdown t
+expect_refusal check_claims --markdown
+expect_entries
+begin two_outputs "bench_step --output b --markdown ./b: refused"
+run "$quick" bench_step --quick --output b --markdown ./b
+expect_refusal bench_step --markdown
+expect_entries
+begin two_outputs "bar1d --output out.dat > out.dat (the output is the standard output's file): refused"
+timeout -k 5 "$quick" "$bin/bar1d" -n 10 -T 1 --output out.dat >out.dat 2>"$err"
+status=$?
+expect_status 2
+grep -q -- '--output' "$err" || fail "the message does not name --output: $(shown_error)"
+for program in fig_energy fig_ps_forms fig_convergence; do
+  begin two_outputs "$program --tex $full_device after a good --output: the output keeps its old content"
+  devices
+  if [[ ! -c $full_device ]]; then skip "cannot make a device node"; continue; fi
+  plant_old out.dat
+  run_small "$small" "$program" --output out.dat --tex "$full_device"
+  expect_status 1
+  is_old out.dat || fail "out.dat was replaced although --tex failed"
+  expect_entries out.dat
+done
+begin two_outputs "--tex on a full file system: the output keeps its old content, no temporary left"
+full_mount=''
+if ((root)) && mkdir "$work/fullfs" && mount -t tmpfs -o size=64k tmpfs "$work/fullfs" 2>/dev/null; then
+  full_mount=$work/fullfs
+  head -c 60000 /dev/zero >"$full_mount/filler" 2>/dev/null
+  head -c 100000 /dev/zero >>"$full_mount/filler" 2>/dev/null
+  plant_old out.dat
+  run "$small" fig_energy -n 40 -T 30 --output out.dat --tex "$full_mount/t.tex"
+  ((status == 1 || status == 2)) || fail "exit status $status, expected a failure"
+  is_old out.dat || fail "out.dat was replaced although --tex failed"
+  expect_entries out.dat
+  [[ $(ls -A "$full_mount") == filler ]] || fail "left on the full file system: $(ls -A "$full_mount" | tr '\n' ' ')"
+  umount "$full_mount"
+  full_mount=''
+else
+  skip "needs root to mount a small tmpfs"
+fi
+
+# ==== leftovers: signals and long names ===========================================================
+# A long run is ended by each signal whose default action ends the process; the temporary file must
+# be gone, the old output intact, and the process must end by that same signal.
+signals=(HUP INT QUIT TERM USR1 USR2 ALRM PIPE XCPU XFSZ VTALRM PROF SYS TRAP ABRT ILL STKFLT PWR IO RTMIN RTMAX)
+((sanitized)) || signals+=(SEGV BUS FPE)
+for signal in "${signals[@]}"; do
+  begin leftovers "SIG$signal during the write: no temporary file, old output intact"
+  plant_old out.dat
+  "$bin/bar1d" "${long_run[@]}" --output out.dat >/dev/null 2>"$err" &
+  pid=$!
+  background+=("$pid")
+  temporary=$(wait_for_temporary "$dir")
+  if [[ -z $temporary ]]; then
+    fail "no temporary file appeared within 30 s"
+    kill -KILL "$pid" 2>/dev/null
+    wait "$pid" 2>/dev/null
+    continue
+  fi
+  kill "-$signal" "$pid"
+  # The process must end (a handler that forgot to end it would leave it running).
+  for _ in $(seq 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+  kill -KILL "$pid" 2>/dev/null && fail "still running 10 s after SIG$signal"
+  wait "$pid"
+  status=$?
+  expected=$((128 + $(kill -l "$signal")))
+  ((status == expected)) || fail "exit status $status, expected $expected (ended by SIG$signal)"
+  is_old out.dat || fail "out.dat was changed"
+  expect_entries out.dat
+done
+
+for length in 244 250 255; do
+  begin leftovers "an output name of $length characters is accepted"
+  long=$(printf 'x%.0s' $(seq $((length - 4)))).dat
+  run_small "$small" fig_energy --output "$long"
+  expect_status 0
+  same_as_reference "$long" fig_energy
+  expect_entries "$long"
+  begin leftovers "an existing output of $length characters, second output of $length: both replaced"
+  plant_old "$long"
+  long2=$(printf 'y%.0s' $(seq $((length - 4)))).tex
+  run_small "$small" fig_energy --output "$long" --tex "$long2"
+  expect_status 0
+  same_as_reference "$long" fig_energy
+  expect_entries "$long" "$long2"
+done
+begin leftovers "an output name of 256 characters: refused with status 2 naming --output"
+long=$(printf 'x%.0s' $(seq 252)).dat
+run_small "$quick" fig_energy --output "$long"
+expect_refusal fig_energy --output
+expect_entries
+begin leftovers "a long name beside another program's file of the same prefix: only its own file replaced"
+long=$(printf 'z%.0s' $(seq 240)).dat
+printf 'other\n' >"${long}x"
+run_small "$small" fig_energy --output "$long"
+expect_status 0
+[[ $(cat "${long}x") == other ]] || fail "another file was changed"
+expect_entries "$long" "${long}x"
+
+finish_case
+cd "$work" || exit 1
+
+# ==== Summary =====================================================================================
+total=0
+total_failed=0
+echo
+echo "hostile: cases by class (failed, skipped, time)"
+for c in temporary nonregular descriptors numbers ranges late two_outputs leftovers; do
+  printf '  %-12s %3d cases, %3d failed, %d skipped, %5.1f s\n' "$c" "${cases[$c]:-0}" "${failures[$c]:-0}" \
+    "${skips[$c]:-0}" "$((${milliseconds[$c]:-0} / 100))e-1"
+  total=$((total + ${cases[$c]:-0}))
+  total_failed=$((total_failed + ${failures[$c]:-0}))
+done
+echo "hostile: $total cases, $total_failed failed, in $((SECONDS - start_seconds)) s"
+((total_failed == 0))
