@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
       mrm::tex_define(m, "hist:h", mrm::tex_number(mesh.h(), 3));
       mrm::tex_define(m, "hist:dt", mrm::tex_number(dt, 3));
       mrm::tex_define(m, "hist:courant", mrm::tex_number(courant, 3));
-      mrm::tex_define(m, "hist:T", mrm::tex_number(final_time, 3));
+      mrm::tex_define(m, "hist:T", cli::format_real(final_time));
       mrm::tex_define(m, "hist:psform", ps_form);
       // The total mass 1ᵀM^mod1 of each choice on this mesh (paper §2: Mod 2 and Mod 3 preserve it).
       for (const std::string& mass : mrm::repro::mass_names())

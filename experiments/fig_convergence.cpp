@@ -170,7 +170,7 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "conv:Nmin", std::to_string(coarsest));
     mrm::tex_define(defs, "conv:Nmax", std::to_string(finest));
     mrm::tex_define(defs, "conv:meshes", std::to_string(levels));
-    mrm::tex_define(defs, "conv:T", mrm::tex_number(final_time, 3));
+    mrm::tex_define(defs, "conv:T", cli::format_real(final_time));
     mrm::tex_define(defs, "conv:psform", ps_form);
     // The two steps of the study, for the prose ("\mrm{conv:dt:dth2}" prints "$\Delta t = h/2$").
     for (std::size_t c = 0; c < courants.size(); ++c) mrm::tex_define(defs, std::string("conv:dt:") + courant_keys[c], courant_labels[c]);

@@ -244,7 +244,7 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "smooth:Nmin", std::to_string(coarsest));
     mrm::tex_define(defs, "smooth:Nmax", std::to_string(finest));
     mrm::tex_define(defs, "smooth:meshes", std::to_string(levels));
-    mrm::tex_define(defs, "smooth:T", mrm::tex_number(final_time, 3));
+    mrm::tex_define(defs, "smooth:T", cli::format_real(final_time));
     mrm::tex_define(defs, "smooth:tolerance", mrm::tex_number(agreement, 2));
     // The steps of the study, for the prose ("\mrm{smooth:dt:dth2}" prints "$\Delta t = h/2$").
     for (std::size_t c = 0; c < courants.size(); ++c)

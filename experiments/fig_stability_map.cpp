@@ -92,10 +92,10 @@ int main(int argc, char** argv) {
       bounded = bounded && worst[j] <= threshold;
       if (bounded) bounded_up_to = courants[j];
     }
-    mrm::tex_define(defs, "stab:bounded", mrm::tex_number(bounded_up_to, 3));
+    mrm::tex_define(defs, "stab:bounded", cli::format_real(bounded_up_to));
     mrm::tex_define(defs, "stab:threshold", cli::format_real(threshold));
-    mrm::tex_define(defs, "stab:periods", mrm::tex_number(periods, 4));
-    mrm::tex_define(defs, "stab:longperiods", mrm::tex_number(long_periods, 4));
+    mrm::tex_define(defs, "stab:periods", cli::format_real(periods));
+    mrm::tex_define(defs, "stab:longperiods", cli::format_real(long_periods));
     // The grid, for the prose: the meshes, the coarsest one and the range of Δt/h.
     std::string mesh_list;
     for (mrm::Index n : meshes) mesh_list += (mesh_list.empty() ? "" : ", ") + std::to_string(n);

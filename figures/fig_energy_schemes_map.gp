@@ -16,7 +16,7 @@ ns = words(schemes)
 nm = words(meshes)
 marker(s) = word("7 6 4 8 5 9", s) + 0
 
-set multiplot layout 2,(nm + 1) / 2 margins 0.09,0.98,0.08,0.9 spacing 0.09,0.11
+set multiplot layout 2,(nm + 1) / 2 margins 0.09,0.98,0.08,0.9 spacing 0.09,0.14
 set logscale x 2
 set logscale y 10
 set format y "10^{%L}"

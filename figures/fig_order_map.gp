@@ -24,13 +24,17 @@ measures = "err_u0_L2 err_u_LinfH1"
 predicted = "predicted_u predicted_energy"
 
 set logscale x
+# The horizons of the sweep (the first column of a block) as the tics.
+horizons = system(sprintf("awk '/^# block 1:/{exit} !/^#/ && NF {print $1}' '%s'", data))
+set xtics ()
+do for [k=1:words(horizons)] { set xtics add (word(horizons, k) word(horizons, k) + 0) }
 set autoscale xfix
 set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05
 set yrange [0:*]
 set key bottom right samplen 2
 set xlabel "horizon (periods)"
 set ylabel "order in ".italic("h")
-set multiplot layout 2,2 margins 0.08,0.98,0.08,0.9 spacing 0.08,0.12 \
+set multiplot layout 2,2 margins 0.08,0.98,0.08,0.9 spacing 0.08,0.15 \
   title sprintf("%s = %s%s", Delta_t, ratio, italic("h")) font font(10)
 do for [scheme in "cn be"] {
   do for [q=1:2] {

@@ -34,6 +34,7 @@ plot for [m=1:n] data index m-1 using 1:3 with lines lc rgb mass_colour(mass_ind
   title mass_name(word(histories, m))
 
 set title "impact-time errors: measured (points) and the period law (dashed lines)"
+set key bottom left vertical maxrows 3 samplen 2
 set xlabel "exact impact time ".italic("t_k")
 set ylabel "time error"
 plot for [m=1:n] data index n+m-1 using 2:3 with points lc rgb mass_colour(mass_index(word(histories, m))) pt 7 ps 0.4 \

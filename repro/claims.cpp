@@ -225,6 +225,17 @@ std::string fixed(double x, int decimals) {
 const char* const measure_names[8] = {"u(0,·) L²(0,T)", "λ L²(0,T)", "u L∞(L²)", "u L∞(H¹)",
                                       "u_t L∞(L²)",     "u L²(L²)",  "u L²(H¹)", "u_t L²(L²)"};
 
+// The summary's name of a scheme, as the report's appendix abbreviates it (CN, BE, PS) and of a mass.
+std::string scheme_abbreviation(const std::string& id) {
+  if (id == "cn") return "CN";
+  if (id == "be") return "BE";
+  if (id == "ps") return "PS";
+  if (id == "ps-literal") return "PS (literal row)";
+  if (id == "ps-consistent") return "PS (consistent mass)";
+  return id;
+}
+std::string mass_text(const std::string& id) { return id.rfind("mod", 0) == 0 ? "Mod " + id.substr(3) : id; }
+
 std::string join(const std::vector<std::string>& parts, const std::string& separator) {
   std::string s;
   for (std::size_t k = 0; k < parts.size(); ++k) s += (k ? separator : "") + parts[k];
@@ -599,7 +610,8 @@ SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& sch
   }
   SummaryLine line;
   line.key = "ordering-" + scheme;
-  line.claim = "3 Ordering Mod 3 < Mod 2 < Mod 1, " + scheme + (scheme == "ps" ? " (velocity; rest = cn)" : "");
+  line.claim = "3 Ordering Mod 3 < Mod 2 < Mod 1, " + scheme_abbreviation(scheme) +
+               (scheme == "ps" ? " (velocity; the rest is CN's)" : "");
   line.verdict = ranked_anywhere == cells_total ? "reproduced"
                  : ranked_anywhere == 0         ? "not reproduced"
                                                 : "partly reproduced";
@@ -691,7 +703,7 @@ SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSet
   const double c = std::find(g.courants.begin(), g.courants.end(), 0.5) != g.courants.end() ? 0.5 : g.courants[0];
   const double h = 1.0 / static_cast<double>(n);
   for (const std::string& mass : g.masses)
-    at_100.push_back(mass + " " + fixed(*sweep.find(st.scheme, mass, c, n).drift_per_period / h, 3) + "h (law " +
+    at_100.push_back(mass_text(mass) + " " + fixed(*sweep.find(st.scheme, mass, c, n).drift_per_period / h, 3) + "h (law " +
                      fixed(law_drift(mass, n) / h, 3) + "h)");
   double worst = 0;
   for (const std::string& mass : g.masses)
@@ -701,7 +713,7 @@ SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSet
                                     static_cast<double>(m));
   SummaryLine line;
   line.key = "mechanism";
-  line.claim = "3 Mechanism: impact times drift −4h/3, −h/3, 0 per period (" + st.scheme + ")";
+  line.claim = "3 Mechanism: impact times drift −4h/3, −h/3, 0 per period (" + scheme_abbreviation(st.scheme) + ")";
   line.verdict = worst <= st.tolerance ? "reproduced" : "partly reproduced";
   line.holds = "every Δt/h, N of the sweep within " + fixed(worst, 2) + "h of the period law";
   line.fails = worst <= st.tolerance ? "nowhere in the grid" : "cells beyond " + sig(st.tolerance) + "h";
@@ -901,19 +913,19 @@ SummaryLine summarize_convergence(const repro::Sweep& sweep) {
                                sig(g.horizons[k]) + " period(s)");
     }
     all_within += within, all_total += total;
-    holds.push_back(scheme + " " + std::to_string(within) + "/" + std::to_string(total));
-    if (!bad_horizons.empty()) fails.push_back(scheme + ": " + join(bad_horizons, ", "));
+    holds.push_back(scheme_abbreviation(scheme) + " " + std::to_string(within) + "/" + std::to_string(total));
+    if (!bad_horizons.empty()) fails.push_back(scheme_abbreviation(scheme) + ": " + join(bad_horizons, ", "));
   }
   for (const std::string& scheme : {std::string("cn"), std::string("be")}) {
     for (const repro::OrderCell& cell : cells)
       if (cell.scheme == scheme && cell.mass == "mod3" && cell.courant == 0.5 && cell.horizon == 0)
-        numbers.push_back(scheme + " mod3 Δt = h/2, 1 period: u(0,·) " + fixed(cell.order[0], 2) + ", u L∞(L²) " +
+        numbers.push_back(scheme_abbreviation(scheme) + " Mod 3, Δt = h/2, 1 period: u(0,·) " + fixed(cell.order[0], 2) + ", u L∞(L²) " +
                           fixed(cell.order[2], 2) + ", λ " + fixed(cell.order[1], 2) + ", u L∞(H¹) " +
                           fixed(cell.order[3], 2) + ", u_t L²(L²) " + fixed(cell.order[7], 2));
   }
   SummaryLine line;
   line.key = "convergence";
-  line.claim = "4 Convergence in h at the predicted orders (cn 2/3, 1/3; be 1/2, 1/4)";
+  line.claim = "4 Convergence in h at the predicted orders (CN 2/3, 1/3; BE 1/2, 1/4)";
   line.verdict = all_within == all_total ? "reproduced" : all_within == 0 ? "not reproduced" : "partly reproduced";
   line.holds = "orders within tolerance (measure × mass × Δt/h × horizon): " + join(holds, ", ");
   line.fails = fails.empty() ? "nowhere in the grid" : join(fails, "; ");
@@ -1656,7 +1668,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     std::vector<std::string> per_mass;
     for (const StabilityCell& cell : long_runs) {
       long_holds = long_holds && cell.largest <= blow_up;
-      per_mass.push_back(cell.mass + " N = " + std::to_string(cell.elements) + ": " + magnitude(cell.largest));
+      per_mass.push_back(mass_text(cell.mass) + ", N = " + std::to_string(cell.elements) + ": " + magnitude(cell.largest));
     }
     rows.push_back(judge("1/cn/1000-periods", "Stability over a long run: cn at Δt = h over 1000 periods",
                          "largest E_hⁿ/E_h(0): " + join(per_mass, ", "),
@@ -1664,20 +1676,20 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     stability_line.key = "stability";
     stability_line.claim = "1 Stability (no blow-up)";
     stability_line.verdict = verdict_of(rows_with("1/"));
-    stability_line.holds = "cn, be, ps (algebraic row) with Mod 1–3, N = " + std::to_string(st.elements) +
+    stability_line.holds = "CN, BE, PS (algebraic row) with Mod 1–3, N = " + std::to_string(st.elements) +
                            ", Δt = " + sig(st.courant) + "h, 100 periods (E ≤ " + sig(st.bound_conserving) +
-                           " E(0)); cn, Mod 3, N = 16–128, 100 periods: E ≤ 2 E(0) for Δt/h ≤ " + sig(bounded_up_to);
+                           " E(0)); CN, Mod 3, N = 16–128, 100 periods: E ≤ 2 E(0) for Δt/h ≤ " + sig(bounded_up_to);
     std::vector<std::string> beyond, long_failures;
     for (double c : courants)
       if (c > bounded_up_to) beyond.push_back(sig(c));
     for (const StabilityCell& cell : long_runs)
       if (cell.largest > blow_up)
-        long_failures.push_back(cell.mass + " N = " + std::to_string(cell.elements) + " (" + magnitude(cell.largest) +
+        long_failures.push_back(mass_text(cell.mass) + ", N = " + std::to_string(cell.elements) + " (" + magnitude(cell.largest) +
                                 " E(0))");
-    stability_line.fails = "cn at Δt/h = " + join(beyond, ", ") + "; 1000 periods at Δt = h: " +
+    stability_line.fails = "CN at Δt/h = " + join(beyond, ", ") + "; 1000 periods at Δt = h: " +
                            (long_failures.empty() ? std::string("none") : join(long_failures, ", ")) +
-                           "; ps with the literal row (sawtooth); cn with the consistent mass (the contrast)";
-    stability_line.numbers = "largest E/E(0), cn Mod 3, 100 periods, per Δt/h: " + join(per_courant, ", ") +
+                           "; PS with the literal row (sawtooth); CN with the consistent mass (the contrast)";
+    stability_line.numbers = "largest E/E(0), CN, Mod 3, 100 periods, per Δt/h: " + join(per_courant, ", ") +
                              "; 1000 periods, Δt = h: " + join(per_mass, ", ");
   });
   timed("2 mass", [&] {
@@ -1744,13 +1756,13 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
       numbers.push_back(readable_segment(row->id.substr(6)) + ": " + join(velocity, ", "));
     }
     summary.push_back({"time",
-                       "4 Error estimate in time: cn at order 2 in Δt (h = 1/" +
+                       "4 Error estimate in time: CN at order 2 in Δt (h = 1/" +
                            std::to_string(TimeConvergenceSettings().elements) + ")",
                        verdict_of(r), ids(r, Verdict::reproduced), ids(r, Verdict::failed), join(numbers, "; ")});
   }
   {
     const auto r = rows_with("5/");
-    summary.push_back({"energy", "5 cn conserves E between contact events, be dissipates", verdict_of(r),
+    summary.push_back({"energy", "5 CN conserves E_h between contact events, BE dissipates", verdict_of(r),
                        ids(r, Verdict::reproduced), ids(r, Verdict::failed), r.front()->measured});
   }
   {
