@@ -30,7 +30,8 @@ set key top left samplen 2
 plot for [b=1:n] data index b-1 using 1:2 with linespoints lc rgb mesh_colour(b) pt 7 ps 0.4 \
        title sprintf("%s = %s", italic("N"), word(meshes, b)), \
      threshold with lines lc rgb "black" dt 2 title sprintf("%g %s(0)", threshold, E_h)
-set title sprintf("%s periods, %s = %s", header("long_periods"), Delta_t, italic("h"))
+long_step = header("long_courant") eq "1" ? italic("h") : header("long_courant").italic("h")
+set title sprintf("%s periods, %s = %s", header("long_periods"), Delta_t, long_step)
 set xlabel italic("N")
 set xtics ()
 do for [b=1:n] { set xtics add (word(meshes, b) word(meshes, b) + 0) }
