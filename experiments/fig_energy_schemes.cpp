@@ -9,10 +9,15 @@
 //   map       the largest E_hⁿ/E_h(0) over 100 periods (T = 300) against Δt/h = ¼ … 40 for N = 16, 32,
 //             64, 128 (--mass), with the smallest and the final ratio and the largest one-step increase;
 //             then the two long runs the report quotes, for Mod 1, 2 and 3: N = 16, Δt = 10h over 100
-//             periods and N = 20, Δt = h over 1000 periods, where Crank–Nicolson gains most;
+//             periods and N = 20, Δt = h over 1000 periods, where Crank–Nicolson gains most. The largest
+//             one-step increase of CN-switch and backward Euler, whose exact energies never increase, is
+//             measured against the round-off bound 16 N ε (1 + h/Δt) E₀ of energy_step.cpp §5 on every
+//             run: the program fails if one is above it;
 //   measures  the eight relative errors of mathematics.md §5 of each scheme with Mod 1, 2 and 3 at
 //             N = 100 and 400, Δt = h/2, T = 30, their ratios to Crank–Nicolson's, and the energy lost,
-//             1 − E_h(T)/E_h(0) (in the data file; in per cent in the report's values).
+//             1 − E_h(T)/E_h(0) (in the data file; in per cent in the report's values), with the table of
+//             each mesh in three parts (three, three and two measures, the energy lost with the last) so
+//             that each fits the text width.
 // Every run is repro/configurations' run_configuration, observed step by step for the energy; the runs
 // of a view are independent and shared among --threads workers (repro/parallel): the output does not
 // depend on their number. EC needs a massless contact node: every mass here is Mod 1, 2 or 3.
@@ -26,8 +31,8 @@
 //
 // Data files. history: block 4 c + s is ratio c ∈ (1/2, 1, 5), scheme s ∈ (cn, ec, cn-switch, be),
 // columns t_energy energy_ratio. map: block 4 s + k is scheme s, mesh k ∈ (16, 32, 64, 128), columns
-// dt_over_h largest smallest final largest_increase; block 16 the long runs, columns run scheme mass N
-// dt_over_h periods drift largest_increase largest final. measures: block k is N ∈ (100, 400), columns
+// dt_over_h largest smallest final largest_increase increase_bound; block 16 the long runs, columns run
+// scheme mass N dt_over_h periods drift largest_increase largest final increase_bound. measures: block k is N ∈ (100, 400), columns
 // scheme mass, the eight measures, the eight ratios to Crank–Nicolson's (same mass), energy_lost.
 #include <algorithm>
 #include <array>
@@ -39,6 +44,7 @@
 #include <vector>
 
 #include "configurations.hpp"
+#include "energy_step.hpp"
 #include "options.hpp"
 #include "parallel.hpp"
 #include "report_values.hpp"
@@ -50,8 +56,13 @@ namespace {
 
 // The schemes compared, in the order of every block and table.
 const std::array<const char*, 4> schemes{"cn", "ec", "cn-switch", "be"};
-// The tables' short names (the report's captions spell out CN and BE).
+// Their labels in the tables (the captions say CN for Crank–Nicolson and BE for backward Euler).
 const std::array<const char*, 4> scheme_labels{"CN", "EC", "CN-switch", "BE"};
+
+// A header cell on two lines (a one-column tabular inside the cell), to keep a table within the width.
+std::string stacked(const std::string& top, const std::string& bottom) {
+  return "\\begin{tabular}[b]{@{}c@{}}" + top + "\\\\ " + bottom + "\\end{tabular}";
+}
 
 // One run and what the views read from it.
 struct Run {
@@ -161,7 +172,7 @@ int main(int argc, char** argv) {
       double courant, periods;
     };
     const std::array<LongRun, 2> long_runs{LongRun{"coarse", 16, 10.0, 100}, LongRun{"long", 20, 1.0, 1000}};
-    const double period = 3.0;
+    const double period = 3.0, measure_periods = 10;
     std::vector<Run> runs;
     if (view == "history") {
       for (double c : history_ratios)
@@ -176,7 +187,8 @@ int main(int argc, char** argv) {
     } else {
       for (mrm::Index n : measure_meshes)
         for (const char* s : schemes)
-          for (const std::string& m : masses) runs.push_back(make_run(s, m, n, measure_courant, 10 * period));
+          for (const std::string& m : masses)
+            runs.push_back(make_run(s, m, n, measure_courant, measure_periods * period));
     }
     std::vector<std::size_t> order(runs.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
@@ -197,6 +209,18 @@ int main(int argc, char** argv) {
       out << (block ? "\n\n" : "") << "# block " << block << ": " << title << "\n# columns: " << columns << '\n';
       ++block;
     };
+    // CN-switch and backward Euler: every one-step increase within the round-off bound (energy_step.cpp §5).
+    double largest_bound_fraction = -std::numeric_limits<double>::infinity();
+    const auto check_increase = [&](const Run& r) {
+      if (r.scheme != "cn-switch" && r.scheme != "be") return;
+      const double bound = mrm::energy_round_off_per_step(r.elements, r.courant);
+      largest_bound_fraction = std::max(largest_bound_fraction, r.largest_increase / bound);
+      if (!(r.largest_increase <= bound))
+        throw std::runtime_error(r.scheme + " " + r.mass + " N = " + std::to_string(r.elements) +
+                                 " dt/h = " + cli::format_real(r.courant) + ": a one-step energy increase of " +
+                                 cli::format_real(r.largest_increase) + " E0, above the round-off bound " +
+                                 cli::format_real(bound) + " E0");
+    };
     if (view == "history") {
       out << "# mass = " << mass << "\n# N = " << elements << "\n# T = " << cli::format_real(10 * period) << '\n';
       mrm::tex_define(defs, "ecs:hist:N", std::to_string(elements));
@@ -207,6 +231,7 @@ int main(int argc, char** argv) {
       for (double c : history_ratios)
         for (const char* s : schemes) {
           const Run& r = runs[next++];
+          check_increase(r);
           start_block(std::string("scheme = ") + s + ", dt/h = " + cli::format_real(c), "t_energy energy_ratio");
           for (const auto& [t, e] : r.energy) out << cli::format_real(t) << ' ' << cli::format_real(e) << '\n';
           const std::string key = std::string("ecs:hist:") + s + ":" + cli::format_real(c);
@@ -221,17 +246,20 @@ int main(int argc, char** argv) {
       mrm::tex_define(defs, "ecs:map:Nmax", std::to_string(map_meshes.back()));
       mrm::tex_define(defs, "ecs:map:ratiomin", mrm::tex_number(map_ratios.front(), 2));
       mrm::tex_define(defs, "ecs:map:ratiomax", mrm::tex_number(map_ratios.back(), 2));
+      out << "# increase_bound = 16 N eps (1 + h/dt): the largest one-step increase (E^{n+1} - E^n)/E^0 that "
+             "round-off explains where the exact energy does not increase (cn-switch, be; energy_step.cpp sec. 5)\n";
       for (const char* s : schemes) {
         double largest = 0, largest_drift = 0, largest_increase = -std::numeric_limits<double>::infinity();
         for (mrm::Index n : map_meshes) {
           start_block(std::string("scheme = ") + s + ", N = " + std::to_string(n),
-                      "dt_over_h largest smallest final largest_increase");
+                      "dt_over_h largest smallest final largest_increase increase_bound");
           for (double c : map_ratios) {
             const Run& r = runs[next++];
             out << cli::format_real(c) << ' ' << cli::format_real(ratio(r, r.measures.energy_max)) << ' '
                 << cli::format_real(ratio(r, r.measures.energy_min)) << ' '
                 << cli::format_real(ratio(r, r.measures.energy_final)) << ' ' << cli::format_real(r.largest_increase)
-                << '\n';
+                << ' ' << cli::format_real(mrm::energy_round_off_per_step(n, c)) << '\n';
+            check_increase(r);
             largest = std::max(largest, ratio(r, r.measures.energy_max));
             largest_drift = std::max(largest_drift, drift(r));
             largest_increase = std::max(largest_increase, r.largest_increase);
@@ -246,11 +274,12 @@ int main(int argc, char** argv) {
         mrm::tex_define(defs, key + ":increase", mrm::tex_number(largest_increase, 2));
       }
       // The long runs: a block and a table (run, scheme, mass: drift, largest increase, largest, final).
-      start_block("the long runs", "run scheme mass N dt_over_h periods drift largest_increase largest final");
-      mrm::repro::Table table({"$N$, $\\Delta t$, periods", "scheme", "mass",
-                               "\\rotatebox{70}{$\\max_n |E_h^n/E_h(0) - 1|$}",
-                               "\\rotatebox{70}{$\\max_n (E_h^{n+1} - E_h^n)/E_h(0)$}",
-                               "\\rotatebox{70}{$\\max_n E_h^n/E_h(0)$}", "\\rotatebox{70}{$E_h(T)/E_h(0)$}"});
+      start_block("the long runs",
+                  "run scheme mass N dt_over_h periods drift largest_increase largest final increase_bound");
+      mrm::repro::Table table({stacked("$N$, $\\Delta t$,", "periods"), "scheme", "mass",
+                               stacked("$\\max_n |E_h^n - E_h(0)|$", "$/E_h(0)$"),
+                               stacked("$\\max_n (E_h^{n+1} - E_h^n)$", "$/E_h(0)$"),
+                               stacked("$\\max_n E_h^n$", "$/E_h(0)$"), stacked("$E_h(T)$", "$/E_h(0)$")});
       for (const LongRun& l : long_runs) {
         const std::string run_label =
             std::to_string(l.elements) + ", $" + step_text(l.courant) + "$, " + cli::format_real(l.periods);
@@ -258,13 +287,16 @@ int main(int argc, char** argv) {
         mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":courant", cli::format_real(l.courant));
         mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":dt", step_text(l.courant));
         mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":periods", cli::format_real(l.periods));
+        const double bound = mrm::energy_round_off_per_step(l.elements, l.courant);
+        mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":bound", mrm::tex_number(bound, 2));
         for (std::size_t s = 0; s < schemes.size(); ++s) {
           for (const std::string& m : masses) {
             const Run& r = runs[next++];
             out << l.key << ' ' << schemes[s] << ' ' << m << ' ' << l.elements << ' ' << cli::format_real(l.courant)
                 << ' ' << cli::format_real(l.periods) << ' ' << cli::format_real(drift(r)) << ' '
                 << cli::format_real(r.largest_increase) << ' ' << cli::format_real(ratio(r, r.measures.energy_max))
-                << ' ' << cli::format_real(ratio(r, r.measures.energy_final)) << '\n';
+                << ' ' << cli::format_real(ratio(r, r.measures.energy_final)) << ' ' << cli::format_real(bound) << '\n';
+            check_increase(r);
             const std::string key = std::string("ecs:long:") + l.key + ":" + schemes[s] + ":" + m;
             mrm::tex_define(defs, key + ":drift", mrm::tex_number(drift(r), 2));
             mrm::tex_define(defs, key + ":increase", mrm::tex_number(r.largest_increase, 2));
@@ -280,9 +312,16 @@ int main(int argc, char** argv) {
         }
       }
       mrm::tex_define(defs, "ecs:long:table", mrm::repro::latex_tabular(table, "lllrrrr"));
+      // The largest one-step increase of CN-switch and backward Euler over every run above, as a fraction
+      // of its round-off bound.
+      mrm::tex_define(defs, "ecs:increase:bound_fraction", mrm::tex_number(largest_bound_fraction, 2));
+      out << "# largest_bound_fraction = " << cli::format_real(largest_bound_fraction)
+          << " (max over the cn-switch and be runs of largest_increase / increase_bound)\n";
     } else {
-      out << "# dt/h = " << cli::format_real(measure_courant) << "\n# T = " << cli::format_real(10 * period) << '\n';
-      mrm::tex_define(defs, "ecs:meas:T", mrm::tex_number(10 * period, 2));
+      out << "# dt/h = " << cli::format_real(measure_courant) << "\n# T = " << cli::format_real(measure_periods * period)
+          << '\n';
+      mrm::tex_define(defs, "ecs:meas:T", mrm::tex_number(measure_periods * period, 2));
+      mrm::tex_define(defs, "ecs:meas:periods", cli::format_real(measure_periods));
       mrm::tex_define(defs, "ecs:meas:dt", step_text(measure_courant));
       mrm::tex_define(defs, "ecs:meas:coarse", std::to_string(measure_meshes[0]));
       mrm::tex_define(defs, "ecs:meas:fine", std::to_string(measure_meshes[1]));
@@ -291,11 +330,16 @@ int main(int argc, char** argv) {
         start_block("N = " + std::to_string(n),
                     "scheme mass (8 measures) (8 ratios to cn) energy_lost; measures in the order of mathematics.md "
                     "sec. 5: u0_L2 lambda_L2 u_LinfL2 u_LinfH1 v_LinfL2 u_L2L2 u_L2H1 v_L2L2");
-        std::vector<std::string> headers{"scheme", "mass"};
-        for (const char* label : mrm::repro::measure_labels())
-          headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
-        headers.push_back("\\rotatebox{70}{energy lost, \\%}");
-        mrm::repro::Table table(headers);
+        // The table in three parts, measures 0–2, 3–5 and 6–7 with the energy lost, each within the text
+        // width.
+        constexpr std::size_t per_part = 3;
+        std::array<std::vector<std::string>, 3> headers;
+        for (auto& h : headers) h = {"scheme", "mass"};
+        for (std::size_t k = 0; k < mrm::repro::measure_labels().size(); ++k)
+          headers[k / per_part].push_back(mrm::repro::measure_labels()[k]);
+        headers.back().push_back("energy lost, \\%");
+        std::array<mrm::repro::Table, 3> tables{mrm::repro::Table(headers[0]), mrm::repro::Table(headers[1]),
+                                                mrm::repro::Table(headers[2])};
         const std::size_t first = next;  // Crank–Nicolson's runs come first, one per mass
         for (std::size_t s = 0; s < schemes.size(); ++s) {
           double largest_ratio = 0, largest_deviation = 0;  // over the measures and the masses
@@ -308,38 +352,33 @@ int main(int argc, char** argv) {
             for (double e : errors) out << ' ' << cli::format_real(e);
             for (std::size_t k = 0; k < errors.size(); ++k) out << ' ' << cli::format_real(errors[k] / reference[k]);
             out << ' ' << cli::format_real(lost) << '\n';
-            std::vector<std::string> row{m == 0 ? scheme_labels[s] : std::string(), mass_label(masses[m])};
+            std::array<std::vector<std::string>, 3> rows;
+            for (auto& row : rows) row = {m == 0 ? scheme_labels[s] : std::string(), mass_label(masses[m])};
             const std::string key = "ecs:meas:" + std::to_string(n) + ":" + schemes[s] + ":" + masses[m];
             for (std::size_t k = 0; k < errors.size(); ++k) {
               const std::string value = mrm::tex_number(errors[k], 3);
               // Beside Crank–Nicolson's row, each other scheme's error relative to it, in per cent.
               const std::string relative = mrm::tex_number(100 * (errors[k] / reference[k] - 1), 2);
-              // Crank–Nicolson's row gives the error, the others its change against it (the table stays at
-              // the text size in two halves).
-              row.push_back(s == 0 ? value : std::string(errors[k] >= reference[k] ? "+" : "") + relative + "\\%");
+              rows[k / per_part].push_back(
+                  s == 0 ? value : value + " (" + (errors[k] >= reference[k] ? "+" : "") + relative + "\\%)");
               mrm::tex_define(defs, key + ":" + mrm::ErrorAccumulator::names[k], value);
               mrm::tex_define(defs, key + ":" + mrm::ErrorAccumulator::names[k] + ":vs_cn", relative);
               largest_ratio = std::max(largest_ratio, errors[k] / reference[k]);
               largest_deviation = std::max(largest_deviation, std::abs(errors[k] / reference[k] - 1));
             }
             if (std::string(schemes[s]) == "cn-switch" && masses[m] == "mod3") switch_lost.push_back(lost);
-            row.push_back(mrm::tex_number(100 * lost, 2));
+            rows.back().push_back(mrm::tex_number(100 * lost, 2));
             mrm::tex_define(defs, key + ":lost", mrm::tex_number(100 * lost, 2));
-            table.add_row(row);
+            for (std::size_t t = 0; t < tables.size(); ++t) tables[t].add_row(rows[t]);
           }
-          table.add_rule();
+          for (auto& table : tables) table.add_rule();
           const std::string key = "ecs:meas:" + std::to_string(n) + ":" + schemes[s];
           mrm::tex_define(defs, key + ":largest_ratio", mrm::tex_number(largest_ratio, 2));
           mrm::tex_define(defs, key + ":largest_deviation", mrm::tex_number(100 * largest_deviation, 2));
         }
-        // In two halves at the text size (measures 1-4; measures 5-8 and the energy lost), not shrunk.
-        for (std::size_t part = 0; part < 2; ++part) {
-          std::vector<std::size_t> keep{0, 1};
-          for (std::size_t k = 4 * part; k < 4 * part + 4; ++k) keep.push_back(2 + k);
-          if (part == 1) keep.push_back(10);
-          mrm::tex_define(defs, "ecs:meas:table:" + std::to_string(n) + (part == 0 ? ":a" : ":b"),
-                          mrm::repro::latex_tabular(table.columns_subset(keep), "ll" + std::string(keep.size() - 2, 'r')));
-        }
+        for (std::size_t t = 0; t < tables.size(); ++t)
+          mrm::tex_define(defs, "ecs:meas:table:" + std::to_string(n) + ":" + std::to_string(t + 1),
+                          mrm::repro::latex_tabular(tables[t], "ll" + std::string(tables[t].columns() - 2, 'r')));
       }
       mrm::tex_define(defs, "ecs:meas:cn-switch:mod3:lost_ratio", mrm::tex_number(switch_lost[0] / switch_lost[1], 2));
       mrm::tex_define(defs, "ecs:meas:mesh_ratio", std::to_string(measure_meshes[1] / measure_meshes[0]));

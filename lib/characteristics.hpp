@@ -144,4 +144,34 @@ class TabulatedSolution : public ReferenceSolution {
   std::vector<double> right_value_, right_slope_, left_value_, left_slope_;
 };
 
+/// The largest differences between the characteristic solution of the benchmark's data
+/// (benchmark_initial_data) and the closed form (mathematics.md §2), two independent derivations of
+/// the same solution: u and u(0, ·) relative to aL, u_x, u_t and λ relative to a.
+struct ClosedFormDifference {
+  double length = 0;                ///< L
+  double amplitude = 0;             ///< a
+  double periods = 0;               ///< the horizon T = 3L × periods
+  double displacement = 0;          ///< max |Δu|/(aL) over the points of the (x, t) grids
+  double strain = 0;                ///< max |Δu_x|/a (the corners x ∈ {0, L}, t = kL left out)
+  double velocity = 0;              ///< max |Δu_t|/a (likewise)
+  double contact_displacement = 0;  ///< max |Δu(0, t)|/(aL) over the instants
+  double contact_multiplier = 0;    ///< max |Δλ(t)|/a over the instants
+  double largest() const;           ///< the largest of the five
+};
+
+/// Compares the two solutions on [0, L] × [0, T], T = 3L × `periods`, at (1) the lattice
+/// x_i = iL/40, t_n = nL/40, whose points lie on characteristics x ± t = jL/40, the kinks x ± t = kL
+/// among them (the derivatives there are the means of their one-sided values in both); (2) 41 × 429
+/// points off the characteristics; (3) 3000 instants per period at the contact point (u(0, t), λ),
+/// the impacts and releases t = kL among them. At the corners x ∈ {0, L}, t = kL, u_x and u_t have no
+/// limit and the two conventions differ: only u is compared there. Throws std::invalid_argument unless
+/// L > 0 and a > 0 are finite and periods ∈ [1, 1000].
+ClosedFormDifference closed_form_difference(double length, double amplitude, double periods = 10);
+
+/// The size that round-off alone explains for every entry of closed_form_difference, derived in
+/// characteristics.cpp: ε (W(W + 1)/2 + 8 (W + 1)), with ε the machine epsilon and W = 3 × periods the
+/// number of windows of length L the solution is built in (the quadratic term: the drift of the event
+/// times when the multiples of L are not doubles; the linear one: the evaluations).
+double closed_form_round_off_bound(double periods);
+
 }  // namespace mrm

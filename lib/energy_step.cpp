@@ -138,10 +138,35 @@
 // u₀ ≥ 0 itself; the same holds with κ = −(u₀ⁿ⁺¹ − u₀ⁿ)((1 − θ)λⁿ + θλⁿ⁺¹) = θλⁿ⁺¹u₀ⁿ − (1 − θ)λⁿu₀ⁿ⁺¹
 // (by λu₀ = 0 at each level): 0 without a status change, ≤ 0 for θ = 1. EC has no analogue there
 // (the indicator of u₀ ≥ 0 has no discrete gradient): it needs a massless contact node.
+//
+// 5. Round-off: how much a step that does not increase E may seem to gain.
+//
+// The guarantees above hold in exact arithmetic; the computed energy of the computed states can still
+// rise by round-off on a step of CN-switch. A model of its size, on a mesh of N elements (h = L/N): the
+// computed Ūⁿ⁺¹ is the exact step from the computed (Ūⁿ, Vⁿ) with every nodal value off by at most c ulps
+// of the largest, |δu_i| ≤ c ε max|u| (the tridiagonal solve is backward stable and Ā is diagonally
+// dominant; the contact root is a closed form of a few operations), and max|u| ≤ √(L‖u_x‖²) ≤ √(2EL)
+// since u vanishes at the clamp. Then
+//  - the strain energy: ‖δU‖²_S = Σ(δu_{i+1} − δu_i)²/h ≤ 4N max|δu|²/h, so ‖δU‖_S ≤ 2Ncε√(2E) and ½‖U‖²_S
+//    moves by at most ‖U‖_S‖δU‖_S ≤ 4cNε E: the differences u_{i+1} − u_i are h/L times smaller than u,
+//    so an ulp of u is N ulps of the strain;
+//  - the kinetic energy: V is formed as 2(Uⁿ⁺¹ − Uⁿ)/Δt − Vⁿ (backward Euler: (Uⁿ⁺¹ − Uⁿ)/Δt), so
+//    |δv_i| ≤ 2 max|δu|/Δt and ‖δV‖_M ≤ 2cε√(2E)·L/Δt = 2cεN(h/Δt)√(2E): ½‖V‖²_M moves by at most
+//    4cNε(h/Δt) E;
+//  - the evaluation of Eⁿ and Eⁿ⁺¹ (sums of N + 1 products each) adds at most 2(N + 2)ε E.
+// With c = 2 the sum is (8(1 + h/Δt) + 2 + 4/N) Nε E ≤ 11 Nε(1 + h/Δt) E (N ≥ 4); allowed, with E ≤ E₀:
+//
+//     (Eⁿ⁺¹ − Eⁿ)/E₀ ≤ 16 N ε (1 + h/Δt)   (energy_round_off_per_step).
+//
+// This is a model, not a proof: the per-node error c of the solve is assumed, not bounded (for Δt ≫ h, Ā
+// is ill-conditioned). The checks below and fig_energy_schemes (every run of its map, N = 16 … 128,
+// Δt/h = ¼ … 40, and the long runs) measure the largest increase against it.
+
 #include "energy_step.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -156,6 +181,12 @@
 #include "p1.hpp"
 
 namespace mrm {
+
+double energy_round_off_per_step(long elements, double dt_over_h) {
+  if (!(elements >= 1 && std::isfinite(dt_over_h) && dt_over_h > 0))
+    throw std::invalid_argument("energy_round_off_per_step: N >= 1 and a finite dt/h > 0 are required");
+  return 16 * static_cast<double>(elements) * std::numeric_limits<double>::epsilon() * (1 + 1 / dt_over_h);
+}
 
 double contact_energy(double s, double h) {
   const double p = std::max(0.0, s);
@@ -643,6 +674,14 @@ TEST_CASE("EC is Crank–Nicolson on every step without a status change, and dif
   }
 }
 
+TEST_CASE("the round-off bound of one step grows like N and like h/dt, and refuses bad arguments") {
+  CHECK(energy_round_off_per_step(40, 1.0) == 2 * energy_round_off_per_step(20, 1.0));
+  CHECK(energy_round_off_per_step(20, 0.5) == 1.5 * energy_round_off_per_step(20, 1.0));
+  CHECK_THROWS_AS(energy_round_off_per_step(0, 1.0), std::invalid_argument);
+  CHECK_THROWS_AS(energy_round_off_per_step(20, 0.0), std::invalid_argument);
+  CHECK_THROWS_AS(energy_round_off_per_step(20, std::nan("")), std::invalid_argument);
+}
+
 TEST_CASE("CN-switch (a backward-Euler step at each status change) never increases the energy") {
   struct Case {
     Index elements;
@@ -674,7 +713,8 @@ TEST_CASE("CN-switch (a backward-Euler step at each status change) never increas
       CAPTURE(c.courant);
       CAPTURE(mass.name);
       CAPTURE(largest_increase);
-      CHECK(largest_increase <= 1e-13);  // a few hundred ulps of E: one step's round-off
+      CAPTURE(energy_round_off_per_step(c.elements, c.courant));
+      CHECK(largest_increase <= energy_round_off_per_step(c.elements, c.courant));  // one step's round-off (§5)
       CHECK(redone >= static_cast<int>(c.final_time / 3));
       CHECK(e < e0);  // and it does dissipate at the status changes
     }

@@ -36,6 +36,13 @@ double contact_energy_defect(double a, double b, double h, double theta);
 /// kinetic dissipation −(θ − ½)‖Vⁿ⁺¹ − Vⁿ‖²_M̄ (mathematics.md §12). Closed form, case by case.
 double contact_energy_bound(double a, double b, double h, double theta);
 
+/// The largest one-step increase of the computed energy, relative to E₀, that round-off explains for a
+/// step whose exact discrete energy does not increase (a Crank–Nicolson step without a status change,
+/// a backward-Euler step; so every step of CN-switch): 16 N ε (1 + h/Δt) on a mesh of N elements, with
+/// ε the machine epsilon (derived in energy_step.cpp, §5). Throws std::invalid_argument unless N ≥ 1
+/// and Δt/h > 0 is finite.
+double energy_round_off_per_step(long elements, double dt_over_h);
+
 /// The root s of the scalar equation of an energy-conserving step, s = c + μ χ(α, s), for α (the
 /// previous level's s), c (where s would go without the contact force) and μ ∈ [0, 1). The root
 /// exists and is unique (the left side minus the right is increasing with slope ≥ 1 − μ); it is
