@@ -92,6 +92,24 @@ bench: build | $(BENCH)
 $(BENCH):
 	mkdir -p $@
 
+# ---- The short benchmark (part of `make all`) ------------------------------------------------------
+# The report's Performance section is filled by every `make all`: bench_step on N = 2^8..2^14 with few,
+# short batches (a few seconds), its two tables (the fast step against the bare tridiagonal solve and
+# Eigen's SimplicialLDLT, and the reference step) and the values the text quotes, in
+# $(BENCH_SHORT)/bench_short.tex. Timings are not deterministic: like $(BENCH), this directory is
+# outside the results that CI compares byte for byte (.ci/run). A full `make bench` takes precedence in
+# the report when its table exists.
+BENCH_SHORT := $(OUT)/bench-short
+BENCH_SHORT_OPTIONS := --min-log2 8 --max-log2 14 --repetitions 3 --batch-ms 5
+
+all: $(BENCH_SHORT)/bench_short.tex
+
+$(BENCH_SHORT)/bench_short.tex: $(BUILD)/bin/bench_step | $(BENCH_SHORT)
+	$< $(BENCH_SHORT_OPTIONS) --clock $(BENCH_CLOCK) --tex $@ > $(BENCH_SHORT)/bench_short.txt
+
+$(BENCH_SHORT):
+	mkdir -p $@
+
 # ---- The claims of the paper (mathematics.md §6) ----------------------------------------------------
 # `make check-claims` runs every check of repro/claims.cpp (the program experiments/check_claims.cpp)
 # and prints the table claim | measured | criterion | verdict; it fails iff a check FAILED (expected
@@ -157,10 +175,18 @@ $(DATA)/%.dat $(DATA)/%.tex: $(BUILD)/bin/% | $(DATA)
 # Figure X from its gnuplot script and its data (written under a temporary name, then renamed). This
 # cairo ignores SOURCE_DATE_EPOCH: its creation date is replaced by a fixed one of the same length (so
 # the PDF's byte offsets stay valid), and the same data give the same figure, byte for byte.
-$(FIGURES)/%.pdf: figures/%.gp $(DATA)/%.dat | $(FIGURES)
+$(FIGURES)/%.pdf: figures/%.gp figures/style.gp $(DATA)/%.dat | $(FIGURES)
 	$(REPRODUCIBLE) gnuplot -e "data='$(DATA)/$*.dat'; output='$@.tmp'" $<
 	LC_ALL=C sed -i 's|/CreationDate (D:[0-9]\{14\}Z)|/CreationDate (D:19700101000000Z)|' $@.tmp
 	mv $@.tmp $@
+
+# The report's title page: the authors and version of CITATION.cff and the date of the last commit
+# (tools/report_meta.sh). Remade on every run, but rewritten only when it changes, so that the report is
+# not rebuilt for nothing; the same commit gives the same bytes.
+.PHONY: FORCE
+$(DATA)/report_meta.tex: FORCE | $(DATA)
+	tools/report_meta.sh CITATION.cff > $@.tmp
+	if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv $@.tmp $@; fi
 
 # EC and CN-switch against Crank–Nicolson and backward Euler (mathematics.md §12): one program,
 # experiments/fig_energy_schemes.cpp, three views, each its own run, data file, values and figure
@@ -174,10 +200,12 @@ $(DATA)/cn_large_step.tex: $(BUILD)/bin/cn_large_step | $(DATA)
 	$< --tex $@
 
 # The report: every figure and fragment is found through TEXINPUTS (so OUT=dir works); latexmk keeps its
-# auxiliary files in $(OUT)/latex. The benchmark's table and plot (make bench) are included if present.
+# auxiliary files in $(OUT)/latex. The full benchmark's table and plot (make bench) are included if
+# present, the short benchmark's otherwise.
 $(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/cn_large_step.tex \
+           $(DATA)/report_meta.tex $(BENCH_SHORT)/bench_short.tex \
            $(wildcard $(OUT)/bench/bench_step.tex $(OUT)/bench/bench_step.pdf) | $(DATA)
-	TEXINPUTS=paper:$(DATA):$(FIGURES):$(OUT)/bench: $(REPRODUCIBLE) \
+	TEXINPUTS=paper:$(DATA):$(FIGURES):$(OUT)/bench:$(BENCH_SHORT): $(REPRODUCIBLE) \
 	  latexmk -pdf -silent -interaction=nonstopmode -halt-on-error -outdir=$(OUT)/latex paper/report.tex
 	cp $(OUT)/latex/report.pdf $@.tmp
 	mv $@.tmp $@
@@ -219,6 +247,7 @@ help:
 	@echo '  test     build, then run the test suite with ctest and the claims table'
 	@echo '  check-claims  build, then check every claim of the paper and print the table'
 	@echo '  bench    build, then time one step per node for N = 2^6..2^20 ($(OUT)/bench/bench_step.*)'
+	@echo '           (all runs a short one, N = 2^8..2^14, into $(OUT)/bench-short/ for the report)'
 	@echo '  deps     check the Debian packages, installing the missing ones if root (tools/deps.sh)'
 	@echo '  figures  the figures in $(FIGURES)/ (part of all)'
 	@echo '  report   the report $(REPORT) (part of all)'

@@ -49,12 +49,23 @@ int main(int argc, char** argv) {
     // 2. The output, opened before the runs.
     cli::AtomicFile out(tex, "--tex");
 
-    // 3-4. The runs and their values.
+    // 3-4. The runs and their values, and the run parameters the text states (the mesh, the horizon
+    // in time and in periods of the benchmark, 3L with L = 1, and the lists of ratios and values).
+    std::string ratios, values;
     for (const char* ratio : {"0.5", "2", "5", "10", "40"}) {
-      const mrm::repro::Measures m = mrm::repro::run_configuration(mrm::repro::paper_configuration(
-          "cn", "algebraic", "mod3", elements, cli::parse_real("ratio", ratio), final_time));
-      mrm::tex_define(out.stream(), std::string("large:") + ratio, mrm::tex_magnitude(m.energy_max / m.energy_initial));
+      const mrm::repro::Measures m = mrm::repro::run_configuration(
+          mrm::repro::paper_configuration("cn", "algebraic", "mod3", elements, cli::parse_real("ratio", ratio),
+                                          final_time));
+      const std::string value = mrm::tex_magnitude(m.energy_max / m.energy_initial);
+      mrm::tex_define(out.stream(), std::string("large:") + ratio, value);
+      ratios += (ratios.empty() ? "" : ", ") + std::string(ratio);
+      values += (values.empty() ? "" : ",\\ ") + value;
     }
+    mrm::tex_define(out.stream(), "large:elements", std::to_string(elements));
+    mrm::tex_define(out.stream(), "large:T", cli::format_real(final_time));
+    mrm::tex_define(out.stream(), "large:periods", cli::format_real(final_time / 3));
+    mrm::tex_define(out.stream(), "large:ratios", ratios);
+    mrm::tex_define(out.stream(), "large:values", values);
     out.commit();
     return 0;
   });

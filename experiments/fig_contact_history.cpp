@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
       mrm::tex_define(m, "hist:h", mrm::tex_number(mesh.h(), 3));
       mrm::tex_define(m, "hist:dt", mrm::tex_number(dt, 3));
       mrm::tex_define(m, "hist:courant", mrm::tex_number(courant, 3));
-      mrm::tex_define(m, "hist:T", mrm::tex_number(final_time, 3));
+      mrm::tex_define(m, "hist:T", cli::format_real(final_time));
       mrm::tex_define(m, "hist:psform", ps_form);
       // The total mass 1ᵀM^mod1 of each choice on this mesh (paper §2: Mod 2 and Mod 3 preserve it).
       for (const std::string& mass : mrm::repro::mass_names())
@@ -130,12 +130,12 @@ int main(int argc, char** argv) {
     for (const std::string& scheme : mrm::repro::scheme_names()) {
       for (const std::string& mass : mrm::repro::mass_names())
         run_block(scheme, ps_form, mass, scheme + ":" + mass,
-                  mass == "mod1" ? mrm::repro::scheme_label(scheme) : std::string(), std::string("Mod ") + mass.back());
+                  mass == "mod1" ? mrm::repro::scheme_label(scheme, ps_form) : std::string(), std::string("Mod ") + mass.back());
       table.add_rule();
     }
     // 6. The baseline: Paoli–Schatzman (¼, 0) with the full consistent mass (its only contact row is the
     // literal one), stable and the method's natural point of comparison (block 10, last row of the table).
-    run_block("ps", "literal", "consistent", "ps:consistent", mrm::repro::scheme_label("ps"), "consistent");
+    run_block("ps", "literal", "consistent", "ps:consistent", mrm::repro::scheme_label("ps", "literal"), "consistent");
     outputs.values() << "\\mrmdef{hist:table}{" << mrm::repro::latex_tabular(table, "llrrr") << "}\n";
     outputs.commit();
     return 0;

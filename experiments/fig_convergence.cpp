@@ -168,8 +168,10 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "conv:Nmin", std::to_string(coarsest));
     mrm::tex_define(defs, "conv:Nmax", std::to_string(finest));
     mrm::tex_define(defs, "conv:meshes", std::to_string(levels));
-    mrm::tex_define(defs, "conv:T", mrm::tex_number(final_time, 3));
+    mrm::tex_define(defs, "conv:T", cli::format_real(final_time));
     mrm::tex_define(defs, "conv:psform", ps_form);
+    // The two steps of the study, for the prose ("\mrm{conv:dt:dth2}" prints "$\Delta t = h/2$").
+    for (std::size_t c = 0; c < courants.size(); ++c) mrm::tex_define(defs, std::string("conv:dt:") + courant_keys[c], courant_labels[c]);
     std::vector<std::string> headers{"scheme", "mass", "$\\Delta t$"}, ranking_headers{"scheme", "$\\Delta t$"};
     for (const char* label : mrm::repro::measure_labels()) {
       headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
@@ -184,7 +186,7 @@ int main(int argc, char** argv) {
       long ordered = 0, cases = 0;
       for (std::size_t m = 0; m < masses.size(); ++m)
         for (std::size_t c = 0; c < courants.size(); ++c) {
-          std::vector<std::string> orders_row{m == 0 && c == 0 ? mrm::repro::scheme_label(schemes[s]) : std::string(),
+          std::vector<std::string> orders_row{m == 0 && c == 0 ? mrm::repro::scheme_label(schemes[s], ps_form) : std::string(),
                                               c == 0 ? mass_label(m) : std::string(), courant_labels[c]};
           std::vector<std::string> errors_row = orders_row;
           for (std::size_t k = 0; k < 8; ++k) {
@@ -213,8 +215,7 @@ int main(int argc, char** argv) {
         }
       // The paper's claim 3: Mod 3 < Mod 2 < Mod 1 in error. Counted over every measure, mesh and ratio.
       for (std::size_t c = 0; c < courants.size(); ++c) {
-        std::vector<std::string> ranking_row{c == 0 ? mrm::repro::scheme_label(schemes[s]) : std::string(),
-                                             courant_labels[c]};
+        std::vector<std::string> ranking_row{c == 0 ? mrm::repro::scheme_label(schemes[s], ps_form) : std::string(), courant_labels[c]};
         for (std::size_t k = 0; k < 8; ++k) {
           for (std::size_t l = 0; l < levels; ++l) {
             const double e1 = at(s, 0, c, l).errors[k], e2 = at(s, 1, c, l).errors[k], e3 = at(s, 2, c, l).errors[k];
@@ -237,12 +238,19 @@ int main(int argc, char** argv) {
       mrm::tex_define(defs, "conv:ordered:" + schemes[s], std::to_string(ordered));
       mrm::tex_define(defs, "conv:cases:" + schemes[s], std::to_string(cases));
     }
-    defs << "\\mrmdef{conv:table:orders}{" << mrm::repro::latex_tabular(orders_table, "lll" + std::string(8, 'r'))
-         << "}\n";
-    defs << "\\mrmdef{conv:table:errors}{" << mrm::repro::latex_tabular(errors_table, "lll" + std::string(8, 'r'))
-         << "}\n";
-    defs << "\\mrmdef{conv:table:ranking}{" << mrm::repro::latex_tabular(ranking_table, "ll" + std::string(8, 'c'))
-         << "}\n";
+    // Each table in two halves at the text size (measures 1-4, then 5-8 of mathematics.md §5), not shrunk.
+    const auto halves = [&](const std::string& key, const mrm::repro::Table& table, std::size_t lead, char align) {
+      for (std::size_t half = 0; half < 2; ++half) {
+        std::vector<std::size_t> keep;
+        for (std::size_t c = 0; c < lead; ++c) keep.push_back(c);
+        for (std::size_t k = 4 * half; k < 4 * half + 4; ++k) keep.push_back(lead + k);
+        defs << "\\mrmdef{" << key << (half == 0 ? ":a" : ":b") << "}{"
+             << mrm::repro::latex_tabular(table.columns_subset(keep), std::string(lead, 'l') + std::string(4, align)) << "}\n";
+      }
+    };
+    halves("conv:table:orders", orders_table, 3, 'r');
+    halves("conv:table:errors", errors_table, 3, 'r');
+    halves("conv:table:ranking", ranking_table, 2, 'c');
 
     // 7. Commit.
     outputs.commit();

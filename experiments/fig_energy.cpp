@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
         << "\n# blocks: 3 s + m: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3)\n";
     std::ostream& defs = outputs.values();
     mrm::tex_define(defs, "energy:elements", std::to_string(elements));
-    mrm::tex_define(defs, "energy:T", mrm::tex_number(final_time, 3));
+    mrm::tex_define(defs, "energy:T", cli::format_real(final_time));
 
     // 3. Every scheme with every mass. The energy's largest jump in one step measures the jumps at impact
     // and release (between status changes Crank–Nicolson's energy does not move at all).

@@ -110,6 +110,12 @@ double drift(const Run& r) {
 
 std::string mass_label(const std::string& mass) { return "Mod~" + mass.substr(3); }
 
+// A step as a multiple of h, for the prose (math mode): "h/2", "h", "5h".
+std::string step_text(double courant) {
+  if (courant == 1) return "h";
+  return courant < 1 ? "h/" + cli::format_real(1 / courant) : cli::format_real(courant) + "h";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -158,6 +164,7 @@ int main(int argc, char** argv) {
     const std::vector<double> history_ratios{0.5, 1.0, 5.0};
     const std::vector<double> map_ratios{0.25, 0.5, 1, 2, 5, 10, 20, 40};
     const std::vector<mrm::Index> map_meshes{16, 32, 64, 128}, measure_meshes{100, 400};
+    const double measure_courant = 0.5;
     const std::vector<std::string> masses{"mod1", "mod2", "mod3"};
     struct LongRun {
       const char* key;
@@ -180,7 +187,8 @@ int main(int argc, char** argv) {
     } else {
       for (mrm::Index n : measure_meshes)
         for (const char* s : schemes)
-          for (const std::string& m : masses) runs.push_back(make_run(s, m, n, 0.5, measure_periods * period));
+          for (const std::string& m : masses)
+            runs.push_back(make_run(s, m, n, measure_courant, measure_periods * period));
     }
     const std::vector<std::size_t> order =
         mrm::repro::costliest_first(runs.size(), [&](std::size_t k) { return runs[k].cost; });
@@ -216,6 +224,8 @@ int main(int argc, char** argv) {
       mrm::tex_define(defs, "ecs:hist:N", std::to_string(elements));
       mrm::tex_define(defs, "ecs:hist:mass", mass_label(mass));
       mrm::tex_define(defs, "ecs:hist:T", mrm::tex_number(10 * period, 2));
+      for (std::size_t j = 0; j < history_ratios.size(); ++j)
+        mrm::tex_define(defs, "ecs:hist:dt:" + std::to_string(j), step_text(history_ratios[j]));
       for (double c : history_ratios)
         for (const char* s : schemes) {
           const Run& r = runs[next++];
@@ -265,15 +275,15 @@ int main(int argc, char** argv) {
       start_block("the long runs",
                   "run scheme mass N dt_over_h periods drift largest_increase largest final increase_bound");
       mrm::repro::Table table({stacked("$N$, $\\Delta t$,", "periods"), "scheme", "mass",
-                               stacked("$\\max_n |E^n - E^0|$", "$/E^0$"),
-                               stacked("$\\max_n (E^{n+1} - E^n)$", "$/E^0$"), stacked("$\\max_n E^n$", "$/E^0$"),
-                               stacked("$E(T)$", "$/E^0$")});
+                               stacked("$\\max_n |E_h^n - E_h(0)|$", "$/E_h(0)$"),
+                               stacked("$\\max_n (E_h^{n+1} - E_h^n)$", "$/E_h(0)$"),
+                               stacked("$\\max_n E_h^n$", "$/E_h(0)$"), stacked("$E_h(T)$", "$/E_h(0)$")});
       for (const LongRun& l : long_runs) {
-        const std::string run_label = std::to_string(l.elements) + ", $" +
-                                      (l.courant == 1 ? std::string("h") : cli::format_real(l.courant) + "h") + "$, " +
-                                      cli::format_real(l.periods);
+        const std::string run_label =
+            std::to_string(l.elements) + ", $" + step_text(l.courant) + "$, " + cli::format_real(l.periods);
         mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":N", std::to_string(l.elements));
         mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":courant", cli::format_real(l.courant));
+        mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":dt", step_text(l.courant));
         mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":periods", cli::format_real(l.periods));
         const double bound = mrm::energy_round_off_per_step(l.elements, l.courant);
         mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":bound", mrm::tex_number(bound, 2));
@@ -306,9 +316,13 @@ int main(int argc, char** argv) {
       out << "# largest_bound_fraction = " << cli::format_real(largest_bound_fraction)
           << " (max over the cn-switch and be runs of largest_increase / increase_bound)\n";
     } else {
-      out << "# dt/h = 0.5\n# T = " << cli::format_real(measure_periods * period) << '\n';
+      out << "# dt/h = " << cli::format_real(measure_courant) << "\n# T = " << cli::format_real(measure_periods * period)
+          << '\n';
       mrm::tex_define(defs, "ecs:meas:T", mrm::tex_number(measure_periods * period, 2));
       mrm::tex_define(defs, "ecs:meas:periods", cli::format_real(measure_periods));
+      mrm::tex_define(defs, "ecs:meas:dt", step_text(measure_courant));
+      mrm::tex_define(defs, "ecs:meas:coarse", std::to_string(measure_meshes[0]));
+      mrm::tex_define(defs, "ecs:meas:fine", std::to_string(measure_meshes[1]));
       std::vector<double> switch_lost;  // CN-switch with Mod 3, per mesh: the loss is O(h) per event
       for (mrm::Index n : measure_meshes) {
         start_block("N = " + std::to_string(n),

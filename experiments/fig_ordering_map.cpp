@@ -111,18 +111,31 @@ int main(int argc, char** argv) {
 
     // 5. The values: cells ranked in every judged measure, per scheme and horizon.
     std::ostream& defs = outputs.values();
+    // The same counts as one list per scheme ("0, 4, 7, 17"), in the order of the horizons, and the grid
+    // itself, for the prose: the ratios, the horizons and the meshes, as the sweep ran them.
+    const auto list = [](const auto& values, const auto& text) {
+      std::string joined;
+      for (const auto& v : values) joined += (joined.empty() ? "" : ", ") + text(v);
+      return joined;
+    };
     for (const std::string& s : g.schemes) {
       const std::vector<std::size_t> judged = repro::judged_measures(s);
+      std::vector<int> counts;
       for (std::size_t k = 0; k < g.horizons.size(); ++k) {
         int ranked = 0;
         for (double c : g.courants)
           for (mrm::Index n : g.elements) ranked += cell(s, c, n, k).count(judged) == static_cast<int>(judged.size());
         mrm::tex_define(defs, "ordermap:" + s + ":" + cli::format_real(g.horizons[k]), std::to_string(ranked));
+        counts.push_back(ranked);
       }
+      mrm::tex_define(defs, "ordermap:" + s + ":ranked", list(counts, [](int n) { return std::to_string(n); }));
     }
     mrm::tex_define(defs, "ordermap:cells", std::to_string(g.courants.size() * g.elements.size()));
     mrm::tex_define(defs, "ordermap:Nmin", std::to_string(g.elements.front()));
     mrm::tex_define(defs, "ordermap:Nmax", std::to_string(g.elements.back()));
+    mrm::tex_define(defs, "ordermap:meshes", list(g.elements, [](mrm::Index n) { return std::to_string(n); }));
+    mrm::tex_define(defs, "ordermap:ratios", list(g.courants, [](double c) { return cli::format_real(c); }));
+    mrm::tex_define(defs, "ordermap:horizons", list(g.horizons, [](double k) { return cli::format_real(k); }));
 
     // 6. Commit.
     outputs.commit();

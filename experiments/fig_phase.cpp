@@ -79,8 +79,8 @@ int main(int argc, char** argv) {
            "(k t_exact error law)\n";
     std::ostream& defs = outputs.values();
     mrm::tex_define(defs, "phase:elements", std::to_string(elements));
-    mrm::tex_define(defs, "phase:courant", mrm::tex_number(courant, 3));
-    mrm::tex_define(defs, "phase:periods", mrm::tex_number(periods, 3));
+    mrm::tex_define(defs, "phase:courant", cli::format_real(courant));
+    mrm::tex_define(defs, "phase:periods", cli::format_real(periods));
     mrm::tex_define(defs, "phase:scheme", scheme);
 
     // 3. One run per mass: the error history and the impacts (run_configuration's phase measures).

@@ -243,8 +243,11 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "smooth:Nmin", std::to_string(coarsest));
     mrm::tex_define(defs, "smooth:Nmax", std::to_string(finest));
     mrm::tex_define(defs, "smooth:meshes", std::to_string(levels));
-    mrm::tex_define(defs, "smooth:T", mrm::tex_number(final_time, 3));
+    mrm::tex_define(defs, "smooth:T", cli::format_real(final_time));
     mrm::tex_define(defs, "smooth:tolerance", mrm::tex_number(agreement, 2));
+    // The steps of the study, for the prose ("\mrm{smooth:dt:dth2}" prints "$\Delta t = h/2$").
+    for (std::size_t c = 0; c < courants.size(); ++c)
+      mrm::tex_define(defs, std::string("smooth:dt:") + courant_keys[c], courant_labels[c]);
     std::vector<std::string> headers{"data", "scheme", "mass", "$\\Delta t$"};
     for (const char* label : measure_labels) headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
     mrm::repro::Table orders_table(headers);
@@ -287,12 +290,13 @@ int main(int argc, char** argv) {
     }
     mrm::tex_define(defs, "smooth:agreeing", std::to_string(agreeing));
     mrm::tex_define(defs, "smooth:cases", std::to_string(cases));
-    mrm::repro::LatexLayout layout;
-    layout.columns = "llll" + std::string(8, 'r');
-    layout.final_newline = false;
-    std::ostringstream table;
-    orders_table.write_latex(table, layout);
-    defs << "\\mrmdef{smooth:table:orders}{" << table.str() << "}\n";
+    // In two halves at the text size (measures 1-4, then 5-8 of mathematics.md §5), not shrunk.
+    for (std::size_t part = 0; part < 2; ++part) {
+      std::vector<std::size_t> keep{0, 1, 2, 3};
+      for (std::size_t k = 4 * part; k < 4 * part + 4; ++k) keep.push_back(4 + k);
+      defs << "\\mrmdef{smooth:table:orders" << (part == 0 ? ":a" : ":b") << "}{"
+           << mrm::repro::latex_tabular(orders_table.columns_subset(keep), "llll" + std::string(4, 'r')) << "}\n";
+    }
 
     // 7. Commit.
     outputs.commit();

@@ -59,6 +59,12 @@ int main(int argc, char** argv) {
     out << "# blocks 0-3: N = 16, 32, 64, 128, Mod 3, " << cli::format_real(periods)
         << " periods (courant largest); block 4: dt = h, " << cli::format_real(long_periods)
         << " periods (mass_index elements largest)\n";
+    // The long runs' step, Δt = h.
+    const double long_courant = 1.0;
+    // "Bounded": the largest energy at most twice the initial one on every mesh.
+    const double threshold = 2;
+    out << "# threshold = " << cli::format_real(threshold) << "\n# long_courant = " << cli::format_real(long_courant)
+        << '\n';
 
     // 3. All runs.
     std::vector<repro::Configuration> configurations;
@@ -67,7 +73,7 @@ int main(int argc, char** argv) {
         configurations.push_back(repro::paper_configuration("cn", "algebraic", "mod3", n, c, 3 * periods));
     for (const std::string& mass : repro::mass_names())
       for (mrm::Index n : meshes)
-        configurations.push_back(repro::paper_configuration("cn", "algebraic", mass, n, 1.0, 3 * long_periods));
+        configurations.push_back(repro::paper_configuration("cn", "algebraic", mass, n, long_courant, 3 * long_periods));
     std::cerr << "fig_stability_map: " << configurations.size() << " runs\n";
     const std::vector<repro::Measures> m = repro::run_configurations(configurations);
 
@@ -86,12 +92,21 @@ int main(int argc, char** argv) {
       }
     }
     for (std::size_t j = 0; j < courants.size(); ++j) {
-      bounded = bounded && worst[j] <= 2;
+      bounded = bounded && worst[j] <= threshold;
       if (bounded) bounded_up_to = courants[j];
     }
-    mrm::tex_define(defs, "stab:bounded", mrm::tex_number(bounded_up_to, 3));
-    mrm::tex_define(defs, "stab:periods", mrm::tex_number(periods, 4));
-    mrm::tex_define(defs, "stab:longperiods", mrm::tex_number(long_periods, 4));
+    mrm::tex_define(defs, "stab:bounded", cli::format_real(bounded_up_to));
+    mrm::tex_define(defs, "stab:threshold", cli::format_real(threshold));
+    mrm::tex_define(defs, "stab:periods", cli::format_real(periods));
+    mrm::tex_define(defs, "stab:longperiods", cli::format_real(long_periods));
+    // The grid, for the prose: the meshes, the coarsest one and the range of Δt/h.
+    std::string mesh_list;
+    for (mrm::Index n : meshes) mesh_list += (mesh_list.empty() ? "" : ", ") + std::to_string(n);
+    mrm::tex_define(defs, "stab:meshes", mesh_list);
+    mrm::tex_define(defs, "stab:coarse", std::to_string(meshes.front()));
+    mrm::tex_define(defs, "stab:ratiomin", cli::format_real(courants.front()));
+    mrm::tex_define(defs, "stab:ratiomax", cli::format_real(courants.back()));
+    mrm::tex_define(defs, "stab:long:dt", long_courant == 1 ? "h" : cli::format_real(long_courant) + "h");
     out << "\n\n# block 4: dt = h\n# columns: mass_index elements largest\n";
     for (std::size_t mass = 0; mass < repro::mass_names().size(); ++mass)
       for (mrm::Index n : meshes) {
@@ -100,6 +115,8 @@ int main(int argc, char** argv) {
         out << mass + 1 << ' ' << n << ' ' << cli::format_real(ratio) << '\n';
         mrm::tex_define(defs, "stab:long:" + repro::mass_names()[mass] + ":" + std::to_string(n),
                         mrm::tex_magnitude(ratio));
+        if (n == meshes.front())  // the coarsest mesh under a name of its own, for the prose
+          mrm::tex_define(defs, "stab:long:" + repro::mass_names()[mass] + ":coarse", mrm::tex_magnitude(ratio));
       }
 
     // 5. Commit.

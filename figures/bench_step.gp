@@ -10,17 +10,19 @@
 if (!exists("data")) data = 'output/bench/bench_step.dat'
 if (!exists("output")) output = 'output/bench/bench_step.pdf'
 if (!exists("format")) format = 'pdf'
+dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
+load dir.'style.gp'
 
 if (format eq 'png') {
-  set terminal pngcairo size 900,560 font 'Sans,11'
+  set terminal pngcairo size 900,560 font font(12) enhanced
 } else {
-  set terminal pdfcairo size 5.5in,3.4in font 'Sans,9'
+  set terminal pdfcairo size 14cm,8.6cm font font(10) enhanced
 }
 set output output
 
 set logscale x 2
 set format x '2^{%L}'
-set xlabel 'N (elements)'
+set xlabel italic('N').' (elements)'
 set ylabel 'ns per node per step (median)'
 set yrange [0:*]
 set key outside right top box

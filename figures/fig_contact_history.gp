@@ -1,41 +1,48 @@
 # The paper's Figure 1: u(0,t) (left) and the contact stress lambda(t) (right), one row per scheme,
-# the exact solution (black) against Mod 1, Mod 2, Mod 3, and the baseline Paoli-Schatzman with the
-# consistent mass (grey). The third row is Paoli-Schatzman with the contact row the report believes the
-# paper used (the data file's ps_form). The axes are fitted to the data: no curve is clipped.
+# the exact solution (black) against Mod 1, Mod 2, Mod 3, and the baseline: Paoli-Schatzman with the
+# consistent mass (purple, dashed; the data file's last block). The third row is Paoli-Schatzman with the
+# contact row the report believes the paper used (the data file's ps_form). Titles, masses and the time
+# axis are read from the data file's header (blocks "scheme = s, mass = m"); the y-axes are set by the
+# data: no curve is clipped.
 # Usage: gnuplot -e "data='output/data/fig_contact_history.dat'; output='output/figures/fig_contact_history.pdf'" figures/fig_contact_history.gp
 if (!exists("data")) data = 'output/data/fig_contact_history.dat'
 if (!exists("output")) output = 'output/figures/fig_contact_history.pdf'
+dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
+load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,20cm font "Helvetica,9" linewidth 1.5 enhanced
+set terminal pdfcairo size 16cm,20cm font font(10) linewidth 1.5 enhanced
 set output output
 set datafile missing NaN
 
-scheme(s) = s == 0 ? "Crank-Nicolson" : s == 1 ? "backward Euler" : "Paoli-Schatzman (1/4, 0), algebraic contact row (= CN in u, {/Symbol l})"
-set style line 1 lc rgb "black" lw 2.0 dt 1
-set style line 2 lc rgb "#d62728" lw 1.0 dt 1
-set style line 3 lc rgb "#1f77b4" lw 1.0 dt 1
-set style line 4 lc rgb "#2ca02c" lw 1.0 dt 1
-set style line 5 lc rgb "#7f7f7f" lw 1.0 dt 2
+# Block 1 + 3 s + m - 1 is scheme s, mass m: the schemes and masses in the file's order; the last block
+# is the baseline.
+blocks = system(sprintf("sed -n 's/^# block [0-9]*: scheme = \\([a-z]*\\), mass = \\([a-z0-9]*\\)$/\\1 \\2/p' '%s'", data))
+scheme_id(s) = word(blocks, 2 * (3 * s) + 1)
+mass_id(m) = word(blocks, 2 * (m - 1) + 2)
+baseline = words(blocks) / 2
+# The baseline's legend entry, short enough for one line of entries ("baseline: consistent mass").
+baseline_title = "baseline: ".mass_name(word(blocks, words(blocks)))
+ps_form = header("ps_form")
+title(s) = scheme_id(s) eq "ps" ? scheme_name("ps").", ".ps_form." contact row" : scheme_name(scheme_id(s))
+final_time = header("final_time") + 0
 
-set multiplot layout 3,2 margins 0.08,0.98,0.05,0.93 spacing 0.08,0.07
-set grid lc rgb "#dddddd" lw 0.5
-set xlabel "t"
-set xrange [0:*]
+set multiplot layout 3,2 margins 0.08,0.98,0.05,0.92 spacing 0.08,0.09
+set xlabel italic("t")
+set xrange [0:final_time]
 set xtics 1
-# One legend for the whole figure, above the panels.
-set key at screen 0.5,0.985 center top vertical maxrows 1 font ",10" samplen 3 width 2
+set offsets 0, 0, graph 0.05, graph 0.05
+# One legend for the whole figure, above the panels: every colour named.
+set key at screen 0.5,0.995 center top vertical maxrows 2 samplen 3 width 1
 do for [s=0:2] {
-  set title scheme(s) font ",10"
-  set ylabel "u(0,t)"
-  set autoscale y
-  plot data index 10 using 1:2 with lines ls 5 title "PS, consistent mass (baseline)", \
-       for [m=1:3] data index 1+3*s+m-1 using 1:2 with lines ls 1+m title sprintf("Mod %d", m), \
-       data index 0 using 1:2 with lines ls 1 title "exact"
+  set title title(s)
+  set ylabel italic("u")."(0,".italic("t").")"
+  plot data index baseline using 1:2 with lines lc rgb mass_colour(4) lw 1.0 dt 2 title baseline_title, \
+       for [m=1:3] data index 1+3*s+m-1 using 1:2 with lines lc rgb mass_colour(m) lw 1.0 title mass_name(mass_id(m)), \
+       data index 0 using 1:2 with lines lc rgb "black" lw 2.0 title "exact"
   unset key
-  set ylabel "{/Symbol l}(t)"
-  set autoscale y
-  plot data index 10 using 3:4 with lines ls 5 notitle, \
-       for [m=1:3] data index 1+3*s+m-1 using 3:4 with lines ls 1+m notitle, \
-       data index 0 using 1:3 with lines ls 1 notitle
+  set ylabel lambda_."(".italic("t").")"
+  plot data index baseline using 3:4 with lines lc rgb mass_colour(4) lw 1.0 dt 2 notitle, \
+       for [m=1:3] data index 1+3*s+m-1 using 3:4 with lines lc rgb mass_colour(m) lw 1.0 notitle, \
+       data index 0 using 1:3 with lines lc rgb "black" lw 2.0 notitle
 }
 unset multiplot

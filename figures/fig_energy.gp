@@ -1,31 +1,47 @@
-# Energy: the discrete energy E_h(t) of every scheme and mass choice against the exact 1/8.
+# Energy: the discrete energy of every scheme and mass choice against the exact one. Crank–Nicolson and
+# backward Euler show the two-level energy E_h = ½ VᵀMV + ½ UᵀSU; Paoli–Schatzman its own energy
+# E_h^β (mathematics.md §4), the one its three-level step conserves. Schemes, masses, the exact energy
+# and the time axis are read from the data file's header; the y-axes are set by the data.
 # Usage: gnuplot -e "data='output/data/fig_energy.dat'; output='output/figures/fig_energy.pdf'" figures/fig_energy.gp
 if (!exists("data")) data = 'output/data/fig_energy.dat'
 if (!exists("output")) output = 'output/figures/fig_energy.pdf'
+dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
+load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,17cm font "Helvetica,9" linewidth 1.5 enhanced
+set terminal pdfcairo size 16cm,17cm font font(10) linewidth 1.5 enhanced
 set output output
 
-scheme(s) = s == 0 ? "Crank-Nicolson" : s == 1 ? "backward Euler" : "Paoli-Schatzman (1/4, 0), literal contact row"
-set style line 1 lc rgb "black" lw 2.0 dt 2
-set style line 2 lc rgb "#d62728" lw 1.2 dt 1
-set style line 3 lc rgb "#1f77b4" lw 1.2 dt 1
-set style line 4 lc rgb "#2ca02c" lw 1.2 dt 1
+# Block 3 s + m - 1 is scheme s, mass m.
+blocks = system(sprintf("sed -n 's/^# block [0-9]*: scheme = \\([a-z]*\\), mass = \\([a-z0-9]*\\)$/\\1 \\2/p' '%s'", data))
+scheme_id(s) = word(blocks, 2 * (3 * s) + 1)
+mass_id(m) = word(blocks, 2 * (m - 1) + 2)
+ps_form = header("ps_form")
+title(s) = scheme_id(s) eq "ps" ? scheme_name("ps").", ".ps_form." contact row: ".E_h_beta : \
+  scheme_name(scheme_id(s)).": ".E_h
+energy_label(s) = scheme_id(s) eq "ps" ? E_h_beta."(".italic("t").")" : E_h."(".italic("t").")"
+exact_energy = header("exact_energy") + 0
+final_time = header("final_time") + 0
+exact_label = sprintf("exact %s = %g", italic("E"), exact_energy)
 
-set multiplot layout 3,1 margins 0.10,0.97,0.06,0.93 spacing 0.0,0.08
-set grid lc rgb "#dddddd" lw 0.5
-set xlabel "t"
+set multiplot layout 3,1 margins 0.10,0.97,0.06,0.93 spacing 0.0,0.09
+set xlabel italic("t")
+set xrange [0:final_time]
 set xtics 1
-set ylabel "E_h(t)"
-set key at screen 0.5,0.985 center top vertical maxrows 1 font ",10" samplen 3 width 2
-# Impact at t = 1 mod 3, release at t = 2 mod 3: thin vertical marks.
-set for [k=0:2] arrow from first 1+3*k, graph 0 to first 1+3*k, graph 1 nohead lc rgb "#999999" dt 3 lw 0.5
-set for [k=0:2] arrow from first 2+3*k, graph 0 to first 2+3*k, graph 1 nohead lc rgb "#999999" dt 3 lw 0.5
+set offsets 0, 0, graph 0.05, graph 0.05
+set key at screen 0.5,0.985 center top vertical maxrows 1 samplen 3 width 2
+# The exact solution's impacts (t = 1 mod 3) and releases (t = 2 mod 3): thin vertical marks.
+do for [k=0:int(final_time / 3)] {
+  do for [j=1:2] {
+    if (j + 3*k < final_time) {
+      set arrow from first j+3*k, graph 0 to first j+3*k, graph 1 nohead lc rgb "#999999" dt 3 lw 0.5
+    }
+  }
+}
 do for [s=0:2] {
-  set title scheme(s) font ",10"
-  if (s == 0) { set yrange [0.1175:0.1255] } else { if (s == 1) { set yrange [0:0.13] } else { set yrange [0.1:0.128] } }
-  plot for [m=1:3] data index 3*s+m-1 using 1:2 with lines ls 1+m title sprintf("Mod %d", m), \
-       0.125 with lines ls 1 title "exact E = 1/8"
+  set title title(s)
+  set ylabel energy_label(s)
+  plot for [m=1:3] data index 3*s+m-1 using 1:2 with lines lc rgb mass_colour(m) lw 1.2 title mass_name(mass_id(m)), \
+       exact_energy with lines lc rgb "black" lw 2.0 dt 2 title exact_label
   unset key
 }
 unset multiplot

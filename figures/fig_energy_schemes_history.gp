@@ -1,31 +1,38 @@
-# Energy histories: E_h(t)/E_h(0) of Crank-Nicolson, EC, CN-switch and backward Euler over 10 periods,
-# one panel per ratio dt/h = 1/2, 1, 5 (fig_energy_schemes --view history; mesh and mass in the data header).
+# Energy histories: E_h(t)/E_h(0) of each scheme of the file, one panel per ratio dt/h
+# (fig_energy_schemes --view history). Schemes, ratios, mesh, mass and horizon are read from the data
+# file's header (blocks "scheme = s, dt/h = r"); the axes are set by the data.
 # Usage: gnuplot -e "data='output/data/fig_energy_schemes_history.dat'; output='output/figures/fig_energy_schemes_history.pdf'" figures/fig_energy_schemes_history.gp
 if (!exists("data")) data = 'output/data/fig_energy_schemes_history.dat'
 if (!exists("output")) output = 'output/figures/fig_energy_schemes_history.pdf'
+dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
+load dir.'style.gp'
 
-set encoding utf8
-set terminal pdfcairo size 16cm,17cm font "Helvetica,9" linewidth 1.5 enhanced
+set terminal pdfcairo size 16cm,17cm font font(9) linewidth 1.5 enhanced
 set output output
 
-ratio(c) = c == 0 ? "Δt = h/2" : c == 1 ? "Δt = h" : "Δt = 5h"
-label(s) = s == 0 ? "Crank-Nicolson" : s == 1 ? "EC (energy-conserving CN)" : s == 2 ? "CN-switch" : "backward Euler"
-set style line 1 lc rgb "#d62728" lw 1.2 dt 1
-set style line 2 lc rgb "black" lw 2.0 dt 2
-set style line 3 lc rgb "#1f77b4" lw 1.2 dt 1
-set style line 4 lc rgb "#2ca02c" lw 1.2 dt 1
+blocks = system(sprintf("awk '/^# block [0-9]+: scheme = /{sub(/,/, \"\", $6); print $6, $9}' '%s'", data))
+nb = words(blocks) / 2
+schemes = system(sprintf("awk '/^# block [0-9]+: scheme = /{sub(/,/, \"\", $6); print $6}' '%s' | awk '!seen[$0]++'", data))
+ns = words(schemes)
+nr = nb / ns
+step(r) = r eq "1" ? italic("h") : (r + 0 < 1 ? italic("h")."/".sprintf("%g", 1 / (r + 0)) : r.italic("h"))
+final_time = header("T") + 0
+# EC, which conserves the energy, dashed and thicker, so that the curves it covers stay visible.
+width_of(id) = id eq "ec" ? 2.0 : 1.2
+dash_of(id) = id eq "ec" ? 2 : 1
 
-set multiplot layout 3,1 margins 0.10,0.97,0.06,0.93 spacing 0.0,0.08
-set grid lc rgb "#dddddd" lw 0.5
-set xlabel "t"
+set multiplot layout nr,1 margins 0.10,0.97,0.06,0.93 spacing 0.0,0.08
+set xlabel italic("t")
+set xrange [0:final_time]
 set xtics 3
-set xrange [0:30]
-set yrange [0:1.2]
-set ylabel "E_h(t) / E_h(0)"
-set key at screen 0.5,0.985 center top vertical maxrows 1 font ",9" samplen 2 width -1
-do for [c=0:2] {
-  set title ratio(c) font ",10"
-  plot for [s=0:3] data index 4*c+s using 1:2 with lines ls s+1 title label(s)
+set offsets 0, 0, graph 0.05, graph 0.05
+set ylabel E_h."(".italic("t").") / ".E_h."(0)"
+set key at screen 0.5,0.995 center top vertical maxrows 1 samplen 3 width 1
+do for [c=0:nr-1] {
+  set title sprintf("%s = %s, %s = %s, %s", Delta_t, step(word(blocks, 2 * ns * c + 2)), italic("N"), header("N"), \
+    mass_name(header("mass")))
+  plot for [s=1:ns] data index ns*c+s-1 using 1:2 with lines lc rgb scheme_colour(word(schemes, s)) \
+         lw width_of(word(schemes, s)) dashtype dash_of(word(schemes, s)) title scheme_name(word(schemes, s))
   unset key
 }
 unset multiplot

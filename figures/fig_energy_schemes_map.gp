@@ -1,31 +1,35 @@
-# The largest E_h^n/E_h(0) over 100 periods against dt/h, one panel per mesh N = 16, 32, 64, 128, for
-# Crank-Nicolson, EC, CN-switch and backward Euler (fig_energy_schemes --view map; mass in the data header).
+# The largest E_h^n/E_h(0) against dt/h, one panel per mesh, one curve per scheme of the file
+# (fig_energy_schemes --view map). Schemes, meshes, mass and horizon are read from the data file's header
+# (blocks "scheme = s, N = n", up to the long runs); the axes are set by the data.
 # Usage: gnuplot -e "data='output/data/fig_energy_schemes_map.dat'; output='output/figures/fig_energy_schemes_map.pdf'" figures/fig_energy_schemes_map.gp
 if (!exists("data")) data = 'output/data/fig_energy_schemes_map.dat'
 if (!exists("output")) output = 'output/figures/fig_energy_schemes_map.pdf'
+dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
+load dir.'style.gp'
 
-set encoding utf8
-set terminal pdfcairo size 16cm,13cm font "Helvetica,9" linewidth 1.5 enhanced
+set terminal pdfcairo size 16cm,13cm font font(9) linewidth 1.5 enhanced
 set output output
 
-mesh(k) = k == 0 ? 16 : k == 1 ? 32 : k == 2 ? 64 : 128
-label(s) = s == 0 ? "Crank-Nicolson" : s == 1 ? "EC" : s == 2 ? "CN-switch" : "backward Euler"
-colour(s) = s == 0 ? "#d62728" : s == 1 ? "black" : s == 2 ? "#1f77b4" : "#2ca02c"
-marker(s) = s == 0 ? 7 : s == 1 ? 6 : s == 2 ? 4 : 8
+schemes = system(sprintf("awk '/^# block [0-9]+: scheme = .*, N = /{sub(/,/, \"\", $6); print $6}' '%s' | awk '!seen[$0]++'", data))
+meshes = system(sprintf("awk '/^# block [0-9]+: scheme = .*, N = /{print $9}' '%s' | awk '!seen[$0]++'", data))
+ns = words(schemes)
+nm = words(meshes)
+marker(s) = word("7 6 4 8 5 9", s) + 0
 
-set multiplot layout 2,2 margins 0.09,0.98,0.08,0.90 spacing 0.09,0.11
-set grid lc rgb "#dddddd" lw 0.5
+set multiplot layout 2,(nm + 1) / 2 margins 0.09,0.98,0.08,0.9 spacing 0.09,0.14
 set logscale x 2
 set logscale y 10
 set format y "10^{%L}"
-set xrange [0.2:50]
-set yrange [0.5:1e13]
-set xlabel "Δt / h"
-set ylabel "max_n E_h^n / E_h(0)"
-set key at screen 0.5,0.985 center top vertical maxrows 1 font ",10" samplen 2 width 2
-do for [k=0:3] {
-  set title sprintf("N = %d", mesh(k)) font ",10"
-  plot for [s=0:3] data index 4*s+k using 1:2 with linespoints lc rgb colour(s) pt marker(s) ps 0.8 title label(s)
+set autoscale xfix
+set offsets graph 0.03, graph 0.03, 0, 0
+set xlabel Delta_t." / ".italic("h")
+set ylabel "max_{/:Italic n} ".E_h."^{/:Italic n} / ".E_h."(0)"
+set key at screen 0.5,0.995 center top vertical maxrows 1 samplen 2 width 2
+do for [k=1:nm] {
+  set title sprintf("%s = %s, %s, %s = %s", italic("N"), word(meshes, k), mass_name(header("mass")), italic("T"), \
+    header("T"))
+  plot for [s=1:ns] data index nm*(s-1)+k-1 using 1:2 with linespoints lc rgb scheme_colour(word(schemes, s)) \
+         pt marker(s) ps 0.8 title scheme_name(word(schemes, s))
   unset key
 }
 unset multiplot

@@ -1,35 +1,54 @@
-# The eight relative errors of EC, CN-switch and backward Euler divided by Crank-Nicolson's, with Mod 1, 2, 3,
-# at N = 100 and N = 400, dt = h/2, T = 30 (fig_energy_schemes --view measures); 1 = as accurate as CN.
+# The eight relative errors of each scheme of the file divided by Crank-Nicolson's with the same mass,
+# one panel per mesh (fig_energy_schemes --view measures); 1 = as accurate as Crank-Nicolson. Schemes
+# and masses are read from the rows (columns scheme, mass), the measures, meshes, step and horizon from
+# the data file's header; the y-axis is set by the data.
 # Usage: gnuplot -e "data='output/data/fig_energy_schemes_measures.dat'; output='output/figures/fig_energy_schemes_measures.pdf'" figures/fig_energy_schemes_measures.gp
 if (!exists("data")) data = 'output/data/fig_energy_schemes_measures.dat'
 if (!exists("output")) output = 'output/figures/fig_energy_schemes_measures.pdf'
+dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
+load dir.'style.gp'
 
-set encoding utf8
-set terminal pdfcairo size 16cm,13cm font "Helvetica,9" linewidth 1.5 enhanced
+set terminal pdfcairo size 16cm,13cm font font(9) linewidth 1.5 enhanced
 set output output
 
-mesh(b) = b == 0 ? 100 : 400
-label(s) = s == 1 ? "EC" : s == 2 ? "CN-switch" : "backward Euler"
-colour(s) = s == 1 ? "black" : s == 2 ? "#1f77b4" : "#2ca02c"
-marker(m) = m == 0 ? 4 : m == 1 ? 6 : 7
-# Rows of a block: 3 s + m for scheme s in (cn, ec, cn-switch, be) and mass m in (mod1, mod2, mod3);
-# columns 11..18 the ratios to Crank-Nicolson's error with the same mass.
-set multiplot layout 2,1 margins 0.09,0.98,0.10,0.90 spacing 0.0,0.12
+# Row layout: scheme mass, the 8 errors, the 8 ratios to Crank-Nicolson's, the energy lost.
+measures = system(sprintf("sed -n 's/^# columns: .*sec. 5: //p' '%s' | head -n 1", data))
+nk = words(measures)
+meshes = system(sprintf("sed -n 's/^# block [0-9]*: N = \\([0-9]*\\)$/\\1/p' '%s'", data))
+schemes = system(sprintf("awk '!/^#/ && NF && $1 != \"cn\" {print $1}' '%s' | awk '!seen[$0]++'", data))
+masses = system(sprintf("awk '!/^#/ && NF {print $2}' '%s' | awk '!seen[$0]++'", data))
+ns = words(schemes)
+nm = words(masses)
+marker(m) = word("4 6 7 8", m) + 0
+step(r) = r eq "1" ? italic("h") : (r + 0 < 1 ? italic("h")."/".sprintf("%g", 1 / (r + 0)) : r.italic("h"))
+
+set multiplot layout words(meshes),1 margins 0.09,0.98,0.10,0.88 spacing 0.0,0.14
 set grid ytics lc rgb "#dddddd" lw 0.5
 set logscale y 10
-set yrange [0.5:20]
-set ytics (0.5, 0.7, 1, 1.5, 2, 3, 5, 10, 20)
-set xrange [0.5:8.5]
-set xtics ("u(0,·) L^2_t" 1, "λ L^2_t" 2, "u L^∞_tL^2" 3, "u L^∞_tH^1" 4, "u_t L^∞_tL^2" 5, "u L^2_tL^2" 6, \
-           "u L^2_tH^1" 7, "u_t L^2_tL^2" 8)
-set ylabel "error / Crank-Nicolson's"
-set key at screen 0.5,0.985 center top vertical maxrows 1 font ",10" samplen 1 width 2
-do for [b=0:1] {
-  set title sprintf("N = %d, Δt = h/2, T = 30 (marks: Mod 1 square, Mod 2 circle, Mod 3 disc)", mesh(b)) font ",10"
+# The y-range: the smallest and largest ratio of any panel, with a margin.
+lo = 1; hi = 1
+do for [b=1:words(meshes)] { do for [k=1:nk] {
+  stats data index b-1 using (column(2 + nk + k)) nooutput
+  lo = STATS_min < lo ? STATS_min : lo
+  hi = STATS_max > hi ? STATS_max : hi
+} }
+set yrange [lo / 1.3:hi * 1.3]
+set ytics (0.1, 0.2, 0.5, 0.7, 1, 1.5, 2, 3, 5, 10, 20, 50, 100, 200, 500, 1000)
+set xrange [0.5:nk + 0.5]
+set xtics ()
+do for [k=1:nk] { set xtics add (measure_short("err_".word(measures, k)) k) }
+set ylabel "error / Crank–Nicolson's"
+# Two legends above the panels: the colours (schemes) and the marks (masses).
+set key at screen 0.5,0.995 center top horizontal maxcols 3 samplen 1 width 1
+do for [b=1:words(meshes)] {
+  set title sprintf("%s = %s, %s = %s, %s = %s", italic("N"), word(meshes, b), Delta_t, step(header("dt\\/h")), \
+    italic("T"), header("T"))
   plot 1 with lines lc rgb "#999999" dt 2 notitle, \
-       for [s=1:3] for [m=0:2] for [k=0:7] data index b every ::(3*s+m)::(3*s+m) \
-         using (k + 1 + 0.22*(s-2) + 0.06*(m-1)):(column(11+k)) with points lc rgb colour(s) pt marker(m) ps 0.7 \
-         title (m == 2 && k == 0 ? label(s) : "")
+       for [s=1:ns] for [m=1:nm] for [k=1:nk] data index b-1 \
+         using (strcol(1) eq word(schemes, s) && strcol(2) eq word(masses, m) ? k + 0.22*(s-(ns+1)/2.0) + 0.06*(m-(nm+1)/2.0) : NaN):(column(2 + nk + k)) \
+         with points lc rgb scheme_colour(word(schemes, s)) pt marker(m) ps 0.7 notitle, \
+       for [s=1:ns] NaN with points lc rgb scheme_colour(word(schemes, s)) pt 5 ps 0.9 title scheme_name(word(schemes, s)), \
+       for [m=1:nm] NaN with points lc rgb "black" pt marker(m) ps 0.7 title mass_name(word(masses, m))
   unset key
 }
 unset multiplot

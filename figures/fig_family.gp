@@ -1,5 +1,5 @@
-# Which redistribution, and why (experiments/fig_family.cpp): Crank-Nicolson over 30 periods at N = 100
-# and 400, dt = h/2 and h, for some twenty members of the weighted family.
+# Which redistribution, and why (experiments/fig_family.cpp): Crank–Nicolson on two meshes and two steps
+# over the longer horizon (read from the data), for some twenty members of the weighted family.
 # Left: the measured drift of the impact times per period, relative to Mod 3's in the same configuration,
 # against the period law's prediction 2 dm_loc + 1.5 dm_glob (the diagonal: the law holds).
 # Right: the geometric mean over the eight measures of error / Mod 3's error against the same measured
@@ -8,19 +8,25 @@
 if (!exists("data")) data = 'output/data/fig_family.dat'
 if (!exists("output")) output = 'output/figures/fig_family.pdf'
 
-set encoding utf8
-set terminal pdfcairo size 16cm,8cm font "Helvetica,9" linewidth 1.5 enhanced
+dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
+load dir.'style.gp'
+
+set terminal pdfcairo size 16cm,8cm font font(9) linewidth 1.5 enhanced
 set output output
 
-# Blocks 4a + 2b + c: N in (100, 400), dt/h in (1/2, 1), periods in (10, 30); the 30-period ones are odd.
-label(b) = sprintf("N = %d, Δt = %s", b < 4 ? 100 : 400, (b % 4) < 2 ? "h/2" : "h")
+# Blocks 4a + 2b + c: two meshes, two steps, two horizons; the longer horizon's blocks are odd. Each
+# block's N, dt/h and periods come from its "# block b: N = ..., dt/h = ..., periods = ..." line.
+block_value(b, key) = system(sprintf("sed -n 's|^# block %d: .*%s = \\([^,]*\\).*|\\1|p' '%s'", b, key, data))
+step_text(r) = r eq "1" ? italic("h") : r eq "0.5" ? italic("h")."/2" : r.italic("h")
+label(b) = sprintf("%s = %s, %s = %s, %s periods", italic("N"), block_value(b, "N"), Delta_t, \
+  step_text(block_value(b, "dt/h")), block_value(b, "periods"))
 colour(f) = f eq "mod" ? 0x000000 : f eq "spread" ? 0x2ca02c : f eq "beta" ? 0x1f77b4 : 0xd62728
 point(b) = b == 1 ? 7 : b == 3 ? 5 : b == 5 ? 9 : 11
-set grid lc rgb "#dddddd" lw 0.5
 set multiplot layout 1,2 margins 0.08,0.98,0.13,0.84 spacing 0.09,0
-set key at screen 0.5,0.995 center top vertical maxrows 2 font ",8" samplen 1 width 1
+small_font = font(8)
+set key at screen 0.5,0.995 center top vertical maxrows 2 font small_font samplen 1 width 1
 
-set title "drift per period against the period law" font ",10"
+set title "drift per period against the period law" font font(10)
 set xlabel "predicted ΔP / h = 2δm_{loc} + 1.5δm_{glob}"
 set ylabel "measured drift − Mod 3's drift (per period, / h)"
 set xrange [-2.2:1.5]
@@ -29,16 +35,16 @@ set size ratio -1
 plot x with lines lc rgb "#777777" dt 2 lw 1 title "the law", \
      for [b in "1 3 5 7"] data index (b+0) using 8:12:(colour(strcol(3))) with points pt point(b+0) ps 0.6 \
        lc rgb variable notitle, \
-     for [b in "1 3 5 7"] keyentry with points pt point(b+0) ps 0.6 lc rgb "#555555" title label(b+0) . ", 30 periods"
+     for [b in "1 3 5 7"] keyentry with points pt point(b+0) ps 0.6 lc rgb "#555555" title label(b+0)
 unset key
 set size noratio
-set title "error relative to Mod 3 (geometric mean of the 8 measures)" font ",10"
+set title "error relative to Mod 3 (geometric mean of the 8 measures)" font font(10)
 set xlabel "measured drift − Mod 3's drift (per period, / h)"
 set ylabel "error / Mod 3's error"
 set xrange [-2.2:1.5]
 set yrange [0.9:*]
 set logscale y
-set label 1 "black: Mod 1/2/3; green: spread:K; blue: beta:B; red: node1:X" at graph 0.02,0.95 font ",8"
+set label 1 "black: Mod 1/2/3; green: spread:K; blue: beta:B; red: node1:X" at graph 0.02,0.95 font font(8)
 plot for [b in "1 3 5 7"] data index (b+0) using 12:13:(colour(strcol(3))) with points pt point(b+0) ps 0.6 \
        lc rgb variable notitle
 unset multiplot

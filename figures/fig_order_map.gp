@@ -1,39 +1,60 @@
-# Observed orders in h against the horizon, at dt = h/2: u(0,.) (displacement) and u in L^inf(H^1)
-# (energy-type) for Mod 1/2/3, Crank-Nicolson (top) and backward Euler (bottom), beside the predicted
-# orders (dashed: smearing of the fronts; dotted: phase error of Mod 1 and Mod 2) (experiments/fig_order_map.cpp).
+# Observed orders in h against the horizon, at one ratio dt/h (the variable `ratio`, 0.5 unless given):
+# u(0,.) in L^2(0,T) (a displacement) and u in L^inf(0,T;H^1) (energy-type) for each mass, Crank-Nicolson
+# (top) and backward Euler (bottom), with the Paoli-Schatzman baseline on the Crank-Nicolson panels,
+# beside the predicted orders (dashed: the smearing of the fronts; dotted: the phase error of Mod 1 and
+# Mod 2) (experiments/fig_order_map.cpp). Blocks are found by their headers ("scheme = s, mass = m,
+# dt/h = r"), columns by their names; the axes are set by the data.
 # Usage: gnuplot -e "data='output/data/fig_order_map.dat'; output='output/figures/fig_order_map.pdf'" figures/fig_order_map.gp
 if (!exists("data")) data = 'output/data/fig_order_map.dat'
 if (!exists("output")) output = 'output/figures/fig_order_map.pdf'
+if (!exists("ratio")) ratio = "0.5"
+dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
+load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,12cm font "Helvetica,9" linewidth 1.5 enhanced
+set terminal pdfcairo size 16cm,12cm font font(9) linewidth 1.5 enhanced
 set output output
-set style line 1 lc rgb "#d62728" lw 1.2 pt 7
-set style line 2 lc rgb "#1f77b4" lw 1.2 pt 5
-set style line 3 lc rgb "#2ca02c" lw 1.2 pt 9
-set style line 4 lc rgb "#7f7f7f" lw 1.2 pt 13
+
+# The index of the first block with this scheme, mass and ratio (-1 if none).
+block(s, m) = system(sprintf("sed -n 's/^# block \\([0-9]*\\): scheme = %s, mass = %s, dt\\/h = %s$/\\1/p' '%s' | head -n 1", \
+  s, m, ratio, data)) + 0
+column_of(name) = sum [k=1:words(columns)] (word(columns, k) eq name ? k : 0)
+mass_index(id) = id eq "mod1" ? 1 : id eq "mod2" ? 2 : id eq "mod3" ? 3 : 4
+masses = "mod1 mod2 mod3"
+measures = "err_u0_L2 err_u_LinfH1"
+predicted = "predicted_u predicted_energy"
+
 set logscale x
-set xrange [0.8:40]
-set xtics ("1" 1, "4" 4, "10" 10, "30" 30)
-set yrange [0:1.2]
-set grid lc rgb "#dddddd" lw 0.5
-set key bottom right font ",8"
-# Block of (scheme s, mass m, ratio j = 1 for dt/h = 1/2): (3 s + m) 4 + 1; the baseline is scheme 3.
-b(s, m) = (3*s + m)*4 + 1
-set multiplot layout 2,2 margins 0.08,0.98,0.08,0.94 spacing 0.08,0.1
-do for [s=0:1] {
-  do for [q=0:1] {
-    col = q == 0 ? 2 : 5
-    set title sprintf("%s, %s", s == 0 ? "Crank-Nicolson" : "backward Euler", q == 0 ? "u(0,.) in L^2(0,T)" : "u in L^{/Symbol \245}(H^1)") font ",10"
-    set xlabel "horizon (periods)"
-    set ylabel "order in h"
-    if (s == 0) {
-      plot for [m=0:2] data index b(s, m) using 1:col with linespoints ls m+1 title sprintf("Mod %d", m+1), \
-           data index b(3, 0) using 1:col with linespoints ls 4 title "PS consistent", \
-           data index b(s, 2) using 1:(q == 0 ? $10 : $11) with lines lc rgb "black" dt 2 title "predicted", \
-           (q == 0 ? 1.0 : 0.5) with lines lc rgb "black" dt 3 title "phase error (Mod 1, 2)"
+# The horizons of the sweep (the first column of a block) as the tics.
+horizons = system(sprintf("awk '/^# block 1:/{exit} !/^#/ && NF {print $1}' '%s'", data))
+set xtics ()
+do for [k=1:words(horizons)] { set xtics add (word(horizons, k) word(horizons, k) + 0) }
+set autoscale xfix
+set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05
+set yrange [0:*]
+set key bottom right samplen 2
+set xlabel "horizon (periods)"
+set ylabel "order in ".italic("h")
+set multiplot layout 2,2 margins 0.08,0.98,0.08,0.9 spacing 0.08,0.15 \
+  title sprintf("%s = %s%s", Delta_t, ratio, italic("h")) font font(10)
+do for [scheme in "cn be"] {
+  do for [q=1:2] {
+    col = column_of(word(measures, q))
+    pcol = column_of(word(predicted, q))
+    phase = q == 1 ? 1.0 : 0.5
+    set title scheme_name(scheme).", ".measure_name(word(measures, q))
+    base = block("ps-consistent", "consistent")
+    if (scheme eq "cn" && base >= 0) {
+      plot for [m=1:3] data index block(scheme, word(masses, m)) using 1:col with linespoints \
+             lc rgb mass_colour(m) lw 1.2 pt 6+m ps 0.6 title mass_name(word(masses, m)), \
+           data index base using 1:col with linespoints lc rgb mass_colour(4) lw 1.2 dt 2 pt 13 ps 0.6 \
+             title scheme_name("ps").", consistent mass", \
+           data index block(scheme, "mod3") using 1:pcol with lines lc rgb "black" dt 2 title "predicted", \
+           phase with lines lc rgb "black" dt 3 title "phase error (Mod 1, 2)"
     } else {
-      plot for [m=0:2] data index b(s, m) using 1:col with linespoints ls m+1 title sprintf("Mod %d", m+1), \
-           data index b(s, 2) using 1:(q == 0 ? $10 : $11) with lines lc rgb "black" dt 2 title "predicted"
+      plot for [m=1:3] data index block(scheme, word(masses, m)) using 1:col with linespoints \
+             lc rgb mass_colour(m) lw 1.2 pt 6+m ps 0.6 title mass_name(word(masses, m)), \
+           data index block(scheme, "mod3") using 1:pcol with lines lc rgb "black" dt 2 title "predicted", \
+           phase with lines lc rgb "black" dt 3 title "phase error (Mod 1, 2)"
     }
   }
 }

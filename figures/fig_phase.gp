@@ -1,29 +1,44 @@
 # The mechanism of the ranking: errors against time (top) and the impact-time errors against the period
-# law's prediction (bottom), for Mod 1, Mod 2 and Mod 3 (experiments/fig_phase.cpp).
+# law's prediction (bottom), for each mass of the file (experiments/fig_phase.cpp). The masses, the
+# scheme, the mesh and the step are read from the data file's header (blocks "..., mass = m"); the axes
+# are set by the data.
 # Usage: gnuplot -e "data='output/data/fig_phase.dat'; output='output/figures/fig_phase.pdf'" figures/fig_phase.gp
 if (!exists("data")) data = 'output/data/fig_phase.dat'
 if (!exists("output")) output = 'output/figures/fig_phase.pdf'
+dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
+load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,17cm font "Helvetica,9" linewidth 1.5 enhanced
+set terminal pdfcairo size 16cm,17cm font font(9) linewidth 1.5 enhanced
 set output output
-set style line 1 lc rgb "#d62728" lw 1.0
-set style line 2 lc rgb "#1f77b4" lw 1.0
-set style line 3 lc rgb "#2ca02c" lw 1.0
-set grid lc rgb "#dddddd" lw 0.5
-set multiplot layout 3,1 margins 0.11,0.97,0.06,0.95 spacing 0.0,0.07
-set key top left font ",9"
 
-set title "Error of the contact point |u_0^n - u(0,t_n)|" font ",10"
-set xlabel "t"
+# Blocks 0..n-1: the error histories, blocks n..2n-1: the impacts, one per mass in the same order.
+histories = system(sprintf("sed -n 's/^# block [0-9]*: error history, mass = \\([a-z0-9]*\\)$/\\1/p' '%s'", data))
+n = words(histories)
+mass_index(id) = id eq "mod1" ? 1 : id eq "mod2" ? 2 : id eq "mod3" ? 3 : 4
+run_title = sprintf("%s, %s = 1/%s, %s = %s%s", scheme_name(header("scheme")), italic("h"), header("elements"), \
+  Delta_t, header("courant"), italic("h"))
+
+set multiplot layout 3,1 margins 0.11,0.97,0.06,0.93 spacing 0.0,0.07 title run_title font font(10)
+set key top left
+set xlabel italic("t")
+set autoscale xfix
+set offsets 0, 0, graph 0.05, graph 0.05
+
+set title "error of the contact point, |".italic("u")."_0^".italic("n")." − ".italic("u")."(0,".italic("t_n").")|"
 set ylabel "error"
-plot for [m=0:2] data index m using 1:2 with lines ls m+1 title sprintf("Mod %d", m+1)
+plot for [m=1:n] data index m-1 using 1:2 with lines lc rgb mass_colour(mass_index(word(histories, m))) lw 1.0 \
+  title mass_name(word(histories, m))
 
-set title "L^2 error of u, ||u_h - u_I||" font ",10"
-plot for [m=0:2] data index m using 1:3 with lines ls m+1 title sprintf("Mod %d", m+1)
+set title "error of ".italic("u")." in ".italic("L")."^2(0,".italic("L").")"
+plot for [m=1:n] data index m-1 using 1:3 with lines lc rgb mass_colour(mass_index(word(histories, m))) lw 1.0 \
+  title mass_name(word(histories, m))
 
-set title "Impact-time errors t_k - (1 + 3k): measured (points) and period law e_0 + k {/Symbol D}P (lines)" font ",10"
-set xlabel "exact impact time t_k"
+set title "impact-time errors: measured (points) and the period law (dashed lines)"
+set key bottom left vertical maxrows 3 samplen 2
+set xlabel "exact impact time ".italic("t_k")
 set ylabel "time error"
-plot for [m=0:2] data index 3+m using 2:3 with points ls m+1 pt 7 ps 0.4 title sprintf("Mod %d measured", m+1), \
-     for [m=0:2] data index 3+m using 2:4 with lines ls m+1 dt 2 title sprintf("Mod %d law", m+1)
+plot for [m=1:n] data index n+m-1 using 2:3 with points lc rgb mass_colour(mass_index(word(histories, m))) pt 7 ps 0.4 \
+       title mass_name(word(histories, m))." measured", \
+     for [m=1:n] data index n+m-1 using 2:4 with lines lc rgb mass_colour(mass_index(word(histories, m))) lw 1.0 dt 2 \
+       title mass_name(word(histories, m))." law"
 unset multiplot

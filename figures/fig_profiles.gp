@@ -1,32 +1,41 @@
-# Profiles: the displacement u(x,t) along the bar at two instants of each phase (free flight, contact,
-# release) in the first and the third period, exact (black) against Mod 1, Mod 2, Mod 3 (nodal values joined by lines).
+# Profiles: the displacement u(x,t) along the bar at the instants of the data file (block headers
+# "exact, t = ..."), exact (black) against Mod 1, Mod 2, Mod 3 (nodal values joined by lines). The
+# scheme and the instants are read from the data file; all panels share one y-range, set by the data.
 # Usage: gnuplot -e "data='output/data/fig_profiles.dat'; output='output/figures/fig_profiles.pdf'" figures/fig_profiles.gp
 if (!exists("data")) data = 'output/data/fig_profiles.dat'
 if (!exists("output")) output = 'output/figures/fig_profiles.pdf'
+dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
+load dir.'style.gp'
 
-set encoding utf8
-set terminal pdfcairo size 16cm,11cm font "Helvetica,9" linewidth 1.5 enhanced
+set terminal pdfcairo size 16cm,11cm font font(10) linewidth 1.5 enhanced
 set output output
 
 # The instants, from the block headers ("# block 0: exact, t = 0.5").
 instants = system(sprintf("sed -n 's/^# block [0-9]*: exact, t = //p' '%s'", data))
 count = words(instants)
+scheme = scheme_name(header("scheme"))
+# The masses, from the nodal blocks' column names ("x u_mod1 u_mod2 u_mod3").
+nodal = system(sprintf("sed -n 's/^# columns: x u_\\(mod.\\) u_\\(mod.\\) u_\\(mod.\\)$/\\1 \\2 \\3/p' '%s' | head -n 1", data))
+# One y-range for every panel: the extreme values of every displacement in the file.
+ylimits = system(sprintf("awk '!/^#/ && NF > 1 { for (i = 2; i <= NF; ++i) { if (lo == \"\" || $i < lo) lo = $i; if (hi == \"\" || $i > hi) hi = $i } } END { print lo, hi }' '%s'", data))
+ymin = word(ylimits, 1) + 0
+ymax = word(ylimits, 2) + 0
+margin = 0.05 * (ymax - ymin)
 phase(t) = (t - 3*floor(t/3)) < 1 ? "free flight" : (t - 3*floor(t/3)) < 2 ? "contact" : "release"
-colour(m) = m == 1 ? "#d62728" : m == 2 ? "#1f77b4" : "#2ca02c"
 
-set multiplot layout 2,(count+1)/2 margins 0.08,0.98,0.09,0.87 spacing 0.07,0.15
-set grid lc rgb "#dddddd" lw 0.5
-set xlabel "x"
-set ylabel "u(x,t)"
-set xrange [0:1]
-set yrange [-0.3:0.55]
-set key at screen 0.5,0.99 center top vertical maxrows 1 font ",10" samplen 3 width 2
+set multiplot layout 2,(count+1)/2 margins 0.08,0.98,0.09,0.82 spacing 0.07,0.15 \
+  title scheme.", ".italic("N")." = ".header("elements").", ".Delta_t." = ".header("dt")
+set xlabel italic("x")
+set ylabel italic("u")."(".italic("x").",".italic("t").")"
+set autoscale xfix
+set yrange [ymin - margin:ymax + margin]
+set key at screen 0.5,0.925 center top vertical maxrows 1 samplen 3 width 2
 do for [k=0:count-1] {
   t = word(instants, k+1) + 0
-  set title sprintf("t = %s (%s)", word(instants, k+1), phase(t)) font ",10"
+  set title sprintf("%s = %s (%s)", italic("t"), word(instants, k+1), phase(t))
   plot data index 2*k using 1:2 with lines lc rgb "black" lw 2.5 title "exact", \
-       for [m=1:3] data index 2*k+1 using 1:(column(1+m)) with linespoints lc rgb colour(m) lw 1 pt 7 ps 0.3 \
-         title sprintf("Mod %d", m)
+       for [m=1:3] data index 2*k+1 using 1:(column(1+m)) with linespoints lc rgb mass_colour(m) lw 1 pt 7 ps 0.3 \
+         title mass_name(word(nodal, m))
   unset key
 }
 unset multiplot

@@ -21,10 +21,12 @@
 // row holds after all, it is reported as FAILED so that somebody updates the table, and an entry that
 // no check produces is reported as well.
 #include "claims.hpp"
+#include "report_values.hpp"
 
 #include "convergence.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -222,6 +224,17 @@ std::string fixed(double x, int decimals) {
 // The short names of the eight error measures of mathematics.md §5, in ErrorAccumulator::values order.
 const char* const measure_names[8] = {"u(0,·) L²(0,T)", "λ L²(0,T)", "u L∞(L²)", "u L∞(H¹)",
                                       "u_t L∞(L²)",     "u L²(L²)",  "u L²(H¹)", "u_t L²(L²)"};
+
+// The summary's name of a scheme, as the report's appendix abbreviates it (CN, BE, PS) and of a mass.
+std::string scheme_abbreviation(const std::string& id) {
+  if (id == "cn") return "CN";
+  if (id == "be") return "BE";
+  if (id == "ps") return "PS";
+  if (id == "ps-literal") return "PS (literal row)";
+  if (id == "ps-consistent") return "PS (consistent mass)";
+  return id;
+}
+std::string mass_text(const std::string& id) { return id.rfind("mod", 0) == 0 ? "Mod " + id.substr(3) : id; }
 
 std::string join(const std::vector<std::string>& parts, const std::string& separator) {
   std::string s;
@@ -597,7 +610,8 @@ SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& sch
   }
   SummaryLine line;
   line.key = "ordering-" + scheme;
-  line.claim = "3 Ordering Mod 3 < Mod 2 < Mod 1, " + scheme + (scheme == "ps" ? " (velocity; rest = cn)" : "");
+  line.claim = "3 Ordering Mod 3 < Mod 2 < Mod 1, " + scheme_abbreviation(scheme) +
+               (scheme == "ps" ? " (velocity; the rest is CN's)" : "");
   line.verdict = ranked_anywhere == cells_total ? "reproduced"
                  : ranked_anywhere == 0         ? "not reproduced"
                                                 : "partly reproduced";
@@ -689,7 +703,7 @@ SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSet
   const double c = std::find(g.courants.begin(), g.courants.end(), 0.5) != g.courants.end() ? 0.5 : g.courants[0];
   const double h = 1.0 / static_cast<double>(n);
   for (const std::string& mass : g.masses)
-    at_100.push_back(mass + " " + fixed(*sweep.find(st.scheme, mass, c, n).drift_per_period / h, 3) + "h (law " +
+    at_100.push_back(mass_text(mass) + " " + fixed(*sweep.find(st.scheme, mass, c, n).drift_per_period / h, 3) + "h (law " +
                      fixed(law_drift(mass, n) / h, 3) + "h)");
   double worst = 0;
   for (const std::string& mass : g.masses)
@@ -699,7 +713,7 @@ SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSet
                                     static_cast<double>(m));
   SummaryLine line;
   line.key = "mechanism";
-  line.claim = "3 Mechanism: impact times drift −4h/3, −h/3, 0 per period (" + st.scheme + ")";
+  line.claim = "3 Mechanism: impact times drift −4h/3, −h/3, 0 per period (" + scheme_abbreviation(st.scheme) + ")";
   line.verdict = worst <= st.tolerance ? "reproduced" : "partly reproduced";
   line.holds = "every Δt/h, N of the sweep within " + fixed(worst, 2) + "h of the period law";
   line.fails = worst <= st.tolerance ? "nowhere in the grid" : "cells beyond " + sig(st.tolerance) + "h";
@@ -899,19 +913,19 @@ SummaryLine summarize_convergence(const repro::Sweep& sweep) {
                                sig(g.horizons[k]) + " period(s)");
     }
     all_within += within, all_total += total;
-    holds.push_back(scheme + " " + std::to_string(within) + "/" + std::to_string(total));
-    if (!bad_horizons.empty()) fails.push_back(scheme + ": " + join(bad_horizons, ", "));
+    holds.push_back(scheme_abbreviation(scheme) + " " + std::to_string(within) + "/" + std::to_string(total));
+    if (!bad_horizons.empty()) fails.push_back(scheme_abbreviation(scheme) + ": " + join(bad_horizons, ", "));
   }
   for (const std::string& scheme : {std::string("cn"), std::string("be")}) {
     for (const repro::OrderCell& cell : cells)
       if (cell.scheme == scheme && cell.mass == "mod3" && cell.courant == 0.5 && cell.horizon == 0)
-        numbers.push_back(scheme + " mod3 Δt = h/2, 1 period: u(0,·) " + fixed(cell.order[0], 2) + ", u L∞(L²) " +
+        numbers.push_back(scheme_abbreviation(scheme) + " Mod 3, Δt = h/2, 1 period: u(0,·) " + fixed(cell.order[0], 2) + ", u L∞(L²) " +
                           fixed(cell.order[2], 2) + ", λ " + fixed(cell.order[1], 2) + ", u L∞(H¹) " +
                           fixed(cell.order[3], 2) + ", u_t L²(L²) " + fixed(cell.order[7], 2));
   }
   SummaryLine line;
   line.key = "convergence";
-  line.claim = "4 Convergence in h at the predicted orders (cn 2/3, 1/3; be 1/2, 1/4)";
+  line.claim = "4 Convergence in h at the predicted orders (CN 2/3, 1/3; BE 1/2, 1/4)";
   line.verdict = all_within == all_total ? "reproduced" : all_within == 0 ? "not reproduced" : "partly reproduced";
   line.holds = "orders within tolerance (measure × mass × Δt/h × horizon): " + join(holds, ", ");
   line.fails = fails.empty() ? "nowhere in the grid" : join(fails, "; ");
@@ -1491,6 +1505,105 @@ std::string magnitude(double x) { return x < 1000 ? sig(x, 3) : sig(x, 2); }
 
 }  // namespace
 
+// The rows' ids in the report's notation: the claims table of the appendix names each row by them, and
+// the summary names the rows where a claim holds or fails by them, without the claim number.
+namespace {
+
+// The report's name of one segment of a row id ("cn" → "CN", "mod3" → "Mod 3", "err_u0_L2" →
+// "u(0,·) in L²(0,T)", "C=0.5" → "Δt = 0.5h", "dt=0.5h" → "Δt = 0.5h", "T=10p" → "T = 10 periods"), in the
+// report's notation; an unknown segment is kept.
+std::string readable_segment(const std::string& segment) {
+  static const std::pair<const char*, const char*> names[] = {
+      {"cn", "CN"},
+      {"be", "BE"},
+      {"ps", "PS(¼, 0), algebraic row"},
+      {"ps-literal", "PS(¼, 0), literal row"},
+      {"ps-consistent", "PS(¼, 0), consistent mass"},
+      {"mod1", "Mod 1"},
+      {"mod2", "Mod 2"},
+      {"mod3", "Mod 3"},
+      {"consistent", "consistent mass"},
+      {"err_u0_L2", "u(0,·) in L²(0,T)"},
+      {"err_lambda_L2", "λ in L²(0,T)"},
+      {"err_u_LinfL2", "u in L∞(0,T;L²)"},
+      {"err_u_LinfH1", "u in L∞(0,T;H¹)"},
+      {"err_v_LinfL2", "uₜ in L∞(0,T;L²)"},
+      {"err_u_L2L2", "u in L²(0,T;L²)"},
+      {"err_u_L2H1", "u in L²(0,T;H¹)"},
+      {"err_v_L2L2", "uₜ in L²(0,T;L²)"},
+      {"step", "contact step"},
+      {"exact", "exact solution"},
+      {"large-steps", "large steps"},
+      {"1000-periods", "1000 periods"},
+      {"mechanism", "mechanism (period law)"},
+      {"sensitivity", "sensitivity"},
+      {"mod2-diagonal", "Mod 2 spread on the diagonal"},
+      {"mod3-spread2", "Mod 3 spread on nodes 1, 2"},
+      {"mod3-3/4", "Mod 3 as ¾ and ¼ on nodes 1, 2"},
+  };
+  for (const auto& [id, name] : names)
+    if (segment == id) return name;
+  if (segment.rfind("C=", 0) == 0) return "Δt = " + segment.substr(2) + "h";
+  if (segment.rfind("dt=", 0) == 0) return "Δt = " + segment.substr(3);
+  if (segment.rfind("T=", 0) == 0 && segment.back() == 'p') {
+    const std::string periods = segment.substr(2, segment.size() - 3);
+    return "T = " + periods + (periods == "1" ? " period" : " periods");
+  }
+  return segment;
+}
+
+// The segments of an id, split at '/' except inside a segment that contains one ("mod3-3/4").
+std::vector<std::string> id_segments(const std::string& id) {
+  static const char* const with_slash[] = {"mod3-3/4"};
+  std::vector<std::string> segments;
+  std::size_t begin = 0;
+  for (;;) {
+    std::size_t end = id.find('/', begin);
+    for (const char* s : with_slash)
+      if (id.compare(begin, std::string(s).size(), s) == 0) end = id.find('/', begin + std::string(s).size());
+    segments.push_back(id.substr(begin, end == std::string::npos ? std::string::npos : end - begin));
+    if (end == std::string::npos) return segments;
+    begin = end + 1;
+  }
+}
+
+std::string readable_id(const std::string& id) {
+  const std::vector<std::string> segments = id_segments(id);
+  std::string out = segments.front() == "4t" ? std::string("4 (time)") : segments.front();
+  for (std::size_t k = 1; k < segments.size(); ++k) out += ", " + readable_segment(segments[k]);
+  return out;
+}
+
+// The same without the claim number: the name of a row within its claim ("2/mod2" → "Mod 2").
+std::string readable_row(const std::string& id) {
+  const std::vector<std::string> segments = id_segments(id);
+  std::string out;
+  for (std::size_t k = 1; k < segments.size(); ++k) out += (k > 1 ? ", " : "") + readable_segment(segments[k]);
+  return out.empty() ? readable_id(id) : out;
+}
+
+TEST_CASE("a row id reads in the report's notation") {
+  CHECK(readable_id("3/ps-literal/err_u_LinfH1") == "3, PS(¼, 0), literal row, u in L∞(0,T;H¹)");
+  CHECK(readable_id("4/cn/mod1/C=0.5") == "4, CN, Mod 1, Δt = 0.5h");
+  CHECK(readable_id("4t/cn/mod3") == "4 (time), CN, Mod 3");
+  CHECK(readable_id("6/exact") == "6, exact solution");
+  CHECK(readable_id("3/cn/dt=0.25h") == "3, CN, Δt = 0.25h");
+  CHECK(readable_id("4/ps-consistent/T=1p") == "4, PS(¼, 0), consistent mass, T = 1 period");
+  CHECK(readable_id("4/be/T=30p") == "4, BE, T = 30 periods");
+  CHECK(readable_id("3/sensitivity/mod3-3/4") == "3, sensitivity, Mod 3 as ¾ and ¼ on nodes 1, 2");
+  CHECK(readable_id("9/new-case") == "9, new-case");  // an unknown segment is kept as it is
+  CHECK(readable_row("2/mod2") == "Mod 2");
+  CHECK(readable_row("6/step/cn") == "contact step, CN");
+  CHECK(readable_row("7") == "7");  // an id without segments keeps its number
+  // Every id of the current table has a LaTeX form.
+  for (const auto& [id, reason] : paper_expectations()) {
+    CAPTURE(id);
+    CHECK_NOTHROW(latex_escape(readable_id(id)));
+  }
+}
+
+}  // namespace
+
 // ---------------------------------------------------------------------------------------------------
 // All of them, and the summary that opens the table.
 
@@ -1555,7 +1668,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     std::vector<std::string> per_mass;
     for (const StabilityCell& cell : long_runs) {
       long_holds = long_holds && cell.largest <= blow_up;
-      per_mass.push_back(cell.mass + " N = " + std::to_string(cell.elements) + ": " + magnitude(cell.largest));
+      per_mass.push_back(mass_text(cell.mass) + ", N = " + std::to_string(cell.elements) + ": " + magnitude(cell.largest));
     }
     rows.push_back(judge("1/cn/1000-periods", "Stability over a long run: cn at Δt = h over 1000 periods",
                          "largest E_hⁿ/E_h(0): " + join(per_mass, ", "),
@@ -1563,20 +1676,20 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     stability_line.key = "stability";
     stability_line.claim = "1 Stability (no blow-up)";
     stability_line.verdict = verdict_of(rows_with("1/"));
-    stability_line.holds = "cn, be, ps (algebraic row) with Mod 1–3, N = " + std::to_string(st.elements) +
+    stability_line.holds = "CN, BE, PS (algebraic row) with Mod 1–3, N = " + std::to_string(st.elements) +
                            ", Δt = " + sig(st.courant) + "h, 100 periods (E ≤ " + sig(st.bound_conserving) +
-                           " E(0)); cn, Mod 3, N = 16–128, 100 periods: E ≤ 2 E(0) for Δt/h ≤ " + sig(bounded_up_to);
+                           " E(0)); CN, Mod 3, N = 16–128, 100 periods: E ≤ 2 E(0) for Δt/h ≤ " + sig(bounded_up_to);
     std::vector<std::string> beyond, long_failures;
     for (double c : courants)
       if (c > bounded_up_to) beyond.push_back(sig(c));
     for (const StabilityCell& cell : long_runs)
       if (cell.largest > blow_up)
-        long_failures.push_back(cell.mass + " N = " + std::to_string(cell.elements) + " (" + magnitude(cell.largest) +
+        long_failures.push_back(mass_text(cell.mass) + ", N = " + std::to_string(cell.elements) + " (" + magnitude(cell.largest) +
                                 " E(0))");
-    stability_line.fails = "cn at Δt/h = " + join(beyond, ", ") + "; 1000 periods at Δt = h: " +
+    stability_line.fails = "CN at Δt/h = " + join(beyond, ", ") + "; 1000 periods at Δt = h: " +
                            (long_failures.empty() ? std::string("none") : join(long_failures, ", ")) +
-                           "; ps with the literal row (sawtooth); cn with the consistent mass (the contrast)";
-    stability_line.numbers = "largest E/E(0), cn Mod 3, 100 periods, per Δt/h: " + join(per_courant, ", ") +
+                           "; PS with the literal row (sawtooth); CN with the consistent mass (the contrast)";
+    stability_line.numbers = "largest E/E(0), CN, Mod 3, 100 periods, per Δt/h: " + join(per_courant, ", ") +
                              "; 1000 periods, Δt = h: " + join(per_mass, ", ");
   });
   timed("2 mass", [&] {
@@ -1609,8 +1722,8 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
   const auto ids = [&](const std::vector<const ClaimResult*>& r, Verdict v) {
     std::vector<std::string> s;
     for (const ClaimResult* row : r)
-      if ((row->verdict == Verdict::reproduced) == (v == Verdict::reproduced)) s.push_back(row->id);
-    return s.empty() ? std::string("none") : join(s, ", ");
+      if ((row->verdict == Verdict::reproduced) == (v == Verdict::reproduced)) s.push_back(readable_row(row->id));
+    return s.empty() ? std::string("none") : join(s, "; ");
   };
   std::vector<SummaryLine>& summary = report.summary;
   summary.push_back(stability_line);
@@ -1625,7 +1738,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
   {
     const auto r = rows_with("3/sensitivity/");
     std::vector<std::string> numbers;
-    for (const ClaimResult* row : r) numbers.push_back(row->id.substr(14) + ": " + row->measured);
+    for (const ClaimResult* row : r) numbers.push_back(readable_segment(row->id.substr(14)) + ": " + row->measured);
     summary.push_back({"sensitivity", "3 Verdict independent of the reconstruction (Mod 2, Mod 3 variants)",
                        verdict_of(r), ids(r, Verdict::reproduced), ids(r, Verdict::failed), join(numbers, "; ")});
   }
@@ -1640,16 +1753,16 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
         const std::size_t start = part.find_first_not_of(' ');
         if (start != std::string::npos && part.compare(start, 3, "u_t") == 0) velocity.push_back(part.substr(start));
       }
-      numbers.push_back(row->id.substr(6) + ": " + join(velocity, ", "));
+      numbers.push_back(readable_segment(row->id.substr(6)) + ": " + join(velocity, ", "));
     }
     summary.push_back({"time",
-                       "4 Error estimate in time: cn at order 2 in Δt (h = 1/" +
+                       "4 Error estimate in time: CN at order 2 in Δt (h = 1/" +
                            std::to_string(TimeConvergenceSettings().elements) + ")",
                        verdict_of(r), ids(r, Verdict::reproduced), ids(r, Verdict::failed), join(numbers, "; ")});
   }
   {
     const auto r = rows_with("5/");
-    summary.push_back({"energy", "5 cn conserves E between contact events, be dissipates", verdict_of(r),
+    summary.push_back({"energy", "5 CN conserves E_h between contact events, BE dissipates", verdict_of(r),
                        ids(r, Verdict::reproduced), ids(r, Verdict::failed), r.front()->measured});
   }
   {
@@ -1694,7 +1807,7 @@ void write_latex_summary_table(std::ostream& out, const std::vector<SummaryLine>
                   "\\emph{" + latex_escape(l.numbers) + "}");
   repro::LatexLayout layout;
   layout.columns =
-      ">{\\raggedright}p{0.19\\textwidth}>{\\raggedright}p{0.1\\textwidth}>{\\raggedright}p{0.31\\textwidth}"
+      ">{\\raggedright}p{0.19\\textwidth}>{\\raggedright}p{0.115\\textwidth}>{\\raggedright}p{0.295\\textwidth}"
       ">{\\raggedright\\arraybackslash}p{0.3\\textwidth}";
   layout.longtable = true;
   layout.rule_between_rows = true;
@@ -1770,10 +1883,24 @@ std::string latex_escape(const std::string& text) {
       {"ą", "\\k{a}"},
       {"∈", "\\ensuremath{\\in}"},
       {"±", "\\ensuremath{\\pm}"},
+      {"ₜ", "\\ensuremath{_t}"},
   };
 
   std::string out;
   for (std::size_t i = 0; i < text.size();) {
+    // The discrete energy's symbol, a subscript, not an escaped underscore.
+    if (text.compare(i, 3, "E_h") == 0) {
+      out += "\\ensuremath{E_h}";
+      i += 3;
+      continue;
+    }
+    // The velocity's symbol u_t, likewise (not inside a longer name such as err_u_t).
+    if (text.compare(i, 3, "u_t") == 0 && (i == 0 || !(std::isalnum(static_cast<unsigned char>(text[i - 1])) ||
+                                                      text[i - 1] == '_'))) {
+      out += "\\ensuremath{u_t}";
+      i += 3;
+      continue;
+    }
     const unsigned char c = static_cast<unsigned char>(text[i]);
     if (c < 0x80) {
       switch (c) {
@@ -1874,6 +2001,9 @@ TEST_CASE("LaTeX escaping handles the special characters and the table's symbols
         "\\ensuremath{\\lambda} \\ensuremath{\\le} 0.5h\\textasciicircum{}\\ensuremath{\\frac12}");
   CHECK(latex_escape("a\\b ~") == "a\\textbackslash{}b \\textasciitilde{}");
   CHECK_THROWS_AS(latex_escape("日本"), std::invalid_argument);
+  CHECK(latex_escape("E_hⁿ/E_h(0)") == "\\ensuremath{E_h}\\ensuremath{^n}/\\ensuremath{E_h}(0)");
+  CHECK(latex_escape("u_t L²") == "\\ensuremath{u_t} L\\ensuremath{^2}");
+  CHECK(latex_escape("err_u_t") == "err\\_u\\_t");  // inside a name: escaped underscores
 }
 
 // Rows of one group share their criterion and often their reason: from the second row on, the LaTeX
@@ -1882,10 +2012,7 @@ TEST_CASE("LaTeX escaping handles the special characters and the table's symbols
 void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
   const std::string column = ">{\\raggedright\\arraybackslash}p{";
   repro::LatexLayout layout;
-  layout.before =
-      "% The claims of the paper as executable checks: generated by check_claims --tex (do not edit).\n"
-      "% Needs \\usepackage{longtable,booktabs,array}.\n"
-      "{\\footnotesize\\setlength{\\tabcolsep}{3pt}\n";
+  layout.before = "{\\footnotesize\\setlength{\\tabcolsep}{3pt}\n";
   layout.columns = column + "0.20\\linewidth}" + column + "0.40\\linewidth}" + column + "0.23\\linewidth}" + column +
                    "0.11\\linewidth}";
   layout.longtable = true;
@@ -1900,18 +2027,19 @@ void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) 
     const std::string verdict = r.verdict == Verdict::reproduced       ? "reproduced"
                                 : r.verdict == Verdict::not_reproduced ? "\\textbf{not reproduced}"
                                                                        : "\\textbf{FAILED}";
-    std::string id;  // the id may break after '/' and '_'
-    for (char c : latex_escape(r.id)) {
-      id += c;
-      if (c == '/' || c == '_') id += "\\allowbreak{}";
-    }
-    table.add_row({"\\textbf{" + id + "} " + latex_escape(r.claim), latex_escape(r.measured),
+    table.add_row({"\\textbf{" + latex_escape(readable_id(r.id)) + ".} " + latex_escape(r.claim), latex_escape(r.measured),
                    same_criterion ? std::string("\\emph{as above}") : latex_escape(r.criterion), verdict},
                   r.reason.empty()
                       ? std::string()
                       : "\\emph{Why:} " + (same_reason ? std::string("as above.") : latex_escape(r.reason)));
   }
-  table.write_latex(out, layout);
+  // The table as a report value: the report reads this file in its preamble and prints the table in its
+  // appendix (\mrm{claims:table}); the summary before it comes from write_latex_summary_table.
+  out << "% The claims of the paper as executable checks: generated by check_claims --tex (do not edit).\n"
+         "% Needs \\usepackage{longtable,booktabs,array} and the report's \\mrmdef.\n";
+  std::ostringstream table_tex;
+  table.write_latex(table_tex, layout);
+  out << "\\mrmdef{claims:table}{" << table_tex.str() << "}\n";
 }
 
 }  // namespace mrm::claims

@@ -58,12 +58,18 @@ inline const std::array<const char*, 8>& measure_labels() {
   return labels;
 }
 
+/// The report's name of a scheme, as LaTeX (the tables and values of the report print it).
 inline std::string scheme_label(const std::string& scheme) {
-  if (scheme == "cn") return "Crank-Nicolson";
+  if (scheme == "cn") return "Crank--Nicolson";
   if (scheme == "be") return "backward Euler";
-  if (scheme == "ec") return "energy-conserving Crank-Nicolson";
-  if (scheme == "cn-switch") return "Crank-Nicolson with a theta-step at each status change";
-  return "Paoli-Schatzman (1/4, 0)";
+  if (scheme == "ec") return "energy-conserving Crank--Nicolson";
+  if (scheme == "cn-switch") return "Crank--Nicolson with a $\\theta$-step at each status change";
+  return "Paoli--Schatzman $(\\frac14, 0)$";
+}
+/// The label of a table row: Paoli–Schatzman's says which contact row it uses ("…, literal row"), so
+/// that a row of the literal form is never read as the scheme's algebraic form.
+inline std::string scheme_label(const std::string& scheme, const std::string& ps_form) {
+  return scheme == "ps" ? scheme_label(scheme) + ", " + ps_form + " row" : scheme_label(scheme);
 }
 
 /// The scheme's parameters; Paoli–Schatzman with β = ¼, e = 0 and the given contact row (a mass that

@@ -28,6 +28,25 @@ Table& Table::add_rule() {
   return *this;
 }
 
+Table Table::columns_subset(const std::vector<std::size_t>& keep) const {
+  if (keep.empty()) throw std::invalid_argument("Table::columns_subset: no column kept");
+  std::vector<std::string> headers;
+  for (std::size_t c : keep) {
+    if (c >= headers_.size())
+      throw std::invalid_argument("Table::columns_subset: column " + std::to_string(c) + " of a table with " +
+                                  std::to_string(headers_.size()));
+    headers.push_back(headers_[c]);
+  }
+  Table subset(std::move(headers));
+  for (const Row& row : rows_) {
+    std::vector<std::string> cells;
+    for (std::size_t c : keep) cells.push_back(row.cells[c]);
+    subset.add_row(std::move(cells), row.note);
+    if (row.rule_after) subset.add_rule();
+  }
+  return subset;
+}
+
 void Table::write_markdown(std::ostream& out, const std::string& alignment) const {
   const auto cell = [](const std::string& s) {
     std::string t;
@@ -192,6 +211,20 @@ TEST_CASE("a longtable repeats its header and puts a note under its row") {
         "\\begin{longtable}{lll}\n\\toprule\na & b & c \\\\\n\\midrule\n\\endfirsthead\n\\toprule\na & b & c \\\\\n"
         "\\midrule\n\\endhead\n\\bottomrule\n\\endfoot\n1 & 2 & 3 \\\\\n & \\multicolumn{2}{l}{why} \\\\\n\\midrule\n"
         "4 & 5 & 6 \\\\\n\\end{longtable}\n");
+}
+
+TEST_CASE("a subset of the columns keeps every row, note and rule") {
+  Table t({"a", "b", "c"});
+  t.add_row({"1", "2", "3"}, "why").add_rule().add_row({"4", "5", "6"});
+  LatexLayout layout;
+  layout.columns = "ll";
+  layout.final_newline = false;
+  std::ostringstream tex;
+  t.columns_subset({0, 2}).write_latex(tex, layout);
+  CHECK(tex.str() == "\\begin{tabular}{ll}\n\\toprule\na & c \\\\\n\\midrule\n1 & 3 \\\\\n & \\multicolumn{1}{}{why} \\\\\n"
+                     "\\midrule\n4 & 6 \\\\\n\\bottomrule\n\\end{tabular}");
+  CHECK_THROWS_AS(t.columns_subset({}), std::invalid_argument);
+  CHECK_THROWS_AS(t.columns_subset({0, 3}), std::invalid_argument);
 }
 
 TEST_CASE("a row with the wrong number of cells is refused") {

@@ -35,6 +35,11 @@ class Table {
   /// A rule between the rows added so far and the next ones.
   Table& add_rule();
 
+  /// The table of the given columns only, in the given order, with the same rows, notes and rules: a
+  /// table too wide for the page is printed as two at the text size, not shrunk. Throws
+  /// std::invalid_argument for an empty list or a column index out of range.
+  Table columns_subset(const std::vector<std::size_t>& keep) const;
+
   std::size_t columns() const { return headers_.size(); }
   std::size_t rows() const { return rows_.size(); }
 

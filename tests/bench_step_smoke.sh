@@ -18,7 +18,10 @@ grep -q '^# columns: .* cn_ref_median .* ps_ref_median .* ps_ref_over_bare cn_er
 positive=$(grep -v '^#' "$dir/b.dat" | awk '$24 > 0 && $27 > 0 && $30 > 0 && $37 > 0 && $39 > 0 && $40 > 0' | wc -l)
 [[ $positive == 2 ]] || { echo "reference-step timings or ratios missing"; cat "$dir/b.dat"; exit 1; }
 grep -q '^| N | CN | BE | PS | CN ref | BE ref | PS ref |' "$dir/b.md" || { echo "no reference columns in the Markdown table"; exit 1; }
-grep -q '^\\begin{tabular}' "$dir/b.tex" || { echo "no tabular in the LaTeX table"; exit 1; }
+# The LaTeX file: two tables as report values, the fast step (with the ratio to Eigen) and the reference step.
+grep -q '^\\mrmdef{bench:table:fast}{\\begin{tabular}' "$dir/b.tex" || { echo "no fast-step table in the LaTeX file"; exit 1; }
+grep -q '^\\mrmdef{bench:table:ref}{\\begin{tabular}' "$dir/b.tex" || { echo "no reference-step table in the LaTeX file"; exit 1; }
+grep -q 'CN/Eigen' "$dir/b.tex" || { echo "no ratio to Eigen in the LaTeX file"; exit 1; }
 grep -q '^| 128 |' "$dir/b.md" || { echo "no row for N = 128 in the Markdown table"; exit 1; }
 grep -q '^slope_cn = ' "$dir/stdout" || { echo "no slope on stdout"; exit 1; }
 

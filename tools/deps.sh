@@ -19,6 +19,7 @@ packages=(
   libeigen3-dev libgsl-dev         # the library
   doctest-dev                      # the embedded unit tests
   gnuplot-nox                      # the figures (any gnuplot with the pdfcairo/cairolatex terminals)
+  fonts-lmodern                    # the figures' typeface: Latin Modern, the report's Computer Modern
   doxygen libjs-mathjax            # the API documentation (MathJax renders its formulas offline)
   latexmk texlive-latex-base texlive-latex-recommended texlive-latex-extra
   texlive-fonts-recommended texlive-pictures  # the report

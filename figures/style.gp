@@ -1,0 +1,55 @@
+# style.gp: what every figure of the report shares; each script loads it first, from its own
+# directory (load dir.'style.gp' with dir taken from ARG0), after setting `data`.
+#
+#   - The report's typeface. The report is set in Computer Modern; the figures use its OpenType form,
+#     Latin Modern (Debian's fonts-lmodern, which tools/deps.sh requires): text in LM Roman, variables
+#     in its italic ({/:Italic t}), Greek letters from Latin Modern Math (lambda_ below).
+#   - One colour per mass, the same in every figure: Mod 1 red, Mod 2 blue, Mod 3 green, the
+#     consistent mass purple; the exact solution black.
+#   - header(key): the value of the data file's `# key = value` line (quotes removed; empty if absent),
+#     so that titles and labels follow the options the program was run with, not this script.
+#   - scheme_name(id): the report's name of a scheme id of the data files (cn, be, ps, ec, cn-switch).
+set encoding utf8
+fontface = "Latin Modern Roman"
+font(size) = sprintf("%s,%g", fontface, size)
+header(key) = system(sprintf("sed -n 's/^# %s = //p' '%s' | head -n 1 | tr -d '\"'", key, data))
+italic(s) = "{/:Italic ".s."}"
+# Math italic lambda (U+1D706) from the math font, as the report's $\lambda$.
+lambda_ = "{/'Latin Modern Math' 𝜆}"
+Delta_t = "Δ".italic("t")
+mass_colour(m) = m == 1 ? "#d62728" : m == 2 ? "#1f77b4" : m == 3 ? "#2ca02c" : "#9467bd"
+mass_name(id) = id eq "mod1" ? "Mod 1" : id eq "mod2" ? "Mod 2" : id eq "mod3" ? "Mod 3" : \
+  id eq "consistent" ? "consistent mass" : id
+scheme_name(id) = id eq "cn" ? "Crank–Nicolson" : id eq "be" ? "backward Euler" : \
+  id eq "ps" ? "Paoli–Schatzman (¼, 0)" : id eq "ec" ? "EC" : \
+  id eq "cn-switch" ? "CN-switch" : id
+# One colour per scheme where the schemes are the curves (the energy-conserving schemes' figures), none
+# of them a mass's colour.
+scheme_colour(id) = id eq "cn" ? "#ff7f0e" : id eq "ec" ? "black" : id eq "cn-switch" ? "#17becf" : \
+  id eq "be" ? "#8c564b" : "#7f7f7f"
+# The eight measures of mathematics.md §5, from their column names in the data files.
+measure_name(id) = \
+  id eq "err_u0_L2" ? italic("u")."(0,·) in ".italic("L")."^2(0,".italic("T").")" : \
+  id eq "err_lambda_L2" ? lambda_." in ".italic("L")."^2(0,".italic("T").")" : \
+  id eq "err_u_LinfL2" ? italic("u")." in ".italic("L")."^∞(0,".italic("T").";".italic("L")."^2)" : \
+  id eq "err_u_LinfH1" ? italic("u")." in ".italic("L")."^∞(0,".italic("T").";".italic("H")."^1)" : \
+  id eq "err_v_LinfL2" ? italic("u")."_{/:Italic t} in ".italic("L")."^∞(0,".italic("T").";".italic("L")."^2)" : \
+  id eq "err_u_L2L2" ? italic("u")." in ".italic("L")."^2(0,".italic("T").";".italic("L")."^2)" : \
+  id eq "err_u_L2H1" ? italic("u")." in ".italic("L")."^2(0,".italic("T").";".italic("H")."^1)" : \
+  id eq "err_v_L2L2" ? italic("u")."_{/:Italic t} in ".italic("L")."^2(0,".italic("T").";".italic("L")."^2)" : id
+# The same, short, for tic labels.
+measure_short(id) = \
+  id eq "err_u0_L2" ? italic("u")."(0,·), ".italic("L")."^2_{/:Italic t}" : \
+  id eq "err_lambda_L2" ? lambda_.", ".italic("L")."^2_{/:Italic t}" : \
+  id eq "err_u_LinfL2" ? italic("u").", ".italic("L")."^∞_{/:Italic t}".italic("L")."^2" : \
+  id eq "err_u_LinfH1" ? italic("u").", ".italic("L")."^∞_{/:Italic t}".italic("H")."^1" : \
+  id eq "err_v_LinfL2" ? italic("u")."_{/:Italic t}, ".italic("L")."^∞_{/:Italic t}".italic("L")."^2" : \
+  id eq "err_u_L2L2" ? italic("u").", ".italic("L")."^2_{/:Italic t}".italic("L")."^2" : \
+  id eq "err_u_L2H1" ? italic("u").", ".italic("L")."^2_{/:Italic t}".italic("H")."^1" : \
+  id eq "err_v_L2L2" ? italic("u")."_{/:Italic t}, ".italic("L")."^2_{/:Italic t}".italic("L")."^2" : id
+# The column names of a `# columns: ...` line (the first one of the file).
+columns = system(sprintf("sed -n 's/^# columns: //p' '%s' | head -n 1", data))
+set grid lc rgb "#dddddd" lw 0.5
+# The energies' symbols, as in the report: the two-level E_h and Paoli–Schatzman's E_h^β.
+E_h = "{/:Italic E}_{/:Italic h}"
+E_h_beta = "{/:Italic E}_{/:Italic h}^β"
