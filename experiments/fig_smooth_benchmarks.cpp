@@ -120,6 +120,7 @@ int main(int argc, char** argv) {
       std::vector<std::vector<double>> columns(2 + 2 * masses.size());
       std::vector<double> times;
       std::shared_ptr<const mrm::ReferenceSolution> reference;
+      std::vector<double> first_impact_error(masses.size());
       for (std::size_t m = 0; m < masses.size(); ++m) {
         mrm::repro::Configuration c =
             mrm::repro::paper_configuration("cn", "algebraic", masses[m], elements, courant, benchmark.final_time);
@@ -130,7 +131,7 @@ int main(int argc, char** argv) {
               c, mrm::repro::reference_horizon(mrm::steps_to_reach(c.final_time, dt), dt));
         }
         std::size_t level = 0;
-        mrm::repro::run_configuration(
+        const mrm::repro::Measures measures = mrm::repro::run_configuration(
             c,
             [&](const mrm::Sample& s) {
               if (m == 0) {
@@ -145,14 +146,22 @@ int main(int argc, char** argv) {
               ++level;
             },
             reference.get());
+        // The phase against the characteristic solution's impacts (mathematics.md §8): the error of the
+        // first impact, in units of h.
+        if (!measures.phase)
+          throw std::runtime_error(std::string("no impact of ") + masses[m] + " on " + names[b] +
+                                   " to compare with the exact one");
+        first_impact_error[m] = measures.phase->first_impact_error * elements;
       }
       out << (b ? "\n\n" : "") << "# block " << b << ": benchmark = " << names[b]
           << "\n# K = " << cli::format_real(benchmark.scale)
           << "\n# touch_time = " << cli::format_real(benchmark.touch_time) << "\n# release_time = "
           << (std::isfinite(benchmark.release_time) ? cli::format_real(benchmark.release_time)
                                                     : std::string("none before T (held until the reflected wave)"))
-          << "\n# exact_energy = " << cli::format_real(reference->energy())
-          << "\n# columns: t u0_exact lambda_exact u0_mod1 lambda_mod1 u0_mod2 lambda_mod2 u0_mod3 lambda_mod3\n";
+          << "\n# exact_energy = " << cli::format_real(reference->energy());
+      for (std::size_t m = 0; m < masses.size(); ++m)
+        out << "\n# first_impact_error_over_h_" << masses[m] << " = " << cli::format_real(first_impact_error[m]);
+      out << "\n# columns: t u0_exact lambda_exact u0_mod1 lambda_mod1 u0_mod2 lambda_mod2 u0_mod3 lambda_mod3\n";
       for (std::size_t n = 0; n < times.size(); ++n) {
         out << cli::format_real(times[n]);
         for (const std::vector<double>& column : columns) out << ' ' << cli::format_real(column[n]);
@@ -170,6 +179,8 @@ int main(int argc, char** argv) {
           largest = std::max(largest, std::abs(columns[2 + 2 * m][n] - columns[0][n]));
         mrm::tex_define(defs, std::string("smoothbench:") + keys[b] + ":" + masses[m] + ":u0error",
                         mrm::tex_number(largest, 2));
+        mrm::tex_define(defs, std::string("smoothbench:") + keys[b] + ":" + masses[m] + ":firstimpact",
+                        mrm::tex_number(first_impact_error[m], 2));
       }
     }
     mrm::tex_define(defs, "smoothbench:N", std::to_string(elements));

@@ -6,8 +6,10 @@
 
 #include <cstddef>
 #include <optional>
+#include <utility>
 #include <vector>
 
+#include "characteristics.hpp"
 #include "exact_solution.hpp"
 #include "schemes.hpp"
 
@@ -44,6 +46,7 @@ class ImpactDetector {
 struct PhaseMeasures {
   std::size_t matched;        ///< the number of impacts compared
   double first_impact_error;  ///< e₀
+  double period;              ///< P, the unit of the drift (3L on the benchmark; see mean_impact_interval)
   /// P times the least-squares slope of eₖ against tₖ: the time the impacts gain (> 0) or lose
   /// (< 0, early) per period P, in time units. Needs two impacts at least (std::nullopt otherwise).
   std::optional<double> drift_per_period;
@@ -55,5 +58,25 @@ PhaseMeasures phase_measures(const std::vector<double>& impacts, const std::vect
 
 /// The first `count` impact times of the benchmark's exact solution: L + 3L k (mathematics.md §2).
 std::vector<double> benchmark_impact_times(const ExactSolution& exact, std::size_t count);
+
+/// The impact times of an exact solution with the given contact intervals (increasing, as
+/// CharacteristicSolution::contact_intervals returns them), by the rule ImpactDetector applies to a
+/// run: a contact held from t = 0 is not an impact; the first contact that begins later is; a later
+/// one is when it begins at least `minimum_free_interval` after the previous contact ended. Throws
+/// std::invalid_argument for a negative or non-finite interval or intervals that do not increase.
+std::vector<double> impact_times(const std::vector<ContactInterval>& contacts, double minimum_free_interval);
+
+/// Measured impacts paired with exact ones as mutual nearest neighbours: t̂ and t are a pair when t is
+/// the exact impact nearest to t̂, t̂ the measured impact nearest to t, and |t̂ − t| is less than half
+/// the smallest interval between consecutive exact impacts (any distance when there is one). Returns
+/// the pairs as two sequences of equal length (measured, exact), in increasing order; impacts without
+/// a partner (a run's extra contact, an exact impact the run misses) are left out.
+std::pair<std::vector<double>, std::vector<double>> nearest_impact_pairs(const std::vector<double>& impacts,
+                                                                         const std::vector<double>& exact_impacts);
+
+/// The mean time between consecutive impacts, (t_last − t_first)/(n − 1): the unit of the drift for
+/// data whose motion has no period (3L for the benchmark's impacts). Throws std::invalid_argument for
+/// fewer than two impacts.
+double mean_impact_interval(const std::vector<double>& impacts);
 
 }  // namespace mrm

@@ -215,15 +215,16 @@ Configuration paper_configuration(const std::string& scheme, const std::string& 
 /// configuration's reference, see configuration_reference), the same over [0, T_k] for each horizon of
 /// the configuration, the range of the discrete energy, the number of steps, and the phase
 /// (mathematics.md §8): the impact times read off the contact indicator (phase.hpp; a contact that
-/// starts less than L after the previous one ended continues it) and, on the paper's benchmark, their
-/// errors against the exact impacts L + 3Lk.
+/// starts less than L after the previous one ended continues it) and their errors against the exact
+/// impacts: L + 3Lk with the unit 3L on the paper's benchmark, the characteristic solution's (by the
+/// same chatter rule) with their mean interval as the unit for any other data.
 struct Measures {
   ErrorNorms errors;
   std::vector<ErrorNorms> horizon_errors;  ///< one per Configuration::horizons, in order
   double energy_initial = 0, energy_final = 0, energy_min = 0, energy_max = 0;
   Index steps = 0;
   std::vector<double> impacts;
-  std::optional<PhaseMeasures> phase;  ///< absent when the run has no impact
+  std::optional<PhaseMeasures> phase;  ///< absent when the run or the exact solution has no impact
 };
 
 /// Runs the configuration to its final time, calling `observe` (if given) on every sample from level 0
