@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "configurations.hpp"
+#include "mass_spec.hpp"
 #include "options.hpp"
 #include "parallel.hpp"
 #include "report_values.hpp"
@@ -162,7 +163,7 @@ int main(int argc, char** argv) {
           mrm::repro::Configuration configuration =
               mrm::repro::paper_configuration("cn", "algebraic", member.spec(n), n, courants[job.courant],
                                               exact.period() * static_cast<double>(horizons.back()));
-          configuration.mass = mrm::mass_redistribution_from_spec(member.spec(n), mesh);
+          configuration.mass = mrm::repro::mass_redistribution_from_spec(member.spec(n), mesh);
           for (std::size_t c = 0; c + 1 < horizons.size(); ++c)
             configuration.horizons.push_back(exact.period() * static_cast<double>(horizons[c]));
           const mrm::repro::Measures measures = mrm::repro::run_configuration(configuration);

@@ -23,7 +23,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 #include <system_error>
 
@@ -218,8 +217,9 @@ TEST_CASE("a redistribution without a weight function is rejected with its name"
 //
 // Whether a member is admissible depends on the mesh: w > 0 needs B < L/h, and the matrix must be
 // positive definite on nodes 1..N−1 (node1(X) needs X above a threshold that tends to
-// (2 − √3)/6 ≈ 0.045 as N grows). modified_mass checks this for the mesh at hand; the spec parser below
-// calls it when a mesh is given.
+// (2 − √3)/6 ≈ 0.045 as N grows). modified_mass checks this for the mesh at hand (and the weight of
+// spread_over_first_nodes(K) refuses K ≥ N); the harness's spec parser (repro/mass_spec.cpp) calls it
+// when a mesh is given.
 
 namespace {
 
@@ -254,86 +254,6 @@ MassRedistribution beta(double b) {
             const double w = (mesh.length - b * h) / (mesh.length - 2.0 * h / 3.0);
             return (i == 1 && j == 1) ? w + 1.5 * b : w;
           }};
-}
-
-// ---------------------------------------------------------------------------------------------------
-// The spec strings of the command line: mod1 | mod2 | mod3 | consistent | node1:X | spread:K | beta:B.
-// X and B are a decimal ("1.25", "-0.5", "1e-1") or a fraction of two decimals ("7/6"); K is a positive
-// integer. Without a mesh, only what is wrong on every mesh is rejected (unparseable, X ≤ 0, K < 1);
-// with the mesh the run will use, also K > N − 1 and a matrix that is not positive definite on the
-// nodes that keep inertia. The redistribution's name is the spec as given, so that a data header
-// shows what the user typed ("node1:7/6").
-
-std::string mass_redistribution_forms() {
-  return "consistent, mod1, mod2, mod3, node1:X, spread:K, beta:B; X and B decimals or fractions such as "
-         "7/6, X > 0, K an integer in 1..N-1, and the mass positive definite on nodes 1..N-1";
-}
-
-namespace {
-
-[[noreturn]] void reject_spec(const std::string& spec, const std::string& why) {
-  throw std::invalid_argument("\"" + spec + "\": " + why + " (allowed: " + mass_redistribution_forms() + ")");
-}
-
-// A finite decimal, the whole text: digits, one optional sign, point and exponent (no spaces, no
-// "inf", "nan" or hexadecimal). Returns false if the text is not of that form.
-bool parse_decimal(const std::string& text, double& value) {
-  if (text.empty() || text.find_first_not_of("0123456789.eE+-") != std::string::npos) return false;
-  const char* first = text.data();
-  const char* last = first + text.size();
-  if (*first == '+') ++first;  // from_chars does not take a leading '+'
-  const auto [end, error] = std::from_chars(first, last, value);
-  return error == std::errc() && end == last && std::isfinite(value);
-}
-
-// A decimal or a fraction p/q of two decimals with q ≠ 0 and a finite quotient.
-bool parse_fraction(const std::string& text, double& value) {
-  const std::size_t slash = text.find('/');
-  if (slash == std::string::npos) return parse_decimal(text, value);
-  double p = 0.0, q = 0.0;
-  if (!parse_decimal(text.substr(0, slash), p) || !parse_decimal(text.substr(slash + 1), q) || q == 0.0) return false;
-  value = p / q;
-  return std::isfinite(value);
-}
-
-}  // namespace
-
-MassRedistribution mass_redistribution_from_spec(const std::string& spec) {
-  for (const std::string& name : mass_redistribution_names())
-    if (spec == name) return mass_redistribution_by_name(name);
-  const std::size_t colon = spec.find(':');
-  if (colon == std::string::npos) reject_spec(spec, "unknown mass choice");
-  const std::string kind = spec.substr(0, colon), value = spec.substr(colon + 1);
-  MassRedistribution r;
-  if (kind == "node1" || kind == "beta") {
-    double v = 0.0;
-    if (!parse_fraction(value, v)) reject_spec(spec, "\"" + value + "\" is not a decimal or a fraction");
-    if (kind == "node1" && !(v > 0.0)) reject_spec(spec, "X must be positive");
-    r = kind == "node1" ? node1(v) : beta(v);
-  } else if (kind == "spread") {
-    long long k = 0;
-    const char* last = value.data() + value.size();
-    const auto [end, error] = std::from_chars(value.data(), last, k);
-    if (value.empty() || error != std::errc() || end != last) reject_spec(spec, "K is not an integer");
-    if (k < 1) reject_spec(spec, "K must be at least 1");
-    r = spread_over_first_nodes(static_cast<Index>(k));
-  } else {
-    reject_spec(spec, "unknown mass choice");
-  }
-  r.name = spec;
-  return r;
-}
-
-MassRedistribution mass_redistribution_from_spec(const std::string& spec, const UniformMesh& mesh) {
-  MassRedistribution r = mass_redistribution_from_spec(spec);
-  if (spec.rfind("spread:", 0) == 0 && std::stoll(spec.substr(7)) > mesh.elements - 1)
-    reject_spec(spec, "K must be at most N - 1 = " + std::to_string(mesh.elements - 1));
-  try {
-    (void)modified_mass(mesh, r);
-  } catch (const std::invalid_argument&) {
-    reject_spec(spec, "the mass is not positive definite on nodes 1..N-1 for N = " + std::to_string(mesh.elements));
-  }
-  return r;
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -452,46 +372,6 @@ TEST_CASE("total masses: node1(X) is L - 2h/3 + (X - 2/3)h, every beta(B) keeps 
       }
     }
   }
-}
-
-TEST_CASE("the spec strings give the members they name, with the spec as the name") {
-  const UniformMesh mesh(1.0, 40);
-  const double h = mesh.h();
-  CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("node1:7/6"), node1(7.0 / 6.0)) <= 1e-16 * h);
-  CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("node1:0.5"),
-                             mass_redistribution_from_spec("node1:1/2")) == 0.0);
-  CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("beta:1/3"), beta(1.0 / 3.0)) <= 1e-16 * h);
-  CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("beta:-1e-1"), beta(-0.1)) == 0.0);
-  CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("spread:3", mesh), spread_over_first_nodes(3)) == 0.0);
-  CHECK(max_entry_difference(mesh, mass_redistribution_from_spec("mod2"), mod2()) == 0.0);
-  CHECK(mass_redistribution_from_spec("node1:7/6").name == "node1:7/6");
-  CHECK(mass_redistribution_from_spec("spread:39", mesh).name == "spread:39");
-  CHECK(mass_redistribution_from_spec("consistent").name == "consistent");
-  CHECK(node1(0.5).name == "node1:0.5");
-}
-
-TEST_CASE("bad spec strings are rejected with the allowed forms") {
-  const UniformMesh mesh(1.0, 40);
-  for (const char* bad :
-       {"",           "mod4",       "MOD3",      "node1",      "node1:",     "node1:abc", "node1:7/6x", "node1:1/0",
-        "node1:0",    "node1:-1/3", "node1:inf", "node1:nan",  "node1:0x10", "node1: 1",  "beta:",      "beta:1//3",
-        "beta:1e400", "spread:0",   "spread:-2", "spread:1.5", "spread:",    "spread:2x", "mod3:1"}) {
-    CAPTURE(bad);
-    CHECK_THROWS_WITH_AS(mass_redistribution_from_spec(bad), doctest::Contains("(allowed: consistent, mod1, mod2"),
-                         std::invalid_argument);
-  }
-  // On the mesh at hand: K ≤ N − 1 and a definite matrix. The first two pivots of node1(X) are X h and
-  // 2h/3 − h/(36 X), so X = 0.04 fails at node 2 and X = 0.05 passes (the tail then stays positive).
-  CHECK_NOTHROW(mass_redistribution_from_spec("spread:39", mesh));
-  CHECK_THROWS_WITH_AS(mass_redistribution_from_spec("spread:40", mesh), doctest::Contains("at most N - 1 = 39"),
-                       std::invalid_argument);
-  CHECK_NOTHROW(mass_redistribution_from_spec("node1:0.05", mesh));
-  CHECK_THROWS_WITH_AS(mass_redistribution_from_spec("node1:0.04", mesh), doctest::Contains("not positive definite"),
-                       std::invalid_argument);
-  // beta:B needs w = (L − Bh)/(L − 2h/3) > 0, i.e. B < L/h = 40
-  CHECK_NOTHROW(mass_redistribution_from_spec("beta:39", mesh));
-  CHECK_THROWS_WITH_AS(mass_redistribution_from_spec("beta:41", mesh), doctest::Contains("allowed:"),
-                       std::invalid_argument);
 }
 
 TEST_CASE("the period law's split: Mod 1, 2, 3 drift by -4h/3, -h/3, 0 per period") {

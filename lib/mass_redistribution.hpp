@@ -54,17 +54,6 @@ MassRedistribution node1(double x);
 /// beta(2/3) is Mod 3. Throws std::invalid_argument unless B is finite.
 MassRedistribution beta(double b);
 
-/// The spec strings accepted by mass_redistribution_from_spec, in words (for messages and help texts).
-std::string mass_redistribution_forms();
-/// The member named by a spec string: consistent | mod1 | mod2 | mod3 | node1:X | spread:K | beta:B,
-/// X and B decimals or fractions ("7/6"); its name is the spec. Throws std::invalid_argument, with a
-/// message starting with the quoted spec and ending with the allowed forms, for what is wrong on any
-/// mesh (unparseable, X <= 0, K < 1).
-MassRedistribution mass_redistribution_from_spec(const std::string& spec);
-/// The same, checked on the mesh at hand: also K <= N - 1 and a mass that is positive definite on
-/// the nodes that keep inertia.
-MassRedistribution mass_redistribution_from_spec(const std::string& spec, const UniformMesh& mesh);
-
 /// The two masses of the period law (mathematics.md §8), relative to Mod 3; the period changes by
 /// ΔP = predicted_period_change(local, uniform) (period_law.hpp) = 2 δm_loc + (3/2) δm_glob.
 struct PeriodLawMasses {

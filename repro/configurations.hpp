@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "mass_spec.hpp"
 #include "options.hpp"
 #include "output_file.hpp"
 #include "run_limits.hpp"
@@ -85,7 +86,7 @@ inline mrm::SchemeParameters scheme_parameters(const std::string& scheme, const 
   return p;
 }
 
-/// The help text of a program's mass option: the spec forms of mrm::mass_redistribution_from_spec.
+/// The help text of a program's mass option: the spec forms of mass_redistribution_from_spec (mass_spec.hpp).
 inline std::string mass_option_help(const std::string& what) {
   return what +
          ": consistent, mod1, mod2, mod3, node1:X (M11 = X h, Mod 1 elsewhere), spread:K (the lost mass on "
@@ -100,9 +101,9 @@ inline std::string mass_label(const std::string& spec) {
   return spec;
 }
 /// The redistribution named by the value `spec` of the mass option `option`, checked on the mesh of the run
-/// (mrm::mass_redistribution_from_spec); a bad value throws cli::UsageError "<option>: \"spec\": why (allowed:
-/// ...)", so that the program exits with status 2 before any work. `massless` additionally refuses the
-/// consistent mass (for a program that needs a massless contact node).
+/// (mass_redistribution_from_spec, mass_spec.hpp); a bad value throws cli::UsageError "<option>: \"spec\": why
+/// (allowed: ...)", so that the program exits with status 2 before any work. `massless` additionally refuses
+/// the consistent mass (for a program that needs a massless contact node).
 MassRedistribution mass_from_option(const std::string& option, const std::string& spec, const UniformMesh& mesh,
                                     bool massless = false);
 
@@ -206,8 +207,8 @@ std::shared_ptr<const ReferenceSolution> configuration_reference(const Configura
 
 /// A configuration named as the paper names it: scheme "cn", "be" or "ps" (Paoli–Schatzman (¼, 0) with
 /// the contact row `ps_form`), or "ec" or "cn-switch" (mathematics.md §12), a mass spec of
-/// mrm::mass_redistribution_from_spec ("mod1", "mod2", "mod3", "consistent", "node1:7/6", ...), N,
-/// Δt = C h, T.
+/// mass_redistribution_from_spec in mass_spec.hpp ("mod1", "mod2", "mod3", "consistent", "node1:7/6",
+/// ...), N, Δt = C h, T.
 Configuration paper_configuration(const std::string& scheme, const std::string& ps_form, const std::string& mass,
                                   Index elements, double courant, double final_time);
 

@@ -1,0 +1,24 @@
+// The mass option's text: a spec string names a member of the weighted redistribution family
+// (lib/mass_redistribution.hpp: mrm::node1, mrm::beta, mrm::spread_over_first_nodes and the named Mod 1/2/3
+// and consistent masses). The library constructs the members and checks them on a mesh; reading them
+// from a command line is the harness's.
+#pragma once
+
+#include <string>
+
+#include "mass_redistribution.hpp"
+
+namespace mrm::repro {
+
+/// The spec strings accepted by mass_redistribution_from_spec, in words (for messages and help texts).
+std::string mass_redistribution_forms();
+/// The member named by a spec string: consistent | mod1 | mod2 | mod3 | node1:X | spread:K | beta:B,
+/// X and B decimals or fractions ("7/6"); its name is the spec. Throws std::invalid_argument, with a
+/// message starting with the quoted spec and ending with the allowed forms, for what is wrong on any
+/// mesh (unparseable, X <= 0, K < 1).
+MassRedistribution mass_redistribution_from_spec(const std::string& spec);
+/// The same, checked on the mesh at hand: also K <= N - 1 and a mass that is positive definite on
+/// the nodes that keep inertia (mrm::modified_mass).
+MassRedistribution mass_redistribution_from_spec(const std::string& spec, const UniformMesh& mesh);
+
+}  // namespace mrm::repro
