@@ -630,11 +630,11 @@ int main(int argc, char** argv) {
              "% machine and its load. Two tables at the text size: the fast step, and the reference step.\n";
       // The fast step (what every program runs) against the two solves it is compared with: the bare
       // pre-factored tridiagonal solve and Eigen's SimplicialLDLT solve of the same matrix.
-      mrm::repro::Table fast({"$N$", "CN", "BE", "PS", "bare", "bare2", "Eigen", "CN/bare", "BE/bare", "PS/bare",
-                              "CN/Eigen"});
+      mrm::repro::Table fast(
+          {"$N$", "CN", "BE", "PS", "bare", "bare2", "Eigen", "CN/bare", "BE/bare", "PS/bare", "CN/Eigen"});
       // The reference step (the scheme written as its derivation) against the same bare solve.
-      mrm::repro::Table reference({"$N$", "CN ref", "BE ref", "PS ref", "bare", "CN ref/bare", "BE ref/bare",
-                                   "PS ref/bare", "errors"});
+      mrm::repro::Table reference(
+          {"$N$", "CN ref", "BE ref", "PS ref", "bare", "CN ref/bare", "BE ref/bare", "PS ref/bare", "errors"});
       for (std::size_t k = 0; k < sizes.size(); ++k) {
         const auto& t = timings[k];
         fast.add_row({std::to_string(sizes[k]), fixed(t[v_cn].median, 2), fixed(t[v_be].median, 2),

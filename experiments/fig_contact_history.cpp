@@ -130,7 +130,8 @@ int main(int argc, char** argv) {
     for (const std::string& scheme : mrm::repro::scheme_names()) {
       for (const std::string& mass : mrm::repro::mass_names())
         run_block(scheme, ps_form, mass, scheme + ":" + mass,
-                  mass == "mod1" ? mrm::repro::scheme_label(scheme, ps_form) : std::string(), std::string("Mod ") + mass.back());
+                  mass == "mod1" ? mrm::repro::scheme_label(scheme, ps_form) : std::string(),
+                  std::string("Mod ") + mass.back());
       table.add_rule();
     }
     // 6. The baseline: Paoli–Schatzman (¼, 0) with the full consistent mass (its only contact row is the

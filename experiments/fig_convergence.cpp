@@ -149,16 +149,10 @@ int main(int argc, char** argv) {
         for (std::size_t c = 0; c < courants.size(); ++c) {
           out << (s + m + c ? "\n\n" : "") << "# block " << (s * masses.size() + m) * courants.size() + c
               << ": scheme = " << schemes[s] << ", mass = " << masses[m] << ", dt/h = " << cli::format_real(courants[c])
-              << "\n# columns: N h dt";
-          for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
-          out << '\n';
-          for (std::size_t l = 0; l < levels; ++l) {
-            const Run& r = at(s, m, c, l);
-            const double h = 1.0 / static_cast<double>(r.elements);
-            out << r.elements << ' ' << cli::format_real(h) << ' ' << cli::format_real(courants[c] * h);
-            for (double e : r.errors) out << ' ' << cli::format_real(e);
-            out << '\n';
-          }
+              << '\n';
+          std::vector<mrm::repro::ErrorRow> rows;
+          for (std::size_t l = 0; l < levels; ++l) rows.push_back({at(s, m, c, l).elements, at(s, m, c, l).errors});
+          mrm::repro::write_error_rows(out, 1.0, courants[c], rows);
         }
 
     // 6. Orders (fit over all meshes), the tables of orders and of the errors on the finest mesh, the
@@ -171,7 +165,8 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "conv:T", cli::format_real(final_time));
     mrm::tex_define(defs, "conv:psform", ps_form);
     // The two steps of the study, for the prose ("\mrm{conv:dt:dth2}" prints "$\Delta t = h/2$").
-    for (std::size_t c = 0; c < courants.size(); ++c) mrm::tex_define(defs, std::string("conv:dt:") + courant_keys[c], courant_labels[c]);
+    for (std::size_t c = 0; c < courants.size(); ++c)
+      mrm::tex_define(defs, std::string("conv:dt:") + courant_keys[c], courant_labels[c]);
     std::vector<std::string> headers{"scheme", "mass", "$\\Delta t$"}, ranking_headers{"scheme", "$\\Delta t$"};
     for (const char* label : mrm::repro::measure_labels()) {
       headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
@@ -186,8 +181,9 @@ int main(int argc, char** argv) {
       long ordered = 0, cases = 0;
       for (std::size_t m = 0; m < masses.size(); ++m)
         for (std::size_t c = 0; c < courants.size(); ++c) {
-          std::vector<std::string> orders_row{m == 0 && c == 0 ? mrm::repro::scheme_label(schemes[s], ps_form) : std::string(),
-                                              c == 0 ? mass_label(m) : std::string(), courant_labels[c]};
+          std::vector<std::string> orders_row{
+              m == 0 && c == 0 ? mrm::repro::scheme_label(schemes[s], ps_form) : std::string(),
+              c == 0 ? mass_label(m) : std::string(), courant_labels[c]};
           std::vector<std::string> errors_row = orders_row;
           for (std::size_t k = 0; k < 8; ++k) {
             std::vector<double> errors(levels);
@@ -215,7 +211,8 @@ int main(int argc, char** argv) {
         }
       // The paper's claim 3: Mod 3 < Mod 2 < Mod 1 in error. Counted over every measure, mesh and ratio.
       for (std::size_t c = 0; c < courants.size(); ++c) {
-        std::vector<std::string> ranking_row{c == 0 ? mrm::repro::scheme_label(schemes[s], ps_form) : std::string(), courant_labels[c]};
+        std::vector<std::string> ranking_row{c == 0 ? mrm::repro::scheme_label(schemes[s], ps_form) : std::string(),
+                                             courant_labels[c]};
         for (std::size_t k = 0; k < 8; ++k) {
           for (std::size_t l = 0; l < levels; ++l) {
             const double e1 = at(s, 0, c, l).errors[k], e2 = at(s, 1, c, l).errors[k], e3 = at(s, 2, c, l).errors[k];
@@ -245,7 +242,8 @@ int main(int argc, char** argv) {
         for (std::size_t c = 0; c < lead; ++c) keep.push_back(c);
         for (std::size_t k = 4 * half; k < 4 * half + 4; ++k) keep.push_back(lead + k);
         defs << "\\mrmdef{" << key << (half == 0 ? ":a" : ":b") << "}{"
-             << mrm::repro::latex_tabular(table.columns_subset(keep), std::string(lead, 'l') + std::string(4, align)) << "}\n";
+             << mrm::repro::latex_tabular(table.columns_subset(keep), std::string(lead, 'l') + std::string(4, align))
+             << "}\n";
       }
     };
     halves("conv:table:orders", orders_table, 3, 'r');

@@ -316,8 +316,8 @@ int main(int argc, char** argv) {
       out << "# largest_bound_fraction = " << cli::format_real(largest_bound_fraction)
           << " (max over the cn-switch and be runs of largest_increase / increase_bound)\n";
     } else {
-      out << "# dt/h = " << cli::format_real(measure_courant) << "\n# T = " << cli::format_real(measure_periods * period)
-          << '\n';
+      out << "# dt/h = " << cli::format_real(measure_courant)
+          << "\n# T = " << cli::format_real(measure_periods * period) << '\n';
       mrm::tex_define(defs, "ecs:meas:T", mrm::tex_number(measure_periods * period, 2));
       mrm::tex_define(defs, "ecs:meas:periods", cli::format_real(measure_periods));
       mrm::tex_define(defs, "ecs:meas:dt", step_text(measure_courant));

@@ -86,9 +86,8 @@ int main(int argc, char** argv) {
     parser.echo(out);
     out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt) << "\n# steps = " << steps
         << "\n# total_mass = " << cli::format_real(mrm::total_mass(mesh, redistribution))
-        << "\n# exact_energy = " << cli::format_real(exact.energy())
-        << "\n# blocks: 0 exact; 1 algebraic row, " << mass << "; 2 literal row, " << mass
-        << "; 3 literal row, consistent mass\n";
+        << "\n# exact_energy = " << cli::format_real(exact.energy()) << "\n# blocks: 0 exact; 1 algebraic row, " << mass
+        << "; 2 literal row, " << mass << "; 3 literal row, consistent mass\n";
 
     // 3. The exact contact displacement.
     out << "# block 0: exact\n# columns: t u0\n";

@@ -225,16 +225,11 @@ int main(int argc, char** argv) {
             const std::size_t block = ((b * schemes.size() + s) * masses.size() + m) * courants.size() + c;
             out << (block ? "\n\n" : "") << "# block " << block << ": benchmark = " << benchmarks[b]
                 << ", scheme = " << schemes[s] << ", mass = " << masses[m]
-                << ", dt/h = " << cli::format_real(courants[c]) << "\n# columns: N h dt";
-            for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
-            out << '\n';
-            for (std::size_t l = 0; l < levels; ++l) {
-              const Run& r = at(b, s, m, c, l);
-              const double h = 1.0 / static_cast<double>(r.elements);
-              out << r.elements << ' ' << cli::format_real(h) << ' ' << cli::format_real(courants[c] * h);
-              for (double e : r.errors) out << ' ' << cli::format_real(e);
-              out << '\n';
-            }
+                << ", dt/h = " << cli::format_real(courants[c]) << '\n';
+            std::vector<mrm::repro::ErrorRow> rows;
+            for (std::size_t l = 0; l < levels; ++l)
+              rows.push_back({at(b, s, m, c, l).elements, at(b, s, m, c, l).errors});
+            mrm::repro::write_error_rows(out, 1.0, courants[c], rows);
           }
 
     // 6. Orders (fit over all meshes) beside the predictions, the tables, and the values of the prose.

@@ -178,12 +178,15 @@ int main(int argc, char** argv) {
                        cli::at_least(1));
     mrm::repro::FigureOutputs outputs(parser, "fig_time_error", "also write the tables and values the report quotes");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
-    auto require_power_of_two = [](const char* option, long v) {
-      if (v <= 0 || (v & (v - 1)) != 0) throw cli::UsageError(std::string(option) + ": must be a power of 2");
+    // The ranges were checked by the parser; here the powers of 2 within them.
+    auto require_power_of_two = [](const char* option, long v, const char* range) {
+      if (v <= 0 || (v & (v - 1)) != 0)
+        throw cli::UsageError(std::string(option) + ": " + std::to_string(v) +
+                              " is not allowed (expected a power of 2 in " + range + ")");
     };
-    require_power_of_two("--reference-ratio", reference_ratio);
-    require_power_of_two("--coarse-reference-ratio", coarse_reference_ratio);
-    require_power_of_two("--largest", largest);
+    require_power_of_two("--reference-ratio", reference_ratio, "[2, 2^30]");
+    require_power_of_two("--coarse-reference-ratio", coarse_reference_ratio, "[2, 2^30]");
+    require_power_of_two("--largest", largest, "[1, 2^20]");
     // Every step Δt_j = P h / 2^j must be a multiple m_j = P R / 2^j ≥ 2 of the reference step.
     // P R <= 2^50 and K <= 50 by the ranges: no shift below overflows.
     auto require_steps = [&](const char* option, long count, long ratio) {

@@ -163,8 +163,10 @@ void ErrorAccumulator::add(const Sample& sample) {
   const auto run_sums = [n, x, h](const double* w, const ExactSolution::AffineRun* runs, int count, double sigma,
                                   auto scaled) {
     const auto scale = [sigma](double v) {
-      if constexpr (decltype(scaled)::value) return sigma * v;
-      else return v;
+      if constexpr (decltype(scaled)::value)
+        return sigma * v;
+      else
+        return v;
     };
     const double z0 = scale(runs[0].intercept) + scale(runs[0].slope) * x[0];
     Sums r{scale(w[0]) - z0, 0, 0, 0, z0, 0, 0, 0};
@@ -503,8 +505,7 @@ TEST_CASE("the closed form's runs give the same measures as its values at the no
         for (const double courant : {0.5, 1.0, 0.37}) {
           const UniformMesh mesh(length, elements);
           const ExactSolution exact(length, amplitude);
-          ErrorAccumulator runs(mesh, exact),
-              values(mesh, std::make_shared<const ForwardedSolution>(exact));
+          ErrorAccumulator runs(mesh, exact), values(mesh, std::make_shared<const ForwardedSolution>(exact));
           SchemeParameters p;
           p.contact_row = ContactRow::algebraic;
           const double dt = courant * mesh.h();

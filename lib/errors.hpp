@@ -71,7 +71,7 @@ class ErrorAccumulator {
  private:
   UniformMesh mesh_;
   std::shared_ptr<const ReferenceSolution> exact_;
-  const ExactSolution* closed_form_ = nullptr;  // exact_ when it is the paper's closed form (its runs)
+  const ExactSolution* closed_form_ = nullptr;                  // exact_ when it is the paper's closed form (its runs)
   Tridiagonal mass_, stiffness_;                                // scaled by 2^−e_L and 2^e_L (errors.cpp: Scale)
   Eigen::VectorXd nodes_, interpolant_, velocity_interpolant_;  // x_i; u_I and (u_t)_I at one level
   double u_scale_, v_scale_, time_scale_;                       // σ_u, σ_v and 2^−e_L: powers of two

@@ -703,8 +703,8 @@ SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSet
   const double c = std::find(g.courants.begin(), g.courants.end(), 0.5) != g.courants.end() ? 0.5 : g.courants[0];
   const double h = 1.0 / static_cast<double>(n);
   for (const std::string& mass : g.masses)
-    at_100.push_back(mass_text(mass) + " " + fixed(*sweep.find(st.scheme, mass, c, n).drift_per_period / h, 3) + "h (law " +
-                     fixed(law_drift(mass, n) / h, 3) + "h)");
+    at_100.push_back(mass_text(mass) + " " + fixed(*sweep.find(st.scheme, mass, c, n).drift_per_period / h, 3) +
+                     "h (law " + fixed(law_drift(mass, n) / h, 3) + "h)");
   double worst = 0;
   for (const std::string& mass : g.masses)
     for (double cc : g.courants)
@@ -919,9 +919,10 @@ SummaryLine summarize_convergence(const repro::Sweep& sweep) {
   for (const std::string& scheme : {std::string("cn"), std::string("be")}) {
     for (const repro::OrderCell& cell : cells)
       if (cell.scheme == scheme && cell.mass == "mod3" && cell.courant == 0.5 && cell.horizon == 0)
-        numbers.push_back(scheme_abbreviation(scheme) + " Mod 3, Δt = h/2, 1 period: u(0,·) " + fixed(cell.order[0], 2) + ", u L∞(L²) " +
-                          fixed(cell.order[2], 2) + ", λ " + fixed(cell.order[1], 2) + ", u L∞(H¹) " +
-                          fixed(cell.order[3], 2) + ", u_t L²(L²) " + fixed(cell.order[7], 2));
+        numbers.push_back(scheme_abbreviation(scheme) + " Mod 3, Δt = h/2, 1 period: u(0,·) " +
+                          fixed(cell.order[0], 2) + ", u L∞(L²) " + fixed(cell.order[2], 2) + ", λ " +
+                          fixed(cell.order[1], 2) + ", u L∞(H¹) " + fixed(cell.order[3], 2) + ", u_t L²(L²) " +
+                          fixed(cell.order[7], 2));
   }
   SummaryLine line;
   line.key = "convergence";
@@ -1668,7 +1669,8 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     std::vector<std::string> per_mass;
     for (const StabilityCell& cell : long_runs) {
       long_holds = long_holds && cell.largest <= blow_up;
-      per_mass.push_back(mass_text(cell.mass) + ", N = " + std::to_string(cell.elements) + ": " + magnitude(cell.largest));
+      per_mass.push_back(mass_text(cell.mass) + ", N = " + std::to_string(cell.elements) + ": " +
+                         magnitude(cell.largest));
     }
     rows.push_back(judge("1/cn/1000-periods", "Stability over a long run: cn at Δt = h over 1000 periods",
                          "largest E_hⁿ/E_h(0): " + join(per_mass, ", "),
@@ -1684,8 +1686,8 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
       if (c > bounded_up_to) beyond.push_back(sig(c));
     for (const StabilityCell& cell : long_runs)
       if (cell.largest > blow_up)
-        long_failures.push_back(mass_text(cell.mass) + ", N = " + std::to_string(cell.elements) + " (" + magnitude(cell.largest) +
-                                " E(0))");
+        long_failures.push_back(mass_text(cell.mass) + ", N = " + std::to_string(cell.elements) + " (" +
+                                magnitude(cell.largest) + " E(0))");
     stability_line.fails = "CN at Δt/h = " + join(beyond, ", ") + "; 1000 periods at Δt = h: " +
                            (long_failures.empty() ? std::string("none") : join(long_failures, ", ")) +
                            "; PS with the literal row (sawtooth); CN with the consistent mass (the contrast)";
@@ -1895,8 +1897,8 @@ std::string latex_escape(const std::string& text) {
       continue;
     }
     // The velocity's symbol u_t, likewise (not inside a longer name such as err_u_t).
-    if (text.compare(i, 3, "u_t") == 0 && (i == 0 || !(std::isalnum(static_cast<unsigned char>(text[i - 1])) ||
-                                                      text[i - 1] == '_'))) {
+    if (text.compare(i, 3, "u_t") == 0 &&
+        (i == 0 || !(std::isalnum(static_cast<unsigned char>(text[i - 1])) || text[i - 1] == '_'))) {
       out += "\\ensuremath{u_t}";
       i += 3;
       continue;
@@ -2027,11 +2029,11 @@ void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) 
     const std::string verdict = r.verdict == Verdict::reproduced       ? "reproduced"
                                 : r.verdict == Verdict::not_reproduced ? "\\textbf{not reproduced}"
                                                                        : "\\textbf{FAILED}";
-    table.add_row({"\\textbf{" + latex_escape(readable_id(r.id)) + ".} " + latex_escape(r.claim), latex_escape(r.measured),
-                   same_criterion ? std::string("\\emph{as above}") : latex_escape(r.criterion), verdict},
-                  r.reason.empty()
-                      ? std::string()
-                      : "\\emph{Why:} " + (same_reason ? std::string("as above.") : latex_escape(r.reason)));
+    table.add_row(
+        {"\\textbf{" + latex_escape(readable_id(r.id)) + ".} " + latex_escape(r.claim), latex_escape(r.measured),
+         same_criterion ? std::string("\\emph{as above}") : latex_escape(r.criterion), verdict},
+        r.reason.empty() ? std::string()
+                         : "\\emph{Why:} " + (same_reason ? std::string("as above.") : latex_escape(r.reason)));
   }
   // The table as a report value: the report reads this file in its preamble and prints the table in its
   // appendix (\mrm{claims:table}); the summary before it comes from write_latex_summary_table.

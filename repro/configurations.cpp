@@ -164,6 +164,18 @@ Measures run_configuration(const Configuration& c, const std::function<void(cons
   return m;
 }
 
+void write_error_rows(std::ostream& out, double length, double courant, const std::vector<ErrorRow>& rows) {
+  out << "# columns: N h dt";
+  for (const char* name : ErrorAccumulator::names) out << ' ' << name;
+  out << '\n';
+  for (const ErrorRow& r : rows) {
+    const double h = length / static_cast<double>(r.elements);
+    out << r.elements << ' ' << cli::format_real(h) << ' ' << cli::format_real(courant * h);
+    for (double e : r.errors) out << ' ' << cli::format_real(e);
+    out << '\n';
+  }
+}
+
 // The configurations on the shared worker pool (parallel.hpp), in the order given; each result goes to
 // its own slot, so the order of completion does not matter.
 std::vector<Measures> run_configurations(const std::vector<Configuration>& configurations, unsigned threads) {

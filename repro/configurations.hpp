@@ -241,6 +241,17 @@ Measures run_configuration(const Configuration& configuration, const std::functi
 /// level plus one step (the schemes' staggered instants stay below it).
 inline double reference_horizon(Index steps, double dt) { return static_cast<double>(steps + 1) * dt; }
 
+/// One mesh of a convergence study: its number of elements and the eight errors of its run (in the
+/// order of ErrorAccumulator::names).
+struct ErrorRow {
+  Index elements;
+  std::array<double, 8> errors;
+};
+/// Writes the columns of a convergence block of a data file: the line "# columns: N h dt" followed by
+/// the eight error names, then one line per mesh, N, h = L/N, Δt = C h and the errors (numbers as
+/// cli::format_real writes them).
+void write_error_rows(std::ostream& out, double length, double courant, const std::vector<ErrorRow>& rows);
+
 /// Runs independent configurations on `threads` threads (0: one per hardware thread) and returns their
 /// measures in the order given: the same numbers as one run_configuration each (every run is
 /// deterministic and shares nothing). The first exception of a run, in the order given, is rethrown

@@ -221,8 +221,9 @@ TEST_CASE("a subset of the columns keeps every row, note and rule") {
   layout.final_newline = false;
   std::ostringstream tex;
   t.columns_subset({0, 2}).write_latex(tex, layout);
-  CHECK(tex.str() == "\\begin{tabular}{ll}\n\\toprule\na & c \\\\\n\\midrule\n1 & 3 \\\\\n & \\multicolumn{1}{}{why} \\\\\n"
-                     "\\midrule\n4 & 6 \\\\\n\\bottomrule\n\\end{tabular}");
+  CHECK(tex.str() ==
+        "\\begin{tabular}{ll}\n\\toprule\na & c \\\\\n\\midrule\n1 & 3 \\\\\n & \\multicolumn{1}{}{why} \\\\\n"
+        "\\midrule\n4 & 6 \\\\\n\\bottomrule\n\\end{tabular}");
   CHECK_THROWS_AS(t.columns_subset({}), std::invalid_argument);
   CHECK_THROWS_AS(t.columns_subset({0, 3}), std::invalid_argument);
 }

@@ -24,6 +24,7 @@ packages=(
   latexmk texlive-latex-base texlive-latex-recommended texlive-latex-extra
   texlive-fonts-recommended texlive-pictures  # the report
   poppler-utils                    # pdftoppm, to check the report's pages
+  clang-format                     # the one C++ style, checked by tests/format.sh
 )
 
 say() { printf 'deps: %s\n' "$*" >&2; }
