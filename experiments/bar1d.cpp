@@ -13,13 +13,13 @@
 // data), the energy range, the run's size and time, and its phase (mathematics.md §8: the number of
 // impacts, impacts_compared = how many were paired with exact impacts (on the paper's benchmark all; for
 // other data a run's extra contacts stay unpaired, mathematics.md §8), first_impact_error = the error of
-// the first impact time, phase_drift_per_period = the
-// least-squares drift of the impact times per period, negative when the impacts come early, and
-// phase_period = the period it is counted in: 3L on the paper's benchmark, the mean interval between the
-// exact impacts for other data; on the paper's benchmark the period law's predictions beside them), one
-// `name = value` line each, and optionally writes the time series of the contact point (u(0,t), λ(t),
-// the energy, and the exact values beside them). Its standard output is the same bytes for the same
-// command except the wall time of the run (wall_seconds), which `--no-timing` leaves out.
+// the first impact time, phase_drift_per_period = the least-squares drift of the impact times per
+// period, negative when the impacts come early, and phase_period = the period it is counted in: 3L on
+// the paper's benchmark, the mean interval between the exact impacts for other data; on the paper's
+// benchmark the period law's predictions beside them), one `name = value` line each, and optionally
+// writes the time series of the contact point (u(0,t), λ(t), the energy, and the exact values beside
+// them). Its standard output is the same bytes for the same command except the wall time of the run
+// (wall_seconds), which `--no-timing` leaves out.
 //
 // Sample runs:
 //   bar1d --scheme cn --mass mod3 --elements 50 --courant 0.5 --final-time 12

@@ -318,10 +318,10 @@ PeriodLawMasses period_law_masses(const UniformMesh& mesh, const MassRedistribut
 
 namespace {
 
-// max over all entries of |A − B|, on all nodes 0..N.
 // ΔP of the period law (period_law.hpp) for a split.
 [[maybe_unused]] double law(const PeriodLawMasses& m) { return predicted_period_change(m.local, m.uniform); }
 
+// max over all entries of |A − B|, on all nodes 0..N.
 [[maybe_unused]] double max_entry_difference(const UniformMesh& mesh, const MassRedistribution& a,
                                              const MassRedistribution& b) {
   const Tridiagonal ma = modified_mass_all_nodes(mesh, a), mb = modified_mass_all_nodes(mesh, b);

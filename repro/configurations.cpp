@@ -271,9 +271,9 @@ TEST_CASE(
     CHECK(std::abs(*own.phase->drift_per_period - *paper.phase->drift_per_period) <= 1e-9);
   }
   // S1 over 20 time units (N = 200, Crank–Nicolson, Mod 3): the exact impacts, by the chatter rule with
-  // the interval L = 1, are at ½ + 6k; the run floats off and lands again in between (phase.cpp). Every
-  // exact impact must find its partner, within the first-impact error's scale (a few h) rather than
-  // the gate, and the run's own contacts must stay unpaired.
+  // the interval L = 1, are at ½ + 6k (four of them, mean interval 6); the run floats off and lands again
+  // in between (phase.cpp). Every exact impact must find its partner, the run's own contacts must stay
+  // unpaired, and the first impact is on time to 0.05h as the period law predicts for Mod 3 (phase.cpp).
   Configuration c = paper_configuration("cn", "algebraic", "mod3", 200, 0.5, 20.0);
   c.benchmark = "smooth-impact";
   const Measures s1 = run_configuration(c);
