@@ -51,13 +51,9 @@ FastStep::FastStep(const Tridiagonal& b1, const Tridiagonal& b2, const Tridiagon
 }
 
 bool FastStep::step(BarSimulation& simulation, bool has_load) const {
-  const bool scaled = simulation.scaled_;
-  if (simulation.three_level_) {
-    if (has_load) return scaled ? fused_step<true, true, true>(simulation) : fused_step<true, true, false>(simulation);
-    return scaled ? fused_step<true, false, true>(simulation) : fused_step<true, false, false>(simulation);
-  }
-  if (has_load) return scaled ? fused_step<false, true, true>(simulation) : fused_step<false, true, false>(simulation);
-  return scaled ? fused_step<false, false, true>(simulation) : fused_step<false, false, false>(simulation);
+  if (simulation.three_level_)
+    return has_load ? fused_step<true, true>(simulation) : fused_step<true, false>(simulation);
+  return has_load ? fused_step<false, true>(simulation) : fused_step<false, false>(simulation);
 }
 
 // One step of (★), fused into the two sweeps of the solve, with no allocation and no refactorisation:
@@ -87,7 +83,7 @@ bool FastStep::step(BarSimulation& simulation, bool has_load) const {
 // (expand PᵀSP and QᵀSQ), so E = ½ XᵀMX + ⅛ (PᵀSP − (1−4β) QᵀSQ), and for β = ¼ only PᵀSP counts.
 // The scheme (two or three levels) and the presence of a load are template parameters, so that the
 // loops carry no dead work.
-template <bool three_level, bool has_load, bool scaled>
+template <bool three_level, bool has_load>
 bool FastStep::fused_step(BarSimulation& sim) const {
   const Index n = sim.mesh_.unknowns();
   const Index head = static_cast<Index>(head_.size());
@@ -179,21 +175,13 @@ bool FastStep::fused_step(BarSimulation& sim) const {
   // squared differences, free of the cancellation of Σ z_i² against Σ z_{i−1} z_i (relative error
   // O(ε) instead of O(ε N²): the energy of Crank–Nicolson stays constant to round-off).
   double k_d = 0, k_q = 0, p_d = 0, p_q = 0, q_d = 0, q_q = 0;
-  // The values entering the forms: as they are, or times σ_u and σ_v when the simulation scales its
-  // energy (schemes.cpp: Scale of the energy); uf_prev is the previous scaled displacement (un_prev
-  // itself serves the solve). With `scaled` false the code is the unscaled one.
-  const double sigma_u = std::ldexp(1.0, -sim.displacement_exponent_);
-  const double sigma_v = std::ldexp(1.0, -sim.velocity_exponent_);
-  double uf_prev = 0;
   const auto emit = [&](const Row& r, Index i, double un, auto toeplitz) {
     constexpr bool sums = decltype(toeplitz)::value;
     const double uo = u[i];
     y[i] = un;
     if constexpr (three_level) {
-      const double x_raw = rate * (un - uo), p_raw = un + uo, q_raw = un - uo;
-      x_out[i] = x_raw;
-      const double x = scaled ? sigma_v * x_raw : x_raw, p = scaled ? sigma_u * p_raw : p_raw,
-                   q = scaled ? sigma_u * q_raw : q_raw;
+      const double x = rate * (un - uo), p = un + uo, q = un - uo;
+      x_out[i] = x;
       if constexpr (sums) {
         const double dx = x - v_prev, dp = p - p_prev, dq = q - q_prev;
         k_d += dx * dx, k_q += x * x;
@@ -206,20 +194,17 @@ bool FastStep::fused_step(BarSimulation& sim) const {
       }
       v_prev = x, p_prev = p, q_prev = q;
     } else {
-      const double v_raw = rate * (un - uo) - memory * w[i];
-      w_out[i] = v_raw;
-      const double v = scaled ? sigma_v * v_raw : v_raw, uf = scaled ? sigma_u * un : un;
-      const double uf_before = scaled ? uf_prev : un_prev;
+      const double v = rate * (un - uo) - memory * w[i];
+      w_out[i] = v;
       if constexpr (sums) {
-        const double dv = v - v_prev, du = uf - uf_before;
+        const double dv = v - v_prev, du = un - un_prev;
         k_d += dv * dv, k_q += v * v;
-        p_d += du * du, p_q += uf * uf;
+        p_d += du * du, p_q += un * un;
       } else {
         kinetic += r.md * v * v + r.ml2 * v_prev * v;
-        potential += r.sd * uf * uf + r.sl2 * uf_before * uf;
+        potential += r.sd * un * un + r.sl2 * un_prev * un;
       }
       v_prev = v;
-      if constexpr (scaled) uf_prev = uf;
     }
     un_prev2 = un_prev, un_prev = un;
   };
@@ -245,9 +230,9 @@ bool FastStep::fused_step(BarSimulation& sim) const {
   if (head < n - 1) {
     const Row r = interior_;
     // The values z_{a−1} at row head − 1 (the first of the kinetic, the potential and the second forms).
-    const double ka = v_prev, pa = three_level ? p_prev : (scaled ? uf_prev : un_prev), qa = q_prev;
+    const double ka = v_prev, pa = three_level ? p_prev : un_prev, qa = q_prev;
     for (Index i = head; i < n - 1; ++i) emit(r, i, solve_up(i), toeplitz_row);
-    const double kb = v_prev, pb = three_level ? p_prev : (scaled ? uf_prev : un_prev), qb = q_prev;
+    const double kb = v_prev, pb = three_level ? p_prev : un_prev, qb = q_prev;
     const auto form = [](double d, double l2, double sum_d, double sum_q, double za, double zb) {
       const double l = 0.5 * l2;
       return -l * sum_d + (d + l2) * sum_q - l * zb * zb + l * za * za;
@@ -258,14 +243,12 @@ bool FastStep::fused_step(BarSimulation& sim) const {
   }
   emit(last_, n - 1, solve_up(n - 1), explicit_row);
 
-  const auto back = [](double half, int exponent) { return scaled ? std::ldexp(half, 2 * exponent) : half; };
   if constexpr (three_level) {
-    sim.energy_ = back(0.5 * kinetic, sim.velocity_exponent_) +
-                  back(0.125 * (potential - (1 - 4 * sim.parameters_.beta) * potential_q), sim.displacement_exponent_);
+    sim.energy_ = 0.5 * kinetic + 0.125 * (potential - (1 - 4 * sim.parameters_.beta) * potential_q);
     sim.u_.swap(sim.w_);      // W' = Uⁿ
     sim.u_.swap(sim.u_new_);  // U = Uⁿ⁺¹
   } else {
-    sim.energy_ = back(0.5 * kinetic, sim.velocity_exponent_) + back(0.5 * potential, sim.displacement_exponent_);
+    sim.energy_ = 0.5 * kinetic + 0.5 * potential;
     sim.u_.swap(sim.u_new_);
   }
   if constexpr (has_load) sim.f_now_.swap(sim.f_next_);

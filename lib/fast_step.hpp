@@ -40,7 +40,7 @@ class FastStep {
   };
   std::vector<Row> head_;    // rows 0 … head−1, explicitly
   Row interior_{}, last_{};  // the common row of head … N−2, and row N−1
-  template <bool three_level, bool has_load, bool scaled>
+  template <bool three_level, bool has_load>
   bool fused_step(BarSimulation& simulation) const;
 };
 

@@ -196,7 +196,6 @@ class BarSimulation {
   double contact_load(double t) const;
   double contact_load_rate(double t) const;
   double massless_node_velocity(double t) const;
-  void choose_energy_scale();
   void reference_step(bool has_load);
   void switch_step(bool has_load);  // CN-switch's θ-step, replacing a Crank–Nicolson step
 
@@ -212,11 +211,6 @@ class BarSimulation {
   StepMatrices step_;
   ContactSolver solver_;
   std::unique_ptr<const FastStep> fast_;
-  // The energy's quadratic forms on values scaled by σ_u = 2^−e_u (displacements) and σ_v = 2^−e_v
-  // (velocities) when the data are far from 1 (schemes.cpp: Scale of the energy); scaled_ = false
-  // otherwise, and the forms take the values as they are.
-  bool scaled_ = false;
-  int displacement_exponent_ = 0, velocity_exponent_ = 0;
   // CN-switch: the θ-step's matrices and scalars (theta_step_matrices) and its factorisation.
   struct SwitchStep {
     StepMatrices matrices;
