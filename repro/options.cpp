@@ -444,13 +444,13 @@ TEST_CASE("a paragraph is folded at word boundaries within the width") {
 }
 
 // What the parser keeps of an option beside CLI11's record: the variable, the check, the choices,
-// whether it is an output.
+// whether its value is the path of a file.
 struct Parser::Option {
   std::string long_name;
   std::variant<double*, long*, std::string*, bool*> target;
   Check check;
   std::vector<std::string> allowed;
-  bool output = false;
+  bool path = false;
   CLI::Option* cli = nullptr;
 };
 
@@ -499,8 +499,8 @@ void Parser::add(std::string long_name, std::string short_name, std::string meta
       options_.back().cli->disable_flag_override();
       return;
     }
-    options_.push_back(
-        {long_name, target, std::move(check), std::move(allowed), output, app_->add_option(names)->description(help)});
+    options_.push_back({long_name, target, std::move(check), std::move(allowed), output || metavar == "FILE",
+                        app_->add_option(names)->description(help)});
   } catch (const CLI::ConstructionError& error) {
     throw std::logic_error("Parser: " + long_name + ": " + error.what());
   }
@@ -619,11 +619,11 @@ Outcome Parser::parse(int argc, const char* const* argv, std::ostream& out) {
 
 void Parser::print_help(std::ostream& out) const { out << app_->help(); }
 
-// The effective values, one `key = value` line each, in registration order; the outputs are left
-// out.
+// The effective values, one `key = value` line each, in registration order; the paths of files
+// (placeholder FILE, read or written) are left out.
 void Parser::echo(std::ostream& out, std::string_view prefix) const {
   for (const Option& option : options_) {
-    if (option.output) continue;
+    if (option.path) continue;
     out << prefix << echo_key(option.long_name) << " = ";
     std::visit(
         [&](const auto* variable) {

@@ -144,8 +144,7 @@ class Parser {
                   std::string* target);
   void add_choice(std::string long_name, std::string short_name, std::string metavar, std::string help,
                   std::vector<std::string> allowed, std::string* target);
-  // A file the program writes (placeholder FILE). Its path is not echoed: a data file does not
-  // name itself, so that the same run gives the same bytes wherever it writes.
+  // A file the program writes: a string option with the placeholder FILE.
   void add_output(std::string long_name, std::string short_name, std::string help, std::string* target);
 
   // An option without a value: giving it sets the variable to true.
@@ -168,7 +167,8 @@ class Parser {
 
   void print_help(std::ostream& out) const;
 
-  // One line per option but the outputs, in registration order, with its effective value:
+  // One line per option, in registration order, with its effective value, except the paths of
+  // files (placeholder FILE), so that the same run gives the same bytes wherever its files are:
   // `# elements = 400`. The key is the long name without its dashes and with '-' turned into
   // '_'; the value is a JSON literal (numbers as by format_real, strings quoted, flags
   // true/false), so that the header lines of a data file are deterministic and easy to read back.
