@@ -21,16 +21,12 @@
 // row holds after all, it is reported as FAILED so that somebody updates the table, and an entry that
 // no check produces is reported as well.
 #include "claims.hpp"
-#include "report_values.hpp"
-
-#include "convergence.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <array>
+#include <cctype>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <functional>
 #include <limits>
 #include <ostream>
@@ -39,16 +35,14 @@
 
 #include <Eigen/SparseLU>
 #include <doctest/doctest.h>
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_fit.h>
 
 #include "configurations.hpp"
-#include "options.hpp"
-#include "report_values.hpp"
-#include "table.hpp"
+#include "convergence.hpp"
 #include "exact_solution.hpp"
 #include "period_law.hpp"
 #include "regions.hpp"
+#include "report_values.hpp"
+#include "table.hpp"
 
 namespace mrm::claims {
 
@@ -206,21 +200,6 @@ std::vector<MassRedistribution> paper_masses() { return {mod1(), mod2(), mod3()}
 
 namespace {
 
-// Numbers in the table: three significant digits (the table is read by people; the data files keep
-// round-trip precision), deterministic.
-std::string sig(double x, int digits = 3) {
-  if (!std::isfinite(x)) return cli::format_real(x);
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
-  return buffer;
-}
-std::string fixed(double x, int decimals) {
-  if (!std::isfinite(x)) return cli::format_real(x);
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, x);
-  return buffer;
-}
-
 // The short names of the eight error measures of mathematics.md §5, in ErrorAccumulator::values order.
 const char* const measure_names[8] = {"u(0,·) L²(0,T)", "λ L²(0,T)", "u L∞(L²)", "u L∞(H¹)",
                                       "u_t L∞(L²)",     "u L²(L²)",  "u L²(H¹)", "u_t L²(L²)"};
@@ -328,20 +307,20 @@ StabilityRun stability_run(const SchemeChoice& scheme, const MassRedistribution&
 bool is_dissipative(const SchemeChoice& scheme) { return scheme.parameters.scheme == Scheme::backward_euler; }
 
 std::string stability_criterion(const StabilitySettings& st) {
-  return "every value finite, and E_hⁿ and ½UⁿᵀSUⁿ ≤ " + sig(st.bound_conserving) +
+  return "every value finite, and E_hⁿ and ½UⁿᵀSUⁿ ≤ " + significant(st.bound_conserving) +
          " E_h(0) (CN, PS: energy conserved up to O(h) jumps at status changes) or ≤ (1 + " +
-         sig(st.bound_dissipative - 1) +
+         significant(st.bound_dissipative - 1) +
          ") E_h(0) (BE: dissipative) at every step, "
          "N = " +
-         std::to_string(st.elements) + ", Δt = " + sig(st.courant) + "h, T = " + sig(st.final_time);
+         std::to_string(st.elements) + ", Δt = " + significant(st.courant) + "h, T = " + significant(st.final_time);
 }
 
 std::string describe(const StabilityRun& r) {
-  if (!r.finite) return "non-finite value at t = " + sig(r.first_violation_time, 4);
-  auto ratio = [](double x) { return x < 10 ? fixed(x, 6) : sig(x, 3); };
+  if (!r.finite) return "non-finite value at t = " + significant(r.first_violation_time, 4);
+  auto ratio = [](double x) { return x < 10 ? decimals(x, 6) : significant(x, 3); };
   std::string s = "E_hⁿ/E_h(0) in [" + ratio(r.e_min / r.e0) + ", " + ratio(r.e_max / r.e0) +
                   "], max ½UⁿᵀSUⁿ/E_h(0) = " + ratio(r.strain_max / r.e0);
-  if (!r.bounded) return s + ", bound first exceeded at t = " + sig(r.first_violation_time, 4);
+  if (!r.bounded) return s + ", bound first exceeded at t = " + significant(r.first_violation_time, 4);
   return s;
 }
 
@@ -366,7 +345,7 @@ std::vector<ClaimResult> check_stability(const std::vector<SchemeChoice>& scheme
     }
     rows.push_back(judge("1/" + scheme.label,
                          "Stability: " + scheme.label + " with " + join(names, ", ") + " does not blow up over " +
-                             sig(settings.final_time / 3) + " periods",
+                             significant(settings.final_time / 3) + " periods",
                          join(measured, "; "), stability_criterion(settings), holds, expectations, used));
   }
   return rows;
@@ -381,8 +360,9 @@ ClaimResult check_consistent_mass_blows_up(const SchemeChoice& scheme, const Sta
                "Contrast (the method's motivation, mathematics.md §3): " + scheme.label +
                    " with the consistent mass and exact contact is unstable",
                "consistent: " + describe(r),
-               "the same run (N = " + std::to_string(settings.elements) + ", Δt = " + sig(settings.courant) +
-                   "h, T = " + sig(settings.final_time) + ") exceeds the same bound or produces a non-finite value",
+               "the same run (N = " + std::to_string(settings.elements) + ", Δt = " + significant(settings.courant) +
+                   "h, T = " + significant(settings.final_time) +
+                   ") exceeds the same bound or produces a non-finite value",
                !(r.finite && r.bounded), expectations, used);
 }
 
@@ -427,7 +407,7 @@ MassDeviation mass_deviation(const MassRedistribution& mass, const std::vector<U
         4.0 * static_cast<double>(mesh.elements + 1) * std::numeric_limits<double>::epsilon() * mesh.length;
     if (deviation / tolerance >= d.worst_ratio) {
       d.worst_ratio = deviation / tolerance;
-      d.worst_mesh = "L = " + sig(mesh.length) + ", N = " + std::to_string(mesh.elements);
+      d.worst_mesh = "L = " + significant(mesh.length) + ", N = " + std::to_string(mesh.elements);
     }
     d.worst_relative = std::max(d.worst_relative, deviation / mesh.length);
   }
@@ -436,7 +416,8 @@ MassDeviation mass_deviation(const MassRedistribution& mass, const std::vector<U
 
 std::string list_meshes(const std::vector<UniformMesh>& meshes) {
   std::vector<std::string> s;
-  for (const UniformMesh& m : meshes) s.push_back("(" + sig(m.length) + ", " + std::to_string(m.elements) + ")");
+  for (const UniformMesh& m : meshes)
+    s.push_back("(" + significant(m.length) + ", " + std::to_string(m.elements) + ")");
   return join(s, " ");
 }
 
@@ -455,7 +436,7 @@ std::vector<ClaimResult> check_mass(const std::vector<MassRedistribution>& prese
       rows.push_back(judge(
           "2/" + mass.name,
           "Mass: " + mass.name + (preserves ? " preserves the total mass L" : " loses exactly 2h/3 of the total mass"),
-          "max |deviation|/L = " + sig(d.worst_relative) + ", at most " + fixed(d.worst_ratio, 3) +
+          "max |deviation|/L = " + significant(d.worst_relative) + ", at most " + decimals(d.worst_ratio, 3) +
               " × the tolerance (worst: " + d.worst_mesh + ")",
           (preserves ? "|1ᵀM 1 − L| " : "|1ᵀM 1 − (L − 2h/3)| ") + tolerance, d.worst_ratio <= 1.0, expectations,
           used));
@@ -510,7 +491,7 @@ std::string ordering_claim_text(const std::string& scheme, const std::vector<std
 
 std::string list_reals(const std::vector<double>& values) {
   std::vector<std::string> s;
-  for (double v : values) s.push_back(sig(v));
+  for (double v : values) s.push_back(significant(v));
   return join(s, ", ");
 }
 
@@ -538,15 +519,15 @@ std::vector<ClaimResult> check_ordering(const repro::Sweep& sweep, const std::ve
             counts.push_back(std::to_string(count));
             if (k == longest) holds = holds && count == static_cast<int>(measures.size());
           }
-        per_horizon.push_back(sig(g.horizons[k]) + " period(s): " + join(counts, " "));
+        per_horizon.push_back(significant(g.horizons[k]) + " period(s): " + join(counts, " "));
       }
       rows.push_back(
-          judge("3/" + scheme + "/dt=" + sig(c) + "h",
-                "Ordering (Figure 1) at Δt = " + sig(c) + "h: " + ordering_claim_text(scheme, ordered),
+          judge("3/" + scheme + "/dt=" + significant(c) + "h",
+                "Ordering (Figure 1) at Δt = " + significant(c) + "h: " + ordering_claim_text(scheme, ordered),
                 "measures ranked (of " + std::to_string(measures.size()) + ") for N = " + list_elements(g.elements) +
                     ", per horizon: " + join(per_horizon, "; "),
                 "strictly in each of " + join(measure_list, ", ") + " on every mesh N ∈ {" + list_elements(g.elements) +
-                    "} over " + sig(g.horizons.back()) +
+                    "} over " + significant(g.horizons.back()) +
                     " periods of 3L, the horizon where the period law's drift has had the longest to act (the counts "
                     "at shorter horizons show from when it holds)",
                 holds, expectations, used));
@@ -579,14 +560,14 @@ SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& sch
       from = k;
     }
     if (from < g.horizons.size()) {
-      holds.push_back("Δt/h = " + sig(c) + " from " + sig(g.horizons[from]) + " period(s) on, every N");
+      holds.push_back("Δt/h = " + significant(c) + " from " + significant(g.horizons[from]) + " period(s) on, every N");
     } else {
       std::vector<std::string> ns;
       for (Index n : g.elements)
         if (cell_count(c, n, g.horizons.size() - 1) == all) ns.push_back(std::to_string(n));
       if (!ns.empty())
-        holds.push_back("Δt/h = " + sig(c) + " at " + sig(g.horizons.back()) + " periods for N = " + join(ns, ", ") +
-                        " only");
+        holds.push_back("Δt/h = " + significant(c) + " at " + significant(g.horizons.back()) +
+                        " periods for N = " + join(ns, ", ") + " only");
     }
   }
   for (std::size_t k = 0; k < g.horizons.size(); ++k) {
@@ -598,12 +579,13 @@ SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& sch
       }
     ranked_anywhere += ranked;
     cells_total += total;
-    per_horizon.push_back(std::to_string(ranked) + "/" + std::to_string(total) + " at " + sig(g.horizons[k]) + "p");
+    per_horizon.push_back(std::to_string(ranked) + "/" + std::to_string(total) + " at " + significant(g.horizons[k]) +
+                          "p");
     if (ranked < total) {
       int fewest = all;
       for (double c : g.courants)
         for (Index n : g.elements) fewest = std::min(fewest, cell_count(c, n, k));
-      fails.push_back("at " + sig(g.horizons[k]) + " period(s) " + std::to_string(total - ranked) + " of " +
+      fails.push_back("at " + significant(g.horizons[k]) + " period(s) " + std::to_string(total - ranked) + " of " +
                       std::to_string(total) + " cells are not ranked in every measure (down to " +
                       std::to_string(fewest) + " of " + std::to_string(all) + ")");
     }
@@ -680,20 +662,21 @@ std::vector<ClaimResult> check_phase_drift(const repro::Sweep& sweep, const Phas
         worst_difference =
             std::max(worst_difference, std::abs((d - d3) - (law_drift(mass, n) - law_drift("mod3", n))) / h);
       }
-    per_mass.push_back(mass + " " + fixed(lo, 2) + "h to " + fixed(hi, 2) + "h (law " +
-                       fixed(law_drift(mass, g.elements.back()) * static_cast<double>(g.elements.back()), 2) + "h)");
+    per_mass.push_back(mass + " " + decimals(lo, 2) + "h to " + decimals(hi, 2) + "h (law " +
+                       decimals(law_drift(mass, g.elements.back()) * static_cast<double>(g.elements.back()), 2) + "h)");
   }
   holds = worst <= st.tolerance && worst_difference <= st.difference_tolerance;
-  return {judge(
-      "3/mechanism/" + st.scheme,
-      "Mechanism of claim 3 (period law, mathematics.md §8): with " + st.scheme +
-          ", the impact times drift per period as 2ℓ_f + ℓ_c − 3L predicts (−4h/3, −h/3, 0)",
-      "drift per period over every Δt/h and N: " + join(per_mass, "; ") + "; largest deviation from the law " +
-          fixed(worst, 3) + "h, of the differences to mod3 " + fixed(worst_difference, 3) + "h",
-      "in every cell Δt/h ∈ {" + list_reals(g.courants) + "}, N ∈ {" + list_elements(g.elements) + "} over " +
-          sig(g.horizons.back()) + " periods: |drift − law| ≤ " + sig(st.tolerance) +
-          "h for each mass, and |(drift − drift_mod3) − (law − law_mod3)| ≤ " + sig(st.difference_tolerance) + "h",
-      holds, expectations, used)};
+  return {judge("3/mechanism/" + st.scheme,
+                "Mechanism of claim 3 (period law, mathematics.md §8): with " + st.scheme +
+                    ", the impact times drift per period as 2ℓ_f + ℓ_c − 3L predicts (−4h/3, −h/3, 0)",
+                "drift per period over every Δt/h and N: " + join(per_mass, "; ") +
+                    "; largest deviation from the law " + decimals(worst, 3) + "h, of the differences to mod3 " +
+                    decimals(worst_difference, 3) + "h",
+                "in every cell Δt/h ∈ {" + list_reals(g.courants) + "}, N ∈ {" + list_elements(g.elements) + "} over " +
+                    significant(g.horizons.back()) + " periods: |drift − law| ≤ " + significant(st.tolerance) +
+                    "h for each mass, and |(drift − drift_mod3) − (law − law_mod3)| ≤ " +
+                    significant(st.difference_tolerance) + "h",
+                holds, expectations, used)};
 }
 
 SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSettings& st) {
@@ -703,8 +686,8 @@ SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSet
   const double c = std::find(g.courants.begin(), g.courants.end(), 0.5) != g.courants.end() ? 0.5 : g.courants[0];
   const double h = 1.0 / static_cast<double>(n);
   for (const std::string& mass : g.masses)
-    at_100.push_back(mass_text(mass) + " " + fixed(*sweep.find(st.scheme, mass, c, n).drift_per_period / h, 3) +
-                     "h (law " + fixed(law_drift(mass, n) / h, 3) + "h)");
+    at_100.push_back(mass_text(mass) + " " + decimals(*sweep.find(st.scheme, mass, c, n).drift_per_period / h, 3) +
+                     "h (law " + decimals(law_drift(mass, n) / h, 3) + "h)");
   double worst = 0;
   for (const std::string& mass : g.masses)
     for (double cc : g.courants)
@@ -715,9 +698,9 @@ SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSet
   line.key = "mechanism";
   line.claim = "3 Mechanism: impact times drift −4h/3, −h/3, 0 per period (" + scheme_abbreviation(st.scheme) + ")";
   line.verdict = worst <= st.tolerance ? "reproduced" : "partly reproduced";
-  line.holds = "every Δt/h, N of the sweep within " + fixed(worst, 2) + "h of the period law";
-  line.fails = worst <= st.tolerance ? "nowhere in the grid" : "cells beyond " + sig(st.tolerance) + "h";
-  line.numbers = "N = " + std::to_string(n) + ", Δt = " + sig(c) + "h, " + sig(g.horizons.back()) +
+  line.holds = "every Δt/h, N of the sweep within " + decimals(worst, 2) + "h of the period law";
+  line.fails = worst <= st.tolerance ? "nowhere in the grid" : "cells beyond " + significant(st.tolerance) + "h";
+  line.numbers = "N = " + std::to_string(n) + ", Δt = " + significant(c) + "h, " + significant(g.horizons.back()) +
                  " periods: " + join(at_100, ", ");
   return line;
 }
@@ -801,14 +784,14 @@ std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySetti
       const double h = 1.0 / static_cast<double>(n);
       measured.push_back("N = " + std::to_string(n) + ": " + std::to_string(with_variant) + " measures ranked (" +
                          std::to_string(reconstruction) + " with the reconstruction), drift " +
-                         fixed(*errors(variant.name, n).phase->drift_per_period / h, 3) + "h (law " +
-                         fixed(predict_period(UniformMesh(1.0, n), variant).period_error / h, 3) + "h)");
+                         decimals(*errors(variant.name, n).phase->drift_per_period / h, 3) + "h (law " +
+                         decimals(predict_period(UniformMesh(1.0, n), variant).period_error / h, 3) + "h)");
     }
     rows.push_back(judge("3/sensitivity/" + variant.name,
                          "Claim 3 does not depend on the reconstruction: " + variant.description + " in place of " +
                              (k == 1 ? "Mod 2" : "Mod 3"),
                          join(measured, "; "),
-                         "with " + st.scheme + ", Δt = " + sig(st.courant) + "h, " + sig(st.periods) +
+                         "with " + st.scheme + ", Δt = " + significant(st.courant) + "h, " + significant(st.periods) +
                              " periods: the same number of measures ranked Mod 3 < Mod 2 < Mod 1 as with the "
                              "reconstruction on every mesh N = " +
                              list_elements(st.elements),
@@ -860,30 +843,30 @@ std::vector<ClaimResult> check_convergence(const repro::Sweep& sweep, const Expe
             d_lo = std::min(d_lo, p), d_hi = std::max(d_hi, p);
           else
             e_lo = std::min(e_lo, p), e_hi = std::max(e_hi, p);
-          if (!cell.within[q]) outside.push_back(std::string(measure_names[q]) + " " + fixed(p, 2));
+          if (!cell.within[q]) outside.push_back(std::string(measure_names[q]) + " " + decimals(p, 2));
           holds = holds && cell.within[q];
           within += cell.within[q];
           ++total;
         }
-        std::string text = cell.mass + " Δt/h = " + sig(cell.courant) + ": ";
-        if (d_lo <= d_hi) text += "u " + fixed(d_lo, 2) + "–" + fixed(d_hi, 2) + ", ";
-        text += "energy-type " + fixed(e_lo, 2) + "–" + fixed(e_hi, 2);
+        std::string text = cell.mass + " Δt/h = " + significant(cell.courant) + ": ";
+        if (d_lo <= d_hi) text += "u " + decimals(d_lo, 2) + "–" + decimals(d_hi, 2) + ", ";
+        text += "energy-type " + decimals(e_lo, 2) + "–" + decimals(e_hi, 2);
         if (!outside.empty()) text += " (outside: " + join(outside, ", ") + ")";
         per_cell.push_back(text);
       }
       rows.push_back(judge(
-          "4/" + scheme + "/T=" + sig(g.horizons[k]) + "p",
-          "Convergence in h over " + sig(g.horizons[k]) + " period(s): " + scheme + " at the predicted orders" +
+          "4/" + scheme + "/T=" + significant(g.horizons[k]) + "p",
+          "Convergence in h over " + significant(g.horizons[k]) + " period(s): " + scheme + " at the predicted orders" +
               (scheme == "ps" ? " (velocity; the rest is cn's)" : ""),
           "least-squares orders, N = " + list_elements(g.elements) + ": " + join(per_cell, "; ") + "; " +
               std::to_string(within) + " of " + std::to_string(total) + " within",
-          "every order within " + fixed(predicted.tolerance, 3) + " of the prediction (displacement measures " +
-              fixed(predicted.displacement, 3) + ", energy-type and λ " + fixed(predicted.energy, 3) +
+          "every order within " + decimals(predicted.tolerance, 3) + " of the prediction (displacement measures " +
+              decimals(predicted.displacement, 3) + ", energy-type and λ " + decimals(predicted.energy, 3) +
               ", mathematics.md §9)" +
               (scheme == "be" ? std::string()
                               : ", or for a mass whose period is off by O(h) (Mod 1, Mod 2) up to the drift's orders "
                                 "1 and ½ (+ the same tolerance)") +
-              " in every (mass, Δt/h ∈ {" + list_reals(g.courants) + "}) cell, T = " + sig(g.horizons[k]) +
+              " in every (mass, Δt/h ∈ {" + list_reals(g.courants) + "}) cell, T = " + significant(g.horizons[k]) +
               " period(s)",
           holds, expectations, used));
     }
@@ -910,7 +893,7 @@ SummaryLine summarize_convergence(const repro::Sweep& sweep) {
       within += w, total += t;
       if (w < t)
         bad_horizons.push_back(std::to_string(t - w) + " of " + std::to_string(t) + " orders outside at " +
-                               sig(g.horizons[k]) + " period(s)");
+                               significant(g.horizons[k]) + " period(s)");
     }
     all_within += within, all_total += total;
     holds.push_back(scheme_abbreviation(scheme) + " " + std::to_string(within) + "/" + std::to_string(total));
@@ -920,9 +903,9 @@ SummaryLine summarize_convergence(const repro::Sweep& sweep) {
     for (const repro::OrderCell& cell : cells)
       if (cell.scheme == scheme && cell.mass == "mod3" && cell.courant == 0.5 && cell.horizon == 0)
         numbers.push_back(scheme_abbreviation(scheme) + " Mod 3, Δt = h/2, 1 period: u(0,·) " +
-                          fixed(cell.order[0], 2) + ", u L∞(L²) " + fixed(cell.order[2], 2) + ", λ " +
-                          fixed(cell.order[1], 2) + ", u L∞(H¹) " + fixed(cell.order[3], 2) + ", u_t L²(L²) " +
-                          fixed(cell.order[7], 2));
+                          decimals(cell.order[0], 2) + ", u L∞(L²) " + decimals(cell.order[2], 2) + ", λ " +
+                          decimals(cell.order[1], 2) + ", u L∞(H¹) " + decimals(cell.order[3], 2) + ", u_t L²(L²) " +
+                          decimals(cell.order[7], 2));
   }
   SummaryLine line;
   line.key = "convergence";
@@ -1017,26 +1000,26 @@ std::vector<ClaimResult> check_time_convergence(const SchemeChoice& scheme,
       for (std::size_t i = 0; i + 1 < y.size(); ++i) {
         const double p =
             y[i + 1] > 0 && y[i] > 0 ? std::log(y[i] / y[i + 1]) / std::log(dt[i] / dt[i + 1]) : std::nan("");
-        local.push_back(fixed(p, 2));
+        local.push_back(decimals(p, 2));
         finest = p;
       }
       const std::size_t n = y.size(), first = n >= 3 ? n - 3 : 0;
       const double tail = least_squares_order(std::vector<double>(dt.begin() + static_cast<long>(first), dt.end()),
                                               std::vector<double>(y.begin() + static_cast<long>(first), y.end()));
       holds = holds && std::abs(finest - st.predicted_order) <= st.tolerance;
-      measured.push_back(std::string(measure_names[q]) + ": finest " + fixed(finest, 2) + ", three finest " +
-                         fixed(tail, 2) + " (local " + join(local, ", ") + ")");
+      measured.push_back(std::string(measure_names[q]) + ": finest " + decimals(finest, 2) + ", three finest " +
+                         decimals(tail, 2) + " (local " + join(local, ", ") + ")");
     }
     std::vector<std::string> steps;
-    for (double c : st.courants) steps.push_back("h/" + sig(1 / c));
+    for (double c : st.courants) steps.push_back("h/" + significant(1 / c));
     rows.push_back(judge(
         "4t/" + scheme.label + "/" + mass.name,
         "Error estimate in time: " + scheme.label + " with " + mass.name + " converges at order 2 in Δt at fixed h",
         join(measured, "; "),
-        "against a reference with Δt = h/" + sig(1 / st.reference_courant) + " (same h = 1/" +
-            std::to_string(st.elements) + ") at the common instants up to T = " + sig(st.final_time) +
-            ", Δt = " + join(steps, ", ") + ": the order of the finest halving within " + sig(st.predicted_order) +
-            " ± " + sig(st.tolerance) + " in each of the 8 measures",
+        "against a reference with Δt = h/" + significant(1 / st.reference_courant) + " (same h = 1/" +
+            std::to_string(st.elements) + ") at the common instants up to T = " + significant(st.final_time) +
+            ", Δt = " + join(steps, ", ") + ": the order of the finest halving within " +
+            significant(st.predicted_order) + " ± " + significant(st.tolerance) + " in each of the 8 measures",
         holds, expectations, used));
   }
   return rows;
@@ -1087,7 +1070,7 @@ double energy_round_off(const UniformMesh& mesh, double dt, double factor) {
 }
 
 std::string round_off_text(const EnergySettings& settings) {
-  return sig(settings.round_off_factor) + " ε √N (L/Δt) E_h(0)";
+  return significant(settings.round_off_factor) + " ε √N (L/Δt) E_h(0)";
 }
 
 EnergyTrace energy_trace(const SchemeChoice& scheme, const MassRedistribution& mass, Index elements,
@@ -1140,25 +1123,26 @@ std::vector<ClaimResult> check_energy_conservation(const SchemeChoice& scheme,
       worst_share = std::max(worst_share, t.max_same_status / t.round_off);
       jumps.push_back(t.jump_sum);
       per_mesh.push_back("N = " + std::to_string(n) + ": " + std::to_string(t.changes) + " changes, " +
-                         sig(t.jump_sum));
+                         significant(t.jump_sum));
     }
     bool shrinking = std::isfinite(max_same);
     for (std::size_t i = 0; i + 1 < jumps.size(); ++i) shrinking = shrinking && jumps[i + 1] < jumps[i];
     const bool positive = std::all_of(jumps.begin(), jumps.end(), [](double v) { return v > 0 && std::isfinite(v); });
-    const std::string order = positive ? ", order in h " + fixed(least_squares_order(h, jumps), 2) : "";
+    const std::string order = positive ? ", order in h " + decimals(least_squares_order(h, jumps), 2) : "";
     const bool holds = worst_share <= 1.0 && shrinking;
-    rows.push_back(
-        judge("5/" + scheme.label + "/" + mass.name,
-              "Energy: " + scheme.label + " with " + mass.name +
-                  " conserves E_h up to jumps at status changes that shrink with h",
-              "max |ΔE|/E_h(0) over steps keeping the status: " + sig(max_same) + " (at most " + fixed(worst_share, 3) +
-                  " × the round-off allowance); Σ|ΔE|/E_h(0) at status changes: " + join(per_mesh, "; ") + order,
-              "|ΔE| ≤ " + round_off_text(settings) +
-                  " (round-off) at every step keeping the contact status, and Σ|ΔE| over the steps changing "
-                  "it decreases at every refinement N = " +
-                  list_elements(settings.elements) + " (Δt = " + sig(settings.courant) +
-                  "h, T = " + sig(settings.final_time) + ")",
-              holds, expectations, used));
+    rows.push_back(judge("5/" + scheme.label + "/" + mass.name,
+                         "Energy: " + scheme.label + " with " + mass.name +
+                             " conserves E_h up to jumps at status changes that shrink with h",
+                         "max |ΔE|/E_h(0) over steps keeping the status: " + significant(max_same) + " (at most " +
+                             decimals(worst_share, 3) +
+                             " × the round-off allowance); Σ|ΔE|/E_h(0) at status changes: " + join(per_mesh, "; ") +
+                             order,
+                         "|ΔE| ≤ " + round_off_text(settings) +
+                             " (round-off) at every step keeping the contact status, and Σ|ΔE| over the steps changing "
+                             "it decreases at every refinement N = " +
+                             list_elements(settings.elements) + " (Δt = " + significant(settings.courant) +
+                             "h, T = " + significant(settings.final_time) + ")",
+                         holds, expectations, used));
   }
   return rows;
 }
@@ -1176,15 +1160,15 @@ std::vector<ClaimResult> check_energy_dissipation(const SchemeChoice& scheme,
       const EnergyTrace t = energy_trace(scheme, mass, n, settings);
       increases += t.increases;
       max_increase = std::max(max_increase, t.max_increase);
-      per_mesh.push_back("N = " + std::to_string(n) + ": E_h(T)/E_h(0) = " + fixed(t.e_final / t.e0, 4));
+      per_mesh.push_back("N = " + std::to_string(n) + ": E_h(T)/E_h(0) = " + decimals(t.e_final / t.e0, 4));
     }
     rows.push_back(judge("5/" + scheme.label + "/" + mass.name,
                          "Energy: " + scheme.label + " with " + mass.name + " never increases the energy",
                          std::to_string(increases) + " steps with an increase; largest ΔE/E_h(0) = " +
-                             sig(max_increase) + "; " + join(per_mesh, "; "),
-                         "Eⁿ⁺¹ ≤ Eⁿ + " + round_off_text(settings) +
-                             " (round-off) at every step, N = " + list_elements(settings.elements) +
-                             " (Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time) + ")",
+                             significant(max_increase) + "; " + join(per_mesh, "; "),
+                         "Eⁿ⁺¹ ≤ Eⁿ + " + round_off_text(settings) + " (round-off) at every step, N = " +
+                             list_elements(settings.elements) + " (Δt = " + significant(settings.courant) +
+                             "h, T = " + significant(settings.final_time) + ")",
                          increases == 0, expectations, used));
   }
   return rows;
@@ -1372,8 +1356,8 @@ std::vector<ClaimResult> check_contact_step(const std::vector<ContactStepCase>& 
       holds = holds && cmp.compared > 0 && du <= settings.tolerance && dl <= settings.tolerance && cmp.complementarity;
       names.push_back(c.mass.name);
       measured.push_back(c.mass.name + ": " + std::to_string(cmp.compared) + " steps (" +
-                         std::to_string(cmp.status_changes) + " status changes), ΔU " + sig(du, 2) + ", Δλ " +
-                         sig(dl, 2) + (cmp.complementarity ? "" : ", complementarity VIOLATED"));
+                         std::to_string(cmp.status_changes) + " status changes), ΔU " + significant(du, 2) + ", Δλ " +
+                         significant(dl, 2) + (cmp.complementarity ? "" : ", complementarity VIOLATED"));
     }
     rows.push_back(judge("6/step/" + label,
                          "The closed-form contact step of " + label + " (" + join(names, ", ") +
@@ -1381,9 +1365,10 @@ std::vector<ClaimResult> check_contact_step(const std::vector<ContactStepCase>& 
                          join(measured, "; "),
                          "against Eigen's SparseLU on the full (U, λ) system rebuilt from (Uⁿ, Vⁿ or Uⁿ⁻¹, λⁿ) with "
                          "the active set fixed: max|ΔU|/max|U| and max|Δλ|/max|λ| ≤ " +
-                             sig(settings.tolerance) + ", complementarity exact; every status change and every " +
+                             significant(settings.tolerance) +
+                             ", complementarity exact; every status change and every " +
                              std::to_string(settings.every) + "th step, N = " + std::to_string(settings.elements) +
-                             ", Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time),
+                             ", Δt = " + significant(settings.courant) + "h, T = " + significant(settings.final_time),
                          holds, expectations, used));
   }
   return rows;
@@ -1428,13 +1413,13 @@ ClaimResult check_exact_solution(const ExactSolution& exact, const FineSolutionS
   std::vector<std::string> measured;
   for (std::size_t q = 0; q < 8; ++q) {
     holds = holds && values[q] <= settings.bound;
-    measured.push_back(std::string(measure_names[q]) + " " + sig(values[q]));
+    measured.push_back(std::string(measure_names[q]) + " " + significant(values[q]));
   }
   return judge("6/exact", "The closed-form solution agrees with a very fine numerical solution",
                "relative errors: " + join(measured, ", "),
-               "all 8 relative errors ≤ " + sig(settings.bound) +
+               "all 8 relative errors ≤ " + significant(settings.bound) +
                    " (≈ 3h^½) for cn, mod3, N = " + std::to_string(settings.elements) +
-                   ", Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time),
+                   ", Δt = " + significant(settings.courant) + "h, T = " + significant(settings.final_time),
                holds, expectations, used);
 }
 
@@ -1502,7 +1487,7 @@ std::vector<StabilityCell> stability_cells(const std::vector<Index>& elements, c
   return cells;
 }
 
-std::string magnitude(double x) { return x < 1000 ? sig(x, 3) : sig(x, 2); }
+std::string magnitude(double x) { return x < 1000 ? significant(x, 3) : significant(x, 2); }
 
 }  // namespace
 
@@ -1596,11 +1581,6 @@ TEST_CASE("a row id reads in the report's notation") {
   CHECK(readable_row("2/mod2") == "Mod 2");
   CHECK(readable_row("6/step/cn") == "contact step, CN");
   CHECK(readable_row("7") == "7");  // an id without segments keeps its number
-  // Every id of the current table has a LaTeX form.
-  for (const auto& [id, reason] : paper_expectations()) {
-    CAPTURE(id);
-    CHECK_NOTHROW(latex_escape(readable_id(id)));
-  }
 }
 
 }  // namespace
@@ -1617,7 +1597,8 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     body();
     if (progress)
       *progress << "check_claims: " << name << ": "
-                << fixed(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2) << " s\n";
+                << decimals(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2)
+                << " s\n";
   };
   auto append = [&](std::vector<ClaimResult> more) { rows.insert(rows.end(), more.begin(), more.end()); };
   const auto rows_with = [&](const std::string& prefix) {
@@ -1656,7 +1637,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
       double worst = 0;
       for (const StabilityCell& cell : large)
         if (cell.courant == c) worst = std::max(worst, cell.largest);
-      per_courant.push_back(sig(c) + ": " + magnitude(worst));
+      per_courant.push_back(significant(c) + ": " + magnitude(worst));
       // The ratios are increasing: the bound holds up to the first one where some mesh exceeds it.
       if (large_holds && worst <= blow_up) bounded_up_to = c;
       large_holds = large_holds && worst <= blow_up;
@@ -1664,7 +1645,8 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     rows.push_back(
         judge("1/cn/large-steps", "Stability over a region: cn with mod3 for Δt/h from ¼ to 40",
               "largest E_hⁿ/E_h(0) over N = 16, 32, 64, 128 and 100 periods, per Δt/h: " + join(per_courant, ", "),
-              "E_hⁿ ≤ " + sig(blow_up) + " E_h(0) at every step, every N and Δt/h", large_holds, expectations, &used));
+              "E_hⁿ ≤ " + significant(blow_up) + " E_h(0) at every step, every N and Δt/h", large_holds, expectations,
+              &used));
     bool long_holds = true;
     std::vector<std::string> per_mass;
     for (const StabilityCell& cell : long_runs) {
@@ -1674,16 +1656,17 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     }
     rows.push_back(judge("1/cn/1000-periods", "Stability over a long run: cn at Δt = h over 1000 periods",
                          "largest E_hⁿ/E_h(0): " + join(per_mass, ", "),
-                         "E_hⁿ ≤ " + sig(blow_up) + " E_h(0) at every step", long_holds, expectations, &used));
+                         "E_hⁿ ≤ " + significant(blow_up) + " E_h(0) at every step", long_holds, expectations, &used));
     stability_line.key = "stability";
     stability_line.claim = "1 Stability (no blow-up)";
     stability_line.verdict = verdict_of(rows_with("1/"));
-    stability_line.holds = "CN, BE, PS (algebraic row) with Mod 1–3, N = " + std::to_string(st.elements) +
-                           ", Δt = " + sig(st.courant) + "h, 100 periods (E ≤ " + sig(st.bound_conserving) +
-                           " E(0)); CN, Mod 3, N = 16–128, 100 periods: E ≤ 2 E(0) for Δt/h ≤ " + sig(bounded_up_to);
+    stability_line.holds =
+        "CN, BE, PS (algebraic row) with Mod 1–3, N = " + std::to_string(st.elements) +
+        ", Δt = " + significant(st.courant) + "h, 100 periods (E ≤ " + significant(st.bound_conserving) +
+        " E(0)); CN, Mod 3, N = 16–128, 100 periods: E ≤ 2 E(0) for Δt/h ≤ " + significant(bounded_up_to);
     std::vector<std::string> beyond, long_failures;
     for (double c : courants)
-      if (c > bounded_up_to) beyond.push_back(sig(c));
+      if (c > bounded_up_to) beyond.push_back(significant(c));
     for (const StabilityCell& cell : long_runs)
       if (cell.largest > blow_up)
         long_failures.push_back(mass_text(cell.mass) + ", N = " + std::to_string(cell.elements) + " (" +
@@ -1844,50 +1827,11 @@ void write_markdown_table(std::ostream& out, const std::vector<ClaimResult>& row
   table.write_markdown(out);
 }
 
+// The LaTeX form of a claim text: LaTeX's special characters escaped, the energy E_h and the velocity
+// u_t as math. Every other character stands as it is: the report's preamble typesets the Unicode
+// symbols of the texts (\newunicodechar in paper/report.tex), and a symbol it does not know stops the
+// report's build ("Unicode character … not set up for use with LaTeX").
 std::string latex_escape(const std::string& text) {
-  static const std::pair<const char*, const char*> symbols[] = {
-      {"λ", "\\ensuremath{\\lambda}"},
-      {"Δ", "\\ensuremath{\\Delta}"},
-      {"≤", "\\ensuremath{\\le}"},
-      {"≥", "\\ensuremath{\\ge}"},
-      {"×", "\\ensuremath{\\times}"},
-      {"∞", "\\ensuremath{\\infty}"},
-      {"²", "\\ensuremath{^2}"},
-      {"¹", "\\ensuremath{^1}"},
-      {"ⁿ", "\\ensuremath{^n}"},
-      {"⁺", "\\ensuremath{^+}"},
-      {"⁻", "\\ensuremath{^-}"},
-      {"ᵀ", "\\ensuremath{^T}"},
-      {"½", "\\ensuremath{\\frac12}"},
-      {"¼", "\\ensuremath{\\frac14}"},
-      {"·", "\\ensuremath{\\cdot}"},
-      {"−", "\\ensuremath{-}"},
-      {"→", "\\ensuremath{\\to}"},
-      {"ε", "\\ensuremath{\\varepsilon}"},
-      {"θ", "\\ensuremath{\\theta}"},
-      {"β", "\\ensuremath{\\beta}"},
-      {"₀", "\\ensuremath{_0}"},
-      {"≈", "\\ensuremath{\\approx}"},
-      {"–", "--"},
-      {"—", "---"},
-      {"…", "\\dots{}"},
-      {"§", "\\S{}"},
-      {"é", "\\'e"},
-      {"√", "\\ensuremath{\\surd}"},
-      {"Σ", "\\ensuremath{\\Sigma}"},
-      {"∝", "\\ensuremath{\\propto}"},
-      {"è", "\\`e"},
-      {"č", "\\v{c}"},
-      {"œ", "\\oe{}"},
-      {"¾", "\\ensuremath{\\frac34}"},
-      {"ℓ", "\\ensuremath{\\ell}"},
-      {"₁", "\\ensuremath{_1}"},
-      {"ą", "\\k{a}"},
-      {"∈", "\\ensuremath{\\in}"},
-      {"±", "\\ensuremath{\\pm}"},
-      {"ₜ", "\\ensuremath{_t}"},
-  };
-
   std::string out;
   for (std::size_t i = 0; i < text.size();) {
     // The discrete energy's symbol, a subscript, not an escaped underscore.
@@ -1903,108 +1847,45 @@ std::string latex_escape(const std::string& text) {
       i += 3;
       continue;
     }
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    if (c < 0x80) {
-      switch (c) {
-        case '\\':
-          out += "\\textbackslash{}";
-          break;
-        case '{':
-        case '}':
-        case '$':
-        case '&':
-        case '#':
-        case '_':
-        case '%':
-          out += '\\';
-          out += static_cast<char>(c);
-          break;
-        case '^':
-          out += "\\textasciicircum{}";
-          break;
-        case '~':
-          out += "\\textasciitilde{}";
-          break;
-        case '<':
-          out += "\\ensuremath{<}";
-          break;
-        case '>':
-          out += "\\ensuremath{>}";
-          break;
-        case '|':
-          out += "\\ensuremath{|}";
-          break;
-        default:
-          out += static_cast<char>(c);
-      }
-      ++i;
-      continue;
-    }
-    bool found = false;
-    for (const auto& [utf8, latex] : symbols) {
-      const std::size_t n = std::char_traits<char>::length(utf8);
-      if (text.compare(i, n, utf8) == 0) {
-        out += latex;
-        i += n;
-        found = true;
+    switch (const char c = text[i++]) {
+      case '\\':
+        out += "\\textbackslash{}";
         break;
-      }
-    }
-    if (!found) {
-      std::size_t n = 1;
-      while (i + n < text.size() && (static_cast<unsigned char>(text[i + n]) & 0xC0) == 0x80) ++n;
-      throw std::invalid_argument("latex_escape: no LaTeX form for the character \"" + text.substr(i, n) + "\"");
+      case '{':
+      case '}':
+      case '$':
+      case '&':
+      case '#':
+      case '_':
+      case '%':
+        out += '\\';
+        out += c;
+        break;
+      case '^':
+        out += "\\textasciicircum{}";
+        break;
+      case '~':
+        out += "\\textasciitilde{}";
+        break;
+      case '<':
+      case '>':
+      case '|':
+        out += std::string("\\ensuremath{") + c + "}";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
 }
 
-TEST_CASE("every reason of the expectation table has a LaTeX form") {
-  for (const auto& [id, reason] : paper_expectations()) {
-    CAPTURE(id);
-    CHECK_NOTHROW(latex_escape(id + " " + reason));
-  }
-}
-
-TEST_CASE("every text of the region checks and of their summary lines has a LaTeX form") {
-  repro::SweepGrid grid;
-  grid.courants = {0.5};
-  grid.elements = {10, 20};
-  grid.horizons = {1, 2};
-  const repro::Sweep sweep = repro::run_sweep(grid, 2);
-  std::vector<ClaimResult> rows = check_ordering(sweep, grid.masses, {});
-  for (ClaimResult& r : check_phase_drift(sweep, PhaseDriftSettings(), {})) rows.push_back(r);
-  for (ClaimResult& r : check_convergence(sweep, {})) rows.push_back(r);
-  SensitivitySettings sensitivity;
-  sensitivity.elements = {10};
-  sensitivity.periods = 2;
-  for (ClaimResult& r : check_reconstruction_sensitivity(sensitivity, {})) rows.push_back(r);
-  TimeConvergenceSettings time;
-  time.elements = 8;
-  time.courants = {0.5, 0.25};
-  time.reference_courant = 1.0 / 16;
-  for (ClaimResult& r : check_time_convergence(scheme_choice("cn"), {mod3()}, time, {})) rows.push_back(r);
-  for (const ClaimResult& r : rows)
-    for (const std::string* text : {&r.claim, &r.measured, &r.criterion}) {
-      CAPTURE(*text);
-      CHECK_NOTHROW(latex_escape(*text));
-    }
-  std::vector<SummaryLine> lines = {summarize_convergence(sweep), summarize_phase_drift(sweep, PhaseDriftSettings())};
-  for (const std::string& scheme : grid.schemes) lines.push_back(summarize_ordering(sweep, scheme, grid.masses));
-  std::ostringstream tex, table;
-  CHECK_NOTHROW(write_latex_summary(tex, lines));
-  CHECK_NOTHROW(write_latex_summary_table(table, lines));
-  CHECK(tex.str().find("\\mrmdef{claim:convergence:verdict}") != std::string::npos);
-}
-
-TEST_CASE("LaTeX escaping handles the special characters and the table's symbols") {
+TEST_CASE("LaTeX escaping handles the special characters and leaves the symbols to the preamble") {
   CHECK(latex_escape("a_b & 50% #1 {x} $") == "a\\_b \\& 50\\% \\#1 \\{x\\} \\$");
-  CHECK(latex_escape("λ ≤ 0.5h^½") ==
-        "\\ensuremath{\\lambda} \\ensuremath{\\le} 0.5h\\textasciicircum{}\\ensuremath{\\frac12}");
+  CHECK(latex_escape("λ ≤ 0.5h^½ |x| < 1") ==
+        "λ ≤ 0.5h\\textasciicircum{}½ \\ensuremath{|}x\\ensuremath{|} \\ensuremath{<} 1");
   CHECK(latex_escape("a\\b ~") == "a\\textbackslash{}b \\textasciitilde{}");
-  CHECK_THROWS_AS(latex_escape("日本"), std::invalid_argument);
-  CHECK(latex_escape("E_hⁿ/E_h(0)") == "\\ensuremath{E_h}\\ensuremath{^n}/\\ensuremath{E_h}(0)");
-  CHECK(latex_escape("u_t L²") == "\\ensuremath{u_t} L\\ensuremath{^2}");
+  CHECK(latex_escape("E_hⁿ/E_h(0)") == "\\ensuremath{E_h}ⁿ/\\ensuremath{E_h}(0)");
+  CHECK(latex_escape("u_t L²") == "\\ensuremath{u_t} L²");
   CHECK(latex_escape("err_u_t") == "err\\_u\\_t");  // inside a name: escaped underscores
 }
 

@@ -248,8 +248,8 @@ void write_markdown_table(std::ostream& out, const std::vector<ClaimResult>& row
 /// The table as a LaTeX longtable (booktabs rules, p{} columns for an A4 page); needs the packages
 /// longtable, booktabs and array.
 void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows);
-/// Escapes LaTeX special characters and turns the few Unicode symbols used in the table into math;
-/// throws std::invalid_argument on any other non-ASCII character.
+/// Escapes LaTeX's special characters and writes E_h and u_t as math; the Unicode symbols stay as they
+/// are, for the report's preamble to typeset (\newunicodechar in paper/report.tex).
 std::string latex_escape(const std::string& text);
 
 }  // namespace mrm::claims
