@@ -176,21 +176,10 @@ TEST_CASE("a row's verdict follows its criterion and the expectation table, both
 // ---------------------------------------------------------------------------------------------------
 // Shared pieces: the schemes and masses of the paper, numbers in the table, the benchmark runs.
 
+// "ps-literal" is Paoli–Schatzman with the literal contact row; every other label is the registry's id.
 SchemeChoice scheme_choice(const std::string& label) {
-  SchemeParameters p;
-  if (label == "cn")
-    p.scheme = Scheme::crank_nicolson;
-  else if (label == "be")
-    p.scheme = Scheme::backward_euler;
-  else if (label == "ps" || label == "ps-literal") {
-    p.scheme = Scheme::paoli_schatzman;
-    p.beta = 0.25;
-    p.restitution = 0.0;
-    p.contact_row = label == "ps" ? ContactRow::algebraic : ContactRow::literal;
-  } else {
-    throw std::invalid_argument("unknown scheme \"" + label + "\" (allowed: cn, be, ps, ps-literal)");
-  }
-  return {label, p};
+  const bool literal = label == "ps-literal";
+  return {label, repro::scheme_parameters(literal ? "ps" : label, literal ? "literal" : "algebraic", "mod3")};
 }
 
 std::vector<SchemeChoice> paper_schemes() {
@@ -228,18 +217,6 @@ std::string list_elements(const std::vector<Index>& elements) {
 }
 
 }  // namespace
-
-// ---------------------------------------------------------------------------------------------------
-// The observed order: the slope of the least-squares line through (log x_k, log y_k) (mathematics.md §5),
-// lib/convergence's fit (GSL, checked there by its own doctest). Data that admit no order (steps
-// that were not refined, an error that vanished) give NaN, which fails every criterion on the order.
-static double least_squares_order(const std::vector<double>& x, const std::vector<double>& y) {
-  try {
-    return fit_order(x, y).order;
-  } catch (const std::invalid_argument&) {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-}
 
 // ---------------------------------------------------------------------------------------------------
 // Claim 1: stability (paper §2: the redistributed semi-discrete problem is a Lipschitz ODE, well
@@ -1004,8 +981,8 @@ std::vector<ClaimResult> check_time_convergence(const SchemeChoice& scheme,
         finest = p;
       }
       const std::size_t n = y.size(), first = n >= 3 ? n - 3 : 0;
-      const double tail = least_squares_order(std::vector<double>(dt.begin() + static_cast<long>(first), dt.end()),
-                                              std::vector<double>(y.begin() + static_cast<long>(first), y.end()));
+      const double tail = repro::observed_order(std::vector<double>(dt.begin() + static_cast<long>(first), dt.end()),
+                                                std::vector<double>(y.begin() + static_cast<long>(first), y.end()));
       holds = holds && std::abs(finest - st.predicted_order) <= st.tolerance;
       measured.push_back(std::string(measure_names[q]) + ": finest " + decimals(finest, 2) + ", three finest " +
                          decimals(tail, 2) + " (local " + join(local, ", ") + ")");
@@ -1128,7 +1105,7 @@ std::vector<ClaimResult> check_energy_conservation(const SchemeChoice& scheme,
     bool shrinking = std::isfinite(max_same);
     for (std::size_t i = 0; i + 1 < jumps.size(); ++i) shrinking = shrinking && jumps[i + 1] < jumps[i];
     const bool positive = std::all_of(jumps.begin(), jumps.end(), [](double v) { return v > 0 && std::isfinite(v); });
-    const std::string order = positive ? ", order in h " + decimals(least_squares_order(h, jumps), 2) : "";
+    const std::string order = positive ? ", order in h " + decimals(repro::observed_order(h, jumps), 2) : "";
     const bool holds = worst_share <= 1.0 && shrinking;
     rows.push_back(judge("5/" + scheme.label + "/" + mass.name,
                          "Energy: " + scheme.label + " with " + mass.name +

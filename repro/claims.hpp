@@ -57,7 +57,7 @@ struct SchemeChoice {
   std::string label;
   SchemeParameters parameters;
 };
-SchemeChoice scheme_choice(const std::string& label);  ///< throws std::invalid_argument for another label
+SchemeChoice scheme_choice(const std::string& label);  ///< throws std::invalid_argument for an unknown label
 std::vector<SchemeChoice> paper_schemes();             ///< cn, be, ps, ps-literal
 std::vector<MassRedistribution> paper_masses();        ///< mod1, mod2, mod3
 
