@@ -208,7 +208,8 @@ int main(int argc, char** argv) {
     configuration.scheme.scheme = mrm::scheme_by_name(scheme);
     configuration.scheme.beta = beta;
     configuration.scheme.restitution = restitution;
-    configuration.scheme.contact_row = mrm::contact_row_by_name(ps_form);
+    if (mrm::takes(configuration.scheme.scheme, mrm::SchemeParameter::contact_row))
+      configuration.scheme.contact_row = mrm::contact_row_by_name(ps_form);
     configuration.scheme.switch_theta = switch_theta;
     configuration.elements = elements;
     configuration.dt = step;

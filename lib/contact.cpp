@@ -6,6 +6,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 #include <Eigen/SparseLU>
@@ -137,32 +138,41 @@ void ContactSolver::sweep_up(double u0, double* y) const {
 }
 
 // ---------------------------------------------------------------------------------------------------
+// The verification solve: (★) with the active set fixed is the saddle-point system
+//
+//     [ A    κe₀ ] [U]   [b]                                    [ e₀ᵀ  0 ]  (u₀ = g, active)
+//     [ rᵀ   c   ] [λ] = [g or 0],   with the last row (rᵀ, c) = [ 0    1 ]  (λ = 0, inactive),
+//
+// regular whenever A is, assembled from triplets and factorised by Eigen's general sparse LU: nothing
+// of the closed form's elimination order or its Schur complement is shared.
+Eigen::VectorXd saddle_point_solve(const Tridiagonal& a, const Eigen::VectorXd& b, double kappa, double obstacle,
+                                   bool active) {
+  const Index n = a.size();
+  std::vector<Eigen::Triplet<double>> t;
+  for (Index i = 0; i < n; ++i) {
+    t.emplace_back(i, i, a.diag[i]);
+    if (i > 0) t.emplace_back(i, i - 1, a.lower[i]);
+    if (i + 1 < n) t.emplace_back(i, i + 1, a.upper[i]);
+  }
+  t.emplace_back(0, n, kappa);
+  t.emplace_back(n, active ? 0 : n, 1.0);
+  Eigen::SparseMatrix<double> k(n + 1, n + 1);
+  k.setFromTriplets(t.begin(), t.end());
+  Eigen::VectorXd rhs(n + 1);
+  rhs << b, (active ? obstacle : 0.0);
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(k);
+  if (lu.info() != Eigen::Success) throw std::runtime_error("saddle_point_solve: the sparse LU factorisation failed");
+  Eigen::VectorXd x = lu.solve(rhs);
+  if (lu.info() != Eigen::Success) throw std::runtime_error("saddle_point_solve: the sparse LU solve failed");
+  return x;
+}
+
+// ---------------------------------------------------------------------------------------------------
 // Checks: the closed-form step against (1) a direct sparse LU solve of the saddle-point system with
 // the active set fixed, for both outcomes, and (2) mathematics.md's condensed formula on the free nodes.
 
 namespace {
-
-// A U + κ λ e₀ = b with, if active, the constraint row u₀ = g; solved by Eigen's SparseLU.
-[[maybe_unused]] Eigen::VectorXd saddle_point_solve(const Tridiagonal& a, const Eigen::VectorXd& b, double kappa,
-                                                    double g, bool active) {
-  const Index n = a.size();
-  Eigen::SparseMatrix<double> k(n + 1, n + 1);
-  std::vector<Eigen::Triplet<double>> t;
-  const Eigen::SparseMatrix<double> as = a.to_sparse();
-  for (Index j = 0; j < as.outerSize(); ++j)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(as, j); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
-  t.emplace_back(0, n, kappa);
-  if (active)
-    t.emplace_back(n, 0, 1.0);
-  else
-    t.emplace_back(n, n, 1.0);  // λ = 0
-  k.setFromTriplets(t.begin(), t.end());
-  Eigen::VectorXd rhs(n + 1);
-  rhs << b, (active ? g : 0.0);
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(k);
-  REQUIRE(lu.info() == Eigen::Success);
-  return lu.solve(rhs);
-}
 
 [[maybe_unused]] Tridiagonal step_matrix(const UniformMesh& mesh, const MassRedistribution& r, double theta,
                                          bool contact_row) {

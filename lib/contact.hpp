@@ -76,4 +76,12 @@ class ContactSolver {
   Eigen::VectorXd pivot_, inverse_pivot_, elimination_, lower_, upward_, elimination_pair_, upward_pair_;
 };
 
+/// A verification solve, not a step of the schemes: A U + κ λ e₀ = b with the active set fixed, the
+/// last row u₀ = g (`active`) or λ = 0, as one (N + 1) × (N + 1) saddle-point system in (U, λ)
+/// assembled from triplets and solved by Eigen's sparse LU. Returns (U, λ) (size N + 1). The doctests
+/// of the closed-form contact step and the harness's claims check the step against it. Throws
+/// std::runtime_error if the factorisation or the solve fails.
+Eigen::VectorXd saddle_point_solve(const Tridiagonal& a, const Eigen::VectorXd& b, double kappa, double obstacle,
+                                   bool active);
+
 }  // namespace mrm

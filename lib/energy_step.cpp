@@ -179,6 +179,7 @@
 
 #include "mass_redistribution.hpp"
 #include "p1.hpp"
+#include "schemes.hpp"
 
 namespace mrm {
 
@@ -481,7 +482,8 @@ TEST_CASE("the contact roots reject mu outside 0 <= mu < 1 and non-finite data")
 
 // ---------------------------------------------------------------------------------------------------
 // Checks of the derivation on the reduced problem itself: a dense, textbook implementation of the
-// three steps above on the free nodes 1..N−1 (f = 0), independent of the library's schemes, run on the
+// three steps above on the free nodes 1..N−1 (f = 0), independent of the library's step but for its
+// matrices (the one builder, theta_step_matrices), run on the
 // benchmark of mathematics.md §2 (period 3): the energy identity (E) at every step, EC's exact
 // conservation, EC = CN away from status changes, and CN-switch's monotone energy.
 
@@ -489,14 +491,21 @@ namespace {
 
 struct ReducedBar {
   double h, dt;
-  Eigen::MatrixXd mass, stiffness;  // M̄, S̄ on nodes 1..N−1
+  Tridiagonal full_mass, full_stiffness;  // M̄, S̄ on nodes 0..N−1 (row and column 0 of M̄ vanish)
+  Eigen::MatrixXd mass, stiffness;        // M̄, S̄ on nodes 1..N−1
 
   ReducedBar(Index elements, const MassRedistribution& redistribution, double courant)
       : h(1.0 / static_cast<double>(elements)), dt(courant / static_cast<double>(elements)) {
     const UniformMesh mesh(1.0, elements);
-    const Index m = elements - 1;
-    mass = Eigen::MatrixXd(Eigen::MatrixXd(modified_mass(mesh, redistribution).to_sparse()).bottomRightCorner(m, m));
-    stiffness = Eigen::MatrixXd(Eigen::MatrixXd(p1_stiffness(mesh).to_sparse()).bottomRightCorner(m, m));
+    full_mass = modified_mass(mesh, redistribution);
+    full_stiffness = p1_stiffness(mesh);
+    mass = free_block(full_mass);
+    stiffness = free_block(full_stiffness);
+  }
+  // The block of a matrix on nodes 1..N−1, dense.
+  static Eigen::MatrixXd free_block(const Tridiagonal& a) {
+    const Index m = a.size() - 1;
+    return Eigen::MatrixXd(a.to_sparse()).bottomRightCorner(m, m);
   }
 
   // The benchmark's data u⁰ = ½(1 − x), v⁰ = 0 on the free nodes.
@@ -521,16 +530,19 @@ struct ReducedBar {
   }
 
   // The θ-rule D = Δt((1 − θ)V + θV'), M̄ΔV = Δt[−S̄((1 − θ)Ū + θŪ') + g e₁] gives
-  //     (M̄ + θ²Δt²S̄)Ū' = M̄(Ū + ΔtV) − θ(1 − θ)Δt²S̄Ū + θΔt² g e₁.
+  //     (M̄ + θ²Δt²S̄)Ū' = M̄(Ū + ΔtV) − θ(1 − θ)Δt²S̄Ū + θΔt² g e₁,
+  // whose matrices on the free nodes are the library's θ-step's (theta_step_matrices, schemes.cpp):
+  // A, B₁ and B₂ restricted to nodes 1..N−1, the weights θ(1 − θ)Δt² and θ²Δt² its load weights.
   // The matrix is factorised once per θ (here: inverted, the system is small).
   struct Factor {
     double theta, t1, t2;  // θ, θ(1 − θ)Δt², θ²Δt²
-    Eigen::MatrixXd inverse;
+    Eigen::MatrixXd inverse, b1, b2;
     double mu;  // θ²Δt² (Ā⁻¹)₁₁ / h
   };
   Factor factor(double theta) const {
-    Factor f{theta, theta * (1 - theta) * dt * dt, theta * theta * dt * dt, {}, 0};
-    f.inverse = Eigen::MatrixXd(mass + f.t2 * stiffness).inverse();
+    const StepMatrices step = theta_step_matrices(full_mass, full_stiffness, theta, dt);
+    Factor f{theta, step.load_now, step.load_next, {}, free_block(step.b1), free_block(step.b2), 0};
+    f.inverse = free_block(step.a).inverse();
     f.mu = f.t2 * f.inverse(0, 0) / h;
     return f;
   }
@@ -540,7 +552,7 @@ struct ReducedBar {
   enum class Force { theta_rule, trapezoidal, discrete_gradient };
   void step(Eigen::VectorXd& u, Eigen::VectorXd& v, const Factor& f, Force force) const {
     const double a = u[0], theta = f.theta;
-    Eigen::VectorXd rhs = mass * (u + dt * v) - f.t1 * (stiffness * u);
+    Eigen::VectorXd rhs = f.b1 * u + f.b2 * v;
     if (force == Force::theta_rule) rhs[0] += f.t1 * contact_energy_derivative(a, h);
     const Eigen::VectorXd z = f.inverse * rhs;
     const auto r = f.inverse.col(0);

@@ -99,7 +99,7 @@ bool FastStep::fused_step(BarSimulation& sim) const {
   const double* upward = sim.solver_.upward().data();
   const double* f_now = has_load ? sim.f_now_.data() : nullptr;
   const double* f_next = has_load ? sim.f_next_.data() : nullptr;
-  const double g_now = sim.load_now_, g_next = sim.load_next_;
+  const double g_now = sim.step_.load_now, g_next = sim.step_.load_next;
 
   // Sweep down, as two chains (contact.hpp): y_i = (b_i − ε_i b_{i+1}) + ε_iε_{i+1} y_{i+2}, from row
   // n−1 (its upper neighbour is the clamped node; with b_n = y_n = y_{n+1} = 0 the formula gives
@@ -139,7 +139,7 @@ bool FastStep::fused_step(BarSimulation& sim) const {
   if (sim.algebraic_row_) {
     b0 = has_load ? f_next[0] : 0.0;
   } else {
-    b0 = r0.b1d * u[0] + r0.b1u * u[1] + r0.b2d * w[0] + r0.b2u * w[1] - sim.lambda_in_rhs_ * sim.lambda_;
+    b0 = r0.b1d * u[0] + r0.b1u * u[1] + r0.b2d * w[0] + r0.b2u * w[1] - sim.step_.lambda_in_rhs * sim.lambda_;
     if constexpr (has_load) b0 += g_now * f_now[0] + g_next * f_next[0];
   }
   // EC decides the contact on row 1 instead (energy_step.cpp: its sweep up starts from the value u₀
@@ -156,7 +156,7 @@ bool FastStep::fused_step(BarSimulation& sim) const {
     contact = {c.u0, c.multiplier, c.active};
     recurrence_u0 = c.recurrence_u0;
   } else {
-    contact = sim.solver_.resolve_contact(b0 - elimination[0] * y_next, sim.kappa_, obstacle);
+    contact = sim.solver_.resolve_contact(b0 - elimination[0] * y_next, sim.step_.kappa, obstacle);
     if (sim.switch_ && contact.active != sim.active_) return false;
     recurrence_u0 = contact.u0;
   }
@@ -167,7 +167,7 @@ bool FastStep::fused_step(BarSimulation& sim) const {
   // potential U'ᵀSU'. Three-level: X = (U' − U)/Δt, forms XᵀMX, PᵀSP, QᵀSQ; W' = Uⁿ by a swap below.
   double* w_out = sim.w_.data();
   double* x_out = sim.x_.data();
-  const double rate = sim.velocity_rate_, memory = sim.velocity_memory_;
+  const double rate = sim.step_.velocity_rate, memory = sim.step_.velocity_memory;
   double kinetic = 0, potential = 0, potential_q = 0;
   double un_prev = 0, un_prev2 = 0, z_prev = 0, v_prev = 0, p_prev = 0, q_prev = 0;
   // The interior rows a = head … b = n−2 of M and S are Toeplitz, (d, l) = (A_ii, A_{i,i−1}): there a

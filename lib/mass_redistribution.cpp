@@ -70,14 +70,53 @@ MassRedistribution mod3() {
   return r;
 }
 
-std::vector<std::string> mass_redistribution_names() { return {"consistent", "mod1", "mod2", "mod3"}; }
+// The registry of the family: the named members and the parametrised forms (the latter defined
+// below: node1, spread_over_first_nodes, beta).
+const std::vector<MassFormInfo>& mass_form_registry() {
+  static const std::vector<MassFormInfo> registry = {
+      {"consistent", "", "the consistent P1 mass: the contact node keeps its inertia"},
+      {"mod1", "", "Mod 1: the contact node's mass is dropped"},
+      {"mod2", "", "Mod 2: the contact node's mass is spread uniformly on the other nodes"},
+      {"mod3", "", "Mod 3: the contact node's mass is moved to node 1 (M̄₁₁ = 4h/3)"},
+      {"node1", "X", "M̄₁₁ = X h on node 1, every other entry as Mod 1 (Mod 1 is node1:2/3, Mod 3 node1:4/3)"},
+      {"spread", "K", "the lost mass 2h/3 in equal parts on the diagonal of nodes 1..K (spread:1 is Mod 3)"},
+      {"beta", "B", "a point mass B h on node 1, the rest spread uniformly (Mod 2 is beta:0, Mod 3 beta:2/3)"},
+  };
+  return registry;
+}
+
+std::string spelling(const MassFormInfo& form) {
+  return form.parameter.empty() ? form.id : form.id + ":" + form.parameter;
+}
+
+std::vector<std::string> mass_redistribution_names() {
+  std::vector<std::string> names;
+  for (const MassFormInfo& form : mass_form_registry())
+    if (form.parameter.empty()) names.push_back(form.id);
+  return names;
+}
 
 MassRedistribution mass_redistribution_by_name(const std::string& name) {
   if (name == "consistent") return consistent_mass();
   if (name == "mod1") return mod1();
   if (name == "mod2") return mod2();
   if (name == "mod3") return mod3();
-  throw std::invalid_argument("unknown mass choice \"" + name + "\" (allowed: consistent, mod1, mod2, mod3)");
+  std::string allowed;
+  for (const std::string& n : mass_redistribution_names()) allowed += (allowed.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("unknown mass choice \"" + name + "\" (allowed: " + allowed + ")");
+}
+
+TEST_CASE("the mass registry lists every named member, each built under its own name, then the forms") {
+  std::vector<std::string> spellings;
+  for (const MassFormInfo& form : mass_form_registry()) spellings.push_back(spelling(form));
+  CHECK(spellings == std::vector<std::string>{"consistent", "mod1", "mod2", "mod3", "node1:X", "spread:K", "beta:B"});
+  for (const std::string& name : mass_redistribution_names()) {
+    CAPTURE(name);
+    CHECK(mass_redistribution_by_name(name).name == name);
+  }
+  CHECK(node1(1.0).name.rfind("node1:", 0) == 0);
+  CHECK(spread_over_first_nodes(2).name.rfind("spread:", 0) == 0);
+  CHECK(beta(0.5).name.rfind("beta:", 0) == 0);
 }
 
 Tridiagonal modified_mass_all_nodes(const UniformMesh& mesh, const MassRedistribution& redistribution) {

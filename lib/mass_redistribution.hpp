@@ -31,9 +31,23 @@ MassRedistribution mod3();
 /// The lost mass 2h/3 spread in equal parts on the diagonal of nodes 1..k (k = 1 is Mod 3).
 MassRedistribution spread_over_first_nodes(Index k);
 
-/// The names accepted by mass_redistribution_by_name: consistent, mod1, mod2, mod3.
+/// One entry of the registry of the family's members: a named member (consistent, mod1, mod2, mod3) or
+/// a parametrised form (node1:X, spread:K, beta:B). The harness's help texts, choice lists and spec
+/// parser read it.
+struct MassFormInfo {
+  std::string id;         ///< the name, or the form's prefix before the colon ("node1")
+  std::string parameter;  ///< the parameter's placeholder ("X"), empty for a named member
+  std::string summary;    ///< one line for help texts and reports
+};
+/// The named members and the parametrised forms, in this order: consistent, mod1, mod2, mod3, node1:X,
+/// spread:K, beta:B (mass_redistribution.cpp). Adding a member is: its weights, its doctests, one entry.
+const std::vector<MassFormInfo>& mass_form_registry();
+/// How a registry entry is written on a command line: the id, or "id:parameter" ("node1:X").
+std::string spelling(const MassFormInfo& form);
+
+/// The named members of the registry (those without a parameter): consistent, mod1, mod2, mod3.
 std::vector<std::string> mass_redistribution_names();
-/// The named instance; throws std::invalid_argument listing the allowed names for an unknown name.
+/// The named member; throws std::invalid_argument listing the allowed names for an unknown name.
 MassRedistribution mass_redistribution_by_name(const std::string& name);
 
 /// M^mod on all nodes 0..N (clamped node included; used for the total mass).

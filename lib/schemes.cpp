@@ -98,35 +98,96 @@
 
 namespace mrm {
 
-std::string to_string(Scheme s) {
-  switch (s) {
-    case Scheme::crank_nicolson:
-      return "cn";
-    case Scheme::backward_euler:
-      return "be";
-    case Scheme::paoli_schatzman:
-      return "ps";
-    case Scheme::energy_conserving:
-      return "ec";
-    case Scheme::switching:
-      return "cn-switch";
+// ---------------------------------------------------------------------------------------------------
+// The registry of schemes: one entry per scheme, its id, its summary and the parameters it takes.
+// Every name of a scheme in the library and the harness (help texts, choice lists, data headers,
+// claims rows) is read from here.
+
+const std::vector<SchemeInfo>& scheme_registry() {
+  using P = SchemeParameter;
+  static const std::vector<SchemeInfo> registry = {
+      {Scheme::crank_nicolson, "cn", "Crank–Nicolson (trapezoidal rule), two levels", {}},
+      {Scheme::backward_euler, "be", "backward Euler, two levels", {}},
+      {Scheme::paoli_schatzman,
+       "ps",
+       "Paoli–Schatzman (β, e), three levels, algebraic or literal contact row",
+       {P::beta, P::restitution, P::contact_row}},
+      {Scheme::energy_conserving,
+       "ec",
+       "energy-conserving Crank–Nicolson: the discrete gradient of the contact energy (massless contact node)",
+       {}},
+      {Scheme::switching,
+       "cn-switch",
+       "Crank–Nicolson with a θ-step at each change of the contact status (θ = 1: backward Euler)",
+       {P::switch_theta}},
+  };
+  return registry;
+}
+
+const SchemeInfo& scheme_info(Scheme scheme) {
+  for (const SchemeInfo& info : scheme_registry())
+    if (info.scheme == scheme) return info;
+  throw std::logic_error("scheme_info: a scheme without a registry entry");
+}
+
+bool takes(Scheme scheme, SchemeParameter parameter) {
+  const std::vector<SchemeParameter>& p = scheme_info(scheme).parameters;
+  return std::find(p.begin(), p.end(), parameter) != p.end();
+}
+
+std::string to_string(Scheme s) { return scheme_info(s).id; }
+
+std::string to_string(SchemeParameter p) {
+  switch (p) {
+    case SchemeParameter::beta:
+      return "beta";
+    case SchemeParameter::restitution:
+      return "restitution";
+    case SchemeParameter::contact_row:
+      return "contact_row";
+    case SchemeParameter::switch_theta:
+      return "switch_theta";
   }
   return "?";
 }
+
+Scheme scheme_by_name(const std::string& name) {
+  std::string allowed;
+  for (const SchemeInfo& info : scheme_registry()) {
+    if (info.id == name) return info.scheme;
+    allowed += (allowed.empty() ? "" : ", ") + info.id;
+  }
+  throw std::invalid_argument("unknown scheme \"" + name + "\" (allowed: " + allowed + ")");
+}
+
+TEST_CASE("the registry names every scheme once, and its ids read back") {
+  CHECK(scheme_registry().size() == 5);
+  for (const SchemeInfo& info : scheme_registry()) {
+    CAPTURE(info.id);
+    CHECK(scheme_by_name(info.id) == info.scheme);
+    CHECK(to_string(info.scheme) == info.id);
+    CHECK(&scheme_info(info.scheme) == &info);
+    CHECK(!info.summary.empty());
+  }
+  CHECK(to_string(Scheme::switching) == "cn-switch");
+  CHECK(takes(Scheme::paoli_schatzman, SchemeParameter::beta));
+  CHECK(!takes(Scheme::crank_nicolson, SchemeParameter::beta));
+  CHECK(takes(Scheme::switching, SchemeParameter::switch_theta));
+  CHECK(!takes(Scheme::backward_euler, SchemeParameter::restitution));
+  CHECK(to_string(SchemeParameter::contact_row) == "contact_row");
+  CHECK_THROWS_WITH_AS(scheme_by_name("rk4"), "unknown scheme \"rk4\" (allowed: cn, be, ps, ec, cn-switch)",
+                       std::invalid_argument);
+}
+
+InvalidParameter::InvalidParameter(const std::string& name, const std::string& message)
+    : std::invalid_argument(name + ": " + message), parameter(name) {}
+
 std::string to_string(ContactRow r) { return r == ContactRow::algebraic ? "algebraic" : "literal"; }
 std::string to_string(InitialContactNode i) {
   return i == InitialContactNode::consistent ? "consistent" : "interpolant";
 }
 std::string to_string(StepKernel k) { return k == StepKernel::reference ? "reference" : "fast"; }
 
-Scheme scheme_by_name(const std::string& name) {
-  if (name == "cn") return Scheme::crank_nicolson;
-  if (name == "be") return Scheme::backward_euler;
-  if (name == "ps") return Scheme::paoli_schatzman;
-  if (name == "ec") return Scheme::energy_conserving;
-  if (name == "cn-switch") return Scheme::switching;
-  throw std::invalid_argument("unknown scheme \"" + name + "\" (allowed: cn, be, ps, ec, cn-switch)");
-}
 ContactRow contact_row_by_name(const std::string& name) {
   if (name == "algebraic") return ContactRow::algebraic;
   if (name == "literal") return ContactRow::literal;
@@ -155,20 +216,156 @@ Index steps_to_reach(double final_time, double dt) {
   return static_cast<Index>(std::ceil(ratio - 1e-9));
 }
 
+// ---------------------------------------------------------------------------------------------------
+// The one builder of (★): the matrices and scalars of the derivation at the top of this file,
+// scheme by scheme (mathematics.md §4), M the mass (consistent or redistributed), S the stiffness.
+//
+// Crank–Nicolson, backward Euler and CN-switch's θ-step are the θ-rule with θ = ½, 1 and θ:
+// (M + θ²Δt²S) Uⁿ⁺¹ = (M − θ(1−θ)Δt²S) Uⁿ + Δt M Vⁿ + θ(1−θ)Δt²(Fⁿ − λⁿe₀) + θ²Δt²(Fⁿ⁺¹ − λⁿ⁺¹e₀),
+// Vⁿ⁺¹ = (Uⁿ⁺¹ − Uⁿ)/(θΔt) − ((1−θ)/θ)Vⁿ. For θ = ½ the weights θ(1−θ)Δt² = θ²Δt² = Δt²/4 are
+// Crank–Nicolson's, 1/(θΔt) = 2/Δt and (1−θ)/θ = 1 (every product by ½ is exact, so these are the
+// same doubles as Δt²/4 and 2/Δt); for θ = 1, θ(1−θ)Δt² = 0 and the step is backward Euler's.
+// Paoli–Schatzman: (M + βΔt²S) Uⁿ⁺¹ = (2M − (1−2β)Δt²S) Uⁿ − (M + βΔt²S) Uⁿ⁻¹ + Δt²Fⁿ − Δt²λⁿe₀,
+// and X = (Uⁿ⁺¹ − Uⁿ)/Δt. With a massless contact node every scheme but the literal Paoli–Schatzman
+// writes row 0 as the algebraic contact row S₀·Uⁿ⁺¹ = F₀ⁿ⁺¹ − λⁿ⁺¹: row 0 of A is S₀·, rows 0 of B₁
+// and B₂ vanish, κ = 1 and G₀ = F₀ⁿ⁺¹ (set by step_right_hand_side).
+namespace {
+
+void algebraic_contact_row(StepMatrices& m, const Tridiagonal& stiffness) {
+  m.a.diag[0] = stiffness.diag[0];
+  m.a.upper[0] = stiffness.upper[0];
+  for (Tridiagonal* b : {&m.b1, &m.b2}) {
+    b->diag[0] = 0.0;
+    b->upper[0] = 0.0;
+  }
+  m.kappa = 1.0;
+  m.lambda_in_rhs = 0.0;
+  m.algebraic_row = true;
+}
+
+}  // namespace
+
+StepMatrices theta_step_matrices(const Tridiagonal& mass, const Tridiagonal& stiffness, double theta, double dt) {
+  const double dt2 = dt * dt, t1 = theta * (1 - theta) * dt2, t2 = theta * theta * dt2;
+  StepMatrices m;
+  m.a = mass.plus(t2, stiffness);
+  m.b1 = mass.plus(-t1, stiffness);
+  m.b2 = mass.scaled(dt);
+  m.kappa = t2;
+  m.load_now = t1;
+  m.load_next = t2;
+  m.lambda_in_rhs = t1;
+  m.velocity_rate = 1 / (theta * dt);
+  m.velocity_memory = (1 - theta) / theta;
+  if (contact_node_is_massless(mass)) algebraic_contact_row(m, stiffness);
+  return m;
+}
+
+StepMatrices step_matrices(const Tridiagonal& mass, const Tridiagonal& stiffness, const SchemeParameters& p,
+                           double dt) {
+  switch (p.scheme) {
+    case Scheme::crank_nicolson:
+    case Scheme::energy_conserving:
+    case Scheme::switching:
+      return theta_step_matrices(mass, stiffness, 0.5, dt);
+    case Scheme::backward_euler:
+      return theta_step_matrices(mass, stiffness, 1.0, dt);
+    case Scheme::paoli_schatzman:
+      break;
+  }
+  const double dt2 = dt * dt, beta = p.beta;
+  StepMatrices m;
+  m.a = mass.plus(beta * dt2, stiffness);
+  m.b1 = mass.scaled(2.0).plus(-(1 - 2 * beta) * dt2, stiffness);
+  m.b2 = mass.scaled(-1.0).plus(-beta * dt2, stiffness);
+  m.kappa = dt2;
+  m.load_now = dt2;
+  m.load_next = 0;
+  m.velocity_rate = 1 / dt;  // X = (Uⁿ⁺¹ − Uⁿ)/Δt; W' = Uⁿ by a swap
+  m.velocity_memory = 0;
+  if (contact_node_is_massless(mass) && p.contact_row == ContactRow::algebraic) algebraic_contact_row(m, stiffness);
+  return m;
+}
+
+Eigen::VectorXd step_right_hand_side(const StepMatrices& step, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
+                                     double lambda, const Eigen::VectorXd* load_now, const Eigen::VectorXd* load_next) {
+  Eigen::VectorXd rhs = step.b1 * u + step.b2 * w;
+  if (load_now && load_next) rhs += step.load_now * *load_now + step.load_next * *load_next;
+  if (step.algebraic_row)
+    rhs[0] = load_next ? (*load_next)[0] : 0.0;
+  else
+    rhs[0] -= step.lambda_in_rhs * lambda;
+  return rhs;
+}
+
+TEST_CASE("Crank–Nicolson and backward Euler are the theta-rule with theta = 1/2 and 1, bit for bit") {
+  const UniformMesh mesh(1.0, 9);
+  const double dt = 0.37 * mesh.h(), dt2 = dt * dt;
+  for (const MassRedistribution& r : {consistent_mass(), mod3()}) {
+    const Tridiagonal m = modified_mass(mesh, r), s = p1_stiffness(mesh);
+    const bool massless = contact_node_is_massless(m);
+    SchemeParameters p;
+    const StepMatrices cn = step_matrices(m, s, p, dt);
+    p.scheme = Scheme::backward_euler;
+    const StepMatrices be = step_matrices(m, s, p, dt);
+    const Tridiagonal cn_a = m.plus(dt2 / 4, s), be_a = m.plus(dt2, s);
+    CAPTURE(r.name);
+    for (Index i = massless ? 1 : 0; i < m.size(); ++i) {
+      CHECK(cn.a.diag[i] == cn_a.diag[i]);
+      CHECK(cn.b1.diag[i] == m.plus(-dt2 / 4, s).diag[i]);
+      CHECK(be.a.diag[i] == be_a.diag[i]);
+      CHECK(be.b1.diag[i] == m.diag[i]);
+      CHECK(be.b2.lower[i] == dt * m.lower[i]);
+    }
+    CHECK(cn.velocity_rate == 2 / dt);
+    CHECK(cn.velocity_memory == 1.0);
+    CHECK(be.velocity_rate == 1 / dt);
+    CHECK(be.velocity_memory == 0.0);
+    CHECK(be.load_now == 0.0);
+    CHECK(cn.algebraic_row == massless);
+    CHECK(cn.kappa == (massless ? 1.0 : dt2 / 4));
+    CHECK(cn.lambda_in_rhs == (massless ? 0.0 : dt2 / 4));
+    if (massless) CHECK(cn.a.diag[0] == s.diag[0]);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// The checks of a simulation's inputs, all before any work, each naming its parameter.
 namespace {
 
 void validate(const SchemeParameters& p, double dt) {
-  if (!(std::isfinite(dt) && dt > 0)) throw std::invalid_argument("the time step dt must be positive and finite");
-  if (!(std::isfinite(p.beta) && p.beta >= 0)) throw std::invalid_argument("beta must be a finite number >= 0");
+  if (!(std::isfinite(dt) && dt > 0))
+    throw InvalidParameter("dt", "the time step dt must be positive and finite (allowed: 0 < dt < inf)");
+  if (!(std::isfinite(p.beta) && p.beta >= 0))
+    throw InvalidParameter("beta", "beta must be a finite number (allowed: beta >= 0)");
   if (!(p.restitution >= 0 && p.restitution <= 1))
-    throw std::invalid_argument("the restitution coefficient e must lie in [0, 1]");
+    throw InvalidParameter("restitution", "the restitution coefficient e must lie in [0, 1] (allowed: 0 <= e <= 1)");
   if (!(p.switch_theta >= 0.5 && p.switch_theta <= 1))
-    throw std::invalid_argument("the switch theta of cn-switch must lie in [0.5, 1]");
+    throw InvalidParameter("switch_theta",
+                           "the switch theta of cn-switch must lie in [0.5, 1] (allowed: 0.5 <= theta <= 1)");
+  // A parameter the scheme does not take keeps its default: another value would be silently ignored.
+  const SchemeParameters defaults;
+  const auto refuse_unless_default = [&](SchemeParameter parameter, bool is_default) {
+    if (!is_default && !takes(p.scheme, parameter))
+      throw InvalidParameter(to_string(parameter), "the scheme " + to_string(p.scheme) + " does not take " +
+                                                       to_string(parameter) +
+                                                       " (allowed: its default, or a scheme "
+                                                       "that takes it)");
+  };
+  refuse_unless_default(SchemeParameter::beta, p.beta == defaults.beta);
+  refuse_unless_default(SchemeParameter::restitution, p.restitution == defaults.restitution);
+  refuse_unless_default(SchemeParameter::contact_row, p.contact_row == defaults.contact_row);
+  refuse_unless_default(SchemeParameter::switch_theta, p.switch_theta == defaults.switch_theta);
 }
 
-void zero_row0(Tridiagonal& a) {
-  a.diag[0] = 0.0;
-  a.upper[0] = 0.0;
+// M^mod on the mesh, its refusal (weights not symmetric or not finite, a matrix that is not
+// positive definite) worded as the mass's.
+Tridiagonal checked_mass(const UniformMesh& mesh, const MassRedistribution& mass) {
+  try {
+    return modified_mass(mesh, mass);
+  } catch (const std::invalid_argument& e) {
+    throw InvalidParameter("mass", e.what());
+  }
 }
 
 }  // namespace
@@ -180,117 +377,61 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
       mesh_(mesh),
       parameters_((validate(parameters, dt), parameters)),
       dt_(dt),
-      mass_(modified_mass(mesh, mass)),
+      mass_(checked_mass(mesh, mass)),
       stiffness_(p1_stiffness(mesh)) {
   if (!problem.initial_displacement)
-    throw std::invalid_argument("problem: no initial displacement u0 (allowed: a function of x)");
+    throw InvalidParameter("problem", "no initial displacement u0 (allowed: a function of x)");
   if (problem.length != mesh.length)
-    throw std::invalid_argument("problem: the bar has L = " + std::to_string(problem.length) +
-                                ", the mesh L = " + std::to_string(mesh.length) + " (allowed: the same L)");
+    throw InvalidParameter("problem", "the bar has L = " + std::to_string(problem.length) +
+                                          ", the mesh L = " + std::to_string(mesh.length) + " (allowed: the same L)");
   massless_ = contact_node_is_massless(mass_);
   three_level_ = parameters.scheme == Scheme::paoli_schatzman;
   if (three_level_ && parameters.contact_row == ContactRow::algebraic && !massless_)
-    throw std::invalid_argument(
-        "the algebraic contact row needs a massless contact node (mass mod1, mod2 or mod3); "
-        "use the literal Paoli–Schatzman form with the consistent mass");
+    throw InvalidParameter("contact_row",
+                           "the algebraic contact row needs a massless contact node (allowed: any mass but "
+                           "consistent, or the literal Paoli–Schatzman row with the consistent mass)");
   algebraic_row_ = massless_ && (!three_level_ || parameters.contact_row == ContactRow::algebraic);
   energy_conserving_ = parameters.scheme == Scheme::energy_conserving;
   if (energy_conserving_ && !massless_)
-    throw std::invalid_argument(
-        "the energy-conserving scheme (ec) needs a massless contact node (mass mod1, mod2 "
-        "or mod3): with inertia at the contact node the contact energy is not a function "
-        "of u1");
+    throw InvalidParameter("mass",
+                           "the energy-conserving scheme (ec) needs a massless contact node (allowed: any mass but "
+                           "consistent): with inertia at the contact node the contact energy is not a function of u1");
+  // The literal Paoli–Schatzman row with a massless contact node: row 0 of A is βΔt²S₀·, singular for
+  // β = 0. Off contact, row 0 reads β dⁿ⁺¹ + (1 − 2β) dⁿ + β dⁿ⁻¹ = 0 for d = u₀ − u₁ (S's row 0 is
+  // (1, −1)/h): the roots of β r² + (1 − 2β) r + β have product 1 and are real and distinct when
+  // β < ¼, so one exceeds 1 in modulus and d grows geometrically at every step of free flight (by 1.5
+  // per step at β = 0.24, overflowing within a few thousand steps): no finite or meaningful value can
+  // come out. β ≥ ¼ puts both roots on the unit circle.
   if (massless_ && three_level_ && !algebraic_row_ && parameters.beta == 0.0)
-    throw std::invalid_argument(
-        "the literal Paoli–Schatzman form with beta = 0 and a massless contact node is "
-        "singular (row 0 of the step matrix vanishes): use beta > 0 or the algebraic form");
+    throw InvalidParameter("beta",
+                           "0 with the literal Paoli–Schatzman row and a massless contact node is singular (row 0 "
+                           "of the step matrix vanishes) (allowed: beta >= 1/4, or the algebraic row)");
+  if (massless_ && three_level_ && !algebraic_row_ && parameters.beta < 0.25)
+    throw InvalidParameter("beta",
+                           "below 1/4 with the literal Paoli–Schatzman row and a massless contact node, u0 - u1 "
+                           "grows at every step of free flight (allowed: beta >= 1/4, the algebraic row, or the "
+                           "consistent mass)");
 
-  // The matrices and scalars of (★), scheme by scheme, as derived at the top of this file
-  // (mathematics.md §4): M the mass (consistent or redistributed), S the stiffness, A the step matrix.
-  const double dt2 = dt * dt;
+  // The matrices and scalars of (★) (step_matrices above), A factorised once per run.
   const Tridiagonal& M = mass_;
   const Tridiagonal& S = stiffness_;
-  Tridiagonal A;
-  lambda_in_rhs_ = 0.0;
-  switch (parameters.scheme) {
-    case Scheme::crank_nicolson:
-    case Scheme::energy_conserving:
-    case Scheme::switching: {
-      // (M + θS) Uⁿ⁺¹ = (M − θS) Uⁿ + Δt M Vⁿ + θ(Fⁿ + Fⁿ⁺¹) − θλⁿe₀ − θλⁿ⁺¹e₀,  θ = Δt²/4;
-      // Vⁿ⁺¹ = 2(Uⁿ⁺¹ − Uⁿ)/Δt − Vⁿ.
-      const double theta = dt2 / 4;
-      A = M.plus(theta, S);
-      b1_ = M.plus(-theta, S);
-      b2_ = M.scaled(dt);
-      kappa_ = theta;
-      load_now_ = theta;
-      load_next_ = theta;
-      lambda_in_rhs_ = theta;
-      velocity_rate_ = 2 / dt, velocity_memory_ = 1;
-      break;
-    }
-    case Scheme::backward_euler: {
-      // (M + Δt²S) Uⁿ⁺¹ = M Uⁿ + Δt M Vⁿ + Δt² Fⁿ⁺¹ − Δt² λⁿ⁺¹ e₀;  Vⁿ⁺¹ = (Uⁿ⁺¹ − Uⁿ)/Δt.
-      A = M.plus(dt2, S);
-      b1_ = M;
-      b2_ = M.scaled(dt);
-      kappa_ = dt2;
-      load_now_ = 0;
-      load_next_ = dt2;
-      velocity_rate_ = 1 / dt, velocity_memory_ = 0;
-      break;
-    }
-    case Scheme::paoli_schatzman: {
-      // (M + βΔt²S) Uⁿ⁺¹ = (2M − (1−2β)Δt²S) Uⁿ − (M + βΔt²S) Uⁿ⁻¹ + Δt²Fⁿ − Δt²λⁿe₀.
-      const double beta = parameters.beta;
-      A = M.plus(beta * dt2, S);
-      b1_ = M.scaled(2.0).plus(-(1 - 2 * beta) * dt2, S);
-      b2_ = M.scaled(-1.0).plus(-beta * dt2, S);
-      kappa_ = dt2;
-      load_now_ = dt2;
-      load_next_ = 0;
-      velocity_rate_ = 1 / dt, velocity_memory_ = 0;  // X = (Uⁿ⁺¹ − Uⁿ)/Δt; W' = Uⁿ by a swap
-      break;
-    }
-  }
-  // The algebraic contact row S₀·Uⁿ⁺¹ = F₀ⁿ⁺¹ − λⁿ⁺¹: row 0 of A is S₀·, rows 0 of B₁ and B₂ vanish,
-  // κ = 1 (G₀ = F₀ⁿ⁺¹ is set by the step).
-  const auto algebraic_contact_row = [&](Tridiagonal& a, Tridiagonal& b1, Tridiagonal& b2, double& kappa,
-                                         double& lambda_in_rhs) {
-    a.diag[0] = S.diag[0];
-    a.upper[0] = S.upper[0];
-    zero_row0(b1);
-    zero_row0(b2);
-    kappa = 1.0;
-    lambda_in_rhs = 0.0;
-  };
-  if (algebraic_row_) algebraic_contact_row(A, b1_, b2_, kappa_, lambda_in_rhs_);
-  solver_ = ContactSolver(A);
-  // CN-switch's θ-step (top of this file): (M + θ²Δt²S) Uⁿ⁺¹ = (M − θ(1−θ)Δt²S) Uⁿ + Δt M Vⁿ
-  // + θ(1−θ)Δt²(Fⁿ − λⁿe₀) + θ²Δt²(Fⁿ⁺¹ − λⁿ⁺¹e₀), Vⁿ⁺¹ = (Uⁿ⁺¹ − Uⁿ)/(θΔt) − ((1−θ)/θ)Vⁿ, with its own
-  // factorisation (once per run, like A's).
+  step_ = step_matrices(M, S, parameters, dt);
+  solver_ = ContactSolver(step_.a);
+  // CN-switch's θ-step, with its own factorisation (once per run, like A's).
   if (parameters.scheme == Scheme::switching) {
-    const double theta = parameters.switch_theta, t1 = theta * (1 - theta) * dt2, t2 = theta * theta * dt2;
     SwitchStep redo;
-    Tridiagonal a = M.plus(t2, S);
-    redo.b1 = M.plus(-t1, S);
-    redo.b2 = M.scaled(dt);
-    redo.kappa = t2;
-    redo.load_now = t1;
-    redo.load_next = t2;
-    redo.lambda_in_rhs = t1;
-    redo.velocity_rate = 1 / (theta * dt), redo.velocity_memory = (1 - theta) / theta;
-    if (algebraic_row_) algebraic_contact_row(a, redo.b1, redo.b2, redo.kappa, redo.lambda_in_rhs);
-    redo.solver = ContactSolver(a);
+    redo.matrices = theta_step_matrices(M, S, parameters.switch_theta, dt);
+    redo.solver = ContactSolver(redo.matrices.a);
     switch_ = std::make_unique<const SwitchStep>(std::move(redo));
   }
   // The fast path reads B₁, B₂, M and S from its own rows (fast_step.cpp): B₁ and B₂ are kept only
   // for the reference step, so that the fast path's memory is that of the state and the factors.
   if (parameters.kernel == StepKernel::fast) {
-    fast_ = std::make_unique<const FastStep>(b1_, b2_, M, S, energy_conserving_ ? 2 : 1);
-    b1_ = Tridiagonal();
-    b2_ = Tridiagonal();
+    fast_ = std::make_unique<const FastStep>(step_.b1, step_.b2, M, S, energy_conserving_ ? 2 : 1);
+    step_.b1 = Tridiagonal();
+    step_.b2 = Tridiagonal();
   }
+  step_.a = Tridiagonal();
 
   // The initial level. Uⁿ and V⁰ are the nodal interpolants of u⁰ and v⁰; a massless contact node
   // takes the value its algebraic row gives (mathematics.md §4: otherwise u₀ jumps in the first step and
@@ -332,8 +473,9 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   w_ = x_;
   if (algebraic_row_ && !three_level_ && initial == InitialContactNode::consistent) w_[0] = massless_node_velocity(0.0);
   if (three_level_) {
-    SchemeParameters start = parameters;
+    SchemeParameters start;  // Crank–Nicolson takes none of Paoli–Schatzman's parameters
     start.scheme = Scheme::crank_nicolson;
+    start.kernel = parameters.kernel;
     start_ = std::make_unique<BarSimulation>(problem, mesh, mass, start, dt, initial);
   } else {
     x_ = Eigen::VectorXd();
@@ -456,17 +598,6 @@ double stiffness_form(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double
 
 }  // namespace
 
-Eigen::VectorXd BarSimulation::right_hand_side(const Tridiagonal& b1, const Tridiagonal& b2, double load_now,
-                                               double load_next, double lambda_in_rhs, bool has_load) const {
-  Eigen::VectorXd rhs = b1 * u_ + b2 * w_;
-  if (has_load) rhs += load_now * f_now_ + load_next * f_next_;
-  if (algebraic_row_)
-    rhs[0] = has_load ? f_next_[0] : 0.0;
-  else
-    rhs[0] -= lambda_in_rhs * lambda_;
-  return rhs;
-}
-
 void BarSimulation::reference_step(bool has_load) {
   const double dt = dt_, h = mesh_.h();
   const Tridiagonal& M = mass_;
@@ -474,7 +605,8 @@ void BarSimulation::reference_step(bool has_load) {
   const Eigen::VectorXd& w = w_;  // W: Vⁿ (two levels) or Uⁿ⁻¹ (Paoli–Schatzman)
 
   // 1. The right-hand side.
-  const Eigen::VectorXd rhs = right_hand_side(b1_, b2_, load_now_, load_next_, lambda_in_rhs_, has_load);
+  const Eigen::VectorXd rhs =
+      step_right_hand_side(step_, u, w, lambda_, has_load ? &f_now_ : nullptr, has_load ? &f_next_ : nullptr);
 
   // 2. One solve with the closed-form contact step. EC decides the contact on row 1 after the sweep
   // down and starts the sweep up from the u₀ that carries its discrete-gradient force (energy_step.cpp);
@@ -494,13 +626,13 @@ void BarSimulation::reference_step(bool has_load) {
     active_ = contact.active;
   } else if (switch_) {
     solver_.sweep_down(rhs.data(), u_next.data());
-    const ContactStep contact = solver_.resolve_contact(u_next[0], kappa_, obstacle);
+    const ContactStep contact = solver_.resolve_contact(u_next[0], step_.kappa, obstacle);
     if (contact.active != active_) return switch_step(has_load);
     solver_.sweep_up(contact.u0, u_next.data());
     contact_multiplier = contact.multiplier;
     active_ = contact.active;
   } else {
-    const ContactStep contact = solver_.solve(rhs.data(), u_next.data(), kappa_, obstacle);
+    const ContactStep contact = solver_.solve(rhs.data(), u_next.data(), step_.kappa, obstacle);
     contact_multiplier = contact.multiplier;
     active_ = contact.active;
   }
@@ -542,10 +674,10 @@ void BarSimulation::reference_step(bool has_load) {
 // CN-switch's θ-step, steps 1–4 of the reference step with the θ-step's matrices (both kernels call it:
 // it replaces a Crank–Nicolson step at a change of the contact status only, a few steps per period).
 void BarSimulation::switch_step(bool has_load) {
-  const SwitchStep& theta_step = *switch_;
-  const Eigen::VectorXd rhs = right_hand_side(theta_step.b1, theta_step.b2, theta_step.load_now, theta_step.load_next,
-                                              theta_step.lambda_in_rhs, has_load);
-  const ContactStep contact = theta_step.solver.solve(rhs.data(), u_new_.data(), theta_step.kappa);
+  const StepMatrices& theta_step = switch_->matrices;
+  const Eigen::VectorXd rhs =
+      step_right_hand_side(theta_step, u_, w_, lambda_, has_load ? &f_now_ : nullptr, has_load ? &f_next_ : nullptr);
+  const ContactStep contact = switch_->solver.solve(rhs.data(), u_new_.data(), theta_step.kappa);
   w_ = theta_step.velocity_rate * (u_new_ - u_) - theta_step.velocity_memory * w_;
   energy_ = 0.5 * mass_.bilinear(w_, w_) + 0.5 * stiffness_form(u_new_, u_new_, mesh_.h());
   u_.swap(u_new_);
@@ -1167,6 +1299,10 @@ TEST_CASE("bad scheme parameters are rejected with a message naming them") {
   p.beta = 0;
   CHECK_THROWS_AS(BarSimulation(benchmark_problem(), mesh, mod3(), p, 0.1), std::invalid_argument);
   CHECK_NOTHROW(BarSimulation(benchmark_problem(), mesh, consistent_mass(), p, 0.01));  // explicit central differences
+  p.beta = 0.2;  // below 1/4 the literal row's defect grows in free flight
+  CHECK_THROWS_WITH_AS(BarSimulation(benchmark_problem(), mesh, mod3(), p, 0.1), doctest::Contains("beta: "),
+                       std::invalid_argument);
+  CHECK_NOTHROW(BarSimulation(benchmark_problem(), mesh, consistent_mass(), p, 0.01));
   CHECK_THROWS_WITH_AS(scheme_by_name("rk4"), doctest::Contains("allowed: cn, be, ps"), std::invalid_argument);
   p = with(Scheme::crank_nicolson);
   for (double restitution : {-0.5, std::nan("")}) {
@@ -1176,6 +1312,34 @@ TEST_CASE("bad scheme parameters are rejected with a message naming them") {
                          std::invalid_argument);
   }
   p.restitution = 0;
+  // A parameter the scheme does not take, set to another value than its default, is refused under its
+  // own name (InvalidParameter::parameter), as is a mass the scheme cannot run or that is not definite.
+  const auto refused = [&](const SchemeParameters& q, const MassRedistribution& mass) {
+    try {
+      BarSimulation(benchmark_problem(), mesh, mass, q, 0.1);
+    } catch (const InvalidParameter& e) {
+      CHECK(std::string(e.what()).rfind(e.parameter + ": ", 0) == 0);
+      return e.parameter;
+    }
+    return std::string("accepted");
+  };
+  SchemeParameters q = with(Scheme::crank_nicolson);
+  q.beta = 0.5;
+  CHECK(refused(q, mod3()) == "beta");
+  q = with(Scheme::backward_euler);
+  q.restitution = 0.7;
+  CHECK(refused(q, mod3()) == "restitution");
+  q = with(Scheme::crank_nicolson, ContactRow::literal);
+  CHECK(refused(q, consistent_mass()) == "contact_row");
+  q = with(Scheme::paoli_schatzman);
+  q.switch_theta = 0.5;
+  CHECK(refused(q, mod3()) == "switch_theta");
+  CHECK(refused(with(Scheme::paoli_schatzman), consistent_mass()) == "contact_row");
+  CHECK(refused(with(Scheme::energy_conserving), consistent_mass()) == "mass");
+  CHECK(refused(with(Scheme::crank_nicolson), node1(0.01)) == "mass");  // not positive definite on N = 10
+  q = with(Scheme::switching);
+  q.switch_theta = 0.75;
+  CHECK(refused(q, mod3()) == "accepted");
   for (double dt : {-0.1, std::nan(""), HUGE_VAL}) {
     CAPTURE(dt);
     CHECK_THROWS_WITH_AS(BarSimulation(benchmark_problem(), mesh, mod3(), p, dt), doctest::Contains("dt"),

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -41,14 +42,49 @@ enum class InitialContactNode { consistent, interpolant };
 /// program of this project (bench_step times both).
 enum class StepKernel { reference, fast };
 
-std::string to_string(Scheme);              ///< "cn", "be", "ps", "ec", "cn-switch"
+/// A parameter of SchemeParameters that only some schemes take (the registry says which).
+enum class SchemeParameter {
+  beta,         ///< Paoli–Schatzman's β
+  restitution,  ///< Paoli–Schatzman's restitution coefficient e
+  contact_row,  ///< Paoli–Schatzman's contact-row form (algebraic or literal)
+  switch_theta  ///< CN-switch's θ of the step taken at a change of the contact status
+};
+
+/// One entry of the registry of schemes: what the programs' help texts, choice lists, data headers
+/// and claims rows name a scheme by, as MFEM's ODESolver::Types or PETSc's -ts_type list do.
+struct SchemeInfo {
+  Scheme scheme;                            ///< the scheme
+  std::string id;                           ///< its name on command lines and in data files ("cn")
+  std::string summary;                      ///< one line for help texts and reports
+  std::vector<SchemeParameter> parameters;  ///< the parameters it takes beyond Δt (the others keep their defaults)
+};
+/// Every scheme of the library, in the order of the enum. Adding a scheme is: its code, its doctests,
+/// one entry here (schemes.cpp).
+const std::vector<SchemeInfo>& scheme_registry();
+/// The registry entry of a scheme.
+const SchemeInfo& scheme_info(Scheme);
+/// Whether `scheme` takes `parameter` (its registry entry lists it).
+bool takes(Scheme scheme, SchemeParameter parameter);
+
+std::string to_string(Scheme);              ///< the registry's id: "cn", "be", "ps", "ec", "cn-switch"
+std::string to_string(SchemeParameter);     ///< "beta", "restitution", "contact_row", "switch_theta"
 std::string to_string(ContactRow);          ///< "algebraic", "literal"
 std::string to_string(InitialContactNode);  ///< "consistent", "interpolant"
 std::string to_string(StepKernel);          ///< "reference", "fast"
 /// Parsers of the names above; throw std::invalid_argument listing the allowed names.
-Scheme scheme_by_name(const std::string&);                            ///< cn, be, ps, ec, cn-switch
+Scheme scheme_by_name(const std::string&);                            ///< an id of the registry
 ContactRow contact_row_by_name(const std::string&);                   ///< algebraic, literal
 InitialContactNode initial_contact_node_by_name(const std::string&);  ///< consistent, interpolant
+
+/// A bad value or combination of a simulation's inputs: `parameter` names it ("dt", "beta",
+/// "restitution", "contact_row", "switch_theta", "scheme", "mass" or "problem"), and what() is
+/// "parameter: what is wrong (allowed: …)". The programs turn it into their usage error (exit 2,
+/// naming the option that sets the parameter).
+class InvalidParameter : public std::invalid_argument {
+ public:
+  InvalidParameter(const std::string& parameter, const std::string& message);
+  std::string parameter;  ///< the parameter at fault
+};
 
 /// A time scheme with its parameters.
 struct SchemeParameters {
@@ -61,6 +97,37 @@ struct SchemeParameters {
   /// status changes: 1 is backward Euler, the only value for which the energy provably never increases.
   double switch_theta = 1.0;
 };
+
+/// The matrices and scalars of one step (★) of schemes.cpp,
+/// A Uⁿ⁺¹ = B₁ Uⁿ + B₂ W + G − κ λ e₀, 0 ≤ u₀ⁿ⁺¹ − g ⊥ λ ≤ 0, for one scheme, mass and Δt: the one
+/// builder of the step's coefficients, used by the reference step, the fast kernel's set-up,
+/// CN-switch's θ-step and the harness's checks of the contact step (repro/claims.cpp).
+struct StepMatrices {
+  Tridiagonal a;     ///< A, the step matrix (row 0 the algebraic contact row S₀· when `algebraic_row`)
+  Tridiagonal b1;    ///< B₁, applied to Uⁿ (row 0 zero with the algebraic row)
+  Tridiagonal b2;    ///< B₂, applied to W = Vⁿ (two levels) or Uⁿ⁻¹ (three levels) (row 0 zero likewise)
+  double kappa = 0;  ///< κ: the weight of λⁿ⁺¹ (or λⁿ for Paoli–Schatzman) in row 0; 1 with the algebraic row
+  double load_now = 0;   ///< G = load_now Fⁿ + load_next Fⁿ⁺¹ on the rows of inertia
+  double load_next = 0;  ///< see load_now (with the algebraic row, G₀ = F₀ⁿ⁺¹)
+  double lambda_in_rhs = 0;  ///< the weight of −λⁿ in row 0 (Crank–Nicolson-type steps with an inertial contact node)
+  double velocity_rate = 0;  ///< two levels: Vⁿ⁺¹ = rate (Uⁿ⁺¹ − Uⁿ) − memory Vⁿ; three levels: X = rate (Uⁿ⁺¹ − Uⁿ)
+  double velocity_memory = 0;  ///< see velocity_rate
+  bool algebraic_row = false;  ///< whether row 0 is the algebraic contact row S₀·U = F₀ − λ (massless contact node)
+};
+/// The step of `parameters.scheme` (CN-switch's and EC's is Crank–Nicolson's) on the unknowns 0..N−1
+/// with mass M and stiffness S (schemes.cpp, mathematics.md §4). Does not check the parameters
+/// (BarSimulation does).
+StepMatrices step_matrices(const Tridiagonal& mass, const Tridiagonal& stiffness, const SchemeParameters& parameters,
+                           double dt);
+/// The step of the θ-rule, θ ∈ [½, 1] (θ = ½ is Crank–Nicolson, θ = 1 backward Euler; CN-switch's
+/// θ-step), with the algebraic contact row when the contact node is massless.
+StepMatrices theta_step_matrices(const Tridiagonal& mass, const Tridiagonal& stiffness, double theta, double dt);
+/// The right-hand side of (★) before the contact force: b = B₁ Uⁿ + B₂ W + G − lambda_in_rhs λⁿ e₀,
+/// row 0 replaced by F₀ⁿ⁺¹ with the algebraic row. `load_now` and `load_next` are Fⁿ and Fⁿ⁺¹, or
+/// null for f = 0.
+Eigen::VectorXd step_right_hand_side(const StepMatrices& step, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
+                                     double lambda, const Eigen::VectorXd* load_now = nullptr,
+                                     const Eigen::VectorXd* load_next = nullptr);
 
 /// The continuous problem (mathematics.md §1): bar (0, L), data u⁰, v⁰, load f (may be empty: f = 0).
 struct Problem {
@@ -93,10 +160,13 @@ class FastStep;
 /// SchemeParameters::kernel says). Memory is O(N): no history is kept.
 class BarSimulation {
  public:
-  /// Throws std::invalid_argument for a non-positive or non-finite Δt, β < 0, e ∉ [0, 1], an
-  /// algebraic contact row with a contact node that has inertia, a literal Paoli–Schatzman contact
-  /// row with β = 0 and a massless contact node (singular), CN-switch's θ ∉ [½, 1], or the
-  /// energy-conserving scheme with a contact node that has inertia (it needs the condensed row).
+  /// Checks every input before any work and throws InvalidParameter (a std::invalid_argument) naming
+  /// the parameter at fault: Δt not positive and finite; β < 0; e ∉ [0, 1]; CN-switch's θ ∉ [½, 1];
+  /// a parameter the scheme does not take (scheme_registry) with another value than its default; the
+  /// algebraic Paoli–Schatzman row with a contact node that has inertia; the literal Paoli–Schatzman
+  /// row with a massless contact node and β = 0 (singular) or 0 < β < ¼ (u₀ − u₁ grows geometrically in
+  /// free flight); EC with a contact node that has inertia (it needs the condensed row); a problem
+  /// without u⁰, with data that are not finite, or on a bar of another length than the mesh's.
   BarSimulation(const Problem& problem, const UniformMesh& mesh, const MassRedistribution& mass,
                 const SchemeParameters& parameters, double dt,
                 InitialContactNode initial = InitialContactNode::consistent);
@@ -129,9 +199,6 @@ class BarSimulation {
   void choose_energy_scale();
   void reference_step(bool has_load);
   void switch_step(bool has_load);  // CN-switch's θ-step, replacing a Crank–Nicolson step
-  // B₁U + B₂W + G with the algebraic contact row or −κ'λⁿ in row 0 (the reference step's step 1).
-  Eigen::VectorXd right_hand_side(const Tridiagonal& b1, const Tridiagonal& b2, double load_now, double load_next,
-                                  double lambda_in_rhs, bool has_load) const;
 
   Problem problem_;
   UniformMesh mesh_;
@@ -139,25 +206,21 @@ class BarSimulation {
   double dt_;
   bool massless_, algebraic_row_, three_level_;
   Tridiagonal mass_, stiffness_;
-  // One step is A U' = B₁ U + B₂ W + G − κ λ e₀ with W = V (two-level) or W = Uⁿ⁻¹ (three-level),
-  // A factorised in solver_. B₁ and B₂ are kept for the reference step only; the fast kernel keeps
-  // its rows of B₁, B₂, M and S in fast_ (null for the reference step).
-  Tridiagonal b1_, b2_;
+  // One step is (★) with the matrices and scalars of step_ (step_matrices), A factorised in solver_.
+  // B₁ and B₂ are kept for the reference step only; the fast kernel keeps its rows of B₁, B₂, M and S
+  // in fast_ (null for the reference step).
+  StepMatrices step_;
   ContactSolver solver_;
   std::unique_ptr<const FastStep> fast_;
-  double kappa_, load_now_, load_next_;     // G = load_now_ Fⁿ + load_next_ Fⁿ⁺¹ (+ row-0 terms)
-  double lambda_in_rhs_;                    // Crank–Nicolson with inertia at node 0: −θ λⁿ in row 0
-  double velocity_rate_, velocity_memory_;  // two-level: V' = rate (U' − U) − memory V
   // The energy's quadratic forms on values scaled by σ_u = 2^−e_u (displacements) and σ_v = 2^−e_v
   // (velocities) when the data are far from 1 (schemes.cpp: Scale of the energy); scaled_ = false
   // otherwise, and the forms take the values as they are.
   bool scaled_ = false;
   int displacement_exponent_ = 0, velocity_exponent_ = 0;
-  // CN-switch: the θ-step's matrices and scalars, the same roles as above (schemes.cpp).
+  // CN-switch: the θ-step's matrices and scalars (theta_step_matrices) and its factorisation.
   struct SwitchStep {
-    Tridiagonal b1, b2;
+    StepMatrices matrices;
     ContactSolver solver;
-    double kappa, load_now, load_next, lambda_in_rhs, velocity_rate, velocity_memory;
   };
   std::unique_ptr<const SwitchStep> switch_;
   bool energy_conserving_ = false;

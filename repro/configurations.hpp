@@ -80,9 +80,8 @@ inline mrm::SchemeParameters scheme_parameters(const std::string& scheme, const 
                                                const std::string& mass) {
   mrm::SchemeParameters p;
   p.scheme = mrm::scheme_by_name(scheme);
-  p.beta = 0.25;
-  p.restitution = 0.0;
-  p.contact_row = mass == "consistent" ? mrm::ContactRow::literal : mrm::contact_row_by_name(ps_form);
+  if (p.scheme == mrm::Scheme::paoli_schatzman)
+    p.contact_row = mass == "consistent" ? mrm::ContactRow::literal : mrm::contact_row_by_name(ps_form);
   return p;
 }
 
