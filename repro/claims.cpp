@@ -33,10 +33,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <Eigen/SparseLU>
 #include <doctest/doctest.h>
 
 #include "configurations.hpp"
+#include "contact.hpp"
 #include "convergence.hpp"
 #include "exact_solution.hpp"
 #include "period_law.hpp"
@@ -1174,8 +1174,10 @@ TEST_CASE("the energy checks fail for a scheme that does not conserve, or one th
 // Claim 6a: the closed-form contact step against a general-purpose solve, inside real runs.
 //
 // The step is rebuilt from the public state of the run alone — Uⁿ, the velocity (Vⁿ for the two-level
-// schemes, (Uⁿ − Uⁿ⁻¹)/Δt for Paoli–Schatzman, from which Uⁿ⁻¹ is recovered) and λⁿ — with the
-// formulas of mathematics.md §4 (f = 0 here: the benchmark):
+// schemes, (Uⁿ − Uⁿ⁻¹)/Δt for Paoli–Schatzman, from which Uⁿ⁻¹ is recovered) and λⁿ — as the system
+// (★) of lib/schemes.cpp, A Uⁿ⁺¹ + κλe₀ = B₁Uⁿ + B₂W − κ'λⁿe₀ with W = Vⁿ or Uⁿ⁻¹ (f = 0 here: the
+// benchmark), whose coefficients are those of mathematics.md §4 (step_matrices, checked against the
+// formulas by its doctests):
 //
 //   CN   (M + θS)Uⁿ⁺¹ + θλⁿ⁺¹e₀ = (M − θS)Uⁿ + Δt MVⁿ − θλⁿe₀,           θ = Δt²/4,
 //   BE   (M + Δt²S)Uⁿ⁺¹ + Δt²λⁿ⁺¹e₀ = MUⁿ + Δt MVⁿ,
@@ -1183,8 +1185,9 @@ TEST_CASE("the energy checks fail for a scheme that does not conserve, or one th
 //
 // and, when the contact node is massless and the contact row algebraic (every scheme but the literal
 // PS), row 0 replaced by the contact row S₀·Uⁿ⁺¹ + λ = 0 (paper eq. (6)). The active set is fixed to
-// the one the run found (u₀ on the obstacle, or λ = 0), the (N + 1) × (N + 1) saddle-point system in
-// (U, λ) is assembled from triplets and solved by Eigen's SparseLU. The criterion: the differences in
+// the one the run found (u₀ on the obstacle, or λ = 0), and the (N + 1) × (N + 1) saddle-point system
+// in (U, λ) is solved by a general sparse LU (saddle_point_solve, lib/contact.cpp), which shares
+// nothing with the closed form's elimination. The criterion: the differences in
 // Uⁿ⁺¹ and λ, relative to the largest |U| and |λ| of the compared steps, are ≤ 1e-10 (a few hundred
 // round-offs for these well-conditioned systems), and the run's step satisfies the complementarity
 // 0 ≤ u₀ − g ⊥ λ ≤ 0 exactly. The steps compared: every step that changes the contact status (the
@@ -1200,76 +1203,6 @@ std::vector<ContactStepCase> paper_contact_step_cases() {
 
 namespace {
 
-struct RebuiltStep {
-  Tridiagonal a;
-  Eigen::VectorXd b;
-  double kappa = 0, obstacle = 0;
-};
-
-RebuiltStep rebuild_step(const SchemeParameters& p, const Tridiagonal& m, const Tridiagonal& s, double dt,
-                         const Eigen::VectorXd& u, const Eigen::VectorXd& velocity, double multiplier) {
-  const double dt2 = dt * dt;
-  RebuiltStep r;
-  const bool massless = contact_node_is_massless(m);
-  switch (p.scheme) {
-    case Scheme::crank_nicolson: {
-      const double theta = dt2 / 4;
-      r.a = m.plus(theta, s);
-      r.b = m.plus(-theta, s) * u + dt * (m * velocity);
-      r.b[0] -= theta * multiplier;
-      r.kappa = theta;
-      break;
-    }
-    case Scheme::backward_euler:
-      r.a = m.plus(dt2, s);
-      r.b = m * u + dt * (m * velocity);
-      r.kappa = dt2;
-      break;
-    case Scheme::paoli_schatzman: {
-      const Eigen::VectorXd u_previous = u - dt * velocity;
-      r.a = m.plus(p.beta * dt2, s);
-      r.b = m.scaled(2.0).plus(-(1 - 2 * p.beta) * dt2, s) * u - r.a * u_previous;
-      r.kappa = dt2;
-      r.obstacle = -p.restitution * u_previous[0];
-      break;
-    }
-    case Scheme::energy_conserving:
-    case Scheme::switching:  // not schemes of the paper: their steps are checked in lib/energy_step.cpp
-      throw std::invalid_argument("check_contact_step: the paper's schemes only (allowed: cn, be, ps)");
-  }
-  const bool algebraic = massless && (p.scheme != Scheme::paoli_schatzman || p.contact_row == ContactRow::algebraic);
-  if (algebraic) {
-    r.a.diag[0] = s.diag[0];
-    r.a.upper[0] = s.upper[0];
-    r.b[0] = 0.0;
-    r.kappa = 1.0;
-  }
-  return r;
-}
-
-// A U + κλe₀ = b with the last row u₀ = g (active) or λ = 0 (inactive), by sparse LU.
-Eigen::VectorXd saddle_point_solve(const RebuiltStep& r, bool active) {
-  const Index n = r.a.size();
-  std::vector<Eigen::Triplet<double>> t;
-  for (Index i = 0; i < n; ++i) {
-    t.emplace_back(i, i, r.a.diag[i]);
-    if (i > 0) t.emplace_back(i, i - 1, r.a.lower[i]);
-    if (i + 1 < n) t.emplace_back(i, i + 1, r.a.upper[i]);
-  }
-  t.emplace_back(0, n, r.kappa);
-  t.emplace_back(n, active ? 0 : n, 1.0);
-  Eigen::SparseMatrix<double> k(n + 1, n + 1);
-  k.setFromTriplets(t.begin(), t.end());
-  Eigen::VectorXd rhs(n + 1);
-  rhs << r.b, (active ? r.obstacle : 0.0);
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(k);
-  if (lu.info() != Eigen::Success) throw std::runtime_error("check_contact_step: sparse LU failed");
-  Eigen::VectorXd x = lu.solve(rhs);
-  if (lu.info() != Eigen::Success) throw std::runtime_error("check_contact_step: sparse LU solve failed");
-  return x;
-}
-
 struct StepComparison {
   int compared = 0, status_changes = 0;
   double u_difference = 0, u_scale = 0, lambda_difference = 0, lambda_scale = 0;
@@ -1280,28 +1213,30 @@ StepComparison compare_steps(const ContactStepCase& c, const ContactStepSettings
   const UniformMesh mesh(1.0, settings.elements);
   const double dt = settings.courant * mesh.h();
   BarSimulation simulation(benchmark_problem(), mesh, c.mass, c.run.parameters, dt);
+  const StepMatrices step = step_matrices(simulation.mass(), simulation.stiffness(), c.model.parameters, dt);
   const bool three_level = c.run.parameters.scheme == Scheme::paoli_schatzman;
+  const bool model_three_level = c.model.parameters.scheme == Scheme::paoli_schatzman;
   StepComparison cmp;
   bool contact = false;
   const Index steps = steps_to_reach(settings.final_time, dt);
   for (Index k = 0; k < steps; ++k) {
     const Sample before = simulation.sample();
-    const Eigen::VectorXd u = *before.displacement, velocity = *before.velocity;
-    const double multiplier = before.multiplier;
+    const Eigen::VectorXd& u = *before.displacement;
+    const Eigen::VectorXd w = model_three_level ? Eigen::VectorXd(u - dt * *before.velocity) : *before.velocity;
+    const Eigen::VectorXd b = step_right_hand_side(step, u, w, before.multiplier);
+    const double obstacle = model_three_level ? -c.model.parameters.restitution * w[0] : 0.0;
     simulation.step();
     const Sample after = simulation.sample();
-    const RebuiltStep r =
-        rebuild_step(c.model.parameters, simulation.mass(), simulation.stiffness(), dt, u, velocity, multiplier);
     const double u0 = (*after.displacement)[0];
-    const bool active = u0 == r.obstacle;
+    const bool active = u0 == obstacle;
     const bool changed = active != contact;
     contact = active;
     cmp.status_changes += changed;
-    cmp.complementarity = cmp.complementarity && u0 >= r.obstacle && after.multiplier <= 0.0 &&
-                          (u0 - r.obstacle) * after.multiplier == 0.0;
+    cmp.complementarity =
+        cmp.complementarity && u0 >= obstacle && after.multiplier <= 0.0 && (u0 - obstacle) * after.multiplier == 0.0;
     if (three_level && before.level < 2) continue;
     if (!changed && k % settings.every != 0) continue;
-    const Eigen::VectorXd x = saddle_point_solve(r, active);
+    const Eigen::VectorXd x = saddle_point_solve(step.a, b, step.kappa, obstacle, active);
     const Index n = mesh.unknowns();
     cmp.u_difference = std::max(cmp.u_difference, (*after.displacement - x.head(n)).cwiseAbs().maxCoeff());
     cmp.u_scale = std::max(cmp.u_scale, x.head(n).cwiseAbs().maxCoeff());
