@@ -30,6 +30,7 @@
 #include "errors.hpp"
 #include "exact_solution.hpp"
 #include "configurations.hpp"
+#include "figure_program.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
 #include "schemes.hpp"
@@ -39,47 +40,40 @@ namespace cli = mrm::cli;
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_contact_history", [&] {
     // 1. Options.
-    long elements = 20, exact_points = 3600;
-    double courant = 0.5, final_time = 9.0;
+    long exact_points = 3600;
     std::string ps_form = "algebraic";
-    cli::Parser parser("fig_contact_history",
-                       "Writes the history of the contact point, u(0,t) and the contact stress lambda(t), of the "
-                       "exact solution and of every scheme (cn, be, ps) with every mass choice (mod1, mod2, mod3): "
-                       "the paper's Figure 1.",
-                       {"fig_contact_history --output output/data/fig_contact_history.dat "
-                        "--tex output/data/fig_contact_history.tex",
-                        "fig_contact_history --elements 40 --courant 1 --final-time 6 --output h.dat"});
-    parser.add_integer("--elements", "-n", "N",
-                       "number of elements N (h = 1/N), in [2, 1e7]; coarse so that the masses differ", &elements,
-                       mrm::repro::elements_range());
-    parser.add_real("--courant", "-c", "C", "time step dt = C h (0 < C <= 1e6)", &courant, mrm::repro::courant_range());
-    parser.add_real("--final-time", "-T", "T", "final time (> 0); the period is 3", &final_time, cli::positive());
-    parser.add_choice("--ps-form", "", "F",
-                      "Paoli-Schatzman's contact row (algebraic, the form the report believes the paper used, "
-                      "coincides with cn in u and lambda)",
-                      {"algebraic", "literal"}, &ps_form);
-    parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve, in [10, 1e6]",
-                       &exact_points, cli::in_closed_range(10, cli::max_curve_points));
-    mrm::repro::FigureOutputs outputs(parser, "fig_contact_history",
-                                      "also write the values the report quotes, as \\mrmdef lines");
-    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    mrm::repro::FigureProgram program(
+        "fig_contact_history",
+        "Writes the history of the contact point, u(0,t) and the contact stress lambda(t), of the "
+        "exact solution and of every scheme (cn, be, ps) with every mass choice (mod1, mod2, mod3): "
+        "the paper's Figure 1.",
+        {"fig_contact_history --output output/data/fig_contact_history.dat "
+         "--tex output/data/fig_contact_history.tex",
+         "fig_contact_history --elements 40 --courant 1 --final-time 6 --output h.dat"});
+    program.add_elements(20, "number of elements N (h = 1/N), in [2, 1e7]; coarse so that the masses differ");
+    program.add_courant(0.5);
+    program.add_final_time(9.0);
+    program.parser.add_choice("--ps-form", "", "F",
+                              "Paoli-Schatzman's contact row (algebraic, the form the report believes the paper used, "
+                              "coincides with cn in u and lambda)",
+                              {"algebraic", "literal"}, &ps_form);
+    program.parser.add_integer("--exact-points", "", "K",
+                               "number of intervals of the exact solution's curve, in [10, 1e6]", &exact_points,
+                               cli::in_closed_range(10, cli::max_curve_points));
+    if (!program.parse(argc, argv)) return 0;
 
+    const long elements = program.elements;
+    const double courant = program.courant, final_time = program.final_time, dt = program.dt();
     const mrm::UniformMesh mesh(1.0, elements);
-    const double dt = courant * mesh.h();  // Δt derived from h here only
-    const mrm::Index steps = cli::checked_steps("--final-time", final_time, dt, "--courant");
-    // Ten contact histories of steps + 1 lines each.
-    cli::require_rows("--final-time", 10 * (static_cast<double>(steps) + 1),
-                      cli::format_real(static_cast<double>(steps)) + " steps of 10 runs");
-    cli::require_mesh_memory("--elements", static_cast<double>(elements), mrm::repro::bytes_per_element);
+    program.steps(10);  // ten contact histories
 
     // 2. Outputs, opened before the runs so that a bad path fails at once.
-    outputs.open(parser);
+    program.open();
     const mrm::ExactSolution exact;
-    std::ostream& out = outputs.data();
-    out << "# fig_contact_history: u(0,t) and lambda(t), exact and computed (mathematics.md sec. 2; paper Figure 1)\n";
-    parser.echo(out);
-    out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt) << "\n# steps = " << steps
-        << "\n# blocks: 0 exact (t u0 lambda); 1 + 3 s + m: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3);"
+    std::ostream& out =
+        program.header("u(0,t) and lambda(t), exact and computed (mathematics.md sec. 2; paper Figure 1)");
+    program.write_step();
+    out << "# blocks: 0 exact (t u0 lambda); 1 + 3 s + m: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3);"
            "\n# 10: the baseline, Paoli-Schatzman with the consistent mass (literal contact row)\n";
 
     // 3. The exact history on a fine, uniform grid of instants.
@@ -92,7 +86,7 @@ int main(int argc, char** argv) {
 
     // 4. Every scheme with every mass.
     {
-      std::ostream& m = outputs.values();
+      std::ostream& m = program.values();
       mrm::tex_define(m, "hist:elements", std::to_string(elements));
       mrm::tex_define(m, "hist:h", mrm::tex_number(mesh.h(), 3));
       mrm::tex_define(m, "hist:dt", mrm::tex_number(dt, 3));
@@ -121,9 +115,9 @@ int main(int argc, char** argv) {
                 << cli::format_real(s.multiplier_time) << ' ' << cli::format_real(lambda) << '\n';
           }).errors;
       // 5. The errors of the contact point, quoted by the report beside the figure.
-      mrm::tex_define(outputs.values(), "hist:" + key + ":err_u0_L2", mrm::tex_number(e.u0_L2, 2));
-      mrm::tex_define(outputs.values(), "hist:" + key + ":err_lambda_L2", mrm::tex_number(e.lambda_L2, 2));
-      mrm::tex_define(outputs.values(), "hist:" + key + ":err_u_L2H1", mrm::tex_number(e.u_L2H1, 2));
+      mrm::tex_define(program.values(), "hist:" + key + ":err_u0_L2", mrm::tex_number(e.u0_L2, 2));
+      mrm::tex_define(program.values(), "hist:" + key + ":err_lambda_L2", mrm::tex_number(e.lambda_L2, 2));
+      mrm::tex_define(program.values(), "hist:" + key + ":err_u_L2H1", mrm::tex_number(e.u_L2H1, 2));
       table.add_row({row_scheme, row_mass, mrm::tex_number(e.u0_L2, 2), mrm::tex_number(e.lambda_L2, 2),
                      mrm::tex_number(e.u_L2H1, 2)});
     };
@@ -137,8 +131,8 @@ int main(int argc, char** argv) {
     // 6. The baseline: Paoli–Schatzman (¼, 0) with the full consistent mass (its only contact row is the
     // literal one), stable and the method's natural point of comparison (block 10, last row of the table).
     run_block("ps", "literal", "consistent", "ps:consistent", mrm::repro::scheme_label("ps", "literal"), "consistent");
-    outputs.values() << "\\mrmdef{hist:table}{" << mrm::repro::latex_tabular(table, "llrrr") << "}\n";
-    outputs.commit();
+    program.values() << "\\mrmdef{hist:table}{" << mrm::repro::latex_tabular(table, "llrrr") << "}\n";
+    program.commit();
     return 0;
   });
 }

@@ -34,6 +34,7 @@
 #include "errors.hpp"
 #include "exact_solution.hpp"
 #include "configurations.hpp"
+#include "figure_program.hpp"
 #include "parallel.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
@@ -63,27 +64,27 @@ int main(int argc, char** argv) {
   return cli::guarded_main("fig_convergence", [&] {
     // 1. Options.
     long coarsest = 128, refinements = 6, threads = 2;
-    double final_time = 3.0;
     std::string ps_form = "literal";
-    cli::Parser parser(
+    mrm::repro::FigureProgram program(
         "fig_convergence",
         "Writes every relative error of mathematics.md §5 against h, with dt = h and dt = h/2, for "
         "every scheme (cn, be, ps) and mass choice (mod1, mod2, mod3), and the observed orders "
         "(least-squares fit of log error against log h).",
         {"fig_convergence --output output/data/fig_convergence.dat --tex output/data/fig_convergence.tex",
          "fig_convergence --coarsest 16 --refinements 4 --threads 1 --output c.dat"});
-    parser.add_integer("--coarsest", "-n", "N0", "number of elements of the coarsest mesh, in [2, 1e7]", &coarsest,
-                       mrm::repro::elements_range());
-    parser.add_integer("--refinements", "-k", "K",
-                       "number of meshes N0, 2 N0, ..., 2^(K-1) N0, in [2, 20]; the finest has at most 1e7 elements",
-                       &refinements, cli::in_closed_range(2, 20));
-    parser.add_real("--final-time", "-T", "T", "final time (> 0); one period is 3", &final_time, cli::positive());
-    parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
-                      {"algebraic", "literal"}, &ps_form);
-    parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
-                       &threads, cli::in_closed_range(1, cli::max_threads));
-    mrm::repro::FigureOutputs outputs(parser, "fig_convergence", "also write the tables and values the report quotes");
-    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    program.parser.add_integer("--coarsest", "-n", "N0", "number of elements of the coarsest mesh, in [2, 1e7]",
+                               &coarsest, mrm::repro::elements_range());
+    program.parser.add_integer(
+        "--refinements", "-k", "K",
+        "number of meshes N0, 2 N0, ..., 2^(K-1) N0, in [2, 20]; the finest has at most 1e7 elements", &refinements,
+        cli::in_closed_range(2, 20));
+    program.add_final_time(3.0, "final time (> 0); one period is 3");
+    program.parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
+                              {"algebraic", "literal"}, &ps_form);
+    program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
+                               &threads, cli::in_closed_range(1, cli::max_threads));
+    if (!program.parse(argc, argv, "also write the tables and values the report quotes")) return 0;
+    const double final_time = program.final_time;
     // The finest mesh (K ≤ 20 and N0 ≤ 1e7: the product is exact in a double), its steps at Δt = h/2, the
     // coarsest run's at Δt = h (at least one), and the memory of the runs that may run at once: the
     // longest go first, so up to `threads` of the 18 finest ones.
@@ -99,7 +100,7 @@ int main(int argc, char** argv) {
                              std::min<double>(static_cast<double>(threads), 18));
 
     // 2. Outputs.
-    outputs.open(parser);
+    program.open();
     const auto& schemes = mrm::repro::scheme_names();
     const auto& masses = mrm::repro::mass_names();
 
@@ -135,9 +136,7 @@ int main(int argc, char** argv) {
         });
 
     // 5. The data blocks, in the fixed order of `runs` (scheme, mass, ratio, mesh).
-    std::ostream& out = outputs.data();
-    out << "# fig_convergence: relative errors against h (mathematics.md sec. 5)\n";
-    parser.echo(out);
+    std::ostream& out = program.header("relative errors against h (mathematics.md sec. 5)");
     out << "# blocks: 2 (3 s + m) + c: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3), c in (dt = h, dt = "
            "h/2)\n";
     const std::size_t levels = static_cast<std::size_t>(refinements);
@@ -157,7 +156,7 @@ int main(int argc, char** argv) {
 
     // 6. Orders (fit over all meshes), the tables of orders and of the errors on the finest mesh, the
     // ranking of the three masses, and the values quoted in the prose.
-    std::ostream& defs = outputs.values();
+    std::ostream& defs = program.values();
     const mrm::Index finest = static_cast<mrm::Index>(coarsest) << (levels - 1);
     mrm::tex_define(defs, "conv:Nmin", std::to_string(coarsest));
     mrm::tex_define(defs, "conv:Nmax", std::to_string(finest));
@@ -251,7 +250,7 @@ int main(int argc, char** argv) {
     halves("conv:table:ranking", ranking_table, 2, 'c');
 
     // 7. Commit.
-    outputs.commit();
+    program.commit();
     return 0;
   });
 }

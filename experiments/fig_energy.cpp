@@ -29,6 +29,7 @@
 #include "errors.hpp"
 #include "exact_solution.hpp"
 #include "configurations.hpp"
+#include "figure_program.hpp"
 #include "report_values.hpp"
 #include "schemes.hpp"
 
@@ -36,43 +37,32 @@ namespace cli = mrm::cli;
 
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_energy", [&] {
-    // 1. Options.
-    long elements = 20;
-    double courant = 0.5, final_time = 9.0;
+    // 1. Options and the limits of the run.
     std::string ps_form = "literal";
-    cli::Parser parser("fig_energy",
-                       "Writes the discrete energy history of every scheme (cn, be, ps) with every mass choice "
-                       "(mod1, mod2, mod3) on the benchmark; the exact energy is 1/8.",
-                       {"fig_energy --output output/data/fig_energy.dat --tex output/data/fig_energy.tex",
-                        "fig_energy --elements 40 --final-time 30 --output e.dat"});
-    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), in [2, 1e7]", &elements,
-                       mrm::repro::elements_range());
-    parser.add_real("--courant", "-c", "C", "time step dt = C h (0 < C <= 1e6)", &courant, mrm::repro::courant_range());
-    parser.add_real("--final-time", "-T", "T", "final time (> 0); the period is 3", &final_time, cli::positive());
-    parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
-                      {"algebraic", "literal"}, &ps_form);
-    mrm::repro::FigureOutputs outputs(parser, "fig_energy",
-                                      "also write the values the report quotes, as \\mrmdef lines");
-    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
-
-    const mrm::UniformMesh mesh(1.0, elements);
-    const double dt = courant * mesh.h();
-    const mrm::Index steps = cli::checked_steps("--final-time", final_time, dt, "--courant");
-    // Nine energy histories of steps + 1 lines each.
-    cli::require_rows("--final-time", 9 * (static_cast<double>(steps) + 1),
-                      cli::format_real(static_cast<double>(steps)) + " steps of 9 runs");
-    cli::require_mesh_memory("--elements", static_cast<double>(elements), mrm::repro::bytes_per_element);
+    mrm::repro::FigureProgram program(
+        "fig_energy",
+        "Writes the discrete energy history of every scheme (cn, be, ps) with every mass "
+        "choice (mod1, mod2, mod3) on the benchmark; the exact energy is 1/8.",
+        {"fig_energy --output output/data/fig_energy.dat --tex output/data/fig_energy.tex",
+         "fig_energy --elements 40 --final-time 30 --output e.dat"});
+    program.add_elements(20);
+    program.add_courant(0.5);
+    program.add_final_time(9.0);
+    program.parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
+                              {"algebraic", "literal"}, &ps_form);
+    if (!program.parse(argc, argv)) return 0;
+    const long elements = program.elements;
+    const double courant = program.courant, final_time = program.final_time;
+    program.steps(9);  // nine energy histories
 
     // 2. Outputs.
-    outputs.open(parser);
+    program.open();
     const mrm::ExactSolution exact;
-    std::ostream& out = outputs.data();
-    out << "# fig_energy: discrete energy E_h(t) against the exact 1/8 (mathematics.md sec. 4-5)\n";
-    parser.echo(out);
-    out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt) << "\n# steps = " << steps
-        << "\n# exact_energy = " << cli::format_real(exact.energy())
+    std::ostream& out = program.header("discrete energy E_h(t) against the exact 1/8 (mathematics.md sec. 4-5)");
+    program.write_step();
+    out << "# exact_energy = " << cli::format_real(exact.energy())
         << "\n# blocks: 3 s + m: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3)\n";
-    std::ostream& defs = outputs.values();
+    std::ostream& defs = program.values();
     mrm::tex_define(defs, "energy:elements", std::to_string(elements));
     mrm::tex_define(defs, "energy:T", cli::format_real(final_time));
 
@@ -126,7 +116,7 @@ int main(int argc, char** argv) {
     }
 
     // 5. Commit.
-    outputs.commit();
+    program.commit();
     return 0;
   });
 }

@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "configurations.hpp"
+#include "figure_program.hpp"
 #include "energy_step.hpp"
 #include "options.hpp"
 #include "parallel.hpp"
@@ -121,42 +122,40 @@ std::string step_text(double courant) {
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_energy_schemes", [&] {
     // 1. Options.
-    long elements = 20, threads = 2;
+    long threads = 2;
     double switch_theta = 1.0;
     std::string view = "history", mass = "mod3";
-    cli::Parser parser("fig_energy_schemes",
-                       "Writes the energy of Crank-Nicolson, energy-conserving Crank-Nicolson (ec), Crank-Nicolson "
-                       "with a theta-step at each status change (cn-switch) and backward Euler on the benchmark: "
-                       "their histories, the largest energy against dt/h, or their errors against Crank-Nicolson's.",
-                       {"fig_energy_schemes --view history --output output/data/fig_energy_schemes_history.dat",
-                        "fig_energy_schemes --view map --threads 1 --output map.dat --tex map.tex"});
-    parser.add_choice("--view", "", "V",
-                      "history: E/E0 over 10 periods at dt = h/2, h, 5h; map: the largest E/E0 over 100 periods "
-                      "against dt/h, and the long runs; measures: the errors at N = 100 and 400",
-                      {"history", "map", "measures"}, &view);
-    parser.add_integer("--elements", "-n", "N", "history: number of elements N (h = 1/N), in [2, 1e5]", &elements,
-                       cli::in_closed_range(2, 1e5));
-    parser.add_choice("--mass", "-m", "M", "history and map: the mass (a massless contact node, which ec needs)",
-                      {"mod1", "mod2", "mod3"}, &mass);
-    parser.add_real("--switch-theta", "", "TH", "cn-switch: theta in [0.5, 1] of its switching step", &switch_theta,
-                    cli::in_closed_range(0.5, 1));
-    parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 64]; the output does not depend on it", &threads,
-                       cli::in_closed_range(1, 64));
-    mrm::repro::FigureOutputs outputs(parser, "fig_energy_schemes",
-                                      "also write the values and tables the report quotes, as \\mrmdef lines");
-    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
-    if (view != "history" && parser.given("--elements"))
+    mrm::repro::FigureProgram program(
+        "fig_energy_schemes",
+        "Writes the energy of Crank-Nicolson, energy-conserving Crank-Nicolson (ec), Crank-Nicolson "
+        "with a theta-step at each status change (cn-switch) and backward Euler on the benchmark: "
+        "their histories, the largest energy against dt/h, or their errors against Crank-Nicolson's.",
+        {"fig_energy_schemes --view history --output output/data/fig_energy_schemes_history.dat",
+         "fig_energy_schemes --view map --threads 1 --output map.dat --tex map.tex"});
+    program.parser.add_choice(
+        "--view", "", "V",
+        "history: E/E0 over 10 periods at dt = h/2, h, 5h; map: the largest E/E0 over 100 periods "
+        "against dt/h, and the long runs; measures: the errors at N = 100 and 400",
+        {"history", "map", "measures"}, &view);
+    program.add_elements(20, "history: number of elements N (h = 1/N), in [2, 1e5]", cli::in_closed_range(2, 1e5));
+    program.parser.add_choice("--mass", "-m", "M",
+                              "history and map: the mass (a massless contact node, which ec needs)",
+                              {"mod1", "mod2", "mod3"}, &mass);
+    program.parser.add_real("--switch-theta", "", "TH", "cn-switch: theta in [0.5, 1] of its switching step",
+                            &switch_theta, cli::in_closed_range(0.5, 1));
+    program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 64]; the output does not depend on it",
+                               &threads, cli::in_closed_range(1, 64));
+    if (!program.parse(argc, argv, "also write the values and tables the report quotes, as \\mrmdef lines")) return 0;
+    const long elements = program.elements;
+    if (view != "history" && program.parser.given("--elements"))
       throw cli::UsageError("--elements: only with --view history (the other views fix their meshes)");
-    if (view == "measures" && parser.given("--mass"))
+    if (view == "measures" && program.parser.given("--mass"))
       throw cli::UsageError("--mass: not with --view measures (it runs Mod 1, 2 and 3)");
 
     // 2. Outputs.
-    outputs.open(parser);
-    std::ostream& out = outputs.data();
-    std::ostream& defs = outputs.values();
-    out << "# fig_energy_schemes: the energy of cn, ec, cn-switch and be (mathematics.md sec. 12), view " << view
-        << '\n';
-    parser.echo(out);
+    program.open();
+    std::ostream& out = program.header("the energy of cn, ec, cn-switch and be (mathematics.md sec. 12), view " + view);
+    std::ostream& defs = program.values();
     const std::string theta_text = mrm::tex_number(switch_theta, 3);
     mrm::tex_define(defs, "ecs:theta", theta_text);
 
@@ -383,7 +382,7 @@ int main(int argc, char** argv) {
     }
 
     // 6. Commit.
-    outputs.commit();
+    program.commit();
     return 0;
   });
 }

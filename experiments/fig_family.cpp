@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "configurations.hpp"
+#include "figure_program.hpp"
 #include "mass_spec.hpp"
 #include "options.hpp"
 #include "parallel.hpp"
@@ -102,19 +103,19 @@ int main(int argc, char** argv) {
   return cli::guarded_main("fig_family", [&] {
     // 1. Options.
     long threads = 2;
-    cli::Parser parser("fig_family",
-                       "Writes, for some twenty members of the weighted mass-redistribution family and Crank-Nicolson "
-                       "at N = 100 and 400, dt = h/2 and h, over 10 and 30 periods, the measured drift of the impact "
-                       "times per period beside the period law's prediction, and the errors relative to Mod 3.",
-                       {"fig_family --output output/data/fig_family.dat --tex output/data/fig_family.tex",
-                        "fig_family --threads 1 --output f.dat"});
-    parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it", &threads,
-                       cli::at_least(1));
-    mrm::repro::FigureOutputs outputs(parser, "fig_family", "also write the values the report quotes");
-    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    mrm::repro::FigureProgram program(
+        "fig_family",
+        "Writes, for some twenty members of the weighted mass-redistribution family and Crank-Nicolson "
+        "at N = 100 and 400, dt = h/2 and h, over 10 and 30 periods, the measured drift of the impact "
+        "times per period beside the period law's prediction, and the errors relative to Mod 3.",
+        {"fig_family --output output/data/fig_family.dat --tex output/data/fig_family.tex",
+         "fig_family --threads 1 --output f.dat"});
+    program.parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it",
+                               &threads, cli::at_least(1));
+    if (!program.parse(argc, argv, "also write the values the report quotes")) return 0;
 
     // 2. Outputs.
-    outputs.open(parser);
+    program.open();
     const std::vector<mrm::Index> meshes{100, 400};
     const std::vector<double> courants{0.5, 1.0};
     const std::vector<long> horizons{10, 30};  // periods
@@ -204,9 +205,8 @@ int main(int argc, char** argv) {
         });
 
     // 5. The data blocks: block 4a + 2b + c for mesh a, Δt/h b, horizon c; one row per member.
-    std::ostream& out = outputs.data();
-    out << "# fig_family: the weighted family against the period law (mathematics.md sec. 8), Crank-Nicolson\n";
-    parser.echo(out);
+    std::ostream& out =
+        program.header("the weighted family against the period law (mathematics.md sec. 8), Crank-Nicolson");
     out << "# length = 1\n# amplitude = 0.5\n# period = " << cli::format_real(exact.period())
         << "\n# scheme = cn\n# initial_contact_node = consistent\n"
         << "# blocks: 4 a + 2 b + c for N in (100, 400) [a], dt/h in (0.5, 1) [b], periods in (10, 30) [c]\n"
@@ -215,7 +215,7 @@ int main(int argc, char** argv) {
         << "# predicted_eigen = 2 l_f + l_c - 3 from the first eigenvalues of the reduced pencils; drift = the\n"
         << "# measured drift of the impact times per period; drift_rel = drift - Mod 3's drift (same block);\n"
         << "# ratio = geometric mean over the eight measures of error / Mod 3's error (same block).\n";
-    std::ostream& defs = outputs.values();
+    std::ostream& defs = program.values();
     const std::size_t per_block = members().size();
     std::size_t block = 0;
     for (std::size_t a = 0; a < meshes.size(); ++a)
@@ -284,7 +284,7 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "family:Nfine", std::to_string(meshes.back()));
     mrm::tex_define(defs, "family:Tshort", std::to_string(horizons.front()));
     mrm::tex_define(defs, "family:Tlong", std::to_string(horizons.back()));
-    outputs.commit();
+    program.commit();
     return 0;
   });
 }

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "configurations.hpp"
+#include "figure_program.hpp"
 #include "errors.hpp"
 #include "options.hpp"
 #include "output_file.hpp"
@@ -34,25 +35,23 @@ int main(int argc, char** argv) {
   return cli::guarded_main("fig_order_map", [&] {
     // 1. Options.
     std::string sweep_file = "output/data/sweep.dat";
-    cli::Parser parser("fig_order_map",
-                       "Reads the sweep written by check_claims --sweep and writes the least-squares orders in h of "
-                       "every measure per (scheme, mass, dt/h, horizon) beside the predicted orders.",
-                       {"fig_order_map --sweep output/data/sweep.dat --output output/data/fig_order_map.dat"});
-    parser.add_string("--sweep", "-i", "FILE", "the sweep to read (check_claims --sweep FILE)", &sweep_file);
-    repro::FigureOutputs outputs(parser, "fig_order_map", "also write the values the report quotes, as \\mrmdef lines");
-    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    mrm::repro::FigureProgram program(
+        "fig_order_map",
+        "Reads the sweep written by check_claims --sweep and writes the least-squares orders in h of "
+        "every measure per (scheme, mass, dt/h, horizon) beside the predicted orders.",
+        {"fig_order_map --sweep output/data/sweep.dat --output output/data/fig_order_map.dat"});
+    program.parser.add_string("--sweep", "-i", "FILE", "the sweep to read (check_claims --sweep FILE)", &sweep_file);
+    if (!program.parse(argc, argv)) return 0;
 
     // 2. Outputs, opened first so that a bad output path fails before anything is read.
-    outputs.open(parser);
+    program.open();
 
     // 3. The sweep.
     const repro::Sweep sweep = repro::read_sweep_file(sweep_file, "--sweep");
     const repro::SweepGrid& g = sweep.grid;
 
-    std::ostream& out = outputs.data();
-    out << "# fig_order_map: least-squares orders in h per (scheme, mass, dt/h, horizon) (claim 4, mathematics.md "
-           "sec. 9)\n";
-    parser.echo(out);
+    std::ostream& out =
+        program.header("least-squares orders in h per (scheme, mass, dt/h, horizon) (claim 4, mathematics.md sec. 9)");
     std::vector<std::pair<std::string, std::string>> pairs;
     for (const std::string& s : g.schemes)
       for (const std::string& m : g.masses) pairs.emplace_back(s, m);
@@ -65,7 +64,7 @@ int main(int argc, char** argv) {
 
     // 4. The blocks.
     const std::vector<repro::OrderCell> cells = repro::order_cells(sweep);
-    std::ostream& defs = outputs.values();
+    std::ostream& defs = program.values();
     int block = 0;
     for (const auto& [s, m] : pairs) {
       const repro::PredictedOrders p = repro::predicted_orders(s);
@@ -93,7 +92,7 @@ int main(int argc, char** argv) {
     }
 
     // 6. Commit.
-    outputs.commit();
+    program.commit();
     return 0;
   });
 }

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "configurations.hpp"
+#include "figure_program.hpp"
 #include "errors.hpp"
 #include "options.hpp"
 #include "output_file.hpp"
@@ -36,25 +37,23 @@ int main(int argc, char** argv) {
   return cli::guarded_main("fig_ordering_map", [&] {
     // 1. Options.
     std::string sweep_file = "output/data/sweep.dat";
-    cli::Parser parser("fig_ordering_map",
-                       "Reads the sweep written by check_claims --sweep and writes, per cell (scheme, dt/h, N, "
-                       "horizon), how many measures rank the masses Mod 3 < Mod 2 < Mod 1, and from which horizon.",
-                       {"fig_ordering_map --sweep output/data/sweep.dat --output output/data/fig_ordering_map.dat"});
-    parser.add_string("--sweep", "-i", "FILE", "the sweep to read (check_claims --sweep FILE)", &sweep_file);
-    repro::FigureOutputs outputs(parser, "fig_ordering_map",
-                                 "also write the values the report quotes, as \\mrmdef lines");
-    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    mrm::repro::FigureProgram program(
+        "fig_ordering_map",
+        "Reads the sweep written by check_claims --sweep and writes, per cell (scheme, dt/h, N, "
+        "horizon), how many measures rank the masses Mod 3 < Mod 2 < Mod 1, and from which horizon.",
+        {"fig_ordering_map --sweep output/data/sweep.dat --output output/data/fig_ordering_map.dat"});
+    program.parser.add_string("--sweep", "-i", "FILE", "the sweep to read (check_claims --sweep FILE)", &sweep_file);
+    if (!program.parse(argc, argv)) return 0;
 
     // 2. Outputs, opened first so that a bad output path fails before anything is read.
-    outputs.open(parser);
+    program.open();
 
     // 3. The sweep.
     const repro::Sweep sweep = repro::read_sweep_file(sweep_file, "--sweep");
     const repro::SweepGrid& g = sweep.grid;
 
-    std::ostream& out = outputs.data();
-    out << "# fig_ordering_map: the ranking Mod 3 < Mod 2 < Mod 1 per cell (claim 3, mathematics.md sec. 6, 8)\n";
-    parser.echo(out);
+    std::ostream& out =
+        program.header("the ranking Mod 3 < Mod 2 < Mod 1 per cell (claim 3, mathematics.md sec. 6, 8)");
     out << "# blocks 4 s + j: scheme s in (cn, be, ps), ratio j in (";
     for (double c : g.courants) out << ' ' << cli::format_real(c);
     out << " ); columns: elements horizon ranked judged cn_mod3_beats_baseline\n"
@@ -110,7 +109,7 @@ int main(int argc, char** argv) {
       }
 
     // 5. The values: cells ranked in every judged measure, per scheme and horizon.
-    std::ostream& defs = outputs.values();
+    std::ostream& defs = program.values();
     // The same counts as one list per scheme ("0, 4, 7, 17"), in the order of the horizons, and the grid
     // itself, for the prose: the ratios, the horizons and the meshes, as the sweep ran them.
     const auto list = [](const auto& values, const auto& text) {
@@ -138,7 +137,7 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "ordermap:horizons", list(g.horizons, [](double k) { return cli::format_real(k); }));
 
     // 6. Commit.
-    outputs.commit();
+    program.commit();
     return 0;
   });
 }

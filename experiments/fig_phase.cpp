@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "configurations.hpp"
+#include "figure_program.hpp"
 #include "options.hpp"
 #include "output_file.hpp"
 #include "report_values.hpp"
@@ -40,44 +41,43 @@ namespace cli = mrm::cli;
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_phase", [&] {
     // 1. Options.
-    long elements = 100, stride = 8;
-    double courant = 0.5, periods = 30;
+    long stride = 8;
+    double periods = 30;
     std::string scheme = "cn";
-    cli::Parser parser("fig_phase",
-                       "Writes the errors against time of one scheme with Mod 1, Mod 2 and Mod 3 over many periods, "
-                       "and the errors of the impact times beside the period law's prediction (-4h/3, -h/3, 0 per "
-                       "period).",
-                       {"fig_phase --output output/data/fig_phase.dat --tex output/data/fig_phase.tex",
-                        "fig_phase --elements 50 --courant 1 --periods 10 --output p.dat"});
-    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), in [3, 1e5]", &elements,
-                       cli::in_closed_range(3, 1e5));
-    parser.add_real("--courant", "-c", "C", "time step dt = C h, C in (0, 10]", &courant,
-                    [](std::string_view o, double v) {
-                      cli::require_positive(o, v);
-                      cli::require_in_closed_range(o, v, 0, 10);
-                    });
-    parser.add_real("--periods", "-p", "P", "number of periods (3L each), in [2, 1000]", &periods,
-                    cli::in_closed_range(2, 1000));
-    parser.add_integer("--stride", "", "K", "keep every K-th level of the error history in the data file (K >= 1)",
-                       &stride, cli::at_least(1));
-    parser.add_choice("--scheme", "-s", "S", "time scheme (Paoli-Schatzman with the algebraic row)", {"cn", "be", "ps"},
-                      &scheme);
-    mrm::repro::FigureOutputs outputs(parser, "fig_phase",
-                                      "also write the values the report quotes, as \\mrmdef lines");
-    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    mrm::repro::FigureProgram program(
+        "fig_phase",
+        "Writes the errors against time of one scheme with Mod 1, Mod 2 and Mod 3 over many periods, "
+        "and the errors of the impact times beside the period law's prediction (-4h/3, -h/3, 0 per "
+        "period).",
+        {"fig_phase --output output/data/fig_phase.dat --tex output/data/fig_phase.tex",
+         "fig_phase --elements 50 --courant 1 --periods 10 --output p.dat"});
+    program.add_elements(100, "number of elements N (h = 1/N), in [3, 1e5]", cli::in_closed_range(3, 1e5));
+    program.add_courant(0.5, "time step dt = C h, C in (0, 10]", [](std::string_view o, double v) {
+      cli::require_positive(o, v);
+      cli::require_in_closed_range(o, v, 0, 10);
+    });
+    program.parser.add_real("--periods", "-p", "P", "number of periods (3L each), in [2, 1000]", &periods,
+                            cli::in_closed_range(2, 1000));
+    program.parser.add_integer("--stride", "", "K",
+                               "keep every K-th level of the error history in the data file (K >= 1)", &stride,
+                               cli::at_least(1));
+    program.parser.add_choice("--scheme", "-s", "S", "time scheme (Paoli-Schatzman with the algebraic row)",
+                              {"cn", "be", "ps"}, &scheme);
+    if (!program.parse(argc, argv)) return 0;
+
+    const long elements = program.elements;
+    const double courant = program.courant;
 
     // 2. Outputs.
-    outputs.open(parser);
+    program.open();
     const mrm::UniformMesh mesh(1.0, elements);
     const double h = mesh.h();
     const mrm::ExactSolution exact;
-    std::ostream& out = outputs.data();
-    out << "# fig_phase: errors against time and the drift of the impact times (mathematics.md sec. 8)\n";
-    parser.echo(out);
-    out << "# h = " << cli::format_real(h) << "\n# dt = " << cli::format_real(courant * h)
+    std::ostream& out = program.header("errors against time and the drift of the impact times (mathematics.md sec. 8)");
+    out << "# h = " << cli::format_real(h) << "\n# dt = " << cli::format_real(program.dt())
         << "\n# blocks 0-2: error history of mod1, mod2, mod3 (t err_u0 err_u_L2); blocks 3-5: impacts "
            "(k t_exact error law)\n";
-    std::ostream& defs = outputs.values();
+    std::ostream& defs = program.values();
     mrm::tex_define(defs, "phase:elements", std::to_string(elements));
     mrm::tex_define(defs, "phase:courant", cli::format_real(courant));
     mrm::tex_define(defs, "phase:periods", cli::format_real(periods));
@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
     }
 
     // 5. Commit.
-    outputs.commit();
+    program.commit();
     return 0;
   });
 }

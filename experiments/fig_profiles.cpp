@@ -29,6 +29,7 @@
 #include "errors.hpp"
 #include "exact_solution.hpp"
 #include "configurations.hpp"
+#include "figure_program.hpp"
 #include "report_values.hpp"
 #include "schemes.hpp"
 
@@ -37,33 +38,32 @@ namespace cli = mrm::cli;
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_profiles", [&] {
     // 1. Options.
-    long elements = 20, exact_points = 400;
-    double courant = 0.5, switch_theta = 1.0;
+    long exact_points = 400;
+    double switch_theta = 1.0;
     std::string scheme = "cn", ps_form = "literal", instants_text = "0.5,1.5,2.5,6.5,7.5,8.5";
-    cli::Parser parser("fig_profiles",
-                       "Writes the displacement along the bar at a few instants (free flight, contact, release): "
-                       "exact, and one scheme with Mod 1, Mod 2 and Mod 3.",
-                       {"fig_profiles --output output/data/fig_profiles.dat --tex output/data/fig_profiles.tex",
-                        "fig_profiles --scheme be --instants 0.5,1.5,2.5 --output p.dat"});
-    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), in [2, 1e7]", &elements,
-                       mrm::repro::elements_range());
-    parser.add_real("--courant", "-c", "C", "time step dt = C h (0 < C <= 1e6)", &courant, mrm::repro::courant_range());
-    parser.add_choice("--scheme", "-s", "S",
-                      "time scheme (ec: energy-conserving Crank-Nicolson; cn-switch: "
-                      "Crank-Nicolson with a theta-step at each change of the contact status)",
-                      {"cn", "be", "ps", "ec", "cn-switch"}, &scheme);
-    parser.add_real("--switch-theta", "", "TH", "cn-switch: theta of its switching step, in [0.5, 1]", &switch_theta,
-                    cli::in_closed_range(0.5, 1));
-    parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row", {"algebraic", "literal"}, &ps_form);
-    parser.add_string("--instants", "-t", "LIST",
-                      "comma-separated instants t >= 0, each rounded to a time level (at most 1e12 steps away)",
-                      &instants_text);
-    parser.add_integer("--exact-points", "", "K", "number of intervals of each exact profile, in [10, 1e6]",
-                       &exact_points, cli::in_closed_range(10, cli::max_curve_points));
-    mrm::repro::FigureOutputs outputs(parser, "fig_profiles",
-                                      "also write the values the report quotes, as \\mrmdef lines");
-    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
-    if (parser.given("--switch-theta") && scheme != "cn-switch")
+    mrm::repro::FigureProgram program(
+        "fig_profiles",
+        "Writes the displacement along the bar at a few instants (free flight, contact, release): "
+        "exact, and one scheme with Mod 1, Mod 2 and Mod 3.",
+        {"fig_profiles --output output/data/fig_profiles.dat --tex output/data/fig_profiles.tex",
+         "fig_profiles --scheme be --instants 0.5,1.5,2.5 --output p.dat"});
+    program.add_elements(20);
+    program.add_courant(0.5);
+    program.parser.add_choice("--scheme", "-s", "S",
+                              "time scheme (ec: energy-conserving Crank-Nicolson; cn-switch: "
+                              "Crank-Nicolson with a theta-step at each change of the contact status)",
+                              {"cn", "be", "ps", "ec", "cn-switch"}, &scheme);
+    program.parser.add_real("--switch-theta", "", "TH", "cn-switch: theta of its switching step, in [0.5, 1]",
+                            &switch_theta, cli::in_closed_range(0.5, 1));
+    program.parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row", {"algebraic", "literal"},
+                              &ps_form);
+    program.parser.add_string("--instants", "-t", "LIST",
+                              "comma-separated instants t >= 0, each rounded to a time level (at most 1e12 steps away)",
+                              &instants_text);
+    program.parser.add_integer("--exact-points", "", "K", "number of intervals of each exact profile, in [10, 1e6]",
+                               &exact_points, cli::in_closed_range(10, cli::max_curve_points));
+    if (!program.parse(argc, argv)) return 0;
+    if (program.parser.given("--switch-theta") && scheme != "cn-switch")
       throw cli::UsageError("--switch-theta: only with --scheme cn-switch (allowed: omit it)");
     std::vector<double> instants;
     {
@@ -77,9 +77,10 @@ int main(int argc, char** argv) {
       if (instants.empty()) throw cli::UsageError("--instants: give at least one instant, e.g. 0.5,1.5,2.5");
     }
 
-    // 2. The instants, rounded to the nearest time level; the limits; the outputs.
+    // 2. The instants, rounded to the nearest time level; the limits; the program.
+    const long elements = program.elements;
+    const double courant = program.courant, dt = program.dt();
     const mrm::UniformMesh mesh(1.0, elements);
-    const double dt = courant * mesh.h();
     const mrm::ExactSolution exact;
     std::vector<mrm::Index> levels;
     mrm::Index last_level = 0;
@@ -93,7 +94,7 @@ int main(int argc, char** argv) {
                           " exact points and " + cli::format_real(static_cast<double>(elements)) + " nodes");
     // A run at a time, and the profiles kept: three masses times the instants, 8 bytes a node each.
     cli::require_mesh_memory("--elements", static_cast<double>(elements), mrm::repro::bytes_per_element + 24 * count);
-    outputs.open(parser);
+    program.open();
 
     // 3. One run per mass, keeping Uⁿ at the chosen levels.
     const auto& masses = mrm::repro::mass_names();
@@ -111,12 +112,10 @@ int main(int argc, char** argv) {
     }
 
     // 4. The blocks.
-    std::ostream& out = outputs.data();
-    out << "# fig_profiles: u(x,t) at a few instants, exact and computed (mathematics.md sec. 2)\n";
-    parser.echo(out);
+    std::ostream& out = program.header("u(x,t) at a few instants, exact and computed (mathematics.md sec. 2)");
     out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt)
         << "\n# blocks: 2k exact profile at instant k (x u); 2k+1 nodal values (x u_mod1 u_mod2 u_mod3)\n";
-    std::ostream& defs = outputs.values();
+    std::ostream& defs = program.values();
     mrm::tex_define(defs, "prof:elements", std::to_string(elements));
     mrm::tex_define(defs, "prof:dt", mrm::tex_number(dt, 3));
     mrm::tex_define(defs, "prof:scheme", mrm::repro::scheme_label(scheme));
@@ -146,7 +145,7 @@ int main(int argc, char** argv) {
     }
 
     // 5. Commit.
-    outputs.commit();
+    program.commit();
     return 0;
   });
 }

@@ -36,6 +36,7 @@
 #include "errors.hpp"
 #include "exact_solution.hpp"
 #include "configurations.hpp"
+#include "figure_program.hpp"
 #include "report_values.hpp"
 #include "schemes.hpp"
 
@@ -44,48 +45,43 @@ namespace cli = mrm::cli;
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_ps_forms", [&] {
     // 1. Options.
-    long elements = 20, exact_points = 3000;
-    double courant = 0.5, final_time = 15.0;
+    long exact_points = 3000;
     std::string mass = "mod3";
-    cli::Parser parser("fig_ps_forms",
-                       "Writes u(0,t) and the energy of Paoli-Schatzman (1/4, 0) with a redistributed mass in its "
-                       "literal and algebraic contact-row forms, and with the consistent mass, and the amplitude of "
-                       "the sawtooth in u(0,t) per period.",
-                       {"fig_ps_forms --output output/data/fig_ps_forms.dat --tex output/data/fig_ps_forms.tex",
-                        "fig_ps_forms --mass mod1 --elements 50 --final-time 30 --output ps.dat"});
-    parser.add_integer("--elements", "-n", "N", "number of elements N (h = 1/N), in [2, 1e7]", &elements,
-                       mrm::repro::elements_range());
-    parser.add_real("--courant", "-c", "C", "time step dt = C h (0 < C <= 1e6)", &courant, mrm::repro::courant_range());
-    parser.add_real("--final-time", "-T", "T", "final time (> 0); the period is 3", &final_time, cli::positive());
-    parser.add_string("--mass", "-m", "M", mrm::repro::mass_option_help("the redistributed mass (not consistent)"),
-                      &mass);
-    parser.add_integer("--exact-points", "", "K", "number of intervals of the exact solution's curve, in [10, 1e6]",
-                       &exact_points, cli::in_closed_range(10, cli::max_curve_points));
-    mrm::repro::FigureOutputs outputs(parser, "fig_ps_forms",
-                                      "also write the values the report quotes, as \\mrmdef lines");
-    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    mrm::repro::FigureProgram program(
+        "fig_ps_forms",
+        "Writes u(0,t) and the energy of Paoli-Schatzman (1/4, 0) with a redistributed mass in its "
+        "literal and algebraic contact-row forms, and with the consistent mass, and the amplitude of "
+        "the sawtooth in u(0,t) per period.",
+        {"fig_ps_forms --output output/data/fig_ps_forms.dat --tex output/data/fig_ps_forms.tex",
+         "fig_ps_forms --mass mod1 --elements 50 --final-time 30 --output ps.dat"});
+    program.add_elements(20);
+    program.add_courant(0.5);
+    program.add_final_time(15.0);
+    program.parser.add_string("--mass", "-m", "M",
+                              mrm::repro::mass_option_help("the redistributed mass (not consistent)"), &mass);
+    program.parser.add_integer("--exact-points", "", "K",
+                               "number of intervals of the exact solution's curve, in [10, 1e6]", &exact_points,
+                               cli::in_closed_range(10, cli::max_curve_points));
+    if (!program.parse(argc, argv)) return 0;
 
+    const long elements = program.elements;
+    const double courant = program.courant, final_time = program.final_time, dt = program.dt();
     const mrm::UniformMesh mesh(1.0, elements);
     const mrm::MassRedistribution redistribution = mrm::repro::mass_from_option("--mass", mass, mesh, true);
-    const double dt = courant * mesh.h();
-    const mrm::Index steps = cli::checked_steps("--final-time", final_time, dt, "--courant");
     const mrm::ExactSolution exact;
-    // Three histories of steps + 1 lines each, and one sawtooth value per period and variant.
-    cli::require_rows("--final-time", 3 * (static_cast<double>(steps) + 1),
-                      cli::format_real(static_cast<double>(steps)) + " steps of 3 runs");
+    // Three histories, and one sawtooth value per period and variant.
+    program.steps(3);
     if (!(final_time / exact.period() <= 1e6))
       throw cli::UsageError("--final-time: " + cli::format_real(final_time) + " spans " +
                             cli::format_real(std::ceil(final_time / exact.period())) +
                             " periods (allowed: at most 1e6 periods, each with its own values)");
-    cli::require_mesh_memory("--elements", static_cast<double>(elements), mrm::repro::bytes_per_element);
 
     // 2. Outputs.
-    outputs.open(parser);
-    std::ostream& out = outputs.data();
-    out << "# fig_ps_forms: Paoli-Schatzman (1/4, 0), literal and algebraic contact row (mathematics.md sec. 4)\n";
-    parser.echo(out);
-    out << "# h = " << cli::format_real(mesh.h()) << "\n# dt = " << cli::format_real(dt) << "\n# steps = " << steps
-        << "\n# total_mass = " << cli::format_real(mrm::total_mass(mesh, redistribution))
+    program.open();
+    std::ostream& out =
+        program.header("Paoli-Schatzman (1/4, 0), literal and algebraic contact row (mathematics.md sec. 4)");
+    program.write_step();
+    out << "# total_mass = " << cli::format_real(mrm::total_mass(mesh, redistribution))
         << "\n# exact_energy = " << cli::format_real(exact.energy()) << "\n# blocks: 0 exact; 1 algebraic row, " << mass
         << "; 2 literal row, " << mass << "; 3 literal row, consistent mass\n";
 
@@ -105,7 +101,7 @@ int main(int argc, char** argv) {
     const std::vector<Variant> variants{
         {"algebraic", mass, "algebraic"}, {"literal", mass, "literal"}, {"consistent", "consistent", "literal"}};
     const long periods = static_cast<long>(std::ceil(final_time / exact.period() - 1e-9));
-    std::ostream& defs = outputs.values();
+    std::ostream& defs = program.values();
     mrm::tex_define(defs, "ps:elements", std::to_string(elements));
     mrm::tex_define(defs, "ps:dt", mrm::tex_number(dt, 3));
     mrm::tex_define(defs, "ps:T", mrm::tex_number(final_time, 3));
@@ -162,7 +158,7 @@ int main(int argc, char** argv) {
     }
 
     // 5. Commit.
-    outputs.commit();
+    program.commit();
     return 0;
   });
 }

@@ -30,6 +30,7 @@
 
 #include "characteristics.hpp"
 #include "configurations.hpp"
+#include "figure_program.hpp"
 #include "options.hpp"
 #include "report_values.hpp"
 #include "smooth_benchmarks.hpp"
@@ -47,31 +48,27 @@ constexpr double closed_form_periods = 10;
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_smooth_benchmarks", [&] {
     // 1. Options.
-    long elements = 40;
-    double courant = 0.5;
-    cli::Parser parser("fig_smooth_benchmarks",
-                       "Writes u(0,t) and lambda(t) of the smooth benchmarks S1 and S2 (mathematics.md sec. 11): "
-                       "Crank-Nicolson with mod1, mod2, mod3 on a coarse mesh beside the characteristic solution.",
-                       {"fig_smooth_benchmarks --output output/data/fig_smooth_benchmarks.dat --tex "
-                        "output/data/fig_smooth_benchmarks.tex",
-                        "fig_smooth_benchmarks --elements 20 --output s.dat"});
-    parser.add_integer("--elements", "-n", "N", "number of elements of the mesh, in [2, 1e5]", &elements,
-                       cli::in_closed_range(2, 1e5));
-    parser.add_real("--courant", "-c", "C", "time step dt = C h, C in (0, 100]", &courant,
-                    [](std::string_view option, double value) {
-                      cli::require_positive(option, value);
-                      cli::require_in_closed_range(option, value, 0, 100);
-                    });
-    mrm::repro::FigureOutputs outputs(parser, "fig_smooth_benchmarks", "also write the values the report quotes");
-    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    mrm::repro::FigureProgram program(
+        "fig_smooth_benchmarks",
+        "Writes u(0,t) and lambda(t) of the smooth benchmarks S1 and S2 (mathematics.md sec. 11): "
+        "Crank-Nicolson with mod1, mod2, mod3 on a coarse mesh beside the characteristic solution.",
+        {"fig_smooth_benchmarks --output output/data/fig_smooth_benchmarks.dat --tex "
+         "output/data/fig_smooth_benchmarks.tex",
+         "fig_smooth_benchmarks --elements 20 --output s.dat"});
+    program.add_elements(40, "number of elements of the mesh, in [2, 1e5]", cli::in_closed_range(2, 1e5));
+    program.add_courant(0.5, "time step dt = C h, C in (0, 100]", [](std::string_view option, double value) {
+      cli::require_positive(option, value);
+      cli::require_in_closed_range(option, value, 0, 100);
+    });
+    if (!program.parse(argc, argv, "also write the values the report quotes")) return 0;
+    const long elements = program.elements;
+    const double courant = program.courant;
 
     // 2. Outputs.
-    outputs.open(parser);
-    std::ostream& out = outputs.data();
-    std::ostream& defs = outputs.values();
-    out << "# fig_smooth_benchmarks: u(0,t) and lambda(t) of the smooth benchmarks (mathematics.md sec. 11), "
-           "Crank-Nicolson\n";
-    parser.echo(out);
+    program.open();
+    std::ostream& out =
+        program.header("u(0,t) and lambda(t) of the smooth benchmarks (mathematics.md sec. 11), Crank-Nicolson");
+    std::ostream& defs = program.values();
     const auto& masses = mrm::repro::mass_names();
 
     // 3. The characteristic solution against the closed form over 10 periods (a check of the reference,
@@ -187,7 +184,7 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "smoothbench:courant", mrm::tex_number(courant, 3));
 
     // 5. Commit.
-    outputs.commit();
+    program.commit();
     return 0;
   });
 }

@@ -59,6 +59,7 @@
 #include <vector>
 
 #include "configurations.hpp"
+#include "figure_program.hpp"
 #include "convergence.hpp"
 #include "errors.hpp"
 #include "options.hpp"
@@ -131,27 +132,26 @@ int main(int argc, char** argv) {
   return cli::guarded_main("fig_smooth_convergence", [&] {
     // 1. Options.
     long coarsest = 200, refinements = 5, threads = 2;
-    cli::Parser parser("fig_smooth_convergence",
-                       "Writes every relative error of mathematics.md sec. 5 against h on the smooth benchmarks S1 "
-                       "and S2 (sec. 11, against the characteristic solution of sec. 10), with dt = h and dt = h/2, "
-                       "for cn and be with mod1, mod2, mod3, and the observed orders beside the predicted ones.",
-                       {"fig_smooth_convergence --output output/data/fig_smooth_convergence.dat --tex "
-                        "output/data/fig_smooth_convergence.tex",
-                        "fig_smooth_convergence --coarsest 50 --refinements 3 --threads 1 --output s.dat"});
-    parser.add_integer("--coarsest", "-n", "N0", "number of elements of the coarsest mesh (>= 2)", &coarsest,
-                       cli::at_least(2));
-    parser.add_integer("--refinements", "-k", "K", "number of meshes N0, 2 N0, ..., 2^(K-1) N0, in [2, 12]",
-                       &refinements, cli::in_closed_range(2, 12));
-    parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it", &threads,
-                       cli::at_least(1));
-    mrm::repro::FigureOutputs outputs(parser, "fig_smooth_convergence",
-                                      "also write the tables and values the report quotes");
-    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    mrm::repro::FigureProgram program(
+        "fig_smooth_convergence",
+        "Writes every relative error of mathematics.md sec. 5 against h on the smooth benchmarks S1 "
+        "and S2 (sec. 11, against the characteristic solution of sec. 10), with dt = h and dt = h/2, "
+        "for cn and be with mod1, mod2, mod3, and the observed orders beside the predicted ones.",
+        {"fig_smooth_convergence --output output/data/fig_smooth_convergence.dat --tex "
+         "output/data/fig_smooth_convergence.tex",
+         "fig_smooth_convergence --coarsest 50 --refinements 3 --threads 1 --output s.dat"});
+    program.parser.add_integer("--coarsest", "-n", "N0", "number of elements of the coarsest mesh (>= 2)", &coarsest,
+                               cli::at_least(2));
+    program.parser.add_integer("--refinements", "-k", "K", "number of meshes N0, 2 N0, ..., 2^(K-1) N0, in [2, 12]",
+                               &refinements, cli::in_closed_range(2, 12));
+    program.parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it",
+                               &threads, cli::at_least(1));
+    if (!program.parse(argc, argv, "also write the tables and values the report quotes")) return 0;
     if (!(static_cast<double>(coarsest) * std::ldexp(1.0, static_cast<int>(refinements - 1)) <= 1e5))
       throw cli::UsageError("--coarsest: the finest mesh N0 2^(K-1) must be at most 1e5 elements");
 
     // 2. Outputs.
-    outputs.open(parser);
+    program.open();
     const auto& masses = mrm::repro::mass_names();
     const double final_time = mrm::smooth_benchmark(mrm::SmoothBenchmark::grazing).final_time;
 
@@ -208,9 +208,7 @@ int main(int argc, char** argv) {
               << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
 
     // 5. The data blocks, in the fixed order of `runs` (benchmark, scheme, mass, ratio, mesh).
-    std::ostream& out = outputs.data();
-    out << "# fig_smooth_convergence: relative errors against h on the smooth benchmarks (mathematics.md sec. 11)\n";
-    parser.echo(out);
+    std::ostream& out = program.header("relative errors against h on the smooth benchmarks (mathematics.md sec. 11)");
     out << "# final_time = " << cli::format_real(final_time) << '\n'
         << "# blocks: 2 (3 (2 b + s) + m) + c: benchmark b in (smooth-impact, grazing), scheme s in (cn, be), "
            "mass m in (mod1, mod2, mod3), c in (dt = h, dt = h/2)\n";
@@ -233,7 +231,7 @@ int main(int argc, char** argv) {
           }
 
     // 6. Orders (fit over all meshes) beside the predictions, the tables, and the values of the prose.
-    std::ostream& defs = outputs.values();
+    std::ostream& defs = program.values();
     const mrm::Index finest = static_cast<mrm::Index>(coarsest) << (levels - 1);
     mrm::tex_define(defs, "smooth:Nmin", std::to_string(coarsest));
     mrm::tex_define(defs, "smooth:Nmax", std::to_string(finest));
@@ -294,7 +292,7 @@ int main(int argc, char** argv) {
     }
 
     // 7. Commit.
-    outputs.commit();
+    program.commit();
     return 0;
   });
 }

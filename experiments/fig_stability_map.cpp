@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "configurations.hpp"
+#include "figure_program.hpp"
 #include "options.hpp"
 #include "output_file.hpp"
 #include "report_values.hpp"
@@ -34,28 +35,25 @@ int main(int argc, char** argv) {
   return cli::guarded_main("fig_stability_map", [&] {
     // 1. Options.
     double periods = 100, long_periods = 1000;
-    cli::Parser parser("fig_stability_map",
-                       "Writes Crank-Nicolson's largest energy relative to E_h(0) over 100 periods for dt/h from 1/4 "
-                       "to 40 on N = 16, 32, 64, 128 (Mod 3), and over 1000 periods at dt = h (Mod 1, 2, 3).",
-                       {"fig_stability_map --output output/data/fig_stability_map.dat",
-                        "fig_stability_map --periods 10 --long-periods 100 --output s.dat"});
-    parser.add_real("--periods", "-p", "P", "periods of the large-step runs, in [1, 1000]", &periods,
-                    cli::in_closed_range(1, 1000));
-    parser.add_real("--long-periods", "", "P", "periods of the long runs at dt = h, in [1, 10000]", &long_periods,
-                    cli::in_closed_range(1, 10000));
-    repro::FigureOutputs outputs(parser, "fig_stability_map",
-                                 "also write the values the report quotes, as \\mrmdef lines");
-    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    mrm::repro::FigureProgram program(
+        "fig_stability_map",
+        "Writes Crank-Nicolson's largest energy relative to E_h(0) over 100 periods for dt/h from 1/4 "
+        "to 40 on N = 16, 32, 64, 128 (Mod 3), and over 1000 periods at dt = h (Mod 1, 2, 3).",
+        {"fig_stability_map --output output/data/fig_stability_map.dat",
+         "fig_stability_map --periods 10 --long-periods 100 --output s.dat"});
+    program.parser.add_real("--periods", "-p", "P", "periods of the large-step runs, in [1, 1000]", &periods,
+                            cli::in_closed_range(1, 1000));
+    program.parser.add_real("--long-periods", "", "P", "periods of the long runs at dt = h, in [1, 10000]",
+                            &long_periods, cli::in_closed_range(1, 10000));
+    if (!program.parse(argc, argv)) return 0;
 
     // 2. Outputs.
-    outputs.open(parser);
+    program.open();
     const std::vector<mrm::Index> meshes = {16, 32, 64, 128};
     std::vector<double> courants;
     for (int k = 0; k <= 14; ++k) courants.push_back(0.25 * std::pow(2.0, 0.5 * k));  // ¼ … 32
     courants.push_back(40);
-    std::ostream& out = outputs.data();
-    out << "# fig_stability_map: Crank-Nicolson's largest E_h/E_h(0) (claim 1, mathematics.md sec. 12)\n";
-    parser.echo(out);
+    std::ostream& out = program.header("Crank-Nicolson's largest E_h/E_h(0) (claim 1, mathematics.md sec. 12)");
     out << "# blocks 0-3: N = 16, 32, 64, 128, Mod 3, " << cli::format_real(periods)
         << " periods (courant largest); block 4: dt = h, " << cli::format_real(long_periods)
         << " periods (mass_index elements largest)\n";
@@ -79,7 +77,7 @@ int main(int argc, char** argv) {
     const std::vector<repro::Measures> m = repro::run_configurations(configurations);
 
     // 4. The blocks and the values.
-    std::ostream& defs = outputs.values();
+    std::ostream& defs = program.values();
     std::size_t k = 0;
     double bounded_up_to = 0;
     bool bounded = true;
@@ -121,7 +119,7 @@ int main(int argc, char** argv) {
       }
 
     // 5. Commit.
-    outputs.commit();
+    program.commit();
     return 0;
   });
 }

@@ -51,6 +51,7 @@
 #include <vector>
 
 #include "configurations.hpp"
+#include "figure_program.hpp"
 #include "convergence.hpp"
 #include "errors.hpp"
 #include "options.hpp"
@@ -142,42 +143,45 @@ double finest_order(const Series& series, std::size_t s, std::size_t k, std::siz
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_time_error", [&] {
     // 1. Options.
-    long elements = 256, reference_ratio = 128, largest = 4, steps_count = 6;
+    long reference_ratio = 128, largest = 4, steps_count = 6;
     long coarse_elements = 32, coarse_reference_ratio = 4096, coarse_steps_count = 11;
     long fit_points = 3, threads = 2;
-    double final_time = 3.0;
     std::string mass = "mod3";
-    cli::Parser parser("fig_time_error",
-                       "Writes the error of Crank-Nicolson and backward Euler against the time step at a fixed "
-                       "mesh, measured against a Crank-Nicolson reference run of the same mesh with a much smaller "
-                       "step, for a fine mesh and a coarse one whose steps reach the asymptotic range, and the "
-                       "fitted orders in time over the finest steps beside the predicted ones (2 and 1).",
-                       {"fig_time_error --output output/data/fig_time_error.dat --tex output/data/fig_time_error.tex",
-                        "fig_time_error --elements 128 --reference-ratio 128 --mass mod1 --threads 1 --output t.dat"});
-    parser.add_integer("--elements", "-n", "N", "fine mesh: number of elements N (h = 1/N), in [2, 1e7]", &elements,
-                       mrm::repro::elements_range());
-    parser.add_integer("--reference-ratio", "-r", "R",
-                       "fine mesh: reference step dt_ref = h/R; a power of 2 in [2, 2^30]", &reference_ratio,
-                       cli::in_closed_range(2, 1 << 30));
-    parser.add_integer("--steps", "-k", "K", "fine mesh: number of steps dt = P h, P h/2, ..., P h/2^(K-1), in [3, 50]",
-                       &steps_count, cli::in_closed_range(3, 50));
-    parser.add_integer("--coarse-elements", "", "N", "coarse mesh: number of elements, in [2, 1e7]", &coarse_elements,
-                       mrm::repro::elements_range());
-    parser.add_integer("--coarse-reference-ratio", "", "R", "coarse mesh: dt_ref = h/R; a power of 2 in [2, 2^30]",
-                       &coarse_reference_ratio, cli::in_closed_range(2, 1 << 30));
-    parser.add_integer("--coarse-steps", "", "K", "coarse mesh: number of steps dt = P h, ..., P h/2^(K-1), in [3, 50]",
-                       &coarse_steps_count, cli::in_closed_range(3, 50));
-    parser.add_integer("--largest", "", "P", "largest step dt = P h of both meshes; a power of 2 in [1, 2^20]",
-                       &largest, cli::in_closed_range(1, 1 << 20));
-    parser.add_integer("--fit-points", "", "F", "the order is fitted over the finest F steps (>= 2, <= each K)",
-                       &fit_points, cli::at_least(2));
-    parser.add_real("--final-time", "-T", "T", "final time (> 0); one period is 3", &final_time, cli::positive());
-    parser.add_string("--mass", "-m", "M", mrm::repro::mass_option_help("a redistributed mass (not consistent)"),
-                      &mass);
-    parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it", &threads,
-                       cli::at_least(1));
-    mrm::repro::FigureOutputs outputs(parser, "fig_time_error", "also write the tables and values the report quotes");
-    if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    mrm::repro::FigureProgram program(
+        "fig_time_error",
+        "Writes the error of Crank-Nicolson and backward Euler against the time step at a fixed "
+        "mesh, measured against a Crank-Nicolson reference run of the same mesh with a much smaller "
+        "step, for a fine mesh and a coarse one whose steps reach the asymptotic range, and the "
+        "fitted orders in time over the finest steps beside the predicted ones (2 and 1).",
+        {"fig_time_error --output output/data/fig_time_error.dat --tex output/data/fig_time_error.tex",
+         "fig_time_error --elements 128 --reference-ratio 128 --mass mod1 --threads 1 --output t.dat"});
+    program.add_elements(256, "fine mesh: number of elements N (h = 1/N), in [2, 1e7]");
+    program.parser.add_integer("--reference-ratio", "-r", "R",
+                               "fine mesh: reference step dt_ref = h/R; a power of 2 in [2, 2^30]", &reference_ratio,
+                               cli::in_closed_range(2, 1 << 30));
+    program.parser.add_integer("--steps", "-k", "K",
+                               "fine mesh: number of steps dt = P h, P h/2, ..., P h/2^(K-1), in [3, 50]", &steps_count,
+                               cli::in_closed_range(3, 50));
+    program.parser.add_integer("--coarse-elements", "", "N", "coarse mesh: number of elements, in [2, 1e7]",
+                               &coarse_elements, mrm::repro::elements_range());
+    program.parser.add_integer("--coarse-reference-ratio", "", "R",
+                               "coarse mesh: dt_ref = h/R; a power of 2 in [2, 2^30]", &coarse_reference_ratio,
+                               cli::in_closed_range(2, 1 << 30));
+    program.parser.add_integer("--coarse-steps", "", "K",
+                               "coarse mesh: number of steps dt = P h, ..., P h/2^(K-1), in [3, 50]",
+                               &coarse_steps_count, cli::in_closed_range(3, 50));
+    program.parser.add_integer("--largest", "", "P", "largest step dt = P h of both meshes; a power of 2 in [1, 2^20]",
+                               &largest, cli::in_closed_range(1, 1 << 20));
+    program.parser.add_integer("--fit-points", "", "F", "the order is fitted over the finest F steps (>= 2, <= each K)",
+                               &fit_points, cli::at_least(2));
+    program.add_final_time(3.0, "final time (> 0); one period is 3");
+    program.parser.add_string("--mass", "-m", "M",
+                              mrm::repro::mass_option_help("a redistributed mass (not consistent)"), &mass);
+    program.parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it",
+                               &threads, cli::at_least(1));
+    if (!program.parse(argc, argv, "also write the tables and values the report quotes")) return 0;
+    const long elements = program.elements;
+    const double final_time = program.final_time;
     // The ranges were checked by the parser; here the powers of 2 within them.
     auto require_power_of_two = [](const char* option, long v, const char* range) {
       if (v <= 0 || (v & (v - 1)) != 0)
@@ -224,7 +228,7 @@ int main(int argc, char** argv) {
       series[i].mass = mrm::repro::mass_from_option("--mass", mass, mrm::UniformMesh(1.0, series_elements[i]), true);
 
     // 2. Outputs.
-    outputs.open(parser);
+    program.open();
 
     // 3. The two series, one per worker (each is independent and deterministic; the output does not
     // depend on the threads).
@@ -261,10 +265,8 @@ int main(int argc, char** argv) {
     };
 
     // 5. Data blocks.
-    std::ostream& out = outputs.data();
-    out << "# fig_time_error: error in time at fixed h against a reference with dt_ref = h/R (mathematics.md sec. 5, "
-           "7, 9)\n";
-    parser.echo(out);
+    std::ostream& out =
+        program.header("error in time at fixed h against a reference with dt_ref = h/R (mathematics.md sec. 5, 7, 9)");
     out << "# reference: Crank-Nicolson with the same mesh and mass\n"
         << "# predicted_order_cn = 2\n# predicted_order_be = 1\n# order_tolerance = "
         << cli::format_real(order_tolerance)
@@ -296,7 +298,7 @@ int main(int argc, char** argv) {
 
     // 6. The tables (errors with the order between consecutive steps) and the quoted values: the keys
     // time:… for the fine mesh, time:coarse:… for the coarse one.
-    std::ostream& defs = outputs.values();
+    std::ostream& defs = program.values();
     mrm::tex_define(defs, "time:mass", mrm::repro::mass_label(mass));
     mrm::tex_define(defs, "time:tolerance", mrm::tex_number(order_tolerance, 2));
     mrm::tex_define(defs, "time:fitpoints", std::to_string(fit_points));
@@ -408,7 +410,7 @@ int main(int argc, char** argv) {
     }
 
     // 7. Commit.
-    outputs.commit();
+    program.commit();
     return 0;
   });
 }

@@ -5,6 +5,8 @@
 #include "options.hpp"
 #include "output_file.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -340,23 +342,18 @@ TEST_CASE("packaged checks apply the corresponding range requirement") {
 
 namespace {
 
-// Names of options. A long name is "--" followed by letters, digits and inner dashes; a short
-// name is "-" and one letter (never a digit, so that a negative number is never taken for an
-// option). The help and version options are built in.
+// Names of options. A long name is "--" followed by letters, digits and inner dashes (CLI11 would
+// also take '_', which the echo keys keep for the dash); a short name is "-" and one letter (never
+// a digit, so that a negative number is never taken for an option).
 bool is_long_name(std::string_view name) {
-  if (name.size() < 3 || name.substr(0, 2) != "--" || name.back() == '-' || name[2] == '-') {
-    return false;
-  }
-  return std::all_of(name.begin() + 2, name.end(), [](char character) {
-    return std::isalnum(static_cast<unsigned char>(character)) || character == '-';
-  });
+  return name.size() >= 3 && name.substr(0, 2) == "--" && name[2] != '-' && name.back() != '-' &&
+         std::all_of(name.begin() + 2, name.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-'; });
 }
 
 bool is_short_name(std::string_view name) {
   return name.size() == 2 && name[0] == '-' && std::isalpha(static_cast<unsigned char>(name[1]));
 }
-
-bool is_builtin_name(std::string_view name) { return name == "--help" || name == "-h" || name == "--version"; }
 
 // The key under which an option's value is echoed: "--final-time" gives "final_time".
 std::string echo_key(std::string_view long_name) {
@@ -367,7 +364,7 @@ std::string echo_key(std::string_view long_name) {
 
 // The description in the help is one paragraph, folded at word boundaries into lines of at most
 // `width` characters (a longer word gets a line of its own).
-std::string wrapped(std::string_view paragraph, std::size_t width) {
+std::string wrapped(std::string_view paragraph, std::size_t width = 80) {
   std::istringstream words{std::string(paragraph)};
   std::string result, line, word;
   while (words >> word) {
@@ -377,27 +374,66 @@ std::string wrapped(std::string_view paragraph, std::size_t width) {
     }
     line += (line.empty() ? "" : " ") + word;
   }
-  if (!line.empty()) {
-    result += line + '\n';
-  }
-  return result;
+  return line.empty() ? result : result + line + '\n';
 }
+
+std::string joined(const std::vector<std::string>& words) {
+  std::string list;
+  for (const std::string& word : words) list += (list.empty() ? "" : ", ") + word;
+  return list;
+}
+
+// The help, as CLI11 formatters make it (one column of names aligned on the longest, then the
+// description, which carries the default and the choices since registration), followed by the
+// sample runs: the layout tests/bad_invocations.sh reads.
+class Help : public CLI::Formatter {
+ public:
+  explicit Help(std::vector<std::string> sample_runs) : sample_runs_(std::move(sample_runs)) {}
+  std::string make_help(const CLI::App* app, std::string, CLI::AppFormatMode) const override {
+    std::vector<std::pair<std::string, std::string>> lines;
+    bool writes_files = false;
+    std::vector<const CLI::Option*> options = app->get_options();  // help and version last
+    std::rotate(options.begin(), options.begin() + 2, options.end());
+    for (const CLI::Option* option : options) {
+      const std::string metavar = option->get_type_name();
+      std::string names = "  ";
+      names += option->get_snames().empty() ? "    " : "-" + option->get_snames().front() + ", ";
+      names += "--" + option->get_lnames().front() + (option->get_expected_max() > 0 ? " " + metavar : "");
+      lines.emplace_back(names, option->get_description());
+      writes_files = writes_files || metavar == "FILE";
+    }
+    std::size_t width = 0;
+    for (const auto& line : lines) width = std::max(width, line.first.size());
+    std::string help = "Usage: " + app->get_name() + " [options]\n";
+    if (!app->get_description().empty()) help += '\n' + wrapped(app->get_description());
+    help += "\nOptions:\n";
+    for (const auto& [names, text] : lines) help += names + std::string(width + 2 - names.size(), ' ') + text + '\n';
+    // What an output option does with the path it is given (output_file.hpp), said once.
+    if (writes_files)
+      help += "\nOutput files:\n" +
+              wrapped(
+                  "Each FILE is written under a hidden temporary name in its directory and renamed over FILE "
+                  "only when complete: an interrupted or failed run leaves FILE as it was. A character device "
+                  "or a FIFO (/dev/null, /dev/stdout, a named pipe whose reader is running) is written in "
+                  "place. A directory, a socket, a block device, any other symbolic link, and one file named "
+                  "by two options are refused.");
+    if (!sample_runs_.empty()) help += "\nSample runs:\n";
+    for (const std::string& run : sample_runs_) help += "  " + run + '\n';
+    return help;
+  }
+
+ private:
+  std::vector<std::string> sample_runs_;
+};
 
 }  // namespace
 
 TEST_CASE("option names are recognised by their form") {
-  CHECK(is_long_name("--elements"));
   CHECK(is_long_name("--final-time"));
   CHECK(is_long_name("--p2"));
-  CHECK_FALSE(is_long_name("--"));
-  CHECK_FALSE(is_long_name("-elements"));
-  CHECK_FALSE(is_long_name("--final_time"));
-  CHECK_FALSE(is_long_name("--final-"));
-  CHECK_FALSE(is_long_name("---x"));
+  for (const char* name : {"--", "-elements", "--final_time", "--final-", "---x"}) CHECK_FALSE(is_long_name(name));
   CHECK(is_short_name("-n"));
-  CHECK_FALSE(is_short_name("-5"));
-  CHECK_FALSE(is_short_name("-nn"));
-  CHECK_FALSE(is_short_name("n"));
+  for (const char* name : {"-5", "-nn", "n"}) CHECK_FALSE(is_short_name(name));
   CHECK(echo_key("--final-time") == "final_time");
 }
 
@@ -407,222 +443,172 @@ TEST_CASE("a paragraph is folded at word boundaries within the width") {
   CHECK(wrapped("", 10).empty());
 }
 
-// The parser keeps the program's name, its description and its sample runs for the help.
-Parser::Parser(std::string program, std::string description, std::vector<std::string> sample_runs)
-    : program_(std::move(program)), description_(std::move(description)), sample_runs_(std::move(sample_runs)) {}
+// What the parser keeps of an option beside CLI11's record: the variable, the check, the choices,
+// whether its value is the path of a file.
+struct Parser::Option {
+  std::string long_name;
+  std::variant<double*, long*, std::string*, bool*> target;
+  Check check;
+  std::vector<std::string> allowed;
+  bool path = false;
+  CLI::Option* cli = nullptr;
+};
 
-// Every registration goes through add_option, which rejects the programming errors: malformed,
-// reserved or duplicate names, a value option without a placeholder, a null variable. The
-// default shown in the help is taken now, from the variable's value before any parsing.
-void Parser::add_option(Option option) {
-  const std::string& name = option.long_name;
-  if (!is_long_name(name) || is_builtin_name(name)) {
-    throw std::logic_error("Parser: invalid long option name " + json_string(name));
-  }
-  if (!option.short_name.empty() && (!is_short_name(option.short_name) || is_builtin_name(option.short_name))) {
-    throw std::logic_error("Parser: invalid short option name " + json_string(option.short_name) + " for " + name);
-  }
-  if (find(name) != nullptr || (!option.short_name.empty() && find(option.short_name))) {
-    throw std::logic_error("Parser: option " + name + " registered twice");
-  }
-  const bool is_flag = std::holds_alternative<bool*>(option.target);
-  if (is_flag != option.metavar.empty()) {
-    throw std::logic_error("Parser: " + name +
-                           (is_flag ? " is a flag and takes no placeholder" : " needs a placeholder for its value"));
-  }
-  std::visit(
-      [&](auto* target) {
-        using Target = std::remove_pointer_t<decltype(target)>;
-        if (target == nullptr) {
-          throw std::logic_error("Parser: " + name + " is bound to a null pointer");
-        }
-        if constexpr (std::is_same_v<Target, double>) {
-          option.default_text = format_real(*target);
-        } else if constexpr (std::is_same_v<Target, long>) {
-          option.default_text = std::to_string(*target);
-        } else if constexpr (std::is_same_v<Target, std::string>) {
-          option.default_text = *target;
-        }
-      },
-      option.target);
-  options_.push_back(std::move(option));
+// CLI11 knows the help flag from the start; --version prints "<program> <version>".
+Parser::Parser(std::string program, std::string description, std::vector<std::string> sample_runs)
+    : program_(std::move(program)), app_(std::make_unique<CLI::App>(std::move(description), program_)) {
+  app_->formatter(std::make_shared<Help>(std::move(sample_runs)));
+  app_->set_help_flag("-h,--help", "print this help and exit")->disable_flag_override();
+  app_->set_version_flag("--version", program_ + " " + MRM_VERSION, "print the version and exit")
+      ->disable_flag_override();
 }
 
-// The registration of each kind of option only fills in the description of the option: the kind
-// is the type of the bound variable, a choice is a string with allowed values, a flag is the one
-// kind without a placeholder.
+Parser::~Parser() = default;
+
+// Every registration goes through `add`, which rejects the programming errors (malformed, reserved
+// or duplicate names, a null variable) and hands the option to CLI11 with its help line, which
+// carries the default (the variable's value now) and the choices. A value given is read by the
+// option's validator: the rule that a value which is itself an option means a missing value
+// ("--output --elements 5"), then the strict grammar of its kind, the choices and the check.
+void Parser::add(std::string long_name, std::string short_name, std::string metavar, std::string help, Target target,
+                 Check check, std::vector<std::string> allowed, bool output) {
+  if (!is_long_name(long_name) || !(short_name.empty() || is_short_name(short_name)))
+    throw std::logic_error("Parser: invalid option name " + json_string(long_name + " " + short_name));
+  const bool flag = std::holds_alternative<bool*>(target);
+  if (flag != metavar.empty()) throw std::logic_error("Parser: " + long_name + ": a placeholder for values only");
+  std::string default_text;
+  std::visit(
+      [&](auto* variable) {
+        using Type = std::remove_pointer_t<decltype(variable)>;
+        if (variable == nullptr) throw std::logic_error("Parser: " + long_name + " is bound to a null pointer");
+        if constexpr (std::is_same_v<Type, double>) default_text = format_real(*variable);
+        if constexpr (std::is_same_v<Type, long>) default_text = std::to_string(*variable);
+        if constexpr (std::is_same_v<Type, std::string>) default_text = *variable;
+      },
+      target);
+  if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), default_text) == allowed.end())
+    throw std::logic_error("Parser: the default of " + long_name + " is not one of its allowed values");
+  if (!allowed.empty())
+    help += " (one of: " + joined(allowed) + "; default: " + default_text + ")";
+  else if (!default_text.empty())
+    help += " (default: " + default_text + ")";
+  const std::string names = short_name.empty() ? long_name : short_name + "," + long_name;
+  try {
+    if (flag) {
+      options_.push_back({long_name, target, {}, {}, false, app_->add_flag(names)->description(help)});
+      options_.back().cli->disable_flag_override();
+      return;
+    }
+    options_.push_back({long_name, target, std::move(check), std::move(allowed), output || metavar == "FILE",
+                        app_->add_option(names)->description(help)});
+  } catch (const CLI::ConstructionError& error) {
+    throw std::logic_error("Parser: " + long_name + ": " + error.what());
+  }
+  options_.back().cli->type_name(metavar)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  options_.back().cli->check(CLI::Validator(
+      [this, index = options_.size() - 1](std::string& text) {
+        const Option& option = options_[index];
+        if (text.substr(0, 2) == "--" || (is_short_name(text) && app_->get_option_no_throw(text) != nullptr))
+          throw UsageError(option.long_name + ": missing value (expected " + option.cli->get_type_name() + ")");
+        std::visit(
+            [&](auto* variable) {
+              using Type = std::remove_pointer_t<decltype(variable)>;
+              if constexpr (std::is_same_v<Type, double>) *variable = parse_real(option.long_name, text);
+              if constexpr (std::is_same_v<Type, long>) *variable = parse_integer(option.long_name, text);
+              if constexpr (std::is_same_v<Type, std::string>)
+                *variable = option.allowed.empty() ? text : parse_choice(option.long_name, text, option.allowed);
+              if constexpr (!std::is_same_v<Type, std::string> && !std::is_same_v<Type, bool>)
+                if (option.check) option.check(option.long_name, static_cast<double>(*variable));
+            },
+            option.target);
+        return std::string();
+      },
+      ""));
+}
+
 void Parser::add_real(std::string long_name, std::string short_name, std::string metavar, std::string help,
                       double* target, Check check) {
-  add_option({std::move(long_name),
-              std::move(short_name),
-              std::move(metavar),
-              std::move(help),
-              target,
-              {},
-              std::move(check),
-              {},
-              false});
+  add(std::move(long_name), std::move(short_name), std::move(metavar), std::move(help), target, std::move(check));
 }
 
 void Parser::add_integer(std::string long_name, std::string short_name, std::string metavar, std::string help,
                          long* target, Check check) {
-  add_option({std::move(long_name),
-              std::move(short_name),
-              std::move(metavar),
-              std::move(help),
-              target,
-              {},
-              std::move(check),
-              {},
-              false});
+  add(std::move(long_name), std::move(short_name), std::move(metavar), std::move(help), target, std::move(check));
 }
 
 void Parser::add_string(std::string long_name, std::string short_name, std::string metavar, std::string help,
                         std::string* target) {
-  add_option(
-      {std::move(long_name), std::move(short_name), std::move(metavar), std::move(help), target, {}, {}, {}, false});
+  add(std::move(long_name), std::move(short_name), std::move(metavar), std::move(help), target);
 }
 
-// A choice is a string option with a non-empty list of allowed values; its default must be one of
-// them.
 void Parser::add_choice(std::string long_name, std::string short_name, std::string metavar, std::string help,
                         std::vector<std::string> allowed, std::string* target) {
-  if (allowed.empty() || (target != nullptr && std::find(allowed.begin(), allowed.end(), *target) == allowed.end())) {
-    throw std::logic_error("Parser: the default of " + long_name + " is not one of its allowed values");
-  }
-  add_option({std::move(long_name),
-              std::move(short_name),
-              std::move(metavar),
-              std::move(help),
-              target,
-              std::move(allowed),
-              {},
-              {},
-              false});
+  if (allowed.empty()) throw std::logic_error("Parser: " + long_name + " has no allowed value");
+  add(std::move(long_name), std::move(short_name), std::move(metavar), std::move(help), target, {}, std::move(allowed));
+}
+
+void Parser::add_output(std::string long_name, std::string short_name, std::string help, std::string* target) {
+  add(std::move(long_name), std::move(short_name), "FILE", std::move(help), target, {}, {}, true);
 }
 
 void Parser::add_flag(std::string long_name, std::string short_name, std::string help, bool* target) {
-  add_option({std::move(long_name), std::move(short_name), {}, std::move(help), target, {}, {}, {}, false});
+  add(std::move(long_name), std::move(short_name), {}, std::move(help), target);
 }
 
-// A conflict links two options that are already registered.
+// A conflict is CLI11's exclusion; the pair is kept to name the options in the order given.
 void Parser::add_conflict(std::string_view first_long_name, std::string_view second_long_name) {
-  registered(first_long_name);
-  registered(second_long_name);
+  registered(first_long_name).cli->excludes(registered(second_long_name).cli);
   conflicts_.emplace_back(first_long_name, second_long_name);
 }
 
-// Looking up an option by its long or short name; `registered` is the lookup of a name that the
-// program itself supplies, where an unknown name is a programming error.
-Parser::Option* Parser::find(std::string_view name) {
-  for (Option& option : options_) {
-    if (option.long_name == name || (!option.short_name.empty() && option.short_name == name)) {
-      return &option;
-    }
-  }
-  return nullptr;
-}
-
 const Parser::Option& Parser::registered(std::string_view long_name) const {
-  for (const Option& option : options_) {
-    if (option.long_name == long_name) {
-      return option;
-    }
-  }
+  for (const Option& option : options_)
+    if (option.long_name == long_name) return option;
   throw std::logic_error("Parser: no option " + json_string(long_name) + " is registered");
 }
 
-bool Parser::given(std::string_view long_name) const { return registered(long_name).given; }
+bool Parser::given(std::string_view long_name) const { return registered(long_name).cli->count() > 0; }
 
-// Storing the text given for an option into its variable, parsed according to the variable's type.
-// The error messages name the option by its long name, whichever name the user typed.
-void Parser::store(Option& option, std::string_view text) {
-  std::visit(
-      [&](auto* target) {
-        using Target = std::remove_pointer_t<decltype(target)>;
-        if constexpr (std::is_same_v<Target, double>) {
-          *target = parse_real(option.long_name, text);
-        } else if constexpr (std::is_same_v<Target, long>) {
-          *target = parse_integer(option.long_name, text);
-        } else if constexpr (std::is_same_v<Target, std::string>) {
-          *target = option.allowed.empty() ? std::string(text) : parse_choice(option.long_name, text, option.allowed);
-        } else {
-          *target = true;
-        }
-      },
-      option.target);
-}
-
-// Reading the command line, one argument at a time. A long option may carry its value after '=';
-// otherwise the value is the next argument, unless that argument is itself an option (then the
-// value is missing: "--output --elements 5" is an error, not a file named "--elements"). A negative
-// number is not an option, since short names are letters. Help and version stop the reading at
-// once. When all arguments are read, the conflicts and then the checks of the given options apply.
+// The parse loop is CLI11's; around it, what CLI11 would let through or word otherwise. Before:
+// "--" (CLI11's end of options) is an argument like any other, and "--name=" gives the empty value
+// (CLI11 would take the next argument). During: the validators above read every value. After: each
+// of CLI11's errors becomes the one-line UsageError naming the option, and an option given twice is
+// refused (CLI11 would keep the last value).
 Outcome Parser::parse(const std::vector<std::string>& arguments, std::ostream& out) {
-  for (Option& option : options_) {
-    option.given = false;
+  std::vector<std::string> reversed;
+  for (auto argument = arguments.rbegin(); argument != arguments.rend(); ++argument) {
+    if (*argument == "--") throw UsageError("unexpected argument \"--\" (this program takes options only; see --help)");
+    const bool empty_value = argument->size() > 3 && argument->substr(0, 2) == "--" && argument->back() == '=';
+    if (empty_value) reversed.emplace_back();
+    reversed.push_back(empty_value ? argument->substr(0, argument->size() - 1) : *argument);
   }
-  const auto is_option = [this](std::string_view argument) {
-    return is_builtin_name(argument) || argument.substr(0, 2) == "--" || find(argument) != nullptr;
-  };
-
-  for (std::size_t index = 0; index < arguments.size(); ++index) {
-    const std::string& argument = arguments[index];
-    if (argument == "--help" || argument == "-h") {
-      print_help(out);
-      return Outcome::exit_success;
-    }
-    if (argument == "--version") {
-      out << program_ << ' ' << MRM_VERSION << '\n';
-      return Outcome::exit_success;
-    }
-    if (argument.size() < 2 || argument[0] != '-') {
-      throw UsageError("unexpected argument " + json_string(argument) +
-                       " (this program takes options only; see --help)");
-    }
-
-    std::string_view name = argument;
-    const std::size_t equals = argument.find('=');
-    const bool has_inline_value = argument.substr(0, 2) == "--" && equals != std::string::npos;
-    if (has_inline_value) {
-      name = name.substr(0, equals);
-    }
-    Option* const option = find(name);
-    if (option == nullptr) {
-      throw UsageError("unknown option " + json_string(name) + " (see --help)");
-    }
-    if (option->given) {
-      throw UsageError(option->long_name + ": given more than once");
-    }
-    option->given = true;
-
-    if (std::holds_alternative<bool*>(option->target)) {
-      if (has_inline_value) {
-        throw UsageError(option->long_name + ": takes no value (got " + json_string(argument) + ")");
-      }
-      store(*option, "");
-    } else if (has_inline_value) {
-      store(*option, std::string_view(argument).substr(equals + 1));
-    } else if (index + 1 < arguments.size() && !is_option(arguments[index + 1])) {
-      store(*option, arguments[++index]);
-    } else {
-      throw UsageError(option->long_name + ": missing value (expected " + option->metavar + ")");
-    }
-  }
-
-  for (const auto& [first, second] : conflicts_) {
-    if (given(first) && given(second)) {
-      throw UsageError(first + " and " + second + " cannot be given together");
-    }
+  try {
+    app_->parse(std::move(reversed));
+  } catch (const CLI::CallForHelp&) {
+    print_help(out);
+    return Outcome::exit_success;
+  } catch (const CLI::CallForVersion& version) {
+    out << version.what() << '\n';
+    return Outcome::exit_success;
+  } catch (const CLI::ExtrasError&) {
+    const std::string extra = app_->remaining().front();
+    if (extra.size() < 2 || extra[0] != '-')
+      throw UsageError("unexpected argument " + json_string(extra) + " (this program takes options only; see --help)");
+    throw UsageError("unknown option " + json_string(extra.substr(0, extra.find('='))) + " (see --help)");
+  } catch (const CLI::ExcludesError&) {
+    for (const auto& [first, second] : conflicts_)
+      if (given(first) && given(second)) throw UsageError(first + " and " + second + " cannot be given together");
+    throw;
+  } catch (const CLI::ArgumentMismatch& error) {
+    const std::string message = error.what(), word = message.substr(0, message.find_first_of(": "));
+    const std::string name = word[0] == '-' ? word : "--" + word;
+    if (message.find("flag override") != std::string::npos)
+      throw UsageError(name + ": takes no value (write " + json_string(name) + " alone)");
+    throw UsageError(name + ": missing value (expected " + registered(name).cli->get_type_name() + ")");
   }
   for (const Option& option : options_) {
-    if (option.given && option.check) {
-      if (const auto* real = std::get_if<double*>(&option.target)) {
-        option.check(option.long_name, **real);
-      } else if (const auto* integer = std::get_if<long*>(&option.target)) {
-        option.check(option.long_name, static_cast<double>(**integer));
-      }
-    }
+    if (option.cli->count() > 1) throw UsageError(option.long_name + ": given more than once");
+    if (auto* const flag = std::get_if<bool*>(&option.target); flag && option.cli->count() > 0) **flag = true;
   }
   return Outcome::run;
 }
@@ -631,85 +617,21 @@ Outcome Parser::parse(int argc, const char* const* argv, std::ostream& out) {
   return parse(std::vector<std::string>(argv + std::min(argc, 1), argv + argc), out);
 }
 
-// The help: usage line, description, one line per option with its default, and the sample runs.
-// The option lines are aligned on the longest "-n, --name VALUE" column.
-void Parser::print_help(std::ostream& out) const {
-  const auto left_column = [](std::string_view short_name, std::string_view long_name, std::string_view metavar) {
-    std::string column = "  ";
-    column += short_name.empty() ? "    " : std::string(short_name) + ", ";
-    column += long_name;
-    if (!metavar.empty()) {
-      column += " " + std::string(metavar);
-    }
-    return column;
-  };
+void Parser::print_help(std::ostream& out) const { out << app_->help(); }
 
-  std::vector<std::pair<std::string, std::string>> lines;
-  for (const Option& option : options_) {
-    std::string help = option.help;
-    if (!option.allowed.empty()) {
-      std::string list;
-      for (const std::string& value : option.allowed) {
-        list += (list.empty() ? "" : ", ") + value;
-      }
-      help += " (one of: " + list + "; default: " + option.default_text + ")";
-    } else if (!option.default_text.empty()) {
-      help += " (default: " + option.default_text + ")";
-    }
-    lines.emplace_back(left_column(option.short_name, option.long_name, option.metavar), help);
-  }
-  lines.emplace_back(left_column("-h", "--help", ""), "print this help and exit");
-  lines.emplace_back(left_column("", "--version", ""), "print the version and exit");
-
-  std::size_t width = 0;
-  for (const auto& line : lines) {
-    width = std::max(width, line.first.size());
-  }
-
-  out << "Usage: " << program_ << " [options]\n";
-  if (!description_.empty()) {
-    out << '\n' << wrapped(description_, 80);
-  }
-  out << "\nOptions:\n";
-  for (const auto& [column, help] : lines) {
-    out << column << std::string(width + 2 - column.size(), ' ') << help << '\n';
-  }
-  // What an output option does with the path it is given (output_file.hpp), said once for all the
-  // options whose value is a FILE.
-  if (std::any_of(options_.begin(), options_.end(), [](const Option& option) { return option.metavar == "FILE"; })) {
-    out << "\nOutput files:\n"
-        << wrapped(
-               "Each FILE is written under a hidden temporary name in its directory and renamed over FILE "
-               "only when complete: an interrupted or failed run leaves FILE as it was. A character device "
-               "or a FIFO (/dev/null, /dev/stdout, a named pipe whose reader is running) is written in "
-               "place. A directory, a socket, a block device, any other symbolic link, and one file named "
-               "by two options are refused.",
-               80);
-  }
-  if (!sample_runs_.empty()) {
-    out << "\nSample runs:\n";
-    for (const std::string& run : sample_runs_) {
-      out << "  " << run << '\n';
-    }
-  }
-}
-
-// The effective values, one `key = value` line each, in registration order.
+// The effective values, one `key = value` line each, in registration order; the paths of files
+// (placeholder FILE, read or written) are left out.
 void Parser::echo(std::ostream& out, std::string_view prefix) const {
   for (const Option& option : options_) {
+    if (option.path) continue;
     out << prefix << echo_key(option.long_name) << " = ";
     std::visit(
-        [&](const auto* target) {
-          using Target = std::remove_cv_t<std::remove_pointer_t<decltype(target)>>;
-          if constexpr (std::is_same_v<Target, double>) {
-            out << format_real(*target);
-          } else if constexpr (std::is_same_v<Target, long>) {
-            out << *target;
-          } else if constexpr (std::is_same_v<Target, std::string>) {
-            out << json_string(*target);
-          } else {
-            out << (*target ? "true" : "false");
-          }
+        [&](const auto* variable) {
+          using Type = std::remove_cv_t<std::remove_pointer_t<decltype(variable)>>;
+          if constexpr (std::is_same_v<Type, double>) out << format_real(*variable);
+          if constexpr (std::is_same_v<Type, long>) out << *variable;
+          if constexpr (std::is_same_v<Type, std::string>) out << json_string(*variable);
+          if constexpr (std::is_same_v<Type, bool>) out << (*variable ? "true" : "false");
         },
         option.target);
     out << '\n';
@@ -740,7 +662,7 @@ struct ExampleProgram {
     parser.add_real("--courant", "", "C", "time step as a fraction of the CFL limit", &courant, positive());
     parser.add_real("--restitution", "-e", "E", "coefficient of restitution", &restitution, in_closed_range(0, 1));
     parser.add_choice("--scheme", "", "S", "time integration scheme", {"cn", "be", "ps"}, &scheme);
-    parser.add_string("--output", "-o", "FILE", "data file to write", &output);
+    parser.add_output("--output", "-o", "data file to write", &output);
     parser.add_flag("--verbose", "-v", "print the progress", &verbose);
     parser.add_conflict("--dt", "--courant");
   }
@@ -856,8 +778,9 @@ TEST_CASE("positional arguments and values given to flags are rejected") {
                        "unexpected argument \"5\" (this program takes options only; see --help)", UsageError);
   CHECK_THROWS_WITH_AS(program.parse({"-"}), "unexpected argument \"-\" (this program takes options only; see --help)",
                        UsageError);
-  CHECK_THROWS_WITH_AS(program.parse({"--verbose=yes"}), "--verbose: takes no value (got \"--verbose=yes\")",
+  CHECK_THROWS_WITH_AS(program.parse({"--verbose=yes"}), "--verbose: takes no value (write \"--verbose\" alone)",
                        UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"--"}), doctest::Contains("unexpected argument \"--\""), UsageError);
 }
 
 TEST_CASE("checks reject given values out of range but not the defaults") {
@@ -927,7 +850,17 @@ TEST_CASE("argv is read without the program's own name") {
   CHECK(printed.str().empty());
 }
 
-TEST_CASE("the echo writes every effective value as a deterministic header line") {
+TEST_CASE("CLI11's own readings of numbers are not the project's") {
+  ExampleProgram program;
+  CHECK(program.parse({"-n", "010"}) == Outcome::run);
+  CHECK(program.elements == 10);  // CLI11 alone reads 8
+  CHECK_THROWS_WITH_AS(program.parse({"-T", "nan"}), doctest::Contains("--final-time: \"nan\" is not a finite"),
+                       UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"-n", "0x10"}), doctest::Contains("--elements: \"0x10\" is not an integer"),
+                       UsageError);
+}
+
+TEST_CASE("the echo writes every effective value but the outputs as a deterministic header line") {
   ExampleProgram program;
   program.parse({"-n", "400", "--dt", "0.1", "-o", "run \"1\".dat", "-v", "--scheme=ps"});
   std::ostringstream echoed;
@@ -939,7 +872,6 @@ TEST_CASE("the echo writes every effective value as a deterministic header line"
         "# courant = 0.5\n"
         "# restitution = 0\n"
         "# scheme = \"ps\"\n"
-        "# output = \"run \\\"1\\\".dat\"\n"
         "# verbose = true\n");
   std::ostringstream with_prefix;
   program.parser.echo(with_prefix, "% ");

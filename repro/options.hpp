@@ -30,7 +30,7 @@
 //                           &restitution, cli::in_closed_range(0, 1));
 //           parser.add_choice("--scheme", "", "S", "time integration scheme",
 //                             {"cn", "be", "ps"}, &scheme);
-//           parser.add_string("--output", "-o", "FILE", "data file to write", &output);
+//           parser.add_output("--output", "-o", "data file to write", &output);
 //           if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 //
 //           cli::AtomicFile data(output, "--output");  // fails now, not after the computation
@@ -45,12 +45,18 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <variant>
 #include <vector>
+
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
 
 namespace mrm::cli {
 
@@ -104,13 +110,18 @@ std::string format_real(double value);
 // the help or the version has been printed.
 enum class Outcome { run, exit_success };
 
-// The options of one program. Each option has a long name ("--elements"), an optional short name
-// ("-n", or "" for none), a placeholder for its value in the help ("N"), one line of help, and is
-// bound to the variable that receives its value; the variable's value at registration is the
-// default shown in the help (an empty string shows none). On the command line a value follows its
-// option as the next argument or after '=' ("--elements 400", "--elements=400", "-n 400").
-// `--help`/`-h` and `--version` are always available. A program takes options only: any other
-// argument is an error.
+// The options of one program, on CLI11 (the field's common C++ parser: registration, the parse
+// loop, the help and version flags, exclusions), with this project's rules on top: values read by
+// the strict grammar above (CLI11 alone reads "nan", takes "010" for 8 and exits 105), ranges,
+// the echo of the effective values into data headers, and every mistake a UsageError of one line
+// naming the option (exit 2).
+//
+// Each option has a long name ("--elements"), an optional short name ("-n", or "" for none), a
+// placeholder for its value in the help ("N"), one line of help, and is bound to the variable
+// that receives its value; the variable's value at registration is the default shown in the help
+// (an empty string shows none). On the command line a value follows its option as the next
+// argument or after '=' ("--elements 400", "--elements=400", "-n 400"). `--help`/`-h` and
+// `--version` are always available. A program takes options only: any other argument is an error.
 //
 // Registration mistakes (a malformed or duplicate name, a null variable, a choice default that is
 // not allowed) are programming errors and throw std::logic_error.
@@ -119,9 +130,12 @@ class Parser {
   // `description` is one paragraph saying what the program computes; `sample_runs` are complete
   // command lines, shown in the help as they are.
   Parser(std::string program, std::string description, std::vector<std::string> sample_runs);
+  ~Parser();
+  Parser(const Parser&) = delete;
+  Parser& operator=(const Parser&) = delete;
 
   // Options with a value. The check, if any, is applied to a value given on the command line
-  // (not to the default) after all arguments are read.
+  // (not to the default).
   void add_real(std::string long_name, std::string short_name, std::string metavar, std::string help, double* target,
                 Check check = {});
   void add_integer(std::string long_name, std::string short_name, std::string metavar, std::string help, long* target,
@@ -130,6 +144,8 @@ class Parser {
                   std::string* target);
   void add_choice(std::string long_name, std::string short_name, std::string metavar, std::string help,
                   std::vector<std::string> allowed, std::string* target);
+  // A file the program writes: a string option with the placeholder FILE.
+  void add_output(std::string long_name, std::string short_name, std::string help, std::string* target);
 
   // An option without a value: giving it sets the variable to true.
   void add_flag(std::string long_name, std::string short_name, std::string help, bool* target);
@@ -140,7 +156,7 @@ class Parser {
 
   // Reads the arguments (argv[0] is the program's own name and is skipped; the vector form has
   // the arguments only). Prints the help or the version on `out` and returns exit_success if
-  // asked to; otherwise stores the values, applies the conflicts and the checks, and returns
+  // asked to; otherwise stores the values, applies the checks and the conflicts, and returns
   // run. Throws UsageError on: an unknown option, a missing value, an option given twice, a
   // malformed or rejected value, a value given to a flag, a positional argument.
   Outcome parse(int argc, const char* const* argv, std::ostream& out);
@@ -151,36 +167,24 @@ class Parser {
 
   void print_help(std::ostream& out) const;
 
-  // One line per option, in registration order, with its effective value: `# elements = 400`.
-  // The key is the long name without its dashes and with '-' turned into '_'; the value is a
-  // JSON literal (numbers as by format_real, strings quoted, flags true/false; only a non-finite
-  // default would print as inf or nan), so that the header lines of a data file are
-  // deterministic and easy to read back.
+  // One line per option, in registration order, with its effective value, except the paths of
+  // files (placeholder FILE), so that the same run gives the same bytes wherever its files are:
+  // `# elements = 400`. The key is the long name without its dashes and with '-' turned into
+  // '_'; the value is a JSON literal (numbers as by format_real, strings quoted, flags
+  // true/false), so that the header lines of a data file are deterministic and easy to read back.
   void echo(std::ostream& out, std::string_view prefix = "# ") const;
 
   const std::string& program() const { return program_; }
 
  private:
-  struct Option {
-    std::string long_name;
-    std::string short_name;
-    std::string metavar;
-    std::string help;
-    std::variant<double*, long*, std::string*, bool*> target;
-    std::vector<std::string> allowed;
-    Check check;
-    std::string default_text;
-    bool given = false;
-  };
-
-  void add_option(Option option);
-  Option* find(std::string_view name);
+  struct Option;
+  using Target = std::variant<double*, long*, std::string*, bool*>;
+  void add(std::string long_name, std::string short_name, std::string metavar, std::string help, Target target,
+           Check check = {}, std::vector<std::string> allowed = {}, bool output = false);
   const Option& registered(std::string_view long_name) const;
-  void store(Option& option, std::string_view text);
 
   std::string program_;
-  std::string description_;
-  std::vector<std::string> sample_runs_;
+  std::unique_ptr<CLI::App> app_;
   std::vector<Option> options_;
   std::vector<std::pair<std::string, std::string>> conflicts_;
 };
