@@ -45,15 +45,13 @@ int main(int argc, char** argv) {
         "what was measured, criterion, verdict (reproduced, not reproduced = expected failure, or "
         "FAILED). Exits 0 iff no check FAILED.",
         {"check_claims", "check_claims --tex output/data/claims.tex --markdown output/data/claims.md"});
-    parser.add_string("--tex", "", "FILE", "also write the table as a LaTeX longtable fragment (booktabs) to FILE",
-                      &tex);
-    parser.add_string("--markdown", "", "FILE", "also write the table as Markdown to FILE", &markdown);
-    parser.add_string("--summary-tex", "", "FILE",
+    parser.add_output("--tex", "", "also write the table as a LaTeX longtable fragment (booktabs) to FILE", &tex);
+    parser.add_output("--markdown", "", "also write the table as Markdown to FILE", &markdown);
+    parser.add_output("--summary-tex", "",
                       "also write the summary as \\mrmdef lines (claim:KEY:verdict, holds, fails, numbers) to FILE",
                       &summary_tex);
-    parser.add_string("--summary-table", "", "FILE", "also write the summary as a LaTeX longtable to FILE",
-                      &summary_table);
-    parser.add_string("--sweep", "", "FILE",
+    parser.add_output("--summary-table", "", "also write the summary as a LaTeX longtable to FILE", &summary_table);
+    parser.add_output("--sweep", "",
                       "also write every measure of the sweep behind claims 3 and 4 (the maps' data) to FILE", &sweep);
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
