@@ -126,16 +126,18 @@ const Expectations& paper_expectations() {
 }
 
 std::string to_string(Verdict v) {
-  switch (v) {
-    case Verdict::reproduced:
-      return "reproduced";
-    case Verdict::not_reproduced:
-      return "not reproduced";
-    case Verdict::failed:
-      return "FAILED";
-  }
-  return "?";
+  static const char* const words[] = {"reproduced", "not reproduced", "FAILED"};  // in the enum's order
+  return words[static_cast<int>(v)];
 }
+
+namespace {
+
+// The verdict word of a summary line: a claim holds in `holding` of its `total` cells or rows.
+std::string summary_verdict(int holding, int total) {
+  return holding == total ? "reproduced" : holding == 0 ? "not reproduced" : "partly reproduced";
+}
+
+}  // namespace
 
 ClaimResult Judge::operator()(std::string id, std::string claim, std::string measured, std::string criterion,
                               bool holds) {
@@ -584,9 +586,7 @@ SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& sch
   line.key = "ordering-" + scheme;
   line.claim = "3 Ordering Mod 3 < Mod 2 < Mod 1, " + scheme_abbreviation(scheme) +
                (scheme == "ps" ? " (velocity; the rest is CN's)" : "");
-  line.verdict = ranked_anywhere == cells_total ? "reproduced"
-                 : ranked_anywhere == 0         ? "not reproduced"
-                                                : "partly reproduced";
+  line.verdict = summary_verdict(ranked_anywhere, cells_total);
   line.holds = holds.empty() ? "in no (Δt/h) for every N" : join(holds, "; ");
   line.fails = fails.empty() ? "nowhere in the grid" : join(fails, "; ");
   line.numbers = "cells ranked in all " + std::to_string(all) + " measures: " + join(per_horizon, ", ") +
@@ -897,7 +897,7 @@ SummaryLine summarize_convergence(const repro::Sweep& sweep) {
   SummaryLine line;
   line.key = "convergence";
   line.claim = "4 Convergence in h at the predicted orders (CN 2/3, 1/3; BE 1/2, 1/4)";
-  line.verdict = all_within == all_total ? "reproduced" : all_within == 0 ? "not reproduced" : "partly reproduced";
+  line.verdict = summary_verdict(all_within, all_total);
   line.holds = "orders within tolerance (measure × mass × Δt/h × horizon): " + join(holds, ", ");
   line.fails = fails.empty() ? "nowhere in the grid" : join(fails, "; ");
   line.numbers = join(numbers, "; ");
@@ -1500,9 +1500,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
   const auto verdict_of = [&](const std::vector<const ClaimResult*>& r) {
     int reproduced = 0;
     for (const ClaimResult* row : r) reproduced += row->verdict == Verdict::reproduced;
-    return reproduced == static_cast<int>(r.size()) ? std::string("reproduced")
-           : reproduced == 0                        ? std::string("not reproduced")
-                                                    : std::string("partly reproduced");
+    return summary_verdict(reproduced, static_cast<int>(r.size()));
   };
 
   timed("sweep (claims 3 and 4)", [&] { report.sweep = repro::run_sweep(repro::SweepGrid(), 0, progress); });
@@ -1794,9 +1792,8 @@ void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) 
     const ClaimResult& r = rows[k];
     const bool same_criterion = k > 0 && rows[k - 1].criterion == r.criterion;
     const bool same_reason = k > 0 && rows[k - 1].reason == r.reason;
-    const std::string verdict = r.verdict == Verdict::reproduced       ? "reproduced"
-                                : r.verdict == Verdict::not_reproduced ? "\\textbf{not reproduced}"
-                                                                       : "\\textbf{FAILED}";
+    const std::string verdict =
+        r.verdict == Verdict::reproduced ? to_string(r.verdict) : "\\textbf{" + to_string(r.verdict) + "}";
     table.add_row(
         {"\\textbf{" + latex_escape(readable_id(r.id)) + ".} " + latex_escape(r.claim), latex_escape(r.measured),
          same_criterion ? std::string("\\emph{as above}") : latex_escape(r.criterion), verdict},
