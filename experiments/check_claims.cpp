@@ -56,15 +56,13 @@ int main(int argc, char** argv) {
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
     // 2. Outputs, opened before the checks run.
-    std::unique_ptr<cli::AtomicFile> tex_file, markdown_file;
-    if (parser.given("--tex")) tex_file = std::make_unique<cli::AtomicFile>(tex, "--tex");
-    if (parser.given("--markdown")) markdown_file = std::make_unique<cli::AtomicFile>(markdown, "--markdown");
-    std::unique_ptr<cli::AtomicFile> summary_tex_file, summary_table_file, sweep_file;
-    if (parser.given("--summary-tex"))
-      summary_tex_file = std::make_unique<cli::AtomicFile>(summary_tex, "--summary-tex");
-    if (parser.given("--summary-table"))
-      summary_table_file = std::make_unique<cli::AtomicFile>(summary_table, "--summary-table");
-    if (parser.given("--sweep")) sweep_file = std::make_unique<cli::AtomicFile>(sweep, "--sweep");
+    const auto open = [&](const std::string& option, const std::string& path) {
+      return parser.given(option) ? std::make_unique<cli::AtomicFile>(path, option) : nullptr;
+    };
+    const std::unique_ptr<cli::AtomicFile> tex_file = open("--tex", tex), markdown_file = open("--markdown", markdown),
+                                           summary_tex_file = open("--summary-tex", summary_tex),
+                                           summary_table_file = open("--summary-table", summary_table),
+                                           sweep_file = open("--sweep", sweep);
 
     // 3. The checks (timings on stderr).
     const auto start = std::chrono::steady_clock::now();
