@@ -45,28 +45,24 @@ int main(int argc, char** argv) {
         "what was measured, criterion, verdict (reproduced, not reproduced = expected failure, or "
         "FAILED). Exits 0 iff no check FAILED.",
         {"check_claims", "check_claims --tex output/data/claims.tex --markdown output/data/claims.md"});
-    parser.add_string("--tex", "", "FILE", "also write the table as a LaTeX longtable fragment (booktabs) to FILE",
-                      &tex);
-    parser.add_string("--markdown", "", "FILE", "also write the table as Markdown to FILE", &markdown);
-    parser.add_string("--summary-tex", "", "FILE",
+    parser.add_output("--tex", "", "also write the table as a LaTeX longtable fragment (booktabs) to FILE", &tex);
+    parser.add_output("--markdown", "", "also write the table as Markdown to FILE", &markdown);
+    parser.add_output("--summary-tex", "",
                       "also write the summary as \\mrmdef lines (claim:KEY:verdict, holds, fails, numbers) to FILE",
                       &summary_tex);
-    parser.add_string("--summary-table", "", "FILE", "also write the summary as a LaTeX longtable to FILE",
-                      &summary_table);
-    parser.add_string("--sweep", "", "FILE",
+    parser.add_output("--summary-table", "", "also write the summary as a LaTeX longtable to FILE", &summary_table);
+    parser.add_output("--sweep", "",
                       "also write every measure of the sweep behind claims 3 and 4 (the maps' data) to FILE", &sweep);
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
     // 2. Outputs, opened before the checks run.
-    std::unique_ptr<cli::AtomicFile> tex_file, markdown_file;
-    if (parser.given("--tex")) tex_file = std::make_unique<cli::AtomicFile>(tex, "--tex");
-    if (parser.given("--markdown")) markdown_file = std::make_unique<cli::AtomicFile>(markdown, "--markdown");
-    std::unique_ptr<cli::AtomicFile> summary_tex_file, summary_table_file, sweep_file;
-    if (parser.given("--summary-tex"))
-      summary_tex_file = std::make_unique<cli::AtomicFile>(summary_tex, "--summary-tex");
-    if (parser.given("--summary-table"))
-      summary_table_file = std::make_unique<cli::AtomicFile>(summary_table, "--summary-table");
-    if (parser.given("--sweep")) sweep_file = std::make_unique<cli::AtomicFile>(sweep, "--sweep");
+    const auto open = [&](const std::string& option, const std::string& path) {
+      return parser.given(option) ? std::make_unique<cli::AtomicFile>(path, option) : nullptr;
+    };
+    const std::unique_ptr<cli::AtomicFile> tex_file = open("--tex", tex), markdown_file = open("--markdown", markdown),
+                                           summary_tex_file = open("--summary-tex", summary_tex),
+                                           summary_table_file = open("--summary-table", summary_table),
+                                           sweep_file = open("--sweep", sweep);
 
     // 3. The checks (timings on stderr).
     const auto start = std::chrono::steady_clock::now();

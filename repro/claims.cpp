@@ -21,34 +21,28 @@
 // row holds after all, it is reported as FAILED so that somebody updates the table, and an entry that
 // no check produces is reported as well.
 #include "claims.hpp"
-#include "report_values.hpp"
-
-#include "convergence.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <array>
+#include <cctype>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <functional>
 #include <limits>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
 
-#include <Eigen/SparseLU>
 #include <doctest/doctest.h>
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_fit.h>
 
 #include "configurations.hpp"
-#include "options.hpp"
-#include "report_values.hpp"
-#include "table.hpp"
+#include "contact.hpp"
+#include "convergence.hpp"
 #include "exact_solution.hpp"
 #include "period_law.hpp"
 #include "regions.hpp"
+#include "report_values.hpp"
+#include "table.hpp"
 
 namespace mrm::claims {
 
@@ -132,22 +126,24 @@ const Expectations& paper_expectations() {
 }
 
 std::string to_string(Verdict v) {
-  switch (v) {
-    case Verdict::reproduced:
-      return "reproduced";
-    case Verdict::not_reproduced:
-      return "not reproduced";
-    case Verdict::failed:
-      return "FAILED";
-  }
-  return "?";
+  static const char* const words[] = {"reproduced", "not reproduced", "FAILED"};  // in the enum's order
+  return words[static_cast<int>(v)];
 }
 
-ClaimResult judge(std::string id, std::string claim, std::string measured, std::string criterion, bool holds,
-                  const Expectations& expectations, std::vector<std::string>* used) {
-  const auto expected_failure = expectations.find(id);
-  const bool expected_to_hold = expected_failure == expectations.end();
-  if (used && !expected_to_hold) used->push_back(id);
+namespace {
+
+// The verdict word of a summary line: a claim holds in `holding` of its `total` cells or rows.
+std::string summary_verdict(int holding, int total) {
+  return holding == total ? "reproduced" : holding == 0 ? "not reproduced" : "partly reproduced";
+}
+
+}  // namespace
+
+ClaimResult Judge::operator()(std::string id, std::string claim, std::string measured, std::string criterion,
+                              bool holds) {
+  const auto expected_failure = expectations_.find(id);
+  const bool expected_to_hold = expected_failure == expectations_.end();
+  if (!expected_to_hold) used_.push_back(id);
   ClaimResult row{std::move(id), std::move(claim), std::move(measured), std::move(criterion), Verdict::reproduced, ""};
   if (holds && expected_to_hold) return row;
   if (!holds && !expected_to_hold) {
@@ -165,38 +161,42 @@ ClaimResult judge(std::string id, std::string claim, std::string measured, std::
   return row;
 }
 
+// An entry of the expectation table that no check produced (a renamed row, a removed check) would
+// silently excuse nothing; it is reported as a failed row of its own.
+std::vector<ClaimResult> Judge::stale() const {
+  std::vector<ClaimResult> rows;
+  for (const auto& [id, reason] : expectations_) {
+    if (std::find(used_.begin(), used_.end(), id) != used_.end()) continue;
+    rows.push_back({id, "Expectation table entry", "no check produced this row", "every entry names a row",
+                    Verdict::failed, "stale expectation: remove or rename the entry"});
+  }
+  return rows;
+}
+
 TEST_CASE("a row's verdict follows its criterion and the expectation table, both ways") {
-  const Expectations table = {{"x/listed", "it is known not to hold"}};
-  std::vector<std::string> used;
-  CHECK(judge("x/other", "", "", "", true, table, &used).verdict == Verdict::reproduced);
-  CHECK(judge("x/other", "", "", "", false, table, &used).verdict == Verdict::failed);
-  const ClaimResult expected = judge("x/listed", "", "", "", false, table, &used);
+  Judge judge({{"x/listed", "it is known not to hold"}, {"x/stale", "no row has this id"}});
+  CHECK(judge("x/other", "", "", "", true).verdict == Verdict::reproduced);
+  CHECK(judge("x/other", "", "", "", false).verdict == Verdict::failed);
+  const ClaimResult expected = judge("x/listed", "", "", "", false);
   CHECK(expected.verdict == Verdict::not_reproduced);
   CHECK(expected.reason.find("it is known not to hold") != std::string::npos);
-  const ClaimResult unexpected = judge("x/listed", "", "", "", true, table, &used);
+  const ClaimResult unexpected = judge("x/listed", "", "", "", true);
   CHECK(unexpected.verdict == Verdict::failed);
   CHECK(unexpected.reason.find("unexpected pass") != std::string::npos);
-  CHECK(used == std::vector<std::string>{"x/listed", "x/listed"});
+  // An entry that no row used is a failed row of its own.
+  const std::vector<ClaimResult> stale = judge.stale();
+  REQUIRE(stale.size() == 1);
+  CHECK(stale[0].id == "x/stale");
+  CHECK(stale[0].verdict == Verdict::failed);
 }
 
 // ---------------------------------------------------------------------------------------------------
 // Shared pieces: the schemes and masses of the paper, numbers in the table, the benchmark runs.
 
+// "ps-literal" is Paoli–Schatzman with the literal contact row; every other label is the registry's id.
 SchemeChoice scheme_choice(const std::string& label) {
-  SchemeParameters p;
-  if (label == "cn")
-    p.scheme = Scheme::crank_nicolson;
-  else if (label == "be")
-    p.scheme = Scheme::backward_euler;
-  else if (label == "ps" || label == "ps-literal") {
-    p.scheme = Scheme::paoli_schatzman;
-    p.beta = 0.25;
-    p.restitution = 0.0;
-    p.contact_row = label == "ps" ? ContactRow::algebraic : ContactRow::literal;
-  } else {
-    throw std::invalid_argument("unknown scheme \"" + label + "\" (allowed: cn, be, ps, ps-literal)");
-  }
-  return {label, p};
+  const bool literal = label == "ps-literal";
+  return {label, repro::scheme_parameters(literal ? "ps" : label, literal ? "literal" : "algebraic", "mod3")};
 }
 
 std::vector<SchemeChoice> paper_schemes() {
@@ -205,21 +205,6 @@ std::vector<SchemeChoice> paper_schemes() {
 std::vector<MassRedistribution> paper_masses() { return {mod1(), mod2(), mod3()}; }
 
 namespace {
-
-// Numbers in the table: three significant digits (the table is read by people; the data files keep
-// round-trip precision), deterministic.
-std::string sig(double x, int digits = 3) {
-  if (!std::isfinite(x)) return cli::format_real(x);
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
-  return buffer;
-}
-std::string fixed(double x, int decimals) {
-  if (!std::isfinite(x)) return cli::format_real(x);
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, x);
-  return buffer;
-}
 
 // The short names of the eight error measures of mathematics.md §5, in ErrorAccumulator::values order.
 const char* const measure_names[8] = {"u(0,·) L²(0,T)", "λ L²(0,T)", "u L∞(L²)", "u L∞(H¹)",
@@ -249,18 +234,6 @@ std::string list_elements(const std::vector<Index>& elements) {
 }
 
 }  // namespace
-
-// ---------------------------------------------------------------------------------------------------
-// The observed order: the slope of the least-squares line through (log x_k, log y_k) (mathematics.md §5),
-// lib/convergence's fit (GSL, checked there by its own doctest). Data that admit no order (steps
-// that were not refined, an error that vanished) give NaN, which fails every criterion on the order.
-static double least_squares_order(const std::vector<double>& x, const std::vector<double>& y) {
-  try {
-    return fit_order(x, y).order;
-  } catch (const std::invalid_argument&) {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-}
 
 // ---------------------------------------------------------------------------------------------------
 // Claim 1: stability (paper §2: the redistributed semi-discrete problem is a Lipschitz ODE, well
@@ -328,20 +301,20 @@ StabilityRun stability_run(const SchemeChoice& scheme, const MassRedistribution&
 bool is_dissipative(const SchemeChoice& scheme) { return scheme.parameters.scheme == Scheme::backward_euler; }
 
 std::string stability_criterion(const StabilitySettings& st) {
-  return "every value finite, and E_hⁿ and ½UⁿᵀSUⁿ ≤ " + sig(st.bound_conserving) +
+  return "every value finite, and E_hⁿ and ½UⁿᵀSUⁿ ≤ " + significant(st.bound_conserving) +
          " E_h(0) (CN, PS: energy conserved up to O(h) jumps at status changes) or ≤ (1 + " +
-         sig(st.bound_dissipative - 1) +
+         significant(st.bound_dissipative - 1) +
          ") E_h(0) (BE: dissipative) at every step, "
          "N = " +
-         std::to_string(st.elements) + ", Δt = " + sig(st.courant) + "h, T = " + sig(st.final_time);
+         std::to_string(st.elements) + ", Δt = " + significant(st.courant) + "h, T = " + significant(st.final_time);
 }
 
 std::string describe(const StabilityRun& r) {
-  if (!r.finite) return "non-finite value at t = " + sig(r.first_violation_time, 4);
-  auto ratio = [](double x) { return x < 10 ? fixed(x, 6) : sig(x, 3); };
+  if (!r.finite) return "non-finite value at t = " + significant(r.first_violation_time, 4);
+  auto ratio = [](double x) { return x < 10 ? decimals(x, 6) : significant(x, 3); };
   std::string s = "E_hⁿ/E_h(0) in [" + ratio(r.e_min / r.e0) + ", " + ratio(r.e_max / r.e0) +
                   "], max ½UⁿᵀSUⁿ/E_h(0) = " + ratio(r.strain_max / r.e0);
-  if (!r.bounded) return s + ", bound first exceeded at t = " + sig(r.first_violation_time, 4);
+  if (!r.bounded) return s + ", bound first exceeded at t = " + significant(r.first_violation_time, 4);
   return s;
 }
 
@@ -349,8 +322,7 @@ std::string describe(const StabilityRun& r) {
 
 std::vector<ClaimResult> check_stability(const std::vector<SchemeChoice>& schemes,
                                          const std::vector<MassRedistribution>& masses,
-                                         const StabilitySettings& settings, const Expectations& expectations,
-                                         std::vector<std::string>* used) {
+                                         const StabilitySettings& settings, Judge& judge) {
   std::vector<ClaimResult> rows;
   for (const SchemeChoice& scheme : schemes) {
     const double bound = is_dissipative(scheme) ? settings.bound_dissipative : settings.bound_conserving;
@@ -366,14 +338,14 @@ std::vector<ClaimResult> check_stability(const std::vector<SchemeChoice>& scheme
     }
     rows.push_back(judge("1/" + scheme.label,
                          "Stability: " + scheme.label + " with " + join(names, ", ") + " does not blow up over " +
-                             sig(settings.final_time / 3) + " periods",
-                         join(measured, "; "), stability_criterion(settings), holds, expectations, used));
+                             significant(settings.final_time / 3) + " periods",
+                         join(measured, "; "), stability_criterion(settings), holds));
   }
   return rows;
 }
 
 ClaimResult check_consistent_mass_blows_up(const SchemeChoice& scheme, const StabilitySettings& settings,
-                                           const Expectations& expectations, std::vector<std::string>* used) {
+                                           Judge& judge) {
   const double bound = is_dissipative(scheme) ? settings.bound_dissipative : settings.bound_conserving;
   const StabilityRun r =
       stability_run(scheme, consistent_mass(), settings.elements, settings.courant, settings.final_time, bound);
@@ -381,22 +353,24 @@ ClaimResult check_consistent_mass_blows_up(const SchemeChoice& scheme, const Sta
                "Contrast (the method's motivation, mathematics.md §3): " + scheme.label +
                    " with the consistent mass and exact contact is unstable",
                "consistent: " + describe(r),
-               "the same run (N = " + std::to_string(settings.elements) + ", Δt = " + sig(settings.courant) +
-                   "h, T = " + sig(settings.final_time) + ") exceeds the same bound or produces a non-finite value",
-               !(r.finite && r.bounded), expectations, used);
+               "the same run (N = " + std::to_string(settings.elements) + ", Δt = " + significant(settings.courant) +
+                   "h, T = " + significant(settings.final_time) +
+                   ") exceeds the same bound or produces a non-finite value",
+               !(r.finite && r.bounded));
 }
 
 TEST_CASE("the stability check fails on an unstable configuration and passes on a stable one") {
   StabilitySettings st;
   st.elements = 40;
   st.final_time = 60;
-  const Expectations none;
+  Judge judge;
   // The consistent mass with CN, fed to the check as if it were one of the paper's masses.
-  const std::vector<ClaimResult> broken = check_stability({scheme_choice("cn")}, {consistent_mass()}, st, none);
+  const std::vector<ClaimResult> broken = check_stability({scheme_choice("cn")}, {consistent_mass()}, st, judge);
   REQUIRE(broken.size() == 1);
   CAPTURE(broken[0].measured);
   CHECK(broken[0].verdict == Verdict::failed);
-  const std::vector<ClaimResult> fine = check_stability({scheme_choice("cn"), scheme_choice("be")}, {mod3()}, st, none);
+  const std::vector<ClaimResult> fine =
+      check_stability({scheme_choice("cn"), scheme_choice("be")}, {mod3()}, st, judge);
   for (const ClaimResult& row : fine) {
     CAPTURE(row.measured);
     CHECK(row.verdict == Verdict::reproduced);
@@ -427,7 +401,7 @@ MassDeviation mass_deviation(const MassRedistribution& mass, const std::vector<U
         4.0 * static_cast<double>(mesh.elements + 1) * std::numeric_limits<double>::epsilon() * mesh.length;
     if (deviation / tolerance >= d.worst_ratio) {
       d.worst_ratio = deviation / tolerance;
-      d.worst_mesh = "L = " + sig(mesh.length) + ", N = " + std::to_string(mesh.elements);
+      d.worst_mesh = "L = " + significant(mesh.length) + ", N = " + std::to_string(mesh.elements);
     }
     d.worst_relative = std::max(d.worst_relative, deviation / mesh.length);
   }
@@ -436,7 +410,8 @@ MassDeviation mass_deviation(const MassRedistribution& mass, const std::vector<U
 
 std::string list_meshes(const std::vector<UniformMesh>& meshes) {
   std::vector<std::string> s;
-  for (const UniformMesh& m : meshes) s.push_back("(" + sig(m.length) + ", " + std::to_string(m.elements) + ")");
+  for (const UniformMesh& m : meshes)
+    s.push_back("(" + significant(m.length) + ", " + std::to_string(m.elements) + ")");
   return join(s, " ");
 }
 
@@ -444,8 +419,7 @@ std::string list_meshes(const std::vector<UniformMesh>& meshes) {
 
 std::vector<ClaimResult> check_mass(const std::vector<MassRedistribution>& preserving,
                                     const std::vector<MassRedistribution>& dropping,
-                                    const std::vector<UniformMesh>& meshes, const Expectations& expectations,
-                                    std::vector<std::string>* used) {
+                                    const std::vector<UniformMesh>& meshes, Judge& judge) {
   std::vector<ClaimResult> rows;
   const std::string tolerance = "≤ 4(N + 1)εL on every mesh (L, N) of " + list_meshes(meshes);
   for (const auto& [masses, lost] : {std::pair{&preserving, 0.0}, std::pair{&dropping, 2.0 / 3.0}}) {
@@ -455,10 +429,9 @@ std::vector<ClaimResult> check_mass(const std::vector<MassRedistribution>& prese
       rows.push_back(judge(
           "2/" + mass.name,
           "Mass: " + mass.name + (preserves ? " preserves the total mass L" : " loses exactly 2h/3 of the total mass"),
-          "max |deviation|/L = " + sig(d.worst_relative) + ", at most " + fixed(d.worst_ratio, 3) +
+          "max |deviation|/L = " + significant(d.worst_relative) + ", at most " + decimals(d.worst_ratio, 3) +
               " × the tolerance (worst: " + d.worst_mesh + ")",
-          (preserves ? "|1ᵀM 1 − L| " : "|1ᵀM 1 − (L − 2h/3)| ") + tolerance, d.worst_ratio <= 1.0, expectations,
-          used));
+          (preserves ? "|1ᵀM 1 − L| " : "|1ᵀM 1 − (L − 2h/3)| ") + tolerance, d.worst_ratio <= 1.0));
     }
   }
   return rows;
@@ -471,13 +444,13 @@ TEST_CASE("the mass check fails for a weight that loses mass and for a wrong cla
   leaky.weight = [](Index i, Index j, const UniformMesh&) {  // only half of the lost 2h/3 moved to node 1
     return (i == 0 || j == 0) ? 0.0 : (i == 1 && j == 1) ? 1.5 : 1.0;
   };
-  const Expectations none;
-  for (const ClaimResult& row : check_mass({leaky}, {mod2()}, meshes, none)) {
+  Judge judge;
+  for (const ClaimResult& row : check_mass({leaky}, {mod2()}, meshes, judge)) {
     CAPTURE(row.id);
     CAPTURE(row.measured);
     CHECK(row.verdict == Verdict::failed);
   }
-  for (const ClaimResult& row : check_mass({mod2(), mod3()}, {mod1()}, meshes, none)) {
+  for (const ClaimResult& row : check_mass({mod2(), mod3()}, {mod1()}, meshes, judge)) {
     CAPTURE(row.id);
     CHECK(row.verdict == Verdict::reproduced);
   }
@@ -510,14 +483,14 @@ std::string ordering_claim_text(const std::string& scheme, const std::vector<std
 
 std::string list_reals(const std::vector<double>& values) {
   std::vector<std::string> s;
-  for (double v : values) s.push_back(sig(v));
+  for (double v : values) s.push_back(significant(v));
   return join(s, ", ");
 }
 
 }  // namespace
 
 std::vector<ClaimResult> check_ordering(const repro::Sweep& sweep, const std::vector<std::string>& ordered,
-                                        const Expectations& expectations, std::vector<std::string>* used) {
+                                        Judge& judge) {
   const std::vector<repro::OrderingCell> cells = repro::ordering_cells(sweep, ordered);
   const repro::SweepGrid& g = sweep.grid;
   const std::size_t longest = g.horizons.size() - 1;
@@ -538,18 +511,18 @@ std::vector<ClaimResult> check_ordering(const repro::Sweep& sweep, const std::ve
             counts.push_back(std::to_string(count));
             if (k == longest) holds = holds && count == static_cast<int>(measures.size());
           }
-        per_horizon.push_back(sig(g.horizons[k]) + " period(s): " + join(counts, " "));
+        per_horizon.push_back(significant(g.horizons[k]) + " period(s): " + join(counts, " "));
       }
       rows.push_back(
-          judge("3/" + scheme + "/dt=" + sig(c) + "h",
-                "Ordering (Figure 1) at Δt = " + sig(c) + "h: " + ordering_claim_text(scheme, ordered),
+          judge("3/" + scheme + "/dt=" + significant(c) + "h",
+                "Ordering (Figure 1) at Δt = " + significant(c) + "h: " + ordering_claim_text(scheme, ordered),
                 "measures ranked (of " + std::to_string(measures.size()) + ") for N = " + list_elements(g.elements) +
                     ", per horizon: " + join(per_horizon, "; "),
                 "strictly in each of " + join(measure_list, ", ") + " on every mesh N ∈ {" + list_elements(g.elements) +
-                    "} over " + sig(g.horizons.back()) +
+                    "} over " + significant(g.horizons.back()) +
                     " periods of 3L, the horizon where the period law's drift has had the longest to act (the counts "
                     "at shorter horizons show from when it holds)",
-                holds, expectations, used));
+                holds));
     }
   }
   return rows;
@@ -579,14 +552,14 @@ SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& sch
       from = k;
     }
     if (from < g.horizons.size()) {
-      holds.push_back("Δt/h = " + sig(c) + " from " + sig(g.horizons[from]) + " period(s) on, every N");
+      holds.push_back("Δt/h = " + significant(c) + " from " + significant(g.horizons[from]) + " period(s) on, every N");
     } else {
       std::vector<std::string> ns;
       for (Index n : g.elements)
         if (cell_count(c, n, g.horizons.size() - 1) == all) ns.push_back(std::to_string(n));
       if (!ns.empty())
-        holds.push_back("Δt/h = " + sig(c) + " at " + sig(g.horizons.back()) + " periods for N = " + join(ns, ", ") +
-                        " only");
+        holds.push_back("Δt/h = " + significant(c) + " at " + significant(g.horizons.back()) +
+                        " periods for N = " + join(ns, ", ") + " only");
     }
   }
   for (std::size_t k = 0; k < g.horizons.size(); ++k) {
@@ -598,12 +571,13 @@ SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& sch
       }
     ranked_anywhere += ranked;
     cells_total += total;
-    per_horizon.push_back(std::to_string(ranked) + "/" + std::to_string(total) + " at " + sig(g.horizons[k]) + "p");
+    per_horizon.push_back(std::to_string(ranked) + "/" + std::to_string(total) + " at " + significant(g.horizons[k]) +
+                          "p");
     if (ranked < total) {
       int fewest = all;
       for (double c : g.courants)
         for (Index n : g.elements) fewest = std::min(fewest, cell_count(c, n, k));
-      fails.push_back("at " + sig(g.horizons[k]) + " period(s) " + std::to_string(total - ranked) + " of " +
+      fails.push_back("at " + significant(g.horizons[k]) + " period(s) " + std::to_string(total - ranked) + " of " +
                       std::to_string(total) + " cells are not ranked in every measure (down to " +
                       std::to_string(fewest) + " of " + std::to_string(all) + ")");
     }
@@ -612,9 +586,7 @@ SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& sch
   line.key = "ordering-" + scheme;
   line.claim = "3 Ordering Mod 3 < Mod 2 < Mod 1, " + scheme_abbreviation(scheme) +
                (scheme == "ps" ? " (velocity; the rest is CN's)" : "");
-  line.verdict = ranked_anywhere == cells_total ? "reproduced"
-                 : ranked_anywhere == 0         ? "not reproduced"
-                                                : "partly reproduced";
+  line.verdict = summary_verdict(ranked_anywhere, cells_total);
   line.holds = holds.empty() ? "in no (Δt/h) for every N" : join(holds, "; ");
   line.fails = fails.empty() ? "nowhere in the grid" : join(fails, "; ");
   line.numbers = "cells ranked in all " + std::to_string(all) + " measures: " + join(per_horizon, ", ") +
@@ -623,6 +595,7 @@ SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& sch
 }
 
 TEST_CASE("the ordering check fails when the masses are fed in the wrong order") {
+  Judge judge;
   repro::SweepGrid grid;
   grid.schemes = {"cn"};
   grid.courants = {0.5};
@@ -630,8 +603,8 @@ TEST_CASE("the ordering check fails when the masses are fed in the wrong order")
   grid.horizons = {1, 10};
   grid.baseline = false;
   const repro::Sweep sweep = repro::run_sweep(grid, 2);
-  const std::vector<ClaimResult> right = check_ordering(sweep, {"mod1", "mod2", "mod3"}, {});
-  const std::vector<ClaimResult> swapped = check_ordering(sweep, {"mod3", "mod2", "mod1"}, {});
+  const std::vector<ClaimResult> right = check_ordering(sweep, {"mod1", "mod2", "mod3"}, judge);
+  const std::vector<ClaimResult> swapped = check_ordering(sweep, {"mod3", "mod2", "mod1"}, judge);
   REQUIRE(right.size() == 1);
   REQUIRE(swapped.size() == 1);
   // After 10 periods the drift of Mod 1 and Mod 2 dominates (N = 20, 40: 8 of 8 measures when this test
@@ -661,8 +634,7 @@ double law_drift(const std::string& mass, Index elements) {
 
 }  // namespace
 
-std::vector<ClaimResult> check_phase_drift(const repro::Sweep& sweep, const PhaseDriftSettings& st,
-                                           const Expectations& expectations, std::vector<std::string>* used) {
+std::vector<ClaimResult> check_phase_drift(const repro::Sweep& sweep, const PhaseDriftSettings& st, Judge& judge) {
   const repro::SweepGrid& g = sweep.grid;
   bool holds = true;
   double worst = 0, worst_difference = 0;
@@ -680,20 +652,21 @@ std::vector<ClaimResult> check_phase_drift(const repro::Sweep& sweep, const Phas
         worst_difference =
             std::max(worst_difference, std::abs((d - d3) - (law_drift(mass, n) - law_drift("mod3", n))) / h);
       }
-    per_mass.push_back(mass + " " + fixed(lo, 2) + "h to " + fixed(hi, 2) + "h (law " +
-                       fixed(law_drift(mass, g.elements.back()) * static_cast<double>(g.elements.back()), 2) + "h)");
+    per_mass.push_back(mass + " " + decimals(lo, 2) + "h to " + decimals(hi, 2) + "h (law " +
+                       decimals(law_drift(mass, g.elements.back()) * static_cast<double>(g.elements.back()), 2) + "h)");
   }
   holds = worst <= st.tolerance && worst_difference <= st.difference_tolerance;
-  return {judge(
-      "3/mechanism/" + st.scheme,
-      "Mechanism of claim 3 (period law, mathematics.md §8): with " + st.scheme +
-          ", the impact times drift per period as 2ℓ_f + ℓ_c − 3L predicts (−4h/3, −h/3, 0)",
-      "drift per period over every Δt/h and N: " + join(per_mass, "; ") + "; largest deviation from the law " +
-          fixed(worst, 3) + "h, of the differences to mod3 " + fixed(worst_difference, 3) + "h",
-      "in every cell Δt/h ∈ {" + list_reals(g.courants) + "}, N ∈ {" + list_elements(g.elements) + "} over " +
-          sig(g.horizons.back()) + " periods: |drift − law| ≤ " + sig(st.tolerance) +
-          "h for each mass, and |(drift − drift_mod3) − (law − law_mod3)| ≤ " + sig(st.difference_tolerance) + "h",
-      holds, expectations, used)};
+  return {judge("3/mechanism/" + st.scheme,
+                "Mechanism of claim 3 (period law, mathematics.md §8): with " + st.scheme +
+                    ", the impact times drift per period as 2ℓ_f + ℓ_c − 3L predicts (−4h/3, −h/3, 0)",
+                "drift per period over every Δt/h and N: " + join(per_mass, "; ") +
+                    "; largest deviation from the law " + decimals(worst, 3) + "h, of the differences to mod3 " +
+                    decimals(worst_difference, 3) + "h",
+                "in every cell Δt/h ∈ {" + list_reals(g.courants) + "}, N ∈ {" + list_elements(g.elements) + "} over " +
+                    significant(g.horizons.back()) + " periods: |drift − law| ≤ " + significant(st.tolerance) +
+                    "h for each mass, and |(drift − drift_mod3) − (law − law_mod3)| ≤ " +
+                    significant(st.difference_tolerance) + "h",
+                holds)};
 }
 
 SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSettings& st) {
@@ -703,8 +676,8 @@ SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSet
   const double c = std::find(g.courants.begin(), g.courants.end(), 0.5) != g.courants.end() ? 0.5 : g.courants[0];
   const double h = 1.0 / static_cast<double>(n);
   for (const std::string& mass : g.masses)
-    at_100.push_back(mass_text(mass) + " " + fixed(*sweep.find(st.scheme, mass, c, n).drift_per_period / h, 3) +
-                     "h (law " + fixed(law_drift(mass, n) / h, 3) + "h)");
+    at_100.push_back(mass_text(mass) + " " + decimals(*sweep.find(st.scheme, mass, c, n).drift_per_period / h, 3) +
+                     "h (law " + decimals(law_drift(mass, n) / h, 3) + "h)");
   double worst = 0;
   for (const std::string& mass : g.masses)
     for (double cc : g.courants)
@@ -715,9 +688,9 @@ SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSet
   line.key = "mechanism";
   line.claim = "3 Mechanism: impact times drift −4h/3, −h/3, 0 per period (" + scheme_abbreviation(st.scheme) + ")";
   line.verdict = worst <= st.tolerance ? "reproduced" : "partly reproduced";
-  line.holds = "every Δt/h, N of the sweep within " + fixed(worst, 2) + "h of the period law";
-  line.fails = worst <= st.tolerance ? "nowhere in the grid" : "cells beyond " + sig(st.tolerance) + "h";
-  line.numbers = "N = " + std::to_string(n) + ", Δt = " + sig(c) + "h, " + sig(g.horizons.back()) +
+  line.holds = "every Δt/h, N of the sweep within " + decimals(worst, 2) + "h of the period law";
+  line.fails = worst <= st.tolerance ? "nowhere in the grid" : "cells beyond " + significant(st.tolerance) + "h";
+  line.numbers = "N = " + std::to_string(n) + ", Δt = " + significant(c) + "h, " + significant(g.horizons.back()) +
                  " periods: " + join(at_100, ", ");
   return line;
 }
@@ -753,9 +726,7 @@ MassRedistribution mod3_three_quarters() {
 
 }  // namespace
 
-std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySettings& st,
-                                                          const Expectations& expectations,
-                                                          std::vector<std::string>* used) {
+std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySettings& st, Judge& judge) {
   MassRedistribution spread2 = spread_over_first_nodes(2);
   spread2.name = "mod3-spread2";
   const std::vector<std::vector<MassRedistribution>> triples = {{mod1(), mod2(), mod3()},
@@ -801,18 +772,18 @@ std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySetti
       const double h = 1.0 / static_cast<double>(n);
       measured.push_back("N = " + std::to_string(n) + ": " + std::to_string(with_variant) + " measures ranked (" +
                          std::to_string(reconstruction) + " with the reconstruction), drift " +
-                         fixed(*errors(variant.name, n).phase->drift_per_period / h, 3) + "h (law " +
-                         fixed(predict_period(UniformMesh(1.0, n), variant).period_error / h, 3) + "h)");
+                         decimals(*errors(variant.name, n).phase->drift_per_period / h, 3) + "h (law " +
+                         decimals(predict_period(UniformMesh(1.0, n), variant).period_error / h, 3) + "h)");
     }
     rows.push_back(judge("3/sensitivity/" + variant.name,
                          "Claim 3 does not depend on the reconstruction: " + variant.description + " in place of " +
                              (k == 1 ? "Mod 2" : "Mod 3"),
                          join(measured, "; "),
-                         "with " + st.scheme + ", Δt = " + sig(st.courant) + "h, " + sig(st.periods) +
+                         "with " + st.scheme + ", Δt = " + significant(st.courant) + "h, " + significant(st.periods) +
                              " periods: the same number of measures ranked Mod 3 < Mod 2 < Mod 1 as with the "
                              "reconstruction on every mesh N = " +
                              list_elements(st.elements),
-                         holds, expectations, used));
+                         holds));
   }
   return rows;
 }
@@ -836,8 +807,7 @@ std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySetti
 // t ∝ h^{−1/2}: its orders may lie anywhere between the two mechanisms' (repro::allowed_order). One row
 // per scheme and horizon: every (mass, Δt/h) cell within. Paoli–Schatzman with the consistent mass (the baseline, with
 // Crank–Nicolson's phase error) is judged against Crank–Nicolson's predictions.
-std::vector<ClaimResult> check_convergence(const repro::Sweep& sweep, const Expectations& expectations,
-                                           std::vector<std::string>* used) {
+std::vector<ClaimResult> check_convergence(const repro::Sweep& sweep, Judge& judge) {
   const std::vector<repro::OrderCell> cells = repro::order_cells(sweep);
   const repro::SweepGrid& g = sweep.grid;
   std::vector<std::string> schemes = g.schemes;
@@ -860,32 +830,32 @@ std::vector<ClaimResult> check_convergence(const repro::Sweep& sweep, const Expe
             d_lo = std::min(d_lo, p), d_hi = std::max(d_hi, p);
           else
             e_lo = std::min(e_lo, p), e_hi = std::max(e_hi, p);
-          if (!cell.within[q]) outside.push_back(std::string(measure_names[q]) + " " + fixed(p, 2));
+          if (!cell.within[q]) outside.push_back(std::string(measure_names[q]) + " " + decimals(p, 2));
           holds = holds && cell.within[q];
           within += cell.within[q];
           ++total;
         }
-        std::string text = cell.mass + " Δt/h = " + sig(cell.courant) + ": ";
-        if (d_lo <= d_hi) text += "u " + fixed(d_lo, 2) + "–" + fixed(d_hi, 2) + ", ";
-        text += "energy-type " + fixed(e_lo, 2) + "–" + fixed(e_hi, 2);
+        std::string text = cell.mass + " Δt/h = " + significant(cell.courant) + ": ";
+        if (d_lo <= d_hi) text += "u " + decimals(d_lo, 2) + "–" + decimals(d_hi, 2) + ", ";
+        text += "energy-type " + decimals(e_lo, 2) + "–" + decimals(e_hi, 2);
         if (!outside.empty()) text += " (outside: " + join(outside, ", ") + ")";
         per_cell.push_back(text);
       }
       rows.push_back(judge(
-          "4/" + scheme + "/T=" + sig(g.horizons[k]) + "p",
-          "Convergence in h over " + sig(g.horizons[k]) + " period(s): " + scheme + " at the predicted orders" +
+          "4/" + scheme + "/T=" + significant(g.horizons[k]) + "p",
+          "Convergence in h over " + significant(g.horizons[k]) + " period(s): " + scheme + " at the predicted orders" +
               (scheme == "ps" ? " (velocity; the rest is cn's)" : ""),
           "least-squares orders, N = " + list_elements(g.elements) + ": " + join(per_cell, "; ") + "; " +
               std::to_string(within) + " of " + std::to_string(total) + " within",
-          "every order within " + fixed(predicted.tolerance, 3) + " of the prediction (displacement measures " +
-              fixed(predicted.displacement, 3) + ", energy-type and λ " + fixed(predicted.energy, 3) +
+          "every order within " + decimals(predicted.tolerance, 3) + " of the prediction (displacement measures " +
+              decimals(predicted.displacement, 3) + ", energy-type and λ " + decimals(predicted.energy, 3) +
               ", mathematics.md §9)" +
               (scheme == "be" ? std::string()
                               : ", or for a mass whose period is off by O(h) (Mod 1, Mod 2) up to the drift's orders "
                                 "1 and ½ (+ the same tolerance)") +
-              " in every (mass, Δt/h ∈ {" + list_reals(g.courants) + "}) cell, T = " + sig(g.horizons[k]) +
+              " in every (mass, Δt/h ∈ {" + list_reals(g.courants) + "}) cell, T = " + significant(g.horizons[k]) +
               " period(s)",
-          holds, expectations, used));
+          holds));
     }
   }
   return rows;
@@ -910,7 +880,7 @@ SummaryLine summarize_convergence(const repro::Sweep& sweep) {
       within += w, total += t;
       if (w < t)
         bad_horizons.push_back(std::to_string(t - w) + " of " + std::to_string(t) + " orders outside at " +
-                               sig(g.horizons[k]) + " period(s)");
+                               significant(g.horizons[k]) + " period(s)");
     }
     all_within += within, all_total += total;
     holds.push_back(scheme_abbreviation(scheme) + " " + std::to_string(within) + "/" + std::to_string(total));
@@ -920,14 +890,14 @@ SummaryLine summarize_convergence(const repro::Sweep& sweep) {
     for (const repro::OrderCell& cell : cells)
       if (cell.scheme == scheme && cell.mass == "mod3" && cell.courant == 0.5 && cell.horizon == 0)
         numbers.push_back(scheme_abbreviation(scheme) + " Mod 3, Δt = h/2, 1 period: u(0,·) " +
-                          fixed(cell.order[0], 2) + ", u L∞(L²) " + fixed(cell.order[2], 2) + ", λ " +
-                          fixed(cell.order[1], 2) + ", u L∞(H¹) " + fixed(cell.order[3], 2) + ", u_t L²(L²) " +
-                          fixed(cell.order[7], 2));
+                          decimals(cell.order[0], 2) + ", u L∞(L²) " + decimals(cell.order[2], 2) + ", λ " +
+                          decimals(cell.order[1], 2) + ", u L∞(H¹) " + decimals(cell.order[3], 2) + ", u_t L²(L²) " +
+                          decimals(cell.order[7], 2));
   }
   SummaryLine line;
   line.key = "convergence";
   line.claim = "4 Convergence in h at the predicted orders (CN 2/3, 1/3; BE 1/2, 1/4)";
-  line.verdict = all_within == all_total ? "reproduced" : all_within == 0 ? "not reproduced" : "partly reproduced";
+  line.verdict = summary_verdict(all_within, all_total);
   line.holds = "orders within tolerance (measure × mass × Δt/h × horizon): " + join(holds, ", ");
   line.fails = fails.empty() ? "nowhere in the grid" : join(fails, "; ");
   line.numbers = join(numbers, "; ");
@@ -935,6 +905,7 @@ SummaryLine summarize_convergence(const repro::Sweep& sweep) {
 }
 
 TEST_CASE("the convergence check fails for a weight that is not 1 + O(h)") {
+  Judge judge;
   // Doubling every weight doubles the mass: the discrete waves travel at 1/√2 and the errors stagnate;
   // its orders are far from the predicted ones. Fed to the check as "mod3" of a hand-made sweep.
   repro::SweepGrid grid;
@@ -952,7 +923,7 @@ TEST_CASE("the convergence check fails for a weight that is not 1 + O(h)") {
     const repro::Measures m = repro::run_configuration(c);
     heavy.runs.push_back({"cn", "mod3", 0.5, n, {ErrorAccumulator::values(m.errors)}, 0.0, 0.0});
   }
-  const std::vector<ClaimResult> rows = check_convergence(heavy, {});
+  const std::vector<ClaimResult> rows = check_convergence(heavy, judge);
   REQUIRE(rows.size() == 1);
   CAPTURE(rows[0].measured);
   CHECK(rows[0].verdict == Verdict::failed);
@@ -990,8 +961,7 @@ std::array<double, 8> against_reference(const SchemeChoice& scheme, const MassRe
 // other, and the sampled velocity norms then show one O(1) outlier.
 std::vector<ClaimResult> check_time_convergence(const SchemeChoice& scheme,
                                                 const std::vector<MassRedistribution>& masses,
-                                                const TimeConvergenceSettings& st, const Expectations& expectations,
-                                                std::vector<std::string>* used) {
+                                                const TimeConvergenceSettings& st, Judge& judge) {
   const UniformMesh mesh(1.0, st.elements);
   const double h = mesh.h(), dt_ref = st.reference_courant * h;
   std::vector<double> dt;
@@ -1017,37 +987,38 @@ std::vector<ClaimResult> check_time_convergence(const SchemeChoice& scheme,
       for (std::size_t i = 0; i + 1 < y.size(); ++i) {
         const double p =
             y[i + 1] > 0 && y[i] > 0 ? std::log(y[i] / y[i + 1]) / std::log(dt[i] / dt[i + 1]) : std::nan("");
-        local.push_back(fixed(p, 2));
+        local.push_back(decimals(p, 2));
         finest = p;
       }
       const std::size_t n = y.size(), first = n >= 3 ? n - 3 : 0;
-      const double tail = least_squares_order(std::vector<double>(dt.begin() + static_cast<long>(first), dt.end()),
-                                              std::vector<double>(y.begin() + static_cast<long>(first), y.end()));
+      const double tail = repro::observed_order(std::vector<double>(dt.begin() + static_cast<long>(first), dt.end()),
+                                                std::vector<double>(y.begin() + static_cast<long>(first), y.end()));
       holds = holds && std::abs(finest - st.predicted_order) <= st.tolerance;
-      measured.push_back(std::string(measure_names[q]) + ": finest " + fixed(finest, 2) + ", three finest " +
-                         fixed(tail, 2) + " (local " + join(local, ", ") + ")");
+      measured.push_back(std::string(measure_names[q]) + ": finest " + decimals(finest, 2) + ", three finest " +
+                         decimals(tail, 2) + " (local " + join(local, ", ") + ")");
     }
     std::vector<std::string> steps;
-    for (double c : st.courants) steps.push_back("h/" + sig(1 / c));
+    for (double c : st.courants) steps.push_back("h/" + significant(1 / c));
     rows.push_back(judge(
         "4t/" + scheme.label + "/" + mass.name,
         "Error estimate in time: " + scheme.label + " with " + mass.name + " converges at order 2 in Δt at fixed h",
         join(measured, "; "),
-        "against a reference with Δt = h/" + sig(1 / st.reference_courant) + " (same h = 1/" +
-            std::to_string(st.elements) + ") at the common instants up to T = " + sig(st.final_time) +
-            ", Δt = " + join(steps, ", ") + ": the order of the finest halving within " + sig(st.predicted_order) +
-            " ± " + sig(st.tolerance) + " in each of the 8 measures",
-        holds, expectations, used));
+        "against a reference with Δt = h/" + significant(1 / st.reference_courant) + " (same h = 1/" +
+            std::to_string(st.elements) + ") at the common instants up to T = " + significant(st.final_time) +
+            ", Δt = " + join(steps, ", ") + ": the order of the finest halving within " +
+            significant(st.predicted_order) + " ± " + significant(st.tolerance) + " in each of the 8 measures",
+        holds));
   }
   return rows;
 }
 
 TEST_CASE("the convergence-in-time check fails when the time step is not refined") {
+  Judge judge;
   TimeConvergenceSettings st;
   st.elements = 20;
   st.courants = {0.5, 0.5, 0.5};
   st.reference_courant = 1.0 / 16;
-  const std::vector<ClaimResult> stagnant = check_time_convergence(scheme_choice("cn"), {mod3()}, st, {});
+  const std::vector<ClaimResult> stagnant = check_time_convergence(scheme_choice("cn"), {mod3()}, st, judge);
   REQUIRE(stagnant.size() == 1);
   CHECK(stagnant[0].verdict == Verdict::failed);
 }
@@ -1087,7 +1058,7 @@ double energy_round_off(const UniformMesh& mesh, double dt, double factor) {
 }
 
 std::string round_off_text(const EnergySettings& settings) {
-  return sig(settings.round_off_factor) + " ε √N (L/Δt) E_h(0)";
+  return significant(settings.round_off_factor) + " ε √N (L/Δt) E_h(0)";
 }
 
 EnergyTrace energy_trace(const SchemeChoice& scheme, const MassRedistribution& mass, Index elements,
@@ -1125,8 +1096,7 @@ EnergyTrace energy_trace(const SchemeChoice& scheme, const MassRedistribution& m
 
 std::vector<ClaimResult> check_energy_conservation(const SchemeChoice& scheme,
                                                    const std::vector<MassRedistribution>& masses,
-                                                   const EnergySettings& settings, const Expectations& expectations,
-                                                   std::vector<std::string>* used) {
+                                                   const EnergySettings& settings, Judge& judge) {
   std::vector<ClaimResult> rows;
   std::vector<double> h;
   for (Index n : settings.elements) h.push_back(1.0 / static_cast<double>(n));
@@ -1140,33 +1110,33 @@ std::vector<ClaimResult> check_energy_conservation(const SchemeChoice& scheme,
       worst_share = std::max(worst_share, t.max_same_status / t.round_off);
       jumps.push_back(t.jump_sum);
       per_mesh.push_back("N = " + std::to_string(n) + ": " + std::to_string(t.changes) + " changes, " +
-                         sig(t.jump_sum));
+                         significant(t.jump_sum));
     }
     bool shrinking = std::isfinite(max_same);
     for (std::size_t i = 0; i + 1 < jumps.size(); ++i) shrinking = shrinking && jumps[i + 1] < jumps[i];
     const bool positive = std::all_of(jumps.begin(), jumps.end(), [](double v) { return v > 0 && std::isfinite(v); });
-    const std::string order = positive ? ", order in h " + fixed(least_squares_order(h, jumps), 2) : "";
+    const std::string order = positive ? ", order in h " + decimals(repro::observed_order(h, jumps), 2) : "";
     const bool holds = worst_share <= 1.0 && shrinking;
-    rows.push_back(
-        judge("5/" + scheme.label + "/" + mass.name,
-              "Energy: " + scheme.label + " with " + mass.name +
-                  " conserves E_h up to jumps at status changes that shrink with h",
-              "max |ΔE|/E_h(0) over steps keeping the status: " + sig(max_same) + " (at most " + fixed(worst_share, 3) +
-                  " × the round-off allowance); Σ|ΔE|/E_h(0) at status changes: " + join(per_mesh, "; ") + order,
-              "|ΔE| ≤ " + round_off_text(settings) +
-                  " (round-off) at every step keeping the contact status, and Σ|ΔE| over the steps changing "
-                  "it decreases at every refinement N = " +
-                  list_elements(settings.elements) + " (Δt = " + sig(settings.courant) +
-                  "h, T = " + sig(settings.final_time) + ")",
-              holds, expectations, used));
+    rows.push_back(judge("5/" + scheme.label + "/" + mass.name,
+                         "Energy: " + scheme.label + " with " + mass.name +
+                             " conserves E_h up to jumps at status changes that shrink with h",
+                         "max |ΔE|/E_h(0) over steps keeping the status: " + significant(max_same) + " (at most " +
+                             decimals(worst_share, 3) +
+                             " × the round-off allowance); Σ|ΔE|/E_h(0) at status changes: " + join(per_mesh, "; ") +
+                             order,
+                         "|ΔE| ≤ " + round_off_text(settings) +
+                             " (round-off) at every step keeping the contact status, and Σ|ΔE| over the steps changing "
+                             "it decreases at every refinement N = " +
+                             list_elements(settings.elements) + " (Δt = " + significant(settings.courant) +
+                             "h, T = " + significant(settings.final_time) + ")",
+                         holds));
   }
   return rows;
 }
 
 std::vector<ClaimResult> check_energy_dissipation(const SchemeChoice& scheme,
                                                   const std::vector<MassRedistribution>& masses,
-                                                  const EnergySettings& settings, const Expectations& expectations,
-                                                  std::vector<std::string>* used) {
+                                                  const EnergySettings& settings, Judge& judge) {
   std::vector<ClaimResult> rows;
   for (const MassRedistribution& mass : masses) {
     int increases = 0;
@@ -1176,45 +1146,48 @@ std::vector<ClaimResult> check_energy_dissipation(const SchemeChoice& scheme,
       const EnergyTrace t = energy_trace(scheme, mass, n, settings);
       increases += t.increases;
       max_increase = std::max(max_increase, t.max_increase);
-      per_mesh.push_back("N = " + std::to_string(n) + ": E_h(T)/E_h(0) = " + fixed(t.e_final / t.e0, 4));
+      per_mesh.push_back("N = " + std::to_string(n) + ": E_h(T)/E_h(0) = " + decimals(t.e_final / t.e0, 4));
     }
     rows.push_back(judge("5/" + scheme.label + "/" + mass.name,
                          "Energy: " + scheme.label + " with " + mass.name + " never increases the energy",
                          std::to_string(increases) + " steps with an increase; largest ΔE/E_h(0) = " +
-                             sig(max_increase) + "; " + join(per_mesh, "; "),
-                         "Eⁿ⁺¹ ≤ Eⁿ + " + round_off_text(settings) +
-                             " (round-off) at every step, N = " + list_elements(settings.elements) +
-                             " (Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time) + ")",
-                         increases == 0, expectations, used));
+                             significant(max_increase) + "; " + join(per_mesh, "; "),
+                         "Eⁿ⁺¹ ≤ Eⁿ + " + round_off_text(settings) + " (round-off) at every step, N = " +
+                             list_elements(settings.elements) + " (Δt = " + significant(settings.courant) +
+                             "h, T = " + significant(settings.final_time) + ")",
+                         increases == 0));
   }
   return rows;
 }
 
 TEST_CASE("the energy checks fail for a scheme that does not conserve, or one that gains energy") {
+  Judge judge;
   EnergySettings st;
   st.elements = {20, 40};
   // Backward Euler presented as a conserving scheme.
-  const std::vector<ClaimResult> be = check_energy_conservation(scheme_choice("be"), {mod3()}, st, {});
+  const std::vector<ClaimResult> be = check_energy_conservation(scheme_choice("be"), {mod3()}, st, judge);
   REQUIRE(be.size() == 1);
   CAPTURE(be[0].measured);
   CHECK(be[0].verdict == Verdict::failed);
   // Crank–Nicolson with the consistent mass presented as a dissipative scheme: it gains energy.
   st.final_time = 30;
-  const std::vector<ClaimResult> cn = check_energy_dissipation(scheme_choice("cn"), {consistent_mass()}, st, {});
+  const std::vector<ClaimResult> cn = check_energy_dissipation(scheme_choice("cn"), {consistent_mass()}, st, judge);
   CAPTURE(cn[0].measured);
   CHECK(cn[0].verdict == Verdict::failed);
   // And the real claims, on small meshes.
   st.final_time = 3;
-  CHECK(check_energy_conservation(scheme_choice("cn"), {mod3()}, st, {})[0].verdict == Verdict::reproduced);
-  CHECK(check_energy_dissipation(scheme_choice("be"), {mod3()}, st, {})[0].verdict == Verdict::reproduced);
+  CHECK(check_energy_conservation(scheme_choice("cn"), {mod3()}, st, judge)[0].verdict == Verdict::reproduced);
+  CHECK(check_energy_dissipation(scheme_choice("be"), {mod3()}, st, judge)[0].verdict == Verdict::reproduced);
 }
 
 // ---------------------------------------------------------------------------------------------------
 // Claim 6a: the closed-form contact step against a general-purpose solve, inside real runs.
 //
 // The step is rebuilt from the public state of the run alone — Uⁿ, the velocity (Vⁿ for the two-level
-// schemes, (Uⁿ − Uⁿ⁻¹)/Δt for Paoli–Schatzman, from which Uⁿ⁻¹ is recovered) and λⁿ — with the
-// formulas of mathematics.md §4 (f = 0 here: the benchmark):
+// schemes, (Uⁿ − Uⁿ⁻¹)/Δt for Paoli–Schatzman, from which Uⁿ⁻¹ is recovered) and λⁿ — as the system
+// (★) of lib/schemes.cpp, A Uⁿ⁺¹ + κλe₀ = B₁Uⁿ + B₂W − κ'λⁿe₀ with W = Vⁿ or Uⁿ⁻¹ (f = 0 here: the
+// benchmark), whose coefficients are those of mathematics.md §4 (step_matrices, checked against the
+// formulas by its doctests):
 //
 //   CN   (M + θS)Uⁿ⁺¹ + θλⁿ⁺¹e₀ = (M − θS)Uⁿ + Δt MVⁿ − θλⁿe₀,           θ = Δt²/4,
 //   BE   (M + Δt²S)Uⁿ⁺¹ + Δt²λⁿ⁺¹e₀ = MUⁿ + Δt MVⁿ,
@@ -1222,8 +1195,9 @@ TEST_CASE("the energy checks fail for a scheme that does not conserve, or one th
 //
 // and, when the contact node is massless and the contact row algebraic (every scheme but the literal
 // PS), row 0 replaced by the contact row S₀·Uⁿ⁺¹ + λ = 0 (paper eq. (6)). The active set is fixed to
-// the one the run found (u₀ on the obstacle, or λ = 0), the (N + 1) × (N + 1) saddle-point system in
-// (U, λ) is assembled from triplets and solved by Eigen's SparseLU. The criterion: the differences in
+// the one the run found (u₀ on the obstacle, or λ = 0), and the (N + 1) × (N + 1) saddle-point system
+// in (U, λ) is solved by a general sparse LU (saddle_point_solve, lib/contact.cpp), which shares
+// nothing with the closed form's elimination. The criterion: the differences in
 // Uⁿ⁺¹ and λ, relative to the largest |U| and |λ| of the compared steps, are ≤ 1e-10 (a few hundred
 // round-offs for these well-conditioned systems), and the run's step satisfies the complementarity
 // 0 ≤ u₀ − g ⊥ λ ≤ 0 exactly. The steps compared: every step that changes the contact status (the
@@ -1239,76 +1213,6 @@ std::vector<ContactStepCase> paper_contact_step_cases() {
 
 namespace {
 
-struct RebuiltStep {
-  Tridiagonal a;
-  Eigen::VectorXd b;
-  double kappa = 0, obstacle = 0;
-};
-
-RebuiltStep rebuild_step(const SchemeParameters& p, const Tridiagonal& m, const Tridiagonal& s, double dt,
-                         const Eigen::VectorXd& u, const Eigen::VectorXd& velocity, double multiplier) {
-  const double dt2 = dt * dt;
-  RebuiltStep r;
-  const bool massless = contact_node_is_massless(m);
-  switch (p.scheme) {
-    case Scheme::crank_nicolson: {
-      const double theta = dt2 / 4;
-      r.a = m.plus(theta, s);
-      r.b = m.plus(-theta, s) * u + dt * (m * velocity);
-      r.b[0] -= theta * multiplier;
-      r.kappa = theta;
-      break;
-    }
-    case Scheme::backward_euler:
-      r.a = m.plus(dt2, s);
-      r.b = m * u + dt * (m * velocity);
-      r.kappa = dt2;
-      break;
-    case Scheme::paoli_schatzman: {
-      const Eigen::VectorXd u_previous = u - dt * velocity;
-      r.a = m.plus(p.beta * dt2, s);
-      r.b = m.scaled(2.0).plus(-(1 - 2 * p.beta) * dt2, s) * u - r.a * u_previous;
-      r.kappa = dt2;
-      r.obstacle = -p.restitution * u_previous[0];
-      break;
-    }
-    case Scheme::energy_conserving:
-    case Scheme::switching:  // not schemes of the paper: their steps are checked in lib/energy_step.cpp
-      throw std::invalid_argument("check_contact_step: the paper's schemes only (allowed: cn, be, ps)");
-  }
-  const bool algebraic = massless && (p.scheme != Scheme::paoli_schatzman || p.contact_row == ContactRow::algebraic);
-  if (algebraic) {
-    r.a.diag[0] = s.diag[0];
-    r.a.upper[0] = s.upper[0];
-    r.b[0] = 0.0;
-    r.kappa = 1.0;
-  }
-  return r;
-}
-
-// A U + κλe₀ = b with the last row u₀ = g (active) or λ = 0 (inactive), by sparse LU.
-Eigen::VectorXd saddle_point_solve(const RebuiltStep& r, bool active) {
-  const Index n = r.a.size();
-  std::vector<Eigen::Triplet<double>> t;
-  for (Index i = 0; i < n; ++i) {
-    t.emplace_back(i, i, r.a.diag[i]);
-    if (i > 0) t.emplace_back(i, i - 1, r.a.lower[i]);
-    if (i + 1 < n) t.emplace_back(i, i + 1, r.a.upper[i]);
-  }
-  t.emplace_back(0, n, r.kappa);
-  t.emplace_back(n, active ? 0 : n, 1.0);
-  Eigen::SparseMatrix<double> k(n + 1, n + 1);
-  k.setFromTriplets(t.begin(), t.end());
-  Eigen::VectorXd rhs(n + 1);
-  rhs << r.b, (active ? r.obstacle : 0.0);
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(k);
-  if (lu.info() != Eigen::Success) throw std::runtime_error("check_contact_step: sparse LU failed");
-  Eigen::VectorXd x = lu.solve(rhs);
-  if (lu.info() != Eigen::Success) throw std::runtime_error("check_contact_step: sparse LU solve failed");
-  return x;
-}
-
 struct StepComparison {
   int compared = 0, status_changes = 0;
   double u_difference = 0, u_scale = 0, lambda_difference = 0, lambda_scale = 0;
@@ -1319,28 +1223,30 @@ StepComparison compare_steps(const ContactStepCase& c, const ContactStepSettings
   const UniformMesh mesh(1.0, settings.elements);
   const double dt = settings.courant * mesh.h();
   BarSimulation simulation(benchmark_problem(), mesh, c.mass, c.run.parameters, dt);
+  const StepMatrices step = step_matrices(simulation.mass(), simulation.stiffness(), c.model.parameters, dt);
   const bool three_level = c.run.parameters.scheme == Scheme::paoli_schatzman;
+  const bool model_three_level = c.model.parameters.scheme == Scheme::paoli_schatzman;
   StepComparison cmp;
   bool contact = false;
   const Index steps = steps_to_reach(settings.final_time, dt);
   for (Index k = 0; k < steps; ++k) {
     const Sample before = simulation.sample();
-    const Eigen::VectorXd u = *before.displacement, velocity = *before.velocity;
-    const double multiplier = before.multiplier;
+    const Eigen::VectorXd& u = *before.displacement;
+    const Eigen::VectorXd w = model_three_level ? Eigen::VectorXd(u - dt * *before.velocity) : *before.velocity;
+    const Eigen::VectorXd b = step_right_hand_side(step, u, w, before.multiplier);
+    const double obstacle = model_three_level ? -c.model.parameters.restitution * w[0] : 0.0;
     simulation.step();
     const Sample after = simulation.sample();
-    const RebuiltStep r =
-        rebuild_step(c.model.parameters, simulation.mass(), simulation.stiffness(), dt, u, velocity, multiplier);
     const double u0 = (*after.displacement)[0];
-    const bool active = u0 == r.obstacle;
+    const bool active = u0 == obstacle;
     const bool changed = active != contact;
     contact = active;
     cmp.status_changes += changed;
-    cmp.complementarity = cmp.complementarity && u0 >= r.obstacle && after.multiplier <= 0.0 &&
-                          (u0 - r.obstacle) * after.multiplier == 0.0;
+    cmp.complementarity =
+        cmp.complementarity && u0 >= obstacle && after.multiplier <= 0.0 && (u0 - obstacle) * after.multiplier == 0.0;
     if (three_level && before.level < 2) continue;
     if (!changed && k % settings.every != 0) continue;
-    const Eigen::VectorXd x = saddle_point_solve(r, active);
+    const Eigen::VectorXd x = saddle_point_solve(step.a, b, step.kappa, obstacle, active);
     const Index n = mesh.unknowns();
     cmp.u_difference = std::max(cmp.u_difference, (*after.displacement - x.head(n)).cwiseAbs().maxCoeff());
     cmp.u_scale = std::max(cmp.u_scale, x.head(n).cwiseAbs().maxCoeff());
@@ -1354,8 +1260,7 @@ StepComparison compare_steps(const ContactStepCase& c, const ContactStepSettings
 }  // namespace
 
 std::vector<ClaimResult> check_contact_step(const std::vector<ContactStepCase>& cases,
-                                            const ContactStepSettings& settings, const Expectations& expectations,
-                                            std::vector<std::string>* used) {
+                                            const ContactStepSettings& settings, Judge& judge) {
   // One row per scheme (as run), gathering its masses.
   std::vector<std::string> labels;
   for (const ContactStepCase& c : cases)
@@ -1372,8 +1277,8 @@ std::vector<ClaimResult> check_contact_step(const std::vector<ContactStepCase>& 
       holds = holds && cmp.compared > 0 && du <= settings.tolerance && dl <= settings.tolerance && cmp.complementarity;
       names.push_back(c.mass.name);
       measured.push_back(c.mass.name + ": " + std::to_string(cmp.compared) + " steps (" +
-                         std::to_string(cmp.status_changes) + " status changes), ΔU " + sig(du, 2) + ", Δλ " +
-                         sig(dl, 2) + (cmp.complementarity ? "" : ", complementarity VIOLATED"));
+                         std::to_string(cmp.status_changes) + " status changes), ΔU " + significant(du, 2) + ", Δλ " +
+                         significant(dl, 2) + (cmp.complementarity ? "" : ", complementarity VIOLATED"));
     }
     rows.push_back(judge("6/step/" + label,
                          "The closed-form contact step of " + label + " (" + join(names, ", ") +
@@ -1381,24 +1286,26 @@ std::vector<ClaimResult> check_contact_step(const std::vector<ContactStepCase>& 
                          join(measured, "; "),
                          "against Eigen's SparseLU on the full (U, λ) system rebuilt from (Uⁿ, Vⁿ or Uⁿ⁻¹, λⁿ) with "
                          "the active set fixed: max|ΔU|/max|U| and max|Δλ|/max|λ| ≤ " +
-                             sig(settings.tolerance) + ", complementarity exact; every status change and every " +
+                             significant(settings.tolerance) +
+                             ", complementarity exact; every status change and every " +
                              std::to_string(settings.every) + "th step, N = " + std::to_string(settings.elements) +
-                             ", Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time),
-                         holds, expectations, used));
+                             ", Δt = " + significant(settings.courant) + "h, T = " + significant(settings.final_time),
+                         holds));
   }
   return rows;
 }
 
 TEST_CASE("the contact-step check fails when the step does not solve the stated problem") {
+  Judge judge;
   ContactStepSettings st;
   st.elements = 30;
   // Crank–Nicolson run, compared with the backward-Euler problem; then the honest comparisons.
   const std::vector<ClaimResult> wrong =
-      check_contact_step({{scheme_choice("cn"), scheme_choice("be"), mod3()}}, st, {});
+      check_contact_step({{scheme_choice("cn"), scheme_choice("be"), mod3()}}, st, judge);
   REQUIRE(wrong.size() == 1);
   CAPTURE(wrong[0].measured);
   CHECK(wrong[0].verdict == Verdict::failed);
-  const std::vector<ClaimResult> right = check_contact_step(paper_contact_step_cases(), st, {});
+  const std::vector<ClaimResult> right = check_contact_step(paper_contact_step_cases(), st, judge);
   CHECK(right.size() == 4);
   for (const ClaimResult& row : right) {
     CAPTURE(row.measured);
@@ -1415,8 +1322,7 @@ TEST_CASE("the contact-step check fails when the step does not solve the stated 
 // h^½ = 0.016 at N = 4000; allowing a constant of 3 gives the bound 0.05 on all eight relative errors.
 // A mistake in the closed form (a wrong phase, sign, period or amplitude) gives relative errors of
 // order 1 in most measures, far above it.
-ClaimResult check_exact_solution(const ExactSolution& exact, const FineSolutionSettings& settings,
-                                 const Expectations& expectations, std::vector<std::string>* used) {
+ClaimResult check_exact_solution(const ExactSolution& exact, const FineSolutionSettings& settings, Judge& judge) {
   repro::Configuration configuration;
   configuration.scheme = scheme_choice("cn").parameters;
   configuration.mass = mod3();
@@ -1428,44 +1334,23 @@ ClaimResult check_exact_solution(const ExactSolution& exact, const FineSolutionS
   std::vector<std::string> measured;
   for (std::size_t q = 0; q < 8; ++q) {
     holds = holds && values[q] <= settings.bound;
-    measured.push_back(std::string(measure_names[q]) + " " + sig(values[q]));
+    measured.push_back(std::string(measure_names[q]) + " " + significant(values[q]));
   }
   return judge("6/exact", "The closed-form solution agrees with a very fine numerical solution",
                "relative errors: " + join(measured, ", "),
-               "all 8 relative errors ≤ " + sig(settings.bound) +
+               "all 8 relative errors ≤ " + significant(settings.bound) +
                    " (≈ 3h^½) for cn, mod3, N = " + std::to_string(settings.elements) +
-                   ", Δt = " + sig(settings.courant) + "h, T = " + sig(settings.final_time),
-               holds, expectations, used);
+                   ", Δt = " + significant(settings.courant) + "h, T = " + significant(settings.final_time),
+               holds);
 }
 
 TEST_CASE("the exact-solution check fails for a wrong closed form") {
+  Judge judge;
   FineSolutionSettings st;
   st.elements = 400;
-  const ClaimResult wrong = check_exact_solution(ExactSolution(1.0, 0.4), st, {});
+  const ClaimResult wrong = check_exact_solution(ExactSolution(1.0, 0.4), st, judge);
   CAPTURE(wrong.measured);
   CHECK(wrong.verdict == Verdict::failed);
-}
-
-// ---------------------------------------------------------------------------------------------------
-// An entry of the expectation table that no check produced (a renamed row, a removed check) would
-// silently excuse nothing; it is reported as a failed row of its own.
-std::vector<ClaimResult> stale_expectations(const Expectations& expectations, const std::vector<std::string>& used) {
-  std::vector<ClaimResult> rows;
-  for (const auto& [id, reason] : expectations) {
-    if (std::find(used.begin(), used.end(), id) != used.end()) continue;
-    rows.push_back({id, "Expectation table entry", "no check produced this row", "every entry names a row",
-                    Verdict::failed, "stale expectation: remove or rename the entry"});
-  }
-  return rows;
-}
-
-TEST_CASE("an expectation that no check uses is reported as a failure") {
-  const Expectations table = {{"a", "x"}, {"b", "y"}};
-  const std::vector<ClaimResult> rows = stale_expectations(table, {"a"});
-  REQUIRE(rows.size() == 1);
-  CHECK(rows[0].id == "b");
-  CHECK(rows[0].verdict == Verdict::failed);
-  CHECK(stale_expectations(table, {"b", "a"}).empty());
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -1502,7 +1387,7 @@ std::vector<StabilityCell> stability_cells(const std::vector<Index>& elements, c
   return cells;
 }
 
-std::string magnitude(double x) { return x < 1000 ? sig(x, 3) : sig(x, 2); }
+std::string magnitude(double x) { return x < 1000 ? significant(x, 3) : significant(x, 2); }
 
 }  // namespace
 
@@ -1510,9 +1395,8 @@ std::string magnitude(double x) { return x < 1000 ? sig(x, 3) : sig(x, 2); }
 // the summary names the rows where a claim holds or fails by them, without the claim number.
 namespace {
 
-// The report's name of one segment of a row id ("cn" → "CN", "mod3" → "Mod 3", "err_u0_L2" →
-// "u(0,·) in L²(0,T)", "C=0.5" → "Δt = 0.5h", "dt=0.5h" → "Δt = 0.5h", "T=10p" → "T = 10 periods"), in the
-// report's notation; an unknown segment is kept.
+// The report's name of one segment of a row id ("cn" → "CN", "mod3" → "Mod 3", "dt=0.5h" → "Δt = 0.5h",
+// "T=10p" → "T = 10 periods"); an unknown segment is kept.
 std::string readable_segment(const std::string& segment) {
   static const std::pair<const char*, const char*> names[] = {
       {"cn", "CN"},
@@ -1524,14 +1408,6 @@ std::string readable_segment(const std::string& segment) {
       {"mod2", "Mod 2"},
       {"mod3", "Mod 3"},
       {"consistent", "consistent mass"},
-      {"err_u0_L2", "u(0,·) in L²(0,T)"},
-      {"err_lambda_L2", "λ in L²(0,T)"},
-      {"err_u_LinfL2", "u in L∞(0,T;L²)"},
-      {"err_u_LinfH1", "u in L∞(0,T;H¹)"},
-      {"err_v_LinfL2", "uₜ in L∞(0,T;L²)"},
-      {"err_u_L2L2", "u in L²(0,T;L²)"},
-      {"err_u_L2H1", "u in L²(0,T;H¹)"},
-      {"err_v_L2L2", "uₜ in L²(0,T;L²)"},
       {"step", "contact step"},
       {"exact", "exact solution"},
       {"large-steps", "large steps"},
@@ -1544,7 +1420,6 @@ std::string readable_segment(const std::string& segment) {
   };
   for (const auto& [id, name] : names)
     if (segment == id) return name;
-  if (segment.rfind("C=", 0) == 0) return "Δt = " + segment.substr(2) + "h";
   if (segment.rfind("dt=", 0) == 0) return "Δt = " + segment.substr(3);
   if (segment.rfind("T=", 0) == 0 && segment.back() == 'p') {
     const std::string periods = segment.substr(2, segment.size() - 3);
@@ -1584,8 +1459,8 @@ std::string readable_row(const std::string& id) {
 }
 
 TEST_CASE("a row id reads in the report's notation") {
-  CHECK(readable_id("3/ps-literal/err_u_LinfH1") == "3, PS(¼, 0), literal row, u in L∞(0,T;H¹)");
-  CHECK(readable_id("4/cn/mod1/C=0.5") == "4, CN, Mod 1, Δt = 0.5h");
+  CHECK(readable_id("1/ps-literal") == "1, PS(¼, 0), literal row");
+  CHECK(readable_id("5/cn/mod1") == "5, CN, Mod 1");
   CHECK(readable_id("4t/cn/mod3") == "4 (time), CN, Mod 3");
   CHECK(readable_id("6/exact") == "6, exact solution");
   CHECK(readable_id("3/cn/dt=0.25h") == "3, CN, Δt = 0.25h");
@@ -1596,11 +1471,6 @@ TEST_CASE("a row id reads in the report's notation") {
   CHECK(readable_row("2/mod2") == "Mod 2");
   CHECK(readable_row("6/step/cn") == "contact step, CN");
   CHECK(readable_row("7") == "7");  // an id without segments keeps its number
-  // Every id of the current table has a LaTeX form.
-  for (const auto& [id, reason] : paper_expectations()) {
-    CAPTURE(id);
-    CHECK_NOTHROW(latex_escape(readable_id(id)));
-  }
 }
 
 }  // namespace
@@ -1611,13 +1481,14 @@ TEST_CASE("a row id reads in the report's notation") {
 ClaimsReport check_all(const Expectations& expectations, std::ostream* progress) {
   ClaimsReport report;
   std::vector<ClaimResult>& rows = report.rows;
-  std::vector<std::string> used;
+  Judge judge(expectations);
   auto timed = [&](const char* name, const std::function<void()>& body) {
     const auto start = std::chrono::steady_clock::now();
     body();
     if (progress)
       *progress << "check_claims: " << name << ": "
-                << fixed(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2) << " s\n";
+                << decimals(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 2)
+                << " s\n";
   };
   auto append = [&](std::vector<ClaimResult> more) { rows.insert(rows.end(), more.begin(), more.end()); };
   const auto rows_with = [&](const std::string& prefix) {
@@ -1629,9 +1500,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
   const auto verdict_of = [&](const std::vector<const ClaimResult*>& r) {
     int reproduced = 0;
     for (const ClaimResult* row : r) reproduced += row->verdict == Verdict::reproduced;
-    return reproduced == static_cast<int>(r.size()) ? std::string("reproduced")
-           : reproduced == 0                        ? std::string("not reproduced")
-                                                    : std::string("partly reproduced");
+    return summary_verdict(reproduced, static_cast<int>(r.size()));
   };
 
   timed("sweep (claims 3 and 4)", [&] { report.sweep = repro::run_sweep(repro::SweepGrid(), 0, progress); });
@@ -1640,8 +1509,8 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
   SummaryLine stability_line;
   timed("1 stability", [&] {
     const StabilitySettings st;
-    append(check_stability(paper_schemes(), paper_masses(), st, expectations, &used));
-    rows.push_back(check_consistent_mass_blows_up(scheme_choice("cn"), st, expectations, &used));
+    append(check_stability(paper_schemes(), paper_masses(), st, judge));
+    rows.push_back(check_consistent_mass_blows_up(scheme_choice("cn"), st, judge));
     // Over a region the meshes are coarse (N = 16: the O(h) jumps at impacts and releases are a few
     // percent of E_h(0)), so "no blow-up" is the energy staying below twice its initial value.
     const double blow_up = 2;
@@ -1656,7 +1525,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
       double worst = 0;
       for (const StabilityCell& cell : large)
         if (cell.courant == c) worst = std::max(worst, cell.largest);
-      per_courant.push_back(sig(c) + ": " + magnitude(worst));
+      per_courant.push_back(significant(c) + ": " + magnitude(worst));
       // The ratios are increasing: the bound holds up to the first one where some mesh exceeds it.
       if (large_holds && worst <= blow_up) bounded_up_to = c;
       large_holds = large_holds && worst <= blow_up;
@@ -1664,7 +1533,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     rows.push_back(
         judge("1/cn/large-steps", "Stability over a region: cn with mod3 for Δt/h from ¼ to 40",
               "largest E_hⁿ/E_h(0) over N = 16, 32, 64, 128 and 100 periods, per Δt/h: " + join(per_courant, ", "),
-              "E_hⁿ ≤ " + sig(blow_up) + " E_h(0) at every step, every N and Δt/h", large_holds, expectations, &used));
+              "E_hⁿ ≤ " + significant(blow_up) + " E_h(0) at every step, every N and Δt/h", large_holds));
     bool long_holds = true;
     std::vector<std::string> per_mass;
     for (const StabilityCell& cell : long_runs) {
@@ -1674,16 +1543,17 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     }
     rows.push_back(judge("1/cn/1000-periods", "Stability over a long run: cn at Δt = h over 1000 periods",
                          "largest E_hⁿ/E_h(0): " + join(per_mass, ", "),
-                         "E_hⁿ ≤ " + sig(blow_up) + " E_h(0) at every step", long_holds, expectations, &used));
+                         "E_hⁿ ≤ " + significant(blow_up) + " E_h(0) at every step", long_holds));
     stability_line.key = "stability";
     stability_line.claim = "1 Stability (no blow-up)";
     stability_line.verdict = verdict_of(rows_with("1/"));
-    stability_line.holds = "CN, BE, PS (algebraic row) with Mod 1–3, N = " + std::to_string(st.elements) +
-                           ", Δt = " + sig(st.courant) + "h, 100 periods (E ≤ " + sig(st.bound_conserving) +
-                           " E(0)); CN, Mod 3, N = 16–128, 100 periods: E ≤ 2 E(0) for Δt/h ≤ " + sig(bounded_up_to);
+    stability_line.holds =
+        "CN, BE, PS (algebraic row) with Mod 1–3, N = " + std::to_string(st.elements) +
+        ", Δt = " + significant(st.courant) + "h, 100 periods (E ≤ " + significant(st.bound_conserving) +
+        " E(0)); CN, Mod 3, N = 16–128, 100 periods: E ≤ 2 E(0) for Δt/h ≤ " + significant(bounded_up_to);
     std::vector<std::string> beyond, long_failures;
     for (double c : courants)
-      if (c > bounded_up_to) beyond.push_back(sig(c));
+      if (c > bounded_up_to) beyond.push_back(significant(c));
     for (const StabilityCell& cell : long_runs)
       if (cell.largest > blow_up)
         long_failures.push_back(mass_text(cell.mass) + ", N = " + std::to_string(cell.elements) + " (" +
@@ -1698,27 +1568,25 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     std::vector<UniformMesh> meshes;
     for (double length : {1.0, 2.5})
       for (Index n : {2, 3, 10, 50, 200, 1000, 10000}) meshes.emplace_back(length, n);
-    append(check_mass({mod2(), mod3()}, {mod1()}, meshes, expectations, &used));
+    append(check_mass({mod2(), mod3()}, {mod1()}, meshes, judge));
   });
   timed("3 ordering", [&] {
-    append(check_ordering(sweep, sweep.grid.masses, expectations, &used));
-    append(check_phase_drift(sweep, PhaseDriftSettings(), expectations, &used));
-    append(check_reconstruction_sensitivity(SensitivitySettings(), expectations, &used));
+    append(check_ordering(sweep, sweep.grid.masses, judge));
+    append(check_phase_drift(sweep, PhaseDriftSettings(), judge));
+    append(check_reconstruction_sensitivity(SensitivitySettings(), judge));
   });
-  timed("4 convergence in h", [&] { append(check_convergence(sweep, expectations, &used)); });
-  timed("4 convergence in time", [&] {
-    append(check_time_convergence(scheme_choice("cn"), paper_masses(), TimeConvergenceSettings(), expectations, &used));
-  });
+  timed("4 convergence in h", [&] { append(check_convergence(sweep, judge)); });
+  timed("4 convergence in time",
+        [&] { append(check_time_convergence(scheme_choice("cn"), paper_masses(), TimeConvergenceSettings(), judge)); });
   timed("5 energy", [&] {
-    append(check_energy_conservation(scheme_choice("cn"), paper_masses(), EnergySettings(), expectations, &used));
-    append(check_energy_dissipation(scheme_choice("be"), paper_masses(), EnergySettings(), expectations, &used));
+    append(check_energy_conservation(scheme_choice("cn"), paper_masses(), EnergySettings(), judge));
+    append(check_energy_dissipation(scheme_choice("be"), paper_masses(), EnergySettings(), judge));
   });
   timed("6 contact step",
-        [&] { append(check_contact_step(paper_contact_step_cases(), ContactStepSettings(), expectations, &used)); });
-  timed("6 exact solution", [&] {
-    rows.push_back(check_exact_solution(ExactSolution(1.0, 0.5), FineSolutionSettings(), expectations, &used));
-  });
-  append(stale_expectations(expectations, used));
+        [&] { append(check_contact_step(paper_contact_step_cases(), ContactStepSettings(), judge)); });
+  timed("6 exact solution",
+        [&] { rows.push_back(check_exact_solution(ExactSolution(1.0, 0.5), FineSolutionSettings(), judge)); });
+  append(judge.stale());
 
   // The summary: one line per claim (claim 3 per scheme, with its mechanism and its sensitivity).
   const auto ids = [&](const std::vector<const ClaimResult*>& r, Verdict v) {
@@ -1844,50 +1712,11 @@ void write_markdown_table(std::ostream& out, const std::vector<ClaimResult>& row
   table.write_markdown(out);
 }
 
+// The LaTeX form of a claim text: LaTeX's special characters escaped, the energy E_h and the velocity
+// u_t as math. Every other character stands as it is: the report's preamble typesets the Unicode
+// symbols of the texts (\newunicodechar in paper/report.tex), and a symbol it does not know stops the
+// report's build ("Unicode character … not set up for use with LaTeX").
 std::string latex_escape(const std::string& text) {
-  static const std::pair<const char*, const char*> symbols[] = {
-      {"λ", "\\ensuremath{\\lambda}"},
-      {"Δ", "\\ensuremath{\\Delta}"},
-      {"≤", "\\ensuremath{\\le}"},
-      {"≥", "\\ensuremath{\\ge}"},
-      {"×", "\\ensuremath{\\times}"},
-      {"∞", "\\ensuremath{\\infty}"},
-      {"²", "\\ensuremath{^2}"},
-      {"¹", "\\ensuremath{^1}"},
-      {"ⁿ", "\\ensuremath{^n}"},
-      {"⁺", "\\ensuremath{^+}"},
-      {"⁻", "\\ensuremath{^-}"},
-      {"ᵀ", "\\ensuremath{^T}"},
-      {"½", "\\ensuremath{\\frac12}"},
-      {"¼", "\\ensuremath{\\frac14}"},
-      {"·", "\\ensuremath{\\cdot}"},
-      {"−", "\\ensuremath{-}"},
-      {"→", "\\ensuremath{\\to}"},
-      {"ε", "\\ensuremath{\\varepsilon}"},
-      {"θ", "\\ensuremath{\\theta}"},
-      {"β", "\\ensuremath{\\beta}"},
-      {"₀", "\\ensuremath{_0}"},
-      {"≈", "\\ensuremath{\\approx}"},
-      {"–", "--"},
-      {"—", "---"},
-      {"…", "\\dots{}"},
-      {"§", "\\S{}"},
-      {"é", "\\'e"},
-      {"√", "\\ensuremath{\\surd}"},
-      {"Σ", "\\ensuremath{\\Sigma}"},
-      {"∝", "\\ensuremath{\\propto}"},
-      {"è", "\\`e"},
-      {"č", "\\v{c}"},
-      {"œ", "\\oe{}"},
-      {"¾", "\\ensuremath{\\frac34}"},
-      {"ℓ", "\\ensuremath{\\ell}"},
-      {"₁", "\\ensuremath{_1}"},
-      {"ą", "\\k{a}"},
-      {"∈", "\\ensuremath{\\in}"},
-      {"±", "\\ensuremath{\\pm}"},
-      {"ₜ", "\\ensuremath{_t}"},
-  };
-
   std::string out;
   for (std::size_t i = 0; i < text.size();) {
     // The discrete energy's symbol, a subscript, not an escaped underscore.
@@ -1903,108 +1732,45 @@ std::string latex_escape(const std::string& text) {
       i += 3;
       continue;
     }
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    if (c < 0x80) {
-      switch (c) {
-        case '\\':
-          out += "\\textbackslash{}";
-          break;
-        case '{':
-        case '}':
-        case '$':
-        case '&':
-        case '#':
-        case '_':
-        case '%':
-          out += '\\';
-          out += static_cast<char>(c);
-          break;
-        case '^':
-          out += "\\textasciicircum{}";
-          break;
-        case '~':
-          out += "\\textasciitilde{}";
-          break;
-        case '<':
-          out += "\\ensuremath{<}";
-          break;
-        case '>':
-          out += "\\ensuremath{>}";
-          break;
-        case '|':
-          out += "\\ensuremath{|}";
-          break;
-        default:
-          out += static_cast<char>(c);
-      }
-      ++i;
-      continue;
-    }
-    bool found = false;
-    for (const auto& [utf8, latex] : symbols) {
-      const std::size_t n = std::char_traits<char>::length(utf8);
-      if (text.compare(i, n, utf8) == 0) {
-        out += latex;
-        i += n;
-        found = true;
+    switch (const char c = text[i++]) {
+      case '\\':
+        out += "\\textbackslash{}";
         break;
-      }
-    }
-    if (!found) {
-      std::size_t n = 1;
-      while (i + n < text.size() && (static_cast<unsigned char>(text[i + n]) & 0xC0) == 0x80) ++n;
-      throw std::invalid_argument("latex_escape: no LaTeX form for the character \"" + text.substr(i, n) + "\"");
+      case '{':
+      case '}':
+      case '$':
+      case '&':
+      case '#':
+      case '_':
+      case '%':
+        out += '\\';
+        out += c;
+        break;
+      case '^':
+        out += "\\textasciicircum{}";
+        break;
+      case '~':
+        out += "\\textasciitilde{}";
+        break;
+      case '<':
+      case '>':
+      case '|':
+        out += std::string("\\ensuremath{") + c + "}";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
 }
 
-TEST_CASE("every reason of the expectation table has a LaTeX form") {
-  for (const auto& [id, reason] : paper_expectations()) {
-    CAPTURE(id);
-    CHECK_NOTHROW(latex_escape(id + " " + reason));
-  }
-}
-
-TEST_CASE("every text of the region checks and of their summary lines has a LaTeX form") {
-  repro::SweepGrid grid;
-  grid.courants = {0.5};
-  grid.elements = {10, 20};
-  grid.horizons = {1, 2};
-  const repro::Sweep sweep = repro::run_sweep(grid, 2);
-  std::vector<ClaimResult> rows = check_ordering(sweep, grid.masses, {});
-  for (ClaimResult& r : check_phase_drift(sweep, PhaseDriftSettings(), {})) rows.push_back(r);
-  for (ClaimResult& r : check_convergence(sweep, {})) rows.push_back(r);
-  SensitivitySettings sensitivity;
-  sensitivity.elements = {10};
-  sensitivity.periods = 2;
-  for (ClaimResult& r : check_reconstruction_sensitivity(sensitivity, {})) rows.push_back(r);
-  TimeConvergenceSettings time;
-  time.elements = 8;
-  time.courants = {0.5, 0.25};
-  time.reference_courant = 1.0 / 16;
-  for (ClaimResult& r : check_time_convergence(scheme_choice("cn"), {mod3()}, time, {})) rows.push_back(r);
-  for (const ClaimResult& r : rows)
-    for (const std::string* text : {&r.claim, &r.measured, &r.criterion}) {
-      CAPTURE(*text);
-      CHECK_NOTHROW(latex_escape(*text));
-    }
-  std::vector<SummaryLine> lines = {summarize_convergence(sweep), summarize_phase_drift(sweep, PhaseDriftSettings())};
-  for (const std::string& scheme : grid.schemes) lines.push_back(summarize_ordering(sweep, scheme, grid.masses));
-  std::ostringstream tex, table;
-  CHECK_NOTHROW(write_latex_summary(tex, lines));
-  CHECK_NOTHROW(write_latex_summary_table(table, lines));
-  CHECK(tex.str().find("\\mrmdef{claim:convergence:verdict}") != std::string::npos);
-}
-
-TEST_CASE("LaTeX escaping handles the special characters and the table's symbols") {
+TEST_CASE("LaTeX escaping handles the special characters and leaves the symbols to the preamble") {
   CHECK(latex_escape("a_b & 50% #1 {x} $") == "a\\_b \\& 50\\% \\#1 \\{x\\} \\$");
-  CHECK(latex_escape("λ ≤ 0.5h^½") ==
-        "\\ensuremath{\\lambda} \\ensuremath{\\le} 0.5h\\textasciicircum{}\\ensuremath{\\frac12}");
+  CHECK(latex_escape("λ ≤ 0.5h^½ |x| < 1") ==
+        "λ ≤ 0.5h\\textasciicircum{}½ \\ensuremath{|}x\\ensuremath{|} \\ensuremath{<} 1");
   CHECK(latex_escape("a\\b ~") == "a\\textbackslash{}b \\textasciitilde{}");
-  CHECK_THROWS_AS(latex_escape("日本"), std::invalid_argument);
-  CHECK(latex_escape("E_hⁿ/E_h(0)") == "\\ensuremath{E_h}\\ensuremath{^n}/\\ensuremath{E_h}(0)");
-  CHECK(latex_escape("u_t L²") == "\\ensuremath{u_t} L\\ensuremath{^2}");
+  CHECK(latex_escape("E_hⁿ/E_h(0)") == "\\ensuremath{E_h}ⁿ/\\ensuremath{E_h}(0)");
+  CHECK(latex_escape("u_t L²") == "\\ensuremath{u_t} L²");
   CHECK(latex_escape("err_u_t") == "err\\_u\\_t");  // inside a name: escaped underscores
 }
 
@@ -2026,9 +1792,8 @@ void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) 
     const ClaimResult& r = rows[k];
     const bool same_criterion = k > 0 && rows[k - 1].criterion == r.criterion;
     const bool same_reason = k > 0 && rows[k - 1].reason == r.reason;
-    const std::string verdict = r.verdict == Verdict::reproduced       ? "reproduced"
-                                : r.verdict == Verdict::not_reproduced ? "\\textbf{not reproduced}"
-                                                                       : "\\textbf{FAILED}";
+    const std::string verdict =
+        r.verdict == Verdict::reproduced ? to_string(r.verdict) : "\\textbf{" + to_string(r.verdict) + "}";
     table.add_row(
         {"\\textbf{" + latex_escape(readable_id(r.id)) + ".} " + latex_escape(r.claim), latex_escape(r.measured),
          same_criterion ? std::string("\\emph{as above}") : latex_escape(r.criterion), verdict},

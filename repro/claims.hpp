@@ -13,6 +13,7 @@
 #include <iosfwd>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "errors.hpp"
@@ -46,10 +47,19 @@ using Expectations = std::map<std::string, std::string>;
 /// The expectation table of this repository (claims.cpp, with the measured numbers in comments).
 const Expectations& paper_expectations();
 
-/// The verdict of a row from whether its criterion holds and what was expected; marks the id as
-/// used in `used` (if given), so that stale entries of the table can be reported.
-ClaimResult judge(std::string id, std::string claim, std::string measured, std::string criterion, bool holds,
-                  const Expectations& expectations, std::vector<std::string>* used = nullptr);
+/// Gives a row its verdict from whether its criterion holds and what the expectation table says, and
+/// keeps the entries of the table that rows used, so that stale entries can be reported.
+class Judge {
+ public:
+  explicit Judge(Expectations expectations = {}) : expectations_(std::move(expectations)) {}
+  ClaimResult operator()(std::string id, std::string claim, std::string measured, std::string criterion, bool holds);
+  /// One failed row per entry of the table that no row used (a renamed row, a removed check).
+  std::vector<ClaimResult> stale() const;
+
+ private:
+  Expectations expectations_;
+  std::vector<std::string> used_;
+};
 
 /// A time scheme as the paper names it: "cn", "be", "ps" (Paoli–Schatzman (¼, 0), algebraic contact
 /// row) and "ps-literal" (the three-level formula on the contact row too, mathematics.md §4).
@@ -57,7 +67,7 @@ struct SchemeChoice {
   std::string label;
   SchemeParameters parameters;
 };
-SchemeChoice scheme_choice(const std::string& label);  ///< throws std::invalid_argument for another label
+SchemeChoice scheme_choice(const std::string& label);  ///< throws std::invalid_argument for an unknown label
 std::vector<SchemeChoice> paper_schemes();             ///< cn, be, ps, ps-literal
 std::vector<MassRedistribution> paper_masses();        ///< mod1, mod2, mod3
 
@@ -79,12 +89,10 @@ struct StabilitySettings {
 /// Every scheme × mass runs to the final time with finite values and a bounded energy.
 std::vector<ClaimResult> check_stability(const std::vector<SchemeChoice>& schemes,
                                          const std::vector<MassRedistribution>& masses,
-                                         const StabilitySettings& settings, const Expectations& expectations,
-                                         std::vector<std::string>* used = nullptr);
+                                         const StabilitySettings& settings, Judge& judge);
 /// The contrast of the method's motivation: this scheme with the consistent mass does blow up (exceeds
 /// the same bound, or produces a non-finite value) within the same run.
-ClaimResult check_consistent_mass_blows_up(const SchemeChoice& scheme, const StabilitySettings& settings,
-                                           const Expectations& expectations, std::vector<std::string>* used = nullptr);
+ClaimResult check_consistent_mass_blows_up(const SchemeChoice& scheme, const StabilitySettings& settings, Judge& judge);
 
 // ---- Claim 2: total mass --------------------------------------------------------------------------
 
@@ -92,8 +100,7 @@ ClaimResult check_consistent_mass_blows_up(const SchemeChoice& scheme, const Sta
 /// mesh (length, elements) given.
 std::vector<ClaimResult> check_mass(const std::vector<MassRedistribution>& preserving,
                                     const std::vector<MassRedistribution>& dropping,
-                                    const std::vector<UniformMesh>& meshes, const Expectations& expectations,
-                                    std::vector<std::string>* used = nullptr);
+                                    const std::vector<UniformMesh>& meshes, Judge& judge);
 
 // ---- Claim 3: ordering of the errors (the paper's Figure 1), over regions -------------------------
 
@@ -101,7 +108,7 @@ std::vector<ClaimResult> check_mass(const std::vector<MassRedistribution>& prese
 /// mod1, mod2, mod3) holds strictly in every measure the scheme is judged in (judged_measures) in
 /// every (Δt/h, N) cell of that horizon. The measured text gives the count per cell.
 std::vector<ClaimResult> check_ordering(const repro::Sweep& sweep, const std::vector<std::string>& ordered,
-                                        const Expectations& expectations, std::vector<std::string>* used = nullptr);
+                                        Judge& judge);
 /// The summary of claim 3 for one scheme: where (Δt/h, horizon, N) the ranking holds in every judged
 /// measure, where it does not, and the counts that decide it.
 SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& scheme,
@@ -115,8 +122,7 @@ struct PhaseDriftSettings {
   std::string scheme = "cn";
   double tolerance = 0.25, difference_tolerance = 0.1;
 };
-std::vector<ClaimResult> check_phase_drift(const repro::Sweep& sweep, const PhaseDriftSettings& settings,
-                                           const Expectations& expectations, std::vector<std::string>* used = nullptr);
+std::vector<ClaimResult> check_phase_drift(const repro::Sweep& sweep, const PhaseDriftSettings& settings, Judge& judge);
 SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSettings& settings);
 
 /// The sensitivity of claim 3 to the reconstruction of the masses (the paper names them in words only):
@@ -130,17 +136,14 @@ struct SensitivitySettings {
   std::vector<Index> elements = {100, 200};
   double periods = 30;
 };
-std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySettings& settings,
-                                                          const Expectations& expectations,
-                                                          std::vector<std::string>* used = nullptr);
+std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySettings& settings, Judge& judge);
 
 // ---- Claim 4: convergence --------------------------------------------------------------------------
 
 /// One row per scheme (and the baseline) and horizon: in every (mass, Δt/h) cell the least-squares
 /// order in h of every judged measure lies within the tolerance of its prediction (predicted_orders,
 /// mathematics.md §9).
-std::vector<ClaimResult> check_convergence(const repro::Sweep& sweep, const Expectations& expectations,
-                                           std::vector<std::string>* used = nullptr);
+std::vector<ClaimResult> check_convergence(const repro::Sweep& sweep, Judge& judge);
 SummaryLine summarize_convergence(const repro::Sweep& sweep);
 
 struct TimeConvergenceSettings {
@@ -157,9 +160,7 @@ struct TimeConvergenceSettings {
 /// order over the three finest steps.
 std::vector<ClaimResult> check_time_convergence(const SchemeChoice& scheme,
                                                 const std::vector<MassRedistribution>& masses,
-                                                const TimeConvergenceSettings& settings,
-                                                const Expectations& expectations,
-                                                std::vector<std::string>* used = nullptr);
+                                                const TimeConvergenceSettings& settings, Judge& judge);
 
 // ---- Claim 5: energy -------------------------------------------------------------------------------
 
@@ -174,13 +175,11 @@ struct EnergySettings {
 /// the sum of |E_hⁿ⁺¹ − E_hⁿ| over the steps that change it decreases at every refinement.
 std::vector<ClaimResult> check_energy_conservation(const SchemeChoice& scheme,
                                                    const std::vector<MassRedistribution>& masses,
-                                                   const EnergySettings& settings, const Expectations& expectations,
-                                                   std::vector<std::string>* used = nullptr);
+                                                   const EnergySettings& settings, Judge& judge);
 /// Dissipation: E_hⁿ⁺¹ ≤ E_hⁿ + round-off at every step, on every mesh.
 std::vector<ClaimResult> check_energy_dissipation(const SchemeChoice& scheme,
                                                   const std::vector<MassRedistribution>& masses,
-                                                  const EnergySettings& settings, const Expectations& expectations,
-                                                  std::vector<std::string>* used = nullptr);
+                                                  const EnergySettings& settings, Judge& judge);
 
 // ---- Claim 6: agreement with independent computations ----------------------------------------------
 
@@ -204,8 +203,7 @@ struct ContactStepSettings {
 /// Eigen's SparseLU on the full saddle-point system (U, λ) rebuilt from the public state (Uⁿ, Vⁿ or
 /// Uⁿ⁻¹, λⁿ) with the active set fixed to the one found.
 std::vector<ClaimResult> check_contact_step(const std::vector<ContactStepCase>& cases,
-                                            const ContactStepSettings& settings, const Expectations& expectations,
-                                            std::vector<std::string>* used = nullptr);
+                                            const ContactStepSettings& settings, Judge& judge);
 
 struct FineSolutionSettings {
   Index elements = 4000;
@@ -215,8 +213,7 @@ struct FineSolutionSettings {
 };
 /// The closed-form solution against a very fine numerical solution (Crank–Nicolson, Mod 3).
 /// `exact` is the solution checked (the benchmark's is ExactSolution(1, ½)).
-ClaimResult check_exact_solution(const ExactSolution& exact, const FineSolutionSettings& settings,
-                                 const Expectations& expectations, std::vector<std::string>* used = nullptr);
+ClaimResult check_exact_solution(const ExactSolution& exact, const FineSolutionSettings& settings, Judge& judge);
 
 // ---- All of them ----------------------------------------------------------------------------------
 
@@ -229,9 +226,6 @@ struct ClaimsReport {
   repro::Sweep sweep;                ///< the sweep the region checks judged
 };
 ClaimsReport check_all(const Expectations& expectations, std::ostream* progress = nullptr);
-
-/// One failed row per entry of `expectations` whose id is not in `used`.
-std::vector<ClaimResult> stale_expectations(const Expectations& expectations, const std::vector<std::string>& used);
 
 // ---- Output ---------------------------------------------------------------------------------------
 
@@ -248,8 +242,8 @@ void write_markdown_table(std::ostream& out, const std::vector<ClaimResult>& row
 /// The table as a LaTeX longtable (booktabs rules, p{} columns for an A4 page); needs the packages
 /// longtable, booktabs and array.
 void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows);
-/// Escapes LaTeX special characters and turns the few Unicode symbols used in the table into math;
-/// throws std::invalid_argument on any other non-ASCII character.
+/// Escapes LaTeX's special characters and writes E_h and u_t as math; the Unicode symbols stay as they
+/// are, for the report's preamble to typeset (\newunicodechar in paper/report.tex).
 std::string latex_escape(const std::string& text);
 
 }  // namespace mrm::claims

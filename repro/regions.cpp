@@ -20,6 +20,7 @@
 #include <cmath>
 #include <fstream>
 #include <istream>
+#include <limits>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -262,6 +263,14 @@ std::pair<double, double> allowed_order(const std::string& scheme, const std::st
   return {centre - p.tolerance, upper};
 }
 
+double observed_order(const std::vector<double>& x, const std::vector<double>& y) {
+  try {
+    return fit_order(x, y).order;
+  } catch (const std::invalid_argument&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
 std::vector<OrderCell> order_cells(const Sweep& sweep) {
   std::vector<OrderCell> cells;
   std::vector<double> h;
@@ -277,11 +286,7 @@ std::vector<OrderCell> order_cells(const Sweep& sweep) {
         for (std::size_t q = 0; q < 8; ++q) {
           std::vector<double> e;
           for (Index n : sweep.grid.elements) e.push_back(sweep.find(scheme, mass, c, n).errors[k][q]);
-          try {
-            cell.order[q] = fit_order(h, e).order;
-          } catch (const std::invalid_argument&) {
-            cell.order[q] = std::nan("");
-          }
+          cell.order[q] = observed_order(h, e);
           const std::pair<double, double> allowed = allowed_order(scheme, mass, q);
           cell.within[q] = cell.order[q] >= allowed.first && cell.order[q] <= allowed.second;
         }

@@ -105,6 +105,11 @@ bool mass_drifts(const std::string& mass);
 /// (Crank–Nicolson and the Paoli–Schatzman forms).
 std::pair<double, double> allowed_order(const std::string& scheme, const std::string& mass, std::size_t measure);
 
+/// The observed order: the slope of the least-squares line through (log x_k, log y_k) (mathematics.md §5,
+/// lib/convergence's fit_order). Data that admit no order (steps that were not refined, an error that
+/// vanished) give NaN, which fails every criterion on the order.
+double observed_order(const std::vector<double>& x, const std::vector<double>& y);
+
 /// Claim 4 in one cell: the least-squares orders in h over the grid's meshes, and whether each lies
 /// in its allowed interval.
 struct OrderCell {

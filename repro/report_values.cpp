@@ -8,12 +8,36 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
 #include <doctest/doctest.h>
 
 namespace mrm {
+
+std::string significant(double value, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
+std::string decimals(double value, int places) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", places, value);
+  return buffer;
+}
+
+TEST_CASE("plain-text numbers have their significant digits or their decimals") {
+  CHECK(significant(0.012345) == "0.0123");
+  CHECK(significant(1.5) == "1.5");
+  CHECK(significant(1e-12) == "1e-12");
+  CHECK(significant(287.46, 2) == "2.9e+02");
+  CHECK(significant(std::numeric_limits<double>::infinity()) == "inf");
+  CHECK(decimals(0.5, 2) == "0.50");
+  CHECK(decimals(-4.0 / 3.0, 3) == "-1.333");
+  CHECK(decimals(std::numeric_limits<double>::infinity(), 2) == "inf");
+}
 
 std::string tex_number(double value, int significant) {
   if (!std::isfinite(value)) return "n/a";
@@ -49,14 +73,9 @@ TEST_CASE("report numbers are rounded to their significant digits in fixed or sc
 std::string tex_magnitude(double x) {
   if (!(std::isfinite(x) && x > 0))
     throw std::invalid_argument("tex_magnitude: " + std::to_string(x) + " is not a finite positive number");
-  char buffer[64];
-  if (x < 1000) {
-    std::snprintf(buffer, sizeof buffer, "%.3g", x);
-  } else {
-    const int e = static_cast<int>(std::log(x) / std::log(10.0));
-    std::snprintf(buffer, sizeof buffer, "%.2f\\times10^{%d}", x / std::pow(10.0, e), e);
-  }
-  return buffer;
+  if (x < 1000) return significant(x, 3);
+  const int e = static_cast<int>(std::log(x) / std::log(10.0));
+  return decimals(x / std::pow(10.0, e), 2) + "\\times10^{" + std::to_string(e) + "}";
 }
 
 TEST_CASE("a magnitude has three digits below 1000 and a power of ten above") {

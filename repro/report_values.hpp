@@ -8,6 +8,12 @@
 
 namespace mrm {
 
+/// A number in plain text (the claims' rows, which the report prints as they are): `digits` significant
+/// digits in C's "%.*g" form ("0.0123", "1.5", "1e-12", "inf"). Deterministic (no locale).
+std::string significant(double value, int digits = 3);
+/// A number in plain text with `places` decimals, C's "%.*f" ("0.50", "-1.333", "nan").
+std::string decimals(double value, int places);
+
 /// A number for prose and tables, rounded to `significant` digits (an integer part is never rounded): fixed notation for
 /// 10⁻³ ≤ |v| < 10⁴ ("0.0123", "1.50", "2048"; a negative value starts with "\ensuremath{-}"), otherwise "\ensuremath{1.23\cdot 10^{-5}}";
 /// "0" for zero, "n/a" for a non-finite value. Deterministic (no locale).
