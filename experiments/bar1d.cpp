@@ -47,6 +47,7 @@
 #include "options.hpp"
 #include "output_file.hpp"
 #include "configurations.hpp"
+#include "figure_program.hpp"
 #include "run_limits.hpp"
 #include "initial_data_file.hpp"
 #include "errors.hpp"
@@ -96,8 +97,7 @@ int main(int argc, char** argv) {
                     "benchmarks",
                     &final_time, cli::positive());
     parser.add_choice("--benchmark", "", "B",
-                      "initial data: the paper's (closed-form solution), S1 with an impact, S2 with a grazing contact "
-                      "(mathematics.md sec. 11, L = 1)",
+                      mrm::repro::benchmark_help("initial data (S1, S2: mathematics.md sec. 11, L = 1)"),
                       mrm::repro::benchmark_names(), &benchmark);
     parser.add_string("--initial-data", "", "FILE",
                       "read the initial data from FILE (columns x u0 v0, linearly interpolated, on [0, L] with L the "
@@ -108,11 +108,7 @@ int main(int argc, char** argv) {
     parser.add_real("--amplitude", "-a", "A",
                     "initial datum u0(x) = A (L - x), A in [1e-100, 1e100] (--benchmark paper only)", &amplitude,
                     cli::in_closed_range(1e-100, 1e100));
-    parser.add_choice("--scheme", "-s", "S",
-                      "time scheme: Crank-Nicolson, backward Euler, Paoli-Schatzman, energy-conserving "
-                      "Crank-Nicolson (massless contact node), Crank-Nicolson with a theta-step at each change of "
-                      "the contact status",
-                      {"cn", "be", "ps", "ec", "cn-switch"}, &scheme);
+    parser.add_choice("--scheme", "-s", "S", mrm::repro::scheme_help("time scheme"), mrm::repro::scheme_ids(), &scheme);
     parser.add_real("--switch-theta", "", "TH",
                     "cn-switch: theta in [0.5, 1] of the step that replaces a Crank-Nicolson step across a change "
                     "of the contact status (1: backward Euler, the energy never increases)",
@@ -136,7 +132,7 @@ int main(int argc, char** argv) {
                       "algebraic row (mathematics.md sec. 7), or the backward difference (u0(t_n) - u0(t_n-1))/dt "
                       "as GetFEM's demo_dynamic_contact_1D.py",
                       {"algebraic", "backward-difference"}, &contact_velocity);
-    parser.add_string("--output", "-o", "FILE", "write the contact-point time series to FILE", &output);
+    parser.add_output("--output", "-o", "write the contact-point time series to FILE", &output);
     parser.add_flag("--no-timing", "",
                     "leave out the wall time of the run (wall_seconds, the one value that varies "
                     "from run to run)",
@@ -153,32 +149,12 @@ int main(int argc, char** argv) {
     std::shared_ptr<const mrm::InitialData> data;
     if (own_data) data = std::make_shared<const mrm::InitialData>(mrm::repro::read_initial_data(initial_data));
     if (!parser.given("--final-time") && !own_data && benchmark != "paper") final_time = 2.0;
-    if (mass == "consistent" && !parser.given("--ps-form")) ps_form = "literal";
-    if (mass == "consistent" && scheme == "ps" && ps_form == "algebraic")
-      throw cli::UsageError(
-          "--ps-form: algebraic needs a massless contact node (any --mass but consistent); "
-          "with --mass consistent use --ps-form literal");
-    if (scheme == "ec" && mass == "consistent")
-      throw cli::UsageError(
-          "--scheme: ec needs a massless contact node (any --mass but consistent): with the "
-          "consistent mass the contact energy has no discrete gradient");
-    if (parser.given("--switch-theta") && scheme != "cn-switch")
-      throw cli::UsageError("--switch-theta: only with --scheme cn-switch (allowed: omit it)");
-    if (scheme == "ps" && ps_form == "literal" && beta == 0.0 && mass != "consistent")
-      throw cli::UsageError(
-          "--beta: 0 is not allowed with --ps-form literal and a massless contact node "
-          "(the step matrix is singular); use --beta > 0 or --ps-form algebraic");
-    // With the literal row and a massless contact node, row 0 off contact reads
-    // β d^{n+1} + (1 − 2β) d^n + β d^{n−1} = 0 for d = u₀ − u₁ (S's row 0 is (1, −1)/h): the roots of
-    // β r² + (1 − 2β) r + β have product 1 and are real and distinct when β < ¼, so one exceeds 1 in
-    // modulus and d grows geometrically at every step of free flight (by 1.5 per step at β = 0.24,
-    // overflowing within a few thousand steps; faster for smaller β): no finite or meaningful value
-    // can come out. β ≥ ¼ puts both roots on the unit circle.
-    if (scheme == "ps" && ps_form == "literal" && beta > 0.0 && beta < 0.25 && mass != "consistent")
-      throw cli::UsageError("--beta: " + cli::format_real(beta) +
-                            " is not allowed with --ps-form literal and a "
-                            "massless contact node (allowed: beta >= 1/4; below, u0 - u1 grows at every step of free "
-                            "flight); use --ps-form algebraic or --mass consistent");
+    const mrm::Scheme scheme_id = mrm::scheme_by_name(scheme);
+    mrm::repro::refuse_untaken(parser, scheme_id,
+                               {{"--beta", mrm::SchemeParameter::beta},
+                                {"--restitution", mrm::SchemeParameter::restitution},
+                                {"--ps-form", mrm::SchemeParameter::contact_row},
+                                {"--switch-theta", mrm::SchemeParameter::switch_theta}});
 
     // 2. The output, opened now so that an unwritable path fails before the run.
     std::unique_ptr<cli::AtomicFile> series;
@@ -204,8 +180,10 @@ int main(int argc, char** argv) {
     // that is not positive definite) once the mesh is known to fit in memory, before the run: a bad
     // value exits 2 and leaves no output behind.
     configuration.mass = mrm::repro::mass_from_option("--mass", mass, mesh);
-    dt = step;  // the header echoes the effective step
-    configuration.scheme.scheme = mrm::scheme_by_name(scheme);
+    const bool massless = mrm::contact_node_is_massless(mrm::modified_mass(mesh, configuration.mass));
+    if (!massless && !parser.given("--ps-form")) ps_form = "literal";  // the only row of a node with inertia
+    dt = step;                                                         // the header echoes the effective step
+    configuration.scheme.scheme = scheme_id;
     configuration.scheme.beta = beta;
     configuration.scheme.restitution = restitution;
     if (mrm::takes(configuration.scheme.scheme, mrm::SchemeParameter::contact_row))
@@ -216,10 +194,24 @@ int main(int argc, char** argv) {
     configuration.final_time = final_time;
     configuration.initial = mrm::initial_contact_node_by_name(initial);
     configuration.contact_velocity = mrm::repro::contact_velocity_by_name(contact_velocity);
+    // The simulation, built once before any work: the library refuses a combination that cannot run (the
+    // algebraic row or ec with a contact node that has inertia, a literal row with beta < 1/4 and a massless
+    // node) and names the parameter, worded here as the option that sets it.
+    mrm::repro::as_usage_error({{"dt", "--dt"},
+                                {"beta", "--beta"},
+                                {"restitution", "--restitution"},
+                                {"contact_row", "--ps-form"},
+                                {"switch_theta", "--switch-theta"},
+                                {"mass", "--mass"},
+                                {"scheme", "--scheme"}},
+                               [&] {
+                                 mrm::BarSimulation(mrm::repro::configuration_problem(configuration), mesh,
+                                                    configuration.mass, configuration.scheme, step,
+                                                    configuration.initial);
+                               });
     const std::shared_ptr<const mrm::ReferenceSolution> reference =
         mrm::repro::configuration_reference(configuration, mrm::repro::reference_horizon(steps, step));
     const mrm::ReferenceSolution& exact = *reference;
-    const bool massless = mrm::contact_node_is_massless(mrm::modified_mass(mesh, configuration.mass));
 
     if (series) {
       std::ostream& out = series->stream();

@@ -124,13 +124,14 @@ int main(int argc, char** argv) {
     for (const std::string& scheme : mrm::repro::scheme_names()) {
       for (const std::string& mass : mrm::repro::mass_names())
         run_block(scheme, ps_form, mass, scheme + ":" + mass,
-                  mass == "mod1" ? mrm::repro::scheme_label(scheme, ps_form) : std::string(),
+                  mass == "mod1" ? mrm::repro::scheme_row_label(scheme, ps_form) : std::string(),
                   std::string("Mod ") + mass.back());
       table.add_rule();
     }
     // 6. The baseline: Paoli–Schatzman (¼, 0) with the full consistent mass (its only contact row is the
     // literal one), stable and the method's natural point of comparison (block 10, last row of the table).
-    run_block("ps", "literal", "consistent", "ps:consistent", mrm::repro::scheme_label("ps", "literal"), "consistent");
+    const std::string ps = mrm::to_string(mrm::Scheme::paoli_schatzman);
+    run_block(ps, "literal", "consistent", "ps:consistent", mrm::repro::scheme_row_label(ps, "literal"), "consistent");
     program.values() << "\\mrmdef{hist:table}{" << mrm::repro::latex_tabular(table, "llrrr") << "}\n";
     program.commit();
     return 0;

@@ -56,8 +56,6 @@ struct Run {
   std::array<double, 8> errors{};
 };
 
-std::string mass_label(std::size_t m) { return "Mod " + std::to_string(m + 1); }
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -167,8 +165,8 @@ int main(int argc, char** argv) {
     for (std::size_t c = 0; c < courants.size(); ++c)
       mrm::tex_define(defs, std::string("conv:dt:") + courant_keys[c], courant_labels[c]);
     std::vector<std::string> headers{"scheme", "mass", "$\\Delta t$"}, ranking_headers{"scheme", "$\\Delta t$"};
-    for (const char* label : mrm::repro::measure_labels()) {
-      headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
+    for (const mrm::repro::Label& label : mrm::repro::measure_labels()) {
+      headers.push_back("\\rotatebox{70}{" + label.latex + "}");
       ranking_headers.push_back(headers.back());
     }
     mrm::repro::Table orders_table(headers), errors_table(headers), ranking_table(ranking_headers);
@@ -181,8 +179,8 @@ int main(int argc, char** argv) {
       for (std::size_t m = 0; m < masses.size(); ++m)
         for (std::size_t c = 0; c < courants.size(); ++c) {
           std::vector<std::string> orders_row{
-              m == 0 && c == 0 ? mrm::repro::scheme_label(schemes[s], ps_form) : std::string(),
-              c == 0 ? mass_label(m) : std::string(), courant_labels[c]};
+              m == 0 && c == 0 ? mrm::repro::scheme_row_label(schemes[s], ps_form) : std::string(),
+              c == 0 ? mrm::repro::mass_label(masses[m]).abbreviation : std::string(), courant_labels[c]};
           std::vector<std::string> errors_row = orders_row;
           for (std::size_t k = 0; k < 8; ++k) {
             std::vector<double> errors(levels);
@@ -210,7 +208,7 @@ int main(int argc, char** argv) {
         }
       // The paper's claim 3: Mod 3 < Mod 2 < Mod 1 in error. Counted over every measure, mesh and ratio.
       for (std::size_t c = 0; c < courants.size(); ++c) {
-        std::vector<std::string> ranking_row{c == 0 ? mrm::repro::scheme_label(schemes[s], ps_form) : std::string(),
+        std::vector<std::string> ranking_row{c == 0 ? mrm::repro::scheme_row_label(schemes[s], ps_form) : std::string(),
                                              courant_labels[c]};
         for (std::size_t k = 0; k < 8; ++k) {
           for (std::size_t l = 0; l < levels; ++l) {

@@ -55,10 +55,11 @@ namespace cli = mrm::cli;
 
 namespace {
 
-// The schemes compared, in the order of every block and table.
-const std::array<const char*, 4> schemes{"cn", "ec", "cn-switch", "be"};
-// Their labels in the tables (the captions say CN for Crank–Nicolson and BE for backward Euler).
-const std::array<const char*, 4> scheme_labels{"CN", "EC", "CN-switch", "BE"};
+// The schemes compared, in the order of every block and table (labelled by their abbreviations in the
+// tables: the captions say CN for Crank–Nicolson and BE for backward Euler).
+const std::string cn = mrm::to_string(mrm::Scheme::crank_nicolson), be = mrm::to_string(mrm::Scheme::backward_euler),
+                  switching = mrm::to_string(mrm::Scheme::switching);
+const std::array<std::string, 4> schemes{cn, mrm::to_string(mrm::Scheme::energy_conserving), switching, be};
 
 // A header cell on two lines (a one-column tabular inside the cell), to keep a table within the width.
 std::string stacked(const std::string& top, const std::string& bottom) {
@@ -108,8 +109,6 @@ double ratio(const Run& r, double energy) { return energy / r.measures.energy_in
 double drift(const Run& r) {
   return std::max(ratio(r, r.measures.energy_max) - 1, 1 - ratio(r, r.measures.energy_min));
 }
-
-std::string mass_label(const std::string& mass) { return "Mod~" + mass.substr(3); }
 
 // A step as a multiple of h, for the prose (math mode): "h/2", "h", "5h".
 std::string step_text(double courant) {
@@ -175,17 +174,17 @@ int main(int argc, char** argv) {
     std::vector<Run> runs;
     if (view == "history") {
       for (double c : history_ratios)
-        for (const char* s : schemes) runs.push_back(make_run(s, mass, elements, c, 10 * period, true));
+        for (const std::string& s : schemes) runs.push_back(make_run(s, mass, elements, c, 10 * period, true));
     } else if (view == "map") {
-      for (const char* s : schemes)
+      for (const std::string& s : schemes)
         for (mrm::Index n : map_meshes)
           for (double c : map_ratios) runs.push_back(make_run(s, mass, n, c, 100 * period));
       for (const LongRun& l : long_runs)
-        for (const char* s : schemes)
+        for (const std::string& s : schemes)
           for (const std::string& m : masses) runs.push_back(make_run(s, m, l.elements, l.courant, l.periods * period));
     } else {
       for (mrm::Index n : measure_meshes)
-        for (const char* s : schemes)
+        for (const std::string& s : schemes)
           for (const std::string& m : masses)
             runs.push_back(make_run(s, m, n, measure_courant, measure_periods * period));
     }
@@ -209,7 +208,7 @@ int main(int argc, char** argv) {
     // CN-switch and backward Euler: every one-step increase within the round-off bound (energy_step.cpp §5).
     double largest_bound_fraction = -std::numeric_limits<double>::infinity();
     const auto check_increase = [&](const Run& r) {
-      if (r.scheme != "cn-switch" && r.scheme != "be") return;
+      if (r.scheme != switching && r.scheme != be) return;
       const double bound = mrm::energy_round_off_per_step(r.elements, r.courant);
       largest_bound_fraction = std::max(largest_bound_fraction, r.largest_increase / bound);
       if (!(r.largest_increase <= bound))
@@ -221,12 +220,12 @@ int main(int argc, char** argv) {
     if (view == "history") {
       out << "# mass = " << mass << "\n# N = " << elements << "\n# T = " << cli::format_real(10 * period) << '\n';
       mrm::tex_define(defs, "ecs:hist:N", std::to_string(elements));
-      mrm::tex_define(defs, "ecs:hist:mass", mass_label(mass));
+      mrm::tex_define(defs, "ecs:hist:mass", mrm::repro::mass_label(mass).latex);
       mrm::tex_define(defs, "ecs:hist:T", mrm::tex_number(10 * period, 2));
       for (std::size_t j = 0; j < history_ratios.size(); ++j)
         mrm::tex_define(defs, "ecs:hist:dt:" + std::to_string(j), step_text(history_ratios[j]));
       for (double c : history_ratios)
-        for (const char* s : schemes) {
+        for (const std::string& s : schemes) {
           const Run& r = runs[next++];
           check_increase(r);
           start_block(std::string("scheme = ") + s + ", dt/h = " + cli::format_real(c), "t_energy energy_ratio");
@@ -237,7 +236,7 @@ int main(int argc, char** argv) {
         }
     } else if (view == "map") {
       out << "# mass = " << mass << "\n# T = " << cli::format_real(100 * period) << '\n';
-      mrm::tex_define(defs, "ecs:map:mass", mass_label(mass));
+      mrm::tex_define(defs, "ecs:map:mass", mrm::repro::mass_label(mass).latex);
       mrm::tex_define(defs, "ecs:map:T", mrm::tex_number(100 * period, 2));
       mrm::tex_define(defs, "ecs:map:Nmin", std::to_string(map_meshes.front()));
       mrm::tex_define(defs, "ecs:map:Nmax", std::to_string(map_meshes.back()));
@@ -245,7 +244,7 @@ int main(int argc, char** argv) {
       mrm::tex_define(defs, "ecs:map:ratiomax", mrm::tex_number(map_ratios.back(), 2));
       out << "# increase_bound = 16 N eps (1 + h/dt): the largest one-step increase (E^{n+1} - E^n)/E^0 that "
              "round-off explains where the exact energy does not increase (cn-switch, be; energy_step.cpp sec. 5)\n";
-      for (const char* s : schemes) {
+      for (const std::string& s : schemes) {
         double largest = 0, largest_drift = 0, largest_increase = -std::numeric_limits<double>::infinity();
         for (mrm::Index n : map_meshes) {
           start_block(std::string("scheme = ") + s + ", N = " + std::to_string(n),
@@ -260,7 +259,7 @@ int main(int argc, char** argv) {
             largest = std::max(largest, ratio(r, r.measures.energy_max));
             largest_drift = std::max(largest_drift, drift(r));
             largest_increase = std::max(largest_increase, r.largest_increase);
-            if (std::string(s) == "cn")
+            if (s == cn)
               mrm::tex_define(defs, "ecs:map:cn:" + std::to_string(n) + ":" + cli::format_real(c),
                               mrm::tex_magnitude(ratio(r, r.measures.energy_max)));
           }
@@ -300,8 +299,9 @@ int main(int argc, char** argv) {
             mrm::tex_define(defs, key + ":largest", mrm::tex_magnitude(ratio(r, r.measures.energy_max)));
             mrm::tex_define(defs, key + ":final", mrm::tex_number(ratio(r, r.measures.energy_final), 3));
             table.add_row({s == 0 && m == masses.front() ? run_label : std::string(),
-                           m == masses.front() ? scheme_labels[s] : std::string(), mass_label(m),
-                           mrm::tex_number(drift(r), 2), mrm::tex_number(r.largest_increase, 2),
+                           m == masses.front() ? mrm::repro::scheme_label(schemes[s]).abbreviation : std::string(),
+                           mrm::repro::mass_label(m).latex, mrm::tex_number(drift(r), 2),
+                           mrm::tex_number(r.largest_increase, 2),
                            "$" + mrm::tex_magnitude(ratio(r, r.measures.energy_max)) + "$",
                            mrm::tex_number(ratio(r, r.measures.energy_final), 3)});
           }
@@ -333,7 +333,7 @@ int main(int argc, char** argv) {
         std::array<std::vector<std::string>, 3> headers;
         for (auto& h : headers) h = {"scheme", "mass"};
         for (std::size_t k = 0; k < mrm::repro::measure_labels().size(); ++k)
-          headers[k / per_part].push_back(mrm::repro::measure_labels()[k]);
+          headers[k / per_part].push_back(mrm::repro::measure_labels()[k].latex);
         headers.back().push_back("energy lost, \\%");
         std::array<mrm::repro::Table, 3> tables{mrm::repro::Table(headers[0]), mrm::repro::Table(headers[1]),
                                                 mrm::repro::Table(headers[2])};
@@ -350,7 +350,9 @@ int main(int argc, char** argv) {
             for (std::size_t k = 0; k < errors.size(); ++k) out << ' ' << cli::format_real(errors[k] / reference[k]);
             out << ' ' << cli::format_real(lost) << '\n';
             std::array<std::vector<std::string>, 3> rows;
-            for (auto& row : rows) row = {m == 0 ? scheme_labels[s] : std::string(), mass_label(masses[m])};
+            for (auto& row : rows)
+              row = {m == 0 ? mrm::repro::scheme_label(schemes[s]).abbreviation : std::string(),
+                     mrm::repro::mass_label(masses[m]).latex};
             const std::string key = "ecs:meas:" + std::to_string(n) + ":" + schemes[s] + ":" + masses[m];
             for (std::size_t k = 0; k < errors.size(); ++k) {
               const std::string value = mrm::tex_number(errors[k], 3);
@@ -363,7 +365,7 @@ int main(int argc, char** argv) {
               largest_ratio = std::max(largest_ratio, errors[k] / reference[k]);
               largest_deviation = std::max(largest_deviation, std::abs(errors[k] / reference[k] - 1));
             }
-            if (std::string(schemes[s]) == "cn-switch" && masses[m] == "mod3") switch_lost.push_back(lost);
+            if (schemes[s] == switching && masses[m] == "mod3") switch_lost.push_back(lost);
             rows.back().push_back(mrm::tex_number(100 * lost, 2));
             mrm::tex_define(defs, key + ":lost", mrm::tex_number(100 * lost, 2));
             for (std::size_t t = 0; t < tables.size(); ++t) tables[t].add_row(rows[t]);

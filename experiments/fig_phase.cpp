@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
                                "keep every K-th level of the error history in the data file (K >= 1)", &stride,
                                cli::at_least(1));
     program.parser.add_choice("--scheme", "-s", "S", "time scheme (Paoli-Schatzman with the algebraic row)",
-                              {"cn", "be", "ps"}, &scheme);
+                              mrm::repro::scheme_names(), &scheme);
     if (!program.parse(argc, argv)) return 0;
 
     const long elements = program.elements;

@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
     program.parser.add_choice("--scheme", "-s", "S",
                               "time scheme (ec: energy-conserving Crank-Nicolson; cn-switch: "
                               "Crank-Nicolson with a theta-step at each change of the contact status)",
-                              {"cn", "be", "ps", "ec", "cn-switch"}, &scheme);
+                              mrm::repro::scheme_ids(), &scheme);
     program.parser.add_real("--switch-theta", "", "TH", "cn-switch: theta of its switching step, in [0.5, 1]",
                             &switch_theta, cli::in_closed_range(0.5, 1));
     program.parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row", {"algebraic", "literal"},
@@ -63,8 +63,9 @@ int main(int argc, char** argv) {
     program.parser.add_integer("--exact-points", "", "K", "number of intervals of each exact profile, in [10, 1e6]",
                                &exact_points, cli::in_closed_range(10, cli::max_curve_points));
     if (!program.parse(argc, argv)) return 0;
-    if (program.parser.given("--switch-theta") && scheme != "cn-switch")
-      throw cli::UsageError("--switch-theta: only with --scheme cn-switch (allowed: omit it)");
+    mrm::repro::refuse_untaken(
+        program.parser, mrm::scheme_by_name(scheme),
+        {{"--switch-theta", mrm::SchemeParameter::switch_theta}, {"--ps-form", mrm::SchemeParameter::contact_row}});
     std::vector<double> instants;
     {
       std::stringstream list(instants_text);
@@ -118,7 +119,7 @@ int main(int argc, char** argv) {
     std::ostream& defs = program.values();
     mrm::tex_define(defs, "prof:elements", std::to_string(elements));
     mrm::tex_define(defs, "prof:dt", mrm::tex_number(dt, 3));
-    mrm::tex_define(defs, "prof:scheme", mrm::repro::scheme_label(scheme));
+    mrm::tex_define(defs, "prof:scheme", mrm::repro::scheme_label(scheme).latex);
     for (std::size_t k = 0; k < levels.size(); ++k) {
       const double t = static_cast<double>(levels[k]) * dt;
       mrm::tex_define(defs, "prof:t:" + std::to_string(k + 1), mrm::tex_number(t, 3));

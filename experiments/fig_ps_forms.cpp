@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "ps:elements", std::to_string(elements));
     mrm::tex_define(defs, "ps:dt", mrm::tex_number(dt, 3));
     mrm::tex_define(defs, "ps:T", mrm::tex_number(final_time, 3));
-    mrm::tex_define(defs, "ps:mass", mrm::repro::mass_label(mass));
+    mrm::tex_define(defs, "ps:mass", mrm::repro::mass_label(mass).abbreviation);
     mrm::tex_define(defs, "ps:periods", std::to_string(periods));
     int block = 1;
     for (const Variant& v : variants) {

@@ -79,10 +79,6 @@ const std::array<const char*, 2> schemes{"cn", "be"};
 const std::array<double, 2> courants{1.0, 0.5};
 const std::array<const char*, 2> courant_keys{"dth", "dth2"};
 const std::array<const char*, 2> courant_labels{"$\\Delta t = h$", "$\\Delta t = h/2$"};
-// The measures in the order of mrm::ErrorAccumulator::names, as the report prints them.
-const std::array<const char*, 8> measure_labels{
-    "$u(0,\\cdot)$, $L^2_t$",   "$\\lambda$, $L^2_t$", "$u$, $L^\\infty_t L^2$", "$u$, $L^\\infty_t H^1$",
-    "$u_t$, $L^\\infty_t L^2$", "$u$, $L^2_t L^2$",    "$u$, $L^2_t H^1$",       "$u_t$, $L^2_t L^2$"};
 constexpr double agreement = 0.25;
 
 enum Measure { u0_L2, lambda_L2, u_LinfL2, u_LinfH1, v_LinfL2, u_L2L2, u_L2H1, v_L2L2 };
@@ -123,8 +119,6 @@ struct Run {
   double cost;  // steps × unknowns, to start the longest runs first
   std::array<double, 8> errors{};
 };
-
-std::string mass_label(std::size_t m) { return "Mod " + std::to_string(m + 1); }
 
 }  // namespace
 
@@ -242,7 +236,8 @@ int main(int argc, char** argv) {
     for (std::size_t c = 0; c < courants.size(); ++c)
       mrm::tex_define(defs, std::string("smooth:dt:") + courant_keys[c], courant_labels[c]);
     std::vector<std::string> headers{"data", "scheme", "mass", "$\\Delta t$"};
-    for (const char* label : measure_labels) headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
+    for (const mrm::repro::Label& label : mrm::repro::measure_labels())
+      headers.push_back("\\rotatebox{70}{" + label.latex + "}");
     mrm::repro::Table orders_table(headers);
     std::vector<double> steps(levels);
     for (std::size_t l = 0; l < levels; ++l)
@@ -253,8 +248,9 @@ int main(int argc, char** argv) {
         for (std::size_t m = 0; m < masses.size(); ++m)
           for (std::size_t c = 0; c < courants.size(); ++c) {
             std::vector<std::string> row{s == 0 && m == 0 && c == 0 ? benchmark_labels[b] : "",
-                                         m == 0 && c == 0 ? mrm::repro::scheme_label(schemes[s]) : "",
-                                         c == 0 ? mass_label(m) : "", courant_labels[c]};
+                                         m == 0 && c == 0 ? mrm::repro::scheme_label(schemes[s]).latex : "",
+                                         c == 0 ? mrm::repro::mass_label(masses[m]).abbreviation : "",
+                                         courant_labels[c]};
             for (std::size_t k = 0; k < 8; ++k) {
               std::vector<double> errors(levels);
               for (std::size_t l = 0; l < levels; ++l) errors[l] = at(b, s, m, c, l).errors[k];

@@ -299,7 +299,7 @@ int main(int argc, char** argv) {
     // 6. The tables (errors with the order between consecutive steps) and the quoted values: the keys
     // time:… for the fine mesh, time:coarse:… for the coarse one.
     std::ostream& defs = program.values();
-    mrm::tex_define(defs, "time:mass", mrm::repro::mass_label(mass));
+    mrm::tex_define(defs, "time:mass", mrm::repro::mass_label(mass).abbreviation);
     mrm::tex_define(defs, "time:tolerance", mrm::tex_number(order_tolerance, 2));
     mrm::tex_define(defs, "time:fitpoints", std::to_string(fit_points));
     for (std::size_t i = 0; i < series.size(); ++i) {
@@ -323,8 +323,8 @@ int main(int argc, char** argv) {
         mrm::tex_define(defs, prefix + "shiftsmallest", step_text(se.ratio[se.ratio.size() - 2]));
       }
       std::vector<std::string> headers{"scheme", "$\\Delta t/h$"};
-      for (const char* label : mrm::repro::measure_labels())
-        headers.push_back(std::string("\\rotatebox{70}{") + label + "}");
+      for (const mrm::repro::Label& label : mrm::repro::measure_labels())
+        headers.push_back("\\rotatebox{70}{" + label.latex + "}");
       headers.push_back("\\rotatebox{70}{mismatched levels}");
       mrm::repro::Table table(headers);
       const std::size_t half = se.ratio.size() / 2;
@@ -334,7 +334,7 @@ int main(int argc, char** argv) {
         for (std::size_t j = 0; j < se.ratio.size(); ++j) {
           const double q = static_cast<double>(se.ratio[j]) / static_cast<double>(se.reference_ratio);
           std::vector<std::string> cells{
-              j == 0 ? std::string(schemes[s] == "cn" ? "CN" : "BE") : std::string(),
+              j == 0 ? mrm::repro::scheme_label(schemes[s]).abbreviation : std::string(),
               q >= 1 ? std::to_string(static_cast<long>(q)) : "1/" + std::to_string(static_cast<long>(1 / q))};
           for (std::size_t k = 0; k < 8; ++k) {
             const double e = se.differences[s * se.ratio.size() + j][k];

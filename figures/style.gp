@@ -8,7 +8,7 @@
 #     consistent mass purple; the exact solution black.
 #   - header(key): the value of the data file's `# key = value` line (quotes removed; empty if absent),
 #     so that titles and labels follow the options the program was run with, not this script.
-#   - scheme_name(id): the report's name of a scheme id of the data files (cn, be, ps, ec, cn-switch).
+#   - scheme_name(id), mass_name(id): the names the data file's `# label` lines give the ids.
 set encoding utf8
 fontface = "Latin Modern Roman"
 font(size) = sprintf("%s,%g", fontface, size)
@@ -18,11 +18,11 @@ italic(s) = "{/:Italic ".s."}"
 lambda_ = "{/'Latin Modern Math' 𝜆}"
 Delta_t = "Δ".italic("t")
 mass_colour(m) = m == 1 ? "#d62728" : m == 2 ? "#1f77b4" : m == 3 ? "#2ca02c" : "#9467bd"
-mass_name(id) = id eq "mod1" ? "Mod 1" : id eq "mod2" ? "Mod 2" : id eq "mod3" ? "Mod 3" : \
-  id eq "consistent" ? "consistent mass" : id
-scheme_name(id) = id eq "cn" ? "Crank–Nicolson" : id eq "be" ? "backward Euler" : \
-  id eq "ps" ? "Paoli–Schatzman (¼, 0)" : id eq "ec" ? "EC" : \
-  id eq "cn-switch" ? "CN-switch" : id
+# The names of schemes and masses: the `# label <id> = <name>` lines the program wrote into the data
+# file (repro/labels.cpp, the one table of labels); an id without a line is its own name.
+label(id) = system(sprintf("sed -n 's|^# label %s = ||p' '%s' | head -n 1", id, data))
+mass_name(id) = label(id) eq "" ? id : label(id)
+scheme_name(id) = label(id) eq "" ? id : label(id)
 # One colour per scheme where the schemes are the curves (the energy-conserving schemes' figures), none
 # of them a mass's colour.
 scheme_colour(id) = id eq "cn" ? "#ff7f0e" : id eq "ec" ? "black" : id eq "cn-switch" ? "#17becf" : \

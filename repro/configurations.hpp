@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "labels.hpp"
 #include "mass_spec.hpp"
 #include "options.hpp"
 #include "output_file.hpp"
@@ -26,40 +27,6 @@
 
 namespace mrm::repro {
 
-/// The three schemes of the paper, in the order of its Figure 1 and of every data file.
-inline const std::vector<std::string>& scheme_names() {
-  static const std::vector<std::string> names{"cn", "be", "ps"};
-  return names;
-}
-/// The three mass choices of the paper.
-inline const std::vector<std::string>& mass_names() {
-  static const std::vector<std::string> names{"mod1", "mod2", "mod3"};
-  return names;
-}
-
-/// The eight measures of mathematics.md §5 as the report's tables head them, in the order of
-/// ErrorAccumulator::names.
-inline const std::array<const char*, 8>& measure_labels() {
-  static const std::array<const char*, 8> labels{
-      "$u(0,\\cdot)$, $L^2_t$",   "$\\lambda$, $L^2_t$", "$u$, $L^\\infty_t L^2$", "$u$, $L^\\infty_t H^1$",
-      "$u_t$, $L^\\infty_t L^2$", "$u$, $L^2_t L^2$",    "$u$, $L^2_t H^1$",       "$u_t$, $L^2_t L^2$"};
-  return labels;
-}
-
-/// The report's name of a scheme, as LaTeX (the tables and values of the report print it).
-inline std::string scheme_label(const std::string& scheme) {
-  if (scheme == "cn") return "Crank--Nicolson";
-  if (scheme == "be") return "backward Euler";
-  if (scheme == "ec") return "energy-conserving Crank--Nicolson";
-  if (scheme == "cn-switch") return "Crank--Nicolson with a $\\theta$-step at each status change";
-  return "Paoli--Schatzman $(\\frac14, 0)$";
-}
-/// The label of a table row: Paoli–Schatzman's says which contact row it uses ("…, literal row"), so
-/// that a row of the literal form is never read as the scheme's algebraic form.
-inline std::string scheme_label(const std::string& scheme, const std::string& ps_form) {
-  return scheme == "ps" ? scheme_label(scheme) + ", " + ps_form + " row" : scheme_label(scheme);
-}
-
 /// The scheme's parameters; Paoli–Schatzman with β = ¼, e = 0 and the given contact row (a mass that
 /// keeps the contact node's inertia always takes the literal row: it has no algebraic one). CN-switch's
 /// θ keeps its default (1, backward Euler); a program that offers it sets SchemeParameters::switch_theta.
@@ -72,20 +39,6 @@ inline mrm::SchemeParameters scheme_parameters(const std::string& scheme, const 
   return p;
 }
 
-/// The help text of a program's mass option: the spec forms of mass_redistribution_from_spec (mass_spec.hpp).
-inline std::string mass_option_help(const std::string& what) {
-  return what +
-         ": consistent, mod1, mod2, mod3, node1:X (M11 = X h, Mod 1 elsewhere), spread:K (the lost mass on "
-         "nodes 1..K), beta:B (B h on node 1, the rest uniform); X, B decimals or fractions such as 7/6";
-}
-/// The name of a mass in prose: "Mod 1", "Mod 2", "Mod 3", "the consistent mass", or the spec itself.
-inline std::string mass_label(const std::string& spec) {
-  if (spec == "mod1") return "Mod 1";
-  if (spec == "mod2") return "Mod 2";
-  if (spec == "mod3") return "Mod 3";
-  if (spec == "consistent") return "the consistent mass";
-  return spec;
-}
 /// The redistribution named by the value `spec` of the mass option `option`, checked on the mesh of the run
 /// (mass_redistribution_from_spec, mass_spec.hpp); a bad value throws cli::UsageError "<option>: \"spec\": why
 /// (allowed: ...)", so that the program exits with status 2 before any work. `massless` additionally refuses
@@ -101,13 +54,6 @@ MassRedistribution mass_from_option(const std::string& option, const std::string
 enum class ContactVelocity { algebraic, backward_difference };
 /// "algebraic" or "backward-difference"; throws std::invalid_argument otherwise.
 ContactVelocity contact_velocity_by_name(const std::string& name);
-
-/// The benchmarks a run can start from: "paper" (the closed-form benchmark of mathematics.md §2),
-/// "smooth-impact" and "grazing" (S1 and S2 of mathematics.md §11), in this order.
-inline const std::vector<std::string>& benchmark_names() {
-  static const std::vector<std::string> names{"paper", "smooth-impact", "grazing"};
-  return names;
-}
 
 /// One run: the bar (0, L) released from the initial data of a benchmark (the paper's u⁰(x) = a (L − x)
 /// by default) or of a file, a scheme, a mass, a mesh of N elements and Δt (given, or C h), to the first

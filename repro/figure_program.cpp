@@ -1,6 +1,8 @@
 // The frame of the figure programs: see figure_program.hpp.
 #include "figure_program.hpp"
 
+#include "labels.hpp"
+
 namespace mrm::repro {
 
 namespace cli = mrm::cli;
@@ -12,6 +14,29 @@ cli::Check courant_range() {
     cli::require_positive(option, value);
     cli::require_in_closed_range(option, value, 0, cli::max_courant);
   };
+}
+
+void refuse_untaken(const cli::Parser& parser, mrm::Scheme scheme, const SchemeOptions& options) {
+  for (const auto& [option, parameter] : options) {
+    if (!parser.given(option) || mrm::takes(scheme, parameter)) continue;
+    std::string takers;
+    for (const mrm::SchemeInfo& info : mrm::scheme_registry())
+      if (mrm::takes(info.scheme, parameter)) takers += (takers.empty() ? "" : " or ") + info.id;
+    throw cli::UsageError(option + ": the scheme " + mrm::to_string(scheme) +
+                          " does not take it (allowed: omit it, or --scheme " + takers + ")");
+  }
+}
+
+void as_usage_error(const std::vector<std::pair<std::string, std::string>>& options,
+                    const std::function<void()>& build) {
+  try {
+    build();
+  } catch (const mrm::InvalidParameter& refusal) {
+    for (const auto& [parameter, option] : options)
+      if (parameter == refusal.parameter)
+        throw cli::UsageError(option + std::string(refusal.what()).substr(parameter.size()));
+    throw;
+  }
 }
 
 FigureProgram::FigureProgram(std::string name, std::string description, std::vector<std::string> sample_runs)
@@ -56,6 +81,7 @@ void FigureProgram::open() {
 std::ostream& FigureProgram::header(std::string_view title) {
   data() << "# " << name_ << ": " << title << '\n';
   parser.echo(data());
+  write_labels(data());
   return data();
 }
 

@@ -17,6 +17,7 @@
 //   program.commit();                                     // both outputs or neither
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <ostream>
 #include <sstream>
@@ -27,6 +28,7 @@
 #include "options.hpp"
 #include "output_file.hpp"
 #include "run_limits.hpp"
+#include "schemes.hpp"
 
 namespace mrm::repro {
 
@@ -37,6 +39,17 @@ mrm::cli::Check courant_range();
 /// The peak memory of the figure programs that hold one run at a time with its error accumulator and
 /// the exact solution's interpolants, measured at N = 1e6: 410 bytes per element; 512 with a margin.
 constexpr double bytes_per_element = 512;
+
+/// The options that set the parameters of a scheme on a program's command line.
+using SchemeOptions = std::vector<std::pair<std::string, mrm::SchemeParameter>>;
+/// Refuses an option given for a parameter the scheme does not take (mrm::takes), as a usage error:
+///   --beta: the scheme cn does not take it (allowed: omit it, or --scheme ps)
+void refuse_untaken(const mrm::cli::Parser& parser, mrm::Scheme scheme, const SchemeOptions& options);
+/// Runs `build` (which builds a simulation before any work) and turns the library's refusal
+/// (mrm::InvalidParameter, naming the parameter) into the usage error naming the option that sets it
+/// (`options`: parameter → option, e.g. "contact_row" → "--ps-form"; an unnamed parameter is rethrown).
+void as_usage_error(const std::vector<std::pair<std::string, std::string>>& options,
+                    const std::function<void()>& build);
 
 class FigureProgram {
  public:
@@ -69,7 +82,8 @@ class FigureProgram {
 
   /// Opens both outputs (a bad path fails now); the values are written only if --tex was given.
   void open();
-  /// Writes "# <name>: <title>" and the effective options into the data file, and returns it.
+  /// Writes "# <name>: <title>", the effective options and the labels (labels.hpp: write_labels) into
+  /// the data file, and returns it.
   std::ostream& header(std::string_view title);
   /// "# h = ...", "# dt = ..." and "# steps = ..." of the last steps().
   void write_step();

@@ -22,9 +22,14 @@ namespace mrm::repro {
 // ("node1:7/6").
 
 std::string mass_redistribution_forms() {
-  return "consistent, mod1, mod2, mod3, node1:X, spread:K, beta:B; X and B decimals or fractions such as "
-         "7/6, X > 0, K an integer in 1..N-1, and the mass positive definite on nodes 1..N-1";
+  std::string forms;
+  for (const MassFormInfo& form : mass_form_registry()) forms += (forms.empty() ? "" : ", ") + spelling(form);
+  return forms +
+         "; X and B decimals or fractions such as 7/6, X > 0, K an integer in 1..N-1, and the mass positive "
+         "definite on nodes 1..N-1";
 }
+
+std::string mass_option_help(const std::string& what) { return what + ": " + mass_redistribution_forms(); }
 
 namespace {
 

@@ -12,6 +12,9 @@ namespace mrm::repro {
 
 /// The spec strings accepted by mass_redistribution_from_spec, in words (for messages and help texts).
 std::string mass_redistribution_forms();
+/// The help text of a program's mass option: `what`, then the forms of the library's registry
+/// (mrm::mass_form_registry).
+std::string mass_option_help(const std::string& what);
 /// The member named by a spec string: consistent | mod1 | mod2 | mod3 | node1:X | spread:K | beta:B,
 /// X and B decimals or fractions ("7/6"); its name is the spec. Throws std::invalid_argument, with a
 /// message starting with the quoted spec and ending with the allowed forms, for what is wrong on any

@@ -469,7 +469,8 @@ Parser::~Parser() = default;
 // or duplicate names, a null variable) and hands the option to CLI11 with its help line, which
 // carries the default (the variable's value now) and the choices. A value given is read by the
 // option's validator: the rule that a value which is itself an option means a missing value
-// ("--output --elements 5"), then the strict grammar of its kind, the choices and the check.
+// ("--output --elements 5"), then the strict grammar of its kind and the choices; the range (the
+// check) applies after the parse.
 void Parser::add(std::string long_name, std::string short_name, std::string metavar, std::string help, Target target,
                  Check check, std::vector<std::string> allowed, bool output) {
   if (!is_long_name(long_name) || !(short_name.empty() || is_short_name(short_name)))
@@ -517,8 +518,6 @@ void Parser::add(std::string long_name, std::string short_name, std::string meta
               if constexpr (std::is_same_v<Type, long>) *variable = parse_integer(option.long_name, text);
               if constexpr (std::is_same_v<Type, std::string>)
                 *variable = option.allowed.empty() ? text : parse_choice(option.long_name, text, option.allowed);
-              if constexpr (!std::is_same_v<Type, std::string> && !std::is_same_v<Type, bool>)
-                if (option.check) option.check(option.long_name, static_cast<double>(*variable));
             },
             option.target);
         return std::string();
@@ -572,8 +571,9 @@ bool Parser::given(std::string_view long_name) const { return registered(long_na
 // The parse loop is CLI11's; around it, what CLI11 would let through or word otherwise. Before:
 // "--" (CLI11's end of options) is an argument like any other, and "--name=" gives the empty value
 // (CLI11 would take the next argument). During: the validators above read every value. After: each
-// of CLI11's errors becomes the one-line UsageError naming the option, and an option given twice is
-// refused (CLI11 would keep the last value).
+// of CLI11's errors (unknown options, exclusions, missing values) becomes the one-line UsageError
+// naming the option, an option given twice is refused (CLI11 would keep the last value), and the
+// ranges apply, once the conflicts are known to be absent.
 Outcome Parser::parse(const std::vector<std::string>& arguments, std::ostream& out) {
   std::vector<std::string> reversed;
   for (auto argument = arguments.rbegin(); argument != arguments.rend(); ++argument) {
@@ -609,6 +609,12 @@ Outcome Parser::parse(const std::vector<std::string>& arguments, std::ostream& o
   for (const Option& option : options_) {
     if (option.cli->count() > 1) throw UsageError(option.long_name + ": given more than once");
     if (auto* const flag = std::get_if<bool*>(&option.target); flag && option.cli->count() > 0) **flag = true;
+  }
+  for (const Option& option : options_) {
+    if (option.cli->count() == 0 || !option.check) continue;
+    if (auto* const real = std::get_if<double*>(&option.target)) option.check(option.long_name, **real);
+    if (auto* const integer = std::get_if<long*>(&option.target))
+      option.check(option.long_name, static_cast<double>(**integer));
   }
   return Outcome::run;
 }
