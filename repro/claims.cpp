@@ -214,7 +214,9 @@ std::vector<MassRedistribution> paper_masses() {
 
 namespace {
 
-// The short names of the eight error measures of mathematics.md §5, in ErrorAccumulator::values order.
+// The short names of the eight error measures of mathematics.md §5, in ErrorAccumulator::values order,
+// as the claims' prose writes them in lists. (The label table's plain names, "u, L∞_t L²", are made for
+// gnuplot keys: their comma and subscript markup would make these lists ambiguous.)
 const char* const measure_names[8] = {"u(0,·) L²(0,T)", "λ L²(0,T)", "u L∞(L²)", "u L∞(H¹)",
                                       "u_t L∞(L²)",     "u L²(L²)",  "u L²(H¹)", "u_t L²(L²)"};
 
