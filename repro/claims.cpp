@@ -228,6 +228,11 @@ std::string scheme_abbreviation(const std::string& id) {
   return repro::scheme_label(id).abbreviation;
 }
 
+// One run of the benchmark as the criteria state it: "N = 200, Δt = 0.5h, T = 300".
+std::string run_text(Index elements, double courant, double final_time) {
+  return "N = " + std::to_string(elements) + ", Δt = " + significant(courant) + "h, T = " + significant(final_time);
+}
+
 std::string join(const std::vector<std::string>& parts, const std::string& separator) {
   std::string s;
   for (std::size_t k = 0; k < parts.size(); ++k) s += (k ? separator : "") + parts[k];
@@ -310,10 +315,8 @@ bool is_dissipative(const SchemeChoice& scheme) { return scheme.parameters.schem
 std::string stability_criterion(const StabilitySettings& st) {
   return "every value finite, and E_hⁿ and ½UⁿᵀSUⁿ ≤ " + significant(st.bound_conserving) +
          " E_h(0) (CN, PS: energy conserved up to O(h) jumps at status changes) or ≤ (1 + " +
-         significant(st.bound_dissipative - 1) +
-         ") E_h(0) (BE: dissipative) at every step, "
-         "N = " +
-         std::to_string(st.elements) + ", Δt = " + significant(st.courant) + "h, T = " + significant(st.final_time);
+         significant(st.bound_dissipative - 1) + ") E_h(0) (BE: dissipative) at every step, " +
+         run_text(st.elements, st.courant, st.final_time);
 }
 
 std::string describe(const StabilityRun& r) {
@@ -360,8 +363,7 @@ ClaimResult check_consistent_mass_blows_up(const SchemeChoice& scheme, const Sta
                "Contrast (the method's motivation, mathematics.md §3): " + scheme.label +
                    " with the consistent mass and exact contact is unstable",
                "consistent: " + describe(r),
-               "the same run (N = " + std::to_string(settings.elements) + ", Δt = " + significant(settings.courant) +
-                   "h, T = " + significant(settings.final_time) +
+               "the same run (" + run_text(settings.elements, settings.courant, settings.final_time) +
                    ") exceeds the same bound or produces a non-finite value",
                !(r.finite && r.bounded));
 }
@@ -1296,8 +1298,8 @@ std::vector<ClaimResult> check_contact_step(const std::vector<ContactStepCase>& 
                          "the active set fixed: max|ΔU|/max|U| and max|Δλ|/max|λ| ≤ " +
                              significant(settings.tolerance) +
                              ", complementarity exact; every status change and every " +
-                             std::to_string(settings.every) + "th step, N = " + std::to_string(settings.elements) +
-                             ", Δt = " + significant(settings.courant) + "h, T = " + significant(settings.final_time),
+                             std::to_string(settings.every) + "th step, " +
+                             run_text(settings.elements, settings.courant, settings.final_time),
                          holds));
   }
   return rows;
@@ -1346,9 +1348,8 @@ ClaimResult check_exact_solution(const ExactSolution& exact, const FineSolutionS
   }
   return judge("6/exact", "The closed-form solution agrees with a very fine numerical solution",
                "relative errors: " + join(measured, ", "),
-               "all 8 relative errors ≤ " + significant(settings.bound) +
-                   " (≈ 3h^½) for cn, mod3, N = " + std::to_string(settings.elements) +
-                   ", Δt = " + significant(settings.courant) + "h, T = " + significant(settings.final_time),
+               "all 8 relative errors ≤ " + significant(settings.bound) + " (≈ 3h^½) for cn, mod3, " +
+                   run_text(settings.elements, settings.courant, settings.final_time),
                holds);
 }
 
