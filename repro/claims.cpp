@@ -39,6 +39,7 @@
 #include "contact.hpp"
 #include "convergence.hpp"
 #include "exact_solution.hpp"
+#include "labels.hpp"
 #include "period_law.hpp"
 #include "regions.hpp"
 #include "report_values.hpp"
@@ -200,26 +201,37 @@ SchemeChoice scheme_choice(const std::string& label) {
 }
 
 std::vector<SchemeChoice> paper_schemes() {
-  return {scheme_choice("cn"), scheme_choice("be"), scheme_choice("ps"), scheme_choice("ps-literal")};
+  std::vector<SchemeChoice> schemes;
+  for (const std::string& id : repro::scheme_names()) schemes.push_back(scheme_choice(id));
+  schemes.push_back(scheme_choice("ps-literal"));
+  return schemes;
 }
-std::vector<MassRedistribution> paper_masses() { return {mod1(), mod2(), mod3()}; }
+std::vector<MassRedistribution> paper_masses() {
+  std::vector<MassRedistribution> masses;
+  for (const std::string& id : repro::mass_names()) masses.push_back(mass_redistribution_by_name(id));
+  return masses;
+}
 
 namespace {
 
-// The short names of the eight error measures of mathematics.md §5, in ErrorAccumulator::values order.
+// The short names of the eight error measures of mathematics.md §5, in ErrorAccumulator::values order,
+// as the claims' prose writes them in lists. (The label table's plain names, "u, L∞_t L²", are made for
+// gnuplot keys: their comma and subscript markup would make these lists ambiguous.)
 const char* const measure_names[8] = {"u(0,·) L²(0,T)", "λ L²(0,T)", "u L∞(L²)", "u L∞(H¹)",
                                       "u_t L∞(L²)",     "u L²(L²)",  "u L²(H¹)", "u_t L²(L²)"};
 
-// The summary's name of a scheme, as the report's appendix abbreviates it (CN, BE, PS) and of a mass.
+// The summary's name of a scheme of the sweep: its abbreviation (repro/labels: CN, BE, PS); the sweep's
+// baseline "ps-consistent" is Paoli–Schatzman with the consistent mass.
 std::string scheme_abbreviation(const std::string& id) {
-  if (id == "cn") return "CN";
-  if (id == "be") return "BE";
-  if (id == "ps") return "PS";
-  if (id == "ps-literal") return "PS (literal row)";
-  if (id == "ps-consistent") return "PS (consistent mass)";
-  return id;
+  if (id == "ps-consistent")
+    return repro::scheme_label("ps").abbreviation + " (" + repro::mass_label("consistent").plain + ")";
+  return repro::scheme_label(id).abbreviation;
 }
-std::string mass_text(const std::string& id) { return id.rfind("mod", 0) == 0 ? "Mod " + id.substr(3) : id; }
+
+// One run of the benchmark as the criteria state it: "N = 200, Δt = 0.5h, T = 300".
+std::string run_text(Index elements, double courant, double final_time) {
+  return "N = " + std::to_string(elements) + ", Δt = " + significant(courant) + "h, T = " + significant(final_time);
+}
 
 std::string join(const std::vector<std::string>& parts, const std::string& separator) {
   std::string s;
@@ -303,10 +315,8 @@ bool is_dissipative(const SchemeChoice& scheme) { return scheme.parameters.schem
 std::string stability_criterion(const StabilitySettings& st) {
   return "every value finite, and E_hⁿ and ½UⁿᵀSUⁿ ≤ " + significant(st.bound_conserving) +
          " E_h(0) (CN, PS: energy conserved up to O(h) jumps at status changes) or ≤ (1 + " +
-         significant(st.bound_dissipative - 1) +
-         ") E_h(0) (BE: dissipative) at every step, "
-         "N = " +
-         std::to_string(st.elements) + ", Δt = " + significant(st.courant) + "h, T = " + significant(st.final_time);
+         significant(st.bound_dissipative - 1) + ") E_h(0) (BE: dissipative) at every step, " +
+         run_text(st.elements, st.courant, st.final_time);
 }
 
 std::string describe(const StabilityRun& r) {
@@ -353,8 +363,7 @@ ClaimResult check_consistent_mass_blows_up(const SchemeChoice& scheme, const Sta
                "Contrast (the method's motivation, mathematics.md §3): " + scheme.label +
                    " with the consistent mass and exact contact is unstable",
                "consistent: " + describe(r),
-               "the same run (N = " + std::to_string(settings.elements) + ", Δt = " + significant(settings.courant) +
-                   "h, T = " + significant(settings.final_time) +
+               "the same run (" + run_text(settings.elements, settings.courant, settings.final_time) +
                    ") exceeds the same bound or produces a non-finite value",
                !(r.finite && r.bounded));
 }
@@ -676,8 +685,9 @@ SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSet
   const double c = std::find(g.courants.begin(), g.courants.end(), 0.5) != g.courants.end() ? 0.5 : g.courants[0];
   const double h = 1.0 / static_cast<double>(n);
   for (const std::string& mass : g.masses)
-    at_100.push_back(mass_text(mass) + " " + decimals(*sweep.find(st.scheme, mass, c, n).drift_per_period / h, 3) +
-                     "h (law " + decimals(law_drift(mass, n) / h, 3) + "h)");
+    at_100.push_back(repro::mass_label(mass).plain + " " +
+                     decimals(*sweep.find(st.scheme, mass, c, n).drift_per_period / h, 3) + "h (law " +
+                     decimals(law_drift(mass, n) / h, 3) + "h)");
   double worst = 0;
   for (const std::string& mass : g.masses)
     for (double cc : g.courants)
@@ -1288,8 +1298,8 @@ std::vector<ClaimResult> check_contact_step(const std::vector<ContactStepCase>& 
                          "the active set fixed: max|ΔU|/max|U| and max|Δλ|/max|λ| ≤ " +
                              significant(settings.tolerance) +
                              ", complementarity exact; every status change and every " +
-                             std::to_string(settings.every) + "th step, N = " + std::to_string(settings.elements) +
-                             ", Δt = " + significant(settings.courant) + "h, T = " + significant(settings.final_time),
+                             std::to_string(settings.every) + "th step, " +
+                             run_text(settings.elements, settings.courant, settings.final_time),
                          holds));
   }
   return rows;
@@ -1338,9 +1348,8 @@ ClaimResult check_exact_solution(const ExactSolution& exact, const FineSolutionS
   }
   return judge("6/exact", "The closed-form solution agrees with a very fine numerical solution",
                "relative errors: " + join(measured, ", "),
-               "all 8 relative errors ≤ " + significant(settings.bound) +
-                   " (≈ 3h^½) for cn, mod3, N = " + std::to_string(settings.elements) +
-                   ", Δt = " + significant(settings.courant) + "h, T = " + significant(settings.final_time),
+               "all 8 relative errors ≤ " + significant(settings.bound) + " (≈ 3h^½) for cn, mod3, " +
+                   run_text(settings.elements, settings.courant, settings.final_time),
                holds);
 }
 
@@ -1398,16 +1407,17 @@ namespace {
 // The report's name of one segment of a row id ("cn" → "CN", "mod3" → "Mod 3", "dt=0.5h" → "Δt = 0.5h",
 // "T=10p" → "T = 10 periods"); an unknown segment is kept.
 std::string readable_segment(const std::string& segment) {
+  // Paoli–Schatzman (¼, 0) in its three forms, the other schemes and the masses by their labels.
+  const std::string ps = repro::scheme_label("ps").abbreviation + "(¼, 0), ";
+  if (segment == "ps") return ps + "algebraic row";
+  if (segment == "ps-literal") return ps + "literal row";
+  if (segment == "ps-consistent") return ps + repro::mass_label("consistent").plain;
+  for (const SchemeInfo& scheme : scheme_registry())
+    if (segment == scheme.id) return repro::scheme_label(scheme.scheme).abbreviation;
+  for (const std::string& mass : mass_redistribution_names())
+    if (segment == mass) return repro::mass_label(mass).plain;
+  // The claims' own rows: the kinds of check and the variants of the masses (check_reconstruction_sensitivity).
   static const std::pair<const char*, const char*> names[] = {
-      {"cn", "CN"},
-      {"be", "BE"},
-      {"ps", "PS(¼, 0), algebraic row"},
-      {"ps-literal", "PS(¼, 0), literal row"},
-      {"ps-consistent", "PS(¼, 0), consistent mass"},
-      {"mod1", "Mod 1"},
-      {"mod2", "Mod 2"},
-      {"mod3", "Mod 3"},
-      {"consistent", "consistent mass"},
       {"step", "contact step"},
       {"exact", "exact solution"},
       {"large-steps", "large steps"},
@@ -1538,7 +1548,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     std::vector<std::string> per_mass;
     for (const StabilityCell& cell : long_runs) {
       long_holds = long_holds && cell.largest <= blow_up;
-      per_mass.push_back(mass_text(cell.mass) + ", N = " + std::to_string(cell.elements) + ": " +
+      per_mass.push_back(repro::mass_label(cell.mass).plain + ", N = " + std::to_string(cell.elements) + ": " +
                          magnitude(cell.largest));
     }
     rows.push_back(judge("1/cn/1000-periods", "Stability over a long run: cn at Δt = h over 1000 periods",
@@ -1556,7 +1566,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
       if (c > bounded_up_to) beyond.push_back(significant(c));
     for (const StabilityCell& cell : long_runs)
       if (cell.largest > blow_up)
-        long_failures.push_back(mass_text(cell.mass) + ", N = " + std::to_string(cell.elements) + " (" +
+        long_failures.push_back(repro::mass_label(cell.mass).plain + ", N = " + std::to_string(cell.elements) + " (" +
                                 magnitude(cell.largest) + " E(0))");
     stability_line.fails = "CN at Δt/h = " + join(beyond, ", ") + "; 1000 periods at Δt = h: " +
                            (long_failures.empty() ? std::string("none") : join(long_failures, ", ")) +

@@ -14,13 +14,14 @@
 
 #include "configurations.hpp"
 #include "errors.hpp"
+#include "labels.hpp"
 
 namespace mrm::repro {
 
 /// The grid of the sweep. Horizons are in periods of the benchmark (3L); every run goes to the last.
 struct SweepGrid {
-  std::vector<std::string> schemes = {"cn", "be", "ps"};  ///< Paoli–Schatzman with the algebraic row
-  std::vector<std::string> masses = {"mod1", "mod2", "mod3"};
+  std::vector<std::string> schemes = scheme_names();  ///< the paper's; Paoli–Schatzman with the algebraic row
+  std::vector<std::string> masses = mass_names();
   bool baseline = true;  ///< also Paoli–Schatzman with the consistent mass (literal row) in every (Δt/h, N)
   std::vector<double> courants = {0.25, 0.5, 0.75, 1.0};
   std::vector<Index> elements = {25, 50, 100, 200, 400, 800};
