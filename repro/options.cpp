@@ -677,14 +677,7 @@ void Parser::print_help(std::ostream& out) const {
   // What an output option does with the path it is given (output_file.hpp), said once for all the
   // options whose value is a FILE.
   if (std::any_of(options_.begin(), options_.end(), [](const Option& option) { return option.metavar == "FILE"; })) {
-    out << "\nOutput files:\n"
-        << wrapped(
-               "Each FILE is written under a hidden temporary name in its directory and renamed over FILE "
-               "only when complete: an interrupted or failed run leaves FILE as it was. A character device "
-               "or a FIFO (/dev/null, /dev/stdout, a named pipe whose reader is running) is written in "
-               "place. A directory, a socket, a block device, any other symbolic link, and one file named "
-               "by two options are refused.",
-               80);
+    out << "\nOutput files:\n" << wrapped(output_files_help, 80);
   }
   if (!sample_runs_.empty()) {
     out << "\nSample runs:\n";
@@ -898,10 +891,11 @@ TEST_CASE("the help lists every option with its default and stops the program") 
           "\n"
           "Output files:\n"
           "Each FILE is written under a hidden temporary name in its directory and renamed\n"
-          "over FILE only when complete: an interrupted or failed run leaves FILE as it\n"
-          "was. A character device or a FIFO (/dev/null, /dev/stdout, a named pipe whose\n"
-          "reader is running) is written in place. A directory, a socket, a block device,\n"
-          "any other symbolic link, and one file named by two options are refused.\n"
+          "over FILE only when complete: a failed run leaves FILE as it was, an interrupted\n"
+          "one at most a hidden .FILE.tmp.* beside it. A replaced FILE keeps its\n"
+          "permissions; a symbolic link to a file is followed. FILE - is the standard\n"
+          "output. A FILE that exists and is not a regular file (a directory, a device) is\n"
+          "refused.\n"
           "\n"
           "Sample runs:\n"
           "  contact -n 400 --scheme be\n"
