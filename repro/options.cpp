@@ -410,13 +410,7 @@ class Help : public CLI::Formatter {
     for (const auto& [names, text] : lines) help += names + std::string(width + 2 - names.size(), ' ') + text + '\n';
     // What an output option does with the path it is given (output_file.hpp), said once.
     if (writes_files)
-      help += "\nOutput files:\n" +
-              wrapped(
-                  "Each FILE is written under a hidden temporary name in its directory and renamed over FILE "
-                  "only when complete: an interrupted or failed run leaves FILE as it was. A character device "
-                  "or a FIFO (/dev/null, /dev/stdout, a named pipe whose reader is running) is written in "
-                  "place. A directory, a socket, a block device, any other symbolic link, and one file named "
-                  "by two options are refused.");
+      help += "\nOutput files:\n" + wrapped(output_files_help);
     if (!sample_runs_.empty()) help += "\nSample runs:\n";
     for (const std::string& run : sample_runs_) help += "  " + run + '\n';
     return help;
@@ -827,10 +821,11 @@ TEST_CASE("the help lists every option with its default and stops the program") 
           "\n"
           "Output files:\n"
           "Each FILE is written under a hidden temporary name in its directory and renamed\n"
-          "over FILE only when complete: an interrupted or failed run leaves FILE as it\n"
-          "was. A character device or a FIFO (/dev/null, /dev/stdout, a named pipe whose\n"
-          "reader is running) is written in place. A directory, a socket, a block device,\n"
-          "any other symbolic link, and one file named by two options are refused.\n"
+          "over FILE only when complete: a failed run leaves FILE as it was, an interrupted\n"
+          "one at most a hidden .FILE.tmp.* beside it. A replaced FILE keeps its\n"
+          "permissions; a symbolic link to a file is followed. FILE - is the standard\n"
+          "output. A FILE that exists and is not a regular file (a directory, a device) is\n"
+          "refused.\n"
           "\n"
           "Sample runs:\n"
           "  contact -n 400 --scheme be\n"

@@ -1,48 +1,40 @@
-// Output files that appear complete or not at all, whatever the target is, and the standard
-// descriptors of a program. See output_file.cpp for the reasons behind each rule.
+// Output files sized for the threat model (README, "Output files"): the programs are run by their
+// user on their own files. What an option naming a file to write (`--output FILE`) promises:
 //
-// What `--output FILE` (any option naming a file to write) does with FILE:
-//
-//   - a new name, or an existing regular file: the data are written to a new file with a random,
-//     hidden name in the same directory, created exclusively (it never follows or reuses a link or
-//     a file that is already there) and readable by its owner only while it is written; once
-//     complete it gets the permissions the umask gives a new file and is renamed over FILE. An
-//     interrupted or failed run leaves FILE as it was and no temporary file;
-//   - a character device (/dev/null, /dev/full, a terminal) or a FIFO: written in place, as the
-//     user asked (a FIFO must have a reader already: otherwise the program would block, and the
-//     option is refused). What is written there cannot be taken back: it is not all or nothing;
-//   - FILE open on standard output or standard error (/dev/stdout, /dev/stderr, /proc/self/fd/1,
-//     reached through their symbolic links): written through that descriptor;
-//   - a directory, a socket, a block device: refused;
-//   - a symbolic link to anything else (a regular file, a missing file): refused; the link is
-//     never followed nor replaced (a link planted in a shared directory cannot redirect a write);
-//   - a regular file that is the standard output's own file (`prog -o F > F`), or the file of
-//     another output of the same run (same path, another spelling, a hard link): refused.
-//
-// Every refusal comes when the AtomicFile is constructed, before any work, as a UsageError naming
-// the option (exit status 2 under guarded_main).
+//   - the output is complete or absent: it is written to a temporary file in FILE's directory, opened
+//     exclusively (an existing file or symbolic link at that name is never followed nor reused),
+//     renamed over FILE once complete, removed on failure; the outputs of one program are all
+//     written out and checked before the first is renamed (commit_all);
+//   - a write error, a closed or failing standard output or standard error, is an error (exit 1),
+//     never bytes in a data file;
+//   - an interrupted run may leave its hidden temporary `.FILE.XXXXXX`, never a partial FILE;
+//   - a replaced FILE keeps its permission bits; a new one gets those the umask gives; a symbolic
+//     link to a file is followed (the file is replaced, the link stays);
+//   - `-` is the standard output (written as the program's other standard output, not atomically);
+//   - a FILE that cannot be written (missing directory, a directory, anything that exists and is not
+//     a regular file) is refused when the AtomicFile is made, before any work, as a UsageError
+//     naming the option (exit 2 under guarded_main).
 #pragma once
 
-#include <cstddef>
-#include <memory>
 #include <ostream>
 #include <streambuf>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include <sys/types.h>
-
 namespace mrm::cli {
 
-// A stream buffer over a file descriptor that remembers the first failed write (its errno) and
-// fails every write after it, so that the stream's state tells whether all the data got out.
+/// What every program's --help says of its FILE options (the rules above, in one paragraph).
+extern const char* const output_files_help;
+
+/// A stream buffer over a file descriptor that remembers the first failed write (its errno) and
+/// fails every write after it, so that the stream's state tells whether all the data got out.
 class DescriptorBuffer : public std::streambuf {
  public:
   explicit DescriptorBuffer(int descriptor = -1);
   void reset(int descriptor);
   int error() const { return error_; }
-  // Writes out what is buffered; false if this or any earlier write failed.
+  /// Writes out what is buffered; false if this or any earlier write failed.
   bool drain();
 
  protected:
@@ -55,6 +47,7 @@ class DescriptorBuffer : public std::streambuf {
   int error_ = 0;
 };
 
+/// One output file: complete under its name after commit(), or absent (the old file intact).
 class AtomicFile {
  public:
   explicit AtomicFile(std::string path, std::string_view option = "");
@@ -62,53 +55,39 @@ class AtomicFile {
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
 
-  std::ostream& stream() { return stream_; }
-  // Equivalent to commit_all({this}).
+  std::ostream& stream() { return *stream_; }
+  /// Equivalent to commit_all({this}).
   void commit();
 
   const std::string& path() const { return path_; }
-  // The hidden file being written ("" when the target is written in place).
+  /// The hidden file being written ("" for `-`, the standard output).
   const std::string& temporary_path() const { return temporary_path_; }
-  bool in_place() const { return temporary_path_.empty(); }
 
  private:
   friend void commit_all(const std::vector<AtomicFile*>& files);
-  void open_in_place(int descriptor);
-  void open_temporary(std::string_view option);
   void finish_writing();
   void discard() noexcept;
 
-  std::string path_, option_, temporary_path_;
+  std::string path_, target_, temporary_path_;
   int descriptor_ = -1;
+  int mode_ = -1;  // permission bits of the file replaced, -1 for a new file
   DescriptorBuffer buffer_;
-  std::ostream stream_;
+  std::ostream file_stream_;
+  std::ostream* stream_;
   bool finished_ = false;
-  std::size_t pending_slot_;
-  std::size_t identity_slot_;
 };
 
-// Commits several outputs all or nothing. First what the program wrote on standard output is
-// delivered and checked (and the state of standard error), then every file is finished (flushed,
-// closed, checked); a failure there discards them all and leaves every target as it was. Then the
-// temporary files are renamed over their targets, a hard link keeping each previous target until
-// all are in place, so that a failed rename puts the earlier ones back. Throws std::runtime_error
-// naming the output that failed. Outputs written in place are flushed first and cannot be taken
-// back. Null pointers in `files` are skipped (outputs that were not asked for); with no file at all
-// it still checks the standard streams.
+/// Commits several outputs together. First the standard streams are checked (what the program
+/// printed is part of what it delivers), then every file is written out, closed and checked; any
+/// failure so far removes every temporary and leaves every target as it was. Then the temporaries
+/// are renamed over their targets. Throws std::runtime_error naming the output that failed. Null
+/// pointers (outputs not asked for) are skipped.
 void commit_all(const std::vector<AtomicFile*>& files);
 
-// Makes sure descriptors 0, 1 and 2 are open, so that no file the program opens can take their
-// place: a closed standard input or standard error is opened on /dev/null; a closed standard output
-// on /dev/null read-only, so that writing results to it fails (a program whose results cannot be
-// delivered must fail). Returns true if standard output was closed. guarded_main calls it first.
+/// Makes sure descriptors 0, 1 and 2 are open, so that no output file the program opens takes their
+/// place (and receives what the program prints): a closed one is opened on /dev/null, standard
+/// output read-only, so that printing results to it fails. Returns true if standard output was
+/// closed. guarded_main calls it first.
 bool prepare_standard_descriptors() noexcept;
-
-// The memory this process may still allocate, in bytes: the machine's physical memory, and the
-// room left under the address-space and data-segment limits (setrlimit), whichever is smallest.
-double available_memory();
-// Throws a UsageError naming `option` when `bytes` (the memory the run needs) exceeds
-// available_memory(): "--elements: 100000000 elements need about 40 GB of memory, more than the
-// 23 GB available (allowed: ...)". `what` describes the request ("100000000 elements").
-void require_memory(std::string_view option, std::string_view what, double bytes);
 
 }  // namespace mrm::cli

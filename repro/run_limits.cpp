@@ -1,13 +1,19 @@
 // Limits of the runs: see run_limits.hpp.
 #include "run_limits.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <string>
+
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include <doctest/doctest.h>
 
 #include "options.hpp"
-#include "output_file.hpp"
 
 namespace mrm::cli {
 
@@ -44,8 +50,42 @@ Index checked_level(std::string_view option, double t, double dt, std::string_vi
   return static_cast<Index>(level);
 }
 
+namespace {
+
+// The memory this process may still allocate, in bytes: the machine's physical memory, and the room
+// left under the address-space and data-segment limits (ulimit -v, -d) by what the process already
+// uses (its virtual size, a safe overestimate of its data segment), whichever is smallest.
+double available_memory() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGESIZE);
+  double available = pages > 0 && page_size > 0 ? static_cast<double>(pages) * static_cast<double>(page_size) : 1e300;
+  double used_pages = 0;
+  std::ifstream("/proc/self/statm") >> used_pages;
+  for (const int resource : {RLIMIT_AS, RLIMIT_DATA}) {
+    struct rlimit limit {};
+    if (::getrlimit(resource, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+      available =
+          std::min(available, static_cast<double>(limit.rlim_cur) - used_pages * static_cast<double>(page_size));
+  }
+  return std::max(available, 0.0);
+}
+
+std::string bytes_text(double bytes) {
+  const char* units[] = {"bytes", "kB", "MB", "GB", "TB", "PB", "EB"};
+  std::size_t unit = 0;
+  for (; bytes >= 1000 && unit + 1 < std::size(units); ++unit) bytes /= 1000;
+  char text[64];
+  std::snprintf(text, sizeof text, "%.3g %s", bytes, units[unit]);
+  return text;
+}
+
+}  // namespace
+
 void require_mesh_memory(std::string_view option, double elements, double bytes_per_element, double copies) {
-  require_memory(option, format_real(elements) + " elements", elements * bytes_per_element * copies);
+  const double bytes = elements * bytes_per_element * copies, available = available_memory();
+  if (!(bytes <= available))
+    throw UsageError(std::string(option) + ": " + format_real(elements) + " elements need about " + bytes_text(bytes) +
+                     " of memory, more than the " + bytes_text(available) +
+                     " this process may use (allowed: runs that fit in memory)");
 }
 
 TEST_CASE("the steps of a run are refused before the run unless between 1 and 1e12") {
@@ -73,7 +113,9 @@ TEST_CASE("data files, levels and memory beyond the limits are refused naming th
                        "--instants: 1e+20 is 4e+21 steps of 0.025 away (allowed: instants within 1e12 steps; lower "
                        "--instants or raise --courant)",
                        UsageError);
-  CHECK_THROWS_AS(require_mesh_memory("--elements", 1e7, 1e30), UsageError);
+  CHECK_THROWS_WITH_AS(require_mesh_memory("--elements", 1e7, 1e30),
+                       doctest::Contains("--elements: 1e+07 elements need about 1e+19 EB of memory, more than the"),
+                       UsageError);
   CHECK_NOTHROW(require_mesh_memory("--elements", 100, 256));
 }
 

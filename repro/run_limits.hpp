@@ -41,7 +41,8 @@ void require_rows(std::string_view option, double rows, std::string_view cause);
 Index checked_level(std::string_view option, double t, double dt, std::string_view step_options);
 
 /// A UsageError naming `option` unless a run holding `copies` meshes of `elements` elements, at
-/// `bytes_per_element` each, fits in the memory the process may use (require_memory).
+/// `bytes_per_element` each, fits in the memory the process may use: the machine's physical memory and
+/// its address-space and data-segment limits (ulimit -v, -d).
 void require_mesh_memory(std::string_view option, double elements, double bytes_per_element, double copies = 1);
 
 }  // namespace mrm::cli
