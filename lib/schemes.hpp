@@ -172,7 +172,10 @@ class FastStep;
 
 /// One run of one scheme on one mesh with one mass: the state, the constant step matrix factorised
 /// once, and the step (the reference step of schemes.cpp or the fast kernel of fast_step.cpp, as
-/// SchemeParameters::kernel says). Memory is O(N): no history is kept.
+/// SchemeParameters::kernel says). Memory is O(N): no history is kept. The formulas hold for any L,
+/// but the numbers are sized for the dimensionless problem, L = 1 and data of order one (the energy's
+/// quadratic forms are taken as they are): the harness maps any length and amplitude to it by the
+/// scaling law (mathematics.md §1, repro/configurations.cpp).
 class BarSimulation {
  public:
   /// Checks every input before any work and throws InvalidParameter (a std::invalid_argument) naming

@@ -1,4 +1,5 @@
-// The one function that runs a configuration and returns its measures; see configurations.hpp.
+/// @file configurations.cpp
+/// @brief The one function that runs a configuration and returns its measures; see configurations.hpp.
 #include "configurations.hpp"
 
 #include <algorithm>

@@ -1,5 +1,6 @@
-// The paper's named configurations and the one function that runs a configuration and returns its
-// measures (every program and check that needs the errors or the energy range of a run calls it).
+/// @file configurations.hpp
+/// @brief The paper's named configurations and the one function that runs a configuration and returns its
+/// measures (every program and check that needs the errors or the energy range of a run calls it).
 #pragma once
 
 #include <array>
