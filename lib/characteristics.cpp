@@ -1,61 +1,62 @@
-// The exact solution for any initial data, by characteristics: mathematics.md §10.
-//
-// Two waves. For f = 0 every solution of u_tt = u_xx on (0, L) is u(x, t) = F(x − t) + G(x + t): F moves
-// to the right, G to the left. At t = 0, u⁰ = F + G and v⁰ = −F′ + G′, so with V⁰(x) = ∫₀ˣ v⁰
-//
-//     F = (u⁰ − V⁰)/2,   G = (u⁰ + V⁰)/2   on [0, L]
-//
-// (a constant could move from one to the other; this fixes it). The solution on [0, L] × [0, T] needs F on
-// [−T, L] and G on [0, L + T]: what enters the bar through its two ends.
-//
-// The clamp. u(L, t) = 0 for every t: F(L − t) + G(L + t) = 0, i.e. G(η) = −F(2L − η) for η > L. The wave
-// that comes back from the clamp is the outgoing one mirrored at L with its sign changed (odd reflection).
-//
-// The contact point. Write g(t) = u(0, t) = F(−t) + G(t) and β(t) = (u_t + u_x)(0, t) = 2G′(t): the Riemann
-// invariant that arrives at x = 0 along x + t = const, known as soon as G is known at t, that is from the
-// past. What leaves, u_t − u_x = −2F′(−t), is decided by Signorini:
-//   - free (g > 0): λ = u_x(0, t) = 0, so g′ = u_t = u_t + u_x = β;
-//   - held (g = 0): u_t(0, t) = 0, so λ = u_x = β, which Signorini admits (λ ≤ 0) only while β ≤ 0.
-// So g′ = β while g > 0, g stays at 0 while β ≤ 0 and leaves it as soon as β > 0: this is the Skorokhod
-// problem at 0 for the path y(t) = g(t₀) + ∫_{t₀}^t β = g(t₀) + 2(G(t) − G(t₀)). Its only solution (g ≥ 0,
-// g − y non-decreasing and increasing only where g = 0) is the reflection
-//
-//     g(t) = y(t) − min(0, min_{t₀ ≤ s ≤ t} y(s)).
-//
-// Then F(−t) = g(t) − G(t): while free F′(−t) = −G′(t) (a free end reflects evenly), while held
-// F(−t) = −G(t) (a fixed end reflects oddly), and λ(t) = F′(−t) + G′(t) is 0, respectively 2G′(t) ≤ 0. The
-// energy flux through x = 0, u_x u_t = λ g′, vanishes in both cases: E = ½∫(u_t² + u_x²) dx is conserved,
-// and in terms of the waves E(t) = ∫_{−t}^{L−t} F′² + ∫_t^{L+t} G′² (since u_t² + u_x² = 2F′² + 2G′²).
-//
-// Windows. G on [L, 2L] is the mirrored initial F. For k ≥ 2, G on [kL, (k + 1)L] is −F(2L − η) with
-// 2L − η ∈ [(1 − k)L, (2 − k)L]: F(−s) for s ∈ [(k − 2)L, (k − 1)L], which the contact point made out of G
-// on that earlier window. So the solution marches in windows of length L: on each, the contact point turns
-// the incoming G into the outgoing s ↦ F(−s), which comes back as G two windows later.
-//
-// Exact for piecewise-polynomial data. On one polynomial piece of G, y is a polynomial, and its running
-// minimum can change only where y decreases: between consecutive sign changes of G′ (found to full
-// precision, piecewise_polynomial.cpp), y is monotone. Where G′ > 0 the point is free. Where G′ ≤ 0, a held
-// point stays held (the minimum follows y down), and a free one becomes held where y first reaches the
-// current level min(0, running minimum): one root of y − level, bracketed because y is monotone there and
-// found by bisection. So on each sub-piece g is either 0 (held, F(−t) = −G(t)) or y − level (free,
-// F(−t) = G(t) + constant): the outgoing wave is made of pieces of G with their sign changed or a constant
-// added, and by piecewise_polynomial.cpp no polynomial is ever re-expanded. After any number of windows F
-// and G are, coefficient for coefficient, the data's pieces up to signs and constant terms; the solution
-// is exact up to the round-off of the evaluations and of the event times. The same construction makes
-// the Signorini conditions hold exactly: during contact F(−t) + G(t) is −G(t) + G(t) = 0, in free flight
-// F′(−t) + G′(t) is −G′(t) + G′(t) = 0, bit for bit (the mirror is exact).
-//
-// Conventions. A contact interval starts where y reaches its running minimum at or below 0 and ends
-// where β turns positive (with g = 0 and β ≤ 0 the point is held, also when λ = 0). An event within a few
-// ulps of the end of a piece is moved onto it (no slivers). Where F′ or G′ jumps (at a breakpoint, to
-// 1e-12 L) the derivatives take the mean of their one-sided values, as exact_solution.hpp does; so λ at
-// an impact or a release is the mean of its one-sided limits. β counts as positive only above the
-// rounding level of the data's slopes (64ε times the largest sum of |coefficients| of a slope): where the
-// exact β is 0 (a constant wave, as in S1 of mathematics.md §11 after its impact), the computed one is
-// rounding noise of either sign, which would otherwise release and re-take a held point at every
-// breakpoint, with a gap of the order of the noise. Restarting the Skorokhod map at the start
-// of every piece of G with y = g there is the same map (it has the flow property) and keeps y exactly
-// continuous across pieces.
+/// @file characteristics.cpp
+/// @brief The exact solution for any initial data, by characteristics: mathematics.md §10.
+///
+/// Two waves. For f = 0 every solution of u_tt = u_xx on (0, L) is u(x, t) = F(x − t) + G(x + t): F moves
+/// to the right, G to the left. At t = 0, u⁰ = F + G and v⁰ = −F′ + G′, so with V⁰(x) = ∫₀ˣ v⁰
+///
+///     F = (u⁰ − V⁰)/2,   G = (u⁰ + V⁰)/2   on [0, L]
+///
+/// (a constant could move from one to the other; this fixes it). The solution on [0, L] × [0, T] needs F on
+/// [−T, L] and G on [0, L + T]: what enters the bar through its two ends.
+///
+/// The clamp. u(L, t) = 0 for every t: F(L − t) + G(L + t) = 0, i.e. G(η) = −F(2L − η) for η > L. The wave
+/// that comes back from the clamp is the outgoing one mirrored at L with its sign changed (odd reflection).
+///
+/// The contact point. Write g(t) = u(0, t) = F(−t) + G(t) and β(t) = (u_t + u_x)(0, t) = 2G′(t): the Riemann
+/// invariant that arrives at x = 0 along x + t = const, known as soon as G is known at t, that is from the
+/// past. What leaves, u_t − u_x = −2F′(−t), is decided by Signorini:
+///   - free (g > 0): λ = u_x(0, t) = 0, so g′ = u_t = u_t + u_x = β;
+///   - held (g = 0): u_t(0, t) = 0, so λ = u_x = β, which Signorini admits (λ ≤ 0) only while β ≤ 0.
+/// So g′ = β while g > 0, g stays at 0 while β ≤ 0 and leaves it as soon as β > 0: this is the Skorokhod
+/// problem at 0 for the path y(t) = g(t₀) + ∫_{t₀}^t β = g(t₀) + 2(G(t) − G(t₀)). Its only solution (g ≥ 0,
+/// g − y non-decreasing and increasing only where g = 0) is the reflection
+///
+///     g(t) = y(t) − min(0, min_{t₀ ≤ s ≤ t} y(s)).
+///
+/// Then F(−t) = g(t) − G(t): while free F′(−t) = −G′(t) (a free end reflects evenly), while held
+/// F(−t) = −G(t) (a fixed end reflects oddly), and λ(t) = F′(−t) + G′(t) is 0, respectively 2G′(t) ≤ 0. The
+/// energy flux through x = 0, u_x u_t = λ g′, vanishes in both cases: E = ½∫(u_t² + u_x²) dx is conserved,
+/// and in terms of the waves E(t) = ∫_{−t}^{L−t} F′² + ∫_t^{L+t} G′² (since u_t² + u_x² = 2F′² + 2G′²).
+///
+/// Windows. G on [L, 2L] is the mirrored initial F. For k ≥ 2, G on [kL, (k + 1)L] is −F(2L − η) with
+/// 2L − η ∈ [(1 − k)L, (2 − k)L]: F(−s) for s ∈ [(k − 2)L, (k − 1)L], which the contact point made out of G
+/// on that earlier window. So the solution marches in windows of length L: on each, the contact point turns
+/// the incoming G into the outgoing s ↦ F(−s), which comes back as G two windows later.
+///
+/// Exact for piecewise-polynomial data. On one polynomial piece of G, y is a polynomial, and its running
+/// minimum can change only where y decreases: between consecutive sign changes of G′ (found to full
+/// precision, piecewise_polynomial.cpp), y is monotone. Where G′ > 0 the point is free. Where G′ ≤ 0, a held
+/// point stays held (the minimum follows y down), and a free one becomes held where y first reaches the
+/// current level min(0, running minimum): one root of y − level, bracketed because y is monotone there and
+/// found by bisection. So on each sub-piece g is either 0 (held, F(−t) = −G(t)) or y − level (free,
+/// F(−t) = G(t) + constant): the outgoing wave is made of pieces of G with their sign changed or a constant
+/// added, and by piecewise_polynomial.cpp no polynomial is ever re-expanded. After any number of windows F
+/// and G are, coefficient for coefficient, the data's pieces up to signs and constant terms; the solution
+/// is exact up to the round-off of the evaluations and of the event times. The same construction makes
+/// the Signorini conditions hold exactly: during contact F(−t) + G(t) is −G(t) + G(t) = 0, in free flight
+/// F′(−t) + G′(t) is −G′(t) + G′(t) = 0, bit for bit (the mirror is exact).
+///
+/// Conventions. A contact interval starts where y reaches its running minimum at or below 0 and ends
+/// where β turns positive (with g = 0 and β ≤ 0 the point is held, also when λ = 0). An event within a few
+/// ulps of the end of a piece is moved onto it (no slivers). Where F′ or G′ jumps (at a breakpoint, to
+/// 1e-12 L) the derivatives take the mean of their one-sided values, as exact_solution.hpp does; so λ at
+/// an impact or a release is the mean of its one-sided limits. β counts as positive only above the
+/// rounding level of the data's slopes (64ε times the largest sum of |coefficients| of a slope): where the
+/// exact β is 0 (a constant wave, as in S1 of mathematics.md §11 after its impact), the computed one is
+/// rounding noise of either sign, which would otherwise release and re-take a held point at every
+/// breakpoint, with a gap of the order of the noise. Restarting the Skorokhod map at the start
+/// of every piece of G with y = g there is the same map (it has the flow property) and keeps y exactly
+/// continuous across pieces.
 #include "characteristics.hpp"
 
 #include <algorithm>

@@ -1,167 +1,167 @@
-// Energy-conserving Crank–Nicolson (EC) and Crank–Nicolson with a θ-step at each status change
-// (CN-switch): the derivation (mathematics.md §12) and the scalar pieces of both steps.
-//
-// 1. The reduced problem and its energy.
-//
-// With a massless contact node the contact row is algebraic (mathematics.md §3): u₀ = max(0, s) with
-// s = u₁ + hF₀. Substituting it into the free rows, M̄Ü + S̄Ū + C u₀ = F̄ with C = (−1/h, 0, …)ᵀ, the
-// contact node acts on node 1 through the force −C u₀ = (u₀/h) e₁ = ψ'(s) e₁, where
-//
-//     ψ(s) = max(0, s)²/(2h),   ψ'(s) = max(0, s)/h   (ψ convex, ψ' nondecreasing and 1/h-Lipschitz).
-//
-// For f = 0 the reduced problem is the gradient system M̄Ü + ∇Φ(Ū) = 0 with
-//
-//     Φ(Ū) = ½ ŪᵀS̄Ū − ψ(u₁),
-//
-// and Φ is the library's potential energy ½UᵀSU evaluated at the condensed u₀: the first element's
-// strain (u₁ − u₀)/h is 0 while the node is free, so Φ = (1/2h) Σ over the elements of the squared
-// differences of (u₀, u₁, …, u_{N−1}, 0), the form used below. The sign: S̄ counts the first element
-// as if u₀ were 0 (S̄₁₁ = 2/h); a free contact node follows node 1 and takes that element's energy
-// u₁²/(2h) away again, hence −ψ. The energy E = ½ VᵀM̄V + Φ(Ū) is conserved by the exact flow.
-//
-// Φ is convex and C¹: its Hessian where it exists is S̄ − (1/h) e₁e₁ᵀ (free) or S̄ (active), and
-// S̄ − (1/h) e₁e₁ᵀ is the stiffness matrix of the elements [x₁, x₂], …, [x_{N−1}, x_N] with node 1 free
-// and x_N clamped, positive definite. The same inequality bounds every step below:
-//
-//     (L)  DᵀS̄D ≥ (D₁)²/h for every vector D.
-//
-// 2. Crank–Nicolson's energy defect.
-//
-// A θ-step (θ = ½: Crank–Nicolson; θ = 1: backward Euler) of M̄V̇ = −S̄Ū + ψ'(s)e₁ is, with D = Ūⁿ⁺¹ − Ūⁿ,
-// ΔV = Vⁿ⁺¹ − Vⁿ, a = sⁿ and b = sⁿ⁺¹,
-//
-//     D = Δt((1 − θ)Vⁿ + θVⁿ⁺¹),   M̄ΔV = Δt[−S̄((1 − θ)Ūⁿ + θŪⁿ⁺¹) + g e₁],
-//     g = (1 − θ)ψ'(a) + θψ'(b).
-//
-// Since (1 − θ)Vⁿ + θVⁿ⁺¹ = V̄ + (θ − ½)ΔV with V̄ the mean, ½(Vⁿ⁺¹ + Vⁿ)ᵀM̄ΔV = DᵀM̄ΔV/Δt − (θ − ½)‖ΔV‖²_M̄,
-// and (1 − θ)Ūⁿ + θŪⁿ⁺¹ = Ū-mean + (θ − ½)D. Adding the change of Φ gives the energy identity (f = 0)
-//
-//     Eⁿ⁺¹ − Eⁿ = −(θ − ½)(‖ΔV‖²_M̄ + DᵀS̄D) + κ(a, b),   κ(a, b) = (b − a) g − (ψ(b) − ψ(a)).    (E)
-//
-// The contact term κ is the error of the quadrature g(b − a) of ∫ₐᵇ ψ'. For Crank–Nicolson,
-// κ = ½(ψ'(a) + ψ'(b))(b − a) − (ψ(b) − ψ(a)) is 0 when a and b lie on the same side of 0 (ψ is 0 or a
-// quadratic there, and the trapezoidal rule is exact), ab/(2h) ≤ 0 at an impact (a ≥ 0 > b) and
-// −ab/(2h) ≥ 0 at a release (a < 0 ≤ b): Crank–Nicolson gains energy at every release. As a and b
-// have opposite signs there, |ab| ≤ (b − a)²/4 and |κ| ≤ (b − a)²/(8h) ≈ (Δt/h)² h v²/8 with v the
-// speed of node 1: small for Δt ≲ h, and the gains at releases win for Δt ≫ h.
-//
-// 3. EC: the discrete gradient.
-//
-// Replace the trapezoidal force by the discrete gradient of ψ,
-//
-//     g = φ(a, b) = (ψ(b) − ψ(a))/(b − a)   (ψ'(a) when b = a).
-//
-// Then κ = 0 in (E) with θ = ½: Eⁿ⁺¹ = Eⁿ exactly, at every step, status changes included. With
-// χ = 2hφ (independent of h), case by case by the signs:
-//
-//     a < 0, b < 0:  χ = 0;                a ≥ 0, b ≥ 0:  χ = a + b;
-//     a < 0 ≤ b:     χ = b²/(b − a);       a ≥ 0 > b:     χ = a²/(a − b),
-//
-// (the split by the status of mathematics.md §3, active when s < 0; at s = 0 neighbouring cases agree),
-// which is Crank–Nicolson's χ = max(0, a) + max(0, b) in the first two cases: EC is Crank–Nicolson on
-// every step without a status change, and no case divides by zero.
-//
-// The step. Everything in the step is linear except g. Write it as Crank–Nicolson's with the contact
-// force moved to the right: (M̄ + θS̄)Ūⁿ⁺¹ = M̄(Ūⁿ + ΔtVⁿ) − θS̄Ūⁿ + 2θ g e₁, θ = Δt²/4. With Ā = M̄ + θS̄
-// (constant, factorised once), z = Ā⁻¹(M̄(Ūⁿ + ΔtVⁿ) − θS̄Ūⁿ) and r = Ā⁻¹e₁,
-//
-//     Ūⁿ⁺¹ = z + 2θ g r,   so   b = z₁ + 2θ(Ā⁻¹)₁₁ φ(a, b) = c + μ χ(a, b),
-//     c = z₁ (+ hF₀ⁿ⁺¹ with a load),   μ = θ(Ā⁻¹)₁₁/h.
-//
-// (In mathematics.md §4's notation Ūⁿ⁺¹ = z − w u₀ with w = θĀ⁻¹C = −(θ/h) r: the contact node's value u₀
-// is replaced by the effective 2hφ(a, b) split over the two levels.) Two facts make this scalar
-// equation harmless:
-//
-// (i) 0 < μ < 1. By (L), Ā − (θ/h)e₁e₁ᵀ = M̄ + θ(S̄ − (1/h)e₁e₁ᵀ) is positive definite, and for a
-//     positive definite Ā that holds if and only if (θ/h) e₁ᵀĀ⁻¹e₁ < 1.
-// (ii) χ(a, ·) is nondecreasing with slope at most 1: χ(a, b) = (1/(b − a)) ∫ₐᵇ p with p(σ) = 2max(0, σ)
-//     nondecreasing and 2-Lipschitz, so ∂χ/∂b = (1/(b − a)²) ∫ₐᵇ (p(b) − p(σ)) dσ ∈ [0, 1].
-//
-// Hence G(s) = s − μχ(a, s) − c is continuous with G(s₂) − G(s₁) ≥ (1 − μ)(s₂ − s₁): strictly
-// increasing from −∞ to +∞, one root exactly, and a change δc of the data moves it by at most
-// |δc|/(1 − μ). Its sign is the sign of −G(0), with χ(a, 0) = max(0, a): the root is positive if and
-// only if c > −μ max(0, a). Then, case by case (P = a + c):
-//
-//     a < 0, c ≤ 0:       s = c   (no contact force).
-//     a ≥ 0, c > −μa:     s − μ(a + s) = c,  s = (c + μa)/(1 − μ)   (Crank–Nicolson's value).
-//     a < 0 < c (release): s − μs²/(s − a) = c with s − a > 0, i.e. (1 − μ)s² − Ps + ca = 0. The product
-//         of its roots ca/(1 − μ) ≤ 0: the wanted root is the non-negative one,
-//         s = (P + D)/(2(1 − μ)) for P > 0, s = 2ca/(P − D) for P ≤ 0,   D = √(P² − 4(1 − μ)ca) ≥ |P|,
-//         both forms free of cancellation.
-//     a ≥ 0, c ≤ −μa (impact): s − μa²/(a − s) = c with a − s > 0, i.e. s² − Ps + a(c + μa) = 0. The
-//         product of its roots a(c + μa) ≤ 0: the wanted root is the non-positive one,
-//         s = (P − D')/2 for P ≤ 0, s = 2a(c + μa)/(P + D') for P > 0,
-//         D' = √((a − c)² − 4μa²) = √((a − c − 2√μ a)(a − c + 2√μ a)), real since a − c ≥ (1 + μ)a ≥ 2√μ a.
-//
-// Each quadratic has one root on each side of 0 (or at 0), and G has one root: the root found on the
-// side predicted by G(0) is G's root.
-//
-// In the library's step. The library solves Crank–Nicolson on all unknowns 0..N−1 with the algebraic
-// contact row (schemes.cpp): after the sweep down from node N−1 (contact.cpp), row 1 reads
-// d₁u₁ⁿ⁺¹ + A₁₀u₀ = y₁ with A₁₀ = θS₁₀ = −θ/h, d₁ = 1/(Ā⁻¹)₁₁ the pivot at node 1, and y₁ containing the
-// old level's contact term −B₁₀u₀ⁿ = (θ/h)u₀ⁿ. The total contact force on row 1 is (θ/h)(u₀ⁿ + u₀) and
-// must be 2θφ = (θ/h)χ(a, b): so the sweep up starts from the value u₀ = χ(a, b) − u₀ⁿ (not the contact
-// node's new value max(0, b)), and
-//
-//     u₁ⁿ⁺¹ = z₁ + μ(χ(a, b) − u₀ⁿ),   z₁ = y₁/d₁,   μ = −A₁₀/d₁ = θ(Ā⁻¹)₁₁/h,
-//
-// which is the scalar equation with c = z₁ − μu₀ⁿ + hF₀ⁿ⁺¹ (in s = u₁ + hF₀). The contact node's new value
-// is max(0, b), the condensed row's at the new level, and λⁿ⁺¹ = min(0, b)/h. On a step without a status
-// change χ − u₀ⁿ = max(0, b): the sweep starts from the contact node's own value, as Crank–Nicolson's.
-//
-// With a load. ψ is then evaluated at s = u₁ + hF₀(t) (the contact row couples u₁ and the load at the
-// contact node), a = u₁ⁿ + hF₀ⁿ, and the right-hand side gains θ(F̄ⁿ + F̄ⁿ⁺¹); the scalar equation is the
-// same with c = z₁ + hF₀ⁿ⁺¹. The mechanical energy E = ½VᵀM̄V + ½ŪᵀS̄Ū − ψ(s) then changes by the work of
-// the loads only: with D = Ūⁿ⁺¹ − Ūⁿ and u₁ⁿ⁺¹ − u₁ⁿ = (b − a) − h(F₀ⁿ⁺¹ − F₀ⁿ),
-//
-//     Eⁿ⁺¹ − Eⁿ = ½(F̄ⁿ + F̄ⁿ⁺¹)·D − ½ χ(a, b)(F₀ⁿ⁺¹ − F₀ⁿ),
-//
-// the discrete form of dE/dt = F̄·V − ψ'(s) h dF₀/dt. (The library's energy ½VᵀMV + ½UᵀSU over all nodes
-// with u₀ = max(0, s) is this E plus F₀u₀.)
-//
-// 4. CN-switch: a θ-step at each status change.
-//
-// Take the Crank–Nicolson step; if the contact status changes across it (active: s < 0, the contact
-// node held at 0 by a compressive λ), discard it and take a θ-step instead (default θ = 1, backward
-// Euler). The energy never increases (f = 0):
-//  - a Crank–Nicolson step without a status change has κ = 0 in (E): Eⁿ⁺¹ = Eⁿ;
-//  - a θ-step: by (E) and (L), Eⁿ⁺¹ − Eⁿ ≤ −(θ − ½)‖ΔV‖²_M̄ + ρ_θ(a, b), ρ_θ = κ − (θ − ½)(b − a)²/h, and
-//    case by case (g = (1 − θ)ψ'(a) + θψ'(b)):
-//        a, b < 0:          ρ_θ = −(θ − ½)(b − a)²/h ≤ 0;
-//        a, b ≥ 0:          ρ_θ = 0  (κ = (θ − ½)(b − a)²/h);
-//        a ≥ 0 > b (impact): ρ_θ = (θab − (θ − ½)b²)/h ≤ 0;
-//        a < 0 ≤ b (release): ρ_θ = ((1 − θ)|ab| − (θ − ½)a²)/h.
-//    For θ = 1 every case is ≤ 0, so a backward-Euler step dissipates at least ½‖ΔV‖²_M̄. (The same
-//    follows from the convexity of Φ alone: Φ(Ūⁿ) ≥ Φ(Ūⁿ⁺¹) + ∇Φ(Ūⁿ⁺¹)·(Ūⁿ − Ūⁿ⁺¹).) For ½ < θ < 1 a
-//    release with (1 − θ)|b| > (θ − ½)|a| may still gain energy: the guarantee is θ = 1's.
-// With the consistent mass the contact node keeps its inertia and the contact is the constraint
-// u₀ ≥ 0 itself; the same holds with κ = −(u₀ⁿ⁺¹ − u₀ⁿ)((1 − θ)λⁿ + θλⁿ⁺¹) = θλⁿ⁺¹u₀ⁿ − (1 − θ)λⁿu₀ⁿ⁺¹
-// (by λu₀ = 0 at each level): 0 without a status change, ≤ 0 for θ = 1. EC has no analogue there
-// (the indicator of u₀ ≥ 0 has no discrete gradient): it needs a massless contact node.
-//
-// 5. Round-off: how much a step that does not increase E may seem to gain.
-//
-// The guarantees above hold in exact arithmetic; the computed energy of the computed states can still
-// rise by round-off on a step of CN-switch. A model of its size, on a mesh of N elements (h = L/N): the
-// computed Ūⁿ⁺¹ is the exact step from the computed (Ūⁿ, Vⁿ) with every nodal value off by at most c ulps
-// of the largest, |δu_i| ≤ c ε max|u| (the tridiagonal solve is backward stable and Ā is diagonally
-// dominant; the contact root is a closed form of a few operations), and max|u| ≤ √(L‖u_x‖²) ≤ √(2EL)
-// since u vanishes at the clamp. Then
-//  - the strain energy: ‖δU‖²_S = Σ(δu_{i+1} − δu_i)²/h ≤ 4N max|δu|²/h, so ‖δU‖_S ≤ 2Ncε√(2E) and ½‖U‖²_S
-//    moves by at most ‖U‖_S‖δU‖_S ≤ 4cNε E: the differences u_{i+1} − u_i are h/L times smaller than u,
-//    so an ulp of u is N ulps of the strain;
-//  - the kinetic energy: V is formed as 2(Uⁿ⁺¹ − Uⁿ)/Δt − Vⁿ (backward Euler: (Uⁿ⁺¹ − Uⁿ)/Δt), so
-//    |δv_i| ≤ 2 max|δu|/Δt and ‖δV‖_M ≤ 2cε√(2E)·L/Δt = 2cεN(h/Δt)√(2E): ½‖V‖²_M moves by at most
-//    4cNε(h/Δt) E;
-//  - the evaluation of Eⁿ and Eⁿ⁺¹ (sums of N + 1 products each) adds at most 2(N + 2)ε E.
-// With c = 2 the sum is (8(1 + h/Δt) + 2 + 4/N) Nε E ≤ 11 Nε(1 + h/Δt) E (N ≥ 4); allowed, with E ≤ E₀:
-//
-//     (Eⁿ⁺¹ − Eⁿ)/E₀ ≤ 16 N ε (1 + h/Δt)   (energy_round_off_per_step).
-//
-// This is a model, not a proof: the per-node error c of the solve is assumed, not bounded (for Δt ≫ h, Ā
-// is ill-conditioned). The checks below and fig_energy_schemes (every run of its map, N = 16 … 128,
-// Δt/h = ¼ … 40, and the long runs) measure the largest increase against it.
-
+/// @file energy_step.cpp
+/// @brief Energy-conserving Crank–Nicolson (EC) and Crank–Nicolson with a θ-step at each status change
+/// (CN-switch): the derivation (mathematics.md §12) and the scalar pieces of both steps.
+///
+/// ### 1. The reduced problem and its energy.
+///
+/// With a massless contact node the contact row is algebraic (mathematics.md §3): u₀ = max(0, s) with
+/// s = u₁ + hF₀. Substituting it into the free rows, M̄Ü + S̄Ū + C u₀ = F̄ with C = (−1/h, 0, …)ᵀ, the
+/// contact node acts on node 1 through the force −C u₀ = (u₀/h) e₁ = ψ'(s) e₁, where
+///
+///     ψ(s) = max(0, s)²/(2h),   ψ'(s) = max(0, s)/h   (ψ convex, ψ' nondecreasing and 1/h-Lipschitz).
+///
+/// For f = 0 the reduced problem is the gradient system M̄Ü + ∇Φ(Ū) = 0 with
+///
+///     Φ(Ū) = ½ ŪᵀS̄Ū − ψ(u₁),
+///
+/// and Φ is the library's potential energy ½UᵀSU evaluated at the condensed u₀: the first element's
+/// strain (u₁ − u₀)/h is 0 while the node is free, so Φ = (1/2h) Σ over the elements of the squared
+/// differences of (u₀, u₁, …, u_{N−1}, 0), the form used below. The sign: S̄ counts the first element
+/// as if u₀ were 0 (S̄₁₁ = 2/h); a free contact node follows node 1 and takes that element's energy
+/// u₁²/(2h) away again, hence −ψ. The energy E = ½ VᵀM̄V + Φ(Ū) is conserved by the exact flow.
+///
+/// Φ is convex and C¹: its Hessian where it exists is S̄ − (1/h) e₁e₁ᵀ (free) or S̄ (active), and
+/// S̄ − (1/h) e₁e₁ᵀ is the stiffness matrix of the elements [x₁, x₂], …, [x_{N−1}, x_N] with node 1 free
+/// and x_N clamped, positive definite. The same inequality bounds every step below:
+///
+///     (L)  DᵀS̄D ≥ (D₁)²/h for every vector D.
+///
+/// ### 2. Crank–Nicolson's energy defect.
+///
+/// A θ-step (θ = ½: Crank–Nicolson; θ = 1: backward Euler) of M̄V̇ = −S̄Ū + ψ'(s)e₁ is, with D = Ūⁿ⁺¹ − Ūⁿ,
+/// ΔV = Vⁿ⁺¹ − Vⁿ, a = sⁿ and b = sⁿ⁺¹,
+///
+///     D = Δt((1 − θ)Vⁿ + θVⁿ⁺¹),   M̄ΔV = Δt[−S̄((1 − θ)Ūⁿ + θŪⁿ⁺¹) + g e₁],
+///     g = (1 − θ)ψ'(a) + θψ'(b).
+///
+/// Since (1 − θ)Vⁿ + θVⁿ⁺¹ = V̄ + (θ − ½)ΔV with V̄ the mean, ½(Vⁿ⁺¹ + Vⁿ)ᵀM̄ΔV = DᵀM̄ΔV/Δt − (θ − ½)‖ΔV‖²_M̄,
+/// and (1 − θ)Ūⁿ + θŪⁿ⁺¹ = Ū-mean + (θ − ½)D. Adding the change of Φ gives the energy identity (f = 0)
+///
+///     Eⁿ⁺¹ − Eⁿ = −(θ − ½)(‖ΔV‖²_M̄ + DᵀS̄D) + κ(a, b),   κ(a, b) = (b − a) g − (ψ(b) − ψ(a)).    (E)
+///
+/// The contact term κ is the error of the quadrature g(b − a) of ∫ₐᵇ ψ'. For Crank–Nicolson,
+/// κ = ½(ψ'(a) + ψ'(b))(b − a) − (ψ(b) − ψ(a)) is 0 when a and b lie on the same side of 0 (ψ is 0 or a
+/// quadratic there, and the trapezoidal rule is exact), ab/(2h) ≤ 0 at an impact (a ≥ 0 > b) and
+/// −ab/(2h) ≥ 0 at a release (a < 0 ≤ b): Crank–Nicolson gains energy at every release. As a and b
+/// have opposite signs there, |ab| ≤ (b − a)²/4 and |κ| ≤ (b − a)²/(8h) ≈ (Δt/h)² h v²/8 with v the
+/// speed of node 1: small for Δt ≲ h, and the gains at releases win for Δt ≫ h.
+///
+/// ### 3. EC: the discrete gradient.
+///
+/// Replace the trapezoidal force by the discrete gradient of ψ,
+///
+///     g = φ(a, b) = (ψ(b) − ψ(a))/(b − a)   (ψ'(a) when b = a).
+///
+/// Then κ = 0 in (E) with θ = ½: Eⁿ⁺¹ = Eⁿ exactly, at every step, status changes included. With
+/// χ = 2hφ (independent of h), case by case by the signs:
+///
+///     a < 0, b < 0:  χ = 0;                a ≥ 0, b ≥ 0:  χ = a + b;
+///     a < 0 ≤ b:     χ = b²/(b − a);       a ≥ 0 > b:     χ = a²/(a − b),
+///
+/// (the split by the status of mathematics.md §3, active when s < 0; at s = 0 neighbouring cases agree),
+/// which is Crank–Nicolson's χ = max(0, a) + max(0, b) in the first two cases: EC is Crank–Nicolson on
+/// every step without a status change, and no case divides by zero.
+///
+/// The step. Everything in the step is linear except g. Write it as Crank–Nicolson's with the contact
+/// force moved to the right: (M̄ + θS̄)Ūⁿ⁺¹ = M̄(Ūⁿ + ΔtVⁿ) − θS̄Ūⁿ + 2θ g e₁, θ = Δt²/4. With Ā = M̄ + θS̄
+/// (constant, factorised once), z = Ā⁻¹(M̄(Ūⁿ + ΔtVⁿ) − θS̄Ūⁿ) and r = Ā⁻¹e₁,
+///
+///     Ūⁿ⁺¹ = z + 2θ g r,   so   b = z₁ + 2θ(Ā⁻¹)₁₁ φ(a, b) = c + μ χ(a, b),
+///     c = z₁ (+ hF₀ⁿ⁺¹ with a load),   μ = θ(Ā⁻¹)₁₁/h.
+///
+/// (In mathematics.md §4's notation Ūⁿ⁺¹ = z − w u₀ with w = θĀ⁻¹C = −(θ/h) r: the contact node's value u₀
+/// is replaced by the effective 2hφ(a, b) split over the two levels.) Two facts make this scalar
+/// equation harmless:
+///
+/// (i) 0 < μ < 1. By (L), Ā − (θ/h)e₁e₁ᵀ = M̄ + θ(S̄ − (1/h)e₁e₁ᵀ) is positive definite, and for a
+///     positive definite Ā that holds if and only if (θ/h) e₁ᵀĀ⁻¹e₁ < 1.
+/// (ii) χ(a, ·) is nondecreasing with slope at most 1: χ(a, b) = (1/(b − a)) ∫ₐᵇ p with p(σ) = 2max(0, σ)
+///     nondecreasing and 2-Lipschitz, so ∂χ/∂b = (1/(b − a)²) ∫ₐᵇ (p(b) − p(σ)) dσ ∈ [0, 1].
+///
+/// Hence G(s) = s − μχ(a, s) − c is continuous with G(s₂) − G(s₁) ≥ (1 − μ)(s₂ − s₁): strictly
+/// increasing from −∞ to +∞, one root exactly, and a change δc of the data moves it by at most
+/// |δc|/(1 − μ). Its sign is the sign of −G(0), with χ(a, 0) = max(0, a): the root is positive if and
+/// only if c > −μ max(0, a). Then, case by case (P = a + c):
+///
+///     a < 0, c ≤ 0:       s = c   (no contact force).
+///     a ≥ 0, c > −μa:     s − μ(a + s) = c,  s = (c + μa)/(1 − μ)   (Crank–Nicolson's value).
+///     a < 0 < c (release): s − μs²/(s − a) = c with s − a > 0, i.e. (1 − μ)s² − Ps + ca = 0. The product
+///         of its roots ca/(1 − μ) ≤ 0: the wanted root is the non-negative one,
+///         s = (P + D)/(2(1 − μ)) for P > 0, s = 2ca/(P − D) for P ≤ 0,   D = √(P² − 4(1 − μ)ca) ≥ |P|,
+///         both forms free of cancellation.
+///     a ≥ 0, c ≤ −μa (impact): s − μa²/(a − s) = c with a − s > 0, i.e. s² − Ps + a(c + μa) = 0. The
+///         product of its roots a(c + μa) ≤ 0: the wanted root is the non-positive one,
+///         s = (P − D')/2 for P ≤ 0, s = 2a(c + μa)/(P + D') for P > 0,
+///         D' = √((a − c)² − 4μa²) = √((a − c − 2√μ a)(a − c + 2√μ a)), real since a − c ≥ (1 + μ)a ≥ 2√μ a.
+///
+/// Each quadratic has one root on each side of 0 (or at 0), and G has one root: the root found on the
+/// side predicted by G(0) is G's root.
+///
+/// In the library's step. The library solves Crank–Nicolson on all unknowns 0..N−1 with the algebraic
+/// contact row (schemes.cpp): after the sweep down from node N−1 (contact.cpp), row 1 reads
+/// d₁u₁ⁿ⁺¹ + A₁₀u₀ = y₁ with A₁₀ = θS₁₀ = −θ/h, d₁ = 1/(Ā⁻¹)₁₁ the pivot at node 1, and y₁ containing the
+/// old level's contact term −B₁₀u₀ⁿ = (θ/h)u₀ⁿ. The total contact force on row 1 is (θ/h)(u₀ⁿ + u₀) and
+/// must be 2θφ = (θ/h)χ(a, b): so the sweep up starts from the value u₀ = χ(a, b) − u₀ⁿ (not the contact
+/// node's new value max(0, b)), and
+///
+///     u₁ⁿ⁺¹ = z₁ + μ(χ(a, b) − u₀ⁿ),   z₁ = y₁/d₁,   μ = −A₁₀/d₁ = θ(Ā⁻¹)₁₁/h,
+///
+/// which is the scalar equation with c = z₁ − μu₀ⁿ + hF₀ⁿ⁺¹ (in s = u₁ + hF₀). The contact node's new value
+/// is max(0, b), the condensed row's at the new level, and λⁿ⁺¹ = min(0, b)/h. On a step without a status
+/// change χ − u₀ⁿ = max(0, b): the sweep starts from the contact node's own value, as Crank–Nicolson's.
+///
+/// With a load. ψ is then evaluated at s = u₁ + hF₀(t) (the contact row couples u₁ and the load at the
+/// contact node), a = u₁ⁿ + hF₀ⁿ, and the right-hand side gains θ(F̄ⁿ + F̄ⁿ⁺¹); the scalar equation is the
+/// same with c = z₁ + hF₀ⁿ⁺¹. The mechanical energy E = ½VᵀM̄V + ½ŪᵀS̄Ū − ψ(s) then changes by the work of
+/// the loads only: with D = Ūⁿ⁺¹ − Ūⁿ and u₁ⁿ⁺¹ − u₁ⁿ = (b − a) − h(F₀ⁿ⁺¹ − F₀ⁿ),
+///
+///     Eⁿ⁺¹ − Eⁿ = ½(F̄ⁿ + F̄ⁿ⁺¹)·D − ½ χ(a, b)(F₀ⁿ⁺¹ − F₀ⁿ),
+///
+/// the discrete form of dE/dt = F̄·V − ψ'(s) h dF₀/dt. (The library's energy ½VᵀMV + ½UᵀSU over all nodes
+/// with u₀ = max(0, s) is this E plus F₀u₀.)
+///
+/// ### 4. CN-switch: a θ-step at each status change.
+///
+/// Take the Crank–Nicolson step; if the contact status changes across it (active: s < 0, the contact
+/// node held at 0 by a compressive λ), discard it and take a θ-step instead (default θ = 1, backward
+/// Euler). The energy never increases (f = 0):
+///  - a Crank–Nicolson step without a status change has κ = 0 in (E): Eⁿ⁺¹ = Eⁿ;
+///  - a θ-step: by (E) and (L), Eⁿ⁺¹ − Eⁿ ≤ −(θ − ½)‖ΔV‖²_M̄ + ρ_θ(a, b), ρ_θ = κ − (θ − ½)(b − a)²/h, and
+///    case by case (g = (1 − θ)ψ'(a) + θψ'(b)):
+///        a, b < 0:          ρ_θ = −(θ − ½)(b − a)²/h ≤ 0;
+///        a, b ≥ 0:          ρ_θ = 0  (κ = (θ − ½)(b − a)²/h);
+///        a ≥ 0 > b (impact): ρ_θ = (θab − (θ − ½)b²)/h ≤ 0;
+///        a < 0 ≤ b (release): ρ_θ = ((1 − θ)|ab| − (θ − ½)a²)/h.
+///    For θ = 1 every case is ≤ 0, so a backward-Euler step dissipates at least ½‖ΔV‖²_M̄. (The same
+///    follows from the convexity of Φ alone: Φ(Ūⁿ) ≥ Φ(Ūⁿ⁺¹) + ∇Φ(Ūⁿ⁺¹)·(Ūⁿ − Ūⁿ⁺¹).) For ½ < θ < 1 a
+///    release with (1 − θ)|b| > (θ − ½)|a| may still gain energy: the guarantee is θ = 1's.
+/// With the consistent mass the contact node keeps its inertia and the contact is the constraint
+/// u₀ ≥ 0 itself; the same holds with κ = −(u₀ⁿ⁺¹ − u₀ⁿ)((1 − θ)λⁿ + θλⁿ⁺¹) = θλⁿ⁺¹u₀ⁿ − (1 − θ)λⁿu₀ⁿ⁺¹
+/// (by λu₀ = 0 at each level): 0 without a status change, ≤ 0 for θ = 1. EC has no analogue there
+/// (the indicator of u₀ ≥ 0 has no discrete gradient): it needs a massless contact node.
+///
+/// ### 5. Round-off: how much a step that does not increase E may seem to gain.
+///
+/// The guarantees above hold in exact arithmetic; the computed energy of the computed states can still
+/// rise by round-off on a step of CN-switch. A model of its size, on a mesh of N elements (h = L/N): the
+/// computed Ūⁿ⁺¹ is the exact step from the computed (Ūⁿ, Vⁿ) with every nodal value off by at most c ulps
+/// of the largest, |δu_i| ≤ c ε max|u| (the tridiagonal solve is backward stable and Ā is diagonally
+/// dominant; the contact root is a closed form of a few operations), and max|u| ≤ √(L‖u_x‖²) ≤ √(2EL)
+/// since u vanishes at the clamp. Then
+///  - the strain energy: ‖δU‖²_S = Σ(δu_{i+1} − δu_i)²/h ≤ 4N max|δu|²/h, so ‖δU‖_S ≤ 2Ncε√(2E) and ½‖U‖²_S
+///    moves by at most ‖U‖_S‖δU‖_S ≤ 4cNε E: the differences u_{i+1} − u_i are h/L times smaller than u,
+///    so an ulp of u is N ulps of the strain;
+///  - the kinetic energy: V is formed as 2(Uⁿ⁺¹ − Uⁿ)/Δt − Vⁿ (backward Euler: (Uⁿ⁺¹ − Uⁿ)/Δt), so
+///    |δv_i| ≤ 2 max|δu|/Δt and ‖δV‖_M ≤ 2cε√(2E)·L/Δt = 2cεN(h/Δt)√(2E): ½‖V‖²_M moves by at most
+///    4cNε(h/Δt) E;
+///  - the evaluation of Eⁿ and Eⁿ⁺¹ (sums of N + 1 products each) adds at most 2(N + 2)ε E.
+/// With c = 2 the sum is (8(1 + h/Δt) + 2 + 4/N) Nε E ≤ 11 Nε(1 + h/Δt) E (N ≥ 4); allowed, with E ≤ E₀:
+///
+///     (Eⁿ⁺¹ − Eⁿ)/E₀ ≤ 16 N ε (1 + h/Δt)   (energy_round_off_per_step).
+///
+/// This is a model, not a proof: the per-node error c of the solve is assumed, not bounded (for Δt ≫ h, Ā
+/// is ill-conditioned). The checks below and fig_energy_schemes (every run of its map, N = 16 … 128,
+/// Δt/h = ¼ … 40, and the long runs) measure the largest increase against it.
 #include "energy_step.hpp"
 
 #include <algorithm>

@@ -48,8 +48,9 @@ ErrorNorms relative_norms(const TimeHistory& u0, const TimeHistory& lambda, cons
 /// Accumulates the errors of a run against an exact solution, one sample at a time, in O(N) memory.
 /// The reference is the closed form of the benchmark (mathematics.md §2) or any other ReferenceSolution,
 /// such as the characteristic solution for any data (mathematics.md §10). The squared norms are taken
-/// on values scaled by powers of two (errors.cpp), so that any length and amplitude accepted by the
-/// programs, [1e-100, 1e100], gives the right finite relative errors.
+/// as they are: the runs are those of the dimensionless problem (L = 1, data of order one), to which
+/// the harness maps every run (repro/configurations.cpp); the relative measures do not change under
+/// that scaling.
 class ErrorAccumulator {
  public:
   /// Against the closed form (copied). Throws std::invalid_argument unless the exact solution and the
@@ -72,9 +73,8 @@ class ErrorAccumulator {
   UniformMesh mesh_;
   std::shared_ptr<const ReferenceSolution> exact_;
   const ExactSolution* closed_form_ = nullptr;                  // exact_ when it is the paper's closed form (its runs)
-  Tridiagonal mass_, stiffness_;                                // scaled by 2^−e_L and 2^e_L (errors.cpp: Scale)
+  Tridiagonal mass_, stiffness_;                                // the P1 mass and stiffness of the mesh
   Eigen::VectorXd nodes_, interpolant_, velocity_interpolant_;  // x_i; u_I and (u_t)_I at one level
-  double u_scale_, v_scale_, time_scale_;                       // σ_u, σ_v and 2^−e_L: powers of two
   TimeHistory u_l2_, u_h1_, v_l2_, u0_, lambda_;
 };
 

@@ -6,31 +6,31 @@
 
 #include <vector>
 
+#include "contact.hpp"
 #include "p1.hpp"
+#include "schemes.hpp"
 
 namespace mrm {
-
-class BarSimulation;
 
 /// The fused two-chain kernel of one time step (fast_step.cpp). It computes the step (★) of
 /// schemes.cpp, A Uⁿ⁺¹ = B₁ Uⁿ + B₂ W + G − κ λ e₀ with the closed-form contact step, without
 /// forming the right-hand side, the velocity or the energy as whole vectors: everything is done
-/// inside the sweep down and the sweep up of the solve. It keeps the rows of B₁, B₂, M and S it
-/// reads (a few explicit rows near the contact node, one for the Toeplitz interior, the last) and
-/// works on the state of the BarSimulation it is given.
+/// inside the sweep down and the sweep up of the solve. It keeps the scalars of the step and the rows
+/// of B₁, B₂, M and S it reads (a few explicit rows near the contact node, one for the Toeplitz
+/// interior, the last), and advances the StepState it is given.
 class FastStep {
  public:
-  /// Reads the rows of B₁, B₂ (the step's right-hand side matrices), M and S (the energies), all of
-  /// size N, and finds the Toeplitz interior (rows compared exactly). Rows below `minimum_head` are
-  /// kept explicit whatever their values (the energy-conserving scheme needs row 1 explicit).
-  FastStep(const Tridiagonal& b1, const Tridiagonal& b2, const Tridiagonal& mass, const Tridiagonal& stiffness,
-           Index minimum_head = 1);
+  /// Reads the step's scalars and the rows of B₁, B₂ (step_matrices), M and S (the energies), all of
+  /// size N, and finds the Toeplitz interior (rows compared exactly); `parameters` gives the scheme
+  /// (its β and e for Paoli–Schatzman), h the mesh size.
+  FastStep(const StepMatrices& step, const Tridiagonal& mass, const Tridiagonal& stiffness,
+           const SchemeParameters& parameters, double h);
 
-  /// Advances `simulation` by one step of its scheme: Uⁿ⁺¹, the velocity, λ and the energy replace
-  /// the current state. `has_load` tells whether the problem has a load (then Fⁿ⁺¹ has been filled in).
-  /// Returns false, with the state untouched, where CN-switch must take its θ-step instead (a change
-  /// of the contact status across the Crank–Nicolson step).
-  bool step(BarSimulation& simulation, bool has_load) const;
+  /// Advances `state` by one step of the scheme, with A factorised in `solver`: Uⁿ⁺¹, the velocity, λ
+  /// and the energy replace the current ones. `has_load` tells whether the problem has a load (then
+  /// Fⁿ⁺¹ has been filled in). Returns false, with the state untouched, where CN-switch must take its
+  /// θ-step instead (a change of the contact status across the Crank–Nicolson step).
+  bool step(StepState& state, const ContactSolver& solver, bool has_load) const;
 
  private:
   // One row of B₁ and B₂ (lower, diagonal, upper) and of M and S (diagonal and twice the lower entry).
@@ -38,10 +38,13 @@ class FastStep {
     double b1l, b1d, b1u, b2l, b2d, b2u;
     double md, ml2, sd, sl2;
   };
-  std::vector<Row> head_;    // rows 0 … head−1, explicitly
-  Row interior_{}, last_{};  // the common row of head … N−2, and row N−1
-  template <bool three_level, bool has_load, bool scaled>
-  bool fused_step(BarSimulation& simulation) const;
+  std::vector<Row> head_;      // rows 0 … head−1, explicitly
+  Row interior_{}, last_{};    // the common row of head … N−2, and row N−1
+  StepMatrices coefficients_;  // the step's scalars (its matrices are in the Rows)
+  bool three_level_, energy_conserving_, switching_;
+  double restitution_, beta_, h_;
+  template <bool three_level, bool has_load>
+  bool fused_step(StepState& state, const ContactSolver& solver) const;
 };
 
 }  // namespace mrm

@@ -1,61 +1,62 @@
-// The period law: mathematics.md §8 (why Mod 3 < Mod 2 < Mod 1 on the benchmark).
-//
-// The reduced system. With a massless contact node and f = 0 the contact row gives u₀ = max(0, u₁)
-// (contact.cpp), so the differential part M̄ Ū'' + S̄ Ū = −C u₀, C = S_{1,0} e₁ = −e₁/h, is one of two
-// linear systems at every instant:
-//
-//   free flight, u₀ = u₁:  M̄ Ū'' + (S̄ − e₁e₁ᵀ/h) Ū = 0.  The stiffness is PᵀSP with P Ū = (u₁, u₁, u₂, …):
-//     the element (0, h) carries no strain and moves rigidly with node 1, so this is the P1 bar on
-//     [h, L] with a free end at x = h (S̄₁₁ = 2/h loses the 1/h of the element (0, h)) and a clamp at L;
-//   contact, u₀ = 0:       M̄ Ū'' + S̄ Ū = 0, the bar [0, L] held at both ends.
-//
-// The mass of both is M̄, the redistributed mass on nodes 1..N−1 (row and column 0 vanish). Each
-// system's modes solve the pencil K x = ω² M̄ x. A continuous bar of unit wave speed and length ℓ has
-// the first frequency ω = π/(2ℓ) with one free and one clamped end (a quarter wave), ω = π/ℓ with two
-// clamped ends (a half wave). The effective lengths of the discrete bar are defined by matching the
-// first frequency:
-//
-//     ℓ_f = π / (2 √μ_f),   ℓ_c = π / √μ_c,   μ the smallest eigenvalue of the pencil.
-//
-// The benchmark's solution (mathematics.md §2) spends L in free flight (the unloading wave runs to the
-// clamp: a quarter of the free–clamped period 4L), L in contact (half the clamped–clamped period 2L)
-// and L flying back, so the period is 3L; the discrete bar spends ℓ_f, ℓ_c and ℓ_f, up to the
-// dispersion of P1 (relative O((kh)²) on the low modes):
-//
-//     P_h = 2 ℓ_f + ℓ_c,   first impact at ℓ_f.
-//
-// The lengths in closed form. Free flight: the bar [h, L] with the P1 mass has, at its free end, the
-// share h/3 of the element (h, 2h) in M̄₁₁; the rest, m = M̄₁₁ − h/3, is a point mass at the free end,
-// m u_tt = u_x there. For the low modes (wave number k, km ≪ 1) a point mass m at a free end acts as a
-// bar segment of length m (the same inertia, whose own strain is O((km)²)), so ℓ_f = L − h + m:
-//
-//     Mod 1 (M̄₁₁ = 2h/3, m = h/3):  ℓ_f = L − 2h/3;      Mod 3 (M̄₁₁ = 4h/3, m = h):  ℓ_f = L;
-//     Mod 2 (every entry times w = L/(L − 2h/3)): the wave speed is 1/√w, the same construction in
-//     the material length gives L − 2h/3, so ℓ_f = √w (L − 2h/3) = √(L (L − 2h/3)) = L − h/3 + O(h²).
-//
-// Contact: Mod 1 is the consistent mass of the clamped–clamped bar, ℓ_c = L + O(h²); Mod 3's extra
-// mass 2h/3 sits at node 1, where every contact mode is O(kh), so it moves ω² by O(h · (kh)²) and
-// ℓ_c = L + O(h²) (the P1 dispersion); Mod 2 scales the whole mass by w: ℓ_c = √w L = L + h/3 + O(h²).
-// Hence the period errors −4h/3 (Mod 1), −h/3 (Mod 2) and 0 (Mod 3), all + O(h²).
-//
-// The general rule. By the Rayleigh quotient ω² = xᵀKx / xᵀM̄x, adding a mass δm at the free end,
-// where the first free mode cos(kx') (x' from the end, k = π/(2ℓ)) has amplitude 1, changes ω² by the
-// factor 1 − δm/(ℓ/2) (∫cos² = ℓ/2): δω/ω = −δm/ℓ, δℓ_f = δm. Spreading δm uniformly over the bar
-// (density δm/L) scales the mass by 1 + δm/L: δℓ/ℓ = δm/(2L), δℓ = δm/2 on both pencils, while a
-// mass at node 1 does not see the contact mode. With δm_loc the mass at node 1 beyond Mod 3's and
-// δm_glob the mass spread uniformly:
-//
-//     δℓ_f = δm_loc + δm_glob/2,   δℓ_c = δm_glob/2,   ΔP = 2 δℓ_f + δℓ_c = 2 δm_loc + (3/2) δm_glob.
-//
-// Mod 1: (−2h/3, 0) → −4h/3; Mod 2: (−2h/3, +2h/3) → −h/3; Mod 3: (0, 0) → 0. What matters is not
-// the total mass but the inertia given to the new free end (δm_loc = 0): Mod 2 preserves the mass
-// and still drifts.
-//
-// The eigenvalue. K − μM̄ is symmetric tridiagonal; by Sylvester's law of inertia the number of
-// negative pivots of its LDLᵀ factorisation, d₀ = a₀, d_i = a_i − b_i²/d_{i−1}, is the number of
-// eigenvalues below μ. Bisection on that count between 0 (K positive definite) and the Rayleigh
-// quotient of the vector of ones (an upper bound of the smallest eigenvalue) gives μ to round-off,
-// in O(N) per halving, for any N.
+/// @file period_law.cpp
+/// @brief The period law: mathematics.md §8 (why Mod 3 < Mod 2 < Mod 1 on the benchmark).
+///
+/// The reduced system. With a massless contact node and f = 0 the contact row gives u₀ = max(0, u₁)
+/// (contact.cpp), so the differential part M̄ Ū'' + S̄ Ū = −C u₀, C = S_{1,0} e₁ = −e₁/h, is one of two
+/// linear systems at every instant:
+///
+///   free flight, u₀ = u₁:  M̄ Ū'' + (S̄ − e₁e₁ᵀ/h) Ū = 0.  The stiffness is PᵀSP with P Ū = (u₁, u₁, u₂, …):
+///     the element (0, h) carries no strain and moves rigidly with node 1, so this is the P1 bar on
+///     [h, L] with a free end at x = h (S̄₁₁ = 2/h loses the 1/h of the element (0, h)) and a clamp at L;
+///   contact, u₀ = 0:       M̄ Ū'' + S̄ Ū = 0, the bar [0, L] held at both ends.
+///
+/// The mass of both is M̄, the redistributed mass on nodes 1..N−1 (row and column 0 vanish). Each
+/// system's modes solve the pencil K x = ω² M̄ x. A continuous bar of unit wave speed and length ℓ has
+/// the first frequency ω = π/(2ℓ) with one free and one clamped end (a quarter wave), ω = π/ℓ with two
+/// clamped ends (a half wave). The effective lengths of the discrete bar are defined by matching the
+/// first frequency:
+///
+///     ℓ_f = π / (2 √μ_f),   ℓ_c = π / √μ_c,   μ the smallest eigenvalue of the pencil.
+///
+/// The benchmark's solution (mathematics.md §2) spends L in free flight (the unloading wave runs to the
+/// clamp: a quarter of the free–clamped period 4L), L in contact (half the clamped–clamped period 2L)
+/// and L flying back, so the period is 3L; the discrete bar spends ℓ_f, ℓ_c and ℓ_f, up to the
+/// dispersion of P1 (relative O((kh)²) on the low modes):
+///
+///     P_h = 2 ℓ_f + ℓ_c,   first impact at ℓ_f.
+///
+/// The lengths in closed form. Free flight: the bar [h, L] with the P1 mass has, at its free end, the
+/// share h/3 of the element (h, 2h) in M̄₁₁; the rest, m = M̄₁₁ − h/3, is a point mass at the free end,
+/// m u_tt = u_x there. For the low modes (wave number k, km ≪ 1) a point mass m at a free end acts as a
+/// bar segment of length m (the same inertia, whose own strain is O((km)²)), so ℓ_f = L − h + m:
+///
+///     Mod 1 (M̄₁₁ = 2h/3, m = h/3):  ℓ_f = L − 2h/3;      Mod 3 (M̄₁₁ = 4h/3, m = h):  ℓ_f = L;
+///     Mod 2 (every entry times w = L/(L − 2h/3)): the wave speed is 1/√w, the same construction in
+///     the material length gives L − 2h/3, so ℓ_f = √w (L − 2h/3) = √(L (L − 2h/3)) = L − h/3 + O(h²).
+///
+/// Contact: Mod 1 is the consistent mass of the clamped–clamped bar, ℓ_c = L + O(h²); Mod 3's extra
+/// mass 2h/3 sits at node 1, where every contact mode is O(kh), so it moves ω² by O(h · (kh)²) and
+/// ℓ_c = L + O(h²) (the P1 dispersion); Mod 2 scales the whole mass by w: ℓ_c = √w L = L + h/3 + O(h²).
+/// Hence the period errors −4h/3 (Mod 1), −h/3 (Mod 2) and 0 (Mod 3), all + O(h²).
+///
+/// The general rule. By the Rayleigh quotient ω² = xᵀKx / xᵀM̄x, adding a mass δm at the free end,
+/// where the first free mode cos(kx') (x' from the end, k = π/(2ℓ)) has amplitude 1, changes ω² by the
+/// factor 1 − δm/(ℓ/2) (∫cos² = ℓ/2): δω/ω = −δm/ℓ, δℓ_f = δm. Spreading δm uniformly over the bar
+/// (density δm/L) scales the mass by 1 + δm/L: δℓ/ℓ = δm/(2L), δℓ = δm/2 on both pencils, while a
+/// mass at node 1 does not see the contact mode. With δm_loc the mass at node 1 beyond Mod 3's and
+/// δm_glob the mass spread uniformly:
+///
+///     δℓ_f = δm_loc + δm_glob/2,   δℓ_c = δm_glob/2,   ΔP = 2 δℓ_f + δℓ_c = 2 δm_loc + (3/2) δm_glob.
+///
+/// Mod 1: (−2h/3, 0) → −4h/3; Mod 2: (−2h/3, +2h/3) → −h/3; Mod 3: (0, 0) → 0. What matters is not
+/// the total mass but the inertia given to the new free end (δm_loc = 0): Mod 2 preserves the mass
+/// and still drifts.
+///
+/// The eigenvalue. K − μM̄ is symmetric tridiagonal; by Sylvester's law of inertia the number of
+/// negative pivots of its LDLᵀ factorisation, d₀ = a₀, d_i = a_i − b_i²/d_{i−1}, is the number of
+/// eigenvalues below μ. Bisection on that count between 0 (K positive definite) and the Rayleigh
+/// quotient of the vector of ones (an upper bound of the smallest eigenvalue) gives μ to round-off,
+/// in O(N) per halving, for any N.
 #include "period_law.hpp"
 
 #include <algorithm>

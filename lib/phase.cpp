@@ -1,67 +1,68 @@
-// Phase diagnostics: the impact times of a run and their drift (mathematics.md §8).
-//
-// The period law predicts that a redistribution shifts the period of the benchmark by
-// ΔP = 2δm_loc + (3/2)δm_glob (period_law.cpp): the impacts drift linearly in time, by −4h/3 (Mod 1),
-// −h/3 (Mod 2) and 0 (Mod 3) per period. This file measures that drift on any run.
-//
-// The contact indicator. A level is in contact when its contact constraint is active. With a
-// massless contact node the contact row gives u₀ = max(0, u₁ + hF₀), λ = min(0, F₀ + u₁/h)
-// (contact.cpp), so
-//
-//     g := u₀ + h λ = u₁ + h F₀          (free: λ = 0, u₀ = u₁ + hF₀; contact: u₀ = 0, hλ = u₁ + hF₀),
-//
-// one continuous function of the state that is positive exactly while the gap is open and ≤ 0
-// exactly while the contact is active: the gap the node would have without the obstacle. This holds
-// for every scheme whose λ belongs to the displacement's instant (the algebraic contact row). For a
-// multiplier of another instant (the literal Paoli–Schatzman row, λⁿ beside Uⁿ⁺¹) the indicator is
-// u₀ alone, which is 0 at a contact level: the estimator below then returns the first contact level,
-// late by less than one step.
-//
-// The estimator. An impact is a level n with gₙ ≤ 0 that follows a level with gₙ₋₁ > 0; its time is
-// the zero of the line through (tₙ₋₁, gₙ₋₁) and (tₙ, gₙ),
-//
-//     t̂ = tₙ₋₁ + (tₙ − tₙ₋₁) gₙ₋₁ / (gₙ₋₁ − gₙ),
-//
-// exact when g is affine between the two levels (the free flight before an impact moves the end at a
-// constant speed on the benchmark), and in general within the step. A release is located the same
-// way. Some discretisations chatter (the contact opens for a step or two and closes again, e.g. the
-// consistent mass): a contact that starts less than a given interval after the previous one was
-// released belongs to that contact and is not a new impact (the benchmark's free flights last 2L
-// between contacts; the programs pass L).
-//
-// The drift. Pair the k-th measured impact t̂ₖ with the k-th exact one tₖ (in order, so that a drift
-// of more than half a period is still followed) and write eₖ = t̂ₖ − tₖ: negative means early. The
-// first impact error is e₀; the drift per period is P times the least-squares slope of eₖ against tₖ,
-//
-//     drift = P · Σ (tₖ − t̄)(eₖ − ē) / Σ (tₖ − t̄)²,
-//
-// in time units per period: a run whose impacts recur with the period P_h has eₖ = e₀ + k (P_h − P),
-// tₖ = t₀ + kP, and drift = P_h − P exactly. It needs two impacts at least.
-//
-// Any data. On the benchmark the exact impacts are L + 3Lk (§2). For other data (the smooth benchmarks,
-// a file of one's own) they are read off the characteristic solution (§10): the starts of its contact
-// intervals, filtered by the rule the detector applies to a run, so that the two sides count the same
-// events: a contact held from t = 0 is not an impact (the run starts in contact too, and the detector
-// records nothing at level 0); the first contact that begins later is; each later one is when it begins
-// at least the minimum free interval after the previous contact ended. Such a motion need not be
-// periodic, so the unit of the drift is the mean time between its exact impacts,
-//
-//     P = (t_{n−1} − t₀)/(n − 1),
-//
-// which is 3L on the benchmark: the drift is then the time the impacts gain per impact cycle, and the
-// relation drift = P_h − P above holds whenever the exact impacts recur at a constant interval. Where the
-// exact solution has fewer than two impacts in the run, only e₀ is defined.
-//
-// Pairing for any data. On the benchmark every run has one impact per period and the k-th measured
-// impact is the k-th exact one, however far it has drifted. Other data break that: where the exact
-// contact force is small for a while, a discrete run floats off the obstacle by a fraction of h and
-// lands again (on S1 it records contacts of its own between the exact ones, checked by a doctest of
-// repro/configurations.cpp), and it may miss an exact contact that follows a short free flight. Pairing in order would then compare
-// unrelated events. For such data a measured impact t̂ and an exact one t are paired when each is the
-// other's nearest and |t̂ − t| is less than half the smallest interval between exact impacts; unpaired
-// impacts are reported by count, not compared, and e₀ is defined only when the first exact impact has
-// a partner. The price: a drift of more than half an impact interval is no longer followed (it shows
-// as unpaired impacts). (The paper defines no phase measure; these rules are this implementation's.)
+/// @file phase.cpp
+/// @brief Phase diagnostics: the impact times of a run and their drift (mathematics.md §8).
+///
+/// The period law predicts that a redistribution shifts the period of the benchmark by
+/// ΔP = 2δm_loc + (3/2)δm_glob (period_law.cpp): the impacts drift linearly in time, by −4h/3 (Mod 1),
+/// −h/3 (Mod 2) and 0 (Mod 3) per period. This file measures that drift on any run.
+///
+/// The contact indicator. A level is in contact when its contact constraint is active. With a
+/// massless contact node the contact row gives u₀ = max(0, u₁ + hF₀), λ = min(0, F₀ + u₁/h)
+/// (contact.cpp), so
+///
+///     g := u₀ + h λ = u₁ + h F₀          (free: λ = 0, u₀ = u₁ + hF₀; contact: u₀ = 0, hλ = u₁ + hF₀),
+///
+/// one continuous function of the state that is positive exactly while the gap is open and ≤ 0
+/// exactly while the contact is active: the gap the node would have without the obstacle. This holds
+/// for every scheme whose λ belongs to the displacement's instant (the algebraic contact row). For a
+/// multiplier of another instant (the literal Paoli–Schatzman row, λⁿ beside Uⁿ⁺¹) the indicator is
+/// u₀ alone, which is 0 at a contact level: the estimator below then returns the first contact level,
+/// late by less than one step.
+///
+/// The estimator. An impact is a level n with gₙ ≤ 0 that follows a level with gₙ₋₁ > 0; its time is
+/// the zero of the line through (tₙ₋₁, gₙ₋₁) and (tₙ, gₙ),
+///
+///     t̂ = tₙ₋₁ + (tₙ − tₙ₋₁) gₙ₋₁ / (gₙ₋₁ − gₙ),
+///
+/// exact when g is affine between the two levels (the free flight before an impact moves the end at a
+/// constant speed on the benchmark), and in general within the step. A release is located the same
+/// way. Some discretisations chatter (the contact opens for a step or two and closes again, e.g. the
+/// consistent mass): a contact that starts less than a given interval after the previous one was
+/// released belongs to that contact and is not a new impact (the benchmark's free flights last 2L
+/// between contacts; the programs pass L).
+///
+/// The drift. Pair the k-th measured impact t̂ₖ with the k-th exact one tₖ (in order, so that a drift
+/// of more than half a period is still followed) and write eₖ = t̂ₖ − tₖ: negative means early. The
+/// first impact error is e₀; the drift per period is P times the least-squares slope of eₖ against tₖ,
+///
+///     drift = P · Σ (tₖ − t̄)(eₖ − ē) / Σ (tₖ − t̄)²,
+///
+/// in time units per period: a run whose impacts recur with the period P_h has eₖ = e₀ + k (P_h − P),
+/// tₖ = t₀ + kP, and drift = P_h − P exactly. It needs two impacts at least.
+///
+/// Any data. On the benchmark the exact impacts are L + 3Lk (§2). For other data (the smooth benchmarks,
+/// a file of one's own) they are read off the characteristic solution (§10): the starts of its contact
+/// intervals, filtered by the rule the detector applies to a run, so that the two sides count the same
+/// events: a contact held from t = 0 is not an impact (the run starts in contact too, and the detector
+/// records nothing at level 0); the first contact that begins later is; each later one is when it begins
+/// at least the minimum free interval after the previous contact ended. Such a motion need not be
+/// periodic, so the unit of the drift is the mean time between its exact impacts,
+///
+///     P = (t_{n−1} − t₀)/(n − 1),
+///
+/// which is 3L on the benchmark: the drift is then the time the impacts gain per impact cycle, and the
+/// relation drift = P_h − P above holds whenever the exact impacts recur at a constant interval. Where the
+/// exact solution has fewer than two impacts in the run, only e₀ is defined.
+///
+/// Pairing for any data. On the benchmark every run has one impact per period and the k-th measured
+/// impact is the k-th exact one, however far it has drifted. Other data break that: where the exact
+/// contact force is small for a while, a discrete run floats off the obstacle by a fraction of h and
+/// lands again (on S1 it records contacts of its own between the exact ones, checked by a doctest of
+/// repro/configurations.cpp), and it may miss an exact contact that follows a short free flight. Pairing in order would then compare
+/// unrelated events. For such data a measured impact t̂ and an exact one t are paired when each is the
+/// other's nearest and |t̂ − t| is less than half the smallest interval between exact impacts; unpaired
+/// impacts are reported by count, not compared, and e₀ is defined only when the first exact impact has
+/// a partner. The price: a drift of more than half an impact interval is no longer followed (it shows
+/// as unpaired impacts). (The paper defines no phase measure; these rules are this implementation's.)
 #include "phase.hpp"
 
 #include <algorithm>

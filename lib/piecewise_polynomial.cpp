@@ -1,39 +1,40 @@
-// Polynomials in a local variable and piecewise polynomials (mathematics.md §10).
-//
-// The characteristic solution (characteristics.cpp) writes the displacement as two travelling waves
-// F(x − t) and G(x + t), and both are piecewise polynomials when the data are. Everything it does to
-// them is one of four operations: cut a piece at a point, move it (the clamp's reflection and the
-// march from one window to the next), mirror it (x → 2L − x) and add a constant or change its sign
-// (the contact point). Each piece is written in its own local variable σ = (x − centre)/radius, and
-// none of these operations re-expands a polynomial about a new point:
-//
-//   - a cut keeps the parent's variable (the piece [a′, b′] ⊂ [a, b] is the same polynomial in the same σ);
-//   - a move x → x + s moves the centre: the coefficients do not change;
-//   - a mirror x → c − x maps σ to −σ' with centre' = c − centre: the coefficient of σ^k changes sign
-//     for odd k, and nothing else;
-//   - p + d changes c₀ only, −p every sign.
-//
-// So the coefficients of every wave the solution ever uses are, up to signs and constant terms, those
-// of the data, however many reflections they went through: no error accumulates. (Re-expanding a
-// degree-14 polynomial about a new point, as a monomial representation x^k would force at every
-// reflection, loses several digits each time.) Evaluations use Horner's rule in σ with |σ| ≤ 1 on the
-// data's pieces.
-//
-// Mirroring is exact in floating point: with σ' = −σ (the subtraction x − c is sign-symmetric) and
-// c'_k = (−1)^k c_k, every partial sum of Horner's rule for (c', σ') is (−1)^k times the one for (c, σ),
-// so p'(σ') = p(σ) bit for bit, and likewise the slope with the opposite sign. characteristics.cpp
-// relies on it: at the contact point, F(−t) + G(t) is exactly 0 during contact and F′(−t) + G′(t)
-// exactly 0 in free flight.
-//
-// Sign changes. The contact point needs the points where a polynomial changes sign (the extrema of the
-// incoming wave). Between two consecutive sign changes of p′, p is monotone, so each of its sign changes
-// is bracketed by two consecutive extrema and found by bisection to the last bit; the sign changes of
-// p′ come from those of p″ the same way, down to degree 1. A root of even multiplicity (p touches 0
-// without crossing) is not a sign change and is not reported; a root of odd multiplicity m ≥ 3 is a
-// sign change of p (p′ has a root of even multiplicity there, so the bracket spans it) and is found to
-// the precision its conditioning allows, ε^{1/m} relative, which is the best any method can do. Near a
-// multiple root the computed p is rounding noise over a small interval; a sign is trusted only where |p|
-// exceeds the bound of Horner's rounding error, so that noise does not create pairs of sign changes.
+/// @file piecewise_polynomial.cpp
+/// @brief Polynomials in a local variable and piecewise polynomials (mathematics.md §10).
+///
+/// The characteristic solution (characteristics.cpp) writes the displacement as two travelling waves
+/// F(x − t) and G(x + t), and both are piecewise polynomials when the data are. Everything it does to
+/// them is one of four operations: cut a piece at a point, move it (the clamp's reflection and the
+/// march from one window to the next), mirror it (x → 2L − x) and add a constant or change its sign
+/// (the contact point). Each piece is written in its own local variable σ = (x − centre)/radius, and
+/// none of these operations re-expands a polynomial about a new point:
+///
+///   - a cut keeps the parent's variable (the piece [a′, b′] ⊂ [a, b] is the same polynomial in the same σ);
+///   - a move x → x + s moves the centre: the coefficients do not change;
+///   - a mirror x → c − x maps σ to −σ' with centre' = c − centre: the coefficient of σ^k changes sign
+///     for odd k, and nothing else;
+///   - p + d changes c₀ only, −p every sign.
+///
+/// So the coefficients of every wave the solution ever uses are, up to signs and constant terms, those
+/// of the data, however many reflections they went through: no error accumulates. (Re-expanding a
+/// degree-14 polynomial about a new point, as a monomial representation x^k would force at every
+/// reflection, loses several digits each time.) Evaluations use Horner's rule in σ with |σ| ≤ 1 on the
+/// data's pieces.
+///
+/// Mirroring is exact in floating point: with σ' = −σ (the subtraction x − c is sign-symmetric) and
+/// c'_k = (−1)^k c_k, every partial sum of Horner's rule for (c', σ') is (−1)^k times the one for (c, σ),
+/// so p'(σ') = p(σ) bit for bit, and likewise the slope with the opposite sign. characteristics.cpp
+/// relies on it: at the contact point, F(−t) + G(t) is exactly 0 during contact and F′(−t) + G′(t)
+/// exactly 0 in free flight.
+///
+/// Sign changes. The contact point needs the points where a polynomial changes sign (the extrema of the
+/// incoming wave). Between two consecutive sign changes of p′, p is monotone, so each of its sign changes
+/// is bracketed by two consecutive extrema and found by bisection to the last bit; the sign changes of
+/// p′ come from those of p″ the same way, down to degree 1. A root of even multiplicity (p touches 0
+/// without crossing) is not a sign change and is not reported; a root of odd multiplicity m ≥ 3 is a
+/// sign change of p (p′ has a root of even multiplicity there, so the bracket spans it) and is found to
+/// the precision its conditioning allows, ε^{1/m} relative, which is the best any method can do. Near a
+/// multiple root the computed p is rounding noise over a small interval; a sign is trusted only where |p|
+/// exceeds the bound of Horner's rounding error, so that noise does not create pairs of sign changes.
 #include "piecewise_polynomial.hpp"
 
 #include <algorithm>

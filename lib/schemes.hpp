@@ -82,6 +82,7 @@ InitialContactNode initial_contact_node_by_name(const std::string&);  ///< consi
 /// naming the option that sets the parameter).
 class InvalidParameter : public std::invalid_argument {
  public:
+  /// what() is "parameter: message".
   InvalidParameter(const std::string& parameter, const std::string& message);
   std::string parameter;  ///< the parameter at fault
 };
@@ -153,11 +154,28 @@ struct Sample {
   double energy;                        ///< the scheme's discrete energy
 };
 
+/// The state of a run between two steps, owned by BarSimulation and advanced by its step kernels (the
+/// reference step of schemes.cpp and the fast kernel of fast_step.cpp), which read and write nothing else.
+struct StepState {
+  Eigen::VectorXd u;       ///< Uⁿ
+  Eigen::VectorXd u_new;   ///< the scratch of the sweeps, then Uⁿ⁺¹ (swapped into u)
+  Eigen::VectorXd w;       ///< W: Vⁿ (the two-level schemes' velocity) or Uⁿ⁻¹ (Paoli–Schatzman)
+  Eigen::VectorXd x;       ///< X = (Uⁿ − Uⁿ⁻¹)/Δt, Paoli–Schatzman's velocity (empty for two levels)
+  Eigen::VectorXd f_now;   ///< Fⁿ (empty without a load)
+  Eigen::VectorXd f_next;  ///< Fⁿ⁺¹ (empty without a load)
+  double lambda = 0.0;     ///< λ at the current level
+  double energy = 0.0;     ///< the discrete energy at the current level
+  bool active = false;     ///< the contact status: λ < 0, or s = u₁ + hF₀ < 0 for a massless node
+};
+
 class FastStep;
 
 /// One run of one scheme on one mesh with one mass: the state, the constant step matrix factorised
 /// once, and the step (the reference step of schemes.cpp or the fast kernel of fast_step.cpp, as
-/// SchemeParameters::kernel says). Memory is O(N): no history is kept.
+/// SchemeParameters::kernel says). Memory is O(N): no history is kept. The formulas hold for any L,
+/// but the numbers are sized for the dimensionless problem, L = 1 and data of order one (the energy's
+/// quadratic forms are taken as they are): the harness maps any length and amplitude to it by the
+/// scaling law (mathematics.md §1, repro/configurations.cpp).
 class BarSimulation {
  public:
   /// Checks every input before any work and throws InvalidParameter (a std::invalid_argument) naming
@@ -190,13 +208,11 @@ class BarSimulation {
   const SchemeParameters& parameters() const { return parameters_; }  ///< the scheme and its parameters
 
  private:
-  friend class FastStep;  // the fast kernel reads and advances the state below
   void load_at(double t, Eigen::VectorXd& f) const;
   double energy_two_level() const;
   double contact_load(double t) const;
   double contact_load_rate(double t) const;
   double massless_node_velocity(double t) const;
-  void choose_energy_scale();
   void reference_step(bool has_load);
   void switch_step(bool has_load);  // CN-switch's θ-step, replacing a Crank–Nicolson step
 
@@ -212,11 +228,6 @@ class BarSimulation {
   StepMatrices step_;
   ContactSolver solver_;
   std::unique_ptr<const FastStep> fast_;
-  // The energy's quadratic forms on values scaled by σ_u = 2^−e_u (displacements) and σ_v = 2^−e_v
-  // (velocities) when the data are far from 1 (schemes.cpp: Scale of the energy); scaled_ = false
-  // otherwise, and the forms take the values as they are.
-  bool scaled_ = false;
-  int displacement_exponent_ = 0, velocity_exponent_ = 0;
   // CN-switch: the θ-step's matrices and scalars (theta_step_matrices) and its factorisation.
   struct SwitchStep {
     StepMatrices matrices;
@@ -224,13 +235,10 @@ class BarSimulation {
   };
   std::unique_ptr<const SwitchStep> switch_;
   bool energy_conserving_ = false;
-  bool active_ = false;  // the contact status at the current level (λ < 0, or s < 0 for a massless node)
 
   Index level_ = 0;
-  // U, the scratch for the sweeps (then U'), W, and X = (Uⁿ⁺¹ − Uⁿ)/Δt (three-level only: the
-  // two-level schemes' velocity is W); the loads only when there is a load.
-  Eigen::VectorXd u_, u_new_, w_, x_, f_now_, f_next_;
-  double lambda_ = 0.0, lambda_time_ = 0.0, energy_ = 0.0, energy_time_ = 0.0;
+  StepState state_;
+  double lambda_time_ = 0.0, energy_time_ = 0.0;
   bool has_lambda_ = true;
   std::unique_ptr<BarSimulation> start_;  // the Crank–Nicolson first step of Paoli–Schatzman
 };

@@ -1,42 +1,43 @@
-// Smooth benchmarks: mathematics.md §11.
-//
-// Purely left-going data. Take u⁰ = P and v⁰ = P′ on [0, L], L = 1, with P constant near 0 and zero near
-// 1. Then V⁰ = ∫₀ˣ P′ = P − P(0), and the waves of characteristics.cpp are
-//
-//     F = (u⁰ − V⁰)/2 = P(0)/2 (constant),   G = (u⁰ + V⁰)/2 = P − P(0)/2:
-//
-// only a left-going wave, u_t − u_x = 0 at t = 0. Near x = 0 the data are at rest with u_x = 0 (a free
-// end's condition) and near x = 1 they vanish identically, so every compatibility condition holds at both
-// ends and the solution is as smooth as P until the first contact. Before t = L the contact point sees
-// y(t) = P(0) + 2(G(t) − G(0)) = 2P(t) − P(0), so it reaches the obstacle where P(t) = P(0)/2.
-//
-// The shape. P′ = −K q with q ≥ 0 a polynomial on a support [α, ω] ⊂ (0, 1) (zero outside),
-// P(x) = −∫ₓ¹ P′ = K ∫ₓ^ω q, and K = P(0) / ∫_α^ω q so that P(0) = ¼.
-//
-// S1, generic impact: q = ((x − 0.2)(0.8 − x))⁴ on [0.2, 0.8] (C³ data). q is symmetric about ½, so
-// P(½) = ½ K ∫q = P(0)/2: y(½) = 0, t* = ½, and there y′ = 2P′(½) = −2K·0.09⁴ ≠ 0: the end hits the
-// obstacle with non-zero velocity, and u_t, u_x jump along the characteristic leaving (0, ½). It stays
-// held: β = 2P′ ≤ 0 up to t = 1 (λ = 0 from 0.8 on), G is the constant −P(0)/2 on [1, 2] (the reflection
-// of the constant F), and the reflected wave releases it only at t = 2.2 (β > 0 where P decreases again,
-// mirrored), after T = 2. So S1 has no release time within T (NaN below).
-//
-// S2, grazing impact: q = ((x − 0.1)(0.9 − x))⁴ (x − t*)² (t_r − x)³ on [0.1, 0.9], t* = 0.35. On
-// [0.1, t_r], q ≥ 0 and y decreases, with y′ = 2P′ = 0 at t* (double root). Choose t_r so that y(t*) = 0:
-//
-//     ∫_{t*}^{0.9} q = ½ ∫_{0.1}^{0.9} q        (an equation for t_r alone, K cancels),
-//
-// then y ≈ −c (t − t*)³ near t*: the end arrives with zero velocity and acceleration, u(0, t) ~ (t* − t)³.
-// It is held while β = 2P′ ≤ 0, i.e. until t_r, where q changes sign with a triple root: released at t_r
-// with u(0, t) ~ (t − t_r)⁴. As t_r → t*, q ≤ 0 on [t*, 0.9] and ≥ 0 before, so the difference of the
-// two sides is negative; at t_r = 0.9 it is positive (both checked at run time): GSL's Brent solver finds
-// the root in between.
-// S3 is S2 with (x − t*)⁴ (a grazing of higher order).
-//
-// Representation. q is built on 16 equal sub-pieces of its support, each as a product of its linear
-// factors in the sub-piece's own variable σ ∈ [−1, 1]: a degree-14 polynomial written about the middle
-// of a short piece has coefficients of the size of its values, where one expansion over the whole support
-// would lose several digits to cancellation. P on each sub-piece is K r (Q(1) − Q(σ)) + P(b), Q the
-// antiderivative of q in σ and r the half-width, accumulated from the right end (P(ω) = 0).
+/// @file smooth_benchmarks.cpp
+/// @brief Smooth benchmarks: mathematics.md §11.
+///
+/// Purely left-going data. Take u⁰ = P and v⁰ = P′ on [0, L], L = 1, with P constant near 0 and zero near
+/// 1. Then V⁰ = ∫₀ˣ P′ = P − P(0), and the waves of characteristics.cpp are
+///
+///     F = (u⁰ − V⁰)/2 = P(0)/2 (constant),   G = (u⁰ + V⁰)/2 = P − P(0)/2:
+///
+/// only a left-going wave, u_t − u_x = 0 at t = 0. Near x = 0 the data are at rest with u_x = 0 (a free
+/// end's condition) and near x = 1 they vanish identically, so every compatibility condition holds at both
+/// ends and the solution is as smooth as P until the first contact. Before t = L the contact point sees
+/// y(t) = P(0) + 2(G(t) − G(0)) = 2P(t) − P(0), so it reaches the obstacle where P(t) = P(0)/2.
+///
+/// The shape. P′ = −K q with q ≥ 0 a polynomial on a support [α, ω] ⊂ (0, 1) (zero outside),
+/// P(x) = −∫ₓ¹ P′ = K ∫ₓ^ω q, and K = P(0) / ∫_α^ω q so that P(0) = ¼.
+///
+/// S1, generic impact: q = ((x − 0.2)(0.8 − x))⁴ on [0.2, 0.8] (C³ data). q is symmetric about ½, so
+/// P(½) = ½ K ∫q = P(0)/2: y(½) = 0, t* = ½, and there y′ = 2P′(½) = −2K·0.09⁴ ≠ 0: the end hits the
+/// obstacle with non-zero velocity, and u_t, u_x jump along the characteristic leaving (0, ½). It stays
+/// held: β = 2P′ ≤ 0 up to t = 1 (λ = 0 from 0.8 on), G is the constant −P(0)/2 on [1, 2] (the reflection
+/// of the constant F), and the reflected wave releases it only at t = 2.2 (β > 0 where P decreases again,
+/// mirrored), after T = 2. So S1 has no release time within T (NaN below).
+///
+/// S2, grazing impact: q = ((x − 0.1)(0.9 − x))⁴ (x − t*)² (t_r − x)³ on [0.1, 0.9], t* = 0.35. On
+/// [0.1, t_r], q ≥ 0 and y decreases, with y′ = 2P′ = 0 at t* (double root). Choose t_r so that y(t*) = 0:
+///
+///     ∫_{t*}^{0.9} q = ½ ∫_{0.1}^{0.9} q        (an equation for t_r alone, K cancels),
+///
+/// then y ≈ −c (t − t*)³ near t*: the end arrives with zero velocity and acceleration, u(0, t) ~ (t* − t)³.
+/// It is held while β = 2P′ ≤ 0, i.e. until t_r, where q changes sign with a triple root: released at t_r
+/// with u(0, t) ~ (t − t_r)⁴. As t_r → t*, q ≤ 0 on [t*, 0.9] and ≥ 0 before, so the difference of the
+/// two sides is negative; at t_r = 0.9 it is positive (both checked at run time): GSL's Brent solver finds
+/// the root in between.
+/// S3 is S2 with (x − t*)⁴ (a grazing of higher order).
+///
+/// Representation. q is built on 16 equal sub-pieces of its support, each as a product of its linear
+/// factors in the sub-piece's own variable σ ∈ [−1, 1]: a degree-14 polynomial written about the middle
+/// of a short piece has coefficients of the size of its values, where one expansion over the whole support
+/// would lose several digits to cancellation. P on each sub-piece is K r (Q(1) − Q(σ)) + P(b), Q the
+/// antiderivative of q in σ and r the half-width, accumulated from the right end (P(ω) = 0).
 #include "smooth_benchmarks.hpp"
 
 #include <cmath>

@@ -1,5 +1,6 @@
-// The paper's named configurations and the one function that runs a configuration and returns its
-// measures (every program and check that needs the errors or the energy range of a run calls it).
+/// @file configurations.hpp
+/// @brief The paper's named configurations and the one function that runs a configuration and returns its
+/// measures (every program and check that needs the errors or the energy range of a run calls it).
 #pragma once
 
 #include <array>
@@ -86,6 +87,29 @@ struct Configuration {
   double step() const { return dt > 0 ? dt : courant * UniformMesh(bar_length(), elements).h(); }
 };
 
+/// The scaling law of the problem (configurations.cpp, mathematics.md §1): with x = Lξ, t = Lτ and
+/// u = σL û, the problem on (0, L) is the one on (0, 1) with the data divided by σ, and
+/// u_t = σ û_τ, λ = u_x(0, ·) = σ λ̂, E = σ²L Ê. The library runs the unit problem; the harness maps a
+/// configuration to it and its outputs back. σ is a power of two (configuration_scaling), so that the
+/// mapping is exact in floating point whenever L is one too.
+struct Scaling {
+  double length = 1.0;                                                            ///< L
+  double amplitude = 1.0;                                                         ///< σ, a power of two
+  double time(double unit) const { return length * unit; }                        ///< t = Lτ
+  double displacement(double unit) const { return (amplitude * length) * unit; }  ///< u = σL û
+  double velocity(double unit) const { return amplitude * unit; }                 ///< u_t = σ û_τ, also λ, u_x
+  double energy(double unit) const { return (amplitude * amplitude * length) * unit; }  ///< E = σ²L Ê
+  bool identity() const { return length == 1.0 && amplitude == 1.0; }                   ///< nothing to scale
+};
+/// The scaling of a configuration: L its bar's length, σ = 2^e for the amplitude a = m 2^e, m ∈ [½, 1),
+/// of its data (the paper's a; for other data the largest of |u⁰|/L and |v⁰| at the breakpoints;
+/// σ = 1 for data at rest). The paper's benchmark with L = 1, a = ½ has σ = 1: nothing to scale.
+Scaling configuration_scaling(const Configuration& configuration);
+/// The configuration on the unit bar that run_configuration runs: its data divided by `scaling`
+/// (the paper's benchmark with amplitude a/σ, other data as unit InitialData), Δt, T and the horizons
+/// divided by L.
+Configuration unit_configuration(const Configuration& configuration, const Scaling& scaling);
+
 /// The problem (f = 0) of a configuration's initial data. Throws std::invalid_argument for an unknown
 /// benchmark name.
 Problem configuration_problem(const Configuration& configuration);
@@ -97,6 +121,8 @@ InitialData configuration_data(const Configuration& configuration);
 /// The exact solution a configuration's errors are measured against: the closed form for "paper"
 /// (mathematics.md §2), otherwise the characteristic solution of its data (mathematics.md §10) up to
 /// `horizon`, tabulated on the lattice of h and Δt when one of them is a whole multiple of the other.
+/// At the configuration's own scale (the characteristic solution is computed for the unit
+/// configuration and scaled back).
 std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& configuration, double horizon);
 
 /// A configuration named as the paper names it: scheme "cn", "be" or "ps" (Paoli–Schatzman (¼, 0) with
@@ -123,7 +149,9 @@ struct Measures {
 };
 
 /// Runs the configuration to its final time, calling `observe` (if given) on every sample from level 0
-/// on, and returns its measures: the errors against `reference` if given (not owned: it must outlive
+/// on, and returns its measures. The run is the unit configuration's (unit_configuration); the samples
+/// that `observe` sees and the measures (energies, impact times, phase) are scaled back to the
+/// configuration's own scale by the scaling law (the relative errors do not change). The measures are: the errors against `reference` if given (not owned: it must outlive
 /// the call; a closed form under test, or a reference shared by several runs), else against
 /// configuration_reference up to reference_horizon. Throws std::runtime_error if the energy becomes
 /// non-finite (a value that cannot be computed is an error, never a nan in a table),

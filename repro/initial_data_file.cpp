@@ -1,8 +1,9 @@
-// Initial data read from a text file; see initial_data_file.hpp.
-//
-// The checks on the samples are the library's (characteristics.cpp: initial_data_from_samples, which
-// names the offending row); this file only reads the numbers, remembers the line of every row, and
-// turns a row into a line in the message, so that a user sees "FILE:LINE: what is wrong".
+/// @file initial_data_file.cpp
+/// @brief Initial data read from a text file; see initial_data_file.hpp.
+///
+/// The checks on the samples are the library's (characteristics.cpp: initial_data_from_samples, which
+/// names the offending row); this file only reads the numbers, remembers the line of every row, and
+/// turns a row into a line in the message, so that a user sees "FILE:LINE: what is wrong".
 #include "initial_data_file.hpp"
 
 #include <charconv>

@@ -1,5 +1,6 @@
-// Initial data read from a text file (bar1d --initial-data FILE): samples x, u0, v0, linearly
-// interpolated, checked row by row with the file's line numbers in every message.
+/// @file initial_data_file.hpp
+/// @brief Initial data read from a text file (bar1d --initial-data FILE): samples x, u0, v0, linearly
+/// interpolated, checked row by row with the file's line numbers in every message.
 #pragma once
 
 #include <string>
