@@ -92,14 +92,14 @@ std::vector<std::string> scheme_ids() {
 std::string scheme_help(const std::string& what) {
   std::string help = what + ":";
   for (const SchemeInfo& info : scheme_registry()) help += " " + info.id + " = " + info.summary + ";";
-  help.back() = '.';
+  help.pop_back();
   return help;
 }
 
 std::string benchmark_help(const std::string& what) {
   std::string help = what + ":";
   for (const Label& label : benchmark_labels()) help += " " + label.id + " = " + label.plain + ";";
-  help.back() = '.';
+  help.pop_back();
   return help;
 }
 

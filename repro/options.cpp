@@ -563,15 +563,24 @@ const Parser::Option& Parser::registered(std::string_view long_name) const {
 bool Parser::given(std::string_view long_name) const { return registered(long_name).cli->count() > 0; }
 
 // The parse loop is CLI11's; around it, what CLI11 would let through or word otherwise. Before:
-// "--" (CLI11's end of options) is an argument like any other, and "--name=" gives the empty value
+// "--" (CLI11's end of options) is an unknown option, and "--name=" gives the empty value
 // (CLI11 would take the next argument). During: the validators above read every value. After: each
 // of CLI11's errors (unknown options, exclusions, missing values) becomes the one-line UsageError
 // naming the option, an option given twice is refused (CLI11 would keep the last value), and the
 // ranges apply, once the conflicts are known to be absent.
 Outcome Parser::parse(const std::vector<std::string>& arguments, std::ostream& out) {
+  // One spelling of a short option, "-n 5": CLI11's "-n5", "-nv" and "-n=5" are unknown options.
+  for (std::size_t k = 0; k < arguments.size(); ++k) {
+    const std::string& argument = arguments[k];
+    const CLI::Option* option = app_->get_option_no_throw(argument.substr(0, argument.find('=')));
+    if (option != nullptr && option->get_expected_max() > 0 && argument.find('=') == std::string::npos)
+      ++k;  // its value follows
+    else if (argument.size() > 2 && argument[0] == '-' && std::isalpha(static_cast<unsigned char>(argument[1])))
+      throw UsageError("unknown option " + json_string(argument) + " (see --help)");
+  }
   std::vector<std::string> reversed;
   for (auto argument = arguments.rbegin(); argument != arguments.rend(); ++argument) {
-    if (*argument == "--") throw UsageError("unexpected argument \"--\" (this program takes options only; see --help)");
+    if (*argument == "--") throw UsageError("unknown option \"--\" (see --help)");
     const bool empty_value = argument->size() > 3 && argument->substr(0, 2) == "--" && argument->back() == '=';
     if (empty_value) reversed.emplace_back();
     reversed.push_back(empty_value ? argument->substr(0, argument->size() - 1) : *argument);
@@ -733,6 +742,9 @@ TEST_CASE("an unknown option is rejected with a pointer to the help") {
   CHECK_THROWS_WITH_AS(program.parse({"--foo=3"}), "unknown option \"--foo\" (see --help)", UsageError);
   CHECK_THROWS_WITH_AS(program.parse({"-x", "1"}), "unknown option \"-x\" (see --help)", UsageError);
   CHECK_THROWS_WITH_AS(program.parse({"--elem", "1"}), "unknown option \"--elem\" (see --help)", UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"-n5"}), "unknown option \"-n5\" (see --help)", UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"-T=1"}), "unknown option \"-T=1\" (see --help)", UsageError);
+  CHECK(program.parse({"-o", "-abc"}) == Outcome::run);  // a value, not an option
 }
 
 TEST_CASE("an option without its value is rejected with the expected placeholder") {
@@ -780,7 +792,7 @@ TEST_CASE("positional arguments and values given to flags are rejected") {
                        UsageError);
   CHECK_THROWS_WITH_AS(program.parse({"--verbose=yes"}), "--verbose: takes no value (write \"--verbose\" alone)",
                        UsageError);
-  CHECK_THROWS_WITH_AS(program.parse({"--"}), doctest::Contains("unexpected argument \"--\""), UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"--"}), "unknown option \"--\" (see --help)", UsageError);
 }
 
 TEST_CASE("checks reject given values out of range but not the defaults") {
