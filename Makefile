@@ -33,17 +33,33 @@ FIGURES := $(OUT)/figures
 REPORT := $(OUT)/report.pdf
 DOC := $(OUT)/doc
 
-# Hook: extra prerequisites of `make test`. check-claims (the program experiments/check_claims.cpp)
-# prints the claims table (see its section).
-TEST_EXTRA := check-claims
+# ---- The results ---------------------------------------------------------------------------------
+# One figure = one program experiments/X.cpp = one data file $(DATA)/X.dat (with the LaTeX values the
+# report quotes, $(DATA)/X.tex) = one gnuplot script figures/X.gp = one PDF $(FIGURES)/X.pdf.
+# The report paper/report.tex \input's the .tex fragments and includes the PDFs; latexmk builds it.
+# The maps of claims 3 and 4 read the sweep that check_claims writes; experiments/fig_energy_schemes.cpp
+# has three views, each its own run, data file and figure.
+SWEEP_MAPS := fig_ordering_map fig_order_map
+ENERGY_SCHEMES_VIEWS := history map measures
+FIGURE_NAMES := fig_contact_history fig_energy fig_convergence fig_time_error fig_ps_forms fig_profiles fig_phase \
+                fig_stability_map fig_smooth_convergence fig_smooth_benchmarks fig_family \
+                $(SWEEP_MAPS) $(ENERGY_SCHEMES_VIEWS:%=fig_energy_schemes_%)
+FIGURE_PDFS := $(FIGURE_NAMES:%=$(FIGURES)/%.pdf)
+FIGURE_DATA := $(FIGURE_NAMES:%=$(DATA)/%.dat)
+FIGURE_TEX := $(FIGURE_NAMES:%=$(DATA)/%.tex)
+CLAIMS_OUTPUTS := $(DATA)/claims.tex $(DATA)/claims.md $(DATA)/claims_summary.tex \
+                  $(DATA)/claims_summary_table.tex $(DATA)/sweep.dat
+BENCH_SHORT := $(OUT)/bench-short
 
-.PHONY: all build clean deps help test bench
+# Everything `make all` makes: the build, the benchmark run, the claims, every figure with its data and
+# values (named here, so that make does not take them for intermediate files and delete them), the
+# short benchmark, the report and the API documentation. Each has its section below.
+all: build $(DATA)/benchmark.dat $(DATA)/benchmark.txt $(CLAIMS_OUTPUTS) $(FIGURE_DATA) $(FIGURE_TEX) \
+     $(FIGURE_PDFS) $(BENCH_SHORT)/bench_short.tex $(REPORT) $(DOC)/html/index.html
+
+.PHONY: all build clean deps help test test-unit bench
 
 # ---- Rules --------------------------------------------------------------------------------------
-
-# Everything: the build and the generated results (the figures, the report and the API documentation
-# are listed in their section below).
-all: build $(DATA)/benchmark.dat $(DATA)/benchmark.txt
 
 # Check the Debian packages, installing the missing ones when allowed (quiet when all present).
 deps:
@@ -58,9 +74,14 @@ build: deps
 # The programs come from `build`; results depending on one are remade only if it was relinked.
 $(BUILD)/bin/%: build ;
 
-# Build, then run the doctests (one ctest entry per test case); zero tests found is a failure.
-test: build $(TEST_EXTRA)
-	ctest --test-dir $(BUILD) --output-on-failure -j2 --no-tests=error
+# Build, then run the whole suite (the doctests, one ctest entry per test case; the programs, the
+# claims, the golden output, the shell tests); zero tests found is a failure. `make test-unit`: the
+# doctests alone (ctest -L unit, seconds).
+test: build
+	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --no-tests=error
+
+test-unit: build
+	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --no-tests=error -L unit
 
 # The benchmark run: its data file and its stdout summary (written whole, via a temporary file; without
 # the wall time, so that the same command gives the same bytes).
@@ -99,10 +120,7 @@ $(BENCH):
 # $(BENCH_SHORT)/bench_short.tex. Timings are not deterministic: like $(BENCH), this directory is
 # outside the results that CI compares byte for byte (.ci/run). A full `make bench` takes precedence in
 # the report when its table exists.
-BENCH_SHORT := $(OUT)/bench-short
 BENCH_SHORT_OPTIONS := --min-log2 8 --max-log2 14 --repetitions 3 --batch-ms 5
-
-all: $(BENCH_SHORT)/bench_short.tex
 
 $(BENCH_SHORT)/bench_short.tex: $(BUILD)/bin/bench_step | $(BENCH_SHORT)
 	$< $(BENCH_SHORT_OPTIONS) --clock $(BENCH_CLOCK) --tex $@ > $(BENCH_SHORT)/bench_short.txt
@@ -113,50 +131,31 @@ $(BENCH_SHORT):
 # ---- The claims of the paper (mathematics.md §6) ----------------------------------------------------
 # `make check-claims` runs every check of repro/claims.cpp (the program experiments/check_claims.cpp)
 # and prints the table claim | measured | criterion | verdict; it fails iff a check FAILED (expected
-# failures, listed with their reasons in repro/claims.cpp, do not fail it). `make test` runs it
-# (TEST_EXTRA). The same table for the report, as LaTeX and Markdown: $(DATA)/claims.tex and
+# failures, listed with their reasons in repro/claims.cpp, do not fail it). `make test` runs it (the
+# ctest entry check_claims). The same table for the report, as LaTeX and Markdown: $(DATA)/claims.tex and
 # $(DATA)/claims.md; its summary (at most 12 lines: verdict and region of each claim) as \mrmdef values
 # and as a table, $(DATA)/claims_summary.tex and $(DATA)/claims_summary_table.tex; and the sweep behind
 # claims 3 and 4 (every measure of every run), $(DATA)/sweep.dat, which the two maps below read: all
-# part of `make all`, from one run of check_claims.
+# part of `make all` ($(CLAIMS_OUTPUTS)), from one run of check_claims.
 .PHONY: check-claims
 check-claims: build
 	$(BUILD)/bin/check_claims
-
-CLAIMS_OUTPUTS := $(DATA)/claims.tex $(DATA)/claims.md $(DATA)/claims_summary.tex \
-                  $(DATA)/claims_summary_table.tex $(DATA)/sweep.dat
-all: $(CLAIMS_OUTPUTS)
 
 $(CLAIMS_OUTPUTS) &: $(BUILD)/bin/check_claims | $(DATA)
 	$< --tex $(DATA)/claims.tex --markdown $(DATA)/claims.md --summary-tex $(DATA)/claims_summary.tex \
 	  --summary-table $(DATA)/claims_summary_table.tex --sweep $(DATA)/sweep.dat > /dev/null
 
 # The maps of claims 3 and 4 read the sweep (one computation for the claims and the maps).
-SWEEP_MAPS := fig_ordering_map fig_order_map
 $(SWEEP_MAPS:%=$(DATA)/%.dat): $(DATA)/%.dat: $(BUILD)/bin/% $(DATA)/sweep.dat | $(DATA)
 	$< --sweep $(DATA)/sweep.dat --output $@ --tex $(DATA)/$*.tex
 $(SWEEP_MAPS:%=$(DATA)/%.tex): $(DATA)/%.tex: $(DATA)/%.dat ;
 
 # ---- Figures, report and API documentation ------------------------------------------------------
-# The views of experiments/fig_energy_schemes.cpp (its rule is below).
-ENERGY_SCHEMES_VIEWS := history map measures
-# One figure = one program experiments/X.cpp = one data file $(DATA)/X.dat (with the LaTeX values the
-# report quotes, $(DATA)/X.tex) = one gnuplot script figures/X.gp = one PDF $(FIGURES)/X.pdf.
-# The report paper/report.tex \input's the .tex fragments and includes the PDFs; latexmk builds it.
-FIGURE_NAMES := fig_contact_history fig_energy fig_convergence fig_time_error fig_ps_forms fig_profiles fig_phase \
-                fig_stability_map fig_smooth_convergence fig_smooth_benchmarks fig_family \
-                $(SWEEP_MAPS) $(ENERGY_SCHEMES_VIEWS:%=fig_energy_schemes_%)
-FIGURE_PDFS := $(FIGURE_NAMES:%=$(FIGURES)/%.pdf)
-FIGURE_DATA := $(FIGURE_NAMES:%=$(DATA)/%.dat)
-FIGURE_TEX := $(FIGURE_NAMES:%=$(DATA)/%.tex)
 REPORT_SOURCES := $(wildcard paper/*.tex)
 # The claims table (experiments/check_claims.cpp, see the claims section above).
 CLAIMS_TEX := $(DATA)/claims.tex $(DATA)/claims_summary.tex $(DATA)/claims_summary_table.tex
 # Fixed dates in the PDFs (pdfTeX and cairo honour SOURCE_DATE_EPOCH).
 REPRODUCIBLE := SOURCE_DATE_EPOCH=0 FORCE_SOURCE_DATE=1
-
-# The data files are named here so that make does not take them for intermediate files and delete them.
-all: $(FIGURE_DATA) $(FIGURE_TEX) $(FIGURE_PDFS) $(REPORT) $(DOC)/html/index.html
 
 .PHONY: figures report doc
 figures: $(FIGURE_PDFS)
@@ -244,7 +243,8 @@ help:
 	@echo 'Targets:'
 	@echo '  all      (default) build, then regenerate the results in $(OUT)/'
 	@echo '  build    configure and build the library, tests and programs into $(BUILD)/bin/'
-	@echo '  test     build, then run the test suite with ctest and the claims table'
+	@echo '  test     build, then run the whole test suite with ctest (the claims included)'
+	@echo '  test-unit  build, then run the doctests alone (ctest -L unit)'
 	@echo '  check-claims  build, then check every claim of the paper and print the table'
 	@echo '  bench    build, then time one step per node for N = 2^6..2^20 ($(OUT)/bench/bench_step.*)'
 	@echo '           (all runs a short one, N = 2^8..2^14, into $(OUT)/bench-short/ for the report)'

@@ -18,6 +18,8 @@ packages=(
   g++ make cmake                   # the build
   libeigen3-dev libgsl-dev         # the library
   doctest-dev                      # the embedded unit tests
+  libcli11-dev                     # the command-line options (CLI11)
+  numdiff                          # the golden outputs compared at a stated tolerance (tests/expected)
   gnuplot-nox                      # the figures (any gnuplot with the pdfcairo/cairolatex terminals)
   fonts-lmodern                    # the figures' typeface: Latin Modern, the report's Computer Modern
   doxygen libjs-mathjax            # the API documentation (MathJax renders its formulas offline)
