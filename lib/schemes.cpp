@@ -93,18 +93,10 @@ bool takes(Scheme scheme, SchemeParameter parameter) {
 
 std::string to_string(Scheme s) { return scheme_info(s).id; }
 
+// The names in the order of the enum.
 std::string to_string(SchemeParameter p) {
-  switch (p) {
-    case SchemeParameter::beta:
-      return "beta";
-    case SchemeParameter::restitution:
-      return "restitution";
-    case SchemeParameter::contact_row:
-      return "contact_row";
-    case SchemeParameter::switch_theta:
-      return "switch_theta";
-  }
-  return "?";
+  static const char* const names[] = {"beta", "restitution", "contact_row", "switch_theta"};
+  return names[static_cast<int>(p)];
 }
 
 Scheme scheme_by_name(const std::string& name) {
@@ -130,7 +122,10 @@ TEST_CASE("the registry names every scheme once, and its ids read back") {
   CHECK(!takes(Scheme::crank_nicolson, SchemeParameter::beta));
   CHECK(takes(Scheme::switching, SchemeParameter::switch_theta));
   CHECK(!takes(Scheme::backward_euler, SchemeParameter::restitution));
+  CHECK(to_string(SchemeParameter::beta) == "beta");
+  CHECK(to_string(SchemeParameter::restitution) == "restitution");
   CHECK(to_string(SchemeParameter::contact_row) == "contact_row");
+  CHECK(to_string(SchemeParameter::switch_theta) == "switch_theta");
   CHECK_THROWS_WITH_AS(scheme_by_name("rk4"), "unknown scheme \"rk4\" (allowed: cn, be, ps, ec, cn-switch)",
                        std::invalid_argument);
 }
@@ -1154,9 +1149,6 @@ TEST_CASE("CN-switch with theta = 1/2 is Crank–Nicolson, and theta outside 1/2
   CHECK_THROWS_WITH_AS(
       BarSimulation(benchmark_problem(), mesh, consistent_mass(), with(Scheme::energy_conserving), 0.1),
       doctest::Contains("massless contact node"), std::invalid_argument);
-  CHECK(scheme_by_name("ec") == Scheme::energy_conserving);
-  CHECK(scheme_by_name("cn-switch") == Scheme::switching);
-  CHECK(to_string(Scheme::switching) == "cn-switch");
 }
 
 Sample BarSimulation::sample() const {
