@@ -115,8 +115,8 @@ int main(int argc, char** argv) {
       std::vector<double> sawtooth(static_cast<std::size_t>(periods), 0.0);
       double u_before = std::nan(""), u_prev = std::nan("");
       double energy_first = std::nan(""), energy_last = 0, energy_max = -1e300, energy_min = 1e300;
-      const mrm::repro::Configuration configuration =
-          mrm::repro::paper_configuration("ps", v.form, v.mass, elements, courant, final_time);
+      const mrm::repro::Configuration configuration = mrm::repro::paper_configuration(
+          mrm::to_string(mrm::Scheme::paoli_schatzman), v.form, v.mass, elements, courant, final_time);
       const mrm::ErrorNorms e =
           mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
             const double u0 = (*s.displacement)[0];

@@ -10,6 +10,8 @@
 
 #include <doctest/doctest.h>
 
+#include "options.hpp"
+
 namespace mrm::repro {
 
 // The spec strings of the command line: mod1 | mod2 | mod3 | consistent | node1:X | spread:K | beta:B.
@@ -37,15 +39,13 @@ namespace {
   throw std::invalid_argument("\"" + spec + "\": " + why + " (allowed: " + mass_redistribution_forms() + ")");
 }
 
-// A finite decimal, the whole text: digits, one optional sign, point and exponent (no spaces, no
+// A finite decimal, the whole text, by the options' strict grammar (cli::parse_real: no spaces, no
 // "inf", "nan" or hexadecimal). Returns false if the text is not of that form.
-bool parse_decimal(const std::string& text, double& value) {
-  if (text.empty() || text.find_first_not_of("0123456789.eE+-") != std::string::npos) return false;
-  const char* first = text.data();
-  const char* last = first + text.size();
-  if (*first == '+') ++first;  // from_chars does not take a leading '+'
-  const auto [end, error] = std::from_chars(first, last, value);
-  return error == std::errc() && end == last && std::isfinite(value);
+bool parse_decimal(const std::string& text, double& value) try {
+  value = cli::parse_real("", text);
+  return true;
+} catch (const cli::UsageError&) {
+  return false;
 }
 
 // A decimal or a fraction p/q of two decimals with q ≠ 0 and a finite quotient.

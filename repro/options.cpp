@@ -126,23 +126,15 @@ TEST_CASE("decimal numbers in the usual forms are read exactly") {
   CHECK(parse_real("--dt", "4.9e-324") == std::numeric_limits<double>::denorm_min());
 }
 
-TEST_CASE("a malformed real number is rejected with the option's name") {
+TEST_CASE("a malformed real number, an infinity or NaN is rejected with the option's name") {
   for (const std::string text :
-       {"", "1e", "12abc", " 1", "1 ", "0x10", "0x1p3", "+-1", "--1", "++1", "+", "-", "1,5", "1.2.3", "e3", "one"}) {
+       {"",      "1e", "12abc", " 1",  "1 ",  "0x10", "0x1p3",  "+-1", "--1",  "++1",  "+",        "-",  "1,5",
+        "1.2.3", "e3", "one",   "nan", "NaN", "-nan", "nan(1)", "inf", "-inf", "+inf", "infinity", "INF"}) {
     CAPTURE(text);
     CHECK_THROWS_WITH_AS(
         parse_real("--dt", text),
         ("--dt: " + json_string(text) + " is not a finite decimal number (expected e.g. 0.25, -3 or 1e-3)").c_str(),
         UsageError);
-  }
-}
-
-TEST_CASE("infinities and NaN are rejected as real values") {
-  for (const std::string text : {"nan", "NaN", "-nan", "nan(1)", "inf", "-inf", "+inf", "infinity", "INF"}) {
-    CAPTURE(text);
-    CHECK_THROWS_WITH_AS(parse_real("--final-time", text), doctest::Contains("--final-time: "), UsageError);
-    CHECK_THROWS_WITH_AS(parse_real("--final-time", text), doctest::Contains("is not a finite decimal number"),
-                         UsageError);
   }
 }
 
@@ -220,12 +212,12 @@ std::string parse_choice(std::string_view option, std::string_view text, const s
 }
 
 TEST_CASE("a choice accepts exactly the listed words and names them when rejecting") {
-  CHECK(parse_choice("--scheme", "be", {"cn", "be", "ps"}) == "be");
-  CHECK_THROWS_WITH_AS(parse_choice("--scheme", "xx", {"cn", "be", "ps"}),
-                       "--scheme: unknown value \"xx\" (allowed: cn, be, ps)", UsageError);
-  CHECK_THROWS_WITH_AS(parse_choice("--scheme", "CN", {"cn", "be", "ps"}),
-                       "--scheme: unknown value \"CN\" (allowed: cn, be, ps)", UsageError);
-  CHECK_THROWS_AS(parse_choice("--scheme", "", {"cn", "be", "ps"}), UsageError);
+  CHECK(parse_choice("--scheme", "rk4", {"rk2", "rk4", "euler"}) == "rk4");
+  CHECK_THROWS_WITH_AS(parse_choice("--scheme", "xx", {"rk2", "rk4", "euler"}),
+                       "--scheme: unknown value \"xx\" (allowed: rk2, rk4, euler)", UsageError);
+  CHECK_THROWS_WITH_AS(parse_choice("--scheme", "RK2", {"rk2", "rk4", "euler"}),
+                       "--scheme: unknown value \"RK2\" (allowed: rk2, rk4, euler)", UsageError);
+  CHECK_THROWS_AS(parse_choice("--scheme", "", {"rk2", "rk4", "euler"}), UsageError);
 }
 
 // Real numbers are written by std::to_chars without a precision, which gives the shortest decimal
@@ -327,17 +319,6 @@ Check in_closed_range(double lowest, double highest) {
   return [lowest, highest](std::string_view option, double value) {
     require_in_closed_range(option, value, lowest, highest);
   };
-}
-
-TEST_CASE("packaged checks apply the corresponding range requirement") {
-  CHECK_NOTHROW(positive()("--dt", 0.5));
-  CHECK_THROWS_WITH_AS(positive()("--dt", 0.0), "--dt: 0 is not allowed (expected a value > 0)", UsageError);
-  CHECK_NOTHROW(at_least(2)("--elements", 2));
-  CHECK_THROWS_WITH_AS(at_least(2)("--elements", 1), "--elements: 1 is not allowed (expected a value >= 2)",
-                       UsageError);
-  CHECK_NOTHROW(in_closed_range(0, 1)("--restitution", 1));
-  CHECK_THROWS_WITH_AS(in_closed_range(0, 1)("--restitution", 1.5),
-                       "--restitution: 1.5 is outside the allowed range [0, 1]", UsageError);
 }
 
 namespace {
@@ -657,12 +638,12 @@ struct ExampleProgram {
   double dt = 0.0;
   double courant = 0.5;
   double restitution = 0.0;
-  std::string scheme = "cn";
+  std::string scheme = "rk2";
   std::string output = "contact.dat";
   bool verbose = false;
   Parser parser{"contact",
                 "Computes the motion of an elastic bar hitting a rigid obstacle.",
-                {"contact -n 400 --scheme be", "contact --dt 1e-4 -o run.dat"}};
+                {"contact -n 400 --scheme rk4", "contact --dt 1e-4 -o run.dat"}};
 
   ExampleProgram() {
     parser.add_integer("--elements", "-n", "N", "number of elements of the mesh", &elements, at_least(2));
@@ -670,7 +651,7 @@ struct ExampleProgram {
     parser.add_real("--dt", "", "DT", "time step", &dt, positive());
     parser.add_real("--courant", "", "C", "time step as a fraction of the CFL limit", &courant, positive());
     parser.add_real("--restitution", "-e", "E", "coefficient of restitution", &restitution, in_closed_range(0, 1));
-    parser.add_choice("--scheme", "", "S", "time integration scheme", {"cn", "be", "ps"}, &scheme);
+    parser.add_choice("--scheme", "", "S", "time integration scheme", {"rk2", "rk4", "euler"}, &scheme);
     parser.add_output("--output", "-o", "data file to write", &output);
     parser.add_flag("--verbose", "-v", "print the progress", &verbose);
     parser.add_conflict("--dt", "--courant");
@@ -691,7 +672,7 @@ TEST_CASE("without arguments every option keeps its default and the program runs
   CHECK(program.parse({}) == Outcome::run);
   CHECK(program.elements == 100);
   CHECK(program.final_time == 12.0);
-  CHECK(program.scheme == "cn");
+  CHECK(program.scheme == "rk2");
   CHECK(program.output == "contact.dat");
   CHECK_FALSE(program.verbose);
   CHECK_FALSE(program.parser.given("--elements"));
@@ -701,15 +682,15 @@ TEST_CASE("without arguments every option keeps its default and the program runs
 TEST_CASE("values are read after long names, short names and '='") {
   ExampleProgram program;
   SUBCASE("separate arguments") {
-    CHECK(program.parse({"--elements", "400", "-T", "3.5", "--scheme", "be", "-o", "a.dat", "-v"}) == Outcome::run);
+    CHECK(program.parse({"--elements", "400", "-T", "3.5", "--scheme", "rk4", "-o", "a.dat", "-v"}) == Outcome::run);
   }
   SUBCASE("'=' after long names") {
-    CHECK(program.parse({"--elements=400", "--final-time=3.5", "--scheme=be", "--output=a.dat", "--verbose"}) ==
+    CHECK(program.parse({"--elements=400", "--final-time=3.5", "--scheme=rk4", "--output=a.dat", "--verbose"}) ==
           Outcome::run);
   }
   CHECK(program.elements == 400);
   CHECK(program.final_time == 3.5);
-  CHECK(program.scheme == "be");
+  CHECK(program.scheme == "rk4");
   CHECK(program.output == "a.dat");
   CHECK(program.verbose);
   CHECK(program.parser.given("--elements"));
@@ -765,7 +746,7 @@ TEST_CASE("a malformed number on the command line is rejected with the option's 
                        "--elements: \"12abc\" is not an integer (expected base-10 digits, e.g. 42)", UsageError);
   CHECK_THROWS_WITH_AS(program.parse({"--final-time=nan"}),
                        doctest::Contains("--final-time: \"nan\" is not a finite decimal number"), UsageError);
-  CHECK_THROWS_WITH_AS(program.parse({"--scheme", "xx"}), "--scheme: unknown value \"xx\" (allowed: cn, be, ps)",
+  CHECK_THROWS_WITH_AS(program.parse({"--scheme", "xx"}), "--scheme: unknown value \"xx\" (allowed: rk2, rk4, euler)",
                        UsageError);
 }
 
@@ -824,8 +805,8 @@ TEST_CASE("the help lists every option with its default and stops the program") 
           "      --dt DT          time step (default: 0)\n"
           "      --courant C      time step as a fraction of the CFL limit (default: 0.5)\n"
           "  -e, --restitution E  coefficient of restitution (default: 0)\n"
-          "      --scheme S       time integration scheme (one of: cn, be, ps; default: "
-          "cn)\n"
+          "      --scheme S       time integration scheme (one of: rk2, rk4, euler; default: "
+          "rk2)\n"
           "  -o, --output FILE    data file to write (default: contact.dat)\n"
           "  -v, --verbose        print the progress\n"
           "  -h, --help           print this help and exit\n"
@@ -840,7 +821,7 @@ TEST_CASE("the help lists every option with its default and stops the program") 
           "refused.\n"
           "\n"
           "Sample runs:\n"
-          "  contact -n 400 --scheme be\n"
+          "  contact -n 400 --scheme rk4\n"
           "  contact --dt 1e-4 -o run.dat\n");
   }
 }
@@ -875,7 +856,7 @@ TEST_CASE("CLI11's own readings of numbers are not the project's") {
 
 TEST_CASE("the echo writes every effective value but the outputs as a deterministic header line") {
   ExampleProgram program;
-  program.parse({"-n", "400", "--dt", "0.1", "-o", "run \"1\".dat", "-v", "--scheme=ps"});
+  program.parse({"-n", "400", "--dt", "0.1", "-o", "run \"1\".dat", "-v", "--scheme=euler"});
   std::ostringstream echoed;
   program.parser.echo(echoed);
   CHECK(echoed.str() ==
@@ -884,7 +865,7 @@ TEST_CASE("the echo writes every effective value but the outputs as a determinis
         "# dt = 0.1\n"
         "# courant = 0.5\n"
         "# restitution = 0\n"
-        "# scheme = \"ps\"\n"
+        "# scheme = \"euler\"\n"
         "# verbose = true\n");
   std::ostringstream with_prefix;
   program.parser.echo(with_prefix, "% ");
@@ -907,7 +888,7 @@ TEST_CASE("registration mistakes are reported as logic errors") {
   CHECK_THROWS_AS(parser.add_flag("--quiet", "-h", "", &flag), std::logic_error);
   CHECK_THROWS_AS(parser.add_real("--x", "", "", "", &real), std::logic_error);
   CHECK_THROWS_AS(parser.add_real("--x", "", "X", "", nullptr), std::logic_error);
-  CHECK_THROWS_AS(parser.add_choice("--scheme", "", "S", "", {"cn", "be"}, &text), std::logic_error);
+  CHECK_THROWS_AS(parser.add_choice("--scheme", "", "S", "", {"rk2", "rk4"}, &text), std::logic_error);
   CHECK_THROWS_AS(parser.add_conflict("--elements", "--missing"), std::logic_error);
   CHECK_THROWS_AS(parser.given("--missing"), std::logic_error);
   CHECK_NOTHROW(parser.add_real("--x", "", "X", "", &real));

@@ -20,16 +20,16 @@
 //           namespace cli = mrm::cli;
 //           long elements = 100;
 //           double restitution = 0.0;
-//           std::string scheme = "cn", output = "contact.dat";
+//           std::string scheme = "rk2", output = "contact.dat";
 //           cli::Parser parser("contact_driver",
 //                              "Computes the motion of an elastic bar hitting a rigid obstacle.",
-//                              {"contact_driver -n 400 --scheme be", "contact_driver --help"});
+//                              {"contact_driver -n 400 --scheme rk4", "contact_driver --help"});
 //           parser.add_integer("--elements", "-n", "N", "number of elements of the mesh",
 //                              &elements, cli::at_least(2));
 //           parser.add_real("--restitution", "-e", "E", "coefficient of restitution",
 //                           &restitution, cli::in_closed_range(0, 1));
 //           parser.add_choice("--scheme", "", "S", "time integration scheme",
-//                             {"cn", "be", "ps"}, &scheme);
+//                             {"rk2", "rk4", "euler"}, &scheme);
 //           parser.add_output("--output", "-o", "data file to write", &output);
 //           if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 //
@@ -77,7 +77,7 @@ class UsageError : public std::runtime_error {
 // parse_integer accepts exactly a base-10 integer that fits in a long ("42", "-7", "+3"), and
 // rejects "1.5", "1e3", "", "12abc" and overflow.
 // parse_choice returns `text` if it is one of `allowed`:
-//   --scheme: unknown value "xx" (allowed: cn, be, ps)
+//   --scheme: unknown value "xx" (allowed: rk2, rk4, euler)
 double parse_real(std::string_view option, std::string_view text);
 long parse_integer(std::string_view option, std::string_view text);
 std::string parse_choice(std::string_view option, std::string_view text, const std::vector<std::string>& allowed);
