@@ -390,8 +390,7 @@ class Help : public CLI::Formatter {
     help += "\nOptions:\n";
     for (const auto& [names, text] : lines) help += names + std::string(width + 2 - names.size(), ' ') + text + '\n';
     // What an output option does with the path it is given (output_file.hpp), said once.
-    if (writes_files)
-      help += "\nOutput files:\n" + wrapped(output_files_help);
+    if (writes_files) help += "\nOutput files:\n" + wrapped(output_files_help);
     if (!sample_runs_.empty()) help += "\nSample runs:\n";
     for (const std::string& run : sample_runs_) help += "  " + run + '\n';
     return help;
