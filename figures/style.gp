@@ -28,9 +28,8 @@ scheme_name(id) = label(id) eq "" ? id : label(id)
 # name, with the contact row for a scheme that takes one; repro/labels.cpp, write_scheme_titles).
 scheme_title(id) = system(sprintf("sed -n 's|^# title %s = ||p' '%s' | head -n 1", id, data))
 # One colour per scheme where the schemes are the curves (the energy-conserving schemes' figures), none
-# of them a mass's colour.
-scheme_colour(id) = id eq "cn" ? "#ff7f0e" : id eq "ec" ? "black" : id eq "cn-switch" ? "#17becf" : \
-  id eq "be" ? "#8c564b" : "#7f7f7f"
+# of them a mass's colour: the data file's `# colour <id> = <colour>` line (grey without one).
+scheme_colour(id) = header("colour ".id) eq "" ? "#7f7f7f" : header("colour ".id)
 # The eight measures of mathematics.md §5, from their column names in the data files.
 measure_name(id) = \
   id eq "err_u0_L2" ? italic("u")."(0,·) in ".italic("L")."^2(0,".italic("T").")" : \
