@@ -106,7 +106,7 @@ int main(int argc, char** argv) {
     // E_h(0) = 1/8 but is not a state of the reduced problem; Crank–Nicolson with Mod 3, errors of both.
     for (const std::string initial : {"consistent", "interpolant"}) {
       mrm::repro::Configuration configuration =
-          mrm::repro::paper_configuration("cn", ps_form, "mod3", elements, courant, final_time);
+          mrm::repro::paper_configuration(mrm::Scheme::crank_nicolson, ps_form, "mod3", elements, courant, final_time);
       configuration.initial = mrm::initial_contact_node_by_name(initial);
       double first = 0, after_one_step = 0;
       const mrm::ErrorNorms e = mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {

@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
           for (std::size_t k = 0; k < g.horizons.size(); ++k) {
             int beats = 0;
             if (g.baseline) {
-              const auto& mine = sweep.find("cn", "mod3", c, n).errors[k];
+              const auto& mine = sweep.find(mrm::to_string(mrm::Scheme::crank_nicolson), "mod3", c, n).errors[k];
               const auto& base = sweep.find("ps-consistent", "consistent", c, n).errors[k];
               for (std::size_t q = 0; q < 8; ++q) beats += mine[q] < base[q];
             }
