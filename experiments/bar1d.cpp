@@ -63,8 +63,8 @@ int main(int argc, char** argv) {
     long elements = 100;
     double courant = 0.5, dt = 0.0, final_time = 6.0, length = 1.0, amplitude = 0.5, beta = 0.25, restitution = 0.0,
            switch_theta = 1.0;
-    std::string scheme = "cn", mass = "mod3", ps_form = "algebraic", initial = "consistent",
-                contact_velocity = "algebraic", output;
+    std::string scheme = mrm::to_string(mrm::Scheme::crank_nicolson), mass = "mod3", ps_form = "algebraic",
+                initial = "consistent", contact_velocity = "algebraic", output;
     std::string benchmark = "paper", initial_data;
     bool no_timing = false;
     // The ranges below keep every quantity of the run (h, Δt², the matrices' entries, the energy a²L/2)

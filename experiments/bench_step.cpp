@@ -168,9 +168,18 @@ Eigen::VectorXd random_vector(Index n, unsigned seed) {
 }
 
 // The reference-step variants come last, so that the columns of the others keep their places in the
-// data file (figures/bench_step.gp reads them by index).
-const char* const variant_names[] = {"cn",    "be",    "ps",     "cn+errors", "bare",
-                                     "eigen", "bare2", "cn_ref", "be_ref",    "ps_ref"};
+// data file (figures/bench_step.gp reads them by index). A scheme's variants are named by its id in the
+// registry (mrm::to_string), its reference step's with "_ref" appended.
+const std::string variant_names[] = {mrm::to_string(mrm::Scheme::crank_nicolson),
+                                     mrm::to_string(mrm::Scheme::backward_euler),
+                                     mrm::to_string(mrm::Scheme::paoli_schatzman),
+                                     "cn+errors",
+                                     "bare",
+                                     "eigen",
+                                     "bare2",
+                                     mrm::to_string(mrm::Scheme::crank_nicolson) + "_ref",
+                                     mrm::to_string(mrm::Scheme::backward_euler) + "_ref",
+                                     mrm::to_string(mrm::Scheme::paoli_schatzman) + "_ref"};
 constexpr int variants = 10;
 constexpr int v_cn = 0, v_be = 1, v_ps = 2, v_errors = 3, v_bare = 4, v_eigen = 5, v_bare2 = 6, v_cn_ref = 7,
               v_be_ref = 8, v_ps_ref = 9;

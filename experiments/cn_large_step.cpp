@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
     std::string ratios, values;
     for (const char* ratio : {"0.5", "2", "5", "10", "40"}) {
       const mrm::repro::Measures m = mrm::repro::run_configuration(mrm::repro::paper_configuration(
-          "cn", "algebraic", "mod3", elements, cli::parse_real("ratio", ratio), final_time));
+          mrm::Scheme::crank_nicolson, "algebraic", "mod3", elements, cli::parse_real("ratio", ratio), final_time));
       const std::string value = mrm::tex_magnitude(m.energy_max / m.energy_initial);
       mrm::tex_define(out.stream(), std::string("large:") + ratio, value);
       ratios += (ratios.empty() ? "" : ", ") + std::string(ratio);

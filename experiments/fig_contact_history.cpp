@@ -30,6 +30,7 @@
 #include "errors.hpp"
 #include "exact_solution.hpp"
 #include "configurations.hpp"
+#include "labels.hpp"
 #include "figure_program.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
@@ -73,6 +74,7 @@ int main(int argc, char** argv) {
     std::ostream& out =
         program.header("u(0,t) and lambda(t), exact and computed (mathematics.md sec. 2; paper Figure 1)");
     program.write_step();
+    mrm::repro::write_scheme_titles(out, ps_form);
     out << "# blocks: 0 exact (t u0 lambda); 1 + 3 s + m: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3);"
            "\n# 10: the baseline, Paoli-Schatzman with the consistent mass (literal contact row)\n";
 

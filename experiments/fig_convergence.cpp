@@ -34,6 +34,7 @@
 #include "errors.hpp"
 #include "exact_solution.hpp"
 #include "configurations.hpp"
+#include "labels.hpp"
 #include "figure_program.hpp"
 #include "parallel.hpp"
 #include "report_values.hpp"
@@ -135,6 +136,7 @@ int main(int argc, char** argv) {
 
     // 5. The data blocks, in the fixed order of `runs` (scheme, mass, ratio, mesh).
     std::ostream& out = program.header("relative errors against h (mathematics.md sec. 5)");
+    mrm::repro::write_scheme_titles(out, ps_form);
     out << "# blocks: 2 (3 s + m) + c: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3), c in (dt = h, dt = "
            "h/2)\n";
     const std::size_t levels = static_cast<std::size_t>(refinements);

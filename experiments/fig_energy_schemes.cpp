@@ -49,6 +49,7 @@
 #include "options.hpp"
 #include "parallel.hpp"
 #include "report_values.hpp"
+#include "schemes.hpp"
 #include "table.hpp"
 
 namespace cli = mrm::cli;
@@ -154,6 +155,17 @@ int main(int argc, char** argv) {
     // 2. Outputs.
     program.open();
     std::ostream& out = program.header("the energy of cn, ec, cn-switch and be (mathematics.md sec. 12), view " + view);
+    // One colour per scheme, the same in the three views, none of them a mass's (figures/style.gp:
+    // scheme_colour reads these lines).
+    const std::array<std::pair<mrm::Scheme, const char*>, 4> colours{{{mrm::Scheme::crank_nicolson, "#ff7f0e"},
+                                                                      {mrm::Scheme::energy_conserving, "black"},
+                                                                      {mrm::Scheme::switching, "#17becf"},
+                                                                      {mrm::Scheme::backward_euler, "#8c564b"}}};
+    for (const auto& [scheme, colour] : colours)
+      out << "# colour " << mrm::to_string(scheme) << " = " << colour << '\n';
+    // EC, which conserves the energy, is drawn dashed and thicker in the history, so that the curves it covers
+    // stay visible.
+    out << "# conserving = " << mrm::to_string(mrm::Scheme::energy_conserving) << '\n';
     std::ostream& defs = program.values();
     const std::string theta_text = mrm::tex_number(switch_theta, 3);
     mrm::tex_define(defs, "ecs:theta", theta_text);

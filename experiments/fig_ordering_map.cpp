@@ -24,11 +24,13 @@
 
 #include "configurations.hpp"
 #include "figure_program.hpp"
+#include "labels.hpp"
 #include "errors.hpp"
 #include "options.hpp"
 #include "output_file.hpp"
 #include "regions.hpp"
 #include "report_values.hpp"
+#include "schemes.hpp"
 
 namespace cli = mrm::cli;
 namespace repro = mrm::repro;
@@ -54,6 +56,14 @@ int main(int argc, char** argv) {
 
     std::ostream& out =
         program.header("the ranking Mod 3 < Mod 2 < Mod 1 per cell (claim 3, mathematics.md sec. 6, 8)");
+    // The title of a scheme's panels: its name, or for a scheme judged in its velocity only (Paoli–Schatzman,
+    // repro::judged_measures) its name without its parameters, and "velocity".
+    for (const std::string& s : g.schemes) {
+      const std::string& name = repro::scheme_label(s).plain;
+      const bool velocity_only = repro::judged_measures(s) == std::vector<std::size_t>{4, 7};
+      out << "# title " << s << " = " << (velocity_only ? name.substr(0, name.find(" (")) + ", velocity" : name)
+          << '\n';
+    }
     out << "# blocks 4 s + j: scheme s in (cn, be, ps), ratio j in (";
     for (double c : g.courants) out << ' ' << cli::format_real(c);
     out << " ); columns: elements horizon ranked judged cn_mod3_beats_baseline\n"
@@ -78,7 +88,7 @@ int main(int argc, char** argv) {
           for (std::size_t k = 0; k < g.horizons.size(); ++k) {
             int beats = 0;
             if (g.baseline) {
-              const auto& mine = sweep.find("cn", "mod3", c, n).errors[k];
+              const auto& mine = sweep.find(mrm::to_string(mrm::Scheme::crank_nicolson), "mod3", c, n).errors[k];
               const auto& base = sweep.find("ps-consistent", "consistent", c, n).errors[k];
               for (std::size_t q = 0; q < 8; ++q) beats += mine[q] < base[q];
             }

@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
     // 1. Options.
     long stride = 8;
     double periods = 30;
-    std::string scheme = "cn";
+    std::string scheme = mrm::to_string(mrm::Scheme::crank_nicolson);
     mrm::repro::FigureProgram program(
         "fig_phase",
         "Writes the errors against time of one scheme with Mod 1, Mod 2 and Mod 3 over many periods, "

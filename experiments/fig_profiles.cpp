@@ -40,7 +40,8 @@ int main(int argc, char** argv) {
     // 1. Options.
     long exact_points = 400;
     double switch_theta = 1.0;
-    std::string scheme = "cn", ps_form = "literal", instants_text = "0.5,1.5,2.5,6.5,7.5,8.5";
+    std::string scheme = mrm::to_string(mrm::Scheme::crank_nicolson), ps_form = "literal",
+                instants_text = "0.5,1.5,2.5,6.5,7.5,8.5";
     mrm::repro::FigureProgram program(
         "fig_profiles",
         "Writes the displacement along the bar at a few instants (free flight, contact, release): "

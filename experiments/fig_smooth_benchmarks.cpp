@@ -119,8 +119,8 @@ int main(int argc, char** argv) {
       std::shared_ptr<const mrm::ReferenceSolution> reference;
       std::vector<double> first_impact_error(masses.size());
       for (std::size_t m = 0; m < masses.size(); ++m) {
-        mrm::repro::Configuration c =
-            mrm::repro::paper_configuration("cn", "algebraic", masses[m], elements, courant, benchmark.final_time);
+        mrm::repro::Configuration c = mrm::repro::paper_configuration(
+            mrm::Scheme::crank_nicolson, "algebraic", masses[m], elements, courant, benchmark.final_time);
         c.benchmark = names[b];
         if (!reference) {
           const double dt = c.step();

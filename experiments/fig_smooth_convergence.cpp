@@ -75,7 +75,7 @@ namespace {
 const std::array<const char*, 2> benchmarks{"smooth-impact", "grazing"};
 const std::array<const char*, 2> benchmark_keys{"s1", "s2"};
 const std::array<const char*, 2> benchmark_labels{"S1", "S2"};
-const std::array<const char*, 2> schemes{"cn", "be"};
+const std::array<mrm::Scheme, 2> schemes{mrm::Scheme::crank_nicolson, mrm::Scheme::backward_euler};
 const std::array<double, 2> courants{1.0, 0.5};
 const std::array<const char*, 2> courant_keys{"dth", "dth2"};
 const std::array<const char*, 2> courant_labels{"$\\Delta t = h$", "$\\Delta t = h/2$"};
@@ -184,8 +184,8 @@ int main(int argc, char** argv) {
           r.errors = mrm::ErrorAccumulator::values(mrm::repro::run_configuration(configuration).errors);
           std::lock_guard<std::mutex> lock(log_mutex);
           std::cerr << "fig_smooth_convergence: " << k + 1 << '/' << order.size() << ' ' << benchmarks[r.benchmark]
-                    << ' ' << schemes[r.scheme] << ' ' << masses[r.mass] << " dt/h=" << courants[r.courant]
-                    << " N=" << r.elements << '\n';
+                    << ' ' << mrm::to_string(schemes[r.scheme]) << ' ' << masses[r.mass]
+                    << " dt/h=" << courants[r.courant] << " N=" << r.elements << '\n';
         } catch (...) {
           std::lock_guard<std::mutex> lock(failure_mutex);
           if (!failure) failure = std::current_exception();
@@ -204,7 +204,9 @@ int main(int argc, char** argv) {
     // 5. The data blocks, in the fixed order of `runs` (benchmark, scheme, mass, ratio, mesh).
     std::ostream& out = program.header("relative errors against h on the smooth benchmarks (mathematics.md sec. 11)");
     out << "# final_time = " << cli::format_real(final_time) << '\n'
-        << "# blocks: 2 (3 (2 b + s) + m) + c: benchmark b in (smooth-impact, grazing), scheme s in (cn, be), "
+        << "# blocks: 2 (3 (2 b + s) + m) + c: benchmark b in (smooth-impact, grazing), scheme s in ("
+        << mrm::to_string(schemes[0]) << ", " << mrm::to_string(schemes[1])
+        << "), "
            "mass m in (mod1, mod2, mod3), c in (dt = h, dt = h/2)\n";
     const std::size_t levels = static_cast<std::size_t>(refinements);
     auto at = [&](std::size_t b, std::size_t s, std::size_t m, std::size_t c, std::size_t l) -> const Run& {
@@ -216,7 +218,7 @@ int main(int argc, char** argv) {
           for (std::size_t c = 0; c < courants.size(); ++c) {
             const std::size_t block = ((b * schemes.size() + s) * masses.size() + m) * courants.size() + c;
             out << (block ? "\n\n" : "") << "# block " << block << ": benchmark = " << benchmarks[b]
-                << ", scheme = " << schemes[s] << ", mass = " << masses[m]
+                << ", scheme = " << mrm::to_string(schemes[s]) << ", mass = " << masses[m]
                 << ", dt/h = " << cli::format_real(courants[c]) << '\n';
             std::vector<mrm::repro::ErrorRow> rows;
             for (std::size_t l = 0; l < levels; ++l)
@@ -254,8 +256,8 @@ int main(int argc, char** argv) {
             for (std::size_t k = 0; k < 8; ++k) {
               std::vector<double> errors(levels);
               for (std::size_t l = 0; l < levels; ++l) errors[l] = at(b, s, m, c, l).errors[k];
-              const std::string key = std::string(benchmark_keys[b]) + ":" + schemes[s] + ":" + masses[m] + ":" +
-                                      courant_keys[c] + ":" + mrm::ErrorAccumulator::names[k];
+              const std::string key = std::string(benchmark_keys[b]) + ":" + mrm::to_string(schemes[s]) + ":" +
+                                      masses[m] + ":" + courant_keys[c] + ":" + mrm::ErrorAccumulator::names[k];
               const double predicted = predicted_order(b, s, m, k);
               mrm::tex_define(defs, "smooth:predicted:" + key, fraction(predicted));
               if (!std::all_of(errors.begin(), errors.end(), [](double e) { return e > 0 && std::isfinite(e); }))

@@ -68,11 +68,12 @@ int main(int argc, char** argv) {
     std::vector<repro::Configuration> configurations;
     for (mrm::Index n : meshes)
       for (double c : courants)
-        configurations.push_back(repro::paper_configuration("cn", "algebraic", "mod3", n, c, 3 * periods));
+        configurations.push_back(
+            repro::paper_configuration(mrm::Scheme::crank_nicolson, "algebraic", "mod3", n, c, 3 * periods));
     for (const std::string& mass : repro::mass_names())
       for (mrm::Index n : meshes)
-        configurations.push_back(
-            repro::paper_configuration("cn", "algebraic", mass, n, long_courant, 3 * long_periods));
+        configurations.push_back(repro::paper_configuration(mrm::Scheme::crank_nicolson, "algebraic", mass, n,
+                                                            long_courant, 3 * long_periods));
     std::cerr << "fig_stability_map: " << configurations.size() << " runs\n";
     const std::vector<repro::Measures> m = repro::run_configurations(configurations);
 

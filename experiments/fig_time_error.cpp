@@ -63,10 +63,10 @@
 namespace cli = mrm::cli;
 
 namespace {
-const std::vector<std::string> schemes{"cn", "be"};
+const std::vector<mrm::Scheme> schemes{mrm::Scheme::crank_nicolson, mrm::Scheme::backward_euler};
 /// The predicted order in Δt of each scheme (mathematics.md §9) and the tolerance of the verdict
 /// (derived in the header comment).
-double predicted_order(const std::string& scheme) { return scheme == "cn" ? 2.0 : 1.0; }
+double predicted_order(mrm::Scheme scheme) { return scheme == mrm::Scheme::crank_nicolson ? 2.0 : 1.0; }
 constexpr double order_tolerance = 0.2;
 
 /// One series: a mesh, its reference ratio R and its steps Δt_j = m_j Δt_ref (m_j = P R / 2^j).
@@ -97,11 +97,11 @@ void compute(Series& series, double final_time, const std::string& mass) {
   const mrm::Index reference_steps = coarse_steps * series.ratio[0];
   series.final_time_used = static_cast<double>(reference_steps) * dt_ref;
   mrm::BarSimulation reference(mrm::benchmark_problem(), mesh, redistribution,
-                               mrm::repro::scheme_parameters("cn", "algebraic", mass), dt_ref);
+                               mrm::repro::scheme_parameters(mrm::Scheme::crank_nicolson, "algebraic", mass), dt_ref);
   std::vector<std::unique_ptr<mrm::BarSimulation>> runs;
   std::vector<mrm::ReferenceComparison> comparisons;
   series.mismatched.assign(schemes.size() * series.ratio.size(), 0);
-  for (const std::string& scheme : schemes)
+  for (mrm::Scheme scheme : schemes)
     for (long m : series.ratio) {
       runs.push_back(std::make_unique<mrm::BarSimulation>(mrm::benchmark_problem(), mesh, redistribution,
                                                           mrm::repro::scheme_parameters(scheme, "algebraic", mass),
@@ -250,8 +250,8 @@ int main(int argc, char** argv) {
         for (std::size_t k = 0; k < 8; ++k) {
           orders[i][s][k] = finest_order(series[i], s, k, points);
           if (!std::isfinite(orders[i][s][k]))
-            throw std::runtime_error("no order over the finest steps: an error is zero (" + schemes[s] + ", " +
-                                     mrm::ErrorAccumulator::names[k] + ")");
+            throw std::runtime_error("no order over the finest steps: an error is zero (" + mrm::to_string(schemes[s]) +
+                                     ", " + mrm::ErrorAccumulator::names[k] + ")");
         }
     // The same fit one step coarser (the steps ending at the second finest), to show how the verdict
     // depends on where the range stops; NaN where there are not enough steps.
@@ -268,10 +268,12 @@ int main(int argc, char** argv) {
     std::ostream& out =
         program.header("error in time at fixed h against a reference with dt_ref = h/R (mathematics.md sec. 5, 7, 9)");
     out << "# reference: Crank-Nicolson with the same mesh and mass\n"
-        << "# predicted_order_cn = 2\n# predicted_order_be = 1\n# order_tolerance = "
-        << cli::format_real(order_tolerance)
+        << "# predicted_order_" << mrm::to_string(schemes[0]) << " = " << predicted_order(schemes[0]) << '\n'
+        << "# predicted_order_" << mrm::to_string(schemes[1]) << " = " << predicted_order(schemes[1]) << '\n'
+        << "# order_tolerance = " << cli::format_real(order_tolerance)
         << "\n# verdict: within if |order over the finest fit_points steps - predicted| <= order_tolerance\n"
-        << "# blocks: 2 i + s, mesh i in (fine, coarse), scheme s in (cn, be)\n";
+        << "# blocks: 2 i + s, mesh i in (fine, coarse), scheme s in (" << mrm::to_string(schemes[0]) << ", "
+        << mrm::to_string(schemes[1]) << ")\n";
     for (std::size_t i = 0; i < series.size(); ++i)
       out << "# mesh " << i << ": h = " << cli::format_real(series[i].h())
           << ", dt_ref = " << cli::format_real(series[i].dt_ref()) << ", total_mass = "
@@ -280,7 +282,7 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < series.size(); ++i)
       for (std::size_t s = 0; s < schemes.size(); ++s) {
         const Series& se = series[i];
-        out << (i + s ? "\n\n" : "") << "# block " << 2 * i + s << ": scheme = " << schemes[s]
+        out << (i + s ? "\n\n" : "") << "# block " << 2 * i + s << ": scheme = " << mrm::to_string(schemes[s])
             << ", elements = " << se.elements << ", reference_ratio = " << se.reference_ratio << '\n';
         for (std::size_t k = 0; k < 8; ++k)
           out << "# order_finest " << mrm::ErrorAccumulator::names[k] << " = " << cli::format_real(orders[i][s][k])
@@ -355,7 +357,7 @@ int main(int argc, char** argv) {
         table.add_rule();
         std::size_t count = 0;
         for (std::size_t k = 0; k < 8; ++k) {
-          const std::string key = schemes[s] + ":" + mrm::ErrorAccumulator::names[k];
+          const std::string key = mrm::to_string(schemes[s]) + ":" + mrm::ErrorAccumulator::names[k];
           mrm::tex_define(defs, prefix + "orderfinest:" + key, mrm::tex_number(orders[i][s][k], 3));
           mrm::tex_define(defs, prefix + "ordershifted:" + key, mrm::tex_number(shifted[i][s][k], 3));
           mrm::tex_define(defs, prefix + "verdict:" + key, within(i, s, k) ? "within" : "outside");
@@ -379,21 +381,21 @@ int main(int argc, char** argv) {
                 fine_steps.size() >= 2 ? mrm::tex_number(mrm::fit_order(fine_steps, fine_errors).order, 2) : "n/a");
           }
         }
-        mrm::tex_define(defs, prefix + "within:" + schemes[s], std::to_string(count));
+        mrm::tex_define(defs, prefix + "within:" + mrm::to_string(schemes[s]), std::to_string(count));
         // The steps whose run has levels in the other contact state than the reference.
         std::string mismatch;
         for (std::size_t j = 0; j < se.ratio.size(); ++j)
           if (se.mismatched[s * se.ratio.size() + j] > 0)
             mismatch += (mismatch.empty() ? "" : ", ") + std::string("$") + step_text(se.ratio[j]) + "$";
-        mrm::tex_define(defs, prefix + "mismatch:" + schemes[s], mismatch.empty() ? "none" : mismatch);
+        mrm::tex_define(defs, prefix + "mismatch:" + mrm::to_string(schemes[s]), mismatch.empty() ? "none" : mismatch);
         std::size_t mismatched_steps = 0, finest_mismatched = se.ratio.size();
         for (std::size_t j = 0; j < se.ratio.size(); ++j)
           if (se.mismatched[s * se.ratio.size() + j] > 0) ++mismatched_steps, finest_mismatched = j;
-        mrm::tex_define(defs, prefix + "mismatchsteps:" + schemes[s], std::to_string(mismatched_steps));
+        mrm::tex_define(defs, prefix + "mismatchsteps:" + mrm::to_string(schemes[s]), std::to_string(mismatched_steps));
         mrm::tex_define(
-            defs, prefix + "mismatchfinest:" + schemes[s],
+            defs, prefix + "mismatchfinest:" + mrm::to_string(schemes[s]),
             finest_mismatched < se.ratio.size() ? "$" + step_text(se.ratio[finest_mismatched]) + "$" : "none");
-        mrm::tex_define(defs, prefix + "withinwords:" + schemes[s],
+        mrm::tex_define(defs, prefix + "withinwords:" + mrm::to_string(schemes[s]),
                         count == 8 ? "all 8 measures" : std::to_string(count) + " of the 8 measures");
       }
       if (i == 0) mrm::tex_define(defs, "time:finehalf", step_text(se.ratio[half]));

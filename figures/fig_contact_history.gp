@@ -22,8 +22,7 @@ mass_id(m) = word(blocks, 2 * (m - 1) + 2)
 baseline = words(blocks) / 2
 # The baseline's legend entry, short enough for one line of entries ("baseline: consistent mass").
 baseline_title = "baseline: ".mass_name(word(blocks, words(blocks)))
-ps_form = header("ps_form")
-title(s) = scheme_id(s) eq "ps" ? scheme_name("ps").", ".ps_form." contact row" : scheme_name(scheme_id(s))
+title(s) = scheme_title(scheme_id(s))
 final_time = header("final_time") + 0
 
 set multiplot layout 3,2 margins 0.08,0.98,0.05,0.92 spacing 0.08,0.09

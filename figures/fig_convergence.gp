@@ -18,8 +18,7 @@ scheme_id(s) = word(blocks, 3 * (6 * s) + 1)
 mass_id(m) = word(blocks, 3 * (2 * (m - 1)) + 2)
 ratio(c) = word(blocks, 3 * c + 3)
 ratio_label(c) = ratio(c) eq "1" ? italic("h") : ratio(c) eq "0.5" ? italic("h")."/2" : ratio(c).italic("h")
-ps_form = header("ps_form")
-title(s) = scheme_id(s) eq "ps" ? scheme_name("ps").", ".ps_form." contact row" : scheme_name(scheme_id(s))
+title(s) = scheme_title(scheme_id(s))
 dash(c) = c == 0 ? 1 : 2
 marker(c) = c == 0 ? 7 : 6
 

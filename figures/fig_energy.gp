@@ -15,10 +15,10 @@ set output output
 blocks = system(sprintf("sed -n 's/^# block [0-9]*: scheme = \\([a-z]*\\), mass = \\([a-z0-9]*\\)$/\\1 \\2/p' '%s'", data))
 scheme_id(s) = word(blocks, 2 * (3 * s) + 1)
 mass_id(m) = word(blocks, 2 * (m - 1) + 2)
-ps_form = header("ps_form")
-title(s) = scheme_id(s) eq "ps" ? scheme_name("ps").", ".ps_form." contact row: ".E_h_beta : \
-  scheme_name(scheme_id(s)).": ".E_h
-energy_label(s) = scheme_id(s) eq "ps" ? E_h_beta."(".italic("t").")" : E_h."(".italic("t").")"
+# The energy of scheme s (the data file's `# energy <id> = E_h` or `E_h^beta` line), in the report's symbols.
+energy(s) = header("energy ".scheme_id(s)) eq "E_h^beta" ? E_h_beta : E_h
+title(s) = scheme_title(scheme_id(s)).": ".energy(s)
+energy_label(s) = energy(s)."(".italic("t").")"
 exact_energy = header("exact_energy") + 0
 final_time = header("final_time") + 0
 exact_label = sprintf("exact %s = %g", italic("E"), exact_energy)

@@ -17,9 +17,11 @@ ns = words(schemes)
 nr = nb / ns
 step(r) = r eq "1" ? italic("h") : (r + 0 < 1 ? italic("h")."/".sprintf("%g", 1 / (r + 0)) : r.italic("h"))
 final_time = header("T") + 0
-# EC, which conserves the energy, dashed and thicker, so that the curves it covers stay visible.
-width_of(id) = id eq "ec" ? 2.0 : 1.2
-dash_of(id) = id eq "ec" ? 2 : 1
+# The scheme that conserves the energy (EC, the header's `conserving`), dashed and thicker, so that the
+# curves it covers stay visible.
+conserving = header("conserving")
+width_of(id) = id eq conserving ? 2.0 : 1.2
+dash_of(id) = id eq conserving ? 2 : 1
 
 set multiplot layout nr,1 margins 0.10,0.97,0.06,0.93 spacing 0.0,0.08
 set xlabel italic("t")

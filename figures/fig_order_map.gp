@@ -36,18 +36,18 @@ set xlabel "horizon (periods)"
 set ylabel "order in ".italic("h")
 set multiplot layout 2,2 margins 0.08,0.98,0.08,0.9 spacing 0.08,0.15 \
   title sprintf("%s = %s%s", Delta_t, ratio, italic("h")) font font(10)
-do for [scheme in "cn be"] {
+do for [scheme in header("panels")] {
   do for [q=1:2] {
     col = column_of(word(measures, q))
     pcol = column_of(word(predicted, q))
     phase = q == 1 ? 1.0 : 0.5
     set title scheme_name(scheme).", ".measure_name(word(measures, q))
     base = block("ps-consistent", "consistent")
-    if (scheme eq "cn" && base >= 0) {
+    if (scheme eq header("baseline_with") && base >= 0) {
       plot for [m=1:3] data index block(scheme, word(masses, m)) using 1:col with linespoints \
              lc rgb mass_colour(m) lw 1.2 pt 6+m ps 0.6 title mass_name(word(masses, m)), \
            data index base using 1:col with linespoints lc rgb mass_colour(4) lw 1.2 dt 2 pt 13 ps 0.6 \
-             title scheme_name("ps").", consistent mass", \
+             title scheme_title("ps-consistent"), \
            data index block(scheme, "mod3") using 1:pcol with lines lc rgb "black" dt 2 title "predicted", \
            phase with lines lc rgb "black" dt 3 title "phase error (Mod 1, 2)"
     } else {

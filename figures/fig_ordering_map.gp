@@ -38,8 +38,8 @@ set multiplot layout ns,nr margins 0.07,0.98,0.07,0.92 spacing 0.02,0.07 \
   title "measures ranked Mod 3 < Mod 2 < Mod 1, of those judged (green: all; red: none)" font font(9)
 do for [b=0:nb-1] {
   s = scheme_of(b)
-  # Paoli-Schatzman is judged in its velocity only (its displacements are Crank-Nicolson's).
-  set title sprintf("%s, %s = %s%s", s eq "ps" ? "Paoli–Schatzman, velocity" : scheme_name(s), Delta_t, \
+  # The title the data file gives the scheme (Paoli-Schatzman: judged in its velocity only).
+  set title sprintf("%s, %s = %s%s", scheme_title(s), Delta_t, \
     fraction(ratio_of(b)), italic("h")) font font(8)
   # Tic labels of the horizons on the first column only.
   set ytics ()

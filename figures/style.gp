@@ -8,7 +8,8 @@
 #     consistent mass purple; the exact solution black.
 #   - header(key): the value of the data file's `# key = value` line (quotes removed; empty if absent),
 #     so that titles and labels follow the options the program was run with, not this script.
-#   - scheme_name(id), mass_name(id): the names the data file's `# label` lines give the ids.
+#   - scheme_name(id), mass_name(id): the names the data file's `# label` lines give the ids;
+#     scheme_title(id): the title its `# title` line gives a row of the scheme.
 set encoding utf8
 fontface = "Latin Modern Roman"
 font(size) = sprintf("%s,%g", fontface, size)
@@ -23,10 +24,12 @@ mass_colour(m) = m == 1 ? "#d62728" : m == 2 ? "#1f77b4" : m == 3 ? "#2ca02c" : 
 label(id) = system(sprintf("sed -n 's|^# label %s = ||p' '%s' | head -n 1", id, data))
 mass_name(id) = label(id) eq "" ? id : label(id)
 scheme_name(id) = label(id) eq "" ? id : label(id)
+# The title of a figure's row of scheme `id`: the `# title <id> = <title>` line of the data file (its
+# name, with the contact row for a scheme that takes one; repro/labels.cpp, write_scheme_titles).
+scheme_title(id) = system(sprintf("sed -n 's|^# title %s = ||p' '%s' | head -n 1", id, data))
 # One colour per scheme where the schemes are the curves (the energy-conserving schemes' figures), none
-# of them a mass's colour.
-scheme_colour(id) = id eq "cn" ? "#ff7f0e" : id eq "ec" ? "black" : id eq "cn-switch" ? "#17becf" : \
-  id eq "be" ? "#8c564b" : "#7f7f7f"
+# of them a mass's colour: the data file's `# colour <id> = <colour>` line (grey without one).
+scheme_colour(id) = header("colour ".id) eq "" ? "#7f7f7f" : header("colour ".id)
 # The eight measures of mathematics.md §5, from their column names in the data files.
 measure_name(id) = \
   id eq "err_u0_L2" ? italic("u")."(0,·) in ".italic("L")."^2(0,".italic("T").")" : \

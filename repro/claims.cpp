@@ -196,8 +196,11 @@ TEST_CASE("a row's verdict follows its criterion and the expectation table, both
 
 // "ps-literal" is Paoli–Schatzman with the literal contact row; every other label is the registry's id.
 SchemeChoice scheme_choice(const std::string& label) {
-  const bool literal = label == "ps-literal";
-  return {label, repro::scheme_parameters(literal ? "ps" : label, literal ? "literal" : "algebraic", "mod3")};
+  if (label == "ps-literal") return {label, repro::scheme_parameters(Scheme::paoli_schatzman, "literal", "mod3")};
+  return scheme_choice(scheme_by_name(label));
+}
+SchemeChoice scheme_choice(Scheme scheme) {
+  return {to_string(scheme), repro::scheme_parameters(scheme, "algebraic", "mod3")};
 }
 
 std::vector<SchemeChoice> paper_schemes() {
@@ -224,7 +227,8 @@ const char* const measure_names[8] = {"u(0,·) L²(0,T)", "λ L²(0,T)", "u L∞
 // baseline "ps-consistent" is Paoli–Schatzman with the consistent mass.
 std::string scheme_abbreviation(const std::string& id) {
   if (id == "ps-consistent")
-    return repro::scheme_label("ps").abbreviation + " (" + repro::mass_label("consistent").plain + ")";
+    return repro::scheme_label(Scheme::paoli_schatzman).abbreviation + " (" + repro::mass_label("consistent").plain +
+           ")";
   return repro::scheme_label(id).abbreviation;
 }
 
@@ -374,12 +378,13 @@ TEST_CASE("the stability check fails on an unstable configuration and passes on 
   st.final_time = 60;
   Judge judge;
   // The consistent mass with CN, fed to the check as if it were one of the paper's masses.
-  const std::vector<ClaimResult> broken = check_stability({scheme_choice("cn")}, {consistent_mass()}, st, judge);
+  const std::vector<ClaimResult> broken =
+      check_stability({scheme_choice(Scheme::crank_nicolson)}, {consistent_mass()}, st, judge);
   REQUIRE(broken.size() == 1);
   CAPTURE(broken[0].measured);
   CHECK(broken[0].verdict == Verdict::failed);
-  const std::vector<ClaimResult> fine =
-      check_stability({scheme_choice("cn"), scheme_choice("be")}, {mod3()}, st, judge);
+  const std::vector<ClaimResult> fine = check_stability(
+      {scheme_choice(Scheme::crank_nicolson), scheme_choice(Scheme::backward_euler)}, {mod3()}, st, judge);
   for (const ClaimResult& row : fine) {
     CAPTURE(row.measured);
     CHECK(row.verdict == Verdict::reproduced);
@@ -487,7 +492,9 @@ namespace {
 std::string ordering_claim_text(const std::string& scheme, const std::vector<std::string>& ordered) {
   std::vector<std::string> best_first(ordered.rbegin(), ordered.rend());
   return "with " + scheme + ", " + join(best_first, " < ") +
-         (scheme == "ps" ? " in the velocity (its displacements and λ are cn's, merged into cn's rows)" : "");
+         (scheme == to_string(Scheme::paoli_schatzman)
+              ? " in the velocity (its displacements and λ are cn's, merged into cn's rows)"
+              : "");
 }
 
 std::string list_reals(const std::vector<double>& values) {
@@ -594,7 +601,7 @@ SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& sch
   SummaryLine line;
   line.key = "ordering-" + scheme;
   line.claim = "3 Ordering Mod 3 < Mod 2 < Mod 1, " + scheme_abbreviation(scheme) +
-               (scheme == "ps" ? " (velocity; the rest is CN's)" : "");
+               (scheme == to_string(Scheme::paoli_schatzman) ? " (velocity; the rest is CN's)" : "");
   line.verdict = summary_verdict(ranked_anywhere, cells_total);
   line.holds = holds.empty() ? "in no (Δt/h) for every N" : join(holds, "; ");
   line.fails = fails.empty() ? "nowhere in the grid" : join(fails, "; ");
@@ -606,7 +613,7 @@ SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& sch
 TEST_CASE("the ordering check fails when the masses are fed in the wrong order") {
   Judge judge;
   repro::SweepGrid grid;
-  grid.schemes = {"cn"};
+  grid.schemes = {to_string(Scheme::crank_nicolson)};
   grid.courants = {0.5};
   grid.elements = {20, 40};
   grid.horizons = {1, 10};
@@ -621,7 +628,7 @@ TEST_CASE("the ordering check fails when the masses are fed in the wrong order")
   CAPTURE(right[0].measured);
   CHECK(right[0].verdict == Verdict::reproduced);
   CHECK(swapped[0].verdict == Verdict::failed);
-  const SummaryLine line = summarize_ordering(sweep, "cn", {"mod1", "mod2", "mod3"});
+  const SummaryLine line = summarize_ordering(sweep, to_string(Scheme::crank_nicolson), {"mod1", "mod2", "mod3"});
   CHECK(line.holds.find("from") != std::string::npos);
 }
 
@@ -854,15 +861,16 @@ std::vector<ClaimResult> check_convergence(const repro::Sweep& sweep, Judge& jud
       rows.push_back(judge(
           "4/" + scheme + "/T=" + significant(g.horizons[k]) + "p",
           "Convergence in h over " + significant(g.horizons[k]) + " period(s): " + scheme + " at the predicted orders" +
-              (scheme == "ps" ? " (velocity; the rest is cn's)" : ""),
+              (scheme == to_string(Scheme::paoli_schatzman) ? " (velocity; the rest is cn's)" : ""),
           "least-squares orders, N = " + list_elements(g.elements) + ": " + join(per_cell, "; ") + "; " +
               std::to_string(within) + " of " + std::to_string(total) + " within",
           "every order within " + decimals(predicted.tolerance, 3) + " of the prediction (displacement measures " +
               decimals(predicted.displacement, 3) + ", energy-type and λ " + decimals(predicted.energy, 3) +
               ", mathematics.md §9)" +
-              (scheme == "be" ? std::string()
-                              : ", or for a mass whose period is off by O(h) (Mod 1, Mod 2) up to the drift's orders "
-                                "1 and ½ (+ the same tolerance)") +
+              (scheme == to_string(Scheme::backward_euler)
+                   ? std::string()
+                   : ", or for a mass whose period is off by O(h) (Mod 1, Mod 2) up to the drift's orders "
+                     "1 and ½ (+ the same tolerance)") +
               " in every (mass, Δt/h ∈ {" + list_reals(g.courants) + "}) cell, T = " + significant(g.horizons[k]) +
               " period(s)",
           holds));
@@ -896,7 +904,7 @@ SummaryLine summarize_convergence(const repro::Sweep& sweep) {
     holds.push_back(scheme_abbreviation(scheme) + " " + std::to_string(within) + "/" + std::to_string(total));
     if (!bad_horizons.empty()) fails.push_back(scheme_abbreviation(scheme) + ": " + join(bad_horizons, ", "));
   }
-  for (const std::string& scheme : {std::string("cn"), std::string("be")}) {
+  for (const std::string& scheme : {to_string(Scheme::crank_nicolson), to_string(Scheme::backward_euler)}) {
     for (const repro::OrderCell& cell : cells)
       if (cell.scheme == scheme && cell.mass == "mod3" && cell.courant == 0.5 && cell.horizon == 0)
         numbers.push_back(scheme_abbreviation(scheme) + " Mod 3, Δt = h/2, 1 period: u(0,·) " +
@@ -919,7 +927,7 @@ TEST_CASE("the convergence check fails for a weight that is not 1 + O(h)") {
   // Doubling every weight doubles the mass: the discrete waves travel at 1/√2 and the errors stagnate;
   // its orders are far from the predicted ones. Fed to the check as "mod3" of a hand-made sweep.
   repro::SweepGrid grid;
-  grid.schemes = {"cn"};
+  grid.schemes = {to_string(Scheme::crank_nicolson)};
   grid.masses = {"mod3"};
   grid.baseline = false;
   grid.courants = {0.5};
@@ -928,10 +936,11 @@ TEST_CASE("the convergence check fails for a weight that is not 1 + O(h)") {
   repro::Sweep heavy;
   heavy.grid = grid;
   for (Index n : grid.elements) {
-    repro::Configuration c = repro::paper_configuration("cn", "algebraic", "mod3", n, 0.5, 3.0);
+    repro::Configuration c = repro::paper_configuration(Scheme::crank_nicolson, "algebraic", "mod3", n, 0.5, 3.0);
     c.mass.weight = [](Index i, Index j, const UniformMesh&) { return (i == 0 || j == 0) ? 0.0 : 2.0; };
     const repro::Measures m = repro::run_configuration(c);
-    heavy.runs.push_back({"cn", "mod3", 0.5, n, {ErrorAccumulator::values(m.errors)}, 0.0, 0.0});
+    heavy.runs.push_back(
+        {to_string(Scheme::crank_nicolson), "mod3", 0.5, n, {ErrorAccumulator::values(m.errors)}, 0.0, 0.0});
   }
   const std::vector<ClaimResult> rows = check_convergence(heavy, judge);
   REQUIRE(rows.size() == 1);
@@ -1028,7 +1037,8 @@ TEST_CASE("the convergence-in-time check fails when the time step is not refined
   st.elements = 20;
   st.courants = {0.5, 0.5, 0.5};
   st.reference_courant = 1.0 / 16;
-  const std::vector<ClaimResult> stagnant = check_time_convergence(scheme_choice("cn"), {mod3()}, st, judge);
+  const std::vector<ClaimResult> stagnant =
+      check_time_convergence(scheme_choice(Scheme::crank_nicolson), {mod3()}, st, judge);
   REQUIRE(stagnant.size() == 1);
   CHECK(stagnant[0].verdict == Verdict::failed);
 }
@@ -1175,19 +1185,23 @@ TEST_CASE("the energy checks fail for a scheme that does not conserve, or one th
   EnergySettings st;
   st.elements = {20, 40};
   // Backward Euler presented as a conserving scheme.
-  const std::vector<ClaimResult> be = check_energy_conservation(scheme_choice("be"), {mod3()}, st, judge);
+  const std::vector<ClaimResult> be =
+      check_energy_conservation(scheme_choice(Scheme::backward_euler), {mod3()}, st, judge);
   REQUIRE(be.size() == 1);
   CAPTURE(be[0].measured);
   CHECK(be[0].verdict == Verdict::failed);
   // Crank–Nicolson with the consistent mass presented as a dissipative scheme: it gains energy.
   st.final_time = 30;
-  const std::vector<ClaimResult> cn = check_energy_dissipation(scheme_choice("cn"), {consistent_mass()}, st, judge);
+  const std::vector<ClaimResult> cn =
+      check_energy_dissipation(scheme_choice(Scheme::crank_nicolson), {consistent_mass()}, st, judge);
   CAPTURE(cn[0].measured);
   CHECK(cn[0].verdict == Verdict::failed);
   // And the real claims, on small meshes.
   st.final_time = 3;
-  CHECK(check_energy_conservation(scheme_choice("cn"), {mod3()}, st, judge)[0].verdict == Verdict::reproduced);
-  CHECK(check_energy_dissipation(scheme_choice("be"), {mod3()}, st, judge)[0].verdict == Verdict::reproduced);
+  CHECK(check_energy_conservation(scheme_choice(Scheme::crank_nicolson), {mod3()}, st, judge)[0].verdict ==
+        Verdict::reproduced);
+  CHECK(check_energy_dissipation(scheme_choice(Scheme::backward_euler), {mod3()}, st, judge)[0].verdict ==
+        Verdict::reproduced);
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -1216,7 +1230,9 @@ std::vector<ContactStepCase> paper_contact_step_cases() {
   std::vector<ContactStepCase> cases;
   for (const SchemeChoice& s : paper_schemes()) {
     for (const MassRedistribution& m : paper_masses()) cases.push_back({s, s, m});
-    if (s.label != "ps") cases.push_back({s, s, consistent_mass()});  // the algebraic row needs a massless node
+    const bool algebraic_row =
+        takes(s.parameters.scheme, SchemeParameter::contact_row) && s.parameters.contact_row == ContactRow::algebraic;
+    if (!algebraic_row) cases.push_back({s, s, consistent_mass()});  // the algebraic row needs a massless node
   }
   return cases;
 }
@@ -1310,8 +1326,8 @@ TEST_CASE("the contact-step check fails when the step does not solve the stated 
   ContactStepSettings st;
   st.elements = 30;
   // Crank–Nicolson run, compared with the backward-Euler problem; then the honest comparisons.
-  const std::vector<ClaimResult> wrong =
-      check_contact_step({{scheme_choice("cn"), scheme_choice("be"), mod3()}}, st, judge);
+  const std::vector<ClaimResult> wrong = check_contact_step(
+      {{scheme_choice(Scheme::crank_nicolson), scheme_choice(Scheme::backward_euler), mod3()}}, st, judge);
   REQUIRE(wrong.size() == 1);
   CAPTURE(wrong[0].measured);
   CHECK(wrong[0].verdict == Verdict::failed);
@@ -1334,7 +1350,7 @@ TEST_CASE("the contact-step check fails when the step does not solve the stated 
 // order 1 in most measures, far above it.
 ClaimResult check_exact_solution(const ExactSolution& exact, const FineSolutionSettings& settings, Judge& judge) {
   repro::Configuration configuration;
-  configuration.scheme = scheme_choice("cn").parameters;
+  configuration.scheme = scheme_choice(Scheme::crank_nicolson).parameters;
   configuration.mass = mod3();
   configuration.elements = settings.elements;
   configuration.courant = settings.courant;
@@ -1389,7 +1405,8 @@ std::vector<StabilityCell> stability_cells(const std::vector<Index>& elements, c
     for (Index n : elements)
       for (double c : courants) {
         cells.push_back({n, c, mass, periods, 0});
-        configurations.push_back(repro::paper_configuration("cn", "algebraic", mass, n, c, 3 * periods));
+        configurations.push_back(
+            repro::paper_configuration(Scheme::crank_nicolson, "algebraic", mass, n, c, 3 * periods));
       }
   const std::vector<repro::Measures> m = repro::run_configurations(configurations);
   for (std::size_t k = 0; k < cells.size(); ++k) cells[k].largest = m[k].energy_max / m[k].energy_initial;
@@ -1408,8 +1425,8 @@ namespace {
 // "T=10p" → "T = 10 periods"); an unknown segment is kept.
 std::string readable_segment(const std::string& segment) {
   // Paoli–Schatzman (¼, 0) in its three forms, the other schemes and the masses by their labels.
-  const std::string ps = repro::scheme_label("ps").abbreviation + "(¼, 0), ";
-  if (segment == "ps") return ps + "algebraic row";
+  const std::string ps = repro::scheme_label(Scheme::paoli_schatzman).abbreviation + "(¼, 0), ";
+  if (segment == to_string(Scheme::paoli_schatzman)) return ps + "algebraic row";
   if (segment == "ps-literal") return ps + "literal row";
   if (segment == "ps-consistent") return ps + repro::mass_label("consistent").plain;
   for (const SchemeInfo& scheme : scheme_registry())
@@ -1520,7 +1537,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
   timed("1 stability", [&] {
     const StabilitySettings st;
     append(check_stability(paper_schemes(), paper_masses(), st, judge));
-    rows.push_back(check_consistent_mass_blows_up(scheme_choice("cn"), st, judge));
+    rows.push_back(check_consistent_mass_blows_up(scheme_choice(Scheme::crank_nicolson), st, judge));
     // Over a region the meshes are coarse (N = 16: the O(h) jumps at impacts and releases are a few
     // percent of E_h(0)), so "no blow-up" is the energy staying below twice its initial value.
     const double blow_up = 2;
@@ -1586,11 +1603,13 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     append(check_reconstruction_sensitivity(SensitivitySettings(), judge));
   });
   timed("4 convergence in h", [&] { append(check_convergence(sweep, judge)); });
-  timed("4 convergence in time",
-        [&] { append(check_time_convergence(scheme_choice("cn"), paper_masses(), TimeConvergenceSettings(), judge)); });
+  timed("4 convergence in time", [&] {
+    append(check_time_convergence(scheme_choice(Scheme::crank_nicolson), paper_masses(), TimeConvergenceSettings(),
+                                  judge));
+  });
   timed("5 energy", [&] {
-    append(check_energy_conservation(scheme_choice("cn"), paper_masses(), EnergySettings(), judge));
-    append(check_energy_dissipation(scheme_choice("be"), paper_masses(), EnergySettings(), judge));
+    append(check_energy_conservation(scheme_choice(Scheme::crank_nicolson), paper_masses(), EnergySettings(), judge));
+    append(check_energy_dissipation(scheme_choice(Scheme::backward_euler), paper_masses(), EnergySettings(), judge));
   });
   timed("6 contact step",
         [&] { append(check_contact_step(paper_contact_step_cases(), ContactStepSettings(), judge)); });

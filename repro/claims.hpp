@@ -61,13 +61,15 @@ class Judge {
   std::vector<std::string> used_;
 };
 
-/// A time scheme as the paper names it: "cn", "be", "ps" (Paoli–Schatzman (¼, 0), algebraic contact
-/// row) and "ps-literal" (the three-level formula on the contact row too, mathematics.md §4).
+/// A time scheme as the paper names it: the registry's id (mrm::scheme_registry; Paoli–Schatzman is
+/// (¼, 0) with the algebraic contact row) or "ps-literal" (the three-level formula on the contact row
+/// too, mathematics.md §4).
 struct SchemeChoice {
   std::string label;
   SchemeParameters parameters;
 };
 SchemeChoice scheme_choice(const std::string& label);  ///< throws std::invalid_argument for an unknown label
+SchemeChoice scheme_choice(Scheme scheme);             ///< labelled by its id (mrm::to_string)
 std::vector<SchemeChoice> paper_schemes();             ///< cn, be, ps, ps-literal
 std::vector<MassRedistribution> paper_masses();        ///< mod1, mod2, mod3
 
@@ -119,7 +121,7 @@ SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& sch
 /// the law, and the differences between the masses (where the scheme's own share cancels) within
 /// `difference_tolerance`·h.
 struct PhaseDriftSettings {
-  std::string scheme = "cn";
+  std::string scheme = to_string(Scheme::crank_nicolson);
   double tolerance = 0.25, difference_tolerance = 0.1;
 };
 std::vector<ClaimResult> check_phase_drift(const repro::Sweep& sweep, const PhaseDriftSettings& settings, Judge& judge);
@@ -131,7 +133,7 @@ SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSet
 /// measures ranked as the paper says, beside the reconstruction's, and each variant's drift per period
 /// beside the period law's.
 struct SensitivitySettings {
-  std::string scheme = "cn";
+  std::string scheme = to_string(Scheme::crank_nicolson);
   double courant = 0.5;
   std::vector<Index> elements = {100, 200};
   double periods = 30;

@@ -254,7 +254,7 @@ TEST_CASE("a configuration at any scale is run at the unit scale and its measure
   // and the energy range is that run's. At the ends of bar1d's range, 1e±100, the unit run is the
   // same as at L = 1 with the same σ, so the relative errors are the same doubles and the energies
   // those times L (the squares of the data, 1e±400, are never formed).
-  Configuration c = paper_configuration("cn", "algebraic", "mod3", 20, 0.5, 6.0);
+  Configuration c = paper_configuration(Scheme::crank_nicolson, "algebraic", "mod3", 20, 0.5, 6.0);
   c.length = 4.0;
   c.amplitude = 0.25;
   c.final_time = 24.0;
@@ -276,7 +276,7 @@ TEST_CASE("a configuration at any scale is run at the unit scale and its measure
   CHECK(m.phase->period == 12.0);
   for (const double length : {1e-100, 1e100})
     for (const double amplitude : {1e-100, 1e100}) {
-      Configuration big = paper_configuration("cn", "algebraic", "mod3", 20, 0.5, 6.0 * length);
+      Configuration big = paper_configuration(Scheme::crank_nicolson, "algebraic", "mod3", 20, 0.5, 6.0 * length);
       big.length = length;
       big.amplitude = amplitude;
       Configuration one = big;
@@ -293,8 +293,8 @@ TEST_CASE("a configuration at any scale is run at the unit scale and its measure
     }
 }
 
-Configuration paper_configuration(const std::string& scheme, const std::string& ps_form, const std::string& mass,
-                                  Index elements, double courant, double final_time) {
+Configuration paper_configuration(Scheme scheme, const std::string& ps_form, const std::string& mass, Index elements,
+                                  double courant, double final_time) {
   Configuration c;
   c.scheme = scheme_parameters(scheme, ps_form, mass);
   c.mass = mass_redistribution_from_spec(mass);
@@ -302,6 +302,11 @@ Configuration paper_configuration(const std::string& scheme, const std::string& 
   c.courant = courant;
   c.final_time = final_time;
   return c;
+}
+
+Configuration paper_configuration(const std::string& scheme, const std::string& ps_form, const std::string& mass,
+                                  Index elements, double courant, double final_time) {
+  return paper_configuration(scheme_by_name(scheme), ps_form, mass, elements, courant, final_time);
 }
 
 MassRedistribution mass_from_option(const std::string& option, const std::string& spec, const UniformMesh& mesh,
@@ -461,7 +466,7 @@ TEST_CASE("a configuration's measures are those of the same run observed by hand
   // The prediction: run_configuration is the library's run with an ErrorAccumulator, so its measures
   // equal, bit for bit, those of the same simulation stepped here; its energy range contains every
   // sample's energy, and the observer sees the levels 0..steps.
-  Configuration c = paper_configuration("cn", "algebraic", "mod3", 20, 0.5, 3.0);
+  Configuration c = paper_configuration(Scheme::crank_nicolson, "algebraic", "mod3", 20, 0.5, 3.0);
   Index observed = 0;
   double lowest = 1e300, highest = -1e300;
   const Measures m = run_configuration(c, [&](const Sample& s) {
@@ -490,7 +495,7 @@ TEST_CASE("the errors at a horizon are those of the run stopped there, and threa
   // The prediction: a prefix of a run is the shorter run (same levels, same accumulator), so the
   // errors at the horizon T = 3 of a run to T = 9 equal, bit for bit, those of the run to T = 3; the
   // parallel runner returns the sequential measures in the order given.
-  Configuration longer = paper_configuration("cn", "algebraic", "mod2", 16, 0.5, 9.0);
+  Configuration longer = paper_configuration(Scheme::crank_nicolson, "algebraic", "mod2", 16, 0.5, 9.0);
   longer.horizons = {3.0, 6.0};
   Configuration shorter = longer;
   shorter.final_time = 3.0;
@@ -525,7 +530,7 @@ TEST_CASE(
   // at most, 0.22 on N = 30), so nearest pairing pairs what in-order pairing pairs; the errors and
   // drifts agree to the rounding of the two data paths (1e-9, far above it).
   for (const std::string mass : {"mod1", "mod2", "mod3"}) {
-    Configuration c = paper_configuration("cn", "algebraic", mass, 30, 0.37, 15.0);
+    Configuration c = paper_configuration(Scheme::crank_nicolson, "algebraic", mass, 30, 0.37, 15.0);
     const Measures paper = run_configuration(c);
     c.data = std::make_shared<const InitialData>(benchmark_initial_data(1.0, 0.5));
     const Measures own = run_configuration(c);
@@ -543,7 +548,7 @@ TEST_CASE(
   // the interval L = 1, are at ½ + 6k (four of them, mean interval 6); the run floats off and lands again
   // in between (phase.cpp). Every exact impact must find its partner, the run's own contacts must stay
   // unpaired, and the first impact is on time to 0.05h as the period law predicts for Mod 3 (phase.cpp).
-  Configuration c = paper_configuration("cn", "algebraic", "mod3", 200, 0.5, 20.0);
+  Configuration c = paper_configuration(Scheme::crank_nicolson, "algebraic", "mod3", 200, 0.5, 20.0);
   c.benchmark = "smooth-impact";
   const Measures s1 = run_configuration(c);
   REQUIRE(s1.phase.has_value());
@@ -559,7 +564,7 @@ TEST_CASE("every benchmark runs with its reference, and the smooth ones converge
   for (const std::string& benchmark : {std::string("smooth-impact"), std::string("grazing")}) {
     double previous = 0;
     for (const Index elements : {40, 80}) {
-      Configuration c = paper_configuration("cn", "algebraic", "mod3", elements, 0.5, 2.0);
+      Configuration c = paper_configuration(Scheme::crank_nicolson, "algebraic", "mod3", elements, 0.5, 2.0);
       c.benchmark = benchmark;
       const Measures m = run_configuration(c);
       CAPTURE(benchmark);
@@ -569,13 +574,13 @@ TEST_CASE("every benchmark runs with its reference, and the smooth ones converge
       previous = m.errors.u0_L2;
     }
   }
-  Configuration c = paper_configuration("cn", "algebraic", "mod3", 10, 0.5, 1.0);
+  Configuration c = paper_configuration(Scheme::crank_nicolson, "algebraic", "mod3", 10, 0.5, 1.0);
   c.benchmark = "nonsense";
   CHECK_THROWS_WITH_AS(run_configuration(c), doctest::Contains("allowed: paper, smooth-impact, grazing"),
                        std::invalid_argument);
   // Data of one's own: the paper's benchmark as data gives the paper's measures (the characteristic
   // solution equals the closed form; Δt = 0.37 h keeps the levels off the corners t = kL).
-  c = paper_configuration("cn", "algebraic", "mod3", 30, 0.37, 4.0);
+  c = paper_configuration(Scheme::crank_nicolson, "algebraic", "mod3", 30, 0.37, 4.0);
   const Measures paper = run_configuration(c);
   c.data = std::make_shared<const InitialData>(benchmark_initial_data(1.0, 0.5));
   const Measures own = run_configuration(c);
@@ -590,7 +595,7 @@ TEST_CASE("a configuration run for a given number of steps is measured against t
   // The prediction: with steps = 7 the observer sees the levels 0..7 whatever T says, and the errors
   // against a reference that is not the data's solution (amplitude 0.4 for data of amplitude 0.5) are,
   // bit for bit, those of the same 7 steps accumulated by hand against that reference.
-  Configuration c = paper_configuration("be", "algebraic", "mod1", 16, 0.5, 3.0);
+  Configuration c = paper_configuration(Scheme::backward_euler, "algebraic", "mod1", 16, 0.5, 3.0);
   c.steps = 7;
   const ExactSolution other(1.0, 0.4);
   Index observed = 0;
@@ -631,7 +636,7 @@ TEST_CASE("the backward-difference contact velocity changes the velocity measure
   // §7: V₁ in flight, 0 in contact, where the difference quotient jumps at each impact); the L∞ one is a
   // maximum over the levels and may be reached where both give V₀ = 0 (in contact), so only its
   // equality with the hand computation is required. A mass with inertia at the contact node is left alone.
-  Configuration c = paper_configuration("cn", "algebraic", "node1:7/6", 20, 0.5, 6.0);
+  Configuration c = paper_configuration(Scheme::crank_nicolson, "algebraic", "node1:7/6", 20, 0.5, 6.0);
   const Measures plain = run_configuration(c);
   c.contact_velocity = contact_velocity_by_name("backward-difference");
   const Measures differenced = run_configuration(c);
@@ -657,7 +662,7 @@ TEST_CASE("the backward-difference contact velocity changes the velocity measure
     if (name.find("_v_") == std::string::npos) CHECK(a[k] == b[k]);
     if (name == "err_v_L2L2") CHECK(std::abs(a[k] - b[k]) > 1e-4 * a[k]);
   }
-  Configuration consistent = paper_configuration("cn", "literal", "consistent", 20, 0.5, 3.0);
+  Configuration consistent = paper_configuration(Scheme::crank_nicolson, "literal", "consistent", 20, 0.5, 3.0);
   const auto own_velocity = ErrorAccumulator::values(run_configuration(consistent).errors);
   consistent.contact_velocity = ContactVelocity::backward_difference;
   CHECK(ErrorAccumulator::values(run_configuration(consistent).errors) == own_velocity);

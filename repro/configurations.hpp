@@ -31,13 +31,18 @@ namespace mrm::repro {
 /// The scheme's parameters; Paoli–Schatzman with β = ¼, e = 0 and the given contact row (a mass that
 /// keeps the contact node's inertia always takes the literal row: it has no algebraic one). CN-switch's
 /// θ keeps its default (1, backward Euler); a program that offers it sets SchemeParameters::switch_theta.
-inline mrm::SchemeParameters scheme_parameters(const std::string& scheme, const std::string& ps_form,
+inline mrm::SchemeParameters scheme_parameters(mrm::Scheme scheme, const std::string& ps_form,
                                                const std::string& mass) {
   mrm::SchemeParameters p;
-  p.scheme = mrm::scheme_by_name(scheme);
+  p.scheme = scheme;
   if (p.scheme == mrm::Scheme::paoli_schatzman)
     p.contact_row = mass == "consistent" ? mrm::ContactRow::literal : mrm::contact_row_by_name(ps_form);
   return p;
+}
+/// The same, the scheme named by its id in the registry (mrm::scheme_by_name).
+inline mrm::SchemeParameters scheme_parameters(const std::string& scheme, const std::string& ps_form,
+                                               const std::string& mass) {
+  return scheme_parameters(mrm::scheme_by_name(scheme), ps_form, mass);
 }
 
 /// The redistribution named by the value `spec` of the mass option `option`, checked on the mesh of the run
@@ -125,10 +130,12 @@ InitialData configuration_data(const Configuration& configuration);
 /// configuration and scaled back).
 std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& configuration, double horizon);
 
-/// A configuration named as the paper names it: scheme "cn", "be" or "ps" (Paoli–Schatzman (¼, 0) with
-/// the contact row `ps_form`), or "ec" or "cn-switch" (mathematics.md §12), a mass spec of
-/// mass_redistribution_from_spec in mass_spec.hpp ("mod1", "mod2", "mod3", "consistent", "node1:7/6",
-/// ...), N, Δt = C h, T.
+/// A configuration named as the paper names it: a scheme of the registry (mrm::scheme_registry; Paoli–
+/// Schatzman is (¼, 0) with the contact row `ps_form`), a mass spec of mass_redistribution_from_spec in
+/// mass_spec.hpp ("mod1", "mod2", "mod3", "consistent", "node1:7/6", ...), N, Δt = C h, T.
+Configuration paper_configuration(Scheme scheme, const std::string& ps_form, const std::string& mass, Index elements,
+                                  double courant, double final_time);
+/// The same, the scheme named by its id in the registry (mrm::scheme_by_name).
 Configuration paper_configuration(const std::string& scheme, const std::string& ps_form, const std::string& mass,
                                   Index elements, double courant, double final_time);
 

@@ -2,6 +2,7 @@
 #include "labels.hpp"
 
 #include <algorithm>
+#include <sstream>
 #include <stdexcept>
 
 #include <doctest/doctest.h>
@@ -110,6 +111,12 @@ void write_labels(std::ostream& out) {
     out << "# label " << id << " = " << mass_label(id).plain << '\n';
 }
 
+void write_scheme_titles(std::ostream& out, const std::string& contact_row) {
+  for (const SchemeInfo& info : scheme_registry())
+    out << "# title " << info.id << " = " << scheme_label(info.scheme).plain
+        << (takes(info.scheme, SchemeParameter::contact_row) ? ", " + contact_row + " contact row" : "") << '\n';
+}
+
 TEST_CASE("every scheme and named mass of the library's registries has its label, under its id") {
   for (const SchemeInfo& info : scheme_registry()) {
     CAPTURE(info.id);
@@ -128,6 +135,15 @@ TEST_CASE("a table row names Paoli-Schatzman's contact row, and only for the sch
   CHECK(scheme_row_label(to_string(Scheme::paoli_schatzman), "literal") ==
         "Paoli--Schatzman $(\\frac14, 0)$, literal row");
   CHECK(scheme_row_label(to_string(Scheme::crank_nicolson), "literal") == "Crank--Nicolson");
+}
+
+TEST_CASE("a figure's row title names Paoli-Schatzman's contact row, and only for the scheme that takes one") {
+  std::ostringstream out;
+  write_scheme_titles(out, "literal");
+  const std::string titles = out.str();
+  CHECK(titles.find("# title " + to_string(Scheme::paoli_schatzman) +
+                    " = Paoli–Schatzman (¼, 0), literal contact row\n") != std::string::npos);
+  CHECK(titles.find("# title " + to_string(Scheme::crank_nicolson) + " = Crank–Nicolson\n") != std::string::npos);
 }
 
 }  // namespace mrm::repro

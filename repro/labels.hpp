@@ -50,5 +50,9 @@ std::string benchmark_help(const std::string& what);
 
 /// `# label <id> = <plain>` for every scheme and named mass: the lines figures/style.gp reads.
 void write_labels(std::ostream& out);
+/// `# title <id> = <plain>` for every scheme, with ", <contact_row> contact row" for a scheme that takes
+/// a contact row (SchemeParameter::contact_row): the titles of the blocks of a figure whose schemes are
+/// its rows, so that its script compares no id.
+void write_scheme_titles(std::ostream& out, const std::string& contact_row);
 
 }  // namespace mrm::repro

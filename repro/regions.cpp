@@ -62,7 +62,8 @@ Sweep run_sweep(const SweepGrid& grid, unsigned threads, std::ostream* progress)
     for (double c : grid.courants) {
       for (Index n : grid.elements) {
         sweep.runs.push_back({"ps-consistent", "consistent", c, n, {}, 0, std::nullopt});
-        configurations.push_back(paper_configuration("ps", "literal", "consistent", n, c, 3 * periods));
+        configurations.push_back(
+            paper_configuration(Scheme::paoli_schatzman, "literal", "consistent", n, c, 3 * periods));
       }
     }
   }
@@ -208,7 +209,7 @@ Sweep read_sweep_file(const std::string& path, const std::string& option) {
 }
 
 std::vector<std::size_t> judged_measures(const std::string& scheme) {
-  if (scheme == "ps") return {4, 7};
+  if (scheme == to_string(Scheme::paoli_schatzman)) return {4, 7};
   return {0, 1, 2, 3, 4, 5, 6, 7};
 }
 
@@ -243,7 +244,7 @@ bool displacement_measure(std::size_t k) { return k == 0 || k == 2 || k == 5; }
 double PredictedOrders::of(std::size_t measure) const { return displacement_measure(measure) ? displacement : energy; }
 
 PredictedOrders predicted_orders(const std::string& scheme) {
-  if (scheme == "be") return {0.5, 0.25, 0.125};
+  if (scheme == to_string(Scheme::backward_euler)) return {0.5, 0.25, 0.125};
   return {2.0 / 3, 1.0 / 3, 1.0 / 6};
 }
 
@@ -256,7 +257,7 @@ std::pair<double, double> allowed_order(const std::string& scheme, const std::st
   const PredictedOrders p = predicted_orders(scheme);
   const double centre = p.of(measure);
   double upper = centre + p.tolerance;
-  if (scheme != "be" && mass_drifts(mass)) {
+  if (scheme != to_string(Scheme::backward_euler) && mass_drifts(mass)) {
     const DriftOrders d;
     upper = (displacement_measure(measure) ? d.displacement : d.energy) + p.tolerance;
   }
@@ -297,9 +298,13 @@ std::vector<OrderCell> order_cells(const Sweep& sweep) {
 
 // ---------------------------------------------------------------------------------------------------
 
+namespace {
+const std::string cn = to_string(Scheme::crank_nicolson);  // the id of the tests' sweeps
+}  // namespace
+
 TEST_CASE("a sweep written and read back is the same sweep, and a malformed file names its line") {
   SweepGrid grid;
-  grid.schemes = {"cn"};
+  grid.schemes = {cn};
   grid.courants = {0.5};
   grid.elements = {10, 20};
   grid.horizons = {1, 2};
@@ -328,7 +333,7 @@ TEST_CASE(
   // dominates Crank–Nicolson's errors: the paper's ranking holds in most measures, and the reversed
   // list can hold in none of those (strict inequalities).
   SweepGrid grid;
-  grid.schemes = {"cn"};
+  grid.schemes = {cn};
   grid.courants = {0.5};
   grid.elements = {20, 40};
   grid.horizons = {1, 10};
@@ -337,7 +342,7 @@ TEST_CASE(
   const std::vector<OrderingCell> right = ordering_cells(sweep, {"mod1", "mod2", "mod3"});
   const std::vector<OrderingCell> reversed = ordering_cells(sweep, {"mod3", "mod2", "mod1"});
   REQUIRE(right.size() == 4);
-  const std::vector<std::size_t> all = judged_measures("cn");
+  const std::vector<std::size_t> all = judged_measures(cn);
   for (std::size_t k = 0; k < right.size(); ++k) {
     CAPTURE(k);
     CHECK(right[k].count(all) + reversed[k].count(all) <= 8);
@@ -345,18 +350,18 @@ TEST_CASE(
   }
   CHECK(right[1].count(all) >= 6);  // N = 20, 10 periods (measured 8 when this test was written)
   CHECK(right[3].count(all) >= 6);  // N = 40, 10 periods (measured 8)
-  CHECK(judged_measures("ps") == std::vector<std::size_t>{4, 7});
+  CHECK(judged_measures(to_string(Scheme::paoli_schatzman)) == std::vector<std::size_t>{4, 7});
 }
 
 TEST_CASE("the order cells fit the orders in h and judge them against the predicted classes") {
   // A synthetic sweep: errors C h^{2/3} in the displacement measures (the prediction) and h^{0.05} in the
   // others (a stagnating error, as a mass that is not 1 + O(h) gives): the first are within 1/6 of
   // 2/3, the second are not within 1/6 of 1/3.
-  CHECK(std::abs(predicted_orders("cn").of(0) - 2.0 / 3) < 1e-15);
-  CHECK(std::abs(predicted_orders("cn").of(1) - 1.0 / 3) < 1e-15);
-  CHECK(std::abs(predicted_orders("be").of(3) - 0.25) < 1e-15);
+  CHECK(std::abs(predicted_orders(cn).of(0) - 2.0 / 3) < 1e-15);
+  CHECK(std::abs(predicted_orders(cn).of(1) - 1.0 / 3) < 1e-15);
+  CHECK(std::abs(predicted_orders(to_string(Scheme::backward_euler)).of(3) - 0.25) < 1e-15);
   Sweep sweep;
-  sweep.grid.schemes = {"cn"};
+  sweep.grid.schemes = {cn};
   sweep.grid.masses = {"mod3"};
   sweep.grid.baseline = false;
   sweep.grid.courants = {0.5};
@@ -366,7 +371,7 @@ TEST_CASE("the order cells fit the orders in h and judge them against the predic
     const double h = 1.0 / static_cast<double>(n);
     std::array<double, 8> e{};
     for (std::size_t q = 0; q < 8; ++q) e[q] = displacement_measure(q) ? 0.3 * std::pow(h, 2.0 / 3) : std::pow(h, 0.05);
-    sweep.runs.push_back({"cn", "mod3", 0.5, n, {e}, 0.0, 0.0});
+    sweep.runs.push_back({cn, "mod3", 0.5, n, {e}, 0.0, 0.0});
   }
   const std::vector<OrderCell> cells = order_cells(sweep);
   REQUIRE(cells.size() == 1);

@@ -30,7 +30,7 @@ struct SweepGrid {
 
 /// One run of the sweep: its errors at every horizon and its phase over the longest one.
 struct SweepRun {
-  std::string scheme;  ///< "cn", "be", "ps" or "ps-consistent" (the baseline)
+  std::string scheme;  ///< an id of the scheme registry (to_string(Scheme)), or "ps-consistent" (the baseline)
   std::string mass;    ///< "mod1", "mod2", "mod3" or "consistent"
   double courant = 0;
   Index elements = 0;
