@@ -41,7 +41,6 @@ namespace cli = mrm::cli;
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_contact_history", [&] {
     // 1. Options.
-    long exact_points = 3600;
     std::string ps_form = "algebraic";
     mrm::repro::FigureProgram program(
         "fig_contact_history",
@@ -58,12 +57,10 @@ int main(int argc, char** argv) {
                               "Paoli-Schatzman's contact row (algebraic, the form the report believes the paper used, "
                               "coincides with cn in u and lambda)",
                               {"algebraic", "literal"}, &ps_form);
-    program.parser.add_integer("--exact-points", "", "K",
-                               "number of intervals of the exact solution's curve, in [10, 1e6]", &exact_points,
-                               cli::in_closed_range(10, cli::max_curve_points));
+    program.add_exact_points(3600);
     if (!program.parse(argc, argv)) return 0;
 
-    const long elements = program.elements;
+    const long elements = program.elements, exact_points = program.exact_points;
     const double courant = program.courant, final_time = program.final_time, dt = program.dt();
     const mrm::UniformMesh mesh(1.0, elements);
     program.steps(10);  // ten contact histories

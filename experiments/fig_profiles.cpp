@@ -38,7 +38,6 @@ namespace cli = mrm::cli;
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_profiles", [&] {
     // 1. Options.
-    long exact_points = 400;
     double switch_theta = 1.0;
     std::string scheme = mrm::to_string(mrm::Scheme::crank_nicolson), ps_form = "literal",
                 instants_text = "0.5,1.5,2.5,6.5,7.5,8.5";
@@ -61,9 +60,9 @@ int main(int argc, char** argv) {
     program.parser.add_string("--instants", "-t", "LIST",
                               "comma-separated instants t >= 0, each rounded to a time level (at most 1e12 steps away)",
                               &instants_text);
-    program.parser.add_integer("--exact-points", "", "K", "number of intervals of each exact profile, in [10, 1e6]",
-                               &exact_points, cli::in_closed_range(10, cli::max_curve_points));
+    program.add_exact_points(400, "number of intervals of each exact profile, in [10, 1e6]");
     if (!program.parse(argc, argv)) return 0;
+    const long exact_points = program.exact_points;
     mrm::repro::refuse_untaken(
         program.parser, mrm::scheme_by_name(scheme),
         {{"--switch-theta", mrm::SchemeParameter::switch_theta}, {"--ps-form", mrm::SchemeParameter::contact_row}});

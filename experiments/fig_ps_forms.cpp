@@ -45,7 +45,6 @@ namespace cli = mrm::cli;
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_ps_forms", [&] {
     // 1. Options.
-    long exact_points = 3000;
     std::string mass = "mod3";
     mrm::repro::FigureProgram program(
         "fig_ps_forms",
@@ -59,12 +58,10 @@ int main(int argc, char** argv) {
     program.add_final_time(15.0);
     program.parser.add_string("--mass", "-m", "M",
                               mrm::repro::mass_option_help("the redistributed mass (not consistent)"), &mass);
-    program.parser.add_integer("--exact-points", "", "K",
-                               "number of intervals of the exact solution's curve, in [10, 1e6]", &exact_points,
-                               cli::in_closed_range(10, cli::max_curve_points));
+    program.add_exact_points(3000);
     if (!program.parse(argc, argv)) return 0;
 
-    const long elements = program.elements;
+    const long elements = program.elements, exact_points = program.exact_points;
     const double courant = program.courant, final_time = program.final_time, dt = program.dt();
     const mrm::UniformMesh mesh(1.0, elements);
     const mrm::MassRedistribution redistribution = mrm::repro::mass_from_option("--mass", mass, mesh, true);

@@ -57,6 +57,12 @@ void FigureProgram::add_final_time(double value, std::string help) {
   parser.add_real("--final-time", "-T", "T", std::move(help), &final_time, cli::positive());
 }
 
+void FigureProgram::add_exact_points(long value, std::string help) {
+  exact_points = value;
+  parser.add_integer("--exact-points", "", "K", std::move(help), &exact_points,
+                     cli::in_closed_range(10, cli::max_curve_points));
+}
+
 bool FigureProgram::parse(int argc, const char* const* argv, const std::string& tex_help) {
   parser.add_output("--output", "-o", "data file to write", &output_);
   parser.add_output("--tex", "", tex_help, &tex_);

@@ -61,6 +61,7 @@ class FigureProgram {
   long elements = 20;
   double courant = 0.5;
   double final_time = 9.0;
+  long exact_points = 400;  ///< intervals of an exact curve (--exact-points), for the programs that draw one
 
   /// The usual options, registered where the program calls them (the echo follows that order); h = 1/N.
   void add_elements(long value, std::string help = "number of elements N (h = 1/N), in [2, 1e7]",
@@ -68,6 +69,8 @@ class FigureProgram {
   void add_courant(double value, std::string help = "time step dt = C h (0 < C <= 1e6)",
                    mrm::cli::Check range = courant_range());
   void add_final_time(double value, std::string help = "final time (> 0); the period is 3");
+  void add_exact_points(long value,
+                        std::string help = "number of intervals of the exact solution's curve, in [10, 1e6]");
 
   /// Registers --output and --tex, then reads the command line; false when the help or the version
   /// was printed (the program then ends with status 0).
