@@ -16,7 +16,7 @@
 //
 // Sample runs:
 //   check_claims
-//   check_claims --tex output/data/claims.tex --markdown output/data/claims.md
+//   check_claims --detail output/data/claims.txt --tex output/data/claims.tex --markdown output/data/claims.md
 //
 // Description. Steps: (1) read the options; (2) open the output files (so that a bad path fails before
 // the checks run); (3) run every check; (4) print the table on stdout, write the files, and exit with
@@ -38,13 +38,17 @@ namespace claims = mrm::claims;
 int main(int argc, char** argv) {
   return cli::guarded_main("check_claims", [&] {
     // 1. Options.
-    std::string tex, markdown, summary_tex, summary_table, sweep;
+    std::string tex, markdown, summary_tex, summary_table, sweep, detail;
     cli::Parser parser(
         "check_claims",
         "Checks every claim of the paper (mathematics.md §6) on the benchmark and prints a table: claim, "
         "what was measured, criterion, verdict (reproduced, not reproduced = expected failure, or "
         "FAILED). Exits 0 iff no check FAILED.",
         {"check_claims", "check_claims --tex output/data/claims.tex --markdown output/data/claims.md"});
+    parser.add_output("--detail", "",
+                      "also write the summary with its regions and numbers and the table of every row (claim, "
+                      "measured with the margin, criterion with its basis, verdict) as plain text to FILE",
+                      &detail);
     parser.add_output("--tex", "", "also write the table as a LaTeX longtable fragment (booktabs) to FILE", &tex);
     parser.add_output("--markdown", "", "also write the table as Markdown to FILE", &markdown);
     parser.add_output("--summary-tex", "",
@@ -62,7 +66,7 @@ int main(int argc, char** argv) {
     const std::unique_ptr<cli::AtomicFile> tex_file = open("--tex", tex), markdown_file = open("--markdown", markdown),
                                            summary_tex_file = open("--summary-tex", summary_tex),
                                            summary_table_file = open("--summary-table", summary_table),
-                                           sweep_file = open("--sweep", sweep);
+                                           sweep_file = open("--sweep", sweep), detail_file = open("--detail", detail);
 
     // 3. The checks (timings on stderr).
     const auto start = std::chrono::steady_clock::now();
@@ -72,18 +76,21 @@ int main(int argc, char** argv) {
     std::cerr << "check_claims: all checks took " << cli::format_real(std::round(elapsed * 100) / 100) << " s\n";
 
     // 4. The summary, the table, the files, the verdict.
-    std::cout << "Summary: each claim of the paper, its verdict and the region where it holds\n";
-    claims::write_text_summary(std::cout, report.summary);
-    std::cout << "\nDetail: one row per check\n";
-    claims::write_text_table(std::cout, rows);
+    claims::write_short_summary(std::cout, report.summary, rows);
+    if (detail_file) {
+      detail_file->stream() << "Summary: each claim of the paper, its verdict and the region where it holds\n";
+      claims::write_text_summary(detail_file->stream(), report.summary);
+      detail_file->stream() << "\nDetail: one row per check\n";
+      claims::write_text_table(detail_file->stream(), rows);
+    }
     if (summary_tex_file) claims::write_latex_summary(summary_tex_file->stream(), report.summary);
     if (summary_table_file) claims::write_latex_summary_table(summary_table_file->stream(), report.summary);
     if (sweep_file) mrm::repro::write_sweep(sweep_file->stream(), report.sweep);
     if (tex_file) claims::write_latex_table(tex_file->stream(), rows);
     if (markdown_file) claims::write_markdown_table(markdown_file->stream(), rows);
     // The table on stdout, then every file or none.
-    cli::commit_all(
-        {summary_tex_file.get(), summary_table_file.get(), sweep_file.get(), tex_file.get(), markdown_file.get()});
+    cli::commit_all({summary_tex_file.get(), summary_table_file.get(), sweep_file.get(), tex_file.get(),
+                     markdown_file.get(), detail_file.get()});
     int failed = 0;
     for (const claims::ClaimResult& r : rows) failed += r.verdict == claims::Verdict::failed;
     if (failed > 0) std::cerr << "check_claims: " << failed << " check(s) FAILED\n";

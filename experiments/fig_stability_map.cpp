@@ -5,8 +5,9 @@
 // the contact status conserves E_h, an impact loses energy and a release gains some, at most c²h v²/8
 // per switch (c = Δt/h). For c ≲ 1 the two nearly cancel; for c ≫ 1 the gains win. This program
 // measures the largest E_hⁿ/E_h(0) over 100 periods of the benchmark for Δt/h from ¼ to 40 (a geometric
-// grid, ratio √2, and 40) on N = 16, 32, 64, 128 with Mod 3, and over 1000 periods at Δt = h with
-// Mod 1, 2, 3 on the same meshes.
+// grid, ratio √2, and 40) on N = 16, 32, 64, 128 with Mod 3, over 1000 periods at Δt = h with
+// Mod 1, 2, 3 on the same meshes, and every N from 4 to 40 at Δt/h ≤ 2 (how far down in N the bound
+// holds). The grid is repro::StabilityGrid, the one the claims check judges.
 //
 // Sample runs:
 //   fig_stability_map --output output/data/fig_stability_map.dat --tex output/data/fig_stability_map.tex
@@ -16,13 +17,16 @@
 // values; (5) commit.
 //
 // Data file: block k (k = 0 … 3 for N = 16, 32, 64, 128): columns courant largest_energy_ratio; block 4:
-// columns mass_index (1, 2, 3) elements largest_energy_ratio (the long runs at Δt = h).
+// columns mass_index (1, 2, 3) elements largest_energy_ratio (the long runs at Δt = h); block 5: columns
+// elements largest_energy_ratio (the scan, the largest over Δt/h ≤ 2).
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "configurations.hpp"
+#include "regions.hpp"
 #include "figure_program.hpp"
 #include "options.hpp"
 #include "output_file.hpp"
@@ -47,77 +51,74 @@ int main(int argc, char** argv) {
                             &long_periods, cli::in_closed_range(1, 10000));
     if (!program.parse(argc, argv)) return 0;
 
-    // 2. Outputs.
+    // 2. Outputs. The grid is the claims' (repro::StabilityGrid), with the periods given.
     program.open();
-    const std::vector<mrm::Index> meshes = {16, 32, 64, 128};
-    std::vector<double> courants;
-    for (int k = 0; k <= 14; ++k) courants.push_back(0.25 * std::pow(2.0, 0.5 * k));  // ¼ … 32
-    courants.push_back(40);
+    repro::StabilityGrid grid;
+    grid.periods = periods;
+    grid.long_periods = long_periods;
     std::ostream& out = program.header("Crank-Nicolson's largest E_h/E_h(0) (claim 1, mathematics.md sec. 12)");
-    out << "# blocks 0-3: N = 16, 32, 64, 128, Mod 3, " << cli::format_real(periods)
-        << " periods (courant largest); block 4: dt = h, " << cli::format_real(long_periods)
-        << " periods (mass_index elements largest)\n";
-    // The long runs' step, Δt = h.
-    const double long_courant = 1.0;
-    // "Bounded": the largest energy at most twice the initial one on every mesh.
-    const double threshold = 2;
-    out << "# threshold = " << cli::format_real(threshold) << "\n# long_courant = " << cli::format_real(long_courant)
-        << '\n';
+    out << "# blocks 0-" << grid.meshes.size() - 1 << ": N = ";
+    for (std::size_t b = 0; b < grid.meshes.size(); ++b) out << (b ? ", " : "") << grid.meshes[b];
+    out << ", Mod 3, " << cli::format_real(periods) << " periods (courant largest); block " << grid.meshes.size()
+        << ": dt = h, " << cli::format_real(long_periods) << " periods (mass_index elements largest); block "
+        << grid.meshes.size() + 1
+        << ": every N of the scan, the largest over dt/h <= " << cli::format_real(grid.scan_up_to)
+        << " (elements largest)\n";
+    out << "# threshold = " << cli::format_real(grid.threshold)
+        << "\n# long_courant = " << cli::format_real(grid.long_courant) << '\n';
 
     // 3. All runs.
-    std::vector<repro::Configuration> configurations;
-    for (mrm::Index n : meshes)
-      for (double c : courants)
-        configurations.push_back(
-            repro::paper_configuration(mrm::Scheme::crank_nicolson, "algebraic", "mod3", n, c, 3 * periods));
-    for (const std::string& mass : repro::mass_names())
-      for (mrm::Index n : meshes)
-        configurations.push_back(repro::paper_configuration(mrm::Scheme::crank_nicolson, "algebraic", mass, n,
-                                                            long_courant, 3 * long_periods));
-    std::cerr << "fig_stability_map: " << configurations.size() << " runs\n";
-    const std::vector<repro::Measures> m = repro::run_configurations(configurations);
+    std::cerr << "fig_stability_map: running the grid\n";
+    const repro::StabilityRegion region = repro::run_stability_region(grid);
 
     // 4. The blocks and the values.
     std::ostream& defs = program.values();
-    std::size_t k = 0;
-    double bounded_up_to = 0;
-    bool bounded = true;
-    std::vector<double> worst(courants.size(), 0.0);
-    for (std::size_t b = 0; b < meshes.size(); ++b) {
-      out << (b ? "\n\n" : "") << "# block " << b << ": N = " << meshes[b] << "\n# columns: courant largest\n";
-      for (std::size_t j = 0; j < courants.size(); ++j, ++k) {
-        const double ratio = m[k].energy_max / m[k].energy_initial;
-        worst[j] = std::max(worst[j], ratio);
-        out << cli::format_real(courants[j]) << ' ' << cli::format_real(ratio) << '\n';
-      }
+    for (std::size_t b = 0; b < grid.meshes.size(); ++b) {
+      out << (b ? "\n\n" : "") << "# block " << b << ": N = " << grid.meshes[b] << "\n# columns: courant largest\n";
+      for (const repro::StabilityCell& cell : region.large)
+        if (cell.elements == grid.meshes[b])
+          out << cli::format_real(cell.courant) << ' ' << cli::format_real(cell.largest) << '\n';
     }
-    for (std::size_t j = 0; j < courants.size(); ++j) {
-      bounded = bounded && worst[j] <= threshold;
-      if (bounded) bounded_up_to = courants[j];
-    }
-    mrm::tex_define(defs, "stab:bounded", cli::format_real(bounded_up_to));
-    mrm::tex_define(defs, "stab:threshold", cli::format_real(threshold));
+    mrm::tex_define(defs, "stab:bounded", cli::format_real(region.bounded_up_to()));
+    mrm::tex_define(defs, "stab:threshold", cli::format_real(grid.threshold));
     mrm::tex_define(defs, "stab:periods", cli::format_real(periods));
     mrm::tex_define(defs, "stab:longperiods", cli::format_real(long_periods));
     // The grid, for the prose: the meshes, the coarsest one and the range of Δt/h.
     std::string mesh_list;
-    for (mrm::Index n : meshes) mesh_list += (mesh_list.empty() ? "" : ", ") + std::to_string(n);
+    for (mrm::Index n : grid.meshes) mesh_list += (mesh_list.empty() ? "" : ", ") + std::to_string(n);
     mrm::tex_define(defs, "stab:meshes", mesh_list);
-    mrm::tex_define(defs, "stab:coarse", std::to_string(meshes.front()));
-    mrm::tex_define(defs, "stab:ratiomin", cli::format_real(courants.front()));
-    mrm::tex_define(defs, "stab:ratiomax", cli::format_real(courants.back()));
-    mrm::tex_define(defs, "stab:long:dt", long_courant == 1 ? "h" : cli::format_real(long_courant) + "h");
-    out << "\n\n# block 4: dt = h\n# columns: mass_index elements largest\n";
-    for (std::size_t mass = 0; mass < repro::mass_names().size(); ++mass)
-      for (mrm::Index n : meshes) {
-        const double ratio = m[k].energy_max / m[k].energy_initial;
-        ++k;
-        out << mass + 1 << ' ' << n << ' ' << cli::format_real(ratio) << '\n';
-        mrm::tex_define(defs, "stab:long:" + repro::mass_names()[mass] + ":" + std::to_string(n),
-                        mrm::tex_magnitude(ratio));
-        if (n == meshes.front())  // the coarsest mesh under a name of its own, for the prose
-          mrm::tex_define(defs, "stab:long:" + repro::mass_names()[mass] + ":coarse", mrm::tex_magnitude(ratio));
-      }
+    mrm::tex_define(defs, "stab:coarse", std::to_string(grid.meshes.front()));
+    mrm::tex_define(defs, "stab:ratiomin", cli::format_real(grid.courants.front()));
+    mrm::tex_define(defs, "stab:ratiomax", cli::format_real(grid.courants.back()));
+    mrm::tex_define(defs, "stab:long:dt", grid.long_courant == 1 ? "h" : cli::format_real(grid.long_courant) + "h");
+    out << "\n\n# block " << grid.meshes.size() << ": dt = h\n# columns: mass_index elements largest\n";
+    const std::vector<std::string> masses = repro::mass_names();
+    for (const repro::StabilityCell& cell : region.long_runs) {
+      const std::size_t mass =
+          static_cast<std::size_t>(std::find(masses.begin(), masses.end(), cell.mass) - masses.begin());
+      out << mass + 1 << ' ' << cell.elements << ' ' << cli::format_real(cell.largest) << '\n';
+      mrm::tex_define(defs, "stab:long:" + cell.mass + ":" + std::to_string(cell.elements),
+                      mrm::tex_magnitude(cell.largest));
+      if (cell.elements == grid.meshes.front())  // the coarsest mesh under a name of its own, for the prose
+        mrm::tex_define(defs, "stab:long:" + cell.mass + ":coarse", mrm::tex_magnitude(cell.largest));
+    }
+    // The scan: how far down in N the bound holds at Δt/h ≤ scan_up_to.
+    out << "\n\n# block " << grid.meshes.size() + 1 << ": scan, dt/h <= " << cli::format_real(grid.scan_up_to)
+        << "\n# columns: elements largest\n";
+    for (mrm::Index n : grid.scan) {
+      double worst = 0;
+      for (const repro::StabilityCell& cell : region.scan)
+        if (cell.elements == n) worst = std::max(worst, cell.largest);
+      out << n << ' ' << cli::format_real(worst) << '\n';
+    }
+    std::string failures;
+    for (const auto& [n, largest] : region.scan_failures())
+      failures += (failures.empty() ? "" : ", ") + std::to_string(n) + " (" + mrm::tex_magnitude(largest) + ")";
+    mrm::tex_define(defs, "stab:scan:upto", cli::format_real(grid.scan_up_to));
+    mrm::tex_define(defs, "stab:scan:first", std::to_string(grid.scan.front()));
+    mrm::tex_define(defs, "stab:scan:last", std::to_string(grid.scan.back()));
+    mrm::tex_define(defs, "stab:scan:from", std::to_string(region.bounded_from()));
+    mrm::tex_define(defs, "stab:scan:failures", failures.empty() ? "none" : failures);
 
     // 5. Commit.
     program.commit();

@@ -13,9 +13,25 @@
 // independent ones (the closed-form contact step with a general sparse solve, the closed-form solution
 // with a very fine numerical one).
 //
-// Each check below turns one claim into a criterion, stated in the row it returns. The criteria were
-// fixed from the mathematics before any number was looked at; the paragraph above each check says
-// why the criterion is what it is. Where a claim does not reproduce, the criterion is not loosened:
+// Each check below turns one claim into a criterion, stated in the row it returns with its basis, and
+// every row prints its margin: the measured value against the threshold, as a fraction of it (a row
+// within 10 % reads "marginal", not "reproduced"). Not every criterion was fixed before a number was
+// seen, and the rows say which. From the theory, as first written (ccb2257): the mass's round-off 4(N + 1)εL,
+// the contact step's 1e-10 against a sparse LU, the energy bounds of claim 1 (1.01 E_h(0) for the
+// conserving schemes, round-off for backward Euler) and "no increase" for backward Euler. Revised after
+// a run, each for a reason stated at its check: claim 1 also bounds the strain energy of the iterate
+// (stricter: the literal Paoli–Schatzman form hid a sawtooth from its own energy); claim 5's round-off
+// allowance gained the 1/Δt of the velocity recovery that the first one forgot (1e-12 E_h(0) measured
+// 2.3e-12 at N = 400); claim 3 moved from one period on N = 50 … 200, where the ranking was random, to
+// the region the period law says it can hold in (30 periods, the sweep); claim 4's "order ≥ ¼", which
+// sat on backward Euler's orders, became the predicted orders ± half the distance between the classes;
+// and, after a referee's run, the mechanism's tolerances 0.25h and 0.1h (measured 0.223h and 0.097h)
+// became h/6 on the differences (half the smallest difference the law predicts) and claim 6's flat
+// bound 0.05 (λ at 0.0564 against a bound that assumed h^½ where the project predicts h^⅓) became the
+// predicted rates between two meshes. A convention, not derived: "no blow-up" over the large-step
+// region means E_h ≤ 2 E_h(0). The predicted orders themselves (h^⅔, h^⅓ from the smearing of the
+// fronts plus the shift of the release) are a heuristic, a conjecture, and the rows that use them say
+// so. Where a claim does not reproduce, the criterion is not loosened:
 // the row is listed in the expectation table (paper_expectations, below) with the measured numbers
 // and the reason, and reported as "not reproduced". Such expected failures are strict: if a listed
 // row holds after all, it is reported as FAILED so that somebody updates the table, and an entry that
@@ -51,7 +67,7 @@ namespace mrm::claims {
 // The expectation table: the rows that do not reproduce, with the numbers that showed it.
 //
 // Filled in after the checks were written and run once with an empty table (every row expected to
-// hold); each entry quotes what was measured then. Nothing here changes a criterion: an entry only
+// hold); each entry's comment quotes what was measured then (the rows print the current numbers). Nothing here changes a criterion: an entry only
 // turns a FAILED row into a "not reproduced" row with its reason.
 const Expectations& paper_expectations() {
   // Reasons shared by several rows.
@@ -72,8 +88,8 @@ const Expectations& paper_expectations() {
       "coefficient that grows with N (mechanism row), an error of the scheme that the smearing prediction leaves "
       "out; every other (mass, Δt/h) cell is in its band";
   static const Expectations table = {
-      // Claim 1. ps-literal, N = 200, Δt = h/2, T = 300: ½UⁿᵀSUⁿ/E_h(0) first above 1.01 at t = 2.36 (mod1),
-      // 2.70 (mod2), 2.64 (mod3), after the first release at t = 2, and up to 66, 96, 43 over the run.
+      // Claim 1. ps-literal, N = 200, Δt = h/2, T = 300: ½UⁿᵀSUⁿ/E_h(0) first above 1.01 soon after the first
+      // release at t = 2, and up to about 100 E_h(0) over the run (the row prints the current numbers).
       {"1/ps-literal", sawtooth +
                            ": the strain energy of the iterate leaves the bound soon after the first release and "
                            "keeps growing, while the scheme's own β-energy, blind to the sawtooth, stays bounded"},
@@ -82,10 +98,11 @@ const Expectations& paper_expectations() {
       {"1/cn/large-steps",
        "Crank-Nicolson with a massless contact node gains energy at every release, up to c²h v²/8 (mathematics.md "
        "§12): for Δt/h ≥ 5 the gains outweigh the losses at impacts and the energy grows by orders of magnitude"},
-      // cn, Δt = h, 1000 periods: mod1 2.9 (N = 20), 1.14 (N = 64); mod2 9.97, 1.39; mod3 1.62, 1.02.
+      // cn, Δt = h, 1000 periods (repro::StabilityGrid): mod1 4.83 (N = 16), 2.27 (32), 1.14 (64); mod2 7.48,
+      // 2.59, 1.39; mod3 2.53, 1.38, 1.02.
       {"1/cn/1000-periods",
-       "the same gains at releases accumulate over 1000 periods on the coarse mesh N = 20 (Mod 1 2.9, Mod 2 10 times "
-       "E_h(0)); on N = 64 they stay below 1.4 E_h(0): the jumps are O(h)"},
+       "the same gains at releases accumulate over 1000 periods on the coarse meshes N = 16 and 32 (up to several "
+       "times E_h(0)); on N = 64 and 128 they stay below 1.4 E_h(0): the jumps are O(h)"},
 
       // Claim 3, sweep N = 25 … 800, 30 periods. cn Δt = ¾h: 8 8 8 8 7 7 measures; Δt = h: 8 7 5 5 5 3.
       {"3/cn/dt=0.75h", late_release},
@@ -115,21 +132,31 @@ const Expectations& paper_expectations() {
        "is pre-asymptotic: displacement orders 0.2–0.4 instead of ½ for Δt ≥ h/2 (at Δt = h/4 and "
        "over 1 to 10 periods every cell is in its band)"},
 
-      // Claim 6b, N = 4000: λ 0.0564 above the bound 0.05; u L∞(H¹) 0.0495, u_t 0.048, u L²(H¹) 0.048 just
-      // below it; u(0), u L∞(L²), u L²(L²) 0.001–0.0015.
-      {"6/exact",
-       "λ's error is above the bound, which assumed rates h^½ in the roughest measures; the orders "
-       "measured for claim 4 (about 1/3 for λ with cn) make an error of this size the discretisation "
-       "error at N = 4000, not a defect of the closed form, whose displacement errors are more than "
-       "an order of magnitude smaller"},
   };
   return table;
 }
 
 std::string to_string(Verdict v) {
-  static const char* const words[] = {"reproduced", "not reproduced", "FAILED"};  // in the enum's order
+  static const char* const words[] = {"reproduced", "marginal", "not reproduced", "FAILED"};  // in the enum's order
   return words[static_cast<int>(v)];
 }
+
+double Margin::fraction() const {
+  if (std::isnan(measured)) return -INFINITY;  // a value that cannot be computed fails
+  return (at_most ? threshold - measured : measured - threshold) / scale;
+}
+std::string Margin::text() const {
+  const double f = fraction();
+  return what + ": " + significant(measured) + (at_most ? " ≤ " : " ≥ ") + significant(threshold) + "? margin " +
+         (std::isfinite(f) ? significant(100 * f, 2) + " %" : std::string(f > 0 ? "∞" : "−∞"));
+}
+Margin at_most(std::string what, double measured, double threshold, double scale) {
+  return {measured, threshold, scale > 0 ? scale : std::abs(threshold), true, std::move(what)};
+}
+Margin at_least(std::string what, double measured, double threshold, double scale) {
+  return {measured, threshold, scale > 0 ? scale : std::abs(threshold), false, std::move(what)};
+}
+Margin tighter(const Margin& a, const Margin& b) { return b.fraction() < a.fraction() ? b : a; }
 
 namespace {
 
@@ -141,12 +168,19 @@ std::string summary_verdict(int holding, int total) {
 }  // namespace
 
 ClaimResult Judge::operator()(std::string id, std::string claim, std::string measured, std::string criterion,
-                              bool holds) {
+                              const Margin& margin, bool holds) {
   const auto expected_failure = expectations_.find(id);
   const bool expected_to_hold = expected_failure == expectations_.end();
   if (!expected_to_hold) used_.push_back(id);
-  ClaimResult row{std::move(id), std::move(claim), std::move(measured), std::move(criterion), Verdict::reproduced, ""};
-  if (holds && expected_to_hold) return row;
+  ClaimResult row{
+      std::move(id), std::move(claim), std::move(measured), std::move(criterion), margin, Verdict::reproduced, ""};
+  if (holds && expected_to_hold) {
+    if (margin.fraction() < marginal_fraction) {
+      row.verdict = Verdict::marginal;
+      row.reason = "the criterion holds within " + significant(100 * marginal_fraction) + " % of its threshold";
+    }
+    return row;
+  }
   if (!holds && !expected_to_hold) {
     row.verdict = Verdict::not_reproduced;
     row.reason = "expected failure: " + expected_failure->second;
@@ -169,19 +203,27 @@ std::vector<ClaimResult> Judge::stale() const {
   for (const auto& [id, reason] : expectations_) {
     if (std::find(used_.begin(), used_.end(), id) != used_.end()) continue;
     rows.push_back({id, "Expectation table entry", "no check produced this row", "every entry names a row",
-                    Verdict::failed, "stale expectation: remove or rename the entry"});
+                    at_least("rows with this id", 0, 1), Verdict::failed,
+                    "stale expectation: remove or rename the entry"});
   }
   return rows;
 }
 
-TEST_CASE("a row's verdict follows its criterion and the expectation table, both ways") {
+TEST_CASE("a row's verdict follows its criterion, its margin and the expectation table, both ways") {
   Judge judge({{"x/listed", "it is known not to hold"}, {"x/stale", "no row has this id"}});
-  CHECK(judge("x/other", "", "", "", true).verdict == Verdict::reproduced);
-  CHECK(judge("x/other", "", "", "", false).verdict == Verdict::failed);
-  const ClaimResult expected = judge("x/listed", "", "", "", false);
+  const Margin clear = at_most("e", 0.5, 1), hair = at_most("e", 0.95, 1), over = at_most("e", 1.05, 1);
+  CHECK(clear.fraction() == doctest::Approx(0.5));
+  CHECK(at_least("p", 0.16, 1.0 / 6, 1.0 / 6).fraction() == doctest::Approx(-0.04));
+  CHECK(judge("x/other", "", "", "", clear).verdict == Verdict::reproduced);
+  CHECK(judge("x/other", "", "", "", hair).verdict == Verdict::marginal);  // within 10 %: not "reproduced"
+  CHECK(judge("x/other", "", "", "", over).verdict == Verdict::failed);
+  CHECK(judge("x/other", "", "", "", clear, false).verdict == Verdict::failed);  // a discrete part fails
+  CHECK(judge("x/other", "", "", "", at_most("e", std::nan(""), 1)).verdict == Verdict::failed);
+  CHECK(tighter(clear, hair).measured == 0.95);
+  const ClaimResult expected = judge("x/listed", "", "", "", over);
   CHECK(expected.verdict == Verdict::not_reproduced);
   CHECK(expected.reason.find("it is known not to hold") != std::string::npos);
-  const ClaimResult unexpected = judge("x/listed", "", "", "", true);
+  const ClaimResult unexpected = judge("x/listed", "", "", "", clear);
   CHECK(unexpected.verdict == Verdict::failed);
   CHECK(unexpected.reason.find("unexpected pass") != std::string::npos);
   // An entry that no row used is a failed row of its own.
@@ -323,6 +365,9 @@ std::string stability_criterion(const StabilitySettings& st) {
          run_text(st.elements, st.courant, st.final_time);
 }
 
+// The growth the bound limits: max(E_hⁿ, ½UⁿᵀSUⁿ)/E_h(0) − 1 (infinite for a non-finite run).
+double growth(const StabilityRun& r) { return r.finite ? std::max(r.e_max, r.strain_max) / r.e0 - 1 : INFINITY; }
+
 std::string describe(const StabilityRun& r) {
   if (!r.finite) return "non-finite value at t = " + significant(r.first_violation_time, 4);
   auto ratio = [](double x) { return x < 10 ? decimals(x, 6) : significant(x, 3); };
@@ -341,19 +386,22 @@ std::vector<ClaimResult> check_stability(const std::vector<SchemeChoice>& scheme
   for (const SchemeChoice& scheme : schemes) {
     const double bound = is_dissipative(scheme) ? settings.bound_dissipative : settings.bound_conserving;
     bool holds = true;
+    double largest = 0;
     std::vector<std::string> measured;
     std::vector<std::string> names;
     for (const MassRedistribution& mass : masses) {
       const StabilityRun r =
           stability_run(scheme, mass, settings.elements, settings.courant, settings.final_time, bound);
       holds = holds && r.finite && r.bounded;
+      largest = std::max(largest, growth(r));
       measured.push_back(mass.name + ": " + describe(r));
       names.push_back(mass.name);
     }
     rows.push_back(judge("1/" + scheme.label,
                          "Stability: " + scheme.label + " with " + join(names, ", ") + " does not blow up over " +
                              significant(settings.final_time / 3) + " periods",
-                         join(measured, "; "), stability_criterion(settings), holds));
+                         join(measured, "; "), stability_criterion(settings),
+                         at_most("largest max(E_hⁿ, ½UⁿᵀSUⁿ)/E_h(0) − 1", largest, bound - 1), holds));
   }
   return rows;
 }
@@ -369,7 +417,7 @@ ClaimResult check_consistent_mass_blows_up(const SchemeChoice& scheme, const Sta
                "consistent: " + describe(r),
                "the same run (" + run_text(settings.elements, settings.courant, settings.final_time) +
                    ") exceeds the same bound or produces a non-finite value",
-               !(r.finite && r.bounded));
+               at_least("largest max(E_hⁿ, ½UⁿᵀSUⁿ)/E_h(0) − 1", growth(r), bound - 1), !(r.finite && r.bounded));
 }
 
 TEST_CASE("the stability check fails on an unstable configuration and passes on a stable one") {
@@ -445,7 +493,8 @@ std::vector<ClaimResult> check_mass(const std::vector<MassRedistribution>& prese
           "Mass: " + mass.name + (preserves ? " preserves the total mass L" : " loses exactly 2h/3 of the total mass"),
           "max |deviation|/L = " + significant(d.worst_relative) + ", at most " + decimals(d.worst_ratio, 3) +
               " × the tolerance (worst: " + d.worst_mesh + ")",
-          (preserves ? "|1ᵀM 1 − L| " : "|1ᵀM 1 − (L − 2h/3)| ") + tolerance, d.worst_ratio <= 1.0));
+          (preserves ? "|1ᵀM 1 − L| " : "|1ᵀM 1 − (L − 2h/3)| ") + tolerance,
+          at_most("largest |deviation|/tolerance", d.worst_ratio, 1)));
     }
   }
   return rows;
@@ -517,6 +566,13 @@ std::vector<ClaimResult> check_ordering(const repro::Sweep& sweep, const std::ve
     for (std::size_t q : measures) measure_list.push_back(measure_names[q]);
     for (double c : g.courants) {
       bool holds = true;
+      // The margin: the largest ratio error(better)/error(worse) of a ranked pair at the longest horizon.
+      double worst_ratio = 0;
+      for (Index n : g.elements)
+        for (std::size_t q : measures)
+          for (std::size_t k = 0; k + 1 < ordered.size(); ++k)
+            worst_ratio = std::max(worst_ratio, sweep.find(scheme, ordered[k + 1], c, n).errors[longest][q] /
+                                                    sweep.find(scheme, ordered[k], c, n).errors[longest][q]);
       std::vector<std::string> per_horizon;
       for (std::size_t k = 0; k < g.horizons.size(); ++k) {
         std::vector<std::string> counts;
@@ -537,8 +593,10 @@ std::vector<ClaimResult> check_ordering(const repro::Sweep& sweep, const std::ve
                 "strictly in each of " + join(measure_list, ", ") + " on every mesh N ∈ {" + list_elements(g.elements) +
                     "} over " + significant(g.horizons.back()) +
                     " periods of 3L, the horizon where the period law's drift has had the longest to act (the counts "
-                    "at shorter horizons show from when it holds)",
-                holds));
+                    "at shorter horizons show from when it holds). Basis: the paper's claim, judged where the period "
+                    "law (theory) says it can hold; revised after the first run, which judged one period on N = 50 "
+                    "… 200 and found the ranking random there, as the law explains",
+                at_most("largest error ratio better/worse over N and measures", worst_ratio, 1, 1), holds));
     }
   }
   return rows;
@@ -635,80 +693,94 @@ TEST_CASE("the ordering check fails when the masses are fed in the wrong order")
 // ---------------------------------------------------------------------------------------------------
 // The mechanism of claim 3: the drift of the impact times (mathematics.md §8).
 //
-// The period law predicts the mass-dependent part of the drift per period, 2ℓ_f + ℓ_c − 3L from the
-// first eigenvalues of the reduced pencils (lib/period_law.cpp: −4h/3, −h/3, 0 + O(h²)). A scheme adds
-// a drift of its own, the same for every mass (Crank–Nicolson's release of a smeared front: up to
-// about +0.2h at Δt = h, measured when the phase diagnostics were written, lib/phase.cpp). Hence two
-// criteria per cell (Δt/h, N) of the scheme, fixed before the sweep: each mass's drift within 0.25h of
-// the law, and the differences Mod 1 − Mod 3 and Mod 2 − Mod 3, where the scheme's share cancels,
-// within 0.1h of the law's.
+// The period law predicts the mass-dependent part of the drift per period, 2ℓ_f + ℓ_c − 3L, from the
+// first eigenvalues of the reduced pencils of each mesh (lib/period_law.cpp: −4h/3, −h/3, 0 + O(h²); the
+// eigenvalues carry every order in h, so no next term needs estimating). A scheme adds a drift of its own
+// that the law does not describe (Crank–Nicolson's release of a smeared front; Mod 3's own drift grows
+// with N, −0.04h to −0.16h): the law says nothing about it, so the single masses' drifts are printed,
+// not judged. What the law does predict is the differences Mod 1 − Mod 3 and Mod 2 − Mod 3, where the
+// scheme's share cancels at leading order. The criterion (theory): each measured difference lies nearer
+// the law's than any other value the law could be confused with; the closest alternative is "no mass
+// effect", the smallest predicted difference being h/3 (Mod 2), so the tolerance is half of it, h/6 —
+// the same rule as the orders' bands (half the distance between the classes). (The first version,
+// written with the sweep, judged each mass within 0.25h and the differences within 0.1h, numbers set
+// beside a drift of +0.2h measured earlier; a referee found them 0.223h and 0.097h from the data. They
+// are replaced by this derivation.)
 namespace {
 
 double law_drift(const std::string& mass, Index elements) {
   return predict_period(UniformMesh(1.0, elements), mass_redistribution_by_name(mass)).period_error;
 }
 
+// The largest |(drift − drift_mod3) − (law − law_mod3)|/h over the cells of the scheme, and the largest
+// |drift − law|/h (printed only).
+std::pair<double, double> drift_deviations(const repro::Sweep& sweep, const std::string& scheme) {
+  double worst = 0, worst_difference = 0;
+  for (const std::string& mass : sweep.grid.masses)
+    for (double c : sweep.grid.courants)
+      for (Index n : sweep.grid.elements) {
+        const double h = 1.0 / static_cast<double>(n), d = *sweep.find(scheme, mass, c, n).drift_per_period,
+                     d3 = *sweep.find(scheme, "mod3", c, n).drift_per_period;
+        worst = std::max(worst, std::abs(d - law_drift(mass, n)) / h);
+        worst_difference =
+            std::max(worst_difference, std::abs((d - d3) - (law_drift(mass, n) - law_drift("mod3", n))) / h);
+      }
+  return {worst_difference, worst};
+}
+
 }  // namespace
 
 std::vector<ClaimResult> check_phase_drift(const repro::Sweep& sweep, const PhaseDriftSettings& st, Judge& judge) {
   const repro::SweepGrid& g = sweep.grid;
-  bool holds = true;
-  double worst = 0, worst_difference = 0;
   std::vector<std::string> per_mass;
   for (const std::string& mass : g.masses) {
     double lo = INFINITY, hi = -INFINITY;
     for (double c : g.courants)
       for (Index n : g.elements) {
-        const double h = 1.0 / static_cast<double>(n);
-        const double d = *sweep.find(st.scheme, mass, c, n).drift_per_period;
-        lo = std::min(lo, d / h);
-        hi = std::max(hi, d / h);
-        worst = std::max(worst, std::abs(d - law_drift(mass, n)) / h);
-        const double d3 = *sweep.find(st.scheme, "mod3", c, n).drift_per_period;
-        worst_difference =
-            std::max(worst_difference, std::abs((d - d3) - (law_drift(mass, n) - law_drift("mod3", n))) / h);
+        const double d = *sweep.find(st.scheme, mass, c, n).drift_per_period * static_cast<double>(n);
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
       }
     per_mass.push_back(mass + " " + decimals(lo, 2) + "h to " + decimals(hi, 2) + "h (law " +
                        decimals(law_drift(mass, g.elements.back()) * static_cast<double>(g.elements.back()), 2) + "h)");
   }
-  holds = worst <= st.tolerance && worst_difference <= st.difference_tolerance;
+  const auto [worst_difference, worst] = drift_deviations(sweep, st.scheme);
   return {judge("3/mechanism/" + st.scheme,
                 "Mechanism of claim 3 (period law, mathematics.md §8): with " + st.scheme +
-                    ", the impact times drift per period as 2ℓ_f + ℓ_c − 3L predicts (−4h/3, −h/3, 0)",
+                    ", the impact times of Mod 1 and Mod 2 drift per period against Mod 3's as 2ℓ_f + ℓ_c − 3L "
+                    "predicts (−4h/3, −h/3)",
                 "drift per period over every Δt/h and N: " + join(per_mass, "; ") +
-                    "; largest deviation from the law " + decimals(worst, 3) + "h, of the differences to mod3 " +
-                    decimals(worst_difference, 3) + "h",
+                    "; largest deviation of the differences to mod3 from the law's " + decimals(worst_difference, 3) +
+                    "h (of a single mass's drift, the scheme's share included, not judged: " + decimals(worst, 3) +
+                    "h)",
                 "in every cell Δt/h ∈ {" + list_reals(g.courants) + "}, N ∈ {" + list_elements(g.elements) + "} over " +
-                    significant(g.horizons.back()) + " periods: |drift − law| ≤ " + significant(st.tolerance) +
-                    "h for each mass, and |(drift − drift_mod3) − (law − law_mod3)| ≤ " +
-                    significant(st.difference_tolerance) + "h",
-                holds)};
+                    significant(g.horizons.back()) + " periods: |(drift − drift_mod3) − (law − law_mod3)| ≤ " +
+                    significant(st.difference_tolerance, 3) +
+                    "h. Basis (theory): half the smallest difference the law predicts (h/3, Mod 2), the distance "
+                    "that tells the law from no mass effect",
+                at_most("largest |difference − law's|/h", worst_difference, st.difference_tolerance))};
 }
 
 SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSettings& st) {
   const repro::SweepGrid& g = sweep.grid;
-  std::vector<std::string> at_100;
   const Index n = std::find(g.elements.begin(), g.elements.end(), Index{100}) != g.elements.end() ? 100 : g.elements[0];
   const double c = std::find(g.courants.begin(), g.courants.end(), 0.5) != g.courants.end() ? 0.5 : g.courants[0];
   const double h = 1.0 / static_cast<double>(n);
+  std::vector<std::string> at;
   for (const std::string& mass : g.masses)
-    at_100.push_back(repro::mass_label(mass).plain + " " +
-                     decimals(*sweep.find(st.scheme, mass, c, n).drift_per_period / h, 3) + "h (law " +
-                     decimals(law_drift(mass, n) / h, 3) + "h)");
-  double worst = 0;
-  for (const std::string& mass : g.masses)
-    for (double cc : g.courants)
-      for (Index m : g.elements)
-        worst = std::max(worst, std::abs(*sweep.find(st.scheme, mass, cc, m).drift_per_period - law_drift(mass, m)) *
-                                    static_cast<double>(m));
+    at.push_back(repro::mass_label(mass).plain + " " +
+                 decimals(*sweep.find(st.scheme, mass, c, n).drift_per_period / h, 2) + "h (law " +
+                 decimals(law_drift(mass, n) / h, 2) + "h)");
+  const double worst_difference = drift_deviations(sweep, st.scheme).first;
+  const bool holds = worst_difference <= st.difference_tolerance;
   SummaryLine line;
   line.key = "mechanism";
-  line.claim = "3 Mechanism: impact times drift −4h/3, −h/3, 0 per period (" + scheme_abbreviation(st.scheme) + ")";
-  line.verdict = worst <= st.tolerance ? "reproduced" : "partly reproduced";
-  line.holds = "every Δt/h, N of the sweep within " + decimals(worst, 2) + "h of the period law";
-  line.fails = worst <= st.tolerance ? "nowhere in the grid" : "cells beyond " + significant(st.tolerance) + "h";
+  line.claim = "3 Mechanism: drift −4h/3, −h/3 against Mod 3 (" + scheme_abbreviation(st.scheme) + ")";
+  line.verdict = holds ? "reproduced" : "partly reproduced";
+  line.holds = "every Δt/h, N of the sweep: differences within " + decimals(worst_difference, 3) + "h of the law's";
+  line.fails = holds ? "nowhere in the grid" : "cells beyond " + significant(st.difference_tolerance, 3) + "h";
   line.numbers = "N = " + std::to_string(n) + ", Δt = " + significant(c) + "h, " + significant(g.horizons.back()) +
-                 " periods: " + join(at_100, ", ");
+                 " periods: " + join(at, ", ");
   return line;
 }
 
@@ -781,11 +853,11 @@ std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySetti
   std::vector<ClaimResult> rows;
   for (std::size_t k = 1; k < triples.size(); ++k) {
     const MassRedistribution& variant = triples[k][k == 1 ? 1 : 2];
-    bool holds = true;
+    int largest_difference = 0;
     std::vector<std::string> measured;
     for (Index n : st.elements) {
       const int reconstruction = ranked(triples[0], n), with_variant = ranked(triples[k], n);
-      holds = holds && reconstruction == with_variant;
+      largest_difference = std::max(largest_difference, std::abs(reconstruction - with_variant));
       const double h = 1.0 / static_cast<double>(n);
       measured.push_back("N = " + std::to_string(n) + ": " + std::to_string(with_variant) + " measures ranked (" +
                          std::to_string(reconstruction) + " with the reconstruction), drift " +
@@ -799,8 +871,10 @@ std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySetti
                          "with " + st.scheme + ", Δt = " + significant(st.courant) + "h, " + significant(st.periods) +
                              " periods: the same number of measures ranked Mod 3 < Mod 2 < Mod 1 as with the "
                              "reconstruction on every mesh N = " +
-                             list_elements(st.elements),
-                         holds));
+                             list_elements(st.elements) +
+                             ". Basis (theory): the period law predicts the same drifts for every reading; the "
+                             "counts are integers, so equality is a difference below ½",
+                         at_most("largest |difference of the counts|", largest_difference, 0.5)));
   }
   return rows;
 }
@@ -810,7 +884,8 @@ std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySetti
 //
 // In h. The paper proves convergence without a rate. The exact solution is only Lipschitz: u_x and
 // u_t jump across characteristics and λ jumps at impact and release. For such data the orders are
-// the regularity limit of the benchmark (mathematics.md §9): a stable scheme with phase error of order
+// the regularity limit of the benchmark (mathematics.md §9), a conjecture: a heuristic from the smearing
+// of the fronts plus the shift of the release, not a theorem. A stable scheme with phase error of order
 // μ smears a jump over a width W; for Crank–Nicolson (μ = 2) W ≈ (h²t)^{1/3}, which gives h^{1/3} in the
 // energy-type measures (H¹ of u, L² of u_t) and for λ, and h^{2/3} in the displacement measures (u,
 // u(0,·): the release moves by O(W)); for backward Euler (W ≈ (Δt t)^{1/2}) h^{1/2} and h^{1/4}. The
@@ -823,7 +898,8 @@ std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySetti
 // (energy-type, λ: a jump displaced by δ), which for Crank–Nicolson overtakes the smearing after
 // t ∝ h^{−1/2}: its orders may lie anywhere between the two mechanisms' (repro::allowed_order). One row
 // per scheme and horizon: every (mass, Δt/h) cell within. Paoli–Schatzman with the consistent mass (the baseline, with
-// Crank–Nicolson's phase error) is judged against Crank–Nicolson's predictions.
+// Crank–Nicolson's phase error) is judged against Crank–Nicolson's predictions. The margin: the order
+// nearest an edge of its band, its distance to that edge in units of the tolerance.
 std::vector<ClaimResult> check_convergence(const repro::Sweep& sweep, Judge& judge) {
   const std::vector<repro::OrderCell> cells = repro::order_cells(sweep);
   const repro::SweepGrid& g = sweep.grid;
@@ -836,6 +912,7 @@ std::vector<ClaimResult> check_convergence(const repro::Sweep& sweep, Judge& jud
     for (std::size_t k = 0; k < g.horizons.size(); ++k) {
       bool holds = true;
       int within = 0, total = 0;
+      Margin margin = at_least("order", INFINITY, 0, 1);
       std::vector<std::string> per_cell;
       for (const repro::OrderCell& cell : cells) {
         if (cell.scheme != scheme || cell.horizon != k) continue;
@@ -848,6 +925,11 @@ std::vector<ClaimResult> check_convergence(const repro::Sweep& sweep, Judge& jud
           else
             e_lo = std::min(e_lo, p), e_hi = std::max(e_hi, p);
           if (!cell.within[q]) outside.push_back(std::string(measure_names[q]) + " " + decimals(p, 2));
+          const auto [lo, hi] = repro::allowed_order(scheme, cell.mass, q);
+          const std::string what = "order of " + std::string(measure_names[q]) + ", " + cell.mass +
+                                   ", Δt/h = " + significant(cell.courant) + " (units of the tolerance)";
+          margin = tighter(margin, p - lo < hi - p ? at_least(what, p, lo, predicted.tolerance)
+                                                   : at_most(what, p, hi, predicted.tolerance));
           holds = holds && cell.within[q];
           within += cell.within[q];
           ++total;
@@ -864,16 +946,17 @@ std::vector<ClaimResult> check_convergence(const repro::Sweep& sweep, Judge& jud
               (scheme == to_string(Scheme::paoli_schatzman) ? " (velocity; the rest is cn's)" : ""),
           "least-squares orders, N = " + list_elements(g.elements) + ": " + join(per_cell, "; ") + "; " +
               std::to_string(within) + " of " + std::to_string(total) + " within",
-          "every order within " + decimals(predicted.tolerance, 3) + " of the prediction (displacement measures " +
-              decimals(predicted.displacement, 3) + ", energy-type and λ " + decimals(predicted.energy, 3) +
-              ", mathematics.md §9)" +
+          "every order within " + decimals(predicted.tolerance, 3) +
+              " of the predicted order, a conjecture (displacement measures " + decimals(predicted.displacement, 3) +
+              ", energy-type and λ " + decimals(predicted.energy, 3) + ", mathematics.md §9)" +
               (scheme == to_string(Scheme::backward_euler)
                    ? std::string()
                    : ", or for a mass whose period is off by O(h) (Mod 1, Mod 2) up to the drift's orders "
                      "1 and ½ (+ the same tolerance)") +
               " in every (mass, Δt/h ∈ {" + list_reals(g.courants) + "}) cell, T = " + significant(g.horizons[k]) +
-              " period(s)",
-          holds));
+              " period(s). Basis: the tolerance is half the distance between the two predicted classes (theory); "
+              "revised after the first run, whose \"order ≥ ¼\" sat on backward Euler's data",
+          margin, holds));
     }
   }
   return rows;
@@ -997,6 +1080,7 @@ std::vector<ClaimResult> check_time_convergence(const SchemeChoice& scheme,
     std::vector<std::array<double, 8>> e;
     for (Index r : ratio) e.push_back(against_reference(scheme, mass, mesh, dt_ref, r, st.final_time));
     bool holds = true;
+    Margin margin = at_most("", 0, 1);
     std::vector<std::string> measured;
     for (std::size_t q = 0; q < 8; ++q) {
       std::vector<double> y;
@@ -1013,6 +1097,8 @@ std::vector<ClaimResult> check_time_convergence(const SchemeChoice& scheme,
       const double tail = repro::observed_order(std::vector<double>(dt.begin() + static_cast<long>(first), dt.end()),
                                                 std::vector<double>(y.begin() + static_cast<long>(first), y.end()));
       holds = holds && std::abs(finest - st.predicted_order) <= st.tolerance;
+      margin = tighter(margin, at_most("|finest order − " + significant(st.predicted_order) + "|, " + measure_names[q],
+                                       std::abs(finest - st.predicted_order), st.tolerance));
       measured.push_back(std::string(measure_names[q]) + ": finest " + decimals(finest, 2) + ", three finest " +
                          decimals(tail, 2) + " (local " + join(local, ", ") + ")");
     }
@@ -1026,7 +1112,7 @@ std::vector<ClaimResult> check_time_convergence(const SchemeChoice& scheme,
             std::to_string(st.elements) + ") at the common instants up to T = " + significant(st.final_time) +
             ", Δt = " + join(steps, ", ") + ": the order of the finest halving within " +
             significant(st.predicted_order) + " ± " + significant(st.tolerance) + " in each of the 8 measures",
-        holds));
+        margin, holds));
   }
   return rows;
 }
@@ -1133,7 +1219,11 @@ std::vector<ClaimResult> check_energy_conservation(const SchemeChoice& scheme,
                          significant(t.jump_sum));
     }
     bool shrinking = std::isfinite(max_same);
-    for (std::size_t i = 0; i + 1 < jumps.size(); ++i) shrinking = shrinking && jumps[i + 1] < jumps[i];
+    double largest_jump_ratio = 0;  // Σ|ΔE| on a mesh over Σ|ΔE| on the next coarser one (O(h): ½)
+    for (std::size_t i = 0; i + 1 < jumps.size(); ++i) {
+      shrinking = shrinking && jumps[i + 1] < jumps[i];
+      largest_jump_ratio = std::max(largest_jump_ratio, jumps[i + 1] / jumps[i]);
+    }
     const bool positive = std::all_of(jumps.begin(), jumps.end(), [](double v) { return v > 0 && std::isfinite(v); });
     const std::string order = positive ? ", order in h " + decimals(repro::observed_order(h, jumps), 2) : "";
     const bool holds = worst_share <= 1.0 && shrinking;
@@ -1148,7 +1238,11 @@ std::vector<ClaimResult> check_energy_conservation(const SchemeChoice& scheme,
                              " (round-off) at every step keeping the contact status, and Σ|ΔE| over the steps changing "
                              "it decreases at every refinement N = " +
                              list_elements(settings.elements) + " (Δt = " + significant(settings.courant) +
-                             "h, T = " + significant(settings.final_time) + ")",
+                             "h, T = " + significant(settings.final_time) +
+                             "). Basis (theory): exact conservation between events, round-off of the velocity "
+                             "recovery (derivation above; revised after a run: the first allowance forgot 1/Δt)",
+                         tighter(at_most("largest |ΔE| between events / round-off allowance", worst_share, 1),
+                                 at_most("largest ratio of Σ|ΔE| on successive meshes", largest_jump_ratio, 1, 1)),
                          holds));
   }
   return rows;
@@ -1160,22 +1254,24 @@ std::vector<ClaimResult> check_energy_dissipation(const SchemeChoice& scheme,
   std::vector<ClaimResult> rows;
   for (const MassRedistribution& mass : masses) {
     int increases = 0;
-    double max_increase = 0;
+    double max_increase = 0, worst_share = -INFINITY;  // worst_share: max ΔE / round-off allowance
     std::vector<std::string> per_mesh;
     for (Index n : settings.elements) {
       const EnergyTrace t = energy_trace(scheme, mass, n, settings);
       increases += t.increases;
       max_increase = std::max(max_increase, t.max_increase);
+      worst_share = std::max(worst_share, t.max_increase / t.round_off);
       per_mesh.push_back("N = " + std::to_string(n) + ": E_h(T)/E_h(0) = " + decimals(t.e_final / t.e0, 4));
     }
     rows.push_back(judge("5/" + scheme.label + "/" + mass.name,
                          "Energy: " + scheme.label + " with " + mass.name + " never increases the energy",
                          std::to_string(increases) + " steps with an increase; largest ΔE/E_h(0) = " +
                              significant(max_increase) + "; " + join(per_mesh, "; "),
-                         "Eⁿ⁺¹ ≤ Eⁿ + " + round_off_text(settings) + " (round-off) at every step, N = " +
-                             list_elements(settings.elements) + " (Δt = " + significant(settings.courant) +
-                             "h, T = " + significant(settings.final_time) + ")",
-                         increases == 0));
+                         "Eⁿ⁺¹ ≤ Eⁿ + " + round_off_text(settings) +
+                             " (round-off) at every step, N = " + list_elements(settings.elements) +
+                             " (Δt = " + significant(settings.courant) + "h, T = " + significant(settings.final_time) +
+                             "). Basis (theory): the step's energy identity, and the same round-off allowance",
+                         at_most("largest ΔE per step / round-off allowance", worst_share, 1, 1), increases == 0));
   }
   return rows;
 }
@@ -1294,6 +1390,7 @@ std::vector<ClaimResult> check_contact_step(const std::vector<ContactStepCase>& 
   std::vector<ClaimResult> rows;
   for (const std::string& label : labels) {
     bool holds = true;
+    double largest = 0;
     std::vector<std::string> measured, names;
     for (const ContactStepCase& c : cases) {
       if (c.run.label != label) continue;
@@ -1301,6 +1398,7 @@ std::vector<ClaimResult> check_contact_step(const std::vector<ContactStepCase>& 
       const double du = cmp.u_scale > 0 ? cmp.u_difference / cmp.u_scale : cmp.u_difference;
       const double dl = cmp.lambda_scale > 0 ? cmp.lambda_difference / cmp.lambda_scale : cmp.lambda_difference;
       holds = holds && cmp.compared > 0 && du <= settings.tolerance && dl <= settings.tolerance && cmp.complementarity;
+      largest = std::max({largest, du, dl});
       names.push_back(c.mass.name);
       measured.push_back(c.mass.name + ": " + std::to_string(cmp.compared) + " steps (" +
                          std::to_string(cmp.status_changes) + " status changes), ΔU " + significant(du, 2) + ", Δλ " +
@@ -1315,8 +1413,9 @@ std::vector<ClaimResult> check_contact_step(const std::vector<ContactStepCase>& 
                              significant(settings.tolerance) +
                              ", complementarity exact; every status change and every " +
                              std::to_string(settings.every) + "th step, " +
-                             run_text(settings.elements, settings.courant, settings.final_time),
-                         holds));
+                             run_text(settings.elements, settings.courant, settings.final_time) +
+                             ". Basis (theory): a few hundred round-offs of a well-conditioned solve",
+                         at_most("largest relative difference in U or λ", largest, settings.tolerance), holds));
   }
   return rows;
 }
@@ -1341,32 +1440,44 @@ TEST_CASE("the contact-step check fails when the step does not solve the stated 
 
 // ---------------------------------------------------------------------------------------------------
 // Claim 6b: the closed-form solution (mathematics.md §2) against a very fine numerical solution
-// (Crank–Nicolson, Mod 3, N = 4000, Δt = h/2, one period).
+// (Crank–Nicolson, Mod 3, N = 4000 and N = 1000, Δt = h/2, one period).
 //
-// The bound. The exact solution is Lipschitz with derivatives that jump across characteristics, so
-// the P1 errors in the roughest measures (u_x, u_t, λ) are expected to decay like h^½ at best:
-// h^½ = 0.016 at N = 4000; allowing a constant of 3 gives the bound 0.05 on all eight relative errors.
-// A mistake in the closed form (a wrong phase, sign, period or amplitude) gives relative errors of
-// order 1 in most measures, far above it.
+// The criterion follows the predicted rates. If the closed form is the solution, the errors of a
+// convergent scheme against it decay at the orders of mathematics.md §9 (a conjecture: h^{2/3} in the
+// displacement measures, h^{1/3} in the energy-type ones and λ, for Crank–Nicolson and Mod 3); if it is
+// not (a wrong phase, sign, period or amplitude), they stagnate at the size of the mistake, order 0. So
+// the observed order between N/4 and N must lie above the prediction minus the tolerance of claim 4 (half
+// the distance between the two classes, 1/6), which an order 0 cannot. (The first criterion, a flat
+// bound 0.05 ≈ 3h^{1/2} on every error at N = 4000, assumed h^{1/2} in the roughest measures, against the
+// project's own prediction h^{1/3} for λ; λ's 0.0564 then failed it.)
 ClaimResult check_exact_solution(const ExactSolution& exact, const FineSolutionSettings& settings, Judge& judge) {
-  repro::Configuration configuration;
-  configuration.scheme = scheme_choice(Scheme::crank_nicolson).parameters;
-  configuration.mass = mod3();
-  configuration.elements = settings.elements;
-  configuration.courant = settings.courant;
-  configuration.final_time = settings.final_time;
-  const auto values = ErrorAccumulator::values(repro::run_configuration(configuration, {}, &exact).errors);
-  bool holds = true;
+  std::array<std::array<double, 8>, 2> values{};
+  const Index meshes[2] = {settings.elements / 4, settings.elements};
+  for (int k = 0; k < 2; ++k) {
+    const repro::Configuration configuration = repro::paper_configuration(
+        Scheme::crank_nicolson, "algebraic", "mod3", meshes[k], settings.courant, settings.final_time);
+    values[k] = ErrorAccumulator::values(repro::run_configuration(configuration, {}, &exact).errors);
+  }
+  const repro::PredictedOrders predicted = repro::predicted_orders(to_string(Scheme::crank_nicolson));
+  Margin margin = at_least("", INFINITY, 0, 1);
   std::vector<std::string> measured;
   for (std::size_t q = 0; q < 8; ++q) {
-    holds = holds && values[q] <= settings.bound;
-    measured.push_back(std::string(measure_names[q]) + " " + significant(values[q]));
+    const double order = std::log(values[0][q] / values[1][q]) / std::log(4.0);
+    margin = tighter(margin, at_least(std::string("order of ") + measure_names[q] + " (units of the tolerance)", order,
+                                      predicted.of(q) - predicted.tolerance, predicted.tolerance));
+    measured.push_back(std::string(measure_names[q]) + " " + significant(values[1][q]) + " (order " +
+                       decimals(order, 2) + ")");
   }
   return judge("6/exact", "The closed-form solution agrees with a very fine numerical solution",
-               "relative errors: " + join(measured, ", "),
-               "all 8 relative errors ≤ " + significant(settings.bound) + " (≈ 3h^½) for cn, mod3, " +
-                   run_text(settings.elements, settings.courant, settings.final_time),
-               holds);
+               "relative errors at N = " + std::to_string(settings.elements) +
+                   " and the order from N = " + std::to_string(meshes[0]) + ": " + join(measured, ", "),
+               "every order from N/4 to N ≥ the predicted order − " + decimals(predicted.tolerance, 3) + " (≥ " +
+                   decimals(predicted.displacement - predicted.tolerance, 3) + " displacement, ≥ " +
+                   decimals(predicted.energy - predicted.tolerance, 3) + " energy-type and λ) for cn, mod3, " +
+                   run_text(settings.elements, settings.courant, settings.final_time) +
+                   ". Basis: the predicted orders (a conjecture) and claim 4's tolerance (theory); revised after a "
+                   "run from a flat 0.05, which contradicted the prediction for λ",
+               margin);
 }
 
 TEST_CASE("the exact-solution check fails for a wrong closed form") {
@@ -1385,33 +1496,10 @@ TEST_CASE("the exact-solution check fails for a wrong closed form") {
 // energy balance of Crank–Nicolson with a massless contact node (mathematics.md §12) says more: a step
 // that keeps the contact status conserves E_h, an impact loses energy and a release gains some, at most
 // c²h v²/8 per switch (c = Δt/h). For Δt ≲ h the gains and losses nearly cancel; for Δt ≫ h the
-// gains win. So "no blow-up", E_hⁿ ≤ 2 E_h(0), is checked over a region: Δt/h from ¼ to 40 on
-// N = 16 … 128 over 100 periods (Mod 3), and 1000 periods at Δt = h (Mod 1, 2, 3) on N = 20 and 64.
+// gains win. So "no blow-up", E_hⁿ ≤ 2 E_h(0), is checked over a region, the grid of
+// repro::StabilityGrid that fig_stability_map draws: Δt/h from ¼ to 40 on N = 16 … 128 over 100
+// periods (Mod 3), every N from 4 to 40 at Δt/h ≤ 2, and 1000 periods at Δt = h (Mod 1, 2, 3).
 namespace {
-
-struct StabilityCell {
-  Index elements;
-  double courant;
-  std::string mass;
-  double periods;
-  double largest;  // max E_hⁿ / E_h(0)
-};
-
-std::vector<StabilityCell> stability_cells(const std::vector<Index>& elements, const std::vector<double>& courants,
-                                           const std::vector<std::string>& masses, double periods) {
-  std::vector<StabilityCell> cells;
-  std::vector<repro::Configuration> configurations;
-  for (const std::string& mass : masses)
-    for (Index n : elements)
-      for (double c : courants) {
-        cells.push_back({n, c, mass, periods, 0});
-        configurations.push_back(
-            repro::paper_configuration(Scheme::crank_nicolson, "algebraic", mass, n, c, 3 * periods));
-      }
-  const std::vector<repro::Measures> m = repro::run_configurations(configurations);
-  for (std::size_t k = 0; k < cells.size(); ++k) cells[k].largest = m[k].energy_max / m[k].energy_initial;
-  return cells;
-}
 
 std::string magnitude(double x) { return x < 1000 ? significant(x, 3) : significant(x, 2); }
 
@@ -1524,10 +1612,15 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
       if (row.id.compare(0, prefix.size(), prefix) == 0) r.push_back(&row);
     return r;
   };
+  // A claim whose rows all hold reads "reproduced", or "marginal" if one of them holds within 10 %.
   const auto verdict_of = [&](const std::vector<const ClaimResult*>& r) {
-    int reproduced = 0;
-    for (const ClaimResult* row : r) reproduced += row->verdict == Verdict::reproduced;
-    return summary_verdict(reproduced, static_cast<int>(r.size()));
+    int holding = 0, marginal = 0;
+    for (const ClaimResult* row : r) {
+      holding += row->verdict == Verdict::reproduced || row->verdict == Verdict::marginal;
+      marginal += row->verdict == Verdict::marginal;
+    }
+    const int total = static_cast<int>(r.size());
+    return holding == total && marginal > 0 ? std::string("marginal") : summary_verdict(holding, total);
   };
 
   timed("sweep (claims 3 and 4)", [&] { report.sweep = repro::run_sweep(repro::SweepGrid(), 0, progress); });
@@ -1539,57 +1632,62 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     append(check_stability(paper_schemes(), paper_masses(), st, judge));
     rows.push_back(check_consistent_mass_blows_up(scheme_choice(Scheme::crank_nicolson), st, judge));
     // Over a region the meshes are coarse (N = 16: the O(h) jumps at impacts and releases are a few
-    // percent of E_h(0)), so "no blow-up" is the energy staying below twice its initial value.
-    const double blow_up = 2;
-    const std::vector<double> courants = {0.25, 0.5, 1, 2, 5, 10, 20, 40};
-    const std::vector<Index> meshes = {16, 32, 64, 128};
-    const std::vector<StabilityCell> large = stability_cells(meshes, courants, {"mod3"}, 100);
-    const std::vector<StabilityCell> long_runs = stability_cells({20, 64}, {1.0}, {"mod1", "mod2", "mod3"}, 1000);
-    double bounded_up_to = 0;
-    bool large_holds = true;
+    // percent of E_h(0)), so "no blow-up" is the energy staying below twice its initial value: a
+    // convention, chosen when the check was written, not a derived bound (the margins show each cell's
+    // distance to it). The grid is fig_stability_map's (repro::StabilityGrid): one set of meshes.
+    const repro::StabilityRegion region = repro::run_stability_region();
+    const repro::StabilityGrid& grid = region.grid;
+    const double blow_up = grid.threshold;
     std::vector<std::string> per_courant;
-    for (double c : courants) {
-      double worst = 0;
-      for (const StabilityCell& cell : large)
-        if (cell.courant == c) worst = std::max(worst, cell.largest);
-      per_courant.push_back(significant(c) + ": " + magnitude(worst));
-      // The ratios are increasing: the bound holds up to the first one where some mesh exceeds it.
-      if (large_holds && worst <= blow_up) bounded_up_to = c;
-      large_holds = large_holds && worst <= blow_up;
+    double worst = 0;
+    for (double c : grid.courants) {
+      per_courant.push_back(significant(c) + ": " + magnitude(region.worst_at(c)));
+      worst = std::max(worst, region.worst_at(c));
     }
-    rows.push_back(
-        judge("1/cn/large-steps", "Stability over a region: cn with mod3 for Δt/h from ¼ to 40",
-              "largest E_hⁿ/E_h(0) over N = 16, 32, 64, 128 and 100 periods, per Δt/h: " + join(per_courant, ", "),
-              "E_hⁿ ≤ " + significant(blow_up) + " E_h(0) at every step, every N and Δt/h", large_holds));
-    bool long_holds = true;
-    std::vector<std::string> per_mass;
-    for (const StabilityCell& cell : long_runs) {
-      long_holds = long_holds && cell.largest <= blow_up;
+    rows.push_back(judge("1/cn/large-steps", "Stability over a region: cn with mod3 for Δt/h from ¼ to 40",
+                         "largest E_hⁿ/E_h(0) over N = " + list_elements(grid.meshes) + " and " +
+                             significant(grid.periods) + " periods, per Δt/h: " + join(per_courant, ", "),
+                         "E_hⁿ ≤ " + significant(blow_up) +
+                             " E_h(0) at every step, every N and Δt/h. Basis: a convention for \"no blow-up\", "
+                             "chosen when the check was written",
+                         at_most("largest E_hⁿ/E_h(0) − 1", worst - 1, blow_up - 1)));
+    double long_worst = 0;
+    std::vector<std::string> per_mass, long_failures;
+    for (const repro::StabilityCell& cell : region.long_runs) {
+      long_worst = std::max(long_worst, cell.largest);
       per_mass.push_back(repro::mass_label(cell.mass).plain + ", N = " + std::to_string(cell.elements) + ": " +
                          magnitude(cell.largest));
-    }
-    rows.push_back(judge("1/cn/1000-periods", "Stability over a long run: cn at Δt = h over 1000 periods",
-                         "largest E_hⁿ/E_h(0): " + join(per_mass, ", "),
-                         "E_hⁿ ≤ " + significant(blow_up) + " E_h(0) at every step", long_holds));
-    stability_line.key = "stability";
-    stability_line.claim = "1 Stability (no blow-up)";
-    stability_line.verdict = verdict_of(rows_with("1/"));
-    stability_line.holds =
-        "CN, BE, PS (algebraic row) with Mod 1–3, N = " + std::to_string(st.elements) +
-        ", Δt = " + significant(st.courant) + "h, 100 periods (E ≤ " + significant(st.bound_conserving) +
-        " E(0)); CN, Mod 3, N = 16–128, 100 periods: E ≤ 2 E(0) for Δt/h ≤ " + significant(bounded_up_to);
-    std::vector<std::string> beyond, long_failures;
-    for (double c : courants)
-      if (c > bounded_up_to) beyond.push_back(significant(c));
-    for (const StabilityCell& cell : long_runs)
       if (cell.largest > blow_up)
         long_failures.push_back(repro::mass_label(cell.mass).plain + ", N = " + std::to_string(cell.elements) + " (" +
                                 magnitude(cell.largest) + " E(0))");
-    stability_line.fails = "CN at Δt/h = " + join(beyond, ", ") + "; 1000 periods at Δt = h: " +
+    }
+    rows.push_back(judge("1/cn/1000-periods",
+                         "Stability over a long run: cn at Δt = h over " + significant(grid.long_periods) + " periods",
+                         "largest E_hⁿ/E_h(0): " + join(per_mass, ", "),
+                         "E_hⁿ ≤ " + significant(blow_up) + " E_h(0) at every step (the same convention)",
+                         at_most("largest E_hⁿ/E_h(0) − 1", long_worst - 1, blow_up - 1)));
+    std::vector<std::string> scan_failures, beyond;
+    for (const auto& [n, largest] : region.scan_failures())
+      scan_failures.push_back("N = " + std::to_string(n) + " (" + magnitude(largest) + " E(0))");
+    for (double c : grid.courants)
+      if (c > region.bounded_up_to()) beyond.push_back(significant(c));
+    stability_line.key = "stability";
+    stability_line.claim = "1 Stability (no blow-up)";
+    stability_line.verdict = verdict_of(rows_with("1/"));
+    stability_line.holds = "CN, BE, PS (algebraic row), Mod 1–3, N = " + std::to_string(st.elements) +
+                           ", Δt = " + significant(st.courant) +
+                           "h, 100 periods; CN, Mod 3, 100 periods, E ≤ 2 E(0) for Δt/h ≤ " +
+                           significant(region.bounded_up_to()) + " on N = " + list_elements(grid.meshes) +
+                           " and for Δt/h ≤ " + significant(grid.scan_up_to) + " on every N from " +
+                           std::to_string(region.bounded_from()) + " to " + std::to_string(grid.scan.back());
+    stability_line.fails = "CN at Δt/h = " + join(beyond, ", ") + "; Δt/h ≤ " + significant(grid.scan_up_to) + " on " +
+                           (scan_failures.empty() ? std::string("none") : join(scan_failures, ", ")) + "; " +
+                           significant(grid.long_periods) + " periods at Δt = h: " +
                            (long_failures.empty() ? std::string("none") : join(long_failures, ", ")) +
                            "; PS with the literal row (sawtooth); CN with the consistent mass (the contrast)";
-    stability_line.numbers = "largest E/E(0), CN, Mod 3, 100 periods, per Δt/h: " + join(per_courant, ", ") +
-                             "; 1000 periods, Δt = h: " + join(per_mass, ", ");
+    stability_line.numbers = "largest E/E(0), CN, Mod 3, " + significant(grid.periods) +
+                             " periods, per Δt/h: " + join(per_courant, ", ") + "; " + significant(grid.long_periods) +
+                             " periods, Δt = h: " + join(per_mass, ", ");
   });
   timed("2 mass", [&] {
     std::vector<UniformMesh> meshes;
@@ -1621,7 +1719,8 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
   const auto ids = [&](const std::vector<const ClaimResult*>& r, Verdict v) {
     std::vector<std::string> s;
     for (const ClaimResult* row : r)
-      if ((row->verdict == Verdict::reproduced) == (v == Verdict::reproduced)) s.push_back(readable_row(row->id));
+      if ((row->verdict == Verdict::reproduced || row->verdict == Verdict::marginal) == (v == Verdict::reproduced))
+        s.push_back(readable_row(row->id));
     return s.empty() ? std::string("none") : join(s, "; ");
   };
   std::vector<SummaryLine>& summary = report.summary;
@@ -1682,12 +1781,35 @@ std::string verdict_text(const ClaimResult& r) {
   return r.reason.empty() ? to_string(r.verdict) : to_string(r.verdict) + " (" + r.reason + ")";
 }
 
+// What was measured, then the margin of the criterion: the measured value against the threshold.
+std::string measured_text(const ClaimResult& r) { return r.measured + ". Margin: " + r.margin.text(); }
+
 }  // namespace
 
 void write_text_summary(std::ostream& out, const std::vector<SummaryLine>& summary) {
   repro::Table table({"claim", "verdict", "holds", "fails", "decisive numbers"});
   for (const SummaryLine& l : summary) table.add_row({l.claim, l.verdict, l.holds, l.fails, l.numbers});
   table.write_text(out, {26, 11, 34, 30, 60});
+}
+
+// The terminal's summary: one line per claim, its verdict in a column of its own, then the counts of the
+// rows; at most 12 lines of at most 100 columns (a longer claim text is cut with "…").
+void write_short_summary(std::ostream& out, const std::vector<SummaryLine>& summary,
+                         const std::vector<ClaimResult>& rows) {
+  constexpr std::size_t claim_width = 80;
+  for (const SummaryLine& l : summary) {
+    std::string claim = l.claim;
+    while (repro::display_width(claim) > claim_width - 1) {
+      do claim.pop_back();
+      while (!claim.empty() && (static_cast<unsigned char>(claim.back()) & 0xC0) == 0x80);
+      if (repro::display_width(claim) <= claim_width - 2) claim += "…";
+    }
+    out << claim << std::string(claim_width - repro::display_width(claim), ' ') << l.verdict << '\n';
+  }
+  int counts[4] = {0, 0, 0, 0};
+  for (const ClaimResult& r : rows) ++counts[static_cast<int>(r.verdict)];
+  out << rows.size() << " rows: " << counts[0] << " reproduced, " << counts[1] << " marginal, " << counts[2]
+      << " not reproduced, " << counts[3] << " FAILED (detail: --detail, --markdown)\n";
 }
 
 void write_latex_summary(std::ostream& out, const std::vector<SummaryLine>& summary) {
@@ -1724,20 +1846,20 @@ void write_text_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
     const ClaimResult& r = rows[k];
     const bool same_criterion = k > 0 && rows[k - 1].criterion == r.criterion;
     const bool same_reason = k > 0 && !r.reason.empty() && rows[k - 1].reason == r.reason;
-    table.add_row({"[" + r.id + "] " + r.claim, r.measured, same_criterion ? "(as above)" : r.criterion,
+    table.add_row({"[" + r.id + "] " + r.claim, measured_text(r), same_criterion ? "(as above)" : r.criterion,
                    same_reason ? to_string(r.verdict) + " (as above)" : verdict_text(r)});
   }
   table.write_text(out, {34, 58, 40, 30});
-  int counts[3] = {0, 0, 0};
+  int counts[4] = {0, 0, 0, 0};
   for (const ClaimResult& r : rows) ++counts[static_cast<int>(r.verdict)];
-  out << rows.size() << " rows: " << counts[0] << " reproduced, " << counts[1]
-      << " not reproduced (expected failures), " << counts[2] << " FAILED\n";
+  out << rows.size() << " rows: " << counts[0] << " reproduced, " << counts[1] << " marginal, " << counts[2]
+      << " not reproduced (expected failures), " << counts[3] << " FAILED\n";
 }
 
 void write_markdown_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
   repro::Table table({"claim", "measured", "criterion", "verdict"});
   for (const ClaimResult& r : rows)
-    table.add_row({"**" + r.id + "** " + r.claim, r.measured, r.criterion, verdict_text(r)});
+    table.add_row({"**" + r.id + "** " + r.claim, measured_text(r), r.criterion, verdict_text(r)});
   table.write_markdown(out);
 }
 
@@ -1824,7 +1946,7 @@ void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) 
     const std::string verdict =
         r.verdict == Verdict::reproduced ? to_string(r.verdict) : "\\textbf{" + to_string(r.verdict) + "}";
     table.add_row(
-        {"\\textbf{" + latex_escape(readable_id(r.id)) + ".} " + latex_escape(r.claim), latex_escape(r.measured),
+        {"\\textbf{" + latex_escape(readable_id(r.id)) + ".} " + latex_escape(r.claim), latex_escape(measured_text(r)),
          same_criterion ? std::string("\\emph{as above}") : latex_escape(r.criterion), verdict},
         r.reason.empty() ? std::string()
                          : "\\emph{Why:} " + (same_reason ? std::string("as above.") : latex_escape(r.reason)));

@@ -296,6 +296,73 @@ std::vector<OrderCell> order_cells(const Sweep& sweep) {
   return cells;
 }
 
+std::vector<double> StabilityGrid::stability_courants() {
+  std::vector<double> c;
+  for (int k = 0; k <= 14; ++k) c.push_back(0.25 * std::pow(2.0, 0.5 * k));  // ¼ … 32
+  c.push_back(40);
+  return c;
+}
+std::vector<Index> StabilityGrid::scan_meshes(Index first, Index last) {
+  std::vector<Index> n;
+  for (Index k = first; k <= last; ++k) n.push_back(k);
+  return n;
+}
+
+StabilityRegion run_stability_region(const StabilityGrid& grid) {
+  StabilityRegion region{grid, {}, {}, {}};
+  std::vector<Configuration> configurations;
+  std::vector<std::pair<std::vector<StabilityCell>*, StabilityCell>> cells;
+  const auto add = [&](std::vector<StabilityCell>* to, const std::string& mass, Index n, double c, double periods) {
+    cells.push_back({to, {mass, n, c, periods, 0}});
+    configurations.push_back(paper_configuration(Scheme::crank_nicolson, "algebraic", mass, n, c, 3 * periods));
+  };
+  for (Index n : grid.meshes)
+    for (double c : grid.courants) add(&region.large, "mod3", n, c, grid.periods);
+  for (Index n : grid.scan)
+    for (double c : grid.courants)
+      if (c <= grid.scan_up_to) add(&region.scan, "mod3", n, c, grid.periods);
+  for (const std::string& mass : mass_names())
+    for (Index n : grid.meshes) add(&region.long_runs, mass, n, grid.long_courant, grid.long_periods);
+  const std::vector<Measures> m = run_configurations(configurations);
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    cells[k].second.largest = m[k].energy_max / m[k].energy_initial;
+    cells[k].first->push_back(cells[k].second);
+  }
+  return region;
+}
+
+double StabilityRegion::worst_at(double courant) const {
+  double worst = 0;
+  for (const StabilityCell& cell : large)
+    if (cell.courant == courant) worst = std::max(worst, cell.largest);
+  return worst;
+}
+
+double StabilityRegion::bounded_up_to() const {
+  double up_to = 0;
+  for (double c : grid.courants) {
+    if (worst_at(c) > grid.threshold) break;
+    up_to = c;
+  }
+  return up_to;
+}
+
+std::vector<std::pair<Index, double>> StabilityRegion::scan_failures() const {
+  std::vector<std::pair<Index, double>> failures;
+  for (Index n : grid.scan) {
+    double worst = 0;
+    for (const StabilityCell& cell : scan)
+      if (cell.elements == n) worst = std::max(worst, cell.largest);
+    if (worst > grid.threshold) failures.emplace_back(n, worst);
+  }
+  return failures;
+}
+
+Index StabilityRegion::bounded_from() const {
+  const std::vector<std::pair<Index, double>> failures = scan_failures();
+  return failures.empty() ? grid.scan.front() : failures.back().first + 1;
+}
+
 // ---------------------------------------------------------------------------------------------------
 
 namespace {

@@ -122,4 +122,44 @@ struct OrderCell {
 };
 std::vector<OrderCell> order_cells(const Sweep& sweep);
 
+/// Claim 1 over a region (mathematics.md §12): Crank–Nicolson with a massless contact node conserves E_h
+/// while the contact status is kept, loses energy at an impact and gains at most c²h v²/8 at a release
+/// (c = Δt/h). The grid that claims.cpp's rows and fig_stability_map (the report's figure) share, so that
+/// both speak of the same meshes: the largest E_hⁿ/E_h(0) over `periods` periods for Δt/h from ¼ to 40
+/// (ratio √2, and 40) on `meshes` (Mod 3); every N of `scan` at the ratios up to `scan_up_to` (Mod 3,
+/// the same periods: how far down in N the bound holds); and `long_periods` periods at Δt = h on
+/// `meshes` with Mod 1, 2, 3. "Bounded": at most `threshold` E_h(0).
+struct StabilityGrid {
+  std::vector<Index> meshes = {16, 32, 64, 128};
+  std::vector<double> courants = stability_courants();
+  double periods = 100;
+  std::vector<Index> scan = scan_meshes(4, 40);
+  double scan_up_to = 2;
+  double long_courant = 1, long_periods = 1000;
+  double threshold = 2;
+  static std::vector<double> stability_courants();  ///< ¼ √2^k, k = 0 … 14, and 40
+  static std::vector<Index> scan_meshes(Index first, Index last);
+};
+/// One run of the grid: its largest E_hⁿ/E_h(0).
+struct StabilityCell {
+  std::string mass;
+  Index elements;
+  double courant, periods, largest;
+};
+struct StabilityRegion {
+  StabilityGrid grid;
+  std::vector<StabilityCell> large, scan, long_runs;
+  /// The largest Δt/h of the grid up to which every mesh of `meshes` stays bounded (the ratios are
+  /// increasing; the first one some mesh exceeds ends it).
+  double bounded_up_to() const;
+  /// The largest E_hⁿ/E_h(0) over the meshes at the ratio `courant`.
+  double worst_at(double courant) const;
+  /// The meshes of the scan that exceed the threshold at some Δt/h ≤ scan_up_to, with their largest ratio.
+  std::vector<std::pair<Index, double>> scan_failures() const;
+  /// The smallest N of the scan from which every scanned N stays bounded.
+  Index bounded_from() const;
+};
+/// All runs of the grid (threads).
+StabilityRegion run_stability_region(const StabilityGrid& grid = {});
+
 }  // namespace mrm::repro
