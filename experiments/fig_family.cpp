@@ -216,6 +216,8 @@ int main(int argc, char** argv) {
         << "# measured drift of the impact times per period; drift_rel = drift - Mod 3's drift (same block);\n"
         << "# ratio = geometric mean over the eight measures of error / Mod 3's error (same block).\n";
     std::ostream& defs = program.values();
+    double zero_lo = INFINITY, zero_hi = 0;  // the ratio to Mod 3 of the members the law puts at zero drift
+    std::vector<std::string> zero_members;
     const std::size_t per_block = members().size();
     std::size_t block = 0;
     for (std::size_t a = 0; a < meshes.size(); ++a)
@@ -271,6 +273,12 @@ int main(int argc, char** argv) {
           double worst_gap = 0;
           for (std::size_t m = 0; m < per_block; ++m) {
             const std::string& label = members()[m].label;
+            if (rows[m].predicted == 0 && m != reference_member) {  // the spread among the members the law
+              zero_lo = std::min(zero_lo, std::exp(mean_log[m]));   // puts at zero drift, Mod 3 aside
+              zero_hi = std::max(zero_hi, std::exp(mean_log[m]));
+              if (std::find(zero_members.begin(), zero_members.end(), label) == zero_members.end())
+                zero_members.push_back(label);
+            }
             if (label != "spread:10" && label != "spread:N/2")
               worst_gap = std::max(worst_gap, std::abs(rows[m].drift - reference.drift - rows[m].predicted));
           }
@@ -278,6 +286,10 @@ int main(int argc, char** argv) {
           mrm::tex_define(defs, "family:" + where + ":bestratio", mrm::tex_number(std::exp(mean_log[best]), 3));
           mrm::tex_define(defs, "family:" + where + ":gap", mrm::tex_number(worst_gap, 2));
         }
+    std::string zero_list;
+    for (const std::string& label : zero_members) zero_list += (zero_list.empty() ? "" : ", ") + label;
+    mrm::tex_define(defs, "family:zerodrift:members", zero_list);
+    mrm::tex_define(defs, "family:zerodrift:range", mrm::tex_number(zero_lo, 3) + "--" + mrm::tex_number(zero_hi, 3));
     mrm::tex_define(defs, "family:members", std::to_string(members().size()));
     // The parameters the prose names (the keys above carry them too, so that a change shows at once).
     mrm::tex_define(defs, "family:Ncoarse", std::to_string(meshes.front()));
