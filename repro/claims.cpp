@@ -818,55 +818,54 @@ MassRedistribution mod3_three_quarters() {
 std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySettings& st, Judge& judge) {
   MassRedistribution spread2 = spread_over_first_nodes(2);
   spread2.name = "mod3-spread2";
-  const std::vector<std::vector<MassRedistribution>> triples = {{mod1(), mod2(), mod3()},
-                                                                {mod1(), mod2_diagonal(), mod3()},
-                                                                {mod1(), mod2(), spread2},
-                                                                {mod1(), mod2(), mod3_three_quarters()}};
-  // All runs at once (threads), then the counts per triple and mesh.
+  // All runs at once (threads), gathered as a sweep of one scheme and Δt/h: its ordering cells count the
+  // measures ranked as for claim 3 (repro::ordering_cells), for the reconstruction and each variant.
+  const std::vector<MassRedistribution> masses = {mod1(),          mod2(),  mod3(),
+                                                  mod2_diagonal(), spread2, mod3_three_quarters()};
+  repro::Sweep sweep;
+  sweep.grid = {{st.scheme}, {}, false, {st.courant}, st.elements, {st.periods}};
   std::vector<repro::Configuration> configurations;
-  std::vector<std::string> names;
-  for (const std::vector<MassRedistribution>& triple : triples)
-    for (const MassRedistribution& m : triple)
-      for (Index n : st.elements) {
-        if (std::find(names.begin(), names.end(), m.name + "/" + std::to_string(n)) != names.end()) continue;
-        repro::Configuration c =
-            repro::paper_configuration(st.scheme, "algebraic", "mod3", n, st.courant, 3 * st.periods);
-        c.mass = m;
-        configurations.push_back(c);
-        names.push_back(m.name + "/" + std::to_string(n));
-      }
-  const std::vector<repro::Measures> measures = repro::run_configurations(configurations);
-  const auto errors = [&](const std::string& mass, Index n) {
-    const std::size_t k =
-        static_cast<std::size_t>(std::find(names.begin(), names.end(), mass + "/" + std::to_string(n)) - names.begin());
-    return measures[k];
-  };
-  const std::vector<std::size_t> judged = repro::judged_measures(st.scheme);
-  const auto ranked = [&](const std::vector<MassRedistribution>& t, Index n) {
-    int count = 0;
-    for (std::size_t q : judged) {
-      const auto e = [&](std::size_t k) { return ErrorAccumulator::values(errors(t[k].name, n).errors)[q]; };
-      count += e(2) < e(1) && e(1) < e(0);
+  for (const MassRedistribution& m : masses) {
+    sweep.grid.masses.push_back(m.name);
+    for (Index n : st.elements) {
+      configurations.push_back(
+          repro::paper_configuration(st.scheme, "algebraic", "mod3", n, st.courant, 3 * st.periods));
+      configurations.back().mass = m;
     }
-    return count;
+  }
+  const std::vector<repro::Measures> measures = repro::run_configurations(configurations);
+  for (std::size_t k = 0; k < measures.size(); ++k)
+    sweep.runs.push_back({st.scheme,
+                          configurations[k].mass.name,
+                          st.courant,
+                          configurations[k].elements,
+                          {ErrorAccumulator::values(measures[k].errors)},
+                          0,
+                          measures[k].phase->drift_per_period});
+  const auto ranked = [&](const std::vector<std::string>& triple, Index n) {
+    for (const repro::OrderingCell& cell : repro::ordering_cells(sweep, triple))
+      if (cell.elements == n) return cell.count(repro::judged_measures(st.scheme));
+    throw std::logic_error("sensitivity: no cell");
   };
   std::vector<ClaimResult> rows;
-  for (std::size_t k = 1; k < triples.size(); ++k) {
-    const MassRedistribution& variant = triples[k][k == 1 ? 1 : 2];
+  for (std::size_t k = 3; k < masses.size(); ++k) {
+    const MassRedistribution& variant = masses[k];
+    const bool of_mod2 = k == 3;
+    const std::vector<std::string> triple = {"mod1", of_mod2 ? variant.name : "mod2", of_mod2 ? "mod3" : variant.name};
     int largest_difference = 0;
     std::vector<std::string> measured;
     for (Index n : st.elements) {
-      const int reconstruction = ranked(triples[0], n), with_variant = ranked(triples[k], n);
+      const int reconstruction = ranked({"mod1", "mod2", "mod3"}, n), with_variant = ranked(triple, n);
       largest_difference = std::max(largest_difference, std::abs(reconstruction - with_variant));
       const double h = 1.0 / static_cast<double>(n);
       measured.push_back("N = " + std::to_string(n) + ": " + std::to_string(with_variant) + " measures ranked (" +
                          std::to_string(reconstruction) + " with the reconstruction), drift " +
-                         decimals(*errors(variant.name, n).phase->drift_per_period / h, 3) + "h (law " +
-                         decimals(predict_period(UniformMesh(1.0, n), variant).period_error / h, 3) + "h)");
+                         decimals(*sweep.find(st.scheme, variant.name, st.courant, n).drift_per_period / h, 3) +
+                         "h (law " + decimals(predict_period(UniformMesh(1.0, n), variant).period_error / h, 3) + "h)");
     }
     rows.push_back(judge("3/sensitivity/" + variant.name,
                          "Claim 3 does not depend on the reconstruction: " + variant.description + " in place of " +
-                             (k == 1 ? "Mod 2" : "Mod 3"),
+                             (of_mod2 ? "Mod 2" : "Mod 3"),
                          join(measured, "; "),
                          "with " + st.scheme + ", Δt = " + significant(st.courant) + "h, " + significant(st.periods) +
                              " periods: the same number of measures ranked Mod 3 < Mod 2 < Mod 1 as with the "
@@ -1781,6 +1780,15 @@ std::string verdict_text(const ClaimResult& r) {
   return r.reason.empty() ? to_string(r.verdict) : to_string(r.verdict) + " (" + r.reason + ")";
 }
 
+// "56 rows: 33 reproduced, 7 marginal, 15 not reproduced, 1 FAILED".
+std::string counts_text(const std::vector<ClaimResult>& rows) {
+  int counts[4] = {0, 0, 0, 0};
+  for (const ClaimResult& r : rows) ++counts[static_cast<int>(r.verdict)];
+  std::string text = std::to_string(rows.size()) + " rows";
+  for (int v = 0; v < 4; ++v) text += (v ? ", " : ": ") + std::to_string(counts[v]) + " " + to_string(Verdict(v));
+  return text;
+}
+
 // What was measured, then the margin of the criterion: the measured value against the threshold.
 std::string measured_text(const ClaimResult& r) { return r.measured + ". Margin: " + r.margin.text(); }
 
@@ -1806,10 +1814,7 @@ void write_short_summary(std::ostream& out, const std::vector<SummaryLine>& summ
     }
     out << claim << std::string(claim_width - repro::display_width(claim), ' ') << l.verdict << '\n';
   }
-  int counts[4] = {0, 0, 0, 0};
-  for (const ClaimResult& r : rows) ++counts[static_cast<int>(r.verdict)];
-  out << rows.size() << " rows: " << counts[0] << " reproduced, " << counts[1] << " marginal, " << counts[2]
-      << " not reproduced, " << counts[3] << " FAILED (detail: --detail, --markdown)\n";
+  out << counts_text(rows) << " (detail: --detail, --markdown)\n";
 }
 
 void write_latex_summary(std::ostream& out, const std::vector<SummaryLine>& summary) {
@@ -1850,10 +1855,7 @@ void write_text_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
                    same_reason ? to_string(r.verdict) + " (as above)" : verdict_text(r)});
   }
   table.write_text(out, {34, 58, 40, 30});
-  int counts[4] = {0, 0, 0, 0};
-  for (const ClaimResult& r : rows) ++counts[static_cast<int>(r.verdict)];
-  out << rows.size() << " rows: " << counts[0] << " reproduced, " << counts[1] << " marginal, " << counts[2]
-      << " not reproduced (expected failures), " << counts[3] << " FAILED\n";
+  out << counts_text(rows) << '\n';
 }
 
 void write_markdown_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
