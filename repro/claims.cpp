@@ -362,7 +362,9 @@ std::string stability_criterion(const StabilitySettings& st) {
   return "every value finite, and E_hⁿ and ½UⁿᵀSUⁿ ≤ " + significant(st.bound_conserving) +
          " E_h(0) (CN, PS: energy conserved up to O(h) jumps at status changes) or ≤ (1 + " +
          significant(st.bound_dissipative - 1) + ") E_h(0) (BE: dissipative) at every step, " +
-         run_text(st.elements, st.courant, st.final_time);
+         run_text(st.elements, st.courant, st.final_time) +
+         ". Basis (theory): the energy identities of the schemes (fixed when the check was written; the strain "
+         "energy added after a run, stricter)";
 }
 
 // The growth the bound limits: max(E_hⁿ, ½UⁿᵀSUⁿ)/E_h(0) − 1 (infinite for a non-finite run).
@@ -416,7 +418,8 @@ ClaimResult check_consistent_mass_blows_up(const SchemeChoice& scheme, const Sta
                    " with the consistent mass and exact contact is unstable",
                "consistent: " + describe(r),
                "the same run (" + run_text(settings.elements, settings.courant, settings.final_time) +
-                   ") exceeds the same bound or produces a non-finite value",
+                   ") exceeds the same bound or produces a non-finite value. Basis (theory): the motivation of the "
+                   "method, mathematics.md §3",
                at_least("largest max(E_hⁿ, ½UⁿᵀSUⁿ)/E_h(0) − 1", growth(r), bound - 1), !(r.finite && r.bounded));
 }
 
@@ -483,7 +486,8 @@ std::vector<ClaimResult> check_mass(const std::vector<MassRedistribution>& prese
                                     const std::vector<MassRedistribution>& dropping,
                                     const std::vector<UniformMesh>& meshes, Judge& judge) {
   std::vector<ClaimResult> rows;
-  const std::string tolerance = "≤ 4(N + 1)εL on every mesh (L, N) of " + list_meshes(meshes);
+  const std::string tolerance = "≤ 4(N + 1)εL on every mesh (L, N) of " + list_meshes(meshes) +
+                                ". Basis (theory): the round-off of a sum of 3N + 1 positive terms";
   for (const auto& [masses, lost] : {std::pair{&preserving, 0.0}, std::pair{&dropping, 2.0 / 3.0}}) {
     for (const MassRedistribution& mass : *masses) {
       const MassDeviation d = mass_deviation(mass, meshes, lost);
