@@ -148,7 +148,9 @@ double Margin::fraction() const {
 std::string Margin::text() const {
   const double f = fraction();
   return what + ": " + significant(measured) + (at_most ? " ≤ " : " ≥ ") + significant(threshold) + "? margin " +
-         (std::isfinite(f) ? significant(100 * f, 2) + " %" : std::string(f > 0 ? "∞" : "−∞"));
+         (!std::isfinite(f)                                     ? std::string(f > 0 ? "∞" : "−∞")
+          : std::abs(100 * f) >= 100 && std::abs(100 * f) < 1e6 ? decimals(100 * f, 0) + " %"
+                                                                : significant(100 * f, 2) + " %");
 }
 Margin at_most(std::string what, double measured, double threshold, double scale) {
   return {measured, threshold, scale > 0 ? scale : std::abs(threshold), true, std::move(what)};
