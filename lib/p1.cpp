@@ -32,6 +32,55 @@ UniformMesh::UniformMesh(double length_, Index elements_) : length(length_), ele
                                 std::to_string(elements_) + ")");
 }
 
+double UniformMesh::bar_mass() const {
+  if (homogeneous()) return length;
+  double m = 0;
+  for (Index e = 0; e < elements; ++e) m += density(e) * h(e);
+  return m;
+}
+
+// The graded mesh (issue 22): h_k = h₀ r^k with Σ h_k = h₀ (rᴺ − 1)/(r − 1) = L. The nodes are the
+// partial sums x_{k+1} = x_k + h_k; the last is set to L (the sum carries round-off).
+UniformMesh graded_mesh(double length, Index elements, double ratio) {
+  UniformMesh mesh(length, elements);
+  if (!(std::isfinite(ratio) && ratio > 0))
+    throw std::invalid_argument("mesh: the grading ratio r must be a positive finite number (got " +
+                                std::to_string(ratio) + ")");
+  if (ratio == 1.0) return mesh;
+  const double h0 = length * (ratio - 1.0) / (std::pow(ratio, static_cast<double>(elements)) - 1.0);
+  if (!(std::isfinite(h0) && h0 > 0))
+    throw std::invalid_argument("mesh: the grading ratio r = " + std::to_string(ratio) +
+                                " gives no representable first element (allowed: r^N finite)");
+  mesh.nodes_.resize(static_cast<std::size_t>(elements + 1));
+  mesh.nodes_[0] = 0.0;
+  double hk = h0;
+  for (Index k = 0; k < elements; ++k, hk *= ratio) mesh.nodes_[static_cast<std::size_t>(k + 1)] = mesh.nodes_[static_cast<std::size_t>(k)] + hk;
+  mesh.nodes_.back() = length;
+  return mesh;
+}
+
+UniformMesh with_material(UniformMesh mesh, std::vector<double> young, std::vector<double> density) {
+  const auto check = [&](const std::vector<double>& values, const char* name) {
+    if (static_cast<Index>(values.size()) != mesh.elements)
+      throw std::invalid_argument(std::string("mesh: ") + name + " has " + std::to_string(values.size()) +
+                                  " values (allowed: one per element, " + std::to_string(mesh.elements) + ")");
+    for (double v : values)
+      if (!(std::isfinite(v) && v > 0))
+        throw std::invalid_argument(std::string("mesh: ") + name + " = " + std::to_string(v) +
+                                    " on an element (allowed: positive finite values)");
+  };
+  check(young, "the modulus E");
+  check(density, "the density rho");
+  mesh.young_ = std::move(young);
+  mesh.density_ = std::move(density);
+  return mesh;
+}
+
+UniformMesh with_far_end(UniformMesh mesh, FarEnd far_end) {
+  mesh.far_end = far_end;
+  return mesh;
+}
+
 // The sizes and indices that the operations below require are checked in every build: an assertion
 // would vanish from a release build, and a wrong size would then read or write past a vector's end.
 static void require_size(const char* operation, Index given, Index expected) {
@@ -114,10 +163,15 @@ Eigen::SparseMatrix<double> Tridiagonal::to_sparse() const {
 }
 
 // Assembly element by element: the element matrix [a b; b a] of element e adds to the block of nodes
-// (e, e+1). Both P1 matrices have this form (a = h/3, b = h/6 for M; a = 1/h, b = −1/h for S).
-static Tridiagonal assemble_all_nodes(const UniformMesh& mesh, double a, double b) {
+// (e, e+1). Both P1 matrices have this form: on an element of size h_e, density ρ_e and modulus E_e,
+// ∫ ρ φ_a φ_b dx = ρ_e h_e/6 [2 1; 1 2] and ∫ E φ_a' φ_b' dx = E_e/h_e [1 −1; −1 1], so
+// a = ρ_e h_e/3, b = ρ_e h_e/6 for M and a = E_e/h_e, b = −E_e/h_e for S. (On the paper's mesh,
+// ρ_e = E_e = 1 and h_e = L/N: the products by 1.0 are exact, the same doubles as h/3, h/6, 1/h.)
+template <class Entries>
+static Tridiagonal assemble_all_nodes(const UniformMesh& mesh, Entries entries) {
   Tridiagonal m(mesh.elements + 1);
   for (Index e = 0; e < mesh.elements; ++e) {
+    const auto [a, b] = entries(e);
     m.diag[e] += a;
     m.diag[e + 1] += a;
     m.upper[e] += b;
@@ -127,11 +181,17 @@ static Tridiagonal assemble_all_nodes(const UniformMesh& mesh, double a, double 
 }
 
 Tridiagonal p1_mass_all_nodes(const UniformMesh& mesh) {
-  return assemble_all_nodes(mesh, mesh.h() / 3.0, mesh.h() / 6.0);
+  return assemble_all_nodes(mesh, [&](Index e) {
+    const double m = mesh.density(e) * mesh.h(e);
+    return std::pair{m / 3.0, m / 6.0};
+  });
 }
 
 Tridiagonal p1_stiffness_all_nodes(const UniformMesh& mesh) {
-  return assemble_all_nodes(mesh, 1.0 / mesh.h(), -1.0 / mesh.h());
+  return assemble_all_nodes(mesh, [&](Index e) {
+    const double k = mesh.young(e) / mesh.h(e);
+    return std::pair{k, -k};
+  });
 }
 
 Tridiagonal p1_mass(const UniformMesh& mesh) { return p1_mass_all_nodes(mesh).leading_block(mesh.unknowns()); }
