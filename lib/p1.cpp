@@ -303,4 +303,59 @@ TEST_CASE("the P1 load vector refuses a load that is not finite") {
   CHECK_THROWS_AS(p1_load(mesh, [](double x) { return 1.0 / (x - x); }), std::invalid_argument);
 }
 
+// ---------------------------------------------------------------------------------------------------
+// Graded meshes, piecewise material and the free far end (issue 22). The element matrices integrate
+// ρ φ_a φ_b and E φ_a' φ_b' exactly on each element, so 1ᵀM1 = Σ ρ_e h_e = ∫ρ, xᵀMx = ∫ρx², S1 = 0 on
+// all nodes, and xᵀSx = ∫E (x' = 1).
+
+TEST_CASE("a graded mesh has h_k = h0 r^k, ends at L, and its P1 matrices integrate rho and E exactly") {
+  for (const double r : {1.0, 0.9, 1.05, 1.3}) {
+    const UniformMesh mesh = graded_mesh(2.0, 12, r);
+    CAPTURE(r);
+    CHECK(mesh.x(12) == 2.0);
+    CHECK(mesh.uniform() == (r == 1.0));
+    const double h0 = mesh.h(0);
+    for (Index k = 0; k < 12; ++k) CHECK(std::abs(mesh.h(k) - h0 * std::pow(r, static_cast<double>(k))) < 1e-14);
+    std::vector<double> young(12), density(12);
+    for (Index e = 0; e < 12; ++e) young[e] = 1.0 + static_cast<double>(e % 3), density[e] = 0.5 + 0.25 * static_cast<double>(e % 2);
+    const UniformMesh layered = with_material(mesh, young, density);
+    double rho = 0, rho_x2 = 0, e_int = 0;
+    for (Index e = 0; e < 12; ++e) {
+      const double a = mesh.x(e), b = mesh.x(e + 1);
+      rho += density[e] * (b - a), rho_x2 += density[e] * (b * b * b - a * a * a) / 3, e_int += young[e] * (b - a);
+    }
+    const Tridiagonal m = p1_mass_all_nodes(layered), s = p1_stiffness_all_nodes(layered);
+    Eigen::VectorXd x(13), one = Eigen::VectorXd::Ones(13);
+    for (Index i = 0; i <= 12; ++i) x[i] = mesh.x(i);
+    CHECK(std::abs(m.sum() - rho) < 1e-14);
+    CHECK(std::abs(layered.bar_mass() - rho) < 1e-14);
+    CHECK(std::abs(m.bilinear(x, x) - rho_x2) < 1e-13);
+    CHECK((s * one).cwiseAbs().maxCoeff() < 1e-11);
+    CHECK(std::abs(s.bilinear(x, x) - e_int) < 1e-12);
+    CHECK(layered.contact_compliance() == mesh.h(0) / young[0]);
+  }
+  // The paper's mesh is untouched: h(e) is h(), the compliance h, the unknowns 0..N−1.
+  const UniformMesh plain(1.0, 7);
+  CHECK(plain.h(3) == plain.h());
+  CHECK(plain.contact_compliance() == plain.h());
+  CHECK(plain.unknowns() == 7);
+  CHECK(with_far_end(plain, FarEnd::free).unknowns() == 8);
+  CHECK(p1_mass(with_far_end(plain, FarEnd::free)).size() == 8);
+  CHECK_THROWS_AS(graded_mesh(1.0, 10, 1.1).h(), std::logic_error);
+  CHECK_THROWS_WITH_AS(graded_mesh(1.0, 10, 0.0), doctest::Contains("grading ratio"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(with_material(plain, std::vector<double>(7, 1.0), std::vector<double>(6, 1.0)),
+                       doctest::Contains("one per element"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(with_material(plain, std::vector<double>(7, -1.0), std::vector<double>(7, 1.0)),
+                       doctest::Contains("positive finite"), std::invalid_argument);
+}
+
+TEST_CASE("the load vector on a graded mesh with a free end integrates f phi_i exactly for a quadratic f") {
+  const UniformMesh mesh = with_far_end(graded_mesh(1.0, 9, 1.2), FarEnd::free);
+  const Eigen::VectorXd f = p1_load(mesh, [](double x) { return 1.0 + x * x; });
+  REQUIRE(f.size() == 10);
+  CHECK(std::abs(f.sum() - (1.0 + 1.0 / 3)) < 1e-14);  // every node kept: Σ F_i = ∫ f
+  const double h0 = mesh.h(0);
+  CHECK(std::abs(f[0] - (h0 / 2 + h0 * h0 * h0 / 12)) < 1e-15);
+}
+
 }  // namespace mrm
