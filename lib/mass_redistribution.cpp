@@ -517,14 +517,15 @@ TEST_CASE("on graded layered meshes Mod 3 is P^T M P, Mod 1 loses 2 rho0 h0/3, t
   for (int e = 0; e < 5; ++e) young[e] = 3.0, density[e] = 2.5;
   for (const double r : {1.0, 1.08, 0.95}) {
     for (const bool layered : {false, true}) {
-      const UniformMesh mesh = layered ? with_material(graded_mesh(1.0, 16, r), young, density) : graded_mesh(1.0, 16, r);
+      const UniformMesh mesh =
+          layered ? with_material(graded_mesh(1.0, 16, r), young, density) : graded_mesh(1.0, 16, r);
       const double m_bar = mesh.bar_mass(), lost = 2 * mesh.density(0) * mesh.h(0) / 3;
       CAPTURE(r);
       CAPTURE(layered);
       CHECK(std::abs(lost_mass(mesh) - lost) < 1e-16);
       CHECK(std::abs(total_mass(mesh, mod1()) - (m_bar - lost)) < 1e-14);
-      for (const MassRedistribution& m : {mod2(), mod3(), spread_over_first_nodes(4), spread_over_first_nodes(15),
-                                          beta(1.0 / 3)}) {
+      for (const MassRedistribution& m :
+           {mod2(), mod3(), spread_over_first_nodes(4), spread_over_first_nodes(15), beta(1.0 / 3)}) {
         CAPTURE(m.name);
         CHECK(std::abs(total_mass(mesh, m) - m_bar) < 1e-14);
       }
@@ -538,8 +539,8 @@ TEST_CASE("on graded layered meshes Mod 3 is P^T M P, Mod 1 loses 2 rho0 h0/3, t
       CHECK(std::abs(modified_mass_all_nodes(mesh, node1(2.0 / 3)).diag[1] - m.diag[1]) < 1e-16);
       // beta:2/3 is Mod 3 and beta:0 Mod 2.
       CHECK(std::abs(modified_mass_all_nodes(mesh, beta(2.0 / 3)).diag[1] - m3.diag[1]) < 1e-15);
-      CHECK(std::abs(modified_mass_all_nodes(mesh, beta(0.0)).diag[5] -
-                     modified_mass_all_nodes(mesh, mod2()).diag[5]) < 1e-15);
+      CHECK(std::abs(modified_mass_all_nodes(mesh, beta(0.0)).diag[5] - modified_mass_all_nodes(mesh, mod2()).diag[5]) <
+            1e-15);
     }
   }
 }

@@ -54,7 +54,8 @@ UniformMesh graded_mesh(double length, Index elements, double ratio) {
   mesh.nodes_.resize(static_cast<std::size_t>(elements + 1));
   mesh.nodes_[0] = 0.0;
   double hk = h0;
-  for (Index k = 0; k < elements; ++k, hk *= ratio) mesh.nodes_[static_cast<std::size_t>(k + 1)] = mesh.nodes_[static_cast<std::size_t>(k)] + hk;
+  for (Index k = 0; k < elements; ++k, hk *= ratio)
+    mesh.nodes_[static_cast<std::size_t>(k + 1)] = mesh.nodes_[static_cast<std::size_t>(k)] + hk;
   mesh.nodes_.back() = length;
   return mesh;
 }
@@ -317,7 +318,8 @@ TEST_CASE("a graded mesh has h_k = h0 r^k, ends at L, and its P1 matrices integr
     const double h0 = mesh.h(0);
     for (Index k = 0; k < 12; ++k) CHECK(std::abs(mesh.h(k) - h0 * std::pow(r, static_cast<double>(k))) < 1e-14);
     std::vector<double> young(12), density(12);
-    for (Index e = 0; e < 12; ++e) young[e] = 1.0 + static_cast<double>(e % 3), density[e] = 0.5 + 0.25 * static_cast<double>(e % 2);
+    for (Index e = 0; e < 12; ++e)
+      young[e] = 1.0 + static_cast<double>(e % 3), density[e] = 0.5 + 0.25 * static_cast<double>(e % 2);
     const UniformMesh layered = with_material(mesh, young, density);
     double rho = 0, rho_x2 = 0, e_int = 0;
     for (Index e = 0; e < 12; ++e) {

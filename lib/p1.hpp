@@ -34,19 +34,22 @@ struct UniformMesh {
   /// Builds the uniform mesh; throws std::invalid_argument unless L > 0 (finite) and N >= 2.
   UniformMesh(double length, Index elements);
 
-  double length;   ///< L
-  Index elements;  ///< N
+  double length;                     ///< L
+  Index elements;                    ///< N
   FarEnd far_end = FarEnd::clamped;  ///< the condition at x = L
 
   /// The mesh size h = L/N of a uniform mesh. Throws std::logic_error on a graded mesh, where no single
   /// h exists (use h(e), or contact_compliance() for the contact row): a formula written for the
   /// uniform mesh must not run silently on another one.
   double h() const {
-    if (!nodes_.empty()) throw std::logic_error("mesh: h() asked of a graded mesh (allowed: h(e), the size of element e)");
+    if (!nodes_.empty())
+      throw std::logic_error("mesh: h() asked of a graded mesh (allowed: h(e), the size of element e)");
     return length / static_cast<double>(elements);
   }
   /// The size h_e = x_{e+1} − x_e of element e (h() on a uniform mesh, the same double).
-  double h(Index e) const { return nodes_.empty() ? length / static_cast<double>(elements) : nodes_[e + 1] - nodes_[e]; }
+  double h(Index e) const {
+    return nodes_.empty() ? length / static_cast<double>(elements) : nodes_[e + 1] - nodes_[e];
+  }
   /// The node x_i (uniform: computed as L i/N, exact at i = N).
   double x(Index i) const {
     return nodes_.empty() ? length * static_cast<double>(i) / static_cast<double>(elements) : nodes_[i];

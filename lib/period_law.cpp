@@ -222,7 +222,8 @@ double drift_kernel(double xi) {
 
 EffectiveLengths first_order_length_changes(const UniformMesh& mesh, const MassRedistribution& redistribution) {
   if (!mesh.homogeneous())
-    throw std::invalid_argument("period law: the first-order rule is derived for E = rho = 1 (allowed: a homogeneous bar)");
+    throw std::invalid_argument(
+        "period law: the first-order rule is derived for E = rho = 1 (allowed: a homogeneous bar)");
   if (mesh.far_end != FarEnd::clamped)
     throw std::invalid_argument("period law: the benchmark's far end is clamped (allowed: FarEnd::clamped)");
   const Tridiagonal m = modified_mass_all_nodes(mesh, redistribution), m3 = modified_mass_all_nodes(mesh, mod3());

@@ -95,8 +95,10 @@ TEST_CASE("static solutions under a constant load are fixed points of every sche
     UniformMesh mesh;
     double f, gap;
   };
-  const Case cases[] = {{UniformMesh(1.0, 16), 0.8, 0.0},  {UniformMesh(1.0, 16), -0.8, 0.0},
-                        {layered_mesh(), 0.8, 0.0},         {layered_mesh(), -0.8, 0.0},
+  const Case cases[] = {{UniformMesh(1.0, 16), 0.8, 0.0},
+                        {UniformMesh(1.0, 16), -0.8, 0.0},
+                        {layered_mesh(), 0.8, 0.0},
+                        {layered_mesh(), -0.8, 0.0},
                         {layered_mesh(), -0.8, 0.05}};
   double largest_drift = 0, largest_lambda_error = 0;
   for (const Case& c : cases) {
@@ -119,7 +121,8 @@ TEST_CASE("static solutions under a constant load are fixed points of every sche
         if (x == mesh.x(i)) return exact(i);
       return std::nan("");
     };
-    for (const Scheme s : {Scheme::crank_nicolson, Scheme::backward_euler, Scheme::paoli_schatzman, Scheme::switching}) {
+    for (const Scheme s :
+         {Scheme::crank_nicolson, Scheme::backward_euler, Scheme::paoli_schatzman, Scheme::switching}) {
       for (const MassRedistribution& mass : {mod1(), mod2(), mod3()}) {
         BarSimulation run_(problem, mesh, mass, scheme(s), 0.3 * mesh.h(0));
         double drift = 0, worst_lambda = 0;
@@ -221,8 +224,8 @@ TEST_CASE("a free bar under gravity falls rigidly with Mod 3 (any mesh), not wit
       CAPTURE(graded);
       CAPTURE(mass.name);
       CAPTURE(worst);
-      MESSAGE(std::string(graded ? "graded " : "uniform ") << mass.name << ": max |u_i - (-g t^2/2)| over t <= 0.5 = "
-                                                            << worst);
+      MESSAGE(std::string(graded ? "graded " : "uniform ")
+              << mass.name << ": max |u_i - (-g t^2/2)| over t <= 0.5 = " << worst);
       if (mass.name == "mod3" || mass.name == "consistent") {
         CHECK(worst <= 1e-12);
         // node 0 hangs below node 1 by h₀²g/2 (massless: its row is quasi-static); with inertia, 0.
@@ -257,7 +260,8 @@ TEST_CASE("the gap closes at the free-flight time; the impacting bar stays in co
           worst_free = std::max(worst_free, std::abs(indicator - (gap - v * smp.time)));
           last_free = smp.time;
         }
-        if (smp.has_multiplier && smp.multiplier < 0) contact_times.push_back(smp.time), lambdas.push_back(smp.multiplier);
+        if (smp.has_multiplier && smp.multiplier < 0)
+          contact_times.push_back(smp.time), lambdas.push_back(smp.multiplier);
       });
       REQUIRE(!contact_times.empty());
       CAPTURE(to_string(s));
@@ -315,8 +319,9 @@ TEST_CASE("the gap closes at the free-flight time; the impacting bar stays in co
     CHECK(last_free < t_star);
     CHECK(first_contact >= t_star - 1e-12);
     CHECK(first_contact - step <= last_free + 1e-12);
-    MESSAGE(std::string(graded ? "graded" : "uniform") << " free fall: t* = " << t_star << " (continuum sqrt(2 gap/g) = "
-                                            << std::sqrt(2 * drop / g) << "), contact from level t = " << first_contact);
+    MESSAGE(std::string(graded ? "graded" : "uniform")
+            << " free fall: t* = " << t_star << " (continuum sqrt(2 gap/g) = " << std::sqrt(2 * drop / g)
+            << "), contact from level t = " << first_contact);
   }
 }
 

@@ -767,7 +767,7 @@ void BarSimulation::reference_step(bool has_load) {
   // (nothing has been written yet).
   double obstacle = three_level_ ? -parameters_.restitution * w[0] : 0.0;
   if (step_.obstacle_offset != 0.0) obstacle += step_.obstacle_offset;  // the gap
-  Eigen::VectorXd& u_next = state_.u_new;  // Uⁿ⁺¹
+  Eigen::VectorXd& u_next = state_.u_new;                               // Uⁿ⁺¹
   double contact_multiplier;
   if (energy_conserving_) {
     solver_.sweep_down(rhs.data(), u_next.data());
@@ -869,8 +869,7 @@ void BarSimulation::switch_step(bool has_load) {
   const ContactStep contact =
       switch_->solver.solve(rhs.data(), state_.u_new.data(), theta_step.kappa, theta_step.obstacle_offset);
   state_.w = theta_step.velocity_rate * (state_.u_new - state_.u) - theta_step.velocity_memory * state_.w;
-  state_.energy =
-      0.5 * mass_.bilinear(state_.w, state_.w) + 0.5 * stiffness_form(state_.u_new, state_.u_new, mesh_);
+  state_.energy = 0.5 * mass_.bilinear(state_.w, state_.w) + 0.5 * stiffness_form(state_.u_new, state_.u_new, mesh_);
   state_.u.swap(state_.u_new);
   state_.lambda = contact.multiplier;
   state_.active = contact.active;
