@@ -70,9 +70,10 @@ struct UniformMesh {
   /// The mass of the bar, Σ ρ_e h_e (L on a homogeneous bar, returned as L).
   double bar_mass() const;
 
-  // The graded nodes (empty: uniform) and the material per element (empty: E = ρ = 1). Set by
-  // graded_mesh and with_material, which check them.
-  std::vector<double> nodes_, young_, density_;
+  // Set by graded_mesh and with_material, which check them.
+  std::vector<double> nodes_;    ///< the nodes x_0..x_N of a graded mesh (empty: uniform)
+  std::vector<double> young_;    ///< E_e per element (empty: E = 1)
+  std::vector<double> density_;  ///< ρ_e per element (empty: ρ = 1)
 };
 
 /// The mesh of (0, L) with N elements of sizes h_k = h₀ r^k, k = 0..N−1, h₀ = L(r − 1)/(rᴺ − 1)

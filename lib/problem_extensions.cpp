@@ -237,7 +237,7 @@ TEST_CASE("a free bar under gravity falls rigidly with Mod 3 (any mesh), not wit
   }
 }
 
-TEST_CASE("the gap closes at the free-flight time; the impacting bar stays in contact for about 2L/c") {
+TEST_CASE("the gap closes at the free-flight time, and the impacting bar stays in contact for about 2L/c") {
   // Rigid approach at speed v across the gap (derivation 4), every scheme but EC (which takes no gap:
   // refused): on every free level the contact indicator u₀ + gap is gap − vt to round-off, and the
   // contact starts at the first level at or after g/v. (The detector's interpolation uses the first

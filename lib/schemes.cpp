@@ -766,8 +766,9 @@ void BarSimulation::reference_step(bool has_load) {
   // CN-switch decides it as Crank–Nicolson does, and if the status changes, takes its θ-step instead
   // (nothing has been written yet).
   double obstacle = three_level_ ? -parameters_.restitution * w[0] : 0.0;
-  if (step_.obstacle_offset != 0.0) obstacle += step_.obstacle_offset;  // the gap
-  Eigen::VectorXd& u_next = state_.u_new;                               // Uⁿ⁺¹
+  // The gap (issue 22): the obstacle moves to −gap.
+  if (step_.obstacle_offset != 0.0) obstacle += step_.obstacle_offset;
+  Eigen::VectorXd& u_next = state_.u_new;  // Uⁿ⁺¹
   double contact_multiplier;
   if (energy_conserving_) {
     solver_.sweep_down(rhs.data(), u_next.data());
