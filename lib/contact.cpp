@@ -31,8 +31,12 @@ namespace mrm {
 /// u₀ is a Lipschitz function of Ū, and the reduced problem M̄ Ū'' + S̄ Ū = −C u₀(Ū) + F̄ is a Lipschitz
 /// ODE, which is why the redistributed semi-discrete problem is well posed.
 
-CondensedContact condense_contact_node(double u1, double h, double load0) {
-  return {std::max(0.0, u1 + h * load0), std::min(0.0, load0 + u1 / h)};
+// With an obstacle at g (a gap: g = −gap) the same two cases give u₀ = max(g, u₁ + hF₀) and, in
+// contact, λ = F₀ − (g − u₁)/h. On a graded mesh or with a material, S₀₀ = E₀/h₀ and h is read as the
+// compliance 1/S₀₀ = h₀/E₀ throughout.
+CondensedContact condense_contact_node(double u1, double h, double load0, double obstacle) {
+  if (obstacle == 0.0) return {std::max(0.0, u1 + h * load0), std::min(0.0, load0 + u1 / h)};
+  return {std::max(obstacle, u1 + h * load0), std::min(0.0, load0 + (u1 - obstacle) / h)};
 }
 
 TEST_CASE("the condensed contact node satisfies its row and the complementarity") {

@@ -13,9 +13,11 @@ struct CondensedContact {
   double u0;          ///< the contact-node displacement u₀ ≥ 0
   double multiplier;  ///< the contact stress λ ≤ 0
 };
-/// The massless contact node's row solved in closed form (see CondensedContact): u₀ = max(0, u₁ + h F₀),
-/// λ = min(0, F₀ + u₁/h), for the node-1 value `u1`, the mesh size `h` and the node-0 load `load0`.
-CondensedContact condense_contact_node(double u1, double h, double load0);
+/// The massless contact node's row solved in closed form (see CondensedContact): u₀ = max(g, u₁ + h F₀),
+/// λ = min(0, F₀ + (u₁ − g)/h), for the node-1 value `u1`, the compliance `h` of the contact element
+/// (1/S₀₀: the mesh size on the paper's mesh, h₀/E₀ in general), the node-0 load `load0` and the
+/// obstacle g (0; −gap with a gap).
+CondensedContact condense_contact_node(double u1, double h, double load0, double obstacle = 0.0);
 
 /// The outcome of a contact step: the contact-node value, the multiplier λ ≤ 0 and whether the
 /// constraint is active.

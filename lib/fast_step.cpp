@@ -160,7 +160,9 @@ bool FastStep::fused_step(StepState& state, const ContactSolver& solver) const {
   // EC decides the contact on row 1 instead (energy_step.cpp: its sweep up starts from the value u₀
   // that carries the discrete-gradient force, which is not the contact node's new value at a status
   // change); CN-switch returns before writing anything when the status changes.
-  const double obstacle = three_level ? -restitution_ * w[0] : 0.0;
+  double obstacle = three_level ? -restitution_ * w[0] : 0.0;
+  // The gap (issue 22): the obstacle moves to −gap.
+  if (coefficients_.obstacle_offset != 0.0) obstacle += coefficients_.obstacle_offset;
   ContactStep contact;
   double recurrence_u0;
   if (energy_conserving_) {

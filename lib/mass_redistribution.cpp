@@ -42,16 +42,55 @@ MassRedistribution mod1() {
           [](Index i, Index j, const UniformMesh&) { return (i == 0 || j == 0) ? 0.0 : 1.0; }};
 }
 
+// ---------------------------------------------------------------------------------------------------
+// Unequal elements and piecewise material (issue 22; the paper defines the family on a uniform mesh of
+// a homogeneous bar only: what follows is this project's reconstruction). With element sizes h_e and
+// densities ρ_e, removing row and column 0 removes
+//
+//     m_lost = M₀₀ + 2M₀₁ = ρ₀h₀/3 + 2ρ₀h₀/6 = 2ρ₀h₀/3
+//
+// of the bar's mass m_bar = Σ ρ_e h_e (the contact element keeps ρ₀h₀/3 on node 1). The members are
+// defined by what they do with m_lost, which is what the paper's words say:
+//   Mod 1   drops it (w = 1 on nodes ≥ 1), as before;
+//   Mod 2   "spread uniformly": the density of the whole bar scaled by w = m_bar/(m_bar − m_lost), i.e.
+//           every entry of rows and columns ≥ 1 times w (on a uniform mesh the paper's L/(L − 2h/3));
+//           the other reading, equal shares per node, is spread:K with K the number of free nodes;
+//   Mod 3   moves it to node 1: M̄₁₁ = M₁₁ + m_lost = ρ₀h₀ + ρ₁h₁/3, the removed element's whole mass
+//           on the new free end. This is the Galerkin mass PᵀMP of the free-flight kinematics u₀ := u₁
+//           (M₀₀ + 2M₀₁ + M₁₁) on any mesh, the property the period law rests on (period_law.cpp);
+//           the literal weight w₁₁ = 2 of the uniform case would give M̄₁₁ = 2M₁₁ = 2(ρ₀h₀ + ρ₁h₁)/3
+//           instead, which is not mass-preserving when ρ₁h₁ ≠ ρ₀h₀.
+//   spread:K  m_lost in equal parts m_lost/K on the diagonal of nodes 1..K: w_ii = 1 + m_lost/(K M_ii).
+// On the paper's mesh every weight below is computed by its original expression (the same number:
+// m_lost/(K M_ii) = 1/K there), so that the uniform results stay bit for bit what they were.
+double lost_mass(const UniformMesh& mesh) {
+  if (mesh.uniform() && mesh.homogeneous()) return 2.0 * mesh.h() / 3.0;
+  return 2.0 * mesh.density(0) * mesh.h(0) / 3.0;
+}
+
+namespace {
+
+// M_ii, the consistent mass of node i (0 < i < N): (ρ_{i−1}h_{i−1} + ρ_i h_i)/3; at a free far end
+// i = N, ρ_{N−1}h_{N−1}/3.
+double node_mass(const UniformMesh& mesh, Index i) {
+  const double left = mesh.density(i - 1) * mesh.h(i - 1);
+  return (i < mesh.elements ? left + mesh.density(i) * mesh.h(i) : left) / 3.0;
+}
+
+}  // namespace
+
 MassRedistribution mod2() {
   return {"mod2", "Mod 2: the contact node's mass is spread uniformly on the other nodes",
           [](Index i, Index j, const UniformMesh& mesh) {
             if (i == 0 || j == 0) return 0.0;
-            return mesh.length / (mesh.length - 2.0 * mesh.h() / 3.0);
+            const double m_bar = mesh.bar_mass();
+            return m_bar / (m_bar - lost_mass(mesh));
           }};
 }
 
 // Spreading the lost mass 2h/3 in equal parts 2h/(3k) on the diagonal entries M_ii = 2h/3 of the
-// nodes i = 1..k means the weight w_ii = 1 + 1/k there (node N, clamped, is never among them).
+// nodes i = 1..k means the weight w_ii = 1 + 1/k there (node N, clamped, is never among them); on
+// any other mesh, w_ii = 1 + m_lost/(k M_ii).
 MassRedistribution spread_over_first_nodes(Index k) {
   if (k < 1) throw std::invalid_argument("spread_over_first_nodes: k must be >= 1");
   return {"spread:" + std::to_string(k),
@@ -59,7 +98,9 @@ MassRedistribution spread_over_first_nodes(Index k) {
           [k](Index i, Index j, const UniformMesh& mesh) {
             if (i == 0 || j == 0) return 0.0;
             if (k >= mesh.elements) throw std::invalid_argument("spread_over_first_nodes: k must be < N");
-            return (i == j && i <= k) ? 1.0 + 1.0 / static_cast<double>(k) : 1.0;
+            if (!(i == j && i <= k)) return 1.0;
+            if (mesh.uniform() && mesh.homogeneous()) return 1.0 + 1.0 / static_cast<double>(k);
+            return 1.0 + lost_mass(mesh) / (static_cast<double>(k) * node_mass(mesh, i));
           }};
 }
 
@@ -277,9 +318,12 @@ MassRedistribution node1(double x) {
     throw std::invalid_argument("node1: X must be a positive finite number (M̄_11 = X h)");
   return {"node1:" + shortest_decimal(x),
           "M̄_11 = " + shortest_decimal(x) + " h on node 1, every other entry as Mod 1 (total not renormalised)",
-          [x](Index i, Index j, const UniformMesh&) {
+          [x](Index i, Index j, const UniformMesh& mesh) {
             if (i == 0 || j == 0) return 0.0;
-            return (i == 1 && j == 1) ? 1.5 * x : 1.0;
+            if (!(i == 1 && j == 1)) return 1.0;
+            if (mesh.uniform() && mesh.homogeneous()) return 1.5 * x;
+            // M̄₁₁ = M₁₁ + (X − 2/3) ρ₀h₀: X − 2/3 of the contact element's mass added beyond Mod 1.
+            return 1.0 + (x - 2.0 / 3.0) * mesh.density(0) * mesh.h(0) / node_mass(mesh, 1);
           }};
 }
 
@@ -289,9 +333,15 @@ MassRedistribution beta(double b) {
           "a point mass " + shortest_decimal(b) + " h on node 1, the rest of the lost mass spread uniformly (total L)",
           [b](Index i, Index j, const UniformMesh& mesh) {
             if (i == 0 || j == 0) return 0.0;
-            const double h = mesh.h();
-            const double w = (mesh.length - b * h) / (mesh.length - 2.0 * h / 3.0);
-            return (i == 1 && j == 1) ? w + 1.5 * b : w;
+            if (mesh.uniform() && mesh.homogeneous()) {
+              const double h = mesh.h();
+              const double w = (mesh.length - b * h) / (mesh.length - 2.0 * h / 3.0);
+              return (i == 1 && j == 1) ? w + 1.5 * b : w;
+            }
+            // A point mass B ρ₀h₀ on node 1, the rest of m_lost by the density scale w.
+            const double point = b * mesh.density(0) * mesh.h(0), m_bar = mesh.bar_mass();
+            const double w = (m_bar - point) / (m_bar - lost_mass(mesh));
+            return (i == 1 && j == 1) ? w + point / node_mass(mesh, 1) : w;
           }};
 }
 
@@ -457,6 +507,42 @@ TEST_CASE("the period law's split refuses the consistent mass and a weight that 
                                   }};
   CHECK_THROWS_WITH_AS(period_law_masses(mesh, graded), doctest::Contains("not uniform"), std::invalid_argument);
   CHECK_THROWS_AS(period_law_masses(UniformMesh(1.0, 3), mod3()), std::invalid_argument);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// The family on unequal elements and piecewise material (issue 22; the reconstruction above).
+
+TEST_CASE("on graded layered meshes Mod 3 is P^T M P, Mod 1 loses 2 rho0 h0/3, the others keep the bar's mass") {
+  std::vector<double> young(16, 1.0), density(16, 1.0);
+  for (int e = 0; e < 5; ++e) young[e] = 3.0, density[e] = 2.5;
+  for (const double r : {1.0, 1.08, 0.95}) {
+    for (const bool layered : {false, true}) {
+      const UniformMesh mesh =
+          layered ? with_material(graded_mesh(1.0, 16, r), young, density) : graded_mesh(1.0, 16, r);
+      const double m_bar = mesh.bar_mass(), lost = 2 * mesh.density(0) * mesh.h(0) / 3;
+      CAPTURE(r);
+      CAPTURE(layered);
+      CHECK(std::abs(lost_mass(mesh) - lost) < 1e-16);
+      CHECK(std::abs(total_mass(mesh, mod1()) - (m_bar - lost)) < 1e-14);
+      for (const MassRedistribution& m :
+           {mod2(), mod3(), spread_over_first_nodes(4), spread_over_first_nodes(15), beta(1.0 / 3)}) {
+        CAPTURE(m.name);
+        CHECK(std::abs(total_mass(mesh, m) - m_bar) < 1e-14);
+      }
+      // Mod 3 = PᵀMP, P the kinematics u₀ := u₁: M̄₁₁ = M₀₀ + 2M₀₁ + M₁₁, every other entry M's.
+      const Tridiagonal m = p1_mass_all_nodes(mesh), m3 = modified_mass_all_nodes(mesh, mod3());
+      CHECK(std::abs(m3.diag[1] - (m.diag[0] + 2 * m.upper[0] + m.diag[1])) < 1e-16);
+      CHECK(m3.diag[2] == m.diag[2]);
+      CHECK(m3.upper[1] == m.upper[1]);
+      // node1:X adds (X − 2/3) ρ₀h₀ beyond Mod 1; node1:4/3 is Mod 3, node1:2/3 Mod 1.
+      CHECK(std::abs(modified_mass_all_nodes(mesh, node1(4.0 / 3)).diag[1] - m3.diag[1]) < 1e-16);
+      CHECK(std::abs(modified_mass_all_nodes(mesh, node1(2.0 / 3)).diag[1] - m.diag[1]) < 1e-16);
+      // beta:2/3 is Mod 3 and beta:0 Mod 2.
+      CHECK(std::abs(modified_mass_all_nodes(mesh, beta(2.0 / 3)).diag[1] - m3.diag[1]) < 1e-15);
+      CHECK(std::abs(modified_mass_all_nodes(mesh, beta(0.0)).diag[5] - modified_mass_all_nodes(mesh, mod2()).diag[5]) <
+            1e-15);
+    }
+  }
 }
 
 }  // namespace mrm

@@ -20,6 +20,10 @@ struct MassRedistribution {
   std::function<double(Index i, Index j, const UniformMesh& mesh)> weight;
 };
 
+/// The mass that removing row and column 0 takes off the bar: M₀₀ + 2M₀₁ = 2ρ₀h₀/3 (2h/3 on the
+/// paper's mesh). Every member of the family is defined by what it does with it (mass_redistribution.cpp).
+double lost_mass(const UniformMesh& mesh);
+
 /// The consistent (unmodified) P1 mass: w ≡ 1, the contact node keeps its inertia.
 MassRedistribution consistent_mass();
 /// Mod 1: the contact node's mass is dropped (w_{0j} = 0, w = 1 elsewhere).

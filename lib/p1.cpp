@@ -32,6 +32,56 @@ UniformMesh::UniformMesh(double length_, Index elements_) : length(length_), ele
                                 std::to_string(elements_) + ")");
 }
 
+double UniformMesh::bar_mass() const {
+  if (homogeneous()) return length;
+  double m = 0;
+  for (Index e = 0; e < elements; ++e) m += density(e) * h(e);
+  return m;
+}
+
+// The graded mesh (issue 22): h_k = h₀ r^k with Σ h_k = h₀ (rᴺ − 1)/(r − 1) = L. The nodes are the
+// partial sums x_{k+1} = x_k + h_k; the last is set to L (the sum carries round-off).
+UniformMesh graded_mesh(double length, Index elements, double ratio) {
+  UniformMesh mesh(length, elements);
+  if (!(std::isfinite(ratio) && ratio > 0))
+    throw std::invalid_argument("mesh: the grading ratio r must be a positive finite number (got " +
+                                std::to_string(ratio) + ")");
+  if (ratio == 1.0) return mesh;
+  const double h0 = length * (ratio - 1.0) / (std::pow(ratio, static_cast<double>(elements)) - 1.0);
+  if (!(std::isfinite(h0) && h0 > 0))
+    throw std::invalid_argument("mesh: the grading ratio r = " + std::to_string(ratio) +
+                                " gives no representable first element (allowed: r^N finite)");
+  mesh.nodes_.resize(static_cast<std::size_t>(elements + 1));
+  mesh.nodes_[0] = 0.0;
+  double hk = h0;
+  for (Index k = 0; k < elements; ++k, hk *= ratio)
+    mesh.nodes_[static_cast<std::size_t>(k + 1)] = mesh.nodes_[static_cast<std::size_t>(k)] + hk;
+  mesh.nodes_.back() = length;
+  return mesh;
+}
+
+UniformMesh with_material(UniformMesh mesh, std::vector<double> young, std::vector<double> density) {
+  const auto check = [&](const std::vector<double>& values, const char* name) {
+    if (static_cast<Index>(values.size()) != mesh.elements)
+      throw std::invalid_argument(std::string("mesh: ") + name + " has " + std::to_string(values.size()) +
+                                  " values (allowed: one per element, " + std::to_string(mesh.elements) + ")");
+    for (double v : values)
+      if (!(std::isfinite(v) && v > 0))
+        throw std::invalid_argument(std::string("mesh: ") + name + " = " + std::to_string(v) +
+                                    " on an element (allowed: positive finite values)");
+  };
+  check(young, "the modulus E");
+  check(density, "the density rho");
+  mesh.young_ = std::move(young);
+  mesh.density_ = std::move(density);
+  return mesh;
+}
+
+UniformMesh with_far_end(UniformMesh mesh, FarEnd far_end) {
+  mesh.far_end = far_end;
+  return mesh;
+}
+
 // The sizes and indices that the operations below require are checked in every build: an assertion
 // would vanish from a release build, and a wrong size would then read or write past a vector's end.
 static void require_size(const char* operation, Index given, Index expected) {
@@ -114,10 +164,15 @@ Eigen::SparseMatrix<double> Tridiagonal::to_sparse() const {
 }
 
 // Assembly element by element: the element matrix [a b; b a] of element e adds to the block of nodes
-// (e, e+1). Both P1 matrices have this form (a = h/3, b = h/6 for M; a = 1/h, b = −1/h for S).
-static Tridiagonal assemble_all_nodes(const UniformMesh& mesh, double a, double b) {
+// (e, e+1). Both P1 matrices have this form: on an element of size h_e, density ρ_e and modulus E_e,
+// ∫ ρ φ_a φ_b dx = ρ_e h_e/6 [2 1; 1 2] and ∫ E φ_a' φ_b' dx = E_e/h_e [1 −1; −1 1], so
+// a = ρ_e h_e/3, b = ρ_e h_e/6 for M and a = E_e/h_e, b = −E_e/h_e for S. (On the paper's mesh,
+// ρ_e = E_e = 1 and h_e = L/N: the products by 1.0 are exact, the same doubles as h/3, h/6, 1/h.)
+template <class Entries>
+static Tridiagonal assemble_all_nodes(const UniformMesh& mesh, Entries entries) {
   Tridiagonal m(mesh.elements + 1);
   for (Index e = 0; e < mesh.elements; ++e) {
+    const auto [a, b] = entries(e);
     m.diag[e] += a;
     m.diag[e + 1] += a;
     m.upper[e] += b;
@@ -127,11 +182,17 @@ static Tridiagonal assemble_all_nodes(const UniformMesh& mesh, double a, double 
 }
 
 Tridiagonal p1_mass_all_nodes(const UniformMesh& mesh) {
-  return assemble_all_nodes(mesh, mesh.h() / 3.0, mesh.h() / 6.0);
+  return assemble_all_nodes(mesh, [&](Index e) {
+    const double m = mesh.density(e) * mesh.h(e);
+    return std::pair{m / 3.0, m / 6.0};
+  });
 }
 
 Tridiagonal p1_stiffness_all_nodes(const UniformMesh& mesh) {
-  return assemble_all_nodes(mesh, 1.0 / mesh.h(), -1.0 / mesh.h());
+  return assemble_all_nodes(mesh, [&](Index e) {
+    const double k = mesh.young(e) / mesh.h(e);
+    return std::pair{k, -k};
+  });
 }
 
 Tridiagonal p1_mass(const UniformMesh& mesh) { return p1_mass_all_nodes(mesh).leading_block(mesh.unknowns()); }
@@ -241,6 +302,62 @@ TEST_CASE("the P1 load vector refuses a load that is not finite") {
   CHECK_THROWS_WITH_AS(p1_load(mesh, [](double x) { return x > 0.5 ? std::nan("") : 1.0; }),
                        doctest::Contains("p1_load: the load f(x) is not finite"), std::invalid_argument);
   CHECK_THROWS_AS(p1_load(mesh, [](double x) { return 1.0 / (x - x); }), std::invalid_argument);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Graded meshes, piecewise material and the free far end (issue 22). The element matrices integrate
+// ρ φ_a φ_b and E φ_a' φ_b' exactly on each element, so 1ᵀM1 = Σ ρ_e h_e = ∫ρ, xᵀMx = ∫ρx², S1 = 0 on
+// all nodes, and xᵀSx = ∫E (x' = 1).
+
+TEST_CASE("a graded mesh has h_k = h0 r^k, ends at L, and its P1 matrices integrate rho and E exactly") {
+  for (const double r : {1.0, 0.9, 1.05, 1.3}) {
+    const UniformMesh mesh = graded_mesh(2.0, 12, r);
+    CAPTURE(r);
+    CHECK(mesh.x(12) == 2.0);
+    CHECK(mesh.uniform() == (r == 1.0));
+    const double h0 = mesh.h(0);
+    for (Index k = 0; k < 12; ++k) CHECK(std::abs(mesh.h(k) - h0 * std::pow(r, static_cast<double>(k))) < 1e-14);
+    std::vector<double> young(12), density(12);
+    for (Index e = 0; e < 12; ++e)
+      young[e] = 1.0 + static_cast<double>(e % 3), density[e] = 0.5 + 0.25 * static_cast<double>(e % 2);
+    const UniformMesh layered = with_material(mesh, young, density);
+    double rho = 0, rho_x2 = 0, e_int = 0;
+    for (Index e = 0; e < 12; ++e) {
+      const double a = mesh.x(e), b = mesh.x(e + 1);
+      rho += density[e] * (b - a), rho_x2 += density[e] * (b * b * b - a * a * a) / 3, e_int += young[e] * (b - a);
+    }
+    const Tridiagonal m = p1_mass_all_nodes(layered), s = p1_stiffness_all_nodes(layered);
+    Eigen::VectorXd x(13), one = Eigen::VectorXd::Ones(13);
+    for (Index i = 0; i <= 12; ++i) x[i] = mesh.x(i);
+    CHECK(std::abs(m.sum() - rho) < 1e-14);
+    CHECK(std::abs(layered.bar_mass() - rho) < 1e-14);
+    CHECK(std::abs(m.bilinear(x, x) - rho_x2) < 1e-13);
+    CHECK((s * one).cwiseAbs().maxCoeff() < 1e-11);
+    CHECK(std::abs(s.bilinear(x, x) - e_int) < 1e-12);
+    CHECK(layered.contact_compliance() == mesh.h(0) / young[0]);
+  }
+  // The paper's mesh is untouched: h(e) is h(), the compliance h, the unknowns 0..N−1.
+  const UniformMesh plain(1.0, 7);
+  CHECK(plain.h(3) == plain.h());
+  CHECK(plain.contact_compliance() == plain.h());
+  CHECK(plain.unknowns() == 7);
+  CHECK(with_far_end(plain, FarEnd::free).unknowns() == 8);
+  CHECK(p1_mass(with_far_end(plain, FarEnd::free)).size() == 8);
+  CHECK_THROWS_AS(graded_mesh(1.0, 10, 1.1).h(), std::logic_error);
+  CHECK_THROWS_WITH_AS(graded_mesh(1.0, 10, 0.0), doctest::Contains("grading ratio"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(with_material(plain, std::vector<double>(7, 1.0), std::vector<double>(6, 1.0)),
+                       doctest::Contains("one per element"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(with_material(plain, std::vector<double>(7, -1.0), std::vector<double>(7, 1.0)),
+                       doctest::Contains("positive finite"), std::invalid_argument);
+}
+
+TEST_CASE("the load vector on a graded mesh with a free end integrates f phi_i exactly for a quadratic f") {
+  const UniformMesh mesh = with_far_end(graded_mesh(1.0, 9, 1.2), FarEnd::free);
+  const Eigen::VectorXd f = p1_load(mesh, [](double x) { return 1.0 + x * x; });
+  REQUIRE(f.size() == 10);
+  CHECK(std::abs(f.sum() - (1.0 + 1.0 / 3)) < 1e-14);  // every node kept: Σ F_i = ∫ f
+  const double h0 = mesh.h(0);
+  CHECK(std::abs(f[0] - (h0 / 2 + h0 * h0 * h0 / 12)) < 1e-15);
 }
 
 }  // namespace mrm

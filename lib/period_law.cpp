@@ -59,8 +59,12 @@
 /// in O(N) per halving, for any N.
 #include "period_law.hpp"
 
+#include "phase.hpp"
+#include "schemes.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -167,6 +171,78 @@ PeriodPrediction predict_period(const UniformMesh& mesh, const MassRedistributio
 }
 
 double predicted_period_change(double local, double global) { return 2 * local + 1.5 * global; }
+
+// ---------------------------------------------------------------------------------------------------
+// Unequal elements (issue 22: a mesh graded toward the contact, h_k = h₀ r^k; this section is the
+// project's derivation, the paper has a uniform mesh only).
+//
+// The rule 2δm_loc + (3/2)δm_glob splits a mass change into "at the end" and "uniform", which on a
+// graded mesh is ambiguous: spreading the lost mass in equal shares per node is not a uniform density
+// when the nodes crowd near the contact. The Rayleigh quotient gives the rule for any distribution.
+// A mass change δM̄ moves the frequency of a mode φ by δ(ω²)/ω² = −φᵀδM̄φ / φᵀM̄φ, so its effective
+// length ℓ ∝ 1/ω by δℓ/ℓ = ½ φᵀδM̄φ / φᵀM̄φ. For the low modes, smooth on the mesh scale, φᵀδM̄φ =
+// Σ_i δm_i φ(x_i)² + O(h²) with δm_i the row sums of δM̄ (the lumped change at node i). The two modes of
+// the benchmark are, to leading order, the free–clamped quarter wave φ_f = cos(πx/2L) (free flight,
+// ℓ_f = L, ∫φ_f² = L/2) and the clamped–clamped half wave φ_c = sin(πx/L) (contact, ℓ_c = L,
+// ∫φ_c² = L/2). Hence
+//
+//     δℓ_f = Σ_i δm_i cos²(πx_i/2L),   δℓ_c = Σ_i δm_i sin²(πx_i/L),
+//     ΔP = 2δℓ_f + δℓ_c = Σ_i δm_i κ(x_i/L),   κ(ξ) = 2cos²(πξ/2) + sin²(πξ).
+//
+// Checks of the kernel: κ(0) = 2 (a mass at the free end: δℓ_f = δm, δℓ_c = 0, the point-mass rule),
+// and (1/L)∫₀ᴸ κ = 1 + ½ = 3/2 (a uniform density: δℓ_f = δℓ_c = δm/2): the uniform rule is the
+// special case. The reference is Mod 3, the Galerkin mass PᵀMP of the free-flight kinematics u₀ := u₁
+// on any mesh (mass_redistribution.cpp): its free phase is the consistent P1 bar on [h₀, L] with the
+// removed element as a point mass ρ₀h₀ at its free end, ℓ_f = L + O(h²); in contact its extra mass sits
+// where the half wave is O(h₀), ℓ_c = L + O(h²). So each member's drift is ΔP of its δm_i against
+// Mod 3, plus Mod 3's own O(h²) (P1 dispersion, which on a graded mesh is a weighted mean of the local
+// (kh_e)²/24 and so is governed by the largest elements, not by h₀).
+//
+// The members on a graded mesh (lost mass m = 2h₀/3, ξ₁ = h₀/L; mass_redistribution.cpp):
+//   Mod 3   δm = 0: ΔP = 0 whatever r;
+//   Mod 1   δm₁ = −2h₀/3: ΔP = −(2h₀/3) κ(ξ₁) = −4h₀/3 + O(h₀³);
+//   Mod 2   (density × w, w − 1 = m/(L − m)): δm₁ = −m + (w − 1) r₁, δm_i = (w − 1) r_i (r_i the
+//           lumped Mod 1 masses, a discretisation of the unit density): ΔP = −2m + (w − 1)(3/2)(L − m)
+//           + O(h h₀) = −h₀/3, as on the uniform mesh, whatever r;
+//   spread:K, K = N − 1 ("spread uniformly" as equal shares per node): δm₁ = −m + m/K, δm_i = m/K:
+//           ΔP = −2m + m · mean_{i=1..K} κ(ξ_i). On a uniform mesh the mean is 3/2 (ΔP = −h/3, Mod 2's
+//           drift); on a graded mesh the nodes crowd where κ ≈ 2, the mean exceeds 3/2 and the drift
+//           lies between Mod 2's −h₀/3 and 0: with x_i = h₀(rⁱ − 1)/(r − 1) the mean is a sum over the
+//           nodes, computed here;
+//   the literal weight w₁₁ = 2 ("Mod 3" read as doubling node 1's diagonal): δm₁ = 2M₁₁ − (M₁₁ + m) =
+//           (h₁ − h₀)/3 = (r − 1)h₀/3, ΔP = 2(r − 1)h₀/3: a drift that only a graded mesh shows.
+// So "the removed element's mass on node 1" predicts no drift on every grading, "spread uniformly"
+// predicts −h₀/3 (density) or −2m + m·mean κ (equal shares), the two readings of "uniformly" coinciding
+// only when r = 1. The table of the doctest below measures them.
+
+double drift_kernel(double xi) {
+  const double c = std::cos(0.5 * pi * xi), s = std::sin(pi * xi);
+  return 2 * c * c + s * s;
+}
+
+EffectiveLengths first_order_length_changes(const UniformMesh& mesh, const MassRedistribution& redistribution) {
+  if (!mesh.homogeneous())
+    throw std::invalid_argument(
+        "period law: the first-order rule is derived for E = rho = 1 (allowed: a homogeneous bar)");
+  if (mesh.far_end != FarEnd::clamped)
+    throw std::invalid_argument("period law: the benchmark's far end is clamped (allowed: FarEnd::clamped)");
+  const Tridiagonal m = modified_mass_all_nodes(mesh, redistribution), m3 = modified_mass_all_nodes(mesh, mod3());
+  if (!contact_node_is_massless(m))
+    throw std::invalid_argument("period law: \"" + redistribution.name +
+                                "\" keeps the inertia of the contact node (allowed: a redistribution)");
+  EffectiveLengths change{0.0, 0.0};
+  for (Index i = 1; i < mesh.elements; ++i) {  // node N is clamped: no mode moves it
+    const double dm = (m.lower[i] + m.diag[i] + m.upper[i]) - (m3.lower[i] + m3.diag[i] + m3.upper[i]);
+    const double xi = mesh.x(i) / mesh.length, c = std::cos(0.5 * pi * xi), s = std::sin(pi * xi);
+    change.free += dm * c * c;
+    change.contact += dm * s * s;
+  }
+  return change;
+}
+
+double first_order_period_change(const UniformMesh& mesh, const MassRedistribution& redistribution) {
+  return first_order_length_changes(mesh, redistribution).period();
+}
 
 // ---------------------------------------------------------------------------------------------------
 
@@ -326,6 +402,129 @@ TEST_CASE("the period law: errors -4h/3, -h/3, 0 per period and dP = 2 dm_loc + 
   CHECK(std::abs(predict_period(mesh, mod2()).period_error + h / 3) < h * h);
   CHECK(std::abs(predict_period(mesh, mod3()).period_error) < h * h);
   CHECK_THROWS_AS(predict_period(UniformMesh(1.0, 2), mod3()), std::invalid_argument);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// The period law on graded meshes (issue 22).
+
+TEST_CASE("the drift kernel is 2 at the contact end and 3/2 on average, and the uniform law is its special case") {
+  CHECK(drift_kernel(0.0) == 2.0);
+  double mean = 0;
+  const int m = 100000;
+  for (int k = 0; k < m; ++k) mean += drift_kernel((k + 0.5) / m) / m;  // midpoint rule, error O(1/m²)
+  CHECK(std::abs(mean - 1.5) < 1e-9);
+  // On the uniform mesh the first-order rule gives −4h/3, −h/3, 0 (and the split's (B − 2/3)h/2 for beta:B)
+  // up to the kernel's curvature at node 1 and the midpoint error of the sum: O(h²/L).
+  for (const Index n : {50, 200}) {
+    const UniformMesh mesh(1.0, n);
+    const double h = mesh.h();
+    CAPTURE(n);
+    CHECK(std::abs(first_order_period_change(mesh, mod1()) + 4 * h / 3) < h * h);
+    CHECK(std::abs(first_order_period_change(mesh, mod2()) + h / 3) < h * h);
+    CHECK(std::abs(first_order_period_change(mesh, mod3())) == 0.0);
+    CHECK(std::abs(first_order_period_change(mesh, beta(1.0 / 3)) + h / 6) < h * h);
+  }
+  CHECK_THROWS_AS(first_order_period_change(UniformMesh(1.0, 10), consistent_mass()), std::invalid_argument);
+  CHECK_THROWS_AS(first_order_period_change(with_far_end(UniformMesh(1.0, 10), FarEnd::free), mod1()),
+                  std::invalid_argument);
+}
+
+// On a graded mesh Mod 3 is still PᵀMP (mass_redistribution.cpp), so every member's eigenvalue drift
+// against Mod 3's is the first-order rule up to terms of relative order h_max/L (the lumping of δM̄ and
+// the mode shapes' variation over an element): |ΔP_eig − ΔP_eig(Mod 3) − Σ δm_i κ(x_i)| ≤ h₀ h_max/L.
+// And the drifts of the two readings of the paper's words differ on a graded mesh: Mod 3 (the removed
+// element's mass on node 1) 0, Mod 2 (uniform density) −h₀/3, equal shares per node (spread:N−1)
+// −2m + m·mean κ(x_i), closer to 0 the stronger the grading; the literal weight w₁₁ = 2 drifts by
+// 2(r − 1)h₀/3.
+TEST_CASE("graded meshes: the eigenvalue drifts against Mod 3 follow the first-order rule sum dm_i kappa(x_i)") {
+  for (const double r : {1.0, 1.005, 1.01, 1.02}) {
+    const UniformMesh mesh = graded_mesh(1.0, 200, r);
+    const double h0 = mesh.h(0), h_max = mesh.h(199);
+    const double reference = predict_period(mesh, mod3()).period_error;
+    for (const MassRedistribution& mass : {mod1(), mod2(), spread_over_first_nodes(199), beta(1.0 / 3)}) {
+      const double eig = predict_period(mesh, mass).period_error - reference;
+      const double rule = first_order_period_change(mesh, mass);
+      CAPTURE(r);
+      CAPTURE(mass.name);
+      CAPTURE(eig / h0);
+      CAPTURE(rule / h0);
+      CHECK(std::abs(eig - rule) <= h0 * h_max / mesh.length);
+    }
+    CHECK(std::abs(first_order_period_change(mesh, mod1()) + 4 * h0 / 3) < 4 * h0 * h0);
+    CHECK(std::abs(first_order_period_change(mesh, mod2()) + h0 / 3) < 2 * h0 * h_max);
+    // w₁₁ = 2 (node 1's diagonal doubled): δm₁ = (h₁ − h₀)/3 at x₁ = h₀.
+    const MassRedistribution doubled{"w11=2", "", [](Index i, Index j, const UniformMesh&) {
+                                       return (i == 0 || j == 0) ? 0.0 : (i == 1 && j == 1 ? 2.0 : 1.0);
+                                     }};
+    CHECK(std::abs(first_order_period_change(mesh, doubled) - 2 * (r - 1) * h0 / 3) < 4 * h0 * h0);
+  }
+}
+
+// The measured drift per period (Crank–Nicolson, Δt = h₀/2, the benchmark over 20 periods, the impacts
+// read off the contact indicator u₀ + (h₀)λ, the drift the least-squares slope of the impact-time errors:
+// lib/phase) against the prediction, N = 200, for the grading ratios r = 1 (control), 1.0025, 1.005,
+// 1.01 (h_max/h₀ = 1, 1.64, 2.70, 7.24). What is compared is each member's drift minus Mod 3's in the
+// same run configuration: Mod 3's own drift is not predicted to the needed accuracy — it carries the
+// mass-independent error of the benchmark's kinks (the release misplaced by O((h_e² t)^{1/3}), set by
+// the largest elements: 0.1–0.2 h₀ here), which the first-eigenvalue law does not contain. The
+// tolerance is the measurement's resolution, measured: on the uniform mesh, where Mod 2 and spread:N−1
+// are predicted to drift alike within 0.003h, they are measured 0.05h apart, and Mod 1 is 0.08h off the
+// law; the check allows 0.15 h₀. (The modal kernel weights a mass at x by κ(x/L); a sharp front crossing
+// a point mass away from the end is delayed by δm/2 per transit, 3/2 per period: for equal shares per
+// node that "front" reading predicts −h₀/3 whatever r. Measured (the table prints both): the modal
+// rule is within 0.07 h₀ of every graded row, the front reading 0.06, 0.17 and 0.13 h₀ off for
+// spread:N−1 at r = 1.0025, 1.005, 1.01, so the low-mode law is the one that carries to graded meshes.)
+TEST_CASE("graded meshes: measured drift per period against the period law (table)") {
+  const Index n = 200;
+  const double periods = 20, courant = 0.5;
+  MESSAGE("graded-mesh period law, CN, N = 200, dt = h0/2, 20 periods; drifts per period in units of h0");
+  MESSAGE(
+      "r       h_max/h0  member      predicted(modal)  predicted(front)  measured-Mod3  |diff|  measured(abs)"
+      "  first impact: predicted  measured-Mod3");
+  for (const double r : {1.0, 1.0025, 1.005, 1.01}) {
+    const UniformMesh mesh = graded_mesh(1.0, n, r);
+    const double h0 = mesh.h(0), dt = courant * h0;
+    double mod3_drift = 0, mod3_first = 0;
+    for (const MassRedistribution& mass : {mod3(), mod1(), mod2(), spread_over_first_nodes(n - 1)}) {
+      BarSimulation run_(benchmark_problem(), mesh, mass, SchemeParameters{}, dt);
+      ImpactDetector detector(0.5);
+      const double compliance = mesh.contact_compliance();
+      run(run_, steps_to_reach(3 * periods, dt),
+          [&](const Sample& s) { detector.add(s.time, contact_indicator(s, compliance)); });
+      std::vector<double> exact;
+      for (std::size_t k = 0; k < detector.impacts().size(); ++k) exact.push_back(1.0 + 3.0 * static_cast<double>(k));
+      const PhaseMeasures phase = phase_measures(detector.impacts(), exact, 3.0);
+      REQUIRE(phase.drift_per_period.has_value());
+      REQUIRE(detector.impacts().size() == static_cast<std::size_t>(periods));
+      const double drift = *phase.drift_per_period;
+      if (mass.name == "mod3") mod3_drift = drift, mod3_first = phase.first_impact_error;
+      // The first impact moves by δℓ_f alone (before any contact: no release error yet).
+      const double first_predicted = first_order_length_changes(mesh, mass).free;
+      const double first_measured = phase.first_impact_error - mod3_first;
+      const double modal = first_order_period_change(mesh, mass);
+      // The front reading: 2 δm for the mass at node 1, 3/2 δm elsewhere.
+      const double lost = lost_mass(mesh);
+      double front = 0;
+      if (mass.name == "mod1") front = -2 * lost;
+      if (mass.name == "mod2") front = -2 * lost + 1.5 * lost;
+      if (mass.name.rfind("spread", 0) == 0)
+        front = -2 * lost + (2 + 1.5 * static_cast<double>(n - 2)) * lost / static_cast<double>(n - 1);
+      const double measured = drift - mod3_drift, difference = std::abs(measured - modal);
+      char line[240];
+      std::snprintf(line, sizeof line, "%-7g %-9.3f %-11s %+16.4f  %+16.4f  %+13.4f  %6.3f  %+12.4f  %+24.4f  %+13.4f",
+                    r, mesh.h(n - 1) / h0, mass.name.c_str(), modal / h0, front / h0, measured / h0, difference / h0,
+                    drift / h0, first_predicted / h0, first_measured / h0);
+      MESSAGE(line);
+      CAPTURE(r);
+      CAPTURE(mass.name);
+      CAPTURE(measured / h0);
+      CAPTURE(modal / h0);
+      if (mass.name != "mod3") {  // Mod 3's row is the reference itself
+        CHECK(difference <= 0.15 * h0);
+        CHECK(std::abs(first_measured - first_predicted) <= 0.15 * h0);
+      }
+    }
+  }
 }
 
 }  // namespace mrm

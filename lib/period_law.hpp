@@ -57,4 +57,20 @@ PeriodPrediction predict_period(const UniformMesh& mesh, const MassRedistributio
 /// (3/2) δm_glob (the effective lengths change by δℓ_f = δm_loc + δm_glob/2, δℓ_c = δm_glob/2).
 double predicted_period_change(double local, double global);
 
+/// The drift kernel of the benchmark's period, κ(ξ) = 2 cos²(πξ/2) + sin²(πξ), ξ = x/L: a point mass
+/// δm at x changes the period by κ(x/L) δm to first order (period_law.cpp, "unequal elements").
+/// κ(0) = 2 (a mass at the contact end: 2 δm_loc), its mean over the bar 3/2 (spread: (3/2) δm_glob).
+double drift_kernel(double xi);
+
+/// The period law on any mesh (graded, issue 22), to first order in the mass change: with δm_i the
+/// row sums (lumped masses) of M̄ − M̄_Mod3 at the nodes i ≥ 1 of a homogeneous bar of unit wave
+/// speed, ΔP = Σ_i δm_i κ(x_i/L), the change of the period 2ℓ_f + ℓ_c against Mod 3's (which is 0 +
+/// O(h²) on any mesh). On the uniform mesh it is 2 δm_loc + (3/2) δm_glob up to O(h²). Throws
+/// std::invalid_argument for a material that is not E = ρ = 1, a free far end, or a contact node with
+/// inertia.
+double first_order_period_change(const UniformMesh& mesh, const MassRedistribution& redistribution);
+/// The two parts of first_order_period_change: δℓ_f = Σ δm_i cos²(πx_i/2L) (the first impact moves by
+/// it) and δℓ_c = Σ δm_i sin²(πx_i/L), as an EffectiveLengths of changes (period() is ΔP). Same refusals.
+EffectiveLengths first_order_length_changes(const UniformMesh& mesh, const MassRedistribution& redistribution);
+
 }  // namespace mrm

@@ -377,6 +377,10 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   if (problem.length != mesh.length)
     throw InvalidParameter("problem", "the bar has L = " + std::to_string(problem.length) +
                                           ", the mesh L = " + std::to_string(mesh.length) + " (allowed: the same L)");
+  if (!(std::isfinite(problem.gap) && problem.gap >= 0))
+    throw InvalidParameter("gap", "the initial gap must be finite and >= 0 (got " + std::to_string(problem.gap) + ")");
+  if (problem.gap != 0 && parameters.scheme == Scheme::energy_conserving)
+    throw InvalidParameter("gap", "the energy-conserving scheme (ec) takes no gap (allowed: gap 0, or another scheme)");
   massless_ = contact_node_is_massless(mass_);
   three_level_ = parameters.scheme == Scheme::paoli_schatzman;
   if (three_level_ && parameters.contact_row == ContactRow::algebraic && !massless_)
@@ -409,18 +413,22 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   const Tridiagonal& M = mass_;
   const Tridiagonal& S = stiffness_;
   step_ = step_matrices(M, S, parameters, dt);
+  // The gap moves the obstacle: u₀ⁿ⁺¹ ≥ −gap (Paoli–Schatzman: the averaged constraint, see StepMatrices).
+  // (+0.0 without a gap: a −0.0 would print as "-0" where the contact node sits on the obstacle.)
+  if (problem.gap != 0.0) step_.obstacle_offset = -(three_level_ ? 1 + parameters.restitution : 1.0) * problem.gap;
   solver_ = ContactSolver(step_.a);
   // CN-switch's θ-step, with its own factorisation (once per run, like A's).
   if (parameters.scheme == Scheme::switching) {
     SwitchStep redo;
     redo.matrices = theta_step_matrices(M, S, parameters.switch_theta, dt);
+    redo.matrices.obstacle_offset = step_.obstacle_offset;
     redo.solver = ContactSolver(redo.matrices.a);
     switch_ = std::make_unique<const SwitchStep>(std::move(redo));
   }
   // The fast path reads B₁, B₂, M and S from its own rows (fast_step.cpp): B₁ and B₂ are kept only
   // for the reference step, so that the fast path's memory is that of the state and the factors.
   if (parameters.kernel == StepKernel::fast) {
-    fast_ = std::make_unique<const FastStep>(step_, M, S, parameters, mesh.h());
+    fast_ = std::make_unique<const FastStep>(step_, M, S, parameters, mesh.contact_compliance());
     step_.b1 = Tridiagonal();
     step_.b2 = Tridiagonal();
   }
@@ -446,10 +454,12 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
         "problem: the initial data u0, v0 are not finite at every node (allowed: finite values)");
   load_at(0.0, state_.f_now);
   if (massless_) {
-    const CondensedContact c = condense_contact_node(state_.u[1], mesh.h(), problem.load ? state_.f_now[0] : 0.0);
+    const double compliance = mesh.contact_compliance();
+    const CondensedContact c =
+        condense_contact_node(state_.u[1], compliance, problem.load ? state_.f_now[0] : 0.0, -problem.gap);
     if (initial == InitialContactNode::consistent) state_.u[0] = c.u0;
     state_.lambda = c.multiplier;
-    state_.active = contact_is_active(state_.u[1] + mesh.h() * (problem.load ? state_.f_now[0] : 0.0));
+    state_.active = contact_is_active(state_.u[1] + compliance * (problem.load ? state_.f_now[0] : 0.0) + problem.gap);
   } else {
     state_.lambda = 0.0;  // an inertial contact node starts without contact force
     state_.active = false;
@@ -611,7 +621,7 @@ void BarSimulation::load_at(double t, Eigen::VectorXd& f) const {
 
 // F₀(t) = ∫₀ʰ f(x, t) φ₀(x) dx by the two-point Gauss rule of p1_load (the same number as its entry 0).
 double BarSimulation::contact_load(double t) const {
-  const double h = mesh_.h(), g = 0.5 / 1.7320508075688772935;
+  const double h = mesh_.h(0), g = 0.5 / 1.7320508075688772935;
   double f0 = 0;
   for (double xi : {0.5 - g, 0.5 + g}) f0 += problem_.load(xi * h, t) * 0.5 * h * (1.0 - xi);
   if (!std::isfinite(f0))
@@ -630,7 +640,7 @@ double BarSimulation::contact_load_rate(double t) const {
 }
 
 double BarSimulation::massless_node_velocity(double t) const {
-  return state_.u[0] > 0 ? state_.w[1] + mesh_.h() * contact_load_rate(t) : 0.0;
+  return state_.u[0] > -problem_.gap ? state_.w[1] + mesh_.contact_compliance() * contact_load_rate(t) : 0.0;
 }
 
 // The massless node's velocity (mathematics.md §7): at every level it is the time derivative of the
@@ -725,22 +735,24 @@ double BarSimulation::energy_two_level() const {
 // fast_step.cpp ("the fast step and the reference step agree to round-off") compares them.
 namespace {
 
-// UᵀSV for the P1 stiffness on the unknowns 0..N−1, element by element (the node N is clamped).
-double stiffness_form(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double h) {
+// UᵀSV for the P1 stiffness on the unknowns, element by element (node N clamped, or an unknown at a
+// free far end): Σ_e (E_e/h_e) Δu_e Δv_e, summed as Σ Δu Δv / h on the paper's mesh.
+double stiffness_form(const Eigen::VectorXd& u, const Eigen::VectorXd& v, const UniformMesh& mesh) {
   const Index n = u.size();
   double sum = 0;
-  for (Index e = 0; e < n; ++e) {
+  const bool plain = mesh.uniform() && mesh.homogeneous();
+  for (Index e = 0; e < mesh.elements; ++e) {
     const double du = (e + 1 < n ? u[e + 1] : 0.0) - u[e];
     const double dv = (e + 1 < n ? v[e + 1] : 0.0) - v[e];
-    sum += du * dv;
+    sum += plain ? du * dv : du * dv * mesh.young(e) / mesh.h(e);
   }
-  return sum / h;
+  return plain ? sum / mesh.h() : sum;
 }
 
 }  // namespace
 
 void BarSimulation::reference_step(bool has_load) {
-  const double dt = dt_, h = mesh_.h();
+  const double dt = dt_, h = mesh_.contact_compliance();
   const Tridiagonal& M = mass_;
   const Eigen::VectorXd& u = state_.u;  // Uⁿ
   const Eigen::VectorXd& w = state_.w;  // W: Vⁿ (two levels) or Uⁿ⁻¹ (Paoli–Schatzman)
@@ -753,7 +765,9 @@ void BarSimulation::reference_step(bool has_load) {
   // down and starts the sweep up from the u₀ that carries its discrete-gradient force (energy_step.cpp);
   // CN-switch decides it as Crank–Nicolson does, and if the status changes, takes its θ-step instead
   // (nothing has been written yet).
-  const double obstacle = three_level_ ? -parameters_.restitution * w[0] : 0.0;
+  double obstacle = three_level_ ? -parameters_.restitution * w[0] : 0.0;
+  // The gap (issue 22): the obstacle moves to −gap.
+  if (step_.obstacle_offset != 0.0) obstacle += step_.obstacle_offset;
   Eigen::VectorXd& u_next = state_.u_new;  // Uⁿ⁺¹
   double contact_multiplier;
   if (energy_conserving_) {
@@ -784,8 +798,8 @@ void BarSimulation::reference_step(bool has_load) {
     const double beta = parameters_.beta;
     state_.x = (u_next - u) / dt;
     const auto potential = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-      return 0.5 * (beta * stiffness_form(a, a, h) + (1 - 2 * beta) * stiffness_form(a, b, h) +
-                    beta * stiffness_form(b, b, h));
+      return 0.5 * (beta * stiffness_form(a, a, mesh_) + (1 - 2 * beta) * stiffness_form(a, b, mesh_) +
+                    beta * stiffness_form(b, b, mesh_));
     };
     state_.energy = kinetic(state_.x) + potential(u_next, u);
     state_.w = state_.u;  // W' = Uⁿ
@@ -795,7 +809,7 @@ void BarSimulation::reference_step(bool has_load) {
       v_next = 2 * (u_next - u) / dt - w;  // Crank–Nicolson's
     else
       v_next = (u_next - u) / dt;
-    state_.energy = kinetic(v_next) + 0.5 * stiffness_form(u_next, u_next, h);
+    state_.energy = kinetic(v_next) + 0.5 * stiffness_form(u_next, u_next, mesh_);
   }
   state_.u.swap(state_.u_new);  // U = Uⁿ⁺¹
   state_.lambda = contact_multiplier;
@@ -853,10 +867,10 @@ void BarSimulation::switch_step(bool has_load) {
   const Eigen::VectorXd rhs =
       step_right_hand_side(theta_step, state_.u, state_.w, state_.lambda, has_load ? &state_.f_now : nullptr,
                            has_load ? &state_.f_next : nullptr);
-  const ContactStep contact = switch_->solver.solve(rhs.data(), state_.u_new.data(), theta_step.kappa);
+  const ContactStep contact =
+      switch_->solver.solve(rhs.data(), state_.u_new.data(), theta_step.kappa, theta_step.obstacle_offset);
   state_.w = theta_step.velocity_rate * (state_.u_new - state_.u) - theta_step.velocity_memory * state_.w;
-  state_.energy =
-      0.5 * mass_.bilinear(state_.w, state_.w) + 0.5 * stiffness_form(state_.u_new, state_.u_new, mesh_.h());
+  state_.energy = 0.5 * mass_.bilinear(state_.w, state_.w) + 0.5 * stiffness_form(state_.u_new, state_.u_new, mesh_);
   state_.u.swap(state_.u_new);
   state_.lambda = contact.multiplier;
   state_.active = contact.active;

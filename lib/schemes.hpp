@@ -114,6 +114,9 @@ struct StepMatrices {
   double velocity_rate = 0;  ///< two levels: Vⁿ⁺¹ = rate (Uⁿ⁺¹ − Uⁿ) − memory Vⁿ; three levels: X = rate (Uⁿ⁺¹ − Uⁿ)
   double velocity_memory = 0;  ///< see velocity_rate
   bool algebraic_row = false;  ///< whether row 0 is the algebraic contact row S₀·U = F₀ − λ (massless contact node)
+  /// The part of the obstacle g that the gap sets: −gap, or −(1 + e) gap for Paoli–Schatzman's
+  /// averaged constraint (u₀ⁿ⁺¹ + e u₀ⁿ⁻¹)/(1 + e) ≥ −gap; 0 without a gap (set by BarSimulation).
+  double obstacle_offset = 0;
 };
 /// The step of `parameters.scheme` (CN-switch's and EC's is Crank–Nicolson's) on the unknowns 0..N−1
 /// with mass M and stiffness S (schemes.cpp, mathematics.md §4). Does not check the parameters
@@ -136,6 +139,9 @@ struct Problem {
   std::function<double(double x)> initial_displacement;  ///< u⁰(x)
   std::function<double(double x)> initial_velocity;      ///< v⁰(x)
   std::function<double(double x, double t)> load;        ///< f(x, t); empty for f = 0
+  /// The initial gap between the contact end and the obstacle: the constraint is u(0, t) + gap ≥ 0
+  /// (finite, ≥ 0; 0 is the paper's u(0, t) ≥ 0). Not with EC (refused).
+  double gap = 0.0;
 };
 /// The benchmark of mathematics.md §2: u⁰(x) = a (L − x), v⁰ = 0, f = 0.
 Problem benchmark_problem(double length = 1.0, double amplitude = 0.5);
