@@ -107,6 +107,13 @@ struct StepMatrices {
   Tridiagonal a;     ///< A, the step matrix (row 0 the algebraic contact row S₀· when `algebraic_row`)
   Tridiagonal b1;    ///< B₁, applied to Uⁿ (row 0 zero with the algebraic row)
   Tridiagonal b2;    ///< B₂, applied to W = Vⁿ (two levels) or Uⁿ⁻¹ (three levels) (row 0 zero likewise)
+  /// The increment form the steps solve (schemes.cpp, "the increment form"): A ΔU = C₁ Uⁿ + C₂ W' + G
+  /// − κλe₀ for ΔU = Uⁿ⁺¹ − Uⁿ, with C₁ = B₁ − A = −θΔt²S (two levels) or B₁ + B₂ − A = −Δt²S (three),
+  /// row 0 −S₀· with the algebraic row, built as multiples of S (no difference of matrices is rounded).
+  Tridiagonal c1;
+  /// C₂ = B₂ applied to W' = Vⁿ (two levels), or −B₂ = A applied to W' = Uⁿ − Uⁿ⁻¹ (three levels);
+  /// row 0 zero with the algebraic row.
+  Tridiagonal c2;
   double kappa = 0;  ///< κ: the weight of λⁿ⁺¹ (or λⁿ for Paoli–Schatzman) in row 0; 1 with the algebraic row
   double load_now = 0;   ///< G = load_now Fⁿ + load_next Fⁿ⁺¹ on the rows of inertia
   double load_next = 0;  ///< see load_now (with the algebraic row, G₀ = F₀ⁿ⁺¹)
@@ -129,6 +136,12 @@ StepMatrices theta_step_matrices(const Tridiagonal& mass, const Tridiagonal& sti
 Eigen::VectorXd step_right_hand_side(const StepMatrices& step, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
                                      double lambda, const Eigen::VectorXd* load_now = nullptr,
                                      const Eigen::VectorXd* load_next = nullptr);
+/// The right-hand side of the increment form before the contact force: c = C₁ Uⁿ + C₂ W' + G −
+/// lambda_in_rhs λⁿ e₀, row 0 −S₀·Uⁿ + F₀ⁿ⁺¹ with the algebraic row; W' = Vⁿ or Uⁿ − Uⁿ⁻¹.
+Eigen::VectorXd increment_right_hand_side(const StepMatrices& step, const Eigen::VectorXd& u,
+                                          const Eigen::VectorXd& w, double lambda,
+                                          const Eigen::VectorXd* load_now = nullptr,
+                                          const Eigen::VectorXd* load_next = nullptr);
 
 /// The continuous problem (mathematics.md §1): bar (0, L), data u⁰, v⁰, load f (may be empty: f = 0).
 struct Problem {
@@ -159,7 +172,7 @@ struct Sample {
 struct StepState {
   Eigen::VectorXd u;       ///< Uⁿ
   Eigen::VectorXd u_new;   ///< the scratch of the sweeps, then Uⁿ⁺¹ (swapped into u)
-  Eigen::VectorXd w;       ///< W: Vⁿ (the two-level schemes' velocity) or Uⁿ⁻¹ (Paoli–Schatzman)
+  Eigen::VectorXd w;       ///< W': Vⁿ (the two-level schemes' velocity) or Uⁿ − Uⁿ⁻¹ (Paoli–Schatzman)
   Eigen::VectorXd x;       ///< X = (Uⁿ − Uⁿ⁻¹)/Δt, Paoli–Schatzman's velocity (empty for two levels)
   Eigen::VectorXd f_now;   ///< Fⁿ (empty without a load)
   Eigen::VectorXd f_next;  ///< Fⁿ⁺¹ (empty without a load)
