@@ -264,4 +264,14 @@ Index steps_to_reach(double final_time, double dt);
 /// after every step.
 void run(BarSimulation& simulation, Index steps, const std::function<void(const Sample&)>& observe);
 
+/// How Crank–Nicolson's step is solved: for the increment ΔU = Uⁿ⁺¹ − Uⁿ (the library's step), or for
+/// Uⁿ⁺¹ with the velocity recovered from the difference 2(Uⁿ⁺¹ − Uⁿ)/Δt − Vⁿ (the form before issue 21,
+/// kept only for the round-off benchmark of the time study and its doctest).
+enum class StepForm { increment, for_u };
+/// The benchmark's first impact time by Crank–Nicolson with `mass` (massless contact node) on N
+/// elements at step dt: the zero of the contact indicator u₁ (f = 0), linear between the two levels
+/// around it. Throws std::invalid_argument for a mass with inertia at the contact node and
+/// std::runtime_error if no impact occurs before t = 3L.
+double first_impact_time(Index elements, const MassRedistribution& mass, double dt, StepForm form);
+
 }  // namespace mrm
