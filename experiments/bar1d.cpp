@@ -28,7 +28,7 @@
 //   bar1d --initial-data tests/data/initial_data/left_going_wave.dat --elements 200 --final-time 4
 //   bar1d --scheme be --mass consistent --elements 200 --courant 1
 //   bar1d --scheme ec --mass mod3 --elements 16 --courant 10 --final-time 300
-//   bar1d --scheme cn-switch --switch-theta 0.75 --mass mod1 --elements 400
+//   bar1d --scheme cn-switch --switch-theta 1 --mass mod1 --elements 400
 //   bar1d --mass node1:7/6 --initial-contact-node interpolant --contact-velocity backward-difference
 //         --elements 20 --dt 0.005 --final-time 12      (GetFEM's demo_dynamic_contact_1D.py, CN)
 //
@@ -110,9 +110,10 @@ int main(int argc, char** argv) {
                     cli::in_closed_range(1e-100, 1e100));
     parser.add_choice("--scheme", "-s", "S", mrm::repro::scheme_help("time scheme"), mrm::repro::scheme_ids(), &scheme);
     parser.add_real("--switch-theta", "", "TH",
-                    "cn-switch: theta in [0.5, 1] of the step that replaces a Crank-Nicolson step across a change "
-                    "of the contact status (1: backward Euler, the energy never increases)",
-                    &switch_theta, cli::in_closed_range(0.5, 1));
+                    "cn-switch: theta of the step that replaces a Crank-Nicolson step across a change of the "
+                    "contact status; only 1 (backward Euler), the one theta whose energy identity proves that "
+                    "no step gains energy (below 1 a release may gain: lib/schemes.hpp)",
+                    &switch_theta, cli::in_closed_range(mrm::switch_theta_without_gain, 1));
     parser.add_string("--mass", "-m", "M", mrm::repro::mass_option_help("mass matrix"), &mass);
     parser.add_real("--beta", "-b", "B",
                     "Paoli-Schatzman's beta, in [0, 1e6]; at least 1/4 with --ps-form literal and a massless "

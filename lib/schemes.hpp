@@ -256,6 +256,15 @@ class BarSimulation {
   std::unique_ptr<BarSimulation> start_;  // the Crank–Nicolson first step of Paoli–Schatzman
 };
 
+/// The θ of CN-switch's step for which the θ-step's energy identity proves that no step gains energy
+/// (energy_step.cpp §4): Eⁿ⁺¹ − Eⁿ ≤ −(θ − ½)‖ΔV‖²_M̄ + ρ_θ(a, b), and at a release (a < 0 ≤ b, s = u₁ + hF₀
+/// before and after) ρ_θ = ((1 − θ)|ab| − (θ − ½)a²)/h, positive as soon as |b|/|a| > (θ − ½)/(1 − θ).
+/// A release falls anywhere inside its step, so |b|/|a| takes every value in (0, ∞): for every θ < 1
+/// some release gains energy (measured: θ = 0.6 gains, θ = 0.51 blows up; issue 21), and only θ = 1
+/// (backward Euler, ρ₁ ≤ 0 in every case) is proved. The programs accept this value only; the library
+/// keeps θ ∈ [½, 1] for the checks of the θ-step itself.
+constexpr double switch_theta_without_gain = 1.0;
+
 /// The number of steps of size dt that reach the final time T (the last level is the first t_n ≥ T
 /// up to round-off): ceil(T/dt − 1e-9).
 Index steps_to_reach(double final_time, double dt);

@@ -158,6 +158,15 @@ TimeFamilyMesh time_family_mesh(long elements, const MassRedistribution& mass, c
       holds = holds && std::abs(p - st.predicted_order) <= st.tolerance;
     }
     out.holds[q] = holds && out.judged_count[q] > 0;
+    // The onset: walk back from the finest halving while the halvings hold (below the floor: skipped).
+    std::size_t onset = steps - 1;
+    for (std::size_t j = steps - 1; j-- > 0;) {
+      const double p = out.local[q][j];
+      const bool floor = out.judged_errors(j + 1, q)[q] < st.floor_factor * out.reference_bound[q];
+      if (!floor && !(std::abs(p - st.predicted_order) <= st.tolerance)) break;
+      onset = j;
+    }
+    out.onset[q] = onset;
   }
   return out;
 }

@@ -48,6 +48,10 @@ struct TimeFamilyMesh {
   std::array<double, 8> lowest{}, highest{};
   std::array<int, 8> judged_count{};
   std::array<bool, 8> holds{};
+  /// Per measure: the largest step Δt_j from which every halving (j → j+1, …, to the finest) above the
+  /// floor is within the tolerance (the region where order 2 holds); dt.size() − 1 (the finest step, no
+  /// halving left) when even the last one is not.
+  std::array<std::size_t, 8> onset{};
   /// The all-levels velocity measures: whether a level fell between the two runs' switches at some step
   /// (then they have no order, see time_family.cpp).
   bool velocity_jump_sampled = false;
