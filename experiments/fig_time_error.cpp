@@ -637,6 +637,7 @@ int main(int argc, char** argv) {
           per_measure += (per_measure.empty() ? "" : ", ") + mrm::repro::measure_labels()[k].latex + " on " +
                          std::to_string(family_holds[k]);
       }
+      if (meshes_with_region == 0) onset_smallest = onset_largest = 0;  // printed as "on no mesh" below
       mrm::tex_define(defs, "time:family:verdict",
                       "from $\\Delta t = h/2$ on, order 2 holds at every halving in all 8 measures on " +
                           std::to_string(family_all_holds) + " of the " + std::to_string(family.size()) + " meshes" +
