@@ -280,7 +280,7 @@ int main(int argc, char** argv) {
       family_masses.push_back(mrm::repro::mass_from_option("--mass", mass, mrm::UniformMesh(1.0, n), true));
     mrm::repro::TimeFamilySettings family_settings;
     family_settings.reference_ratio = family_reference_ratio;
-    family_settings.largest = largest;
+    family_settings.largest_courant = static_cast<double>(largest);
     family_settings.final_time = final_time;
 
     // 2. Outputs.

@@ -66,7 +66,10 @@ TimeFamilyMesh time_family_mesh(long elements, const MassRedistribution& mass, c
   const double dt_fine = h / static_cast<double>(2 * r);
   // The steps in units of the finer reference's: 2 P R / 2^j, down to 2 · finest_divisor.
   std::vector<long> ratio;
-  for (long m = 2 * st.largest * r; m >= 2 * st.finest_divisor; m /= 2) ratio.push_back(m);
+  const double first = 2 * st.largest_courant * static_cast<double>(r);
+  if (!(first >= 1 && std::abs(first - std::round(first)) <= 1e-9 * first))
+    throw std::invalid_argument("time family: the largest step is not a whole number of reference steps");
+  for (long m = std::lround(first); m >= 2 * st.finest_divisor && m % 2 == 0; m /= 2) ratio.push_back(m);
   if (ratio.size() < 2) throw std::invalid_argument("time family: fewer than two steps");
   const Index coarse_steps = steps_to_reach(st.final_time, static_cast<double>(ratio[0]) * dt_fine);
   const Index fine_steps = coarse_steps * ratio[0];
