@@ -157,7 +157,7 @@ declare -A small_args=(
   [fig_contact_history]="-n 10 -T 3 --exact-points 100"
   [fig_profiles]="-n 10 --instants 0.5,1.5 --exact-points 50"
   [fig_ps_forms]="-n 10 -T 3 --exact-points 100"
-  [fig_time_error]="-n 8 -r 16 --largest 2 -k 3 --coarse-elements 4 --coarse-reference-ratio 16 --coarse-steps 3 -T 1"
+  [fig_time_error]="-n 8 -r 16 --largest 2 -k 3 --coarse-elements 4 --coarse-reference-ratio 16 --coarse-steps 3 -T 1 --family-from 4 --family-to 4 --family-powers-to 4 --family-reference-ratio 64 --impact-elements 4 --impact-finest 16"
   [fig_convergence]="-n 4 -k 2 -T 1 -j 1"
 )
 figure_programs=(fig_energy fig_contact_history fig_profiles fig_ps_forms fig_time_error fig_convergence)
