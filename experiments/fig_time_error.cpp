@@ -610,7 +610,7 @@ int main(int argc, char** argv) {
         std::vector<std::string> cells{std::to_string(f.elements)};
         for (std::size_t k = 0; k < 8; ++k) {
           const double onset = 1.0 / (f.dt[f.onset[k]] * static_cast<double>(f.elements));
-          std::string cell = "$h/" + mrm::tex_number(onset, 3) + "$; " +
+          std::string cell = "$h/" + std::to_string(std::lround(onset)) + "$; " +
                              (f.judged_count[k] == 0 ? std::string("none judged")
                                                      : mrm::tex_number(f.lowest[k], 2) + "--" +
                                                            mrm::tex_number(f.highest[k], 2));
@@ -634,22 +634,22 @@ int main(int argc, char** argv) {
         mrm::tex_define(defs, std::string("time:family:holds:") + mrm::ErrorAccumulator::names[k],
                         std::to_string(family_holds[k]));
         if (family_holds[k] < static_cast<int>(family.size()))
-          per_measure += (per_measure.empty() ? "" : ", ") + mrm::repro::measure_labels()[k].latex + " on " +
+          per_measure += (per_measure.empty() ? "" : "; ") + mrm::repro::measure_labels()[k].latex + ": " +
                          std::to_string(family_holds[k]);
       }
       if (meshes_with_region == 0) onset_smallest = onset_largest = 0;  // printed as "on no mesh" below
       mrm::tex_define(defs, "time:family:verdict",
                       "from $\\Delta t = h/2$ on, order 2 holds at every halving in all 8 measures on " +
                           std::to_string(family_all_holds) + " of the " + std::to_string(family.size()) + " meshes" +
-                          (per_measure.empty() ? std::string("") : " (in " + per_measure + " of them)") +
-                          "; it holds at every halving from $\\Delta t = h/" + mrm::tex_number(onset_smallest, 3) +
-                          "$ to $h/" + mrm::tex_number(onset_largest, 3) + "$ on, depending on the mesh, in all 8 "
+                          (per_measure.empty() ? std::string("") : " (meshes where a measure holds: " + per_measure + ")") +
+                          "; it holds at every halving from $\\Delta t = h/" + std::to_string(std::lround(onset_smallest)) +
+                          "$ to $h/" + std::to_string(std::lround(onset_largest)) + "$ on, depending on the mesh, in all 8 "
                           "measures on " + std::to_string(meshes_with_region) + " of the " +
                           std::to_string(family.size()) + " meshes");
       mrm::tex_define(defs, "time:family:onsetslope",
                       std::isfinite(onset_slope) ? mrm::tex_number(onset_slope, 2) : "n/a");
-      mrm::tex_define(defs, "time:family:onsetfrom", mrm::tex_number(onset_smallest, 3));
-      mrm::tex_define(defs, "time:family:onsetto", mrm::tex_number(onset_largest, 3));
+      mrm::tex_define(defs, "time:family:onsetfrom", std::to_string(std::lround(onset_smallest)));
+      mrm::tex_define(defs, "time:family:onsetto", std::to_string(std::lround(onset_largest)));
     }
 
     // 7. Commit.
