@@ -272,9 +272,9 @@ int main(int argc, char** argv) {
     // The round-off benchmark's steps, h/R, h/(R/4), ... down to h/1024 (h/R alone if R < 1024), and the
     // family's meshes, each checked for the mass.
     std::vector<long> impact_ratios;
-    for (long r = impact_finest; r >= std::min(1024L, impact_finest); r /= 4) impact_ratios.insert(impact_ratios.begin(), r);
-    const std::vector<long> family_meshes =
-        mrm::repro::time_family_meshes(family_from, family_to, 4, family_powers_to);
+    for (long r = impact_finest; r >= std::min(1024L, impact_finest); r /= 4)
+      impact_ratios.insert(impact_ratios.begin(), r);
+    const std::vector<long> family_meshes = mrm::repro::time_family_meshes(family_from, family_to, 4, family_powers_to);
     std::vector<mrm::MassRedistribution> family_masses;
     for (long n : family_meshes)
       family_masses.push_back(mrm::repro::mass_from_option("--mass", mass, mrm::UniformMesh(1.0, n), true));
@@ -312,14 +312,14 @@ int main(int argc, char** argv) {
       if (t < 2 + impact_tasks) {
         const std::size_t j = (t - 2) / 2;
         const double dt = 1.0 / static_cast<double>(impact_elements) / static_cast<double>(impact_ratios[j]);
-        impact_times[t - 2] = mrm::first_impact_time(impact_elements, impact_mass, dt,
-                                                     (t - 2) % 2 == 0 ? mrm::StepForm::for_u : mrm::StepForm::increment);
+        impact_times[t - 2] = mrm::first_impact_time(
+            impact_elements, impact_mass, dt, (t - 2) % 2 == 0 ? mrm::StepForm::for_u : mrm::StepForm::increment);
         return;
       }
       const std::size_t f = t - 2 - impact_tasks;
-      family[f] = mrm::repro::time_family_mesh(family_meshes[f], family_masses[f],
-                                               mrm::repro::scheme_parameters(mrm::Scheme::crank_nicolson, "algebraic", mass),
-                                               family_settings);
+      family[f] = mrm::repro::time_family_mesh(
+          family_meshes[f], family_masses[f],
+          mrm::repro::scheme_parameters(mrm::Scheme::crank_nicolson, "algebraic", mass), family_settings);
     });
     for (const Series& se : series)
       for (const auto& e : se.differences)
@@ -420,8 +420,8 @@ int main(int argc, char** argv) {
         << " x the reference bound, |local order - 2| <= " << family_settings.tolerance
         << "; velocity measures on matched levels (repro/time_family.cpp)\n";
     for (std::size_t k = 0; k < 8; ++k)
-      out << "# family_holds " << mrm::ErrorAccumulator::names[k] << " = " << family_holds[k] << " of "
-          << family.size() << " meshes\n";
+      out << "# family_holds " << mrm::ErrorAccumulator::names[k] << " = " << family_holds[k] << " of " << family.size()
+          << " meshes\n";
     out << "# family_all_measures_hold = " << family_all_holds << " of " << family.size() << " meshes\n";
     // The region where order 2 holds: on each mesh the largest step from which every halving holds in
     // all 8 measures (the latest onset of the measures), and how it scales with h (a conjecture: the
@@ -451,8 +451,9 @@ int main(int argc, char** argv) {
       out << "; reference_mismatched_levels " << f.reference_mismatched << '\n';
       for (std::size_t k = 0; k < 8; ++k) {
         out << "#   " << mrm::ErrorAccumulator::names[k] << ": " << (f.holds[k] ? "holds" : "fails")
-            << " from dt = h/2, judged " << f.judged_count[k] << "; order 2 from dt/h = "
-            << cli::format_real(f.dt[f.onset[k]] * static_cast<double>(f.elements)) << "; local orders";
+            << " from dt = h/2, judged " << f.judged_count[k]
+            << "; order 2 from dt/h = " << cli::format_real(f.dt[f.onset[k]] * static_cast<double>(f.elements))
+            << "; local orders";
         for (std::size_t j = 0; j < f.local[k].size(); ++j)
           out << ' ' << (std::isfinite(f.local[k][j]) ? cli::format_real(f.local[k][j]) : std::string("n/a"))
               << (f.judged[k][j] ? "" : "(not judged)");
@@ -610,10 +611,10 @@ int main(int argc, char** argv) {
         std::vector<std::string> cells{std::to_string(f.elements)};
         for (std::size_t k = 0; k < 8; ++k) {
           const double onset = 1.0 / (f.dt[f.onset[k]] * static_cast<double>(f.elements));
-          std::string cell = "$h/" + std::to_string(std::lround(onset)) + "$; " +
-                             (f.judged_count[k] == 0 ? std::string("none judged")
-                                                     : mrm::tex_number(f.lowest[k], 2) + "--" +
-                                                           mrm::tex_number(f.highest[k], 2));
+          std::string cell =
+              "$h/" + std::to_string(std::lround(onset)) + "$; " +
+              (f.judged_count[k] == 0 ? std::string("none judged")
+                                      : mrm::tex_number(f.lowest[k], 2) + "--" + mrm::tex_number(f.highest[k], 2));
           cells.push_back(cell + (f.holds[k] ? " \\checkmark" : " \\textbf{fail}"));
         }
         long mismatched = 0;
@@ -621,8 +622,7 @@ int main(int argc, char** argv) {
         cells.push_back(std::to_string(mismatched));
         table.add_row(cells);
       }
-      defs << "\\mrmdef{time:family:table}{" << mrm::repro::latex_tabular(table, "r" + std::string(9, 'r'))
-           << "}\n";
+      defs << "\\mrmdef{time:family:table}{" << mrm::repro::latex_tabular(table, "r" + std::string(9, 'r')) << "}\n";
       std::string meshes;
       for (long n : family_meshes) meshes += (meshes.empty() ? "" : ", ") + std::to_string(n);
       mrm::tex_define(defs, "time:family:meshes", meshes);
@@ -638,14 +638,16 @@ int main(int argc, char** argv) {
                          std::to_string(family_holds[k]);
       }
       if (meshes_with_region == 0) onset_smallest = onset_largest = 0;  // printed as "on no mesh" below
-      mrm::tex_define(defs, "time:family:verdict",
-                      "from $\\Delta t = h/2$ on, order 2 holds at every halving in all 8 measures on " +
-                          std::to_string(family_all_holds) + " of the " + std::to_string(family.size()) + " meshes" +
-                          (per_measure.empty() ? std::string("") : " (meshes where a measure holds: " + per_measure + ")") +
-                          "; it holds at every halving from $\\Delta t = h/" + std::to_string(std::lround(onset_smallest)) +
-                          "$ to $h/" + std::to_string(std::lround(onset_largest)) + "$ on, depending on the mesh, in all 8 "
-                          "measures on " + std::to_string(meshes_with_region) + " of the " +
-                          std::to_string(family.size()) + " meshes");
+      mrm::tex_define(
+          defs, "time:family:verdict",
+          "from $\\Delta t = h/2$ on, order 2 holds at every halving in all 8 measures on " +
+              std::to_string(family_all_holds) + " of the " + std::to_string(family.size()) + " meshes" +
+              (per_measure.empty() ? std::string("") : " (meshes where a measure holds: " + per_measure + ")") +
+              "; it holds at every halving from $\\Delta t = h/" + std::to_string(std::lround(onset_smallest)) +
+              "$ to $h/" + std::to_string(std::lround(onset_largest)) +
+              "$ on, depending on the mesh, in all 8 "
+              "measures on " +
+              std::to_string(meshes_with_region) + " of the " + std::to_string(family.size()) + " meshes");
       mrm::tex_define(defs, "time:family:onsetslope",
                       std::isfinite(onset_slope) ? mrm::tex_number(onset_slope, 2) : "n/a");
       mrm::tex_define(defs, "time:family:onsetfrom", std::to_string(std::lround(onset_smallest)));

@@ -39,7 +39,7 @@ FastStep::FastStep(const StepMatrices& step, const Tridiagonal& m, const Tridiag
       h_(h) {
   const Tridiagonal &c1 = step.c1, &c2 = step.c2;  // the increment form's matrices (schemes.cpp)
   coefficients_.a = coefficients_.b1 = coefficients_.b2 = coefficients_.c1 = coefficients_.c2 =
-      Tridiagonal();  // the scalars only; C₁, C₂ in Rows
+      Tridiagonal();                                      // the scalars only; C₁, C₂ in Rows
   const Index minimum_head = energy_conserving_ ? 2 : 1;  // EC reads row 1 explicitly (see the sweep up)
   const Index rows = m.size();
   const auto row = [&](Index i) {
@@ -171,8 +171,8 @@ bool FastStep::fused_step(StepState& state, const ContactSolver& solver) const {
   if (energy_conserving_) {
     const double h = h_, mu = -upward[1];
     const double load0_now = has_load ? f_now[0] : 0.0, load0_next = has_load ? f_next[0] : 0.0;
-    const EnergyConservingContact c = energy_conserving_contact(u[1] + inverse_pivot[1] * y_next - mu * u[0], mu,
-                                                                u[0], u[1] + h * load0_now, h, load0_next);
+    const EnergyConservingContact c = energy_conserving_contact(u[1] + inverse_pivot[1] * y_next - mu * u[0], mu, u[0],
+                                                                u[1] + h * load0_now, h, load0_next);
     state.lambda = c.multiplier;
     state.active = c.active;
     u0_next = c.u0;

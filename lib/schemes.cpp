@@ -307,8 +307,8 @@ Eigen::VectorXd step_right_hand_side(const StepMatrices& step, const Eigen::Vect
   return rhs;
 }
 
-Eigen::VectorXd increment_right_hand_side(const StepMatrices& step, const Eigen::VectorXd& u,
-                                          const Eigen::VectorXd& w, double lambda, const Eigen::VectorXd* load_now,
+Eigen::VectorXd increment_right_hand_side(const StepMatrices& step, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
+                                          double lambda, const Eigen::VectorXd* load_now,
                                           const Eigen::VectorXd* load_next) {
   Eigen::VectorXd rhs = step.c1 * u + step.c2 * w;
   if (load_now && load_next) rhs += step.load_now * *load_now + step.load_next * *load_next;
@@ -839,15 +839,14 @@ void BarSimulation::reference_step(bool has_load) {
   // ΔU₁ = z + μΔU₀ is passed as u₁ⁿ⁺¹ = (u₁ⁿ + z − μu₀ⁿ) + μu₀ⁿ⁺¹. CN-switch decides it as Crank–Nicolson
   // does, and if the status changes, takes its θ-step instead (nothing has been written yet).
   const double obstacle = three_level_ ? -parameters_.restitution * (u[0] - w[0]) : 0.0;  // g
-  Eigen::VectorXd& du = state_.u_new;  // ΔU, then Uⁿ⁺¹
+  Eigen::VectorXd& du = state_.u_new;                                                     // ΔU, then Uⁿ⁺¹
   double contact_multiplier, u0_next;
   if (energy_conserving_) {
     solver_.sweep_down(rhs.data(), du.data());
     const double load0_now = has_load ? state_.f_now[0] : 0.0, load0_next = has_load ? state_.f_next[0] : 0.0;
     const double mu = -solver_.upward()[1];
-    const EnergyConservingContact contact =
-        energy_conserving_contact(u[1] + solver_.inverse_pivot()[1] * du[1] - mu * u[0], mu, u[0],
-                                  u[1] + h * load0_now, h, load0_next);
+    const EnergyConservingContact contact = energy_conserving_contact(
+        u[1] + solver_.inverse_pivot()[1] * du[1] - mu * u[0], mu, u[0], u[1] + h * load0_now, h, load0_next);
     solver_.sweep_up(contact.recurrence_u0 - u[0], du.data());
     u0_next = contact.u0;
     contact_multiplier = contact.multiplier;

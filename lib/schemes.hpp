@@ -104,9 +104,9 @@ struct SchemeParameters {
 /// builder of the step's coefficients, used by the reference step, the fast kernel's set-up,
 /// CN-switch's θ-step and the harness's checks of the contact step (repro/claims.cpp).
 struct StepMatrices {
-  Tridiagonal a;     ///< A, the step matrix (row 0 the algebraic contact row S₀· when `algebraic_row`)
-  Tridiagonal b1;    ///< B₁, applied to Uⁿ (row 0 zero with the algebraic row)
-  Tridiagonal b2;    ///< B₂, applied to W = Vⁿ (two levels) or Uⁿ⁻¹ (three levels) (row 0 zero likewise)
+  Tridiagonal a;   ///< A, the step matrix (row 0 the algebraic contact row S₀· when `algebraic_row`)
+  Tridiagonal b1;  ///< B₁, applied to Uⁿ (row 0 zero with the algebraic row)
+  Tridiagonal b2;  ///< B₂, applied to W = Vⁿ (two levels) or Uⁿ⁻¹ (three levels) (row 0 zero likewise)
   /// The increment form the steps solve (schemes.cpp, "the increment form"): A ΔU = C₁ Uⁿ + C₂ W' + G
   /// − κλe₀ for ΔU = Uⁿ⁺¹ − Uⁿ, with C₁ = B₁ − A = −θΔt²S (two levels) or B₁ + B₂ − A = −Δt²S (three),
   /// row 0 −S₀· with the algebraic row, built as multiples of S (no difference of matrices is rounded).
@@ -138,9 +138,8 @@ Eigen::VectorXd step_right_hand_side(const StepMatrices& step, const Eigen::Vect
                                      const Eigen::VectorXd* load_next = nullptr);
 /// The right-hand side of the increment form before the contact force: c = C₁ Uⁿ + C₂ W' + G −
 /// lambda_in_rhs λⁿ e₀, row 0 −S₀·Uⁿ + F₀ⁿ⁺¹ with the algebraic row; W' = Vⁿ or Uⁿ − Uⁿ⁻¹.
-Eigen::VectorXd increment_right_hand_side(const StepMatrices& step, const Eigen::VectorXd& u,
-                                          const Eigen::VectorXd& w, double lambda,
-                                          const Eigen::VectorXd* load_now = nullptr,
+Eigen::VectorXd increment_right_hand_side(const StepMatrices& step, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
+                                          double lambda, const Eigen::VectorXd* load_now = nullptr,
                                           const Eigen::VectorXd* load_next = nullptr);
 
 /// The continuous problem (mathematics.md §1): bar (0, L), data u⁰, v⁰, load f (may be empty: f = 0).

@@ -82,8 +82,8 @@ TimeFamilyMesh time_family_mesh(long elements, const MassRedistribution& mass, c
   std::vector<std::unique_ptr<BarSimulation>> runs;
   std::vector<ReferenceComparison> all, matched;
   for (long m : ratio) {
-    runs.push_back(std::make_unique<BarSimulation>(benchmark_problem(), mesh, mass, parameters,
-                                                   static_cast<double>(m) * dt_fine));
+    runs.push_back(
+        std::make_unique<BarSimulation>(benchmark_problem(), mesh, mass, parameters, static_cast<double>(m) * dt_fine));
     out.dt.push_back(static_cast<double>(m) * dt_fine);
   }
   ratio.push_back(2);  // the reference, checked against the finer one: the last comparison
@@ -146,8 +146,8 @@ TimeFamilyMesh time_family_mesh(long elements, const MassRedistribution& mass, c
     for (std::size_t j = 0; j + 1 < steps; ++j) {
       const double a = out.judged_errors(j, q)[q], b = out.judged_errors(j + 1, q)[q];
       const double p = a > 0 && b > 0 ? std::log2(a / b) / std::log2(out.dt[j] / out.dt[j + 1]) : std::nan("");
-      const bool judged = out.dt[j] <= st.asymptotic_courant * h * (1 + 1e-12) &&
-                          b >= st.floor_factor * out.reference_bound[q];
+      const bool judged =
+          out.dt[j] <= st.asymptotic_courant * h * (1 + 1e-12) && b >= st.floor_factor * out.reference_bound[q];
       out.local[q].push_back(p);
       out.judged[q].push_back(judged);
       if (!judged) continue;

@@ -16,12 +16,12 @@ namespace mrm::repro {
 
 /// The protocol of the study on one mesh.
 struct TimeFamilySettings {
-  long reference_ratio = 2048;  ///< the reference Δt_ref = h/R, checked against h/(2R)
-  double largest_courant = 4;   ///< the largest step P h (P h/Δt_ref an integer)
-  long finest_divisor = 16;     ///< the smallest step is Δt_ref times this (h/128 for R = 2048)
-  double final_time = 3;        ///< T, rounded up to a whole largest step
-  double predicted_order = 2;   ///< the trapezoidal rule on the semi-discrete Lipschitz ODE
-  double tolerance = 0.25;      ///< |local order − 2| allowed at every judged halving
+  long reference_ratio = 2048;      ///< the reference Δt_ref = h/R, checked against h/(2R)
+  double largest_courant = 4;       ///< the largest step P h (P h/Δt_ref an integer)
+  long finest_divisor = 16;         ///< the smallest step is Δt_ref times this (h/128 for R = 2048)
+  double final_time = 3;            ///< T, rounded up to a whole largest step
+  double predicted_order = 2;       ///< the trapezoidal rule on the semi-discrete Lipschitz ODE
+  double tolerance = 0.25;          ///< |local order − 2| allowed at every judged halving
   double asymptotic_courant = 0.5;  ///< halvings are judged from Δt ≤ this × h on (ω_max Δt ≤ 1)
   double floor_factor = 20;         ///< a halving is judged when both errors are ≥ this × the reference's bound
 };
