@@ -28,7 +28,7 @@
 //   bar1d --initial-data tests/data/initial_data/left_going_wave.dat --elements 200 --final-time 4
 //   bar1d --scheme be --mass consistent --elements 200 --courant 1
 //   bar1d --scheme ec --mass mod3 --elements 16 --courant 10 --final-time 300
-//   bar1d --scheme cn-switch --switch-theta 0.75 --mass mod1 --elements 400
+//   bar1d --scheme cn-switch --switch-theta 1 --mass mod1 --elements 400
 //   bar1d --mass node1:7/6 --initial-contact-node interpolant --contact-velocity backward-difference
 //         --elements 20 --dt 0.005 --final-time 12      (GetFEM's demo_dynamic_contact_1D.py, CN)
 //
@@ -110,9 +110,10 @@ int main(int argc, char** argv) {
                     cli::in_closed_range(1e-100, 1e100));
     parser.add_choice("--scheme", "-s", "S", mrm::repro::scheme_help("time scheme"), mrm::repro::scheme_ids(), &scheme);
     parser.add_real("--switch-theta", "", "TH",
-                    "cn-switch: theta in [0.5, 1] of the step that replaces a Crank-Nicolson step across a change "
-                    "of the contact status (1: backward Euler, the energy never increases)",
-                    &switch_theta, cli::in_closed_range(0.5, 1));
+                    "cn-switch: theta of the step that replaces a Crank-Nicolson step across a change of the "
+                    "contact status; only 1 (backward Euler), the one theta whose energy identity proves that "
+                    "no step gains energy (below 1 a release may gain: lib/schemes.hpp)",
+                    &switch_theta, cli::in_closed_range(mrm::switch_theta_without_gain, 1));
     parser.add_string("--mass", "-m", "M", mrm::repro::mass_option_help("mass matrix"), &mass);
     parser.add_real("--beta", "-b", "B",
                     "Paoli-Schatzman's beta, in [0, 1e6]; at least 1/4 with --ps-form literal and a massless "
@@ -167,11 +168,15 @@ int main(int argc, char** argv) {
     configuration.length = length;
     configuration.amplitude = amplitude;
     const mrm::UniformMesh mesh(configuration.bar_length(), elements);
-    const double step = parser.given("--dt") ? dt : courant * mesh.h();
-    if (!(step <= largest_courant * mesh.h()))
-      throw cli::UsageError("--dt: " + cli::format_real(step) + " is more than 1e6 h = " +
+    const double step_request = parser.given("--dt") ? dt : courant * mesh.h();
+    if (!(step_request <= largest_courant * mesh.h()))
+      throw cli::UsageError("--dt: " + cli::format_real(step_request) + " is more than 1e6 h = " +
                             cli::format_real(largest_courant * mesh.h()) + " (allowed: 0 < dt <= 1e6 h, h = L/N)");
-    const mrm::Index steps = cli::checked_steps("--final-time", final_time, step, "--dt or --courant");
+    const mrm::Index steps = cli::checked_steps("--final-time", final_time, step_request, "--dt or --courant");
+    // The run ends exactly at T: Δt = T/⌈T/Δt_requested⌉, at most the requested step, constant over the
+    // run (a last short step would need a second factorisation and would break the three-level
+    // scheme's uniform levels; the changed Δt differs from the requested one by less than Δt/steps).
+    const double step = final_time / static_cast<double>(steps);
     cli::require_mesh_memory("--elements", static_cast<double>(elements), bytes_per_element);
     if (parser.given("--output"))
       cli::require_rows("--final-time", static_cast<double>(steps) + 1,
@@ -258,7 +263,8 @@ int main(int argc, char** argv) {
               << "energy_final = " << cli::format_real(measures.energy_final) << '\n'
               << "energy_min = " << cli::format_real(measures.energy_min) << '\n'
               << "energy_max = " << cli::format_real(measures.energy_max) << '\n'
-              << "steps = " << measures.steps << '\n';
+              << "steps = " << measures.steps << '\n'
+              << "final_time_reached = " << cli::format_real(static_cast<double>(measures.steps) * step) << '\n';
     // The phase (mathematics.md §8): the impacts found, the error of the first one and the drift of
     // the impact times per period (time units per period, early = negative) with that period, each
     // printed only when it can be computed (an impact in the run and in the exact solution; two of

@@ -141,8 +141,11 @@ int main(int argc, char** argv) {
     program.parser.add_choice("--mass", "-m", "M",
                               "history and map: the mass (a massless contact node, which ec needs)",
                               {"mod1", "mod2", "mod3"}, &mass);
-    program.parser.add_real("--switch-theta", "", "TH", "cn-switch: theta in [0.5, 1] of its switching step",
-                            &switch_theta, cli::in_closed_range(0.5, 1));
+    program.parser.add_real(
+        "--switch-theta", "", "TH",
+        "cn-switch: theta of its switching step; only 1, the one theta whose energy identity proves no "
+        "gain (lib/schemes.hpp)",
+        &switch_theta, cli::in_closed_range(mrm::switch_theta_without_gain, 1));
     program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 64]; the output does not depend on it",
                                &threads, cli::in_closed_range(1, 64));
     if (!program.parse(argc, argv, "also write the values and tables the report quotes, as \\mrmdef lines")) return 0;

@@ -53,8 +53,11 @@ int main(int argc, char** argv) {
                               "time scheme (ec: energy-conserving Crank-Nicolson; cn-switch: "
                               "Crank-Nicolson with a theta-step at each change of the contact status)",
                               mrm::repro::scheme_ids(), &scheme);
-    program.parser.add_real("--switch-theta", "", "TH", "cn-switch: theta of its switching step, in [0.5, 1]",
-                            &switch_theta, cli::in_closed_range(0.5, 1));
+    program.parser.add_real(
+        "--switch-theta", "", "TH",
+        "cn-switch: theta of its switching step; only 1, the one theta whose energy identity proves no "
+        "gain (lib/schemes.hpp)",
+        &switch_theta, cli::in_closed_range(mrm::switch_theta_without_gain, 1));
     program.parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row", {"algebraic", "literal"},
                               &ps_form);
     program.parser.add_string("--instants", "-t", "LIST",

@@ -22,7 +22,7 @@
 
 namespace mrm {
 
-// The rows of B₁, B₂, M and S as the fused step reads them. On a uniform mesh every row away from
+// The rows of C₁, C₂ (the increment form), M and S as the fused step reads them. On a uniform mesh every row away from
 // the contact node is the same (the matrices are Toeplitz there) except the last, whose upper
 // neighbour is the clamped node: the rows from `head` to n−2 share one Row. `head` is the first
 // row from which on all rows up to n−2 are equal, compared exactly, so any weights are handled
@@ -37,19 +37,20 @@ FastStep::FastStep(const StepMatrices& step, const Tridiagonal& m, const Tridiag
       restitution_(p.restitution),
       beta_(p.beta),
       h_(h) {
-  const Tridiagonal &b1 = step.b1, &b2 = step.b2;
-  coefficients_.a = coefficients_.b1 = coefficients_.b2 = Tridiagonal();  // the scalars only; B₁, B₂ in Rows
+  const Tridiagonal &c1 = step.c1, &c2 = step.c2;  // the increment form's matrices (schemes.cpp)
+  coefficients_.a = coefficients_.b1 = coefficients_.b2 = coefficients_.c1 = coefficients_.c2 =
+      Tridiagonal();                                      // the scalars only; C₁, C₂ in Rows
   const Index minimum_head = energy_conserving_ ? 2 : 1;  // EC reads row 1 explicitly (see the sweep up)
   const Index rows = m.size();
   const auto row = [&](Index i) {
     const bool last = i + 1 == rows;
-    return Row{b1.lower[i],   b1.diag[i],     last ? 0.0 : b1.upper[i],
-               b2.lower[i],   b2.diag[i],     last ? 0.0 : b2.upper[i],
+    return Row{c1.lower[i],   c1.diag[i],     last ? 0.0 : c1.upper[i],
+               c2.lower[i],   c2.diag[i],     last ? 0.0 : c2.upper[i],
                m.diag[i],     2 * m.lower[i], s.diag[i],
                2 * s.lower[i]};
   };
   const auto same = [](const Row& x, const Row& y) {
-    return x.b1l == y.b1l && x.b1d == y.b1d && x.b1u == y.b1u && x.b2l == y.b2l && x.b2d == y.b2d && x.b2u == y.b2u &&
+    return x.c1l == y.c1l && x.c1d == y.c1d && x.c1u == y.c1u && x.c2l == y.c2l && x.c2d == y.c2d && x.c2u == y.c2u &&
            x.md == y.md && x.ml2 == y.ml2 && x.sd == y.sd && x.sl2 == y.sl2;
   };
   last_ = row(rows - 1);
@@ -59,8 +60,8 @@ FastStep::FastStep(const StepMatrices& step, const Tridiagonal& m, const Tridiag
     interior_ = row(rows - 2);
     head = rows - 2;
     while (head > 1 && same(row(head - 1), interior_)) --head;
-    // The interior loop uses the symmetry of B₁ and B₂ there; without it, every row is explicit.
-    if (!(interior_.b1l == interior_.b1u && interior_.b2l == interior_.b2u)) head = rows - 1;
+    // The interior loop uses the symmetry of C₁ and C₂ there; without it, every row is explicit.
+    if (!(interior_.c1l == interior_.c1u && interior_.c2l == interior_.c2u)) head = rows - 1;
     head = std::max(head, std::min(minimum_head, rows - 1));
   }
   head_.clear();
@@ -77,12 +78,14 @@ bool FastStep::step(StepState& state, const ContactSolver& solver, bool has_load
 ///
 /// One step of (★), fused into the two sweeps of the solve, with no allocation and no refactorisation:
 ///
-/// - the sweep down (i = n−1 … 1) forms b_i = (B₁Uⁿ + B₂W + G)_i from the neighbours of node i and
+/// - the sweep down (i = n−1 … 1) forms b_i = (C₁Uⁿ + C₂W' + G)_i, the right-hand side of the increment
+///   form A ΔU = C₁Uⁿ + C₂W' + G − κλe₀ (schemes.cpp), from the neighbours of node i and
 ///   eliminates at once, y_i = b_i − ε_i y_{i+1} (ε the elimination factors of contact.cpp);
 /// - the contact is decided at node 0's pivot d₀ = 1/(A⁻¹)₀₀, the Schur complement of A onto the
 ///   contact node (contact.cpp: this is what the w = θA⁻¹C of mathematics.md §4 does, for the price of a scalar);
-/// - the sweep up (i = 0 … n−1) gives Uⁿ⁺¹_i = y_i/d_i − (A_{i,i−1}/d_i) Uⁿ⁺¹_{i−1} and, from the values
-///   at nodes i−1 and i, the new W and X and the quadratic forms of the energy.
+/// - the sweep up (i = 0 … n−1) gives ΔU_i = y_i/d_i − (A_{i,i−1}/d_i) ΔU_{i−1}, Uⁿ⁺¹_i = Uⁿ_i + ΔU_i
+///   and, from the values at nodes i−1 and i, the new W' and X (from ΔU, never from a difference of
+///   two levels) and the quadratic forms of the energy.
 ///
 /// Each sweep is a first-order recurrence: its chain of dependent operations (a multiplication and a
 /// subtraction per node) is what limits a tridiagonal solve on a modern core, not the arithmetic nor
@@ -92,7 +95,7 @@ bool FastStep::step(StepState& state, const ContactSolver& solver, bool has_load
 /// the next one would cost accuracy). Everything else (the right-hand side, the velocities, the
 /// energy) is independent work that the processor overlaps with the chains; with the chains halved,
 /// that work is what the step costs (bench_step measures both). To keep it small, the coefficients of
-/// B₁, B₂, M and S are read from a few Rows (the Toeplitz interior, where B₁ and B₂ are symmetric:
+/// C₁, C₂, M and S are read from a few Rows (the Toeplitz interior, where B₁ and B₂ are symmetric:
 /// four multiplications for b_i), so the memory traffic is that of the state vectors and the factor
 /// arrays. The energies need only the quadratic forms of their definition: two-level,
 /// E = ½ VᵀMV + ½ UᵀSU at the new level; Paoli–Schatzman, with P = Uⁿ⁺¹ + Uⁿ and Q = Uⁿ⁺¹ − Uⁿ,
@@ -122,14 +125,14 @@ bool FastStep::fused_step(StepState& state, const ContactSolver& solver) const {
   // rows n−2 … head with their common coefficients and the head rows head−1 … 1 with their own.
   const double* elimination_pair = solver.elimination_pair().data();
   const auto rhs = [&](const Row& r, Index i, double u_up, double w_up) {
-    double b = r.b1l * u[i - 1] + r.b1d * u[i] + r.b1u * u_up + r.b2l * w[i - 1] + r.b2d * w[i] + r.b2u * w_up;
+    double b = r.c1l * u[i - 1] + r.c1d * u[i] + r.c1u * u_up + r.c2l * w[i - 1] + r.c2d * w[i] + r.c2u * w_up;
     if constexpr (has_load) b += g_now * f_now[i] + g_next * f_next[i];
     return b;
   };
-  // In the interior, B₁ and B₂ are symmetric Toeplitz (checked at set-up): b_i = B₁_l (u_{i−1} + u_{i+1})
-  // + B₁_d u_i + the same for W, four multiplications instead of six.
+  // In the interior, C₁ and C₂ are symmetric Toeplitz (checked at set-up): b_i = C₁_l (u_{i−1} + u_{i+1})
+  // + C₁_d u_i + the same for W', four multiplications instead of six.
   const auto rhs_interior = [&](const Row& r, Index i) {
-    double b = r.b1l * (u[i - 1] + u[i + 1]) + r.b1d * u[i] + r.b2l * (w[i - 1] + w[i + 1]) + r.b2d * w[i];
+    double b = r.c1l * (u[i - 1] + u[i + 1]) + r.c1d * u[i] + r.c2l * (w[i - 1] + w[i + 1]) + r.c2d * w[i];
     if constexpr (has_load) b += g_now * f_now[i] + g_next * f_next[i];
     return b;
   };
@@ -152,41 +155,46 @@ bool FastStep::fused_step(StepState& state, const ContactSolver& solver) const {
   const Row& r0 = head_[0];
   double b0;
   if (coefficients_.algebraic_row) {
-    b0 = has_load ? f_next[0] : 0.0;
+    b0 = r0.c1d * u[0] + r0.c1u * u[1] + (has_load ? f_next[0] : 0.0);  // F₀ⁿ⁺¹ − S₀·Uⁿ
   } else {
-    b0 = r0.b1d * u[0] + r0.b1u * u[1] + r0.b2d * w[0] + r0.b2u * w[1] - coefficients_.lambda_in_rhs * state.lambda;
+    b0 = r0.c1d * u[0] + r0.c1u * u[1] + r0.c2d * w[0] + r0.c2u * w[1] - coefficients_.lambda_in_rhs * state.lambda;
     if constexpr (has_load) b0 += g_now * f_now[0] + g_next * f_next[0];
   }
   // EC decides the contact on row 1 instead (energy_step.cpp: its sweep up starts from the value u₀
   // that carries the discrete-gradient force, which is not the contact node's new value at a status
   // change); CN-switch returns before writing anything when the status changes.
-  double obstacle = three_level ? -restitution_ * w[0] : 0.0;
-  // The gap (issue 22): the obstacle moves to −gap.
-  if (coefficients_.obstacle_offset != 0.0) obstacle += coefficients_.obstacle_offset;
-  ContactStep contact;
-  double recurrence_u0;
+  // The obstacle g = −e u₀ⁿ⁻¹ = −e (u₀ⁿ − W'₀), moved by the gap (issue 22), and of the increment g − u₀ⁿ;
+  // on contact u₀ⁿ⁺¹ = g exactly. EC's scalar problem is written for u: row 1's ΔU₁ = z + μΔU₀ is passed as
+  // u₁ⁿ⁺¹ = (u₁ⁿ + z − μu₀ⁿ) + μu₀ⁿ⁺¹ (schemes.cpp, the reference step).
+  double obstacle = three_level ? -restitution_ * (u[0] - w[0]) : 0.0;
+  if (coefficients_.obstacle_offset != 0.0) obstacle += coefficients_.obstacle_offset;  // (keeps a −0)
+  double u0_next, recurrence_d0;
   if (energy_conserving_) {
-    const double h = h_;
+    const double h = h_, mu = -upward[1];
     const double load0_now = has_load ? f_now[0] : 0.0, load0_next = has_load ? f_next[0] : 0.0;
-    const EnergyConservingContact c =
-        energy_conserving_contact(inverse_pivot[1] * y_next, -upward[1], u[0], u[1] + h * load0_now, h, load0_next);
-    contact = {c.u0, c.multiplier, c.active};
-    recurrence_u0 = c.recurrence_u0;
+    const EnergyConservingContact c = energy_conserving_contact(u[1] + inverse_pivot[1] * y_next - mu * u[0], mu, u[0],
+                                                                u[1] + h * load0_now, h, load0_next);
+    state.lambda = c.multiplier;
+    state.active = c.active;
+    u0_next = c.u0;
+    recurrence_d0 = c.recurrence_u0 - u[0];
   } else {
-    contact = solver.resolve_contact(b0 - elimination[0] * y_next, coefficients_.kappa, obstacle);
+    const ContactStep contact =
+        solver.resolve_contact(b0 - elimination[0] * y_next, coefficients_.kappa, obstacle - u[0]);
     if (switching_ && contact.active != state.active) return false;
-    recurrence_u0 = contact.u0;
+    state.lambda = contact.multiplier;
+    state.active = contact.active;
+    u0_next = contact.active ? obstacle : u[0] + contact.u0;
+    recurrence_d0 = contact.u0;
   }
-  state.lambda = contact.multiplier;
-  state.active = contact.active;
 
-  // Sweep up. Two-level: V' = rate (U' − U) − memory V, written over W, kinetic form V'ᵀMV',
-  // potential U'ᵀSU'. Three-level: X = (U' − U)/Δt, forms XᵀMX, PᵀSP, QᵀSQ; W' = Uⁿ by a swap below.
+  // Sweep up. Two-level: V' = rate ΔU − memory V, written over W', kinetic form V'ᵀMV', potential
+  // U'ᵀSU'. Three-level: X = ΔU/Δt, forms XᵀMX, PᵀSP, QᵀSQ (Q = ΔU); ΔU written over W'.
   double* w_out = state.w.data();
   double* x_out = state.x.data();
   const double rate = coefficients_.velocity_rate, memory = coefficients_.velocity_memory;
   double kinetic = 0, potential = 0, potential_q = 0;
-  double un_prev = 0, un_prev2 = 0, z_prev = 0, v_prev = 0, p_prev = 0, q_prev = 0;
+  double un_prev = 0, d_prev = 0, d_prev2 = 0, z_prev = 0, v_prev = 0, p_prev = 0, q_prev = 0;
   // The interior rows a = head … b = n−2 of M and S are Toeplitz, (d, l) = (A_ii, A_{i,i−1}): there a
   // form is accumulated through D = Σ (z_i − z_{i−1})² and Q = Σ z_i², since
   //
@@ -196,13 +204,15 @@ bool FastStep::fused_step(StepState& state, const ContactSolver& solver) const {
   // squared differences, free of the cancellation of Σ z_i² against Σ z_{i−1} z_i (relative error
   // O(ε) instead of O(ε N²): the energy of Crank–Nicolson stays constant to round-off).
   double k_d = 0, k_q = 0, p_d = 0, p_q = 0, q_d = 0, q_q = 0;
-  const auto emit = [&](const Row& r, Index i, double un, auto toeplitz) {
+  // emit(i, ΔU_i, Uⁿ⁺¹_i): node 0 passes its own Uⁿ⁺¹_0 (g exactly on contact, EC's max(0, s)).
+  const auto emit = [&](const Row& r, Index i, double d, double un, auto toeplitz) {
     constexpr bool sums = decltype(toeplitz)::value;
     const double uo = u[i];
     y[i] = un;
     if constexpr (three_level) {
-      const double x = rate * (un - uo), p = un + uo, q = un - uo;
+      const double x = rate * d, p = un + uo, q = d;
       x_out[i] = x;
+      w_out[i] = d;
       if constexpr (sums) {
         const double dx = x - v_prev, dp = p - p_prev, dq = q - q_prev;
         k_d += dx * dx, k_q += x * x;
@@ -215,7 +225,7 @@ bool FastStep::fused_step(StepState& state, const ContactSolver& solver) const {
       }
       v_prev = x, p_prev = p, q_prev = q;
     } else {
-      const double v = rate * (un - uo) - memory * w[i];
+      const double v = rate * d - memory * w[i];
       w_out[i] = v;
       if constexpr (sums) {
         const double dv = v - v_prev, du = un - un_prev;
@@ -227,32 +237,37 @@ bool FastStep::fused_step(StepState& state, const ContactSolver& solver) const {
       }
       v_prev = v;
     }
-    un_prev2 = un_prev, un_prev = un;
+    un_prev = un;
+    d_prev2 = d_prev, d_prev = d;
   };
   const std::false_type explicit_row;
   const std::true_type toeplitz_row;
-  // Uⁿ⁺¹_i = (z_i − c_i z_{i−1}) + c_i c_{i−1} Uⁿ⁺¹_{i−2}, z_i = y_i/d_i, two chains again; z₀ = u₀ (c₀ = 0).
+  // ΔU_i = (z_i − c_i z_{i−1}) + c_i c_{i−1} ΔU_{i−2}, z_i = y_i/d_i, two chains again; z₀ = ΔU₀ (c₀ = 0).
   const double* upward_pair = solver.upward_pair().data();
   const auto solve_up = [&](Index i) {
     const double z = inverse_pivot[i] * y[i];
-    const double un = (z - upward[i] * z_prev) + upward_pair[i] * un_prev2;
+    const double d = (z - upward[i] * z_prev) + upward_pair[i] * d_prev2;
     z_prev = z;
-    return un;
+    return d;
   };
-  // Node 0's value enters the energy and the velocity; the recurrence runs from recurrence_u0 (the same
-  // number except for EC at a status change): z₀ for node 1, and Uⁿ⁺¹_{i−2} for node 2, set after node 1
+  const auto emit_up = [&](const Row& r, Index i, auto toeplitz) {
+    const double d = solve_up(i);
+    emit(r, i, d, u[i] + d, toeplitz);
+  };
+  // Node 0's value enters the energy and the velocity; the recurrence runs from recurrence_d0 (the same
+  // number except for EC at a status change): z₀ for node 1, and ΔU_{i−2} for node 2, set after node 1
   // (EC keeps row 1 among the explicit rows for this: minimum_head = 2).
-  emit(r0, 0, contact.u0, explicit_row);
-  z_prev = recurrence_u0;
+  emit(r0, 0, u0_next - u[0], u0_next, explicit_row);
+  z_prev = recurrence_d0;
   for (Index i = 1; i < std::min(head, n - 1); ++i) {
-    emit(head_[static_cast<std::size_t>(i)], i, solve_up(i), explicit_row);
-    if (i == 1) un_prev2 = recurrence_u0;
+    emit_up(head_[static_cast<std::size_t>(i)], i, explicit_row);
+    if (i == 1) d_prev2 = recurrence_d0;
   }
   if (head < n - 1) {
     const Row r = interior_;
     // The values z_{a−1} at row head − 1 (the first of the kinetic, the potential and the second forms).
     const double ka = v_prev, pa = three_level ? p_prev : un_prev, qa = q_prev;
-    for (Index i = head; i < n - 1; ++i) emit(r, i, solve_up(i), toeplitz_row);
+    for (Index i = head; i < n - 1; ++i) emit_up(r, i, toeplitz_row);
     const double kb = v_prev, pb = three_level ? p_prev : un_prev, qb = q_prev;
     const auto form = [](double d, double l2, double sum_d, double sum_q, double za, double zb) {
       const double l = 0.5 * l2;
@@ -262,12 +277,11 @@ bool FastStep::fused_step(StepState& state, const ContactSolver& solver) const {
     potential += form(r.sd, r.sl2, p_d, p_q, pa, pb);
     if constexpr (three_level) potential_q += form(r.sd, r.sl2, q_d, q_q, qa, qb);
   }
-  emit(last_, n - 1, solve_up(n - 1), explicit_row);
+  emit_up(last_, n - 1, explicit_row);
 
   if constexpr (three_level) {
     state.energy = 0.5 * kinetic + 0.125 * (potential - (1 - 4 * beta_) * potential_q);
-    state.u.swap(state.w);      // W' = Uⁿ
-    state.u.swap(state.u_new);  // U = Uⁿ⁺¹
+    state.u.swap(state.u_new);  // U = Uⁿ⁺¹ (W' = ΔU was written in the sweep up)
   } else {
     state.energy = 0.5 * kinetic + 0.5 * potential;
     state.u.swap(state.u_new);

@@ -35,7 +35,7 @@ class FastStep {
  private:
   // One row of B₁ and B₂ (lower, diagonal, upper) and of M and S (diagonal and twice the lower entry).
   struct Row {
-    double b1l, b1d, b1u, b2l, b2d, b2u;
+    double c1l, c1d, c1u, c2l, c2d, c2u;
     double md, ml2, sd, sl2;
   };
   std::vector<Row> head_;      // rows 0 … head−1, explicitly

@@ -211,15 +211,38 @@ InitialContactNode initial_contact_node_by_name(const std::string& name) {
 // and X = (Uⁿ⁺¹ − Uⁿ)/Δt. With a massless contact node every scheme but the literal Paoli–Schatzman
 // writes row 0 as the algebraic contact row S₀·Uⁿ⁺¹ = F₀ⁿ⁺¹ − λⁿ⁺¹: row 0 of A is S₀·, rows 0 of B₁
 // and B₂ vanish, κ = 1 and G₀ = F₀ⁿ⁺¹ (set by step_right_hand_side).
+//
+// The increment form (what the steps solve). Written for Uⁿ⁺¹, (★) loses the velocity to round-off:
+// Uⁿ⁺¹ is rounded to ε|U| and the two-level velocity Vⁿ⁺¹ = (Uⁿ⁺¹ − Uⁿ)/(θΔt) − ((1−θ)/θ)Vⁿ turns that
+// into ε|U|/Δt per step, which the next step carries on (Δt M Vⁿ in the right-hand side); over T/Δt
+// steps the error grows like Δt⁻² (N = 40, Mod 1, the first impact time: 7.5e-7 off at Δt = h/4096,
+// 1.6e-4 at h/65536, 1.8e-3 at h/262144; issue 21). Solving for ΔU = Uⁿ⁺¹ − Uⁿ instead, with
+// Uⁿ⁺¹ = Uⁿ + ΔU, Uⁿ⁻¹ = Uⁿ − W' (W' = Uⁿ − Uⁿ⁻¹, Paoli–Schatzman's previous increment):
+//
+//     A ΔU = (B₁ − A) Uⁿ + B₂ Vⁿ + G − κλe₀                         (two levels),
+//     A ΔU = (B₁ + B₂ − A) Uⁿ − B₂ W' + G − κλe₀                    (three levels),
+//
+// and B₁ − A = (M − θ(1−θ)Δt²S) − (M + θ²Δt²S) = −θΔt²S, B₁ + B₂ − A = (2M − (1−2β)Δt²S) − (M + βΔt²S)
+// − (M + βΔt²S) = −Δt²S, −B₂ = A: the mass cancels exactly in the algebra, so C₁ = −θΔt²S (−Δt²S) is
+// built as a multiple of S and no difference of O(|U|) numbers is rounded. ΔU is O(Δt|V|) and is
+// computed to ε|ΔU|, so the velocity rate ΔU − memory Vⁿ keeps a relative error ε: the per-step loss is
+// ε|V| instead of ε|U|/Δt. The addition Uⁿ + ΔU rounds U by ε|U|/2 per step, a displacement error that
+// the scheme carries like any other (no division by Δt): a random walk of √(T/Δt) ε|U| ~ 1e-12 at
+// 3·10⁷ steps. The contact row: 0 ≤ u₀ⁿ⁺¹ − g reads Δu₀ ≥ g − u₀ⁿ (the obstacle of the increment), and
+// on contact u₀ⁿ⁺¹ = g is written exactly. The algebraic row S₀·Uⁿ⁺¹ = F₀ⁿ⁺¹ − λ becomes
+// S₀·ΔU = F₀ⁿ⁺¹ − S₀·Uⁿ − λ: row 0 of C₁ is −S₀ and of C₂ zero (A's row 0 is S₀); it still holds at
+// the new level to round-off whatever the old level, since S₀·Uⁿ is read from Uⁿ.
 namespace {
 
 void algebraic_contact_row(StepMatrices& m, const Tridiagonal& stiffness) {
   m.a.diag[0] = stiffness.diag[0];
   m.a.upper[0] = stiffness.upper[0];
-  for (Tridiagonal* b : {&m.b1, &m.b2}) {
+  for (Tridiagonal* b : {&m.b1, &m.b2, &m.c2}) {
     b->diag[0] = 0.0;
     b->upper[0] = 0.0;
   }
+  m.c1.diag[0] = -stiffness.diag[0];
+  m.c1.upper[0] = -stiffness.upper[0];
   m.kappa = 1.0;
   m.lambda_in_rhs = 0.0;
   m.algebraic_row = true;
@@ -233,6 +256,8 @@ StepMatrices theta_step_matrices(const Tridiagonal& mass, const Tridiagonal& sti
   m.a = mass.plus(t2, stiffness);
   m.b1 = mass.plus(-t1, stiffness);
   m.b2 = mass.scaled(dt);
+  m.c1 = stiffness.scaled(-theta * dt2);  // B₁ − A = −(θ(1−θ) + θ²)Δt²S
+  m.c2 = m.b2;
   m.kappa = t2;
   m.load_now = t1;
   m.load_next = t2;
@@ -260,10 +285,12 @@ StepMatrices step_matrices(const Tridiagonal& mass, const Tridiagonal& stiffness
   m.a = mass.plus(beta * dt2, stiffness);
   m.b1 = mass.scaled(2.0).plus(-(1 - 2 * beta) * dt2, stiffness);
   m.b2 = mass.scaled(-1.0).plus(-beta * dt2, stiffness);
+  m.c1 = stiffness.scaled(-dt2);  // B₁ + B₂ − A
+  m.c2 = m.a;                     // −B₂
   m.kappa = dt2;
   m.load_now = dt2;
   m.load_next = 0;
-  m.velocity_rate = 1 / dt;  // X = (Uⁿ⁺¹ − Uⁿ)/Δt; W' = Uⁿ by a swap
+  m.velocity_rate = 1 / dt;  // X = (Uⁿ⁺¹ − Uⁿ)/Δt; W' = Uⁿ⁺¹ − Uⁿ
   m.velocity_memory = 0;
   if (contact_node_is_massless(mass) && p.contact_row == ContactRow::algebraic) algebraic_contact_row(m, stiffness);
   return m;
@@ -278,6 +305,63 @@ Eigen::VectorXd step_right_hand_side(const StepMatrices& step, const Eigen::Vect
   else
     rhs[0] -= step.lambda_in_rhs * lambda;
   return rhs;
+}
+
+Eigen::VectorXd increment_right_hand_side(const StepMatrices& step, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
+                                          double lambda, const Eigen::VectorXd* load_now,
+                                          const Eigen::VectorXd* load_next) {
+  Eigen::VectorXd rhs = step.c1 * u + step.c2 * w;
+  if (load_now && load_next) rhs += step.load_now * *load_now + step.load_next * *load_next;
+  if (step.algebraic_row)
+    rhs[0] = step.c1.diag[0] * u[0] + step.c1.upper[0] * u[1] + (load_next ? (*load_next)[0] : 0.0);
+  else
+    rhs[0] -= step.lambda_in_rhs * lambda;
+  return rhs;
+}
+
+TEST_CASE("the increment form's matrices are (★)'s, combined exactly: C1 = B1 - A (+ B2), C2 = B2 (or -B2)") {
+  const UniformMesh mesh(1.0, 9);
+  const double dt = 0.37 * mesh.h();
+  for (const MassRedistribution& r : {consistent_mass(), mod3()}) {
+    const Tridiagonal m = modified_mass(mesh, r), s = p1_stiffness(mesh);
+    for (const Scheme scheme : {Scheme::crank_nicolson, Scheme::backward_euler, Scheme::paoli_schatzman}) {
+      SchemeParameters p;
+      p.scheme = scheme;
+      if (scheme == Scheme::paoli_schatzman && r.name == "consistent") p.contact_row = ContactRow::literal;
+      const StepMatrices k = step_matrices(m, s, p, dt);
+      const bool three = scheme == Scheme::paoli_schatzman;
+      CAPTURE(r.name);
+      CAPTURE(to_string(scheme));
+      for (Index i = 0; i < m.size(); ++i)
+        for (Index j = std::max<Index>(0, i - 1); j <= std::min<Index>(m.size() - 1, i + 1); ++j) {
+          const double c1 = k.b1(i, j) - k.a(i, j) + (three ? k.b2(i, j) : 0.0);
+          const double c2 = three ? -k.b2(i, j) : k.b2(i, j);
+          // Every entry is a difference of O(1/h) numbers: equal to a few of their round-offs.
+          CHECK(std::abs(k.c1(i, j) - c1) <= 1e-13 * (std::abs(k.a(i, j)) + std::abs(k.b1(i, j)) + 1));
+          CHECK(std::abs(k.c2(i, j) - c2) <= 1e-13 * (std::abs(k.b2(i, j)) + 1));
+        }
+    }
+  }
+}
+
+// The round-off floor, on the first impact time at N = 8 (Mod 1), Δt = h/4096, h/16384, h/65536
+// (4·10⁵ steps at the finest). The increment form's spread is the truncation error: O(Δt²), measured
+// 1.2e-9 between h/1024 and h/4096, so at most 1.2e-9/16 ≈ 7e-11 over the three steps, plus its
+// round-off, √K ε|U| / |u̇₁| ≈ 1e-13 (K steps, a random walk of the additions Uⁿ + ΔU, u̇₁ ≈ −½). The
+// form for Uⁿ⁺¹ loses ε|U|/Δt of velocity per step: ≈ 1e-6 at h/65536 (measured 8e-7; 2e-4 at N = 40).
+// The threshold 1e-9 lies an order above the first prediction and three below the second.
+TEST_CASE("the increment form keeps the first impact time flat as dt -> 0; the form for U^{n+1} does not") {
+  double increment_low = HUGE_VAL, increment_high = -HUGE_VAL, for_u_low = HUGE_VAL, for_u_high = -HUGE_VAL;
+  for (const long ratio : {4096L, 16384L, 65536L}) {
+    const double a = first_impact_time(8, mod1(), 0.125 / static_cast<double>(ratio), StepForm::increment),
+                 b = first_impact_time(8, mod1(), 0.125 / static_cast<double>(ratio), StepForm::for_u);
+    increment_low = std::min(increment_low, a), increment_high = std::max(increment_high, a);
+    for_u_low = std::min(for_u_low, b), for_u_high = std::max(for_u_high, b);
+  }
+  CAPTURE(increment_high - increment_low);
+  CAPTURE(for_u_high - for_u_low);
+  CHECK(increment_high - increment_low <= 1e-9);
+  CHECK(for_u_high - for_u_low > 1e-9);  // the criterion does fail on the form before
 }
 
 TEST_CASE("Crank–Nicolson and backward Euler are the theta-rule with theta = 1/2 and 1, bit for bit") {
@@ -468,7 +552,7 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   state_.energy = energy_two_level();
 
   // W = V⁰ for the two-level schemes. The three-level scheme is started by one Crank–Nicolson step
-  // (with the same mass and contact row): then W = U⁰ and Paoli–Schatzman with β = ¼ and the algebraic
+  // (with the same mass and contact row): then W' = U¹ − U⁰ and Paoli–Schatzman with β = ¼ and the algebraic
   // row reproduces Crank–Nicolson exactly when f = 0 (the elimination of V from Crank–Nicolson gives
   // the three-level formula with β = ¼ on every free row; checked below).
   // The two-level schemes' velocity is W itself: X is not kept.
@@ -752,66 +836,70 @@ double stiffness_form(const Eigen::VectorXd& u, const Eigen::VectorXd& v, const 
 }  // namespace
 
 void BarSimulation::reference_step(bool has_load) {
-  const double dt = dt_, h = mesh_.contact_compliance();
+  const double h = mesh_.contact_compliance();
   const Tridiagonal& M = mass_;
   const Eigen::VectorXd& u = state_.u;  // Uⁿ
-  const Eigen::VectorXd& w = state_.w;  // W: Vⁿ (two levels) or Uⁿ⁻¹ (Paoli–Schatzman)
+  const Eigen::VectorXd& w = state_.w;  // W': Vⁿ (two levels) or Uⁿ − Uⁿ⁻¹ (Paoli–Schatzman)
 
-  // 1. The right-hand side.
-  const Eigen::VectorXd rhs = step_right_hand_side(step_, u, w, state_.lambda, has_load ? &state_.f_now : nullptr,
-                                                   has_load ? &state_.f_next : nullptr);
+  // 1. The right-hand side of the increment form.
+  const Eigen::VectorXd rhs = increment_right_hand_side(step_, u, w, state_.lambda, has_load ? &state_.f_now : nullptr,
+                                                        has_load ? &state_.f_next : nullptr);
 
-  // 2. One solve with the closed-form contact step. EC decides the contact on row 1 after the sweep
-  // down and starts the sweep up from the u₀ that carries its discrete-gradient force (energy_step.cpp);
-  // CN-switch decides it as Crank–Nicolson does, and if the status changes, takes its θ-step instead
-  // (nothing has been written yet).
-  double obstacle = three_level_ ? -parameters_.restitution * w[0] : 0.0;
-  // The gap (issue 22): the obstacle moves to −gap.
-  if (step_.obstacle_offset != 0.0) obstacle += step_.obstacle_offset;
-  Eigen::VectorXd& u_next = state_.u_new;  // Uⁿ⁺¹
-  double contact_multiplier;
+  // 2. One solve for ΔU with the closed-form contact step, the obstacle of the increment g − u₀ⁿ. EC
+  // decides the contact on row 1 after the sweep down and starts the sweep up from the u₀ that carries
+  // its discrete-gradient force (energy_step.cpp); its scalar problem is written for u, so row 1's
+  // ΔU₁ = z + μΔU₀ is passed as u₁ⁿ⁺¹ = (u₁ⁿ + z − μu₀ⁿ) + μu₀ⁿ⁺¹. CN-switch decides it as Crank–Nicolson
+  // does, and if the status changes, takes its θ-step instead (nothing has been written yet). The gap
+  // (issue 22) moves the obstacle by step_.obstacle_offset.
+  double obstacle = three_level_ ? -parameters_.restitution * (u[0] - w[0]) : 0.0;  // g
+  if (step_.obstacle_offset != 0.0) obstacle += step_.obstacle_offset;              // (keeps a −0)
+  Eigen::VectorXd& du = state_.u_new;  // ΔU, then Uⁿ⁺¹
+  double contact_multiplier, u0_next;
   if (energy_conserving_) {
-    solver_.sweep_down(rhs.data(), u_next.data());
+    solver_.sweep_down(rhs.data(), du.data());
     const double load0_now = has_load ? state_.f_now[0] : 0.0, load0_next = has_load ? state_.f_next[0] : 0.0;
+    const double mu = -solver_.upward()[1];
     const EnergyConservingContact contact = energy_conserving_contact(
-        solver_.inverse_pivot()[1] * u_next[1], -solver_.upward()[1], u[0], u[1] + h * load0_now, h, load0_next);
-    solver_.sweep_up(contact.recurrence_u0, u_next.data());
-    u_next[0] = contact.u0;
+        u[1] + solver_.inverse_pivot()[1] * du[1] - mu * u[0], mu, u[0], u[1] + h * load0_now, h, load0_next);
+    solver_.sweep_up(contact.recurrence_u0 - u[0], du.data());
+    u0_next = contact.u0;
     contact_multiplier = contact.multiplier;
     state_.active = contact.active;
   } else if (switch_) {
-    solver_.sweep_down(rhs.data(), u_next.data());
-    const ContactStep contact = solver_.resolve_contact(u_next[0], step_.kappa, obstacle);
+    solver_.sweep_down(rhs.data(), du.data());
+    const ContactStep contact = solver_.resolve_contact(du[0], step_.kappa, obstacle - u[0]);
     if (contact.active != state_.active) return switch_step(has_load);
-    solver_.sweep_up(contact.u0, u_next.data());
+    solver_.sweep_up(contact.u0, du.data());
+    u0_next = contact.active ? obstacle : u[0] + contact.u0;
     contact_multiplier = contact.multiplier;
     state_.active = contact.active;
   } else {
-    const ContactStep contact = solver_.solve(rhs.data(), u_next.data(), step_.kappa, obstacle);
+    const ContactStep contact = solver_.solve(rhs.data(), du.data(), step_.kappa, obstacle - u[0]);
+    u0_next = contact.active ? obstacle : u[0] + contact.u0;
     contact_multiplier = contact.multiplier;
     state_.active = contact.active;
   }
+  du[0] = u0_next - u[0];  // EC's recurrence value is not the contact node's new value
 
-  // 3 and 4. The velocity and the energy from their definitions.
+  // 3 and 4. The velocity and the energy from their definitions, the velocity from ΔU.
   const auto kinetic = [&](const Eigen::VectorXd& v) { return 0.5 * M.bilinear(v, v); };
+  Eigen::VectorXd u_next = u + du;
+  u_next[0] = u0_next;
   if (three_level_) {
     const double beta = parameters_.beta;
-    state_.x = (u_next - u) / dt;
+    state_.x = step_.velocity_rate * du;  // X = ΔU/Δt
     const auto potential = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
       return 0.5 * (beta * stiffness_form(a, a, mesh_) + (1 - 2 * beta) * stiffness_form(a, b, mesh_) +
                     beta * stiffness_form(b, b, mesh_));
     };
     state_.energy = kinetic(state_.x) + potential(u_next, u);
-    state_.w = state_.u;  // W' = Uⁿ
+    state_.w = du;  // W' = Uⁿ⁺¹ − Uⁿ
   } else {
     Eigen::VectorXd& v_next = state_.w;  // Vⁿ⁺¹ overwrites Vⁿ, entry by entry
-    if (parameters_.scheme != Scheme::backward_euler)
-      v_next = 2 * (u_next - u) / dt - w;  // Crank–Nicolson's
-    else
-      v_next = (u_next - u) / dt;
+    v_next = step_.velocity_rate * du - step_.velocity_memory * w;
     state_.energy = kinetic(v_next) + 0.5 * stiffness_form(u_next, u_next, mesh_);
   }
-  state_.u.swap(state_.u_new);  // U = Uⁿ⁺¹
+  state_.u = u_next;  // U = Uⁿ⁺¹
   state_.lambda = contact_multiplier;
   if (has_load) state_.f_now.swap(state_.f_next);
 }
@@ -865,12 +953,17 @@ TEST_CASE("backward Euler never increases the discrete energy") {
 void BarSimulation::switch_step(bool has_load) {
   const StepMatrices& theta_step = switch_->matrices;
   const Eigen::VectorXd rhs =
-      step_right_hand_side(theta_step, state_.u, state_.w, state_.lambda, has_load ? &state_.f_now : nullptr,
-                           has_load ? &state_.f_next : nullptr);
-  const ContactStep contact =
-      switch_->solver.solve(rhs.data(), state_.u_new.data(), theta_step.kappa, theta_step.obstacle_offset);
-  state_.w = theta_step.velocity_rate * (state_.u_new - state_.u) - theta_step.velocity_memory * state_.w;
-  state_.energy = 0.5 * mass_.bilinear(state_.w, state_.w) + 0.5 * stiffness_form(state_.u_new, state_.u_new, mesh_);
+      increment_right_hand_side(theta_step, state_.u, state_.w, state_.lambda, has_load ? &state_.f_now : nullptr,
+                                has_load ? &state_.f_next : nullptr);
+  Eigen::VectorXd& du = state_.u_new;  // ΔU (the increment form), then Uⁿ⁺¹
+  const double obstacle = theta_step.obstacle_offset;  // g: the gap (issue 22), 0 without one
+  const ContactStep contact = switch_->solver.solve(rhs.data(), du.data(), theta_step.kappa, obstacle - state_.u[0]);
+  const double u0_next = contact.active ? obstacle : state_.u[0] + contact.u0;
+  du[0] = u0_next - state_.u[0];
+  state_.w = theta_step.velocity_rate * du - theta_step.velocity_memory * state_.w;
+  du += state_.u;
+  du[0] = u0_next;
+  state_.energy = 0.5 * mass_.bilinear(state_.w, state_.w) + 0.5 * stiffness_form(du, du, mesh_);
   state_.u.swap(state_.u_new);
   state_.lambda = contact.multiplier;
   state_.active = contact.active;
@@ -880,7 +973,9 @@ void BarSimulation::switch_step(bool has_load) {
 void BarSimulation::step() {
   if (start_) {
     start_->step();
-    state_.w.swap(state_.u);  // W = U⁰
+    // W' = U¹ − U⁰: rounded once to ε|U| (the starter's increment is not kept), which perturbs the
+    // velocity by ε|U|/Δt once, not at every step.
+    state_.w = start_->state_.u - state_.u;
     state_.u = start_->state_.u;
     state_.x = start_->state_.w;  // the starter's velocity V¹
     if (problem_.load) state_.f_now = start_->state_.f_now;
@@ -1187,6 +1282,52 @@ void run(BarSimulation& simulation, Index steps, const std::function<void(const 
     simulation.step();
     if (observe) observe(simulation.sample());
   }
+}
+
+// The first impact time, by the library's step or by (★) solved for Uⁿ⁺¹ (written here from the same
+// matrices, step_matrices and step_right_hand_side, with the velocity from the difference and the
+// massless node's velocity from its row, as the steps did before the increment form).
+double first_impact_time(Index elements, const MassRedistribution& mass, double dt, StepForm form) {
+  const UniformMesh mesh(1.0, elements);
+  const double h = mesh.h();
+  const Index limit = steps_to_reach(3.0 * mesh.length, dt);
+  const auto crossing = [dt](Index k, double before, double after) {
+    return (static_cast<double>(k - 1) + before / (before - after)) * dt;
+  };
+  if (form == StepForm::increment) {
+    BarSimulation simulation(benchmark_problem(), mesh, mass, SchemeParameters(), dt);
+    if (!contact_node_is_massless(simulation.mass()))
+      throw std::invalid_argument("first_impact_time: the mass must leave the contact node massless");
+    double previous = (*simulation.sample().displacement)[1];
+    for (Index k = 1; k <= limit; ++k) {
+      simulation.step();
+      const double g = (*simulation.sample().displacement)[1];
+      if (g <= 0) return crossing(k, previous, g);
+      previous = g;
+    }
+  } else {
+    const Tridiagonal m = checked_mass(mesh, mass), s = p1_stiffness(mesh);
+    if (!contact_node_is_massless(m))
+      throw std::invalid_argument("first_impact_time: the mass must leave the contact node massless");
+    const StepMatrices step = step_matrices(m, s, SchemeParameters(), dt);
+    const ContactSolver solver(step.a);
+    const Index n = mesh.unknowns();
+    Eigen::VectorXd u(n), v = Eigen::VectorXd::Zero(n), u_next(n);
+    for (Index i = 0; i < n; ++i) u[i] = benchmark_problem().initial_displacement(mesh.x(i));
+    const CondensedContact initial = condense_contact_node(u[1], h, 0.0);
+    u[0] = initial.u0;
+    double lambda = initial.multiplier, previous = u[1];
+    for (Index k = 1; k <= limit; ++k) {
+      const Eigen::VectorXd rhs = step_right_hand_side(step, u, v, lambda);
+      lambda = solver.solve(rhs.data(), u_next.data(), step.kappa).multiplier;
+      v = step.velocity_rate * (u_next - u) - step.velocity_memory * v;
+      v[0] = u_next[0] > 0 ? v[1] : 0.0;
+      u.swap(u_next);
+      if (u[1] <= 0) return crossing(k, previous, u[1]);
+      previous = u[1];
+    }
+  }
+  throw std::runtime_error("first_impact_time: no impact before t = 3L");
 }
 
 Index steps_to_reach(double final_time, double dt) {

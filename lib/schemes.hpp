@@ -104,9 +104,16 @@ struct SchemeParameters {
 /// builder of the step's coefficients, used by the reference step, the fast kernel's set-up,
 /// CN-switch's θ-step and the harness's checks of the contact step (repro/claims.cpp).
 struct StepMatrices {
-  Tridiagonal a;     ///< A, the step matrix (row 0 the algebraic contact row S₀· when `algebraic_row`)
-  Tridiagonal b1;    ///< B₁, applied to Uⁿ (row 0 zero with the algebraic row)
-  Tridiagonal b2;    ///< B₂, applied to W = Vⁿ (two levels) or Uⁿ⁻¹ (three levels) (row 0 zero likewise)
+  Tridiagonal a;   ///< A, the step matrix (row 0 the algebraic contact row S₀· when `algebraic_row`)
+  Tridiagonal b1;  ///< B₁, applied to Uⁿ (row 0 zero with the algebraic row)
+  Tridiagonal b2;  ///< B₂, applied to W = Vⁿ (two levels) or Uⁿ⁻¹ (three levels) (row 0 zero likewise)
+  /// The increment form the steps solve (schemes.cpp, "the increment form"): A ΔU = C₁ Uⁿ + C₂ W' + G
+  /// − κλe₀ for ΔU = Uⁿ⁺¹ − Uⁿ, with C₁ = B₁ − A = −θΔt²S (two levels) or B₁ + B₂ − A = −Δt²S (three),
+  /// row 0 −S₀· with the algebraic row, built as multiples of S (no difference of matrices is rounded).
+  Tridiagonal c1;
+  /// C₂ = B₂ applied to W' = Vⁿ (two levels), or −B₂ = A applied to W' = Uⁿ − Uⁿ⁻¹ (three levels);
+  /// row 0 zero with the algebraic row.
+  Tridiagonal c2;
   double kappa = 0;  ///< κ: the weight of λⁿ⁺¹ (or λⁿ for Paoli–Schatzman) in row 0; 1 with the algebraic row
   double load_now = 0;   ///< G = load_now Fⁿ + load_next Fⁿ⁺¹ on the rows of inertia
   double load_next = 0;  ///< see load_now (with the algebraic row, G₀ = F₀ⁿ⁺¹)
@@ -132,6 +139,11 @@ StepMatrices theta_step_matrices(const Tridiagonal& mass, const Tridiagonal& sti
 Eigen::VectorXd step_right_hand_side(const StepMatrices& step, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
                                      double lambda, const Eigen::VectorXd* load_now = nullptr,
                                      const Eigen::VectorXd* load_next = nullptr);
+/// The right-hand side of the increment form before the contact force: c = C₁ Uⁿ + C₂ W' + G −
+/// lambda_in_rhs λⁿ e₀, row 0 −S₀·Uⁿ + F₀ⁿ⁺¹ with the algebraic row; W' = Vⁿ or Uⁿ − Uⁿ⁻¹.
+Eigen::VectorXd increment_right_hand_side(const StepMatrices& step, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
+                                          double lambda, const Eigen::VectorXd* load_now = nullptr,
+                                          const Eigen::VectorXd* load_next = nullptr);
 
 /// The continuous problem (mathematics.md §1): bar (0, L), data u⁰, v⁰, load f (may be empty: f = 0).
 struct Problem {
@@ -165,7 +177,7 @@ struct Sample {
 struct StepState {
   Eigen::VectorXd u;       ///< Uⁿ
   Eigen::VectorXd u_new;   ///< the scratch of the sweeps, then Uⁿ⁺¹ (swapped into u)
-  Eigen::VectorXd w;       ///< W: Vⁿ (the two-level schemes' velocity) or Uⁿ⁻¹ (Paoli–Schatzman)
+  Eigen::VectorXd w;       ///< W': Vⁿ (the two-level schemes' velocity) or Uⁿ − Uⁿ⁻¹ (Paoli–Schatzman)
   Eigen::VectorXd x;       ///< X = (Uⁿ − Uⁿ⁻¹)/Δt, Paoli–Schatzman's velocity (empty for two levels)
   Eigen::VectorXd f_now;   ///< Fⁿ (empty without a load)
   Eigen::VectorXd f_next;  ///< Fⁿ⁺¹ (empty without a load)
@@ -249,6 +261,15 @@ class BarSimulation {
   std::unique_ptr<BarSimulation> start_;  // the Crank–Nicolson first step of Paoli–Schatzman
 };
 
+/// The θ of CN-switch's step for which the θ-step's energy identity proves that no step gains energy
+/// (energy_step.cpp §4): Eⁿ⁺¹ − Eⁿ ≤ −(θ − ½)‖ΔV‖²_M̄ + ρ_θ(a, b), and at a release (a < 0 ≤ b, s = u₁ + hF₀
+/// before and after) ρ_θ = ((1 − θ)|ab| − (θ − ½)a²)/h, positive as soon as |b|/|a| > (θ − ½)/(1 − θ).
+/// A release falls anywhere inside its step, so |b|/|a| takes every value in (0, ∞): for every θ < 1
+/// some release gains energy (measured: θ = 0.6 gains, θ = 0.51 blows up; issue 21), and only θ = 1
+/// (backward Euler, ρ₁ ≤ 0 in every case) is proved. The programs accept this value only; the library
+/// keeps θ ∈ [½, 1] for the checks of the θ-step itself.
+constexpr double switch_theta_without_gain = 1.0;
+
 /// The number of steps of size dt that reach the final time T (the last level is the first t_n ≥ T
 /// up to round-off): ceil(T/dt − 1e-9).
 Index steps_to_reach(double final_time, double dt);
@@ -256,5 +277,15 @@ Index steps_to_reach(double final_time, double dt);
 /// Runs from the current level for `steps` steps, calling `observe` on the current sample first and
 /// after every step.
 void run(BarSimulation& simulation, Index steps, const std::function<void(const Sample&)>& observe);
+
+/// How Crank–Nicolson's step is solved: for the increment ΔU = Uⁿ⁺¹ − Uⁿ (the library's step), or for
+/// Uⁿ⁺¹ with the velocity recovered from the difference 2(Uⁿ⁺¹ − Uⁿ)/Δt − Vⁿ (the form before issue 21,
+/// kept only for the round-off benchmark of the time study and its doctest).
+enum class StepForm { increment, for_u };
+/// The benchmark's first impact time by Crank–Nicolson with `mass` (massless contact node) on N
+/// elements at step dt: the zero of the contact indicator u₁ (f = 0), linear between the two levels
+/// around it. Throws std::invalid_argument for a mass with inertia at the contact node and
+/// std::runtime_error if no impact occurs before t = 3L.
+double first_impact_time(Index elements, const MassRedistribution& mass, double dt, StepForm form);
 
 }  // namespace mrm

@@ -182,8 +182,8 @@ std::vector<ClaimResult> check_convergence(const repro::Sweep& sweep, Judge& jud
 SummaryLine summarize_convergence(const repro::Sweep& sweep);
 
 struct TimeConvergenceSettings {
-  Index elements = 32;
-  std::vector<double> courants = {0.125, 0.0625, 0.03125, 0.015625, 0.0078125};  ///< Δt/h; each divides the first
+  std::vector<long> meshes = {24, 32, 40};  ///< a family of meshes (fig_time_error runs the full one)
+  std::vector<double> courants = {0.0625, 0.03125, 0.015625, 0.0078125};  ///< Δt/h; each divides the first
   double reference_courant = 1.0 / 2048;  ///< the reference: same h, this much smaller Δt
   double final_time = 3;
   double predicted_order = 2;  ///< the trapezoidal rule on the semi-discrete Lipschitz ODE
