@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
     parser.add_choice("--benchmark", "", "B",
                       mrm::repro::benchmark_help("initial data (S1, S2: mathematics.md sec. 11, L = 1)"),
                       mrm::repro::benchmark_names(), &benchmark);
-    parser.add_string("--initial-data", "", "FILE",
+    parser.add_input("--initial-data", "",
                       "read the initial data from FILE (columns x u0 v0, linearly interpolated, on [0, L] with L the "
                       "last x); excludes --benchmark",
                       &initial_data);
@@ -209,6 +209,9 @@ int main(int argc, char** argv) {
                                                     configuration.mass, configuration.scheme, step,
                                                     configuration.initial);
                                });
+    // The exact solution of data other than the paper's grows with the horizon: checked before it is built.
+    mrm::repro::require_reference_memory(configuration, mrm::repro::reference_horizon(steps, step),
+                                         own_data ? "--initial-data" : "--final-time");
     const std::shared_ptr<const mrm::ReferenceSolution> reference =
         mrm::repro::configuration_reference(configuration, mrm::repro::reference_horizon(steps, step));
     const mrm::ReferenceSolution& exact = *reference;
@@ -227,7 +230,7 @@ int main(int argc, char** argv) {
           << "\n# exact_energy = " << cli::format_real(exact.energy()) << '\n'
           << "# Each quantity is given at the instant it approximates: t for u0, t_lambda for lambda,\n"
           << "# t_energy for the energy (Paoli-Schatzman: lambda at t_n or t_{n+1}, energy at t_{n+1/2}).\n"
-          << "# lambda_h = nan where the level has no multiplier yet.\n"
+          << "# lambda_h = n/a where the level has no multiplier yet.\n"
           << "# columns: t u0_h u0_exact t_lambda lambda_h lambda_exact t_energy energy_h energy_exact\n";
     }
 
@@ -238,10 +241,9 @@ int main(int argc, char** argv) {
         [&](const mrm::Sample& s) {
           if (series) {
             std::ostream& out = series->stream();
-            const double nan = std::numeric_limits<double>::quiet_NaN();
             out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
                 << cli::format_real(exact.contact_displacement(s.time)) << ' ' << cli::format_real(s.multiplier_time)
-                << ' ' << cli::format_real(s.has_multiplier ? s.multiplier : nan) << ' '
+                << ' ' << (s.has_multiplier ? cli::format_real(s.multiplier) : "n/a") << ' '
                 << cli::format_real(exact.contact_multiplier(s.multiplier_time)) << ' '
                 << cli::format_real(s.energy_time) << ' ' << cli::format_real(s.energy) << ' '
                 << cli::format_real(exact.energy()) << '\n';

@@ -422,9 +422,9 @@ int main(int argc, char** argv) {
                       "clock of the timed batches: wall (steady_clock) or cpu (this thread's CPU time, for a loaded "
                       "machine)",
                       {"wall", "cpu"}, &clock);
-    parser.add_string("--output", "-o", "FILE", "write the timings as a gnuplot data file", &output);
-    parser.add_string("--tex", "", "FILE", "write the table as a LaTeX tabular", &tex);
-    parser.add_string("--markdown", "", "FILE", "write the table as Markdown", &markdown);
+    parser.add_output("--output", "-o", "write the timings as a gnuplot data file", &output);
+    parser.add_output("--tex", "", "write the table as a LaTeX tabular", &tex);
+    parser.add_output("--markdown", "", "write the table as Markdown", &markdown);
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
     if (quick) {
       if (!parser.given("--max-log2")) max_log2 = 12;

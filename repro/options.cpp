@@ -20,6 +20,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -981,6 +982,68 @@ TEST_CASE("the version is printed after the program's name and stops the program
   std::ostringstream printed;
   CHECK(program.parser.parse({"--version"}, printed) == Outcome::exit_success);
   CHECK(printed.str() == std::string("contact ") + MRM_VERSION + "\n");
+}
+
+TEST_CASE("an output naming an input's file, or another output's, is refused whatever the spelling") {
+  // In a scratch directory: d.dat (the input), its hard link, a symbolic link to it, a linked
+  // directory; each spelling of the same file as an output is refused, each other file accepted.
+  namespace fs = std::filesystem;
+  std::string pattern = (fs::temp_directory_path() / "mrm_identity_test.XXXXXX").string();
+  const fs::path scratch = ::mkdtemp(pattern.data());
+  const fs::path here = fs::current_path();
+  fs::current_path(scratch);
+  std::ofstream("d.dat") << "0 0.5 0\n1 0 0\n";
+  fs::create_directory("sub");
+  fs::create_hard_link("d.dat", "hard.dat");
+  fs::create_symlink("d.dat", "soft.dat");
+  fs::create_directory_symlink(".", "same_dir");
+  const std::string absolute = (scratch / "d.dat").string();
+  std::string input, output = "out.dat", tex;
+  int cases = 0;
+  const auto parse = [&](const std::vector<std::string>& arguments) {
+    Parser parser("p", "", {});
+    parser.add_input("--initial-data", "", "read", &input);
+    parser.add_output("--output", "-o", "write", &output);
+    parser.add_output("--tex", "", "write", &tex);
+    input.clear();
+    output = "out.dat";
+    tex.clear();
+    ++cases;
+    std::ostringstream printed;
+    return parser.parse(arguments, printed);
+  };
+  for (const std::string& same : std::vector<std::string>{"d.dat", "./d.dat", "sub/../d.dat", "same_dir/d.dat", "hard.dat", "soft.dat", absolute,
+                                 ".//d.dat"}) {
+    CAPTURE(same);
+    CHECK_THROWS_WITH_AS(parse({"--initial-data", "d.dat", "--output", same}),
+                         ("--output: " + quoted_text(same) +
+                          " is the file of --initial-data \"d.dat\" (allowed: an output that replaces no input)")
+                             .c_str(),
+                         UsageError);
+    CHECK_THROWS_WITH_AS(parse({"--initial-data", same, "--tex", "d.dat"}), doctest::Contains("--tex: \"d.dat\" is the file of --initial-data"),
+                         UsageError);
+  }
+  // The default output counts: an input that is the default output's file.
+  CHECK_THROWS_WITH_AS(parse({"--initial-data", "./out.dat"}), doctest::Contains("--output: \"out.dat\" is the file of --initial-data"),
+                       UsageError);
+  // Two outputs on one file, existing or new.
+  for (const auto& [first, second] : std::vector<std::pair<std::string, std::string>>{
+           {"new.dat", "new.dat"}, {"new.dat", "./new.dat"}, {"new.dat", "same_dir/new.dat"}, {"d.dat", "soft.dat"}}) {
+    CAPTURE(second);
+    CHECK_THROWS_WITH_AS(parse({"--output", first, "--tex", second}),
+                         doctest::Contains("(allowed: a different file for each output)"), UsageError);
+  }
+  // Different files, "-" and missing directories are not this check's.
+  for (const std::vector<std::string>& fine :
+       std::vector<std::vector<std::string>>{{"--initial-data", "d.dat", "--output", "sub/d.dat"},
+                                             {"--initial-data", "d.dat", "--output", "-", "--tex", "-"},
+                                             {"--initial-data", "d.dat", "--output", "missing/d.dat"},
+                                             {"--output", "a.dat", "--tex", "b.dat"}}) {
+    CHECK(parse(fine) == Outcome::run);
+  }
+  CHECK(cases == 25);
+  fs::current_path(here);
+  fs::remove_all(scratch);
 }
 
 TEST_CASE("argv is read without the program's own name") {
