@@ -115,6 +115,7 @@ int main(int argc, char** argv) {
     for (std::size_t b = 0; b < which.size(); ++b) {
       const mrm::SmoothBenchmarkData benchmark = mrm::smooth_benchmark(which[b]);
       std::vector<std::vector<double>> columns(2 + 2 * masses.size());
+      std::vector<std::vector<bool>> absent(columns.size());  // a level without a multiplier: written n/a
       std::vector<double> times;
       std::shared_ptr<const mrm::ReferenceSolution> reference;
       std::vector<double> first_impact_error(masses.size());
@@ -139,7 +140,9 @@ int main(int argc, char** argv) {
                 throw std::logic_error("the three runs of a benchmark must share their levels");
               }
               columns[2 + 2 * m].push_back((*s.displacement)[0]);
-              columns[3 + 2 * m].push_back(s.has_multiplier ? s.multiplier : std::nan(""));
+              columns[3 + 2 * m].push_back(s.has_multiplier ? s.multiplier : 0.0);
+              absent[3 + 2 * m].resize(columns[3 + 2 * m].size());
+              absent[3 + 2 * m].back() = !s.has_multiplier;
               ++level;
             },
             reference.get());
@@ -158,10 +161,12 @@ int main(int argc, char** argv) {
           << "\n# exact_energy = " << cli::format_real(reference->energy());
       for (std::size_t m = 0; m < masses.size(); ++m)
         out << "\n# first_impact_error_over_h_" << masses[m] << " = " << cli::format_real(first_impact_error[m]);
+      out << "\n# lambda = n/a where the level has no multiplier yet";
       out << "\n# columns: t u0_exact lambda_exact u0_mod1 lambda_mod1 u0_mod2 lambda_mod2 u0_mod3 lambda_mod3\n";
       for (std::size_t n = 0; n < times.size(); ++n) {
         out << cli::format_real(times[n]);
-        for (const std::vector<double>& column : columns) out << ' ' << cli::format_real(column[n]);
+        for (std::size_t k = 0; k < columns.size(); ++k)
+          out << ' ' << (n < absent[k].size() && absent[k][n] ? std::string("n/a") : cli::format_real(columns[k][n]));
         out << '\n';
       }
       mrm::tex_define(defs, std::string("smoothbench:") + keys[b] + ":K", mrm::tex_number(benchmark.scale, 4));

@@ -177,8 +177,8 @@ int main(int argc, char** argv) {
     program.add_final_time(3.0, "final time (> 0); one period is 3");
     program.parser.add_string("--mass", "-m", "M",
                               mrm::repro::mass_option_help("a redistributed mass (not consistent)"), &mass);
-    program.parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it",
-                               &threads, cli::at_least(1));
+    program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
+                               &threads, cli::in_closed_range(1, cli::max_threads));
     if (!program.parse(argc, argv, "also write the tables and values the report quotes")) return 0;
     const long elements = program.elements;
     const double final_time = program.final_time;
