@@ -17,7 +17,7 @@
 //
 // Data file: gnuplot blocks separated by two blank lines (select with `index`). Block 0 is the exact
 // solution (t u0 lambda); block 1 + 3 s + m is scheme s ∈ (cn, be, ps), mass m ∈ (mod1, mod2, mod3),
-// columns t u0_h t_lambda lambda_h (each quantity at the instant it approximates; lambda_h = nan where
+// columns t u0_h t_lambda lambda_h (each quantity at the instant it approximates; lambda_h = n/a where
 // a level has no multiplier).
 #include <cmath>
 #include <iostream>
