@@ -173,6 +173,10 @@ int main(int argc, char** argv) {
                             cli::format_real(largest_courant * mesh.h()) + " (allowed: 0 < dt <= 1e6 h, h = L/N)");
     const mrm::Index steps = cli::checked_steps("--final-time", final_time, step, "--dt or --courant");
     cli::require_mesh_memory("--elements", static_cast<double>(elements), bytes_per_element);
+    // The exact solution of data other than the paper's grows with the horizon: checked before anything
+    // is built from the data.
+    mrm::repro::require_reference_memory(configuration, mrm::repro::reference_horizon(steps, step),
+                                         own_data ? "--initial-data" : "--final-time");
     if (parser.given("--output"))
       cli::require_rows("--final-time", static_cast<double>(steps) + 1,
                         cli::format_real(static_cast<double>(steps)) + " steps");
@@ -209,9 +213,6 @@ int main(int argc, char** argv) {
                                                     configuration.mass, configuration.scheme, step,
                                                     configuration.initial);
                                });
-    // The exact solution of data other than the paper's grows with the horizon: checked before it is built.
-    mrm::repro::require_reference_memory(configuration, mrm::repro::reference_horizon(steps, step),
-                                         own_data ? "--initial-data" : "--final-time");
     const std::shared_ptr<const mrm::ReferenceSolution> reference =
         mrm::repro::configuration_reference(configuration, mrm::repro::reference_horizon(steps, step));
     const mrm::ReferenceSolution& exact = *reference;

@@ -19,6 +19,7 @@
 #include <doctest/doctest.h>
 
 #include "options.hpp"
+#include "run_limits.hpp"
 
 namespace mrm::repro {
 
@@ -41,6 +42,22 @@ InitialData read_initial_data(const std::string& path, std::string_view option) 
   if (std::filesystem::is_directory(path, error)) throw cli::UsageError(where + ": is a directory, not a file");
   std::ifstream in(path);
   if (!in) throw cli::UsageError(where + ": cannot open the file (expected columns x u0 v0)");
+  // The samples are counted first (a line that is not blank nor a comment), so that a file too large
+  // for the memory is refused before it is read: a sample takes about 200 bytes here and in the
+  // piecewise data (its numbers, its line, a piece with two polynomials), 512 with a margin.
+  {
+    double samples = 0;
+    std::string text;
+    while (std::getline(in, text)) {
+      const std::size_t start = text.find_first_not_of(" \t\r");
+      if (start != std::string::npos && text[start] != '#') ++samples;
+      if (samples > cli::max_rows)
+        throw cli::UsageError(where + ": more than 1e8 samples (allowed: at most 1e8 lines in a data file)");
+    }
+    cli::require_memory(option, 512 * samples, "reading " + cli::format_real(samples) + " samples");
+    in.clear();
+    in.seekg(0);
+  }
   std::vector<double> x, u0, v0;
   std::vector<long> lines;  // the line of each sample
   std::string line;
