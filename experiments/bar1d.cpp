@@ -100,9 +100,9 @@ int main(int argc, char** argv) {
                       mrm::repro::benchmark_help("initial data (S1, S2: mathematics.md sec. 11, L = 1)"),
                       mrm::repro::benchmark_names(), &benchmark);
     parser.add_input("--initial-data", "",
-                      "read the initial data from FILE (columns x u0 v0, linearly interpolated, on [0, L] with L the "
-                      "last x); excludes --benchmark",
-                      &initial_data);
+                     "read the initial data from FILE (columns x u0 v0, linearly interpolated, on [0, L] with L the "
+                     "last x); excludes --benchmark",
+                     &initial_data);
     parser.add_real("--length", "-L", "L", "length of the bar, in [1e-100, 1e100] (--benchmark paper only)", &length,
                     cli::in_closed_range(1e-100, 1e100));
     parser.add_real("--amplitude", "-a", "A",

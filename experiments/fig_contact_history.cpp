@@ -108,13 +108,13 @@ int main(int argc, char** argv) {
           << "\n# columns: t u0_h t_lambda lambda_h\n";
       const mrm::repro::Configuration configuration =
           mrm::repro::paper_configuration(scheme, form, mass, elements, courant, final_time);
-      const mrm::ErrorNorms e =
-          mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
-            // A level without a multiplier (Paoli-Schatzman's first) says so: n/a, gnuplot's missing value.
-            out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
-                << cli::format_real(s.multiplier_time) << ' '
-                << (s.has_multiplier ? cli::format_real(s.multiplier) : std::string("n/a")) << '\n';
-          }).errors;
+      const mrm::ErrorNorms e = mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
+                                  // A level without a multiplier (Paoli-Schatzman's first) says so: n/a, gnuplot's missing value.
+                                  out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0])
+                                      << ' ' << cli::format_real(s.multiplier_time) << ' '
+                                      << (s.has_multiplier ? cli::format_real(s.multiplier) : std::string("n/a"))
+                                      << '\n';
+                                }).errors;
       // 5. The errors of the contact point, quoted by the report beside the figure.
       mrm::tex_define(program.values(), "hist:" + key + ":err_u0_L2", mrm::tex_number(e.u0_L2, 2));
       mrm::tex_define(program.values(), "hist:" + key + ":err_lambda_L2", mrm::tex_number(e.lambda_L2, 2));

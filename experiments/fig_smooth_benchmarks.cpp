@@ -166,8 +166,9 @@ int main(int argc, char** argv) {
           << "\n# exact_energy = " << cli::format_real(reference->energy());
       for (std::size_t m = 0; m < masses.size(); ++m)
         out << "\n# first_impact_error_over_h_" << masses[m] << " = "
-            << (std::isfinite(first_impact_error[m]) ? cli::format_real(first_impact_error[m])
-                                                     : std::string("n/a: no impact of the run paired with an exact one"));
+            << (std::isfinite(first_impact_error[m])
+                    ? cli::format_real(first_impact_error[m])
+                    : std::string("n/a: no impact of the run paired with an exact one"));
       out << "\n# columns: t u0_exact lambda_exact u0_mod1 lambda_mod1 u0_mod2 lambda_mod2 u0_mod3 lambda_mod3\n";
       for (std::size_t n = 0; n < times.size(); ++n) {
         out << cli::format_real(times[n]);

@@ -202,8 +202,8 @@ void require_reference_memory(const Configuration& c, double horizon, std::strin
     coefficients += static_cast<double>(piece.displacement.size() + piece.velocity.size());
   const double bytes = coefficients * (400 + 128 * horizon / c.bar_length());
   cli::require_memory(option, bytes,
-                      "the exact solution of " + cli::format_real(coefficients) + " coefficients up to t = " +
-                          cli::format_real(horizon));
+                      "the exact solution of " + cli::format_real(coefficients) +
+                          " coefficients up to t = " + cli::format_real(horizon));
 }
 
 std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& c, double horizon) {
@@ -335,7 +335,8 @@ MassRedistribution mass_from_option(const std::string& option, const std::string
 ContactVelocity contact_velocity_by_name(const std::string& name) {
   if (name == "algebraic") return ContactVelocity::algebraic;
   if (name == "backward-difference") return ContactVelocity::backward_difference;
-  throw std::invalid_argument("unknown contact velocity " + cli::quoted_text(name) + " (allowed: algebraic, backward-difference)");
+  throw std::invalid_argument("unknown contact velocity " + cli::quoted_text(name) +
+                              " (allowed: algebraic, backward-difference)");
 }
 
 // The phase against the run's exact solution (phase.cpp): the closed form's impacts L + 3Lk, as many as

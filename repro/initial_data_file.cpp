@@ -92,7 +92,8 @@ InitialData read_initial_data(const std::string& path, std::string_view option) 
   if (x.size() >= 2 && x.back() > 0) {
     const double length = x.back();
     double amplitude = 0;
-    for (std::size_t k = 0; k < x.size(); ++k) amplitude = std::max({amplitude, std::abs(u0[k]) / length, std::abs(v0[k])});
+    for (std::size_t k = 0; k < x.size(); ++k)
+      amplitude = std::max({amplitude, std::abs(u0[k]) / length, std::abs(v0[k])});
     const auto refuse = [&](const std::string& what) {
       throw cli::UsageError(where + ": " + what +
                             " (allowed: L, the last x, and the amplitude max(|u0|/L, |v0|) in [1e-100, 1e100])");

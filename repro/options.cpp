@@ -86,8 +86,11 @@ std::string quoted_text(std::string_view text) {
   for (; k < text.size() && characters < max_quoted; ++characters) {
     const unsigned char first = byte(k);
     // The length of a well-formed UTF-8 sequence starting here (no overlong form, no surrogate), 0 if none.
-    std::size_t length = first < 0x80 ? 1 : first >= 0xc2 && first <= 0xdf ? 2 : first >= 0xe0 && first <= 0xef ? 3
-                                                                           : first >= 0xf0 && first <= 0xf4 ? 4 : 0;
+    std::size_t length = first < 0x80                     ? 1
+                         : first >= 0xc2 && first <= 0xdf ? 2
+                         : first >= 0xe0 && first <= 0xef ? 3
+                         : first >= 0xf0 && first <= 0xf4 ? 4
+                                                          : 0;
     for (std::size_t j = 1; j < length; ++j)
       if (k + j >= text.size() || (byte(k + j) & 0xc0) != 0x80) length = 0;
     if (length == 3 && ((first == 0xe0 && byte(k + 1) < 0xa0) || (first == 0xed && byte(k + 1) >= 0xa0))) length = 0;
@@ -124,10 +127,15 @@ TEST_CASE("user text in a message is one short line, whatever it holds") {
   CHECK(quoted_text("a\"b\\c") == "\"a\\\"b\\\\c\"");
   CHECK(quoted_text("two\nlines\r\t") == "\"two\\nlines\\r\\t\"");
   CHECK(quoted_text("\x1b[31mred\x7f") == "\"\\u001b[31mred\\u007f\"");
-  CHECK(quoted_text("\xc2\x9b" "2J") == "\"\\u009b2J\"");                 // C1 CSI, as UTF-8
-  CHECK(quoted_text("\x9b" "2J\xff") == "\"\\x9b2J\\xff\"");              // bytes that are not UTF-8
-  CHECK(quoted_text("\xed\xa0\x80") == "\"\\xed\\xa0\\x80\"");        // a surrogate
-  CHECK(quoted_text("Kr\xc4\x8d" "ek \xe2\x80\x93 \xf0\x9f\x98\x80") == "\"Kr\xc4\x8d" "ek \xe2\x80\x93 \xf0\x9f\x98\x80\"");
+  CHECK(quoted_text("\xc2\x9b"
+                    "2J") == "\"\\u009b2J\"");  // C1 CSI, as UTF-8
+  CHECK(quoted_text("\x9b"
+                    "2J\xff") == "\"\\x9b2J\\xff\"");           // bytes that are not UTF-8
+  CHECK(quoted_text("\xed\xa0\x80") == "\"\\xed\\xa0\\x80\"");  // a surrogate
+  CHECK(quoted_text("Kr\xc4\x8d"
+                    "ek \xe2\x80\x93 \xf0\x9f\x98\x80") ==
+        "\"Kr\xc4\x8d"
+        "ek \xe2\x80\x93 \xf0\x9f\x98\x80\"");
   const std::string long_text(50'000'000, 'x');
   const std::string shown = quoted_text(long_text);
   CHECK(shown == "\"" + std::string(max_quoted, 'x') + "\u2026\" (50000000 bytes)");
@@ -737,8 +745,7 @@ void Parser::refuse_shared_files() const {
     if (option.file == 0) continue;
     const std::string& path = **std::get_if<std::string*>(&option.target);
     if (path.empty() || path == "-") continue;
-    if (const std::optional<FileIdentity> identity = file_identity(path))
-      files.push_back({&option, path, *identity});
+    if (const std::optional<FileIdentity> identity = file_identity(path)) files.push_back({&option, path, *identity});
   }
   for (const Named& output : files) {
     if (output.option->file != 1) continue;
@@ -746,10 +753,10 @@ void Parser::refuse_shared_files() const {
       if (&other == &output || !(other.identity == output.identity)) continue;
       if (other.option->file == 1 && other.option > output.option) continue;  // each pair once
       const bool input = other.option->file == 2;
-      throw UsageError(output.option->long_name + ": " + quoted_text(output.path) + " is the file of " +
-                       other.option->long_name + " " + quoted_text(other.path) +
-                       (input ? " (allowed: an output that replaces no input)"
-                              : " (allowed: a different file for each output)"));
+      throw UsageError(
+          output.option->long_name + ": " + quoted_text(output.path) + " is the file of " + other.option->long_name +
+          " " + quoted_text(other.path) +
+          (input ? " (allowed: an output that replaces no input)" : " (allowed: a different file for each output)"));
     }
   }
 }
@@ -1012,20 +1019,20 @@ TEST_CASE("an output naming an input's file, or another output's, is refused wha
     std::ostringstream printed;
     return parser.parse(arguments, printed);
   };
-  for (const std::string& same : std::vector<std::string>{"d.dat", "./d.dat", "sub/../d.dat", "same_dir/d.dat", "hard.dat", "soft.dat", absolute,
-                                 ".//d.dat"}) {
+  for (const std::string& same : std::vector<std::string>{"d.dat", "./d.dat", "sub/../d.dat", "same_dir/d.dat",
+                                                          "hard.dat", "soft.dat", absolute, ".//d.dat"}) {
     CAPTURE(same);
     CHECK_THROWS_WITH_AS(parse({"--initial-data", "d.dat", "--output", same}),
                          ("--output: " + quoted_text(same) +
                           " is the file of --initial-data \"d.dat\" (allowed: an output that replaces no input)")
                              .c_str(),
                          UsageError);
-    CHECK_THROWS_WITH_AS(parse({"--initial-data", same, "--tex", "d.dat"}), doctest::Contains("--tex: \"d.dat\" is the file of --initial-data"),
-                         UsageError);
+    CHECK_THROWS_WITH_AS(parse({"--initial-data", same, "--tex", "d.dat"}),
+                         doctest::Contains("--tex: \"d.dat\" is the file of --initial-data"), UsageError);
   }
   // The default output counts: an input that is the default output's file.
-  CHECK_THROWS_WITH_AS(parse({"--initial-data", "./out.dat"}), doctest::Contains("--output: \"out.dat\" is the file of --initial-data"),
-                       UsageError);
+  CHECK_THROWS_WITH_AS(parse({"--initial-data", "./out.dat"}),
+                       doctest::Contains("--output: \"out.dat\" is the file of --initial-data"), UsageError);
   // Two outputs on one file, existing or new.
   for (const auto& [first, second] : std::vector<std::pair<std::string, std::string>>{
            {"new.dat", "new.dat"}, {"new.dat", "./new.dat"}, {"new.dat", "same_dir/new.dat"}, {"d.dat", "soft.dat"}}) {

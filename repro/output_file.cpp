@@ -99,8 +99,10 @@ void NonFiniteWatch::scan(const char* data, std::size_t size) {
   for (std::size_t k = 0; k < size; ++k) {
     const char c = data[k];
     if (std::isalnum(static_cast<unsigned char>(c)) || c == '_') {
-      if (word_.size() < 9) word_ += c;  // longer than "infinity": not one of the words
-      else word_ = "#########";
+      if (word_.size() < 9)
+        word_ += c;  // longer than "infinity": not one of the words
+      else
+        word_ = "#########";
       continue;
     }
     end_word();
@@ -222,7 +224,8 @@ void AtomicFile::finish_writing() {
         "cannot write " + quoted_text(path_) + ": " +
         (buffer_.error() != 0 ? std::strerror(buffer_.error()) : "writing the data failed (is the disk full?)"));
   }
-  if (buffer_.watch().found()) throw std::runtime_error("not writing " + quoted_text(path_) + ": " + buffer_.watch().what());
+  if (buffer_.watch().found())
+    throw std::runtime_error("not writing " + quoted_text(path_) + ": " + buffer_.watch().what());
   ::fchmod(descriptor_, mode_ >= 0 ? static_cast<mode_t>(mode_) : 0666 & ~current_umask());
   const int descriptor = descriptor_;
   descriptor_ = -1;
@@ -505,8 +508,9 @@ TEST_CASE("a data file holding a non-finite value is not committed, and neither 
   split.scan("1 n", 3);
   split.scan("an\n", 3);
   CHECK(split.found());
-  CHECK(split.what() == "line 1 holds \"nan\", a value that could not be computed (allowed: numbers, or words "
-                        "saying why a value is absent)");
+  CHECK(split.what() ==
+        "line 1 holds \"nan\", a value that could not be computed (allowed: numbers, or words "
+        "saying why a value is absent)");
 }
 
 TEST_CASE("an output that cannot be written is refused at once, naming the option and the reason") {

@@ -419,12 +419,18 @@ Words shell_words(const std::string& text, const std::string& here) {
           continue;
         }
         const char e = text[++i];
-        if (e == 'n') word += '\n';
-        else if (e == 't') word += '\t';
-        else if (e == 'r') word += '\r';
-        else if (e == 'e') word += '\x1b';
-        else if (e == 'x' && i + 2 < text.size()) word += static_cast<char>(std::stoi(text.substr(i + 1, 2), nullptr, 16)), i += 2;
-        else word += e;
+        if (e == 'n')
+          word += '\n';
+        else if (e == 't')
+          word += '\t';
+        else if (e == 'r')
+          word += '\r';
+        else if (e == 'e')
+          word += '\x1b';
+        else if (e == 'x' && i + 2 < text.size())
+          word += static_cast<char>(std::stoi(text.substr(i + 1, 2), nullptr, 16)), i += 2;
+        else
+          word += e;
       }
       if (i >= text.size()) throw std::runtime_error("unterminated quote");
     } else if (c == '$' && text.compare(i, 5, "$here") == 0) {

@@ -655,7 +655,7 @@ else
   awk 'BEGIN { n = 1000000; for (k = 0; k <= n; ++k) printf "%.17g %.17g 0\n", k / n, 0.5 * (1 - k / n) }' >big.dat
   (ulimit -v 1000000 && exec timeout -k 5 "$small" "$bin/bar1d" --initial-data big.dat >"$out" 2>"$err")
   status=$?
-  expect_refusal bar1d "memory (allowed: runs that fit in memory)"
+  expect_refusal bar1d "--initial-data: "
 fi
 
 finish_case
