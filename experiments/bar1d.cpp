@@ -99,10 +99,10 @@ int main(int argc, char** argv) {
     parser.add_choice("--benchmark", "", "B",
                       mrm::repro::benchmark_help("initial data (S1, S2: mathematics.md sec. 11, L = 1)"),
                       mrm::repro::benchmark_names(), &benchmark);
-    parser.add_string("--initial-data", "", "FILE",
-                      "read the initial data from FILE (columns x u0 v0, linearly interpolated, on [0, L] with L the "
-                      "last x); excludes --benchmark",
-                      &initial_data);
+    parser.add_input("--initial-data", "",
+                     "read the initial data from FILE (columns x u0 v0, linearly interpolated, on [0, L] with L the "
+                     "last x); excludes --benchmark",
+                     &initial_data);
     parser.add_real("--length", "-L", "L", "length of the bar, in [1e-100, 1e100] (--benchmark paper only)", &length,
                     cli::in_closed_range(1e-100, 1e100));
     parser.add_real("--amplitude", "-a", "A",
@@ -178,6 +178,10 @@ int main(int argc, char** argv) {
     // scheme's uniform levels; the changed Δt differs from the requested one by less than Δt/steps).
     const double step = final_time / static_cast<double>(steps);
     cli::require_mesh_memory("--elements", static_cast<double>(elements), bytes_per_element);
+    // The exact solution of data other than the paper's grows with the horizon: checked before anything
+    // is built from the data.
+    mrm::repro::require_reference_memory(configuration, mrm::repro::reference_horizon(steps, step),
+                                         own_data ? "--initial-data" : "--final-time");
     if (parser.given("--output"))
       cli::require_rows("--final-time", static_cast<double>(steps) + 1,
                         cli::format_real(static_cast<double>(steps)) + " steps");
@@ -232,7 +236,7 @@ int main(int argc, char** argv) {
           << "\n# exact_energy = " << cli::format_real(exact.energy()) << '\n'
           << "# Each quantity is given at the instant it approximates: t for u0, t_lambda for lambda,\n"
           << "# t_energy for the energy (Paoli-Schatzman: lambda at t_n or t_{n+1}, energy at t_{n+1/2}).\n"
-          << "# lambda_h = nan where the level has no multiplier yet.\n"
+          << "# lambda_h = n/a where the level has no multiplier yet.\n"
           << "# columns: t u0_h u0_exact t_lambda lambda_h lambda_exact t_energy energy_h energy_exact\n";
     }
 
@@ -243,10 +247,9 @@ int main(int argc, char** argv) {
         [&](const mrm::Sample& s) {
           if (series) {
             std::ostream& out = series->stream();
-            const double nan = std::numeric_limits<double>::quiet_NaN();
             out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
                 << cli::format_real(exact.contact_displacement(s.time)) << ' ' << cli::format_real(s.multiplier_time)
-                << ' ' << cli::format_real(s.has_multiplier ? s.multiplier : nan) << ' '
+                << ' ' << (s.has_multiplier ? cli::format_real(s.multiplier) : "n/a") << ' '
                 << cli::format_real(exact.contact_multiplier(s.multiplier_time)) << ' '
                 << cli::format_real(s.energy_time) << ' ' << cli::format_real(s.energy) << ' '
                 << cli::format_real(exact.energy()) << '\n';

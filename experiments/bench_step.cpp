@@ -364,8 +364,10 @@ double loglog_slope(const std::vector<Index>& sizes, const std::vector<double>& 
   return c1;
 }
 
+// A value that could not be measured (a slope over fewer than two sizes, a marginal memory with one
+// size) is written "n/a", never nan (the data files' rule, output_file.hpp).
 std::string fixed(double value, int digits) {
-  if (!std::isfinite(value)) return "nan";
+  if (!std::isfinite(value)) return "n/a";
   std::ostringstream s;
   s << std::fixed << std::setprecision(digits) << value;
   return s.str();
@@ -422,9 +424,9 @@ int main(int argc, char** argv) {
                       "clock of the timed batches: wall (steady_clock) or cpu (this thread's CPU time, for a loaded "
                       "machine)",
                       {"wall", "cpu"}, &clock);
-    parser.add_string("--output", "-o", "FILE", "write the timings as a gnuplot data file", &output);
-    parser.add_string("--tex", "", "FILE", "write the table as a LaTeX tabular", &tex);
-    parser.add_string("--markdown", "", "FILE", "write the table as Markdown", &markdown);
+    parser.add_output("--output", "-o", "write the timings as a gnuplot data file", &output);
+    parser.add_output("--tex", "", "write the table as a LaTeX tabular", &tex);
+    parser.add_output("--markdown", "", "write the table as Markdown", &markdown);
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
     if (quick) {
       if (!parser.given("--max-log2")) max_log2 = 12;
@@ -484,8 +486,12 @@ int main(int argc, char** argv) {
     if (!(sanity.bare_residual < 1e-13 && sanity.eigen_residual < 1e-13))
       throw std::runtime_error("a timed solve is wrong: relative residual " + cli::format_real(sanity.bare_residual) +
                                " (bare), " + cli::format_real(sanity.eigen_residual) + " (eigen)");
+    // The energy after the timed steps: finite, not negative, and not blown up (below 100 E0, E0 = 1/8).
+    // Not closer: over the millions of steps of a small mesh backward Euler dissipates it to 0 and the
+    // contact steps of Crank-Nicolson and Paoli-Schatzman make it drift (bar1d, N = 16, t = 3e4:
+    // 0.23), so that a tighter bound refused N = 2^2 .. 2^4, which the range allows.
     for (double e : sanity.energies)
-      if (!(std::isfinite(e) && e > 0 && e < 0.2)) throw std::runtime_error("a timed run has a wrong energy");
+      if (!(std::isfinite(e) && e >= 0 && e < 12.5)) throw std::runtime_error("a timed run has a wrong energy");
 
     // 5. Slopes of the cost per step against N over 2^10 .. 2^20, for every variant.
     std::array<double, variants> slope{};

@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
                        cli::in_closed_range(2, 1e5));
     parser.add_real("--final-time", "-T", "T", "final time, in (0, 1e4]; the period of the benchmark is 3", &final_time,
                     cli::in_closed_range(1e-300, 1e4));
-    parser.add_string("--tex", "", "FILE", "write the values for the report (\\mrmdef lines) to FILE", &tex);
+    parser.add_output("--tex", "", "write the values for the report (\\mrmdef lines) to FILE", &tex);
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
     // Every run takes at least one step: the one with the largest step, dt = 40 h (the smallest,
     // dt = h/2, takes at most 1e4 / (0.5 / 1e5) = 2e9 steps by the ranges).

@@ -17,7 +17,7 @@
 //
 // Data file: gnuplot blocks separated by two blank lines (select with `index`). Block 0 is the exact
 // solution (t u0 lambda); block 1 + 3 s + m is scheme s ∈ (cn, be, ps), mass m ∈ (mod1, mod2, mod3),
-// columns t u0_h t_lambda lambda_h (each quantity at the instant it approximates; lambda_h = nan where
+// columns t u0_h t_lambda lambda_h (each quantity at the instant it approximates; lambda_h = n/a where
 // a level has no multiplier).
 #include <cmath>
 #include <iostream>
@@ -73,7 +73,8 @@ int main(int argc, char** argv) {
     program.write_step();
     mrm::repro::write_scheme_titles(out, ps_form);
     out << "# blocks: 0 exact (t u0 lambda); 1 + 3 s + m: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3);"
-           "\n# 10: the baseline, Paoli-Schatzman with the consistent mass (literal contact row)\n";
+           "\n# 10: the baseline, Paoli-Schatzman with the consistent mass (literal contact row)"
+           "\n# lambda_h = n/a where the level has no multiplier yet\n";
 
     // 3. The exact history on a fine, uniform grid of instants.
     out << "# block 0: exact\n# columns: t u0 lambda\n";
@@ -107,12 +108,13 @@ int main(int argc, char** argv) {
           << "\n# columns: t u0_h t_lambda lambda_h\n";
       const mrm::repro::Configuration configuration =
           mrm::repro::paper_configuration(scheme, form, mass, elements, courant, final_time);
-      const mrm::ErrorNorms e =
-          mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
-            const double lambda = s.has_multiplier ? s.multiplier : std::numeric_limits<double>::quiet_NaN();
-            out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
-                << cli::format_real(s.multiplier_time) << ' ' << cli::format_real(lambda) << '\n';
-          }).errors;
+      const mrm::ErrorNorms e = mrm::repro::run_configuration(configuration, [&](const mrm::Sample& s) {
+                                  // A level without a multiplier (Paoli-Schatzman's first) says so: n/a, gnuplot's missing value.
+                                  out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0])
+                                      << ' ' << cli::format_real(s.multiplier_time) << ' '
+                                      << (s.has_multiplier ? cli::format_real(s.multiplier) : std::string("n/a"))
+                                      << '\n';
+                                }).errors;
       // 5. The errors of the contact point, quoted by the report beside the figure.
       mrm::tex_define(program.values(), "hist:" + key + ":err_u0_L2", mrm::tex_number(e.u0_L2, 2));
       mrm::tex_define(program.values(), "hist:" + key + ":err_lambda_L2", mrm::tex_number(e.lambda_L2, 2));

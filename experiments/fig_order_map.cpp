@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
         "Reads the sweep written by check_claims --sweep and writes the least-squares orders in h of "
         "every measure per (scheme, mass, dt/h, horizon) beside the predicted orders.",
         {"fig_order_map --sweep output/data/sweep.dat --output output/data/fig_order_map.dat"});
-    program.parser.add_string("--sweep", "-i", "FILE", "the sweep to read (check_claims --sweep FILE)", &sweep_file);
+    program.parser.add_input("--sweep", "-i", "the sweep to read (check_claims --sweep FILE)", &sweep_file);
     if (!program.parse(argc, argv)) return 0;
 
     // 2. Outputs, opened first so that a bad output path fails before anything is read.

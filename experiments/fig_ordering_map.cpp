@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
         "Reads the sweep written by check_claims --sweep and writes, per cell (scheme, dt/h, N, "
         "horizon), how many measures rank the masses Mod 3 < Mod 2 < Mod 1, and from which horizon.",
         {"fig_ordering_map --sweep output/data/sweep.dat --output output/data/fig_ordering_map.dat"});
-    program.parser.add_string("--sweep", "-i", "FILE", "the sweep to read (check_claims --sweep FILE)", &sweep_file);
+    program.parser.add_input("--sweep", "-i", "the sweep to read (check_claims --sweep FILE)", &sweep_file);
     if (!program.parse(argc, argv)) return 0;
 
     // 2. Outputs, opened first so that a bad output path fails before anything is read.

@@ -67,6 +67,10 @@ int main(int argc, char** argv) {
 
     const long elements = program.elements;
     const double courant = program.courant;
+    // The run's steps, checked before any work (run_limits.hpp): a step that underflows to 0 or needs
+    // more than 1e12 steps is refused.
+    cli::checked_steps("--periods", 3 * periods, program.dt(), "--courant");
+    cli::require_mesh_memory("--elements", static_cast<double>(elements), mrm::repro::bytes_per_element);
 
     // 2. Outputs.
     program.open();

@@ -70,15 +70,9 @@ int main(int argc, char** argv) {
         program.parser, mrm::scheme_by_name(scheme),
         {{"--switch-theta", mrm::SchemeParameter::switch_theta}, {"--ps-form", mrm::SchemeParameter::contact_row}});
     std::vector<double> instants;
-    {
-      std::stringstream list(instants_text);
-      std::string item;
-      while (std::getline(list, item, ',')) {
-        const double t = cli::parse_real("--instants", item);
-        cli::require_at_least("--instants", t, 0.0);
-        instants.push_back(t);
-      }
-      if (instants.empty()) throw cli::UsageError("--instants: give at least one instant, e.g. 0.5,1.5,2.5");
+    for (const double t : cli::parse_real_list("--instants", instants_text)) {
+      cli::require_at_least("--instants", t, 0.0);
+      instants.push_back(t);
     }
 
     // 2. The instants, rounded to the nearest time level; the limits; the program.

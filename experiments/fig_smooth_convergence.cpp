@@ -138,8 +138,8 @@ int main(int argc, char** argv) {
                                cli::at_least(2));
     program.parser.add_integer("--refinements", "-k", "K", "number of meshes N0, 2 N0, ..., 2^(K-1) N0, in [2, 12]",
                                &refinements, cli::in_closed_range(2, 12));
-    program.parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it",
-                               &threads, cli::at_least(1));
+    program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
+                               &threads, cli::in_closed_range(1, cli::max_threads));
     if (!program.parse(argc, argv, "also write the tables and values the report quotes")) return 0;
     if (!(static_cast<double>(coarsest) * std::ldexp(1.0, static_cast<int>(refinements - 1)) <= 1e5))
       throw cli::UsageError("--coarsest: the finest mesh N0 2^(K-1) must be at most 1e5 elements");

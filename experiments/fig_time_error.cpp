@@ -196,8 +196,8 @@ int main(int argc, char** argv) {
     program.add_final_time(3.0, "final time (> 0); one period is 3");
     program.parser.add_string("--mass", "-m", "M",
                               mrm::repro::mass_option_help("a redistributed mass (not consistent)"), &mass);
-    program.parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it",
-                               &threads, cli::at_least(1));
+    program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
+                               &threads, cli::in_closed_range(1, cli::max_threads));
     program.parser.add_integer("--impact-elements", "", "N",
                                "round-off benchmark: elements of its mesh (Mod 1), in [2, 1000]", &impact_elements,
                                cli::in_closed_range(2, 1000));

@@ -12,7 +12,7 @@ load dir.'style.gp'
 
 set terminal pdfcairo size 16cm,20cm font font(10) linewidth 1.5 enhanced
 set output output
-set datafile missing NaN
+set datafile missing "n/a"
 
 # Block 1 + 3 s + m - 1 is scheme s, mass m: the schemes and masses in the file's order; the last block
 # is the baseline.

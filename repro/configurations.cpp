@@ -195,6 +195,17 @@ std::shared_ptr<const ReferenceSolution> to_unit(std::shared_ptr<const Reference
 
 }  // namespace
 
+void require_reference_memory(const Configuration& c, double horizon, std::string_view option) {
+  if (!c.data && c.benchmark == "paper") return;
+  double coefficients = 0;
+  for (const InitialDataPiece& piece : configuration_data(c).pieces)
+    coefficients += static_cast<double>(piece.displacement.size() + piece.velocity.size());
+  const double bytes = coefficients * (400 + 128 * horizon / c.bar_length());
+  cli::require_memory(option, bytes,
+                      "the exact solution of " + cli::format_real(coefficients) +
+                          " coefficients up to t = " + cli::format_real(horizon));
+}
+
 std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& c, double horizon) {
   if (!c.data && c.benchmark == "paper") return std::make_shared<const ExactSolution>(c.length, c.amplitude);
   const Scaling s = configuration_scaling(c);
@@ -313,7 +324,7 @@ MassRedistribution mass_from_option(const std::string& option, const std::string
                                     bool massless) {
   try {
     if (massless && spec == "consistent")
-      throw std::invalid_argument("\"consistent\": this program needs a massless contact node (allowed: " +
+      throw std::invalid_argument(cli::quoted_text(spec) + ": this program needs a massless contact node (allowed: " +
                                   mass_redistribution_forms() + ", except consistent)");
     return mass_redistribution_from_spec(spec, mesh);
   } catch (const std::invalid_argument& e) {
@@ -324,7 +335,8 @@ MassRedistribution mass_from_option(const std::string& option, const std::string
 ContactVelocity contact_velocity_by_name(const std::string& name) {
   if (name == "algebraic") return ContactVelocity::algebraic;
   if (name == "backward-difference") return ContactVelocity::backward_difference;
-  throw std::invalid_argument("unknown contact velocity \"" + name + "\" (allowed: algebraic, backward-difference)");
+  throw std::invalid_argument("unknown contact velocity " + cli::quoted_text(name) +
+                              " (allowed: algebraic, backward-difference)");
 }
 
 // The phase against the run's exact solution (phase.cpp): the closed form's impacts L + 3Lk, as many as

@@ -169,6 +169,12 @@ Measures run_configuration(const Configuration& configuration, const std::functi
 /// The instant up to which a reference must be known for a run of `steps` steps of size dt: the last
 /// level plus one step (the schemes' staggered instants stay below it).
 inline double reference_horizon(Index steps, double dt) { return static_cast<double>(steps + 1) * dt; }
+/// A UsageError naming `option` unless the reference of a configuration (the characteristic solution
+/// of data other than the paper's, up to `horizon`) fits in the memory the process may use
+/// (cli::require_memory). Its memory grows with the coefficients of the data's pieces and the
+/// periods of the horizon; measured on bar1d (peak resident size, 1e5 linear samples at T = 6 and 60,
+/// S1 at T = 100 and 1000): below 400 + 128 T/L bytes per coefficient. The paper's closed form needs none.
+void require_reference_memory(const Configuration& configuration, double horizon, std::string_view option);
 
 /// One mesh of a convergence study: its number of elements and the eight errors of its run (in the
 /// order of ErrorAccumulator::names).

@@ -36,7 +36,7 @@ std::string mass_option_help(const std::string& what) { return what + ": " + mas
 namespace {
 
 [[noreturn]] void reject_spec(const std::string& spec, const std::string& why) {
-  throw std::invalid_argument("\"" + spec + "\": " + why + " (allowed: " + mass_redistribution_forms() + ")");
+  throw std::invalid_argument(cli::quoted_text(spec) + ": " + why + " (allowed: " + mass_redistribution_forms() + ")");
 }
 
 // A finite decimal, the whole text, by the options' strict grammar (cli::parse_real: no spaces, no
@@ -69,14 +69,16 @@ MassRedistribution mass_redistribution_from_spec(const std::string& spec) {
   MassRedistribution r;
   if (kind == "node1" || kind == "beta") {
     double v = 0.0;
-    if (!parse_fraction(value, v)) reject_spec(spec, "\"" + value + "\" is not a decimal or a fraction");
+    if (!parse_fraction(value, v)) reject_spec(spec, cli::quoted_text(value) + " is not a decimal or a fraction");
     if (kind == "node1" && !(v > 0.0)) reject_spec(spec, "X must be positive");
     r = kind == "node1" ? node1(v) : beta(v);
   } else if (kind == "spread") {
-    long long k = 0;
-    const char* last = value.data() + value.size();
-    const auto [end, error] = std::from_chars(value.data(), last, k);
-    if (value.empty() || error != std::errc() || end != last) reject_spec(spec, "K is not an integer");
+    long k = 0;
+    try {
+      k = cli::parse_integer("", value);  // the options' grammar of an integer
+    } catch (const cli::UsageError&) {
+      reject_spec(spec, "K is not an integer");
+    }
     if (k < 1) reject_spec(spec, "K must be at least 1");
     r = spread_over_first_nodes(static_cast<Index>(k));
   } else {

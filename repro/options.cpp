@@ -20,12 +20,15 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <system_error>
 #include <type_traits>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -73,6 +76,74 @@ std::string json_string(std::string_view text) {
   return result + "\"";
 }
 
+// One line, short, whatever the user typed (options.hpp). A UTF-8 sequence is decoded only to tell a
+// character from a byte that is not UTF-8 and to find the C1 controls (U+0080..U+009F); every other
+// character is kept as it is, so that a file name in any script reads as typed.
+std::string quoted_text(std::string_view text) {
+  std::string result = "\"";
+  std::size_t characters = 0, k = 0;
+  const auto byte = [&](std::size_t at) { return static_cast<unsigned char>(text[at]); };
+  for (; k < text.size() && characters < max_quoted; ++characters) {
+    const unsigned char first = byte(k);
+    // The length of a well-formed UTF-8 sequence starting here (no overlong form, no surrogate), 0 if none.
+    std::size_t length = first < 0x80                     ? 1
+                         : first >= 0xc2 && first <= 0xdf ? 2
+                         : first >= 0xe0 && first <= 0xef ? 3
+                         : first >= 0xf0 && first <= 0xf4 ? 4
+                                                          : 0;
+    for (std::size_t j = 1; j < length; ++j)
+      if (k + j >= text.size() || (byte(k + j) & 0xc0) != 0x80) length = 0;
+    if (length == 3 && ((first == 0xe0 && byte(k + 1) < 0xa0) || (first == 0xed && byte(k + 1) >= 0xa0))) length = 0;
+    if (length == 4 && ((first == 0xf0 && byte(k + 1) < 0x90) || (first == 0xf4 && byte(k + 1) >= 0x90))) length = 0;
+    char escape[8];
+    if (length == 0) {
+      std::snprintf(escape, sizeof escape, "\\x%02x", static_cast<unsigned>(first));
+      result += escape;
+      k += 1;
+    } else if (length == 1 && (first < 0x20 || first == 0x7f || first == '"' || first == '\\')) {
+      const std::string escaped = first == 0x7f ? "\"\\u007f\"" : json_string(text.substr(k, 1));
+      result += escaped.substr(1, escaped.size() - 2);
+      k += 1;
+    } else if (length == 2 && first == 0xc2 && byte(k + 1) < 0xa0) {
+      std::snprintf(escape, sizeof escape, "\\u%04x", static_cast<unsigned>(byte(k + 1)));
+      result += escape;
+      k += 2;
+    } else {
+      result += text.substr(k, length);
+      k += length;
+    }
+  }
+  result += '"';
+  if (k < text.size()) {
+    result.insert(result.size() - 1, "\u2026");
+    result += " (" + std::to_string(text.size()) + " bytes)";
+  }
+  return result;
+}
+
+TEST_CASE("user text in a message is one short line, whatever it holds") {
+  CHECK(quoted_text("d.dat") == "\"d.dat\"");
+  CHECK(quoted_text("") == "\"\"");
+  CHECK(quoted_text("a\"b\\c") == "\"a\\\"b\\\\c\"");
+  CHECK(quoted_text("two\nlines\r\t") == "\"two\\nlines\\r\\t\"");
+  CHECK(quoted_text("\x1b[31mred\x7f") == "\"\\u001b[31mred\\u007f\"");
+  CHECK(quoted_text("\xc2\x9b"
+                    "2J") == "\"\\u009b2J\"");  // C1 CSI, as UTF-8
+  CHECK(quoted_text("\x9b"
+                    "2J\xff") == "\"\\x9b2J\\xff\"");           // bytes that are not UTF-8
+  CHECK(quoted_text("\xed\xa0\x80") == "\"\\xed\\xa0\\x80\"");  // a surrogate
+  CHECK(quoted_text("Kr\xc4\x8d"
+                    "ek \xe2\x80\x93 \xf0\x9f\x98\x80") ==
+        "\"Kr\xc4\x8d"
+        "ek \xe2\x80\x93 \xf0\x9f\x98\x80\"");
+  const std::string long_text(50'000'000, 'x');
+  const std::string shown = quoted_text(long_text);
+  CHECK(shown == "\"" + std::string(max_quoted, 'x') + "\u2026\" (50000000 bytes)");
+  CHECK(quoted_text(std::string(max_quoted, 'y')) == "\"" + std::string(max_quoted, 'y') + "\"");
+  for (const std::string& text : {std::string("a\nb"), std::string(1000, '\n'), std::string("\x1b]0;title\x07")})
+    CHECK(quoted_text(text).find_first_of(std::string("\n\r\x1b\x07", 4)) == std::string::npos);
+}
+
 namespace {
 
 // std::from_chars, which does the strict parsing below, refuses a leading '+' although people
@@ -105,11 +176,11 @@ double parse_real(std::string_view option, std::string_view text) {
   double value = 0.0;
   const auto [stop, error] = std::from_chars(number.data(), end, value);
   if (error == std::errc::result_out_of_range && stop == end) {
-    throw UsageError(std::string(option) + ": " + json_string(text) +
+    throw UsageError(std::string(option) + ": " + quoted_text(text) +
                      " is out of the range of double-precision numbers");
   }
   if (error != std::errc() || stop != end || !std::isfinite(value)) {
-    throw UsageError(std::string(option) + ": " + json_string(text) +
+    throw UsageError(std::string(option) + ": " + quoted_text(text) +
                      " is not a finite decimal number (expected e.g. 0.25, -3 or 1e-3)");
   }
   return value;
@@ -156,12 +227,12 @@ long parse_integer(std::string_view option, std::string_view text) {
   long value = 0;
   const auto [stop, error] = std::from_chars(number.data(), end, value, 10);
   if (error == std::errc::result_out_of_range && stop == end) {
-    throw UsageError(std::string(option) + ": " + json_string(text) + " is out of the integer range [" +
+    throw UsageError(std::string(option) + ": " + quoted_text(text) + " is out of the integer range [" +
                      std::to_string(std::numeric_limits<long>::min()) + ", " +
                      std::to_string(std::numeric_limits<long>::max()) + "]");
   }
   if (error != std::errc() || stop != end) {
-    throw UsageError(std::string(option) + ": " + json_string(text) +
+    throw UsageError(std::string(option) + ": " + quoted_text(text) +
                      " is not an integer (expected base-10 digits, e.g. 42)");
   }
   return value;
@@ -208,7 +279,7 @@ std::string parse_choice(std::string_view option, std::string_view text, const s
   for (const std::string& value : allowed) {
     list += (list.empty() ? "" : ", ") + value;
   }
-  throw UsageError(std::string(option) + ": unknown value " + json_string(text) + " (allowed: " + list + ")");
+  throw UsageError(std::string(option) + ": unknown value " + quoted_text(text) + " (allowed: " + list + ")");
 }
 
 TEST_CASE("a choice accepts exactly the listed words and names them when rejecting") {
@@ -218,6 +289,30 @@ TEST_CASE("a choice accepts exactly the listed words and names them when rejecti
   CHECK_THROWS_WITH_AS(parse_choice("--scheme", "RK2", {"rk2", "rk4", "euler"}),
                        "--scheme: unknown value \"RK2\" (allowed: rk2, rk4, euler)", UsageError);
   CHECK_THROWS_AS(parse_choice("--scheme", "", {"rk2", "rk4", "euler"}), UsageError);
+}
+
+// A list is split at every comma and each item read by parse_real, so that an item has exactly the
+// grammar of a number given alone; an empty item is an error, not an item skipped.
+std::vector<double> parse_real_list(std::string_view option, std::string_view text) {
+  std::vector<double> values;
+  for (std::size_t start = 0;;) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    if (comma == start)
+      throw UsageError(std::string(option) + ": " + quoted_text(text) +
+                       " has an empty item (expected numbers separated by commas, e.g. 0.5,1.5)");
+    values.push_back(parse_real(option, text.substr(start, comma - start)));
+    if (comma == text.size()) return values;
+    start = comma + 1;
+  }
+}
+
+TEST_CASE("a list of numbers has the grammar of one number in each item, and no empty item") {
+  CHECK(parse_real_list("--instants", "0.5") == std::vector<double>{0.5});
+  CHECK(parse_real_list("--instants", "0.5,1.5,+2,1e-3") == std::vector<double>{0.5, 1.5, 2, 1e-3});
+  for (const char* text : {"", ",", "0.5,", ",0.5", "0.5,,1"})
+    CHECK_THROWS_WITH_AS(parse_real_list("--instants", text), doctest::Contains("has an empty item"), UsageError);
+  for (const char* text : {"0.5, 1", "0.5;1", "nan", "0.5,inf", "1,+-2", "1,0x10", "1,1e400"})
+    CHECK_THROWS_AS(parse_real_list("--instants", text), UsageError);
 }
 
 // Real numbers are written by std::to_chars without a precision, which gives the shortest decimal
@@ -426,6 +521,7 @@ struct Parser::Option {
   std::vector<std::string> allowed;
   bool path = false;
   CLI::Option* cli = nullptr;
+  int file = 0;  // 1: a file written (add_output), 2: a file read (add_input)
 };
 
 // CLI11 knows the help flag from the start; --version prints "<program> <version>".
@@ -446,7 +542,7 @@ Parser::~Parser() = default;
 // ("--output --elements 5"), then the strict grammar of its kind and the choices; the range (the
 // check) applies after the parse.
 void Parser::add(std::string long_name, std::string short_name, std::string metavar, std::string help, Target target,
-                 Check check, std::vector<std::string> allowed, bool output) {
+                 Check check, std::vector<std::string> allowed, int file) {
   if (!is_long_name(long_name) || !(short_name.empty() || is_short_name(short_name)))
     throw std::logic_error("Parser: invalid option name " + json_string(long_name + " " + short_name));
   const bool flag = std::holds_alternative<bool*>(target);
@@ -474,8 +570,8 @@ void Parser::add(std::string long_name, std::string short_name, std::string meta
       options_.back().cli->disable_flag_override();
       return;
     }
-    options_.push_back({long_name, target, std::move(check), std::move(allowed), output || metavar == "FILE",
-                        app_->add_option(names)->description(help)});
+    options_.push_back({long_name, target, std::move(check), std::move(allowed), file != 0 || metavar == "FILE",
+                        app_->add_option(names)->description(help), file});
   } catch (const CLI::ConstructionError& error) {
     throw std::logic_error("Parser: " + long_name + ": " + error.what());
   }
@@ -521,7 +617,11 @@ void Parser::add_choice(std::string long_name, std::string short_name, std::stri
 }
 
 void Parser::add_output(std::string long_name, std::string short_name, std::string help, std::string* target) {
-  add(std::move(long_name), std::move(short_name), "FILE", std::move(help), target, {}, {}, true);
+  add(std::move(long_name), std::move(short_name), "FILE", std::move(help), target, {}, {}, 1);
+}
+
+void Parser::add_input(std::string long_name, std::string short_name, std::string help, std::string* target) {
+  add(std::move(long_name), std::move(short_name), "FILE", std::move(help), target, {}, {}, 2);
 }
 
 void Parser::add_flag(std::string long_name, std::string short_name, std::string help, bool* target) {
@@ -556,7 +656,7 @@ Outcome Parser::parse(const std::vector<std::string>& arguments, std::ostream& o
     if (option != nullptr && option->get_expected_max() > 0 && argument.find('=') == std::string::npos)
       ++k;  // its value follows
     else if (argument.size() > 2 && argument[0] == '-' && std::isalpha(static_cast<unsigned char>(argument[1])))
-      throw UsageError("unknown option " + json_string(argument) + " (see --help)");
+      throw UsageError("unknown option " + quoted_text(argument) + " (see --help)");
   }
   std::vector<std::string> reversed;
   for (auto argument = arguments.rbegin(); argument != arguments.rend(); ++argument) {
@@ -576,8 +676,8 @@ Outcome Parser::parse(const std::vector<std::string>& arguments, std::ostream& o
   } catch (const CLI::ExtrasError&) {
     const std::string extra = app_->remaining().front();
     if (extra.size() < 2 || extra[0] != '-')
-      throw UsageError("unexpected argument " + json_string(extra) + " (this program takes options only; see --help)");
-    throw UsageError("unknown option " + json_string(extra.substr(0, extra.find('='))) + " (see --help)");
+      throw UsageError("unexpected argument " + quoted_text(extra) + " (this program takes options only; see --help)");
+    throw UsageError("unknown option " + quoted_text(extra.substr(0, extra.find('='))) + " (see --help)");
   } catch (const CLI::ExcludesError&) {
     for (const auto& [first, second] : conflicts_)
       if (given(first) && given(second)) throw UsageError(first + " and " + second + " cannot be given together");
@@ -586,7 +686,7 @@ Outcome Parser::parse(const std::vector<std::string>& arguments, std::ostream& o
     const std::string message = error.what(), word = message.substr(0, message.find_first_of(": "));
     const std::string name = word[0] == '-' ? word : "--" + word;
     if (message.find("flag override") != std::string::npos)
-      throw UsageError(name + ": takes no value (write " + json_string(name) + " alone)");
+      throw UsageError(name + ": takes no value (write " + quoted_text(name) + " alone)");
     throw UsageError(name + ": missing value (expected " + registered(name).cli->get_type_name() + ")");
   }
   for (const Option& option : options_) {
@@ -599,7 +699,66 @@ Outcome Parser::parse(const std::vector<std::string>& arguments, std::ostream& o
     if (auto* const integer = std::get_if<long*>(&option.target))
       option.check(option.long_name, static_cast<double>(**integer));
   }
+  refuse_shared_files();
   return Outcome::run;
+}
+
+namespace {
+
+// The identity of the file a path names, as the programs use it: an existing path by stat (links
+// followed: the file an input reads, the file an output replaces), a path to nothing yet by its
+// directory's identity and its name (the file an output will create). A path whose directory cannot
+// be examined has none (AtomicFile or the reader then refuses it with its own message).
+struct FileIdentity {
+  dev_t device = 0;
+  ino_t inode = 0;
+  std::string name;  // empty for an existing file
+  bool operator==(const FileIdentity& other) const {
+    return device == other.device && inode == other.inode && name == other.name;
+  }
+};
+
+std::optional<FileIdentity> file_identity(const std::string& path) {
+  struct stat status {};
+  if (::stat(path.c_str(), &status) == 0) return FileIdentity{status.st_dev, status.st_ino, ""};
+  if (errno != ENOENT) return std::nullopt;
+  const std::filesystem::path p(path);
+  if (!p.has_filename()) return std::nullopt;
+  const std::string directory = p.has_parent_path() ? p.parent_path().string() : ".";
+  if (::stat(directory.c_str(), &status) != 0) return std::nullopt;
+  return FileIdentity{status.st_dev, status.st_ino, p.filename().string()};
+}
+
+}  // namespace
+
+// Every output against every input and every other output, by identity (file_identity): an output
+// that is an input would replace the data it is computed from; two outputs on one file would leave
+// only the last one committed.
+void Parser::refuse_shared_files() const {
+  struct Named {
+    const Option* option;
+    std::string path;
+    FileIdentity identity;
+  };
+  std::vector<Named> files;
+  for (const Option& option : options_) {
+    if (option.file == 0) continue;
+    const std::string& path = **std::get_if<std::string*>(&option.target);
+    if (path.empty() || path == "-") continue;
+    if (const std::optional<FileIdentity> identity = file_identity(path)) files.push_back({&option, path, *identity});
+  }
+  for (const Named& output : files) {
+    if (output.option->file != 1) continue;
+    for (const Named& other : files) {
+      if (&other == &output || !(other.identity == output.identity)) continue;
+      if (other.option->file == 1 && other.option > output.option) continue;  // each pair once
+      const bool input = other.option->file == 2;
+      throw UsageError(
+          output.option->long_name + ": " + quoted_text(output.path) + " is the file of " + other.option->long_name +
+          " " + quoted_text(other.path) +
+          (input ? " (allowed: an output that replaces no input)" : " (allowed: a different file for each output)"));
+    }
+  }
 }
 
 Outcome Parser::parse(int argc, const char* const* argv, std::ostream& out) {
@@ -832,6 +991,68 @@ TEST_CASE("the version is printed after the program's name and stops the program
   CHECK(printed.str() == std::string("contact ") + MRM_VERSION + "\n");
 }
 
+TEST_CASE("an output naming an input's file, or another output's, is refused whatever the spelling") {
+  // In a scratch directory: d.dat (the input), its hard link, a symbolic link to it, a linked
+  // directory; each spelling of the same file as an output is refused, each other file accepted.
+  namespace fs = std::filesystem;
+  std::string pattern = (fs::temp_directory_path() / "mrm_identity_test.XXXXXX").string();
+  const fs::path scratch = ::mkdtemp(pattern.data());
+  const fs::path here = fs::current_path();
+  fs::current_path(scratch);
+  std::ofstream("d.dat") << "0 0.5 0\n1 0 0\n";
+  fs::create_directory("sub");
+  fs::create_hard_link("d.dat", "hard.dat");
+  fs::create_symlink("d.dat", "soft.dat");
+  fs::create_directory_symlink(".", "same_dir");
+  const std::string absolute = (scratch / "d.dat").string();
+  std::string input, output = "out.dat", tex;
+  int cases = 0;
+  const auto parse = [&](const std::vector<std::string>& arguments) {
+    Parser parser("p", "", {});
+    parser.add_input("--initial-data", "", "read", &input);
+    parser.add_output("--output", "-o", "write", &output);
+    parser.add_output("--tex", "", "write", &tex);
+    input.clear();
+    output = "out.dat";
+    tex.clear();
+    ++cases;
+    std::ostringstream printed;
+    return parser.parse(arguments, printed);
+  };
+  for (const std::string& same : std::vector<std::string>{"d.dat", "./d.dat", "sub/../d.dat", "same_dir/d.dat",
+                                                          "hard.dat", "soft.dat", absolute, ".//d.dat"}) {
+    CAPTURE(same);
+    CHECK_THROWS_WITH_AS(parse({"--initial-data", "d.dat", "--output", same}),
+                         ("--output: " + quoted_text(same) +
+                          " is the file of --initial-data \"d.dat\" (allowed: an output that replaces no input)")
+                             .c_str(),
+                         UsageError);
+    CHECK_THROWS_WITH_AS(parse({"--initial-data", same, "--tex", "d.dat"}),
+                         doctest::Contains("--tex: \"d.dat\" is the file of --initial-data"), UsageError);
+  }
+  // The default output counts: an input that is the default output's file.
+  CHECK_THROWS_WITH_AS(parse({"--initial-data", "./out.dat"}),
+                       doctest::Contains("--output: \"out.dat\" is the file of --initial-data"), UsageError);
+  // Two outputs on one file, existing or new.
+  for (const auto& [first, second] : std::vector<std::pair<std::string, std::string>>{
+           {"new.dat", "new.dat"}, {"new.dat", "./new.dat"}, {"new.dat", "same_dir/new.dat"}, {"d.dat", "soft.dat"}}) {
+    CAPTURE(second);
+    CHECK_THROWS_WITH_AS(parse({"--output", first, "--tex", second}),
+                         doctest::Contains("(allowed: a different file for each output)"), UsageError);
+  }
+  // Different files, "-" and missing directories are not this check's.
+  for (const std::vector<std::string>& fine :
+       std::vector<std::vector<std::string>>{{"--initial-data", "d.dat", "--output", "sub/d.dat"},
+                                             {"--initial-data", "d.dat", "--output", "-", "--tex", "-"},
+                                             {"--initial-data", "d.dat", "--output", "missing/d.dat"},
+                                             {"--output", "a.dat", "--tex", "b.dat"}}) {
+    CHECK(parse(fine) == Outcome::run);
+  }
+  CHECK(cases == 25);
+  fs::current_path(here);
+  fs::remove_all(scratch);
+}
+
 TEST_CASE("argv is read without the program's own name") {
   ExampleProgram program;
   const char* const argv[] = {"/usr/bin/contact", "-n", "9", "--verbose"};
@@ -903,15 +1124,40 @@ TEST_CASE("registration mistakes are reported as logic errors") {
 // and whatever is written to standard error (progress lines) or standard output would go into it.
 // After the body, both streams are checked: a body whose diagnostics could not be written also ends
 // with status 1.
+//
+// What the program prints on the standard output goes through a WatchedBuffer (output_file.hpp): a
+// non-finite value printed ends the run with status 1 (and commit_all commits no file), and so does a
+// failed write through C's stdio (printf), which the C++ stream does not see.
 int guarded_main(std::string_view program, const std::function<int()>& body, std::ostream& output,
                  std::ostream& errors) {
   const bool output_closed = prepare_standard_descriptors();
+  const bool watched = &output == &std::cout;
+  WatchedBuffer watch(output.rdbuf());
+  struct Restore {
+    std::ostream& stream;
+    std::streambuf* buffer;
+    bool active;
+    ~Restore() {
+      if (!active) return;
+      stream.rdbuf(buffer);
+      standard_output_watch = nullptr;
+    }
+  } restore{output, output.rdbuf(), watched};
+  if (watched) {
+    output.rdbuf(&watch);
+    standard_output_watch = &watch.watch();
+  }
   try {
     const int status = body();
     output.flush();
-    if (!output) {
+    const bool stdio_failed = watched && (std::fflush(stdout) != 0 || std::ferror(stdout));
+    if (!output || stdio_failed) {
       errors << program << ": error: writing the standard output failed"
-             << (output_closed && &output == &std::cout ? ": it is closed" : "") << '\n';
+             << (output_closed && watched ? ": it is closed" : "") << '\n';
+      return status != 0 ? status : 1;
+    }
+    if (watched && watch.watch().found()) {
+      errors << program << ": error: the standard output: " << watch.watch().what() << '\n';
       return status != 0 ? status : 1;
     }
     errors.flush();

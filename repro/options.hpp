@@ -98,8 +98,21 @@ Check at_least(double minimum);
 Check in_closed_range(double lowest, double highest);
 
 // `text` as a JSON string: between double quotes, with quotes, backslashes and control characters
-// escaped (messages and data-file headers).
+// escaped (data-file headers: the whole text, so that it reads back).
 std::string json_string(std::string_view text);
+
+// User text (a value, a file name, a token of a data file) as every message shows it: between double
+// quotes, one line whatever it holds, and short. Quotes and backslashes are escaped, control characters
+// (C0, DEL and the C1 range, which terminals read as escape sequences) are written \n, \t, \r or
+// \uXXXX, a byte that is not UTF-8 \xHH; a text of more than `max_quoted` characters is cut there with
+// an ellipsis and its size in bytes: "aaaa…" (52428800 bytes). The one quoting of every message that
+// echoes user text.
+constexpr std::size_t max_quoted = 60;
+std::string quoted_text(std::string_view text);
+
+// A comma-separated list of numbers, each read by parse_real ("0.5,1.5,2.5"); an empty list or an
+// empty item ("0.5,", ",1", "1,,2") is a UsageError naming the option.
+std::vector<double> parse_real_list(std::string_view option, std::string_view text);
 
 // The shortest decimal text that parse_real (or any correct reader) turns back into exactly the
 // same double: "0.1", "0.3333333333333333", "1e-300", "-2.5e+10", "12", "-0". Non-finite values
@@ -146,6 +159,13 @@ class Parser {
                   std::vector<std::string> allowed, std::string* target);
   // A file the program writes: a string option with the placeholder FILE.
   void add_output(std::string long_name, std::string short_name, std::string help, std::string* target);
+  // A file the program reads: a string option with the placeholder FILE. After the parse, no output
+  // option may name the same file as an input option, nor two output options one file (compared by
+  // identity, st_dev and st_ino, not by spelling: "./d.dat", a symbolic or hard link, a path through
+  // a linked directory; a file not yet there by its directory's identity and its name): a UsageError
+  //   --output: "./d.dat" is the file of --initial-data "d.dat" (allowed: an output that replaces no input)
+  // Outputs and inputs count when given or when they have a default ("" and "-" never).
+  void add_input(std::string long_name, std::string short_name, std::string help, std::string* target);
 
   // An option without a value: giving it sets the variable to true.
   void add_flag(std::string long_name, std::string short_name, std::string help, bool* target);
@@ -180,7 +200,8 @@ class Parser {
   struct Option;
   using Target = std::variant<double*, long*, std::string*, bool*>;
   void add(std::string long_name, std::string short_name, std::string metavar, std::string help, Target target,
-           Check check = {}, std::vector<std::string> allowed = {}, bool output = false);
+           Check check = {}, std::vector<std::string> allowed = {}, int file = 0);
+  void refuse_shared_files() const;
   const Option& registered(std::string_view long_name) const;
 
   std::string program_;

@@ -25,6 +25,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -57,7 +58,7 @@ namespace {
 // A refusal of an output path: a UsageError naming the option, or, for a path that does not come
 // from an option, a plain runtime error.
 [[noreturn]] void refuse(std::string_view option, const std::string& path, const std::string& reason) {
-  const std::string message = "cannot write " + json_string(path) + ": " + reason;
+  const std::string message = "cannot write " + quoted_text(path) + ": " + reason;
   if (option.empty()) throw std::runtime_error(message);
   throw UsageError(std::string(option) + ": " + message);
 }
@@ -71,6 +72,64 @@ mode_t current_umask() {
 bool standard_output_closed = false;
 
 }  // namespace
+
+// ---- Non-finite values --------------------------------------------------------------------------------
+
+const NonFiniteWatch* standard_output_watch = nullptr;
+
+namespace {
+bool non_finite_word(const std::string& word) {
+  std::string lower = word;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return lower == "nan" || lower == "inf" || lower == "infinity";
+}
+}  // namespace
+
+void NonFiniteWatch::end_word() {
+  if (found_line_ == 0 && non_finite_word(word_)) {
+    found_line_ = line_;
+    found_word_ = word_;
+  }
+  word_.clear();
+}
+
+bool NonFiniteWatch::found() const { return found_line_ > 0 || non_finite_word(word_); }
+
+void NonFiniteWatch::scan(const char* data, std::size_t size) {
+  for (std::size_t k = 0; k < size; ++k) {
+    const char c = data[k];
+    if (std::isalnum(static_cast<unsigned char>(c)) || c == '_') {
+      if (word_.size() < 9)
+        word_ += c;  // longer than "infinity": not one of the words
+      else
+        word_ = "#########";
+      continue;
+    }
+    end_word();
+    if (c == '\n') ++line_;
+  }
+}
+
+std::string NonFiniteWatch::what() const {
+  const bool pending = found_line_ == 0;  // the last word, not followed by anything
+  return "line " + std::to_string(pending ? line_ : found_line_) + " holds " +
+         json_string(pending ? word_ : found_word_) +
+         ", a value that could not be computed (allowed: numbers, or words saying why a value is absent)";
+}
+
+WatchedBuffer::int_type WatchedBuffer::overflow(int_type character) {
+  if (traits_type::eq_int_type(character, traits_type::eof())) return traits_type::not_eof(character);
+  const char c = traits_type::to_char_type(character);
+  watch_.scan(&c, 1);
+  return target_->sputc(c);
+}
+
+std::streamsize WatchedBuffer::xsputn(const char* data, std::streamsize size) {
+  watch_.scan(data, static_cast<std::size_t>(size));
+  return target_->sputn(data, size);
+}
+
+int WatchedBuffer::sync() { return target_->pubsync(); }
 
 // ---- The stream buffer ----------------------------------------------------------------------------
 
@@ -87,6 +146,7 @@ void DescriptorBuffer::reset(int descriptor) {
 bool DescriptorBuffer::drain() {
   const char* data = pbase();
   std::size_t size = static_cast<std::size_t>(pptr() - pbase());
+  watch_.scan(data, size);
   while (size > 0 && error_ == 0) {
     const ssize_t written = ::write(descriptor_, data, size);
     if (written < 0 && errno == EINTR) continue;
@@ -156,19 +216,21 @@ AtomicFile::AtomicFile(std::string path, std::string_view option)
 // Everything buffered written out and checked, the permission bits set, the file closed. Throws on
 // failure, leaving the cleaning to discard().
 void AtomicFile::finish_writing() {
-  if (finished_) throw std::logic_error("AtomicFile: " + json_string(path_) + " is already committed");
+  if (finished_) throw std::logic_error("AtomicFile: " + quoted_text(path_) + " is already committed");
   if (temporary_path_.empty()) return;  // `-`: checked with the standard output
   file_stream_.flush();
   if (!buffer_.drain() || !file_stream_) {
     throw std::runtime_error(
-        "cannot write " + json_string(path_) + ": " +
+        "cannot write " + quoted_text(path_) + ": " +
         (buffer_.error() != 0 ? std::strerror(buffer_.error()) : "writing the data failed (is the disk full?)"));
   }
+  if (buffer_.watch().found())
+    throw std::runtime_error("not writing " + quoted_text(path_) + ": " + buffer_.watch().what());
   ::fchmod(descriptor_, mode_ >= 0 ? static_cast<mode_t>(mode_) : 0666 & ~current_umask());
   const int descriptor = descriptor_;
   descriptor_ = -1;
   if (::close(descriptor) != 0 && errno != EINTR) {
-    throw std::runtime_error("cannot write " + json_string(path_) + ": " + std::strerror(errno));
+    throw std::runtime_error("cannot write " + quoted_text(path_) + ": " + std::strerror(errno));
   }
 }
 
@@ -201,6 +263,8 @@ void commit_all(const std::vector<AtomicFile*>& given) {
                                 : "writing the standard output failed");
   }
   if (!std::cerr) fail("writing the standard error failed");
+  if (standard_output_watch != nullptr && standard_output_watch->found())
+    fail("the standard output: " + standard_output_watch->what());
   // 2. Every file written out and checked.
   for (AtomicFile* file : files) {
     try {
@@ -214,7 +278,7 @@ void commit_all(const std::vector<AtomicFile*>& given) {
   // 3. The renames.
   for (AtomicFile* file : files) {
     if (!file->temporary_path_.empty() && ::rename(file->temporary_path_.c_str(), file->target_.c_str()) != 0) {
-      fail("cannot write " + json_string(file->path_) + ": " + std::strerror(errno));
+      fail("cannot write " + quoted_text(file->path_) + ": " + std::strerror(errno));
     }
     file->finished_ = true;
   }
@@ -410,6 +474,43 @@ TEST_CASE("commit_all replaces every target or none") {
     CHECK(Scratch::content(a) == "old a\n");
   }
   CHECK(directory.entries() == std::vector<std::string>{"a.dat", "b.dat"});
+}
+
+TEST_CASE("a data file holding a non-finite value is not committed, and neither are the others") {
+  Scratch directory;
+  const std::string a = directory.file("a.dat"), b = directory.file("b.dat");
+  Scratch::write(a, "old a\n");
+  Scratch::write(b, "old b\n");
+  int cases = 0;
+  for (const std::string bad : {"nan", "-nan", "inf", "-inf", "NaN", "Infinity", "1 2 nan", "\\mrmdef{x}{nan}",
+                                "# slope = inf\n", "x nan(0x1) y"}) {
+    CAPTURE(bad);
+    ++cases;
+    AtomicFile first(a, "--output"), second(b, "--tex");
+    first.stream() << "1 2\n" << std::string(100000, ' ') << "\n";  // the bad word after a drain
+    second.stream() << "# header\n3 4\n" << bad;
+    CHECK_THROWS_WITH_AS(commit_all({&first, &second}), doctest::Contains("line 3 holds"), std::runtime_error);
+    CHECK(Scratch::content(a) == "old a\n");
+    CHECK(Scratch::content(b) == "old b\n");
+  }
+  // Words that only contain the letters, numbers and "n/a" are data.
+  for (const std::string good : {"err_u_LinfL2 = 0.5", "nanosecond info infinite", "n/a: fewer than two levels",
+                                 "1e-300 -0 5e-324", "Linf_nan inf2 nan_"}) {
+    CAPTURE(good);
+    ++cases;
+    AtomicFile file(a, "--output");
+    file.stream() << good << '\n';
+    CHECK_NOTHROW(file.commit());
+    CHECK(Scratch::content(a) == good + "\n");
+  }
+  CHECK(cases == 15);
+  NonFiniteWatch split;  // a word cut between two writes
+  split.scan("1 n", 3);
+  split.scan("an\n", 3);
+  CHECK(split.found());
+  CHECK(split.what() ==
+        "line 1 holds \"nan\", a value that could not be computed (allowed: numbers, or words "
+        "saying why a value is absent)");
 }
 
 TEST_CASE("an output that cannot be written is refused at once, naming the option and the reason") {

@@ -6,7 +6,8 @@
 //     renamed over FILE once complete, removed on failure; the outputs of one program are all
 //     written out and checked before the first is renamed (commit_all);
 //   - a write error, a closed or failing standard output or standard error, is an error (exit 1),
-//     never bytes in a data file;
+//     never bytes in a data file; so is a non-finite value ("nan", "inf") in a data file or in what the
+//     program prints (NonFiniteWatch): nothing is committed;
 //   - an interrupted run may leave its hidden temporary `.FILE.XXXXXX`, never a partial FILE;
 //   - a replaced FILE keeps its permission bits; a new one gets those the umask gives; a symbolic
 //     link to a file is followed (the file is replaced, the link stays);
@@ -27,6 +28,45 @@ namespace mrm::cli {
 /// What every program's --help says of its FILE options (the rules above, in one paragraph).
 extern const char* const output_files_help;
 
+/// Watches the text of an output for a value that could not be computed: a word (a run of letters,
+/// digits and '_') that reads "nan", "inf" or "infinity" in any case, which is how format_real,
+/// printf and iostreams write a non-finite double whatever its sign. A data file holds numbers, or
+/// words saying why a value is absent ("n/a"), never these: an output holding one is an error.
+class NonFiniteWatch {
+ public:
+  void scan(const char* data, std::size_t size);
+  bool found() const;
+  /// "line 12 holds \"nan\", a value that could not be computed"
+  std::string what() const;
+
+ private:
+  void end_word();
+  std::string word_;
+  long line_ = 1, found_line_ = 0;
+  std::string found_word_;
+};
+
+/// A stream buffer that passes everything to another one and watches it (NonFiniteWatch):
+/// guarded_main puts one in front of the standard output.
+class WatchedBuffer : public std::streambuf {
+ public:
+  explicit WatchedBuffer(std::streambuf* target) : target_(target) {}
+  const NonFiniteWatch& watch() const { return watch_; }
+
+ protected:
+  int_type overflow(int_type character) override;
+  std::streamsize xsputn(const char* data, std::streamsize size) override;
+  int sync() override;
+
+ private:
+  std::streambuf* target_;
+  NonFiniteWatch watch_;
+};
+
+/// The watch of the standard output while guarded_main runs (null otherwise): commit_all refuses to
+/// commit a program's files when what it printed holds a non-finite value.
+extern const NonFiniteWatch* standard_output_watch;
+
 /// A stream buffer over a file descriptor that remembers the first failed write (its errno) and
 /// fails every write after it, so that the stream's state tells whether all the data got out.
 class DescriptorBuffer : public std::streambuf {
@@ -34,6 +74,7 @@ class DescriptorBuffer : public std::streambuf {
   explicit DescriptorBuffer(int descriptor = -1);
   void reset(int descriptor);
   int error() const { return error_; }
+  const NonFiniteWatch& watch() const { return watch_; }
   /// Writes out what is buffered; false if this or any earlier write failed.
   bool drain();
 
@@ -45,6 +86,7 @@ class DescriptorBuffer : public std::streambuf {
   int descriptor_;
   std::vector<char> buffer_;
   int error_ = 0;
+  NonFiniteWatch watch_;
 };
 
 /// One output file: complete under its name after commit(), or absent (the old file intact).

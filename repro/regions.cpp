@@ -149,7 +149,7 @@ Sweep read_sweep(std::istream& in) {
     try {
       return cli::parse_real("sweep", text);
     } catch (const std::exception&) {
-      fail("\"" + text + "\" is not a number");
+      fail(cli::quoted_text(text) + " is not a number");
     }
     return 0.0;
   };
@@ -204,7 +204,8 @@ Sweep read_sweep(std::istream& in) {
 Sweep read_sweep_file(const std::string& path, const std::string& option) {
   std::ifstream in(path);
   if (!in)
-    throw cli::UsageError(option + ": cannot read \"" + path + "\" (allowed: a file written by check_claims --sweep)");
+    throw cli::UsageError(option + ": cannot read " + cli::quoted_text(path) +
+                          " (allowed: a file written by check_claims --sweep)");
   return read_sweep(in);
 }
 

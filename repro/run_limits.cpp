@@ -88,6 +88,14 @@ void require_mesh_memory(std::string_view option, double elements, double bytes_
                      " this process may use (allowed: runs that fit in memory)");
 }
 
+void require_memory(std::string_view option, double bytes, std::string_view what) {
+  const double available = available_memory();
+  if (!(bytes <= available))
+    throw UsageError(std::string(option) + ": " + std::string(what) + " needs about " + bytes_text(bytes) +
+                     " of memory, more than the " + bytes_text(available) +
+                     " this process may use (allowed: runs that fit in memory)");
+}
+
 TEST_CASE("the steps of a run are refused before the run unless between 1 and 1e12") {
   CHECK(checked_steps("--final-time", 6.0, 0.005, "--courant") == 1200);
   CHECK(checked_steps("--final-time", 2e-9, 1.0, "--courant") == 1);  // T just above 1e-9 Δt: one step

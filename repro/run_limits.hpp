@@ -43,6 +43,10 @@ Index checked_level(std::string_view option, double t, double dt, std::string_vi
 /// A UsageError naming `option` unless a run holding `copies` meshes of `elements` elements, at
 /// `bytes_per_element` each, fits in the memory the process may use: the machine's physical memory and
 /// its address-space and data-segment limits (ulimit -v, -d).
+/// A UsageError naming `option` unless `bytes` fit in the memory the process may use; `what` says what
+/// needs them ("the exact solution of 4e+06 coefficients up to t = 6").
+void require_memory(std::string_view option, double bytes, std::string_view what);
+
 void require_mesh_memory(std::string_view option, double elements, double bytes_per_element, double copies = 1);
 
 }  // namespace mrm::cli

@@ -393,7 +393,8 @@ std::string trimmed(const std::string& text) {
   return text.substr(begin, text.find_last_not_of(" \t") - begin + 1);
 }
 
-// Shell words: blanks separate, '...' and "..." quote, \ escapes outside single quotes, $here and
+// Shell words: blanks separate, '...' and "..." quote, $'...' quotes with \n, \t, \r, \e and \xHH (bash's
+// ANSI-C quoting, for control characters in a case), \ escapes outside single quotes, $here and
 // ${here} expand outside single quotes. Throws on an unterminated quote.
 Words shell_words(const std::string& text, const std::string& here) {
   Words words;
@@ -409,7 +410,30 @@ Words shell_words(const std::string& text, const std::string& here) {
         word += c;
       continue;
     }
-    if (c == '$' && text.compare(i, 5, "$here") == 0) {
+    if (c == '$' && quote == 0 && i + 1 < text.size() && text[i + 1] == '\'') {
+      // $'...' as in bash: \n, \t, \r, \e and \xHH stand for those bytes (control characters in a case).
+      in_word = true;
+      for (i += 2; i < text.size() && text[i] != '\''; ++i) {
+        if (text[i] != '\\' || i + 1 >= text.size()) {
+          word += text[i];
+          continue;
+        }
+        const char e = text[++i];
+        if (e == 'n')
+          word += '\n';
+        else if (e == 't')
+          word += '\t';
+        else if (e == 'r')
+          word += '\r';
+        else if (e == 'e')
+          word += '\x1b';
+        else if (e == 'x' && i + 2 < text.size())
+          word += static_cast<char>(std::stoi(text.substr(i + 1, 2), nullptr, 16)), i += 2;
+        else
+          word += e;
+      }
+      if (i >= text.size()) throw std::runtime_error("unterminated quote");
+    } else if (c == '$' && text.compare(i, 5, "$here") == 0) {
       word += here, in_word = true, i += 4;
     } else if (c == '$' && text.compare(i, 7, "${here}") == 0) {
       word += here, in_word = true, i += 6;

@@ -28,7 +28,11 @@
 #                  the option, at once (no late std::bad_alloc, no pivot message, no zero-step run);
 #   two_outputs    a write error (a file-size limit, a full file system) fails the run with status 1,
 #                  and no output of the run is replaced (all or nothing);
-#   leftovers      a valid long file name (up to NAME_MAX) is accepted, a longer one refused.
+#   leftovers      a valid long file name (up to NAME_MAX) is accepted, a longer one refused;
+#   non_finite     no nan or inf in any output: the runs of issue 25 that wrote one exit 0 with n/a
+#                  and its reason, or fail and commit nothing;
+#   closed_stdout  long_runs (C stdio) fails with a closed standard output or on /dev/full;
+#   memory         what does not fit under ulimit -v is refused at once, naming the option.
 #
 # Cases that need root (a device node of its own, a full file system) are skipped with a note when not
 # run as root.
@@ -581,6 +585,79 @@ run_small "$quick" fig_energy --output "$long"
 expect_refusal fig_energy --output
 expect_entries
 
+# ==== non_finite: no nan or inf in any output (issue 25, class 3) =====================================
+
+# The runs the issue lists, and their neighbours: each exits 0 with every output free of a non-finite
+# word (a value that cannot be computed is written n/a with the reason), or fails (status 1 or 2) and
+# commits nothing. The check is the word test of output_file.hpp (NonFiniteWatch): a word of letters,
+# digits and '_' that reads nan, inf or infinity in any case.
+has_non_finite() { grep -q -i -w -E 'nan|inf|infinity' "$@" 2>/dev/null; }
+non_finite_case() {
+  local program=$1
+  shift
+  begin non_finite "$program $*: no nan in its outputs"
+  run "$small" "$program" "$@" --output o.dat --tex o.tex
+  if ((status == 0)); then
+    has_non_finite o.dat o.tex "$out" && fail "a non-finite word in an output: $(grep -i -w -E -m1 'nan|inf|infinity' o.dat o.tex "$out")"
+  elif ((status == 1 || status == 2)); then
+    [[ -e o.dat || -e o.tex ]] && fail "status $status but an output was committed"
+  else
+    expect_status 0
+  fi
+}
+non_finite_case fig_contact_history --elements 2
+non_finite_case fig_contact_history --courant 1e6
+non_finite_case fig_contact_history --exact-points 10
+non_finite_case fig_contact_history
+non_finite_case fig_contact_history --elements 2 --courant 1e6 --exact-points 10 --final-time 0.1
+non_finite_case fig_smooth_benchmarks --courant 100
+non_finite_case fig_smooth_benchmarks --elements 2 --courant 16
+non_finite_case fig_profiles --elements 2 --courant 1e6
+non_finite_case fig_energy --elements 2 --courant 1e6
+non_finite_case fig_phase --elements 2 --courant 10 --periods 2
+begin non_finite "bench_step --repetitions 1 on sizes below 2^10: the slopes are n/a, not nan"
+run 120 bench_step --quick --repetitions 1 --min-log2 4 --max-log2 6 --output b.dat --tex b.tex --markdown b.md
+expect_status 0
+has_non_finite b.dat b.tex b.md "$out" && fail "a non-finite word: $(grep -i -w -E -m1 'nan|inf|infinity' b.dat b.tex b.md "$out")"
+grep -q '^# slope_cn = n/a' b.dat || fail "the slope of cn is not n/a with its reason"
+begin non_finite "bar1d -s ps --output: the level without a multiplier is n/a"
+run "$small" bar1d -s ps --no-timing --output o.dat
+expect_status 0
+has_non_finite o.dat "$out" && fail "a non-finite word in an output"
+grep -q ' n/a ' o.dat || fail "no n/a for the level without a multiplier"
+
+# ==== closed_stdout: every program, the test programs included, fails on a closed or full stdout ====
+
+# (issue 25, class 7: long_runs prints with C's stdio, which guarded_main now checks as well.)
+for target in closed full; do
+  begin closed_stdout "long_runs with its standard output $target: status 1"
+  if [[ $target == closed ]]; then
+    timeout -k 5 "$small" "$bin/long_runs" --elements 4 --periods 1 --large-step-periods 1 >&- 2>"$err"
+  else
+    timeout -k 5 "$small" "$bin/long_runs" --elements 4 --periods 1 --large-step-periods 1 >/dev/full 2>"$err"
+  fi
+  status=$?
+  expect_status 1
+  grep -q '^long_runs: error: writing the standard output failed' "$err" || fail "no message: $(shown_error)"
+done
+
+# ==== memory: sizes that do not fit under a memory limit are refused before the run (class 4) ======
+
+if ((sanitized)); then
+  begin memory "under ulimit -v: skipped"
+  skip "AddressSanitizer reserves terabytes of address space"
+else
+  begin memory "bar1d --benchmark smooth-impact -T 1e5 under a 1 GB limit: refused naming --final-time"
+  (ulimit -v 1000000 && exec timeout -k 5 "$quick" "$bin/bar1d" --benchmark smooth-impact -T 1e5 >"$out" 2>"$err")
+  status=$?
+  expect_refusal bar1d "--final-time: the exact solution of"
+  begin memory "a million-sample --initial-data file under a 1 GB limit: refused naming --initial-data"
+  awk 'BEGIN { n = 1000000; for (k = 0; k <= n; ++k) printf "%.17g %.17g 0\n", k / n, 0.5 * (1 - k / n) }' >big.dat
+  (ulimit -v 1000000 && exec timeout -k 5 "$small" "$bin/bar1d" --initial-data big.dat >"$out" 2>"$err")
+  status=$?
+  expect_refusal bar1d "--initial-data: "
+fi
+
 finish_case
 cd "$work" || exit 1
 
@@ -589,7 +666,7 @@ total=0
 total_failed=0
 echo
 echo "hostile: cases by class (failed, skipped, time)"
-for c in temporary nonregular descriptors numbers ranges late two_outputs leftovers; do
+for c in temporary nonregular descriptors numbers ranges late two_outputs leftovers non_finite closed_stdout memory; do
   printf '  %-12s %3d cases, %3d failed, %d skipped, %5.1f s\n' "$c" "${cases[$c]:-0}" "${failures[$c]:-0}" \
     "${skips[$c]:-0}" "$((${milliseconds[$c]:-0} / 100))e-1"
   total=$((total + ${cases[$c]:-0}))
