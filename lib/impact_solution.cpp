@@ -587,6 +587,124 @@ std::vector<ContactInterval> exact_contact_windows(const ImpactConfiguration& co
 
 }  // namespace mrm
 
+namespace mrm {
+
+// ---------------------------------------------------------------------------------------------------
+// The named benchmarks (field.md §1). Each is a chain as above; the closed forms they are checked
+// against are derived in the doctests below.
+
+std::string configuration_features(const ImpactConfiguration& c) {
+  std::vector<std::string> features;
+  bool load = false, layers = false, contact_junction = false;
+  for (const BarSegment& s : c.segments) {
+    for (double v : s.load) load = load || v != 0.0;
+    layers = layers || s.modulus != c.segments.front().modulus || s.density != c.segments.front().density;
+  }
+  for (const SegmentJunction& j : c.junctions) contact_junction = contact_junction || j.contact;
+  if (load) features.push_back("a load f");
+  if (c.far_end == FarEnd::free) features.push_back("a free far end");
+  bool gap = c.obstacle_gap != 0;
+  for (const SegmentJunction& j : c.junctions) gap = gap || j.gap != 0;
+  if (gap) features.push_back("an initial gap");
+  if (layers) features.push_back("segments of different E or rho");
+  if (contact_junction) features.push_back("two bodies in contact");
+  if (!c.obstacle) features.push_back("no rigid obstacle");
+  std::string text;
+  for (const std::string& f : features) text += (text.empty() ? "" : ", ") + f;
+  return text;
+}
+
+namespace {
+
+BarSegment bar(double length, double modulus, double density, double load = 0.0) {
+  BarSegment s;
+  s.length = length;
+  s.modulus = modulus;
+  s.density = density;
+  if (load != 0.0) s.load = {load};
+  return s;
+}
+
+std::vector<ImpactBenchmark> make_benchmarks() {
+  std::vector<ImpactBenchmark> list;
+  {
+    // Doyen–Ern–Piperno's bouncing bar: L = 10, E = 900, ρ = 1 (c = 30), g = 10 (f = −ρg), at rest,
+    // undeformed, lower end h₀ = 5 above the floor (free fall √(2h₀/g) = 1 = three transits), free at
+    // both ends. Three contacts: [1, 5/3], [11/3, 13/3], [19/3, 7] (the doctest below derives them).
+    ImpactBenchmark b{"bouncing", "Doyen-Ern-Piperno's bouncing bar (free bar falling under gravity onto a floor)",
+                      "Doyen, Ern, Piperno, SIAM J. Sci. Comput. 33 (2011); NLstep EXAMPLES/01_bouncingBar", "", {}, {}, 8.0};
+    b.configuration.segments = {bar(10.0, 900.0, 1.0, -10.0)};
+    b.configuration.far_end = FarEnd::free;
+    b.configuration.obstacle_gap = 5.0;
+    b.data.pieces = {{0.0, 10.0, {0.0}, {0.0}}};
+    list.push_back(b);
+  }
+  {
+    // Code_Aster SDNV100 in uniaxial strain: L = 0.2 m, ρ = 8000 kg/m³, the oedometric modulus of
+    // E = 2e11 Pa, ν = 0.3, gap 2 mm, v⁰ = −100 m/s (toward the wall), free far end; SI units.
+    const double nu = 0.3, modulus = 2e11 * (1 - nu) / ((1 + nu) * (1 - 2 * nu));
+    ImpactBenchmark b{"impacting", "Code_Aster SDNV100: a bar at 100 m/s hitting a rigid wall across a 2 mm gap (SI units)",
+                      "Code_Aster V5.03.100 (SDNV100)", "s", {}, {}, 2e-4};
+    b.configuration.segments = {bar(0.2, modulus, 8000.0)};
+    b.configuration.far_end = FarEnd::free;
+    b.configuration.obstacle_gap = 2e-3;
+    b.data.pieces = {{0.0, 0.2, {0.0}, {-100.0}}};
+    list.push_back(b);
+  }
+  {
+    // The paper's bar (L = 1, c = 1, clamped at L, obstacle at 0) at rest, undeformed and touching,
+    // loaded at t = 0 by f = −1 toward the obstacle: a persistent contact around the static state
+    // (λ oscillates between 0 and −1 with period 2, mean −½ = the static λ).
+    ImpactBenchmark b{"gravity-paper", "the paper's bar suddenly pressed onto the obstacle by f = -1 (persistent contact)",
+                      "this project's choice (field.md sec. 1)", "", {}, {}, 4.0};
+    b.configuration.segments = {bar(1.0, 1.0, 1.0, -1.0)};
+    b.data.pieces = {{0.0, 1.0, {0.0}, {0.0}}};
+    list.push_back(b);
+  }
+  {
+    // Two identical free bars, L = 10, E = ρ = 1, touching at t = 0 with velocities ±0.1 toward each
+    // other: in contact for 2L/c = 20.
+    ImpactBenchmark b{"two-bars", "two identical free bars colliding at +-0.1 (contact between them)",
+                      "Tkachuk et al., IJNME 2013, among others", "", {}, {}, 40.0};
+    b.configuration.segments = {bar(10.0, 1.0, 1.0), bar(10.0, 1.0, 1.0)};
+    b.configuration.junctions = {{true, 0.0}};
+    b.configuration.obstacle = false;
+    b.configuration.far_end = FarEnd::free;
+    b.data.pieces = {{0.0, 10.0, {0.0}, {0.1}}, {10.0, 20.0, {0.0}, {-0.1}}};
+    list.push_back(b);
+  }
+  {
+    // A two-layer bar hitting the wall: Z₁ = 2 (E = 4, ρ = 1, ℓ = 1) at the wall, Z₂ = 1 (E = ρ = 1,
+    // ℓ = 1.5), free far end, gap 0.1, v⁰ = −1.
+    ImpactBenchmark b{"layered", "a two-layer bar (impedances 2 and 1) hitting a rigid wall across a gap",
+                      "classical (transmission and reflection at an interface)", "", {}, {}, 10.0};
+    b.configuration.segments = {bar(1.0, 4.0, 1.0), bar(1.5, 1.0, 1.0)};
+    b.configuration.far_end = FarEnd::free;
+    b.configuration.obstacle_gap = 0.1;
+    b.data.pieces = {{0.0, 1.0, {0.0}, {-1.0}}, {1.0, 2.5, {0.0}, {-1.0}}};
+    list.push_back(b);
+  }
+  return list;
+}
+
+}  // namespace
+
+const std::vector<ImpactBenchmark>& impact_benchmarks() {
+  static const std::vector<ImpactBenchmark> list = make_benchmarks();
+  return list;
+}
+
+const ImpactBenchmark& impact_benchmark(const std::string& id) {
+  std::string allowed;
+  for (const ImpactBenchmark& b : impact_benchmarks()) {
+    if (b.id == id) return b;
+    allowed += (allowed.empty() ? "" : ", ") + b.id;
+  }
+  throw InvalidParameter("benchmark", "unknown benchmark '" + id + "' (allowed: " + allowed + ")");
+}
+
+}  // namespace mrm
+
 // ---------------------------------------------------------------------------------------------------
 // Checks against closed forms.
 
@@ -1047,4 +1165,188 @@ TEST_CASE("the chain solver refuses what it cannot do, naming the problem") {
   CHECK_THROWS_WITH_AS(ImpactSolution(layered, v, 200.0, 2000), doctest::Contains("too many wave fronts"), InvalidParameter);
 }
 
+
+namespace {
+
+// An independent solver for f = 0: the characteristic lattice. Every segment's transit time is a
+// whole number of steps δ; the right- and left-going values at the nodes θ_i = iδ move one node per
+// step; the junctions update the emitted values by the increments of the arriving ones (welded:
+// Δr = R_A Δp + T_B Δq, Δs = T_A Δp + R_B Δq; free: Δr = Δp; clamp: r = −p); a contact updates its gap
+// by Δy = 2Δq − 2Δp and, held, emits r by the welded rule and s = p + r − g₀ − q (obstacle: s = z − g₀ − q).
+// Exact at the nodes as long as every contact event falls on a level (checked: a gap that would turn
+// negative inside a step makes the lattice inexact, and the test requires that it never happens).
+struct Lattice {
+  std::vector<double> gaps;   // z at every level, for contact 0
+  std::vector<double> level;  // t_n
+  bool exact = true;
+};
+
+Lattice lattice_solution(const ImpactConfiguration& config, const InitialData& data, double delta, long steps) {
+  const std::size_t n = config.segments.size();
+  std::vector<std::vector<double>> F(n), G(n);
+  std::vector<double> z0(n, 0.0), Z(n), origin(n + 1, 0.0);
+  for (std::size_t j = 0; j < n; ++j) {
+    const BarSegment& s = config.segments[j];
+    const double c = std::sqrt(s.modulus / s.density);
+    Z[j] = s.density * c;
+    origin[j + 1] = origin[j] + s.length;
+    const long cells = std::lround(s.length / c / delta);
+    double primitive = 0;
+    for (long i = 0; i <= cells; ++i) {
+      const double x = origin[j] + c * delta * static_cast<double>(i);
+      // u⁰ and v⁰ from the data's pieces (inside segment j: the piece containing x, the left one at its end).
+      const InitialDataPiece* piece = nullptr;
+      for (const InitialDataPiece& p : data.pieces)
+        if (p.a <= x + 1e-12 && x <= p.b + 1e-12 && p.a >= origin[j] - 1e-12 && p.b <= origin[j + 1] + 1e-12) {
+          piece = &p;
+          break;
+        }
+      const double sigma = (x - 0.5 * (piece->a + piece->b)) / (0.5 * (piece->b - piece->a));
+      const double u0 = poly::evaluate(piece->displacement, sigma);
+      if (i > 0) primitive += delta * poly::evaluate(piece->velocity, 0.0);  // v⁰ constant on the piece
+      F[j].push_back(0.5 * (u0 - primitive));
+      G[j].push_back(0.5 * (u0 + primitive));
+    }
+  }
+  Lattice result;
+  struct Contact {
+    std::size_t node;
+    double gap0, z;
+    bool held;
+  };
+  std::vector<Contact> contacts;
+  if (config.obstacle) contacts.push_back({0, config.obstacle_gap, F[0][0] + G[0][0] + config.obstacle_gap, false});
+  for (std::size_t j = 0; j + 1 < n && !config.junctions.empty(); ++j)
+    if (config.junctions[j].contact)
+      contacts.push_back({j + 1, config.junctions[j].gap,
+                          F[j + 1][0] + G[j + 1][0] - F[j].back() - G[j].back() + config.junctions[j].gap, false});
+  for (Contact& c : contacts) c.held = c.z <= 0.0;  // touching at t = 0: held while β ≤ 0
+  result.gaps.push_back(contacts.front().z);
+  result.level.push_back(0.0);
+  for (long step = 1; step <= steps; ++step) {
+    std::vector<double> p_old(n + 1), q_old(n + 1), r_old(n + 1), s_old(n + 1);
+    for (std::size_t J = 0; J <= n; ++J) {
+      if (J > 0) p_old[J] = F[J - 1].back(), r_old[J] = G[J - 1].back();
+      if (J < n) q_old[J] = G[J][0], s_old[J] = F[J][0];
+    }
+    for (std::size_t j = 0; j < n; ++j) {
+      for (std::size_t i = F[j].size() - 1; i > 0; --i) F[j][i] = F[j][i - 1];
+      for (std::size_t i = 0; i + 1 < G[j].size(); ++i) G[j][i] = G[j][i + 1];
+    }
+    for (std::size_t J = 0; J <= n; ++J) {
+      const bool has_a = J > 0, has_b = J < n;
+      const double p = has_a ? F[J - 1].back() : 0.0, q = has_b ? G[J][0] : 0.0;
+      const double dp = has_a ? p - p_old[J] : 0.0, dq = has_b ? q - q_old[J] : 0.0;
+      const double za = has_a ? Z[J - 1] : 0.0, zb = has_b ? Z[J] : 0.0;
+      double r = 0, s = 0;
+      Contact* contact = nullptr;
+      for (Contact& c : contacts)
+        if (c.node == J) contact = &c;
+      if (!contact) {
+        if (has_a && has_b) {
+          r = r_old[J] + ((za - zb) * dp + 2 * zb * dq) / (za + zb);
+          s = s_old[J] + (2 * za * dp + (zb - za) * dq) / (za + zb);
+        } else if (has_a) {
+          r = config.far_end == FarEnd::clamped ? -p : r_old[J] + dp;
+        } else {
+          s = s_old[J] + dq;
+        }
+      } else {
+        const double dy = 2 * dq - 2 * dp, scale = 1e-13 * (std::abs(contact->z) + std::abs(dy) + 1e-300);
+        bool held = contact->held && dy <= scale;  // stays held while β ≤ 0
+        if (!held) {                                // free over the step (reaching 0 at its end at most)
+          double z = contact->z + dy;
+          if (std::abs(z) <= scale) z = 0.0;
+          if (z < 0) result.exact = false;  // an event inside the step: the lattice stops being exact
+          contact->z = std::max(0.0, z);
+        }
+        if (held) {
+          r = has_a ? r_old[J] + ((za - zb) * dp + 2 * zb * dq) / (za + zb) : 0.0;
+          s = (has_a ? p + r : 0.0) - contact->gap0 - q;
+          contact->z = 0.0;
+        } else {
+          r = r_old[J] + dp;
+          s = s_old[J] + dq;
+          if (!has_a) s = contact->z - contact->gap0 - q;
+        }
+        contact->held = contact->z == 0.0;
+      }
+      if (has_a) G[J - 1].back() = r;
+      if (has_b) F[J][0] = s;
+    }
+    if (!result.exact) break;  // the levels before this one are exact
+    result.gaps.push_back(contacts.front().z);
+    result.level.push_back(delta * static_cast<double>(step));
+  }
+  return result;
+}
+
+}  // namespace
+
+TEST_CASE("the named benchmarks' contact windows against the closed forms and the characteristic lattice") {
+  // Closed forms (derived in the doctests above): bouncing [1, 5/3] + 8k/3; impacting [g₀/v, g₀/v + 2L/c];
+  // gravity-paper held throughout; two-bars [0, 2L/c]; layered: from g₀/v = 0.1, the release from the lattice.
+  const double c_sdnv = std::sqrt(2e11 * 0.7 / (1.3 * 0.4) / 8000);
+  const std::vector<std::pair<std::string, std::vector<std::array<double, 2>>>> expected{
+      {"bouncing", {{1.0, 5.0 / 3}, {11.0 / 3, 13.0 / 3}, {19.0 / 3, 7.0}}},
+      {"impacting", {{2e-5, 2e-5 + 0.4 / c_sdnv}}},
+      {"gravity-paper", {{0.0, 4.0}}},
+      {"two-bars", {{0.0, 20.0}}}};
+  for (const auto& [id, windows] : expected) {
+    CAPTURE(id);
+    const ImpactBenchmark& b = impact_benchmark(id);
+    const std::vector<ContactInterval> w = exact_contact_windows(b.configuration, b.data, b.final_time);
+    REQUIRE(w.size() == windows.size());
+    for (std::size_t k = 0; k < w.size(); ++k) {
+      CHECK(std::abs(w[k].start - windows[k][0]) <= 1e-12 * b.final_time);
+      CHECK(std::abs(w[k].end - windows[k][1]) <= 1e-12 * b.final_time);
+    }
+  }
+  CHECK_THROWS_WITH_AS(impact_benchmark("nope"), doctest::Contains("allowed: bouncing, impacting"), InvalidParameter);
+  CHECK(configuration_features(impact_benchmark("bouncing").configuration) == "a load f, a free far end, an initial gap");
+  CHECK(configuration_features(impact_benchmark("two-bars").configuration) ==
+        "a free far end, two bodies in contact, no rigid obstacle");
+  // The lattice (δ = 0.1 for layered and two-bars, whose transit times are multiples of it): the gap at
+  // every level, hence the windows, agree.
+  for (const std::string id : {"layered", "two-bars"}) {
+    CAPTURE(id);
+    const ImpactBenchmark& b = impact_benchmark(id);
+    const ImpactSolution solution(b.configuration, b.data, b.final_time);
+    const Lattice lattice = lattice_solution(b.configuration, b.data, 0.1, std::lround(b.final_time / 0.1));
+    CHECK(lattice.exact);
+    double d = 0;
+    for (std::size_t n = 0; n < lattice.level.size(); ++n)
+      d = std::max(d, std::abs(solution.gap(0, std::min(b.final_time, lattice.level[n])) - lattice.gaps[n]));
+    CAPTURE(d);
+    CHECK(d <= 1e-12);
+  }
+  // Three layers clamped at the far end hitting the wall (the lattice is exact up to the second impact,
+  // which falls between levels), and two bars of unequal impedances with a gap between them.
+  ImpactConfiguration three;
+  three.segments = {segment(0.4, 4.0, 1.0), segment(0.3, 1.0, 1.0), segment(0.5, 1.0, 4.0)};
+  three.obstacle_gap = 0.1;
+  InitialData layered_data;
+  layered_data.pieces = {{0.0, 0.4, {0.0}, {-1.0}}, {0.4, 0.7, {0.0}, {-1.0}}, {0.7, 1.2, {0.0}, {-1.0}}};
+  ImpactConfiguration unequal;
+  unequal.segments = {segment(1.0, 1.0, 1.0), segment(3.0, 9.0, 1.0)};
+  unequal.junctions = {{true, 0.05}};
+  unequal.obstacle = false;
+  unequal.far_end = FarEnd::free;
+  InitialData unequal_data;
+  unequal_data.pieces = {{0.0, 1.0, {0.0}, {0.2}}, {1.0, 4.0, {0.0}, {-0.05}}};
+  for (const auto& [config, data, horizon, windows] :
+       {std::tuple<ImpactConfiguration, InitialData, double, double>{three, layered_data, 20.0, 4.0},
+        {unequal, unequal_data, 20.0, 20.0}}) {
+    const ImpactSolution solution(config, data, horizon);
+    const Lattice lattice = lattice_solution(config, data, 0.1, std::lround(horizon / 0.1));
+    CAPTURE(lattice.level.back());
+    CHECK(lattice.level.back() >= windows - 1e-9);  // exact at least that far
+    CHECK(solution.contact_windows(0).at(0).end < windows);
+    double d = 0;
+    for (std::size_t n = 0; n < lattice.level.size(); ++n)
+      d = std::max(d, std::abs(solution.gap(0, std::min(horizon, lattice.level[n])) - lattice.gaps[n]));
+    CAPTURE(d);
+    CHECK(d <= 1e-12);
+  }
+}
 }  // namespace mrm
