@@ -566,11 +566,15 @@ double ImpactSolution::gap(std::size_t k, double t) const {
   return ub - ua + config_.junctions[a].gap;
 }
 
+// λ(t) = Z_B (G_B′ − F_B′)(t) on the right side of the contact point. At t = 0 the data need not satisfy
+// the contact law (the paper's u⁰′(0) ≠ 0 at a free end): λ(0) is the limit from t > 0, with F_B′ taken
+// on the emitted side of 0 (as characteristics.cpp does).
 double ImpactSolution::contact_stress(std::size_t k, double t) const {
   check_time(t, horizon_);
   const std::size_t b = contacts_.at(k).node;
-  return impedance_[b] * (left_[b].derivative(t, tie_) - right_[b].derivative(t, tie_)) +
-         static_stress_[b].at(origin_[b]);
+  const double emitted = t <= tie_ ? right_[b].pieces()[right_[b].locate(0.0)].derivative_at(t)
+                                   : right_[b].derivative(t, tie_);
+  return impedance_[b] * (left_[b].derivative(t, tie_) - emitted) + static_stress_[b].at(origin_[b]);
 }
 
 const std::vector<ContactInterval>& ImpactSolution::contact_windows(std::size_t k) const {
