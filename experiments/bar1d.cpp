@@ -18,11 +18,11 @@
 // the paper's benchmark, the mean interval between the exact impacts for other data; on the paper's
 // benchmark the period law's predictions beside them), one `name = value` line each, and optionally
 // writes the time series of the contact point (u(0,t), λ(t), the energy, and the exact values beside
-// them). With --exact it prints only the exact solution's contact windows over [0, T]
-// (exact_contact_windows = [t1, t2] [t3, t4] ..., lib/impact_solution.hpp), the one mode of the field's
-// benchmarks (bouncing, impacting, gravity-paper, two-bars, layered: field.md sec. 1), whose finite element
-// runs are refused (exit 2, naming what they need) until the schemes have loads, free ends, gaps, layers
-// and two bodies. Its standard output is the same bytes for the same command except the wall time of the run
+// them). On the field's benchmarks (bouncing, impacting, gravity-paper, two-bars, layered: field.md sec. 1)
+// it prints only the exact solution's contact windows over [0, T] (exact_contact_windows = [t1, t2] ...,
+// lib/impact_solution.hpp, in the benchmark's time unit) and refuses every finite element option (exit 2,
+// naming what the run needs) until the schemes have loads, free ends, gaps, layers and two bodies. Its
+// standard output is the same bytes for the same command except the wall time of the run
 // (wall_seconds), which `--no-timing` leaves out.
 //
 // Sample runs:
@@ -30,7 +30,7 @@
 //   bar1d --scheme ps --ps-form literal --mass mod2 --elements 100 --dt 0.004 --output ps.dat
 //   bar1d --benchmark grazing --scheme cn --mass mod1 --elements 400
 //   bar1d --initial-data tests/data/initial_data/left_going_wave.dat --elements 200 --final-time 4
-//   bar1d --benchmark bouncing --exact
+//   bar1d --benchmark bouncing --final-time 12
 //   bar1d --scheme be --mass consistent --elements 200 --courant 1
 //   bar1d --scheme ec --mass mod3 --elements 16 --courant 10 --final-time 300
 //   bar1d --scheme cn-switch --switch-theta 0.75 --mass mod1 --elements 400
@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
     std::string scheme = mrm::to_string(mrm::Scheme::crank_nicolson), mass = "mod3", ps_form = "algebraic",
                 initial = "consistent", contact_velocity = "algebraic", output;
     std::string benchmark = "paper", initial_data;
-    bool no_timing = false, exact_only = false;
+    bool no_timing = false;
     // The ranges below keep every quantity of the run (h, Δt², the matrices' entries, the energy a²L/2)
     // far from overflow and underflow of a double (the energy and the errors are computed scale-free:
     // errors.cpp, schemes.cpp), and the memory bounded: the peak memory of a run, measured at N = 1e6
@@ -143,12 +143,6 @@ int main(int argc, char** argv) {
                     "leave out the wall time of the run (wall_seconds, the one value that varies "
                     "from run to run)",
                     &no_timing);
-    parser.add_flag("--exact", "",
-                    "print only the exact solution's contact windows over [0, T] (exact_contact_windows = [t1, t2] "
-                    "..., in the benchmark's time unit) and exit; the one mode of the field's benchmarks (bouncing, "
-                    "impacting, gravity-paper, two-bars, layered) until the finite element side has their loads, "
-                    "free ends, gaps, layers and bodies",
-                    &exact_only);
     parser.add_conflict("--dt", "--courant");
     parser.add_conflict("--initial-data", "--benchmark");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
@@ -163,23 +157,23 @@ int main(int argc, char** argv) {
     const bool field_benchmark = !own_data && mrm::repro::is_impact_benchmark(benchmark);
     if (!parser.given("--final-time") && !own_data && benchmark != "paper")
       final_time = field_benchmark ? mrm::impact_benchmark(benchmark).final_time : 2.0;
-    if (field_benchmark && !exact_only)
-      throw cli::UsageError("--benchmark " + benchmark + ": its finite element run needs " +
-                            mrm::configuration_features(mrm::impact_benchmark(benchmark).configuration) +
-                            ", which the schemes do not have yet (allowed: --exact for its exact contact windows, or "
-                            "--benchmark paper, smooth-impact, grazing)");
-    if (exact_only) {  // the exact solution's contact windows (lib/impact_solution.hpp), nothing else
+    if (field_benchmark) {  // the exact solution's contact windows (lib/impact_solution.hpp), nothing else
+      for (const char* option :
+           {"--elements", "--courant", "--dt", "--scheme", "--mass", "--beta", "--restitution", "--ps-form",
+            "--switch-theta", "--initial-contact-node", "--contact-velocity", "--output"})
+        if (parser.given(option))
+          throw cli::UsageError(std::string(option) + ": --benchmark " + benchmark +
+                                " has no finite element run yet: it needs " +
+                                mrm::configuration_features(mrm::impact_benchmark(benchmark).configuration) +
+                                " (allowed with it: --final-time; or --benchmark paper, smooth-impact, grazing)");
       mrm::repro::Configuration exact_configuration;
       exact_configuration.benchmark = benchmark;
-      exact_configuration.data = data;
-      exact_configuration.length = length;
-      exact_configuration.amplitude = amplitude;
       std::vector<mrm::ContactInterval> windows;
       mrm::repro::as_usage_error({{"final_time", "--final-time"}}, [&] {
         windows = mrm::repro::configuration_contact_windows(exact_configuration, final_time);
       });
       std::ostringstream text;
-      if (field_benchmark && !mrm::impact_benchmark(benchmark).time_unit.empty())
+      if (!mrm::impact_benchmark(benchmark).time_unit.empty())
         text << "time_unit = " << mrm::impact_benchmark(benchmark).time_unit << '\n';
       text << "final_time = " << cli::format_real(final_time) << "\nexact_contact_windows =";
       for (const mrm::ContactInterval& w : windows)

@@ -289,8 +289,8 @@ ImpactSolution::ImpactSolution(ImpactConfiguration configuration, const InitialD
       const InitialDataPiece& p = pieces[k++];
       const double r = 0.5 * (p.b - p.a), m = 0.5 * (p.a + p.b);
       // w⁰ = u⁰ − q in the piece's variable; V = V(a) + (r/c)(A(σ) − A(−1)).
-      const poly::Coefficients q = composed(static_[j].value, (m - static_[j].centre) / static_[j].radius,
-                                            r / static_[j].radius);
+      const poly::Coefficients q =
+          composed(static_[j].value, (m - static_[j].centre) / static_[j].radius, r / static_[j].radius);
       const poly::Coefficients w = combination(1.0, p.displacement, -1.0, q);
       poly::Coefficients v = poly::antiderivative(p.velocity);
       for (double& x : v) x *= r / c;
@@ -299,11 +299,13 @@ ImpactSolution::ImpactSolution(ImpactConfiguration configuration, const InitialD
       const double lo = (p.a - origin_[j]) / c, hi = (p.b - origin_[j]) / c;
       const double centre = (m - origin_[j]) / c, radius = r / c;
       left_[j].append(piece_in(first_piece ? 0.0 : lo, hi, centre, radius, combination(0.5, w, 0.5, v)), snap_);
-      rights.push_back(piece_in(first_piece ? 0.0 : lo, hi, centre, radius, combination(0.5, w, -0.5, v)).mirrored(0.0));
+      rights.push_back(
+          piece_in(first_piece ? 0.0 : lo, hi, centre, radius, combination(0.5, w, -0.5, v)).mirrored(0.0));
       first_piece = false;
     }
     if (left_[j].empty() || std::abs(left_[j].end() - travel_[j]) > 1e-12 * travel_[j])
-      throw InvalidParameter("initial_data", "every junction (x = " + number(origin_[j + 1]) + ") must be a breakpoint");
+      throw InvalidParameter("initial_data",
+                             "every junction (x = " + number(origin_[j + 1]) + ") must be a breakpoint");
     for (std::size_t i = rights.size(); i-- > 0;) right_[j].append(rights[i], snap_);
   }
   // Continuity of u⁰ inside each body, the clamp, and the contacts not violated at t = 0.
@@ -317,7 +319,8 @@ ImpactSolution::ImpactSolution(ImpactConfiguration configuration, const InitialD
   for (std::size_t j = 0; j + 1 < n; ++j) {
     const double jump = u_right(j + 1) - u_left(j);
     if (!config_.junctions[j].contact && std::abs(jump) > tol)
-      throw InvalidParameter("initial_data", "u0 must be continuous at the welded junction x = " + number(origin_[j + 1]));
+      throw InvalidParameter("initial_data",
+                             "u0 must be continuous at the welded junction x = " + number(origin_[j + 1]));
     if (config_.junctions[j].contact && jump + config_.junctions[j].gap < -tol)
       throw InvalidParameter("initial_data", "the contact at x = " + number(origin_[j + 1]) +
                                                  " is violated at t = 0 (u_B - u_A + gap < 0)");
@@ -331,7 +334,7 @@ ImpactSolution::ImpactSolution(ImpactConfiguration configuration, const InitialD
   last_right_.assign(n + 1, 0.0);
   last_left_.assign(n + 1, 0.0);
   for (std::size_t j = 0; j < n; ++j) {
-    last_left_[j] = right_[j].value(0.0);              // F_j(0)
+    last_left_[j] = right_[j].value(0.0);                 // F_j(0)
     last_right_[j + 1] = left_[j].value(left_[j].end());  // G_j(τ_j)
   }
   if (config_.obstacle) contacts_.push_back({0, std::max(0.0, u_right(0) + config_.obstacle_gap), false, {}});
@@ -341,13 +344,17 @@ ImpactSolution::ImpactSolution(ImpactConfiguration configuration, const InitialD
 
   // 4. The march in windows of length min τ (derivation §4).
   const double window = *std::min_element(travel_.begin(), travel_.end());
+  constexpr double max_windows = 1e5;  // each window adds at least one piece per wave: bounded before any work
+  if (!(horizon_ <= max_windows * window))
+    throw InvalidParameter("final_time", "the horizon " + number(horizon_) + " is more than 1e5 transit times (" +
+                                             number(max_windows * window) +
+                                             ") of the shortest segment: too many wave fronts to solve exactly");
   for (long w = 0;; ++w) {
     const double t0 = static_cast<double>(w) * window, t1 = static_cast<double>(w + 1) * window;
     for (std::size_t node = 0; node <= n; ++node) process(node, t0, t1);
     if (piece_count() > max_pieces)
-      throw InvalidParameter("final_time", "more than " + std::to_string(max_pieces) +
-                                               " wave pieces before t = " + number(t1) +
-                                               ": too many wave fronts over the horizon to solve exactly");
+      throw InvalidParameter("final_time", "more than " + std::to_string(max_pieces) + " wave pieces before t = " +
+                                               number(t1) + ": too many wave fronts over the horizon to solve exactly");
     if (t1 >= horizon_ + tie_) break;
   }
   for (ContactState& c : contacts_) {
@@ -373,19 +380,22 @@ void ImpactSolution::process(std::size_t node, double t0, double t1) {
   const double tau_a = has_a ? travel_[a] : 0.0;
   // The stretches: [t0, t1] cut at the breakpoints of what arrives (closer than snap_ merged).
   std::vector<double> cuts{t0};
-  if (has_a)
-    for (const PolynomialPiece& p : right_[a].pieces())
-      if (p.a + tau_a > t0 && p.a + tau_a < t1) cuts.push_back(p.a + tau_a);
-  if (has_b)
-    for (const PolynomialPiece& p : left_[b].pieces())
-      if (p.a > t0 && p.a < t1) cuts.push_back(p.a);
+  // The breakpoints of a wave in (lo, hi), shifted: from the piece that holds lo on (not a scan of all).
+  const auto breakpoints = [&](const PiecewisePolynomial& wave, double lo, double hi, double shift) {
+    const auto& pieces = wave.pieces();
+    for (std::size_t k = wave.locate(inside(wave, lo)); k < pieces.size() && pieces[k].a < hi; ++k)
+      if (pieces[k].a > lo) cuts.push_back(pieces[k].a + shift);
+  };
+  if (has_a) breakpoints(right_[a], t0 - tau_a, t1 - tau_a, tau_a);
+  if (has_b) breakpoints(left_[b], t0, t1, 0.0);
   std::sort(cuts.begin(), cuts.end());
   std::vector<double> stretches{t0};
   for (double c : cuts)
     if (c - stretches.back() > snap_ && t1 - c > snap_) stretches.push_back(c);
   stretches.push_back(t1);
 
-  const bool is_contact = (node == 0 && config_.obstacle) || (node > 0 && node < n && config_.junctions[node - 1].contact);
+  const bool is_contact =
+      (node == 0 && config_.obstacle) || (node > 0 && node < n && config_.junctions[node - 1].contact);
   ContactState* contact = nullptr;
   if (is_contact)
     for (ContactState& c : contacts_)
@@ -467,7 +477,8 @@ void ImpactSolution::process(std::size_t node, double t0, double t1) {
           const double s = za + zb, sf = (start - m) / r;
           poly::Coefficients rc = combination(1.0, combination((za - zb) / s, P, 2 * zb / s, Q), -zb / s, L);
           rc = plus_constant(rc, last_right_[node] - poly::evaluate(rc, sf));
-          const poly::Coefficients sc = combination(1.0, combination(1.0, P, 1.0, rc), 1.0, combination(1.0, L, -1.0, Q));
+          const poly::Coefficients sc =
+              combination(1.0, combination(1.0, P, 1.0, rc), 1.0, combination(1.0, L, -1.0, Q));
           emit(start, end, &rc, &sc, false, false);
         } else {
           const poly::Coefficients sc = combination(1.0, L, -1.0, Q);
@@ -536,21 +547,24 @@ double ImpactSolution::displacement(double x, double t) const {
   check_time(t, horizon_);
   const std::size_t j = segment_of(x);
   const double theta = std::min(travel_[j], (x - origin_[j]) / (config_.segments[j].length / travel_[j]));
-  return right_[j].value(inside(right_[j], t - theta)) + left_[j].value(inside(left_[j], t + theta)) + 0.5 * acceleration_[j] * t * t + static_[j].at(x);
+  return right_[j].value(inside(right_[j], t - theta)) + left_[j].value(inside(left_[j], t + theta)) +
+         0.5 * acceleration_[j] * t * t + static_[j].at(x);
 }
 
 double ImpactSolution::velocity(double x, double t) const {
   check_time(t, horizon_);
   const std::size_t j = segment_of(x);
   const double theta = std::min(travel_[j], (x - origin_[j]) / (config_.segments[j].length / travel_[j]));
-  return right_[j].derivative(inside(right_[j], t - theta), tie_) + left_[j].derivative(inside(left_[j], t + theta), tie_) + acceleration_[j] * t;
+  return right_[j].derivative(inside(right_[j], t - theta), tie_) +
+         left_[j].derivative(inside(left_[j], t + theta), tie_) + acceleration_[j] * t;
 }
 
 double ImpactSolution::stress(double x, double t) const {
   check_time(t, horizon_);
   const std::size_t j = segment_of(x);
   const double theta = std::min(travel_[j], (x - origin_[j]) / (config_.segments[j].length / travel_[j]));
-  return impedance_[j] * (left_[j].derivative(inside(left_[j], t + theta), tie_) - right_[j].derivative(inside(right_[j], t - theta), tie_)) +
+  return impedance_[j] * (left_[j].derivative(inside(left_[j], t + theta), tie_) -
+                          right_[j].derivative(inside(right_[j], t - theta), tie_)) +
          static_stress_[j].at(x);
 }
 
@@ -561,7 +575,8 @@ double ImpactSolution::gap(std::size_t k, double t) const {
   const double ub = right_[b].value(t) + left_[b].value(t) + 0.5 * acceleration_[b] * t * t + static_[b].at(origin_[b]);
   if (b == 0) return ub + config_.obstacle_gap;
   const std::size_t a = b - 1;
-  const double ua = right_[a].value(inside(right_[a], t - travel_[a])) + left_[a].value(inside(left_[a], t + travel_[a])) + 0.5 * acceleration_[a] * t * t +
+  const double ua = right_[a].value(inside(right_[a], t - travel_[a])) +
+                    left_[a].value(inside(left_[a], t + travel_[a])) + 0.5 * acceleration_[a] * t * t +
                     static_[a].at(origin_[b]);
   return ub - ua + config_.junctions[a].gap;
 }
@@ -572,8 +587,8 @@ double ImpactSolution::gap(std::size_t k, double t) const {
 double ImpactSolution::contact_stress(std::size_t k, double t) const {
   check_time(t, horizon_);
   const std::size_t b = contacts_.at(k).node;
-  const double emitted = t <= tie_ ? right_[b].pieces()[right_[b].locate(0.0)].derivative_at(t)
-                                   : right_[b].derivative(t, tie_);
+  const double emitted =
+      t <= tie_ ? right_[b].pieces()[right_[b].locate(0.0)].derivative_at(t) : right_[b].derivative(t, tie_);
   return impedance_[b] * (left_[b].derivative(t, tie_) - emitted) + static_stress_[b].at(origin_[b]);
 }
 
@@ -635,8 +650,13 @@ std::vector<ImpactBenchmark> make_benchmarks() {
     // Doyen–Ern–Piperno's bouncing bar: L = 10, E = 900, ρ = 1 (c = 30), g = 10 (f = −ρg), at rest,
     // undeformed, lower end h₀ = 5 above the floor (free fall √(2h₀/g) = 1 = three transits), free at
     // both ends. Three contacts: [1, 5/3], [11/3, 13/3], [19/3, 7] (the doctest below derives them).
-    ImpactBenchmark b{"bouncing", "Doyen-Ern-Piperno's bouncing bar (free bar falling under gravity onto a floor)",
-                      "Doyen, Ern, Piperno, SIAM J. Sci. Comput. 33 (2011); NLstep EXAMPLES/01_bouncingBar", "", {}, {}, 8.0};
+    ImpactBenchmark b{"bouncing",
+                      "Doyen-Ern-Piperno's bouncing bar (free bar falling under gravity onto a floor)",
+                      "Doyen, Ern, Piperno, SIAM J. Sci. Comput. 33 (2011); NLstep EXAMPLES/01_bouncingBar",
+                      "",
+                      {},
+                      {},
+                      8.0};
     b.configuration.segments = {bar(10.0, 900.0, 1.0, -10.0)};
     b.configuration.far_end = FarEnd::free;
     b.configuration.obstacle_gap = 5.0;
@@ -647,8 +667,13 @@ std::vector<ImpactBenchmark> make_benchmarks() {
     // Code_Aster SDNV100 in uniaxial strain: L = 0.2 m, ρ = 8000 kg/m³, the oedometric modulus of
     // E = 2e11 Pa, ν = 0.3, gap 2 mm, v⁰ = −100 m/s (toward the wall), free far end; SI units.
     const double nu = 0.3, modulus = 2e11 * (1 - nu) / ((1 + nu) * (1 - 2 * nu));
-    ImpactBenchmark b{"impacting", "Code_Aster SDNV100: a bar at 100 m/s hitting a rigid wall across a 2 mm gap (SI units)",
-                      "Code_Aster V5.03.100 (SDNV100)", "s", {}, {}, 2e-4};
+    ImpactBenchmark b{"impacting",
+                      "Code_Aster SDNV100: a bar at 100 m/s hitting a rigid wall across a 2 mm gap (SI units)",
+                      "Code_Aster V5.03.100 (SDNV100)",
+                      "s",
+                      {},
+                      {},
+                      2e-4};
     b.configuration.segments = {bar(0.2, modulus, 8000.0)};
     b.configuration.far_end = FarEnd::free;
     b.configuration.obstacle_gap = 2e-3;
@@ -659,8 +684,13 @@ std::vector<ImpactBenchmark> make_benchmarks() {
     // The paper's bar (L = 1, c = 1, clamped at L, obstacle at 0) at rest, undeformed and touching,
     // loaded at t = 0 by f = −1 toward the obstacle: a persistent contact around the static state
     // (λ oscillates between 0 and −1 with period 2, mean −½ = the static λ).
-    ImpactBenchmark b{"gravity-paper", "the paper's bar suddenly pressed onto the obstacle by f = -1 (persistent contact)",
-                      "this project's choice (field.md sec. 1)", "", {}, {}, 4.0};
+    ImpactBenchmark b{"gravity-paper",
+                      "the paper's bar suddenly pressed onto the obstacle by f = -1 (persistent contact)",
+                      "this project's choice (field.md sec. 1)",
+                      "",
+                      {},
+                      {},
+                      4.0};
     b.configuration.segments = {bar(1.0, 1.0, 1.0, -1.0)};
     b.data.pieces = {{0.0, 1.0, {0.0}, {0.0}}};
     list.push_back(b);
@@ -668,8 +698,13 @@ std::vector<ImpactBenchmark> make_benchmarks() {
   {
     // Two identical free bars, L = 10, E = ρ = 1, touching at t = 0 with velocities ±0.1 toward each
     // other: in contact for 2L/c = 20.
-    ImpactBenchmark b{"two-bars", "two identical free bars colliding at +-0.1 (contact between them)",
-                      "Tkachuk et al., IJNME 2013, among others", "", {}, {}, 40.0};
+    ImpactBenchmark b{"two-bars",
+                      "two identical free bars colliding at +-0.1 (contact between them)",
+                      "Tkachuk et al., IJNME 2013, among others",
+                      "",
+                      {},
+                      {},
+                      40.0};
     b.configuration.segments = {bar(10.0, 1.0, 1.0), bar(10.0, 1.0, 1.0)};
     b.configuration.junctions = {{true, 0.0}};
     b.configuration.obstacle = false;
@@ -680,8 +715,13 @@ std::vector<ImpactBenchmark> make_benchmarks() {
   {
     // A two-layer bar hitting the wall: Z₁ = 2 (E = 4, ρ = 1, ℓ = 1) at the wall, Z₂ = 1 (E = ρ = 1,
     // ℓ = 1.5), free far end, gap 0.1, v⁰ = −1.
-    ImpactBenchmark b{"layered", "a two-layer bar (impedances 2 and 1) hitting a rigid wall across a gap",
-                      "classical (transmission and reflection at an interface)", "", {}, {}, 10.0};
+    ImpactBenchmark b{"layered",
+                      "a two-layer bar (impedances 2 and 1) hitting a rigid wall across a gap",
+                      "classical (transmission and reflection at an interface)",
+                      "",
+                      {},
+                      {},
+                      10.0};
     b.configuration.segments = {bar(1.0, 4.0, 1.0), bar(1.5, 1.0, 1.0)};
     b.configuration.far_end = FarEnd::free;
     b.configuration.obstacle_gap = 0.1;
@@ -741,7 +781,8 @@ TEST_CASE("the chain solver reproduces the paper's closed form, also cut into we
     for (int j = 0; j < cuts; ++j) {
       config.segments.push_back(segment(1.0 / cuts, 1.0, 1.0));
       const double a = static_cast<double>(j) / cuts, b = static_cast<double>(j + 1) / cuts;
-      data.pieces.push_back(affine_piece(a, j + 1 == cuts ? 1.0 : b, 0.5 * (1 - a), j + 1 == cuts ? 0.0 : 0.5 * (1 - b), 0.0));
+      data.pieces.push_back(
+          affine_piece(a, j + 1 == cuts ? 1.0 : b, 0.5 * (1 - a), j + 1 == cuts ? 0.0 : 0.5 * (1 - b), 0.0));
     }
     const ImpactSolution solution(config, data, 30.0);
     CAPTURE(cuts);
@@ -771,7 +812,6 @@ TEST_CASE("the chain solver reproduces the paper's closed form, also cut into we
     }
   }
 }
-
 
 TEST_CASE("the chain solver agrees with the clamped solver (characteristics.cpp) on general data") {
   // Two derivations of the same solution (windows in space there, junction signals in time here).
@@ -815,8 +855,8 @@ TEST_CASE("the impacting bar (SDNV100): contact from gap/v for 2L/c at stress -r
   // t₁ = g₀/v; the impact sends a compression wave σ = −Z v up the bar (u_t = 0 behind it); it reflects
   // at the free end as a release wave and brings σ = 0, u_t = +v back to the wall at t₁ + 2L/c, where
   // β = 2v > 0: the bar leaves rigidly with +v, z = v (t − t₁ − 2L/c).
-  const double nu = 0.3, modulus = 2e11 * (1 - nu) / ((1 + nu) * (1 - 2 * nu)), rho = 8000, length = 0.2,
-               speed = 100, gap = 2e-3;
+  const double nu = 0.3, modulus = 2e11 * (1 - nu) / ((1 + nu) * (1 - 2 * nu)), rho = 8000, length = 0.2, speed = 100,
+               gap = 2e-3;
   ImpactConfiguration config;
   config.segments = {segment(length, modulus, rho)};
   config.far_end = FarEnd::free;
@@ -837,7 +877,8 @@ TEST_CASE("the impacting bar (SDNV100): contact from gap/v for 2L/c at stress -r
     CHECK(std::abs(solution.gap(0, t) - z) <= 1e-12 * gap);
     CHECK(std::abs(solution.contact_stress(0, t) - lambda) <= 1e-12 * rho * c * speed);
     if (t > t2)
-      for (int i = 0; i <= 10; ++i) CHECK(std::abs(solution.velocity(length * (i + 0.5) / 11, t) - speed) <= 1e-12 * speed);
+      for (int i = 0; i <= 10; ++i)
+        CHECK(std::abs(solution.velocity(length * (i + 0.5) / 11, t) - speed) <= 1e-12 * speed);
   }
 }
 
@@ -976,19 +1017,25 @@ TEST_CASE("a static load: a piecewise-polynomial f(x) on a layered bar in static
       for (int row = col + 1; row < n; ++row) {
         int pivot = col;
         for (int r = col + 1; r < n; ++r)
-          if (std::abs(matrix[static_cast<std::size_t>(r * n + col)]) > std::abs(matrix[static_cast<std::size_t>(pivot * n + col)])) pivot = r;
+          if (std::abs(matrix[static_cast<std::size_t>(r * n + col)]) >
+              std::abs(matrix[static_cast<std::size_t>(pivot * n + col)]))
+            pivot = r;
         if (pivot != col) {
-          for (int k = 0; k < n; ++k) std::swap(matrix[static_cast<std::size_t>(col * n + k)], matrix[static_cast<std::size_t>(pivot * n + k)]);
+          for (int k = 0; k < n; ++k)
+            std::swap(matrix[static_cast<std::size_t>(col * n + k)], matrix[static_cast<std::size_t>(pivot * n + k)]);
           std::swap(rhs[static_cast<std::size_t>(col)], rhs[static_cast<std::size_t>(pivot)]);
         }
-        const double factor = matrix[static_cast<std::size_t>(row * n + col)] / matrix[static_cast<std::size_t>(col * n + col)];
-        for (int k = col; k < n; ++k) matrix[static_cast<std::size_t>(row * n + k)] -= factor * matrix[static_cast<std::size_t>(col * n + k)];
+        const double factor =
+            matrix[static_cast<std::size_t>(row * n + col)] / matrix[static_cast<std::size_t>(col * n + col)];
+        for (int k = col; k < n; ++k)
+          matrix[static_cast<std::size_t>(row * n + k)] -= factor * matrix[static_cast<std::size_t>(col * n + k)];
         rhs[static_cast<std::size_t>(row)] -= factor * rhs[static_cast<std::size_t>(col)];
       }
     poly::Coefficients coefficients(static_cast<std::size_t>(n));
     for (int row = n; row-- > 0;) {
       double sum = rhs[static_cast<std::size_t>(row)];
-      for (int k = row + 1; k < n; ++k) sum -= matrix[static_cast<std::size_t>(row * n + k)] * coefficients[static_cast<std::size_t>(k)];
+      for (int k = row + 1; k < n; ++k)
+        sum -= matrix[static_cast<std::size_t>(row * n + k)] * coefficients[static_cast<std::size_t>(k)];
       coefficients[static_cast<std::size_t>(row)] = sum / matrix[static_cast<std::size_t>(row * n + row)];
     }
     data.pieces.push_back({a, b, coefficients, {0.0}});
@@ -1044,7 +1091,8 @@ TEST_CASE("two bars: equal bars meet as one bar on a wall; unequal impedances se
       const double t = 60.0 * (n + 0.5) / 601.0;
       CHECK(std::abs(solution.contact_stress(0, t) - (t < 20 ? -0.1 : 0.0)) <= 1e-12 * 0.1);
       CHECK(std::abs(solution.contact_stress(0, t) - single.contact_stress(0, t)) <= 1e-12 * 0.1);
-      for (int i = 1; i <= 10; ++i) du = std::max(du, std::abs(solution.displacement(10.0 + i, t) - single.displacement(i, t)));
+      for (int i = 1; i <= 10; ++i)
+        du = std::max(du, std::abs(solution.displacement(10.0 + i, t) - single.displacement(i, t)));
       du = std::max(du, std::abs(solution.gap(0, t) - 2 * single.gap(0, t)));
       if (t > 20) {
         CHECK(std::abs(solution.velocity(5.0, t) + 0.1) <= 1e-12 * 0.1);
@@ -1165,10 +1213,12 @@ TEST_CASE("the chain solver refuses what it cannot do, naming the problem") {
   layered.segments = {segment(1.0, 1.0, 1.0), segment(std::sqrt(2.0), 3.0, 1.0), segment(M_PI / 3, 0.5, 2.0)};
   layered.far_end = FarEnd::free;
   InitialData v;
-  v.pieces = {{0.0, 1.0, {0.0}, {-1.0}}, {1.0, 1.0 + std::sqrt(2.0), {0.0}, {-1.0}}, {1.0 + std::sqrt(2.0), 1.0 + std::sqrt(2.0) + M_PI / 3, {0.0}, {-1.0}}};
-  CHECK_THROWS_WITH_AS(ImpactSolution(layered, v, 200.0, 2000), doctest::Contains("too many wave fronts"), InvalidParameter);
+  v.pieces = {{0.0, 1.0, {0.0}, {-1.0}},
+              {1.0, 1.0 + std::sqrt(2.0), {0.0}, {-1.0}},
+              {1.0 + std::sqrt(2.0), 1.0 + std::sqrt(2.0) + M_PI / 3, {0.0}, {-1.0}}};
+  CHECK_THROWS_WITH_AS(ImpactSolution(layered, v, 200.0, 2000), doctest::Contains("too many wave fronts"),
+                       InvalidParameter);
 }
-
 
 namespace {
 
@@ -1258,7 +1308,7 @@ Lattice lattice_solution(const ImpactConfiguration& config, const InitialData& d
       } else {
         const double dy = 2 * dq - 2 * dp, scale = 1e-13 * (std::abs(contact->z) + std::abs(dy) + 1e-300);
         bool held = contact->held && dy <= scale;  // stays held while β ≤ 0
-        if (!held) {                                // free over the step (reaching 0 at its end at most)
+        if (!held) {                               // free over the step (reaching 0 at its end at most)
           double z = contact->z + dy;
           if (std::abs(z) <= scale) z = 0.0;
           if (z < 0) result.exact = false;  // an event inside the step: the lattice stops being exact
@@ -1307,7 +1357,8 @@ TEST_CASE("the named benchmarks' contact windows against the closed forms and th
     }
   }
   CHECK_THROWS_WITH_AS(impact_benchmark("nope"), doctest::Contains("allowed: bouncing, impacting"), InvalidParameter);
-  CHECK(configuration_features(impact_benchmark("bouncing").configuration) == "a load f, a free far end, an initial gap");
+  CHECK(configuration_features(impact_benchmark("bouncing").configuration) ==
+        "a load f, a free far end, an initial gap");
   CHECK(configuration_features(impact_benchmark("two-bars").configuration) ==
         "a free far end, two bodies in contact, no rigid obstacle");
   // The lattice (δ = 0.1 for layered and two-bars, whose transit times are multiples of it): the gap at

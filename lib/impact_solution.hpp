@@ -58,11 +58,11 @@ class ImpactSolution {
   ImpactSolution(ImpactConfiguration configuration, const InitialData& data, double final_time,
                  std::size_t max_pieces = 2000000);
 
-  double horizon() const { return horizon_; }                        ///< T
+  double horizon() const { return horizon_; }                           ///< T
   const ImpactConfiguration& configuration() const { return config_; }  ///< the chain
-  double displacement(double x, double t) const;                     ///< u(x, t) (the left segment's at a junction)
-  double velocity(double x, double t) const;                         ///< u_t(x, t)
-  double stress(double x, double t) const;                           ///< E u_x(x, t)
+  double displacement(double x, double t) const;                        ///< u(x, t) (the left segment's at a junction)
+  double velocity(double x, double t) const;                            ///< u_t(x, t)
+  double stress(double x, double t) const;                              ///< E u_x(x, t)
 
   /// The contacts: index 0 is the obstacle (if any), then the contact junctions from left to right.
   std::size_t contact_count() const { return contacts_.size(); }
@@ -81,12 +81,12 @@ class ImpactSolution {
 
   ImpactConfiguration config_;
   double horizon_, snap_, tie_;
-  std::vector<double> origin_;                          // x_j, the left end of segment j
-  std::vector<double> travel_;                          // τ_j = ℓ_j / c_j
-  std::vector<double> impedance_;                       // Z_j = ρ_j c_j
-  std::vector<double> acceleration_;                    // α of the body of segment j
+  std::vector<double> origin_;                           // x_j, the left end of segment j
+  std::vector<double> travel_;                           // τ_j = ℓ_j / c_j
+  std::vector<double> impedance_;                        // Z_j = ρ_j c_j
+  std::vector<double> acceleration_;                     // α of the body of segment j
   std::vector<PolynomialPiece> static_, static_stress_;  // q and E q′ on segment j (in x)
-  std::vector<PiecewisePolynomial> right_, left_;       // F_j on [−τ_j, T], G_j on [0, T + τ_j]
+  std::vector<PiecewisePolynomial> right_, left_;        // F_j on [−τ_j, T], G_j on [0, T + τ_j]
   struct ContactState {
     std::size_t node;  // the junction node (0 = the left end)
     double gap;        // z at the end of the last window
