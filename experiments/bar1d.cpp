@@ -18,7 +18,11 @@
 // the paper's benchmark, the mean interval between the exact impacts for other data; on the paper's
 // benchmark the period law's predictions beside them), one `name = value` line each, and optionally
 // writes the time series of the contact point (u(0,t), λ(t), the energy, and the exact values beside
-// them). Its standard output is the same bytes for the same command except the wall time of the run
+// them). On the field's benchmarks (bouncing, impacting, gravity-paper, two-bars, layered: field.md sec. 1)
+// it prints only the exact solution's contact windows over [0, T] (exact_contact_windows = [t1, t2] ...,
+// lib/impact_solution.hpp, in the benchmark's time unit) and refuses every finite element option (exit 2,
+// naming what the run needs) until the schemes have loads, free ends, gaps, layers and two bodies. Its
+// standard output is the same bytes for the same command except the wall time of the run
 // (wall_seconds), which `--no-timing` leaves out.
 //
 // Sample runs:
@@ -26,6 +30,7 @@
 //   bar1d --scheme ps --ps-form literal --mass mod2 --elements 100 --dt 0.004 --output ps.dat
 //   bar1d --benchmark grazing --scheme cn --mass mod1 --elements 400
 //   bar1d --initial-data tests/data/initial_data/left_going_wave.dat --elements 200 --final-time 4
+//   bar1d --benchmark bouncing --final-time 12
 //   bar1d --scheme be --mass consistent --elements 200 --courant 1
 //   bar1d --scheme ec --mass mod3 --elements 16 --courant 10 --final-time 300
 //   bar1d --scheme cn-switch --switch-theta 1 --mass mod1 --elements 400
@@ -52,6 +57,7 @@
 #include "initial_data_file.hpp"
 #include "errors.hpp"
 #include "exact_solution.hpp"
+#include "impact_solution.hpp"
 #include "period_law.hpp"
 #include "schemes.hpp"
 
@@ -149,7 +155,36 @@ int main(int argc, char** argv) {
                               "and --initial-data gives L as its last x)");
     std::shared_ptr<const mrm::InitialData> data;
     if (own_data) data = std::make_shared<const mrm::InitialData>(mrm::repro::read_initial_data(initial_data));
-    if (!parser.given("--final-time") && !own_data && benchmark != "paper") final_time = 2.0;
+    const bool field_benchmark = !own_data && mrm::repro::is_impact_benchmark(benchmark);
+    if (!parser.given("--final-time") && !own_data && benchmark != "paper")
+      final_time = field_benchmark ? mrm::impact_benchmark(benchmark).final_time : 2.0;
+    if (field_benchmark) {  // the exact solution's contact windows (lib/impact_solution.hpp), nothing else
+      for (const char* option :
+           {"--elements", "--courant", "--dt", "--scheme", "--mass", "--beta", "--restitution", "--ps-form",
+            "--switch-theta", "--initial-contact-node", "--contact-velocity", "--output"})
+        if (parser.given(option))
+          throw cli::UsageError(std::string(option) + ": --benchmark " + benchmark +
+                                " has no finite element run yet: it needs " +
+                                mrm::configuration_features(mrm::impact_benchmark(benchmark).configuration) +
+                                " (allowed with it: --final-time; or --benchmark paper, smooth-impact, grazing)");
+      mrm::repro::Configuration exact_configuration;
+      exact_configuration.benchmark = benchmark;
+      std::vector<mrm::ContactInterval> windows;
+      mrm::repro::as_usage_error({{"final_time", "--final-time"}}, [&] {
+        windows = mrm::repro::configuration_contact_windows(exact_configuration, final_time);
+      });
+      std::ostringstream text;
+      if (!mrm::impact_benchmark(benchmark).time_unit.empty())
+        text << "time_unit = " << mrm::impact_benchmark(benchmark).time_unit << '\n';
+      text << "final_time = " << cli::format_real(final_time) << "\nexact_contact_windows =";
+      for (const mrm::ContactInterval& w : windows)
+        text << " [" << cli::format_real(w.start) << ", " << cli::format_real(w.end) << "]";
+      text << (windows.empty() ? " none" : "") << "\nexact_contact_count = " << windows.size()
+           << "\nexact_contact_held_at_final_time = " << (!windows.empty() && windows.back().open ? "true" : "false")
+           << '\n';
+      std::cout << text.str();
+      return 0;
+    }
     const mrm::Scheme scheme_id = mrm::scheme_by_name(scheme);
     mrm::repro::refuse_untaken(parser, scheme_id,
                                {{"--beta", mrm::SchemeParameter::beta},

@@ -13,6 +13,7 @@
 #include <doctest/doctest.h>
 
 #include "exact_solution.hpp"
+#include "impact_solution.hpp"
 #include "parallel.hpp"
 #include "smooth_benchmarks.hpp"
 
@@ -29,6 +30,42 @@ InitialData configuration_data(const Configuration& c) {
   if (c.benchmark == "smooth-impact") return smooth_benchmark(SmoothBenchmark::generic_impact).data;
   if (c.benchmark == "grazing") return smooth_benchmark(SmoothBenchmark::grazing).data;
   throw std::invalid_argument("unknown benchmark '" + c.benchmark + "' (allowed: paper, smooth-impact, grazing)");
+}
+
+bool is_impact_benchmark(const std::string& benchmark) {
+  for (const ImpactBenchmark& b : impact_benchmarks())
+    if (b.id == benchmark) return true;
+  return false;
+}
+
+std::vector<ContactInterval> configuration_contact_windows(const Configuration& c, double final_time) {
+  if (!c.data && is_impact_benchmark(c.benchmark)) {
+    const ImpactBenchmark& b = impact_benchmark(c.benchmark);
+    return exact_contact_windows(b.configuration, b.data, final_time);
+  }
+  const InitialData data = configuration_data(c);
+  ImpactConfiguration bar;
+  BarSegment segment;
+  segment.length = data.length();
+  bar.segments = {segment};
+  return exact_contact_windows(bar, data, final_time);
+}
+
+TEST_CASE("the exact contact windows of the paper's benchmark are [1 + 3k, 2 + 3k], scaled by L") {
+  Configuration c;
+  for (const double length : {1.0, 2.5}) {
+    c.length = length;
+    const std::vector<ContactInterval> w = configuration_contact_windows(c, 6.5 * length);
+    REQUIRE(w.size() == 2);
+    for (std::size_t k = 0; k < 2; ++k) {
+      CHECK(std::abs(w[k].start - (1 + 3.0 * k) * length) <= 1e-12 * length);
+      CHECK(std::abs(w[k].end - (2 + 3.0 * k) * length) <= 1e-12 * length);
+    }
+  }
+  c.benchmark = "bouncing";
+  CHECK(is_impact_benchmark("bouncing"));
+  CHECK_FALSE(is_impact_benchmark("paper"));
+  CHECK(configuration_contact_windows(c, 8.0).size() == 3);
 }
 
 // The paper's benchmark keeps its own problem (the closed-form data as functions), so that its runs are

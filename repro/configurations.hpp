@@ -130,6 +130,19 @@ InitialData configuration_data(const Configuration& configuration);
 /// configuration and scaled back).
 std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& configuration, double horizon);
 
+/// Whether `benchmark` is one of the field's benchmarks of lib/impact_solution.hpp (impact_benchmarks():
+/// bouncing, impacting, gravity-paper, two-bars, layered), whose finite element runs need what the
+/// schemes do not have yet (a load, a free far end, a gap, layers, two bodies).
+bool is_impact_benchmark(const std::string& benchmark);
+
+/// The exact solution's contact windows over [0, T] of a configuration's contact point, in the
+/// configuration's own units: for a field benchmark (is_impact_benchmark) its chain and data, for the
+/// others (paper, smooth ones, data of one's own) the clamped homogeneous bar of unit wave speed with
+/// configuration_data. Computed by mrm::ImpactSolution (lib/impact_solution.cpp), in the data's units
+/// (SI for impacting: the exact solution needs no scaling). Throws mrm::InvalidParameter ("final_time")
+/// when the horizon needs more wave fronts than the solver keeps.
+std::vector<ContactInterval> configuration_contact_windows(const Configuration& configuration, double final_time);
+
 /// A configuration named as the paper names it: a scheme of the registry (mrm::scheme_registry; Paoli–
 /// Schatzman is (¼, 0) with the contact row `ps_form`), a mass spec of mass_redistribution_from_spec in
 /// mass_spec.hpp ("mod1", "mod2", "mod3", "consistent", "node1:7/6", ...), N, Δt = C h, T.

@@ -32,7 +32,8 @@ std::string scheme_row_label(const std::string& id, const std::string& ps_form);
 Label mass_label(const std::string& spec);
 /// The eight measures of mathematics.md §5, in the order of ErrorAccumulator::names.
 const std::array<Label, 8>& measure_labels();
-/// The benchmarks, in the order of their choice list: paper, smooth-impact, grazing.
+/// The benchmarks, in the order of their choice list: paper, smooth-impact, grazing, then the field's
+/// (bouncing, impacting, gravity-paper, two-bars, layered: lib/impact_solution.hpp, exact solution only).
 const std::vector<Label>& benchmark_labels();
 std::vector<std::string> benchmark_names();
 
