@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "characteristics.hpp"
+#include "p1.hpp"
 #include "piecewise_polynomial.hpp"
 
 namespace mrm {
@@ -28,8 +29,7 @@ struct SegmentJunction {
   double gap = 0;        ///< for a contact: the initial distance g₀ ≥ 0 (z = u_right − u_left + g₀ ≥ 0)
 };
 
-/// The far (right) end of the chain.
-enum class FarEnd { clamped, free };
+/// The far (right) end of the chain: mrm::FarEnd of p1.hpp (clamped or free), shared with the mesh.
 
 /// A chain of segments on [0, Σℓ] (x = 0 is the left end): its left end is held off a rigid obstacle at
 /// distance `obstacle_gap` (u(0, t) + g₀ ≥ 0) when `obstacle`, otherwise free; consecutive segments are
