@@ -853,7 +853,7 @@ void BarSimulation::reference_step(bool has_load) {
   // (issue 22) moves the obstacle by step_.obstacle_offset.
   double obstacle = three_level_ ? -parameters_.restitution * (u[0] - w[0]) : 0.0;  // g
   if (step_.obstacle_offset != 0.0) obstacle += step_.obstacle_offset;              // (keeps a −0)
-  Eigen::VectorXd& du = state_.u_new;  // ΔU, then Uⁿ⁺¹
+  Eigen::VectorXd& du = state_.u_new;                                               // ΔU, then Uⁿ⁺¹
   double contact_multiplier, u0_next;
   if (energy_conserving_) {
     solver_.sweep_down(rhs.data(), du.data());
@@ -955,7 +955,7 @@ void BarSimulation::switch_step(bool has_load) {
   const Eigen::VectorXd rhs =
       increment_right_hand_side(theta_step, state_.u, state_.w, state_.lambda, has_load ? &state_.f_now : nullptr,
                                 has_load ? &state_.f_next : nullptr);
-  Eigen::VectorXd& du = state_.u_new;  // ΔU (the increment form), then Uⁿ⁺¹
+  Eigen::VectorXd& du = state_.u_new;                  // ΔU (the increment form), then Uⁿ⁺¹
   const double obstacle = theta_step.obstacle_offset;  // g: the gap (issue 22), 0 without one
   const ContactStep contact = switch_->solver.solve(rhs.data(), du.data(), theta_step.kappa, obstacle - state_.u[0]);
   const double u0_next = contact.active ? obstacle : state_.u[0] + contact.u0;
