@@ -441,9 +441,12 @@ int main(int argc, char** argv) {
       onset_smallest = std::min(onset_smallest, ratio), onset_largest = std::max(onset_largest, ratio);
     }
     const double onset_slope = onset_h.size() >= 2 ? mrm::fit_order(onset_h, onset_dt).order : std::nan("");
-    out << "# family_onset: order 2 at every halving from dt = h/" << cli::format_real(onset_smallest) << " to h/"
-        << cli::format_real(onset_largest) << " on (all 8 measures); slope of log onset vs log h = "
-        << (std::isfinite(onset_slope) ? cli::format_real(onset_slope) : std::string("n/a: one mesh"))
+    out << "# family_onset: order 2 at every halving from "
+        << (meshes_with_region > 0
+                ? "dt = h/" + cli::format_real(onset_smallest) + " to h/" + cli::format_real(onset_largest) + " on"
+                : std::string("n/a: no mesh has such a step"))
+        << " (all 8 measures); slope of log onset vs log h = "
+        << (std::isfinite(onset_slope) ? cli::format_real(onset_slope) : std::string("n/a: fewer than two meshes"))
         << " (conjecture: 1.5); meshes with such a region: " << meshes_with_region << " of " << family.size() << '\n';
     for (const mrm::repro::TimeFamilyMesh& f : family) {
       out << "# mesh N = " << f.elements << ": reference_bound";
