@@ -21,12 +21,17 @@ namespace mrm::cli {
 // std::invalid_argument, which would end the program with status 1 after it has started. The same
 // count is made here first, as a usage error.
 Index checked_steps(std::string_view time_option, double final_time, double dt, std::string_view step_options) {
+  // A step that underflowed to 0 (e.g. --courant 5e-324 times h) is the step option's fault, not the
+  // horizon's: it is named first.
+  if (!(dt > 0))
+    throw UsageError(std::string(step_options) + ": the time step is " + format_real(dt) +
+                     " (allowed: a positive step; raise " + std::string(step_options) + ")");
   const double ratio = final_time / dt;
   if (!(ratio <= max_steps))
     throw UsageError(std::string(time_option) + ": " + format_real(final_time) + " needs " +
-                     format_real(std::ceil(ratio)) + " steps of " + format_real(dt) +
-                     " (allowed: at most 1e12 steps; lower " + std::string(time_option) + " or raise " +
-                     std::string(step_options) + ")");
+                     (std::isfinite(ratio) ? format_real(std::ceil(ratio)) : std::string("more than 1e308")) +
+                     " steps of " + format_real(dt) + " (allowed: at most 1e12 steps; lower " +
+                     std::string(time_option) + " or raise " + std::string(step_options) + ")");
   const Index steps = steps_to_reach(final_time, dt);
   if (steps < 1)
     throw UsageError(std::string(time_option) + ": " + format_real(final_time) + " is reached in 0 steps of " +
@@ -107,7 +112,12 @@ TEST_CASE("the steps of a run are refused before the run unless between 1 and 1e
                        "--final-time: 1e-300 is reached in 0 steps of 0.005 (allowed: at least one step; raise "
                        "--final-time or lower --courant)",
                        UsageError);
-  CHECK_THROWS_AS(checked_steps("--final-time", 1e300, 1e-300, "--courant"), UsageError);  // T/Δt = inf
+  CHECK_THROWS_WITH_AS(checked_steps("--final-time", 1e300, 1e-300, "--courant"),  // T/Δt = inf
+                       "--final-time: 1e+300 needs more than 1e308 steps of 1e-300 (allowed: at most 1e12 steps; "
+                       "lower --final-time or raise --courant)",
+                       UsageError);
+  CHECK_THROWS_WITH_AS(checked_steps("--periods", 90, 0.0, "--courant"),  // a step that underflowed to 0
+                       "--courant: the time step is 0 (allowed: a positive step; raise --courant)", UsageError);
 }
 
 TEST_CASE("data files, levels and memory beyond the limits are refused naming the option") {
