@@ -162,7 +162,8 @@ class Parser {
   // A file the program reads: a string option with the placeholder FILE. After the parse, no output
   // option may name the same file as an input option, nor two output options one file (compared by
   // identity, st_dev and st_ino, not by spelling: "./d.dat", a symbolic or hard link, a path through
-  // a linked directory; a file not yet there by its directory's identity and its name): a UsageError
+  // a linked directory; a file not yet there by its directory's identity and its name). A clash is a
+  // UsageError, before any work, such as
   //   --output: "./d.dat" is the file of --initial-data "d.dat" (allowed: an output that replaces no input)
   // Outputs and inputs count when given or when they have a default ("" and "-" never).
   void add_input(std::string long_name, std::string short_name, std::string help, std::string* target);
