@@ -11,8 +11,9 @@
 // mathematics.md §12). It prints the relative errors of mathematics.md §5 against the exact solution (the
 // closed form for the paper's benchmark, the characteristic solution of mathematics.md §10 for any other
 // data), the energy range, the run's size and time, and its phase (mathematics.md §8: the number of
-// impacts, impacts_compared = how many were paired with exact impacts (on the paper's benchmark all; for
-// other data a run's extra contacts stay unpaired, mathematics.md §8), first_impact_error = the error of
+// impacts, impacts_compared = how many were paired with exact impacts (mutual nearest neighbours no
+// farther apart than half the exact inter-impact time: a run's extra contacts stay unpaired, and a run
+// whose first impact has no partner gets no phase, mathematics.md §8), first_impact_error = the error of
 // the first impact time, phase_drift_per_period = the least-squares drift of the impact times per
 // period, negative when the impacts come early, and phase_period = the period it is counted in: 3L on
 // the paper's benchmark, the mean interval between the exact impacts for other data; on the paper's
@@ -318,6 +319,10 @@ int main(int argc, char** argv) {
     // characteristic solution's for any other data. The period law's predictions (ℓ_f and 2ℓ_f + ℓ_c)
     // are derived for the paper's benchmark and printed for it alone.
     std::cout << "impacts = " << measures.impacts.size() << '\n';
+    if (!measures.impacts.empty() && !measures.phase)
+      std::cout << "impacts_compared = 0\n"
+                << "first_impact_error = n/a: no impact of the run lies within half the exact inter-impact time of "
+                   "the first exact impact (a pair farther apart would compare unrelated events)\n";
     if (measures.phase) {
       std::cout << "impacts_compared = " << measures.phase->matched << '\n';
       std::cout << "first_impact_error = " << cli::format_real(measures.phase->first_impact_error) << '\n';
