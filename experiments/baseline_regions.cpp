@@ -303,7 +303,7 @@ int main(int argc, char** argv) {
     for (std::size_t a = 0; a < meshes.size(); ++a)
       computed += (a ? ", " : "") + ("$N=" + std::to_string(meshes[a]) + "$ to " + cli::format_real(reach[a]));
     mrm::tex_define(defs, "baseline:region", computed);
-    // The grid itself, for the report's sentences: "25, 100, 400, 1600", "\frac14, \frac12, 1", "1, 10, 30, 1000".
+    // The grid itself, for the report's sentences: "25, 100, 400 and 1600", "0.25, 0.5 and 1", ...
     const auto list = [](const auto& values, const auto& format) {
       std::string text;
       for (std::size_t k = 0; k < values.size(); ++k)
