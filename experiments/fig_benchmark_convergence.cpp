@@ -103,8 +103,8 @@ std::string fraction(double order) {
 std::string windows_text(const std::vector<mrm::ContactInterval>& windows, int digits) {
   std::string text;
   for (const mrm::ContactInterval& w : windows)
-    text += (text.empty() ? "" : " ") + ("$[" + mrm::tex_number(w.start, digits) + ", " +
-                                         mrm::tex_number(w.end, digits) + (w.open ? ")$" : "]$"));
+    text += (text.empty() ? "" : " ") +
+            ("$[" + mrm::tex_number(w.start, digits) + ", " + mrm::tex_number(w.end, digits) + (w.open ? ")$" : "]$"));
   return text.empty() ? "none" : text;
 }
 
@@ -219,8 +219,7 @@ int main(int argc, char** argv) {
     for (std::size_t b = 0; b < benchmarks.size(); ++b)
       for (std::size_t c = 0; c < time_courants.size(); ++c) {
         out << benchmarks[b] << ' ' << cli::format_real(time_courants[c]);
-        for (const double e : mrm::ErrorAccumulator::values(time_run(b, c).errors))
-          out << ' ' << cli::format_real(e);
+        for (const double e : mrm::ErrorAccumulator::values(time_run(b, c).errors)) out << ' ' << cli::format_real(e);
         out << '\n';
       }
     out << "\n\n# block 13: graded meshes h_k = h0 r^k, N = " << graded_elements << ", cn, dt = h0/2, "
@@ -234,7 +233,8 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "benchconv:meshes", std::to_string(levels));
     mrm::tex_define(defs, "benchconv:tolerance", mrm::tex_number(agreement, 2));
     std::vector<double> steps(levels);
-    for (std::size_t l = 0; l < levels; ++l) steps[l] = 1.0 / static_cast<double>(static_cast<mrm::Index>(coarsest) << l);
+    for (std::size_t l = 0; l < levels; ++l)
+      steps[l] = 1.0 / static_cast<double>(static_cast<mrm::Index>(coarsest) << l);
     std::vector<std::string> headers{"benchmark", "mass"};
     for (const mrm::repro::Label& label : mrm::repro::measure_labels())
       headers.push_back("\\rotatebox{70}{" + label.latex + "}");
@@ -273,8 +273,8 @@ int main(int argc, char** argv) {
           mrm::tex_define(defs, "benchconv:err:" + name, mrm::tex_number(errors.back(), 2));
           std::cout << key << ' ' << masses[m] << ' ' << mrm::ErrorAccumulator::names[k] << " order "
                     << cli::format_real(std::round(fit.order * 100) / 100) << " local "
-                    << cli::format_real(std::round(local * 100) / 100) << " (conjecture " << fraction(predicted)
-                    << ")" << (agrees ? "" : " DISAGREES") << '\n';
+                    << cli::format_real(std::round(local * 100) / 100) << " (conjecture " << fraction(predicted) << ")"
+                    << (agrees ? "" : " DISAGREES") << '\n';
         }
         orders.add_row(row);
       }
@@ -300,7 +300,8 @@ int main(int argc, char** argv) {
       mrm::tex_define(defs, "benchconv:windows:exact:" + key, windows_text(exact, 6));
       mrm::tex_define(defs, "benchconv:windows:measured:" + key, windows_text(fine.contact_windows, 6));
       std::cout << key << " exact_contact_windows =";
-      for (const auto& w : exact) std::cout << " [" << cli::format_real(w.start) << ", " << cli::format_real(w.end) << "]";
+      for (const auto& w : exact)
+        std::cout << " [" << cli::format_real(w.start) << ", " << cli::format_real(w.end) << "]";
       std::cout << "\n" << key << " measured_contact_windows (cn, mod3, N = " << finest << ") =";
       for (const auto& w : fine.contact_windows)
         std::cout << " [" << cli::format_real(w.start) << ", " << cli::format_real(w.end) << "]";
@@ -317,25 +318,24 @@ int main(int argc, char** argv) {
     // bouncing, the free fall to the floor √(2g₀/g) = 1 then contacts of 2L/c every 8L/(3c) = [1 + 8k/3,
     // 5/3 + 8k/3]; impacting, [g₀/v, g₀/v + 2L/c]; gravity-paper, held over [0, T]. The layered bar has no
     // closed form here: its windows are compared with the finest Mod 3 run.
-    mrm::repro::Table data_table({"benchmark", "segments $(\\ell, E, \\rho)$", "load $f$", "far end", "gap $g_0$",
-                                  "$v^0$", "$T$", "source"});
+    mrm::repro::Table data_table(
+        {"benchmark", "segments $(\\ell, E, \\rho)$", "load $f$", "far end", "gap $g_0$", "$v^0$", "$T$", "source"});
     for (const char* key : benchmarks) {
       const mrm::ImpactBenchmark& bench = mrm::impact_benchmark(key);
       std::string segments, loads;
       for (const mrm::BarSegment& segment : bench.configuration.segments) {
-        segments += (segments.empty() ? "" : ", ") + ("$(" + mrm::tex_number(segment.length, 3) + ", " +
-                                                      mrm::tex_number(segment.modulus, 4) + ", " +
-                                                      mrm::tex_number(segment.density, 3) + ")$");
+        segments += (segments.empty() ? "" : ", ") +
+                    ("$(" + mrm::tex_number(segment.length, 3) + ", " + mrm::tex_number(segment.modulus, 4) + ", " +
+                     mrm::tex_number(segment.density, 3) + ")$");
         loads += (loads.empty() ? "" : ", ") +
                  (segment.load.empty() ? std::string("0") : "$" + mrm::tex_number(segment.load.front(), 3) + "$");
       }
-      data_table.add_row({key, segments, loads,
-                          bench.configuration.far_end == mrm::FarEnd::free ? "free" : "clamped",
-                          "$" + mrm::tex_number(bench.configuration.obstacle_gap, 3) + "$",
-                          "$" + mrm::tex_number(bench.data.velocity(0.0), 3) + "$",
-                          "$" + mrm::tex_number(bench.final_time, 3) + "$" +
-                              (bench.time_unit.empty() ? "" : "~" + bench.time_unit),
-                          bench.source});
+      data_table.add_row(
+          {key, segments, loads, bench.configuration.far_end == mrm::FarEnd::free ? "free" : "clamped",
+           "$" + mrm::tex_number(bench.configuration.obstacle_gap, 3) + "$",
+           "$" + mrm::tex_number(bench.data.velocity(0.0), 3) + "$",
+           "$" + mrm::tex_number(bench.final_time, 3) + "$" + (bench.time_unit.empty() ? "" : "~" + bench.time_unit),
+           bench.source});
       const std::vector<mrm::ContactInterval> exact =
           mrm::exact_contact_windows(bench.configuration, bench.data, bench.final_time);
       std::vector<mrm::ContactInterval> closed;
@@ -352,7 +352,8 @@ int main(int argc, char** argv) {
       const std::vector<mrm::ContactInterval>& other = closed.empty() ? at(3, 2, levels - 1).contact_windows : closed;
       double difference = exact.size() == other.size() ? 0.0 : HUGE_VAL;
       for (std::size_t w = 0; w < std::min(exact.size(), other.size()); ++w)
-        difference = std::max({difference, std::abs(exact[w].start - other[w].start), std::abs(exact[w].end - other[w].end)});
+        difference =
+            std::max({difference, std::abs(exact[w].start - other[w].start), std::abs(exact[w].end - other[w].end)});
       if (!std::isfinite(difference))
         throw std::runtime_error(id + ": the exact solution and its comparison have different numbers of windows");
       mrm::tex_define(defs, "benchconv:check:" + id, closed.empty() ? "the finest Mod~3 run" : "the closed form");
@@ -373,8 +374,8 @@ int main(int argc, char** argv) {
     }
 
     // The graded table: each member's drift minus Mod 3's against Σ δmᵢ κ(xᵢ), in units of h₀.
-    mrm::repro::Table graded_table({"$r$", "$h_{\\max}/h_0$", "mass", "predicted $\\Delta P/h_0$",
-                                    "measured $/h_0$", "$|$difference$|/h_0$"});
+    mrm::repro::Table graded_table(
+        {"$r$", "$h_{\\max}/h_0$", "mass", "predicted $\\Delta P/h_0$", "measured $/h_0$", "$|$difference$|/h_0$"});
     double worst = 0;
     std::cout << "graded meshes (N = " << graded_elements << ", cn, dt = h0/2, " << graded_periods
               << " periods): drift per period minus Mod 3's, in units of h0\n"
@@ -385,7 +386,8 @@ int main(int argc, char** argv) {
       const GradedRun& reference = graded[i - (i % 4)];
       const mrm::UniformMesh mesh = mrm::graded_mesh(1.0, graded_elements, g.ratio);
       const double h0 = mesh.h(0);
-      const double predicted = mrm::first_order_period_change(mesh, mrm::repro::mass_redistribution_from_spec(g.mass, mesh));
+      const double predicted =
+          mrm::first_order_period_change(mesh, mrm::repro::mass_redistribution_from_spec(g.mass, mesh));
       const double measured = g.phase.drift_per_period - reference.phase.drift_per_period;
       const double difference = std::abs(measured - predicted);
       worst = std::max(worst, difference / h0);

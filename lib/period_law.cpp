@@ -475,8 +475,8 @@ TEST_CASE("graded meshes: the eigenvalue drifts against Mod 3 follow the first-o
 // node that "front" reading predicts −h₀/3 whatever r. Measured (the table prints both): the modal
 // rule is within 0.07 h₀ of every graded row, the front reading 0.06, 0.17 and 0.13 h₀ off for
 // spread:N−1 at r = 1.0025, 1.005, 1.01, so the low-mode law is the one that carries to graded meshes.)
-MeasuredPhase measure_benchmark_phase(const UniformMesh& mesh, const MassRedistribution& redistribution,
-                                      double courant, double periods) {
+MeasuredPhase measure_benchmark_phase(const UniformMesh& mesh, const MassRedistribution& redistribution, double courant,
+                                      double periods) {
   const double dt = courant * mesh.h(0);
   BarSimulation simulation(benchmark_problem(), mesh, redistribution, SchemeParameters{}, dt);
   ImpactDetector detector(0.5);
@@ -486,8 +486,8 @@ MeasuredPhase measure_benchmark_phase(const UniformMesh& mesh, const MassRedistr
   std::vector<double> exact;
   for (std::size_t k = 0; k < detector.impacts().size(); ++k) exact.push_back(1.0 + 3.0 * static_cast<double>(k));
   if (detector.impacts().size() != static_cast<std::size_t>(periods) || exact.size() < 2)
-    throw std::runtime_error("measure_benchmark_phase: " + std::to_string(detector.impacts().size()) +
-                             " impacts in " + std::to_string(periods) + " periods (expected one per period)");
+    throw std::runtime_error("measure_benchmark_phase: " + std::to_string(detector.impacts().size()) + " impacts in " +
+                             std::to_string(periods) + " periods (expected one per period)");
   const PhaseMeasures phase = phase_measures(detector.impacts(), exact, 3.0);
   return {*phase.drift_per_period, phase.first_impact_error};
 }

@@ -81,7 +81,7 @@ struct MeasuredPhase {
   double first_impact_error;  ///< the first impact's error
 };
 /// Runs it; throws std::runtime_error when the run does not have one impact per period.
-MeasuredPhase measure_benchmark_phase(const UniformMesh& mesh, const MassRedistribution& redistribution,
-                                      double courant, double periods);
+MeasuredPhase measure_benchmark_phase(const UniformMesh& mesh, const MassRedistribution& redistribution, double courant,
+                                      double periods);
 
 }  // namespace mrm

@@ -113,12 +113,12 @@ struct Configuration {
 /// f̂ = f L/(E_c σ), the gaps ĝ = g/(σL), the material Ê, ρ̂ (1 at the contact end), and u_t = σc û_τ,
 /// u_x = σ û_ξ, the stress E u_x = E_c σ σ̂ (λ), the energy E_c σ²L Ê. c = E_c = 1 is the law above.
 struct Scaling {
-  double length = 1.0;      ///< L
-  double amplitude = 1.0;   ///< σ, a power of two
-  double wave_speed = 1.0;  ///< c, the wave speed at the contact end
-  double modulus = 1.0;     ///< E_c, the modulus at the contact end
-  double time_scale() const { return length / wave_speed; }                       ///< L/c
-  double time(double unit) const { return time_scale() * unit; }                  ///< t = (L/c)τ
+  double length = 1.0;                                            ///< L
+  double amplitude = 1.0;                                         ///< σ, a power of two
+  double wave_speed = 1.0;                                        ///< c, the wave speed at the contact end
+  double modulus = 1.0;                                           ///< E_c, the modulus at the contact end
+  double time_scale() const { return length / wave_speed; }       ///< L/c
+  double time(double unit) const { return time_scale() * unit; }  ///< t = (L/c)τ
   double displacement(double unit) const { return (amplitude * length) * unit; }  ///< u = σL û
   double velocity(double unit) const { return (amplitude * wave_speed) * unit; }  ///< u_t = σc û_τ
   double strain(double unit) const { return amplitude * unit; }                   ///< u_x = σ û_ξ
@@ -200,6 +200,14 @@ struct Measures {
   /// The contact windows of the run (ImpactDetector::windows, same chatter rule as the impacts), in the
   /// configuration's time unit.
   std::vector<ContactInterval> contact_windows;
+  /// The oscillation of the contact stress: TV(λ_h)/TV(λ_exact), the total variations of the scheme's
+  /// multiplier and of the exact λ over the same instants (the samples' multiplier_time), levels 0..n.
+  /// Absent when the exact λ does not vary over the run (no contact: the ratio is undefined).
+  std::optional<double> lambda_tv_ratio;
+  /// The largest penetration max_n max(0, −(u₀ⁿ + gap)) at the configuration's scale: 0 up to round-off
+  /// for a scheme that enforces the constraint at the levels (CN, BE, EC, cn-switch); for
+  /// Paoli–Schatzman only the average (u₀ⁿ⁺¹ + e u₀ⁿ⁻¹)/(1 + e) is constrained, so a level may penetrate.
+  double max_penetration = 0;
 };
 
 /// Runs the configuration to its final time, calling `observe` (if given) on every sample from level 0
