@@ -20,10 +20,13 @@
 // benchmark the period law's predictions beside them), one `name = value` line each, and optionally
 // writes the time series of the contact point (u(0,t), λ(t), the energy, and the exact values beside
 // them), and the contact stress's oscillation (lambda_tv_ratio = TV(λ_h)/TV(λ_exact)) and the largest
-// penetration (max_penetration). On the field's benchmarks (bouncing, impacting, gravity-paper, two-bars, layered: field.md sec. 1)
-// it prints only the exact solution's contact windows over [0, T] (exact_contact_windows = [t1, t2] ...,
-// lib/impact_solution.hpp, in the benchmark's time unit) and refuses every finite element option (exit 2,
-// naming what the run needs) until the schemes have loads, free ends, gaps, layers and two bodies. Its
+// penetration (max_penetration). On the field's benchmarks (bouncing, impacting, gravity-paper, layered:
+// field.md sec. 1) the run has the benchmark's load, gap, material and free far end, in its own units
+// (the harness runs the dimensionless problem and scales back: repro/configurations.hpp, Scaling;
+// Δt = C h/c with c the wave speed at the contact end), its reference is the chain's exact solution
+// (lib/impact_solution.hpp), and it also prints the exact contact windows over [0, T]
+// (exact_contact_windows = [t1, t2] ...) and the run's (measured_contact_windows), in the benchmark's
+// time unit; two-bars (two bodies) is refused. Its
 // standard output is the same bytes for the same command except the wall time of the run
 // (wall_seconds), which `--no-timing` leaves out.
 //
@@ -32,7 +35,7 @@
 //   bar1d --scheme ps --ps-form literal --mass mod2 --elements 100 --dt 0.004 --output ps.dat
 //   bar1d --benchmark grazing --scheme cn --mass mod1 --elements 400
 //   bar1d --initial-data tests/data/initial_data/left_going_wave.dat --elements 200 --final-time 4
-//   bar1d --benchmark bouncing --final-time 12
+//   bar1d --benchmark bouncing --scheme cn --mass mod3 --elements 300
 //   bar1d --scheme be --mass consistent --elements 200 --courant 1
 //   bar1d --scheme ec --mass mod3 --elements 16 --courant 10 --final-time 300
 //   bar1d --scheme cn-switch --switch-theta 1 --mass mod1 --elements 400
@@ -160,33 +163,6 @@ int main(int argc, char** argv) {
     const bool field_benchmark = !own_data && mrm::repro::is_impact_benchmark(benchmark);
     if (!parser.given("--final-time") && !own_data && benchmark != "paper")
       final_time = field_benchmark ? mrm::impact_benchmark(benchmark).final_time : 2.0;
-    if (field_benchmark) {  // the exact solution's contact windows (lib/impact_solution.hpp), nothing else
-      for (const char* option :
-           {"--elements", "--courant", "--dt", "--scheme", "--mass", "--beta", "--restitution", "--ps-form",
-            "--switch-theta", "--initial-contact-node", "--contact-velocity", "--output"})
-        if (parser.given(option))
-          throw cli::UsageError(std::string(option) + ": --benchmark " + benchmark +
-                                " has no finite element run yet: it needs " +
-                                mrm::configuration_features(mrm::impact_benchmark(benchmark).configuration) +
-                                " (allowed with it: --final-time; or --benchmark paper, smooth-impact, grazing)");
-      mrm::repro::Configuration exact_configuration;
-      exact_configuration.benchmark = benchmark;
-      std::vector<mrm::ContactInterval> windows;
-      mrm::repro::as_usage_error({{"final_time", "--final-time"}}, [&] {
-        windows = mrm::repro::configuration_contact_windows(exact_configuration, final_time);
-      });
-      std::ostringstream text;
-      if (!mrm::impact_benchmark(benchmark).time_unit.empty())
-        text << "time_unit = " << mrm::impact_benchmark(benchmark).time_unit << '\n';
-      text << "final_time = " << cli::format_real(final_time) << "\nexact_contact_windows =";
-      for (const mrm::ContactInterval& w : windows)
-        text << " [" << cli::format_real(w.start) << ", " << cli::format_real(w.end) << "]";
-      text << (windows.empty() ? " none" : "") << "\nexact_contact_count = " << windows.size()
-           << "\nexact_contact_held_at_final_time = " << (!windows.empty() && windows.back().open ? "true" : "false")
-           << '\n';
-      std::cout << text.str();
-      return 0;
-    }
     const mrm::Scheme scheme_id = mrm::scheme_by_name(scheme);
     mrm::repro::refuse_untaken(parser, scheme_id,
                                {{"--beta", mrm::SchemeParameter::beta},
@@ -204,17 +180,26 @@ int main(int argc, char** argv) {
     configuration.data = data;
     configuration.length = length;
     configuration.amplitude = amplitude;
-    const mrm::UniformMesh mesh(configuration.bar_length(), elements);
-    const double step_request = parser.given("--dt") ? dt : courant * mesh.h();
-    if (!(step_request <= largest_courant * mesh.h()))
-      throw cli::UsageError("--dt: " + cli::format_real(step_request) + " is more than 1e6 h = " +
-                            cli::format_real(largest_courant * mesh.h()) + " (allowed: 0 < dt <= 1e6 h, h = L/N)");
+    configuration.elements = elements;
+    // The mesh (on a field benchmark with its material and far end; an interface must be a node, and
+    // two-bars has no finite element run: refused here, naming the option) and h/c, the transit time of
+    // one element at the contact end (h on the paper's bar): Δt = C h/c.
+    cli::require_mesh_memory("--elements", static_cast<double>(elements), bytes_per_element);
+    mrm::UniformMesh mesh(1.0, 2);
+    mrm::repro::as_usage_error({{"elements", "--elements"}, {"benchmark", "--benchmark"}},
+                               [&] { mesh = mrm::repro::configuration_mesh(configuration); });
+    configuration.courant = 1.0;
+    const double transit = configuration.step();
+    const double step_request = parser.given("--dt") ? dt : courant * transit;
+    if (!(step_request <= largest_courant * transit))
+      throw cli::UsageError("--dt: " + cli::format_real(step_request) +
+                            " is more than 1e6 h/c = " + cli::format_real(largest_courant * transit) +
+                            " (allowed: 0 < dt <= 1e6 h/c, h = L/N, c the wave speed at the contact end)");
     const mrm::Index steps = cli::checked_steps("--final-time", final_time, step_request, "--dt or --courant");
     // The run ends exactly at T: Δt = T/⌈T/Δt_requested⌉, at most the requested step, constant over the
     // run (a last short step would need a second factorisation and would break the three-level
     // scheme's uniform levels; the changed Δt differs from the requested one by less than Δt/steps).
     const double step = final_time / static_cast<double>(steps);
-    cli::require_mesh_memory("--elements", static_cast<double>(elements), bytes_per_element);
     // The exact solution of data other than the paper's grows with the horizon: checked before anything
     // is built from the data.
     mrm::repro::require_reference_memory(configuration, mrm::repro::reference_horizon(steps, step),
@@ -249,22 +234,26 @@ int main(int argc, char** argv) {
                                 {"contact_row", "--ps-form"},
                                 {"switch_theta", "--switch-theta"},
                                 {"mass", "--mass"},
+                                {"gap", "--scheme"},
                                 {"scheme", "--scheme"}},
                                [&] {
                                  mrm::BarSimulation(mrm::repro::configuration_problem(configuration), mesh,
                                                     configuration.mass, configuration.scheme, step,
                                                     configuration.initial);
                                });
-    const std::shared_ptr<const mrm::ReferenceSolution> reference =
-        mrm::repro::configuration_reference(configuration, mrm::repro::reference_horizon(steps, step));
+    std::shared_ptr<const mrm::ReferenceSolution> reference;
+    mrm::repro::as_usage_error({{"final_time", "--final-time"}, {"configuration", "--final-time"}}, [&] {
+      reference = mrm::repro::configuration_reference(configuration, mrm::repro::reference_horizon(steps, step));
+    });
     const mrm::ReferenceSolution& exact = *reference;
 
     if (series) {
       std::ostream& out = series->stream();
       out << "# bar1d: time series at the contact point x = 0 ("
           << (own_data ? std::string("initial data from a file") : benchmark + " benchmark") << "; exact values: "
-          << (own_data || benchmark != "paper" ? "characteristic solution, mathematics.md sec. 10"
-                                               : "closed form, mathematics.md sec. 2")
+          << (field_benchmark                    ? "the chain's exact solution, lib/impact_solution.hpp"
+              : own_data || benchmark != "paper" ? "characteristic solution, mathematics.md sec. 10"
+                                                 : "closed form, mathematics.md sec. 2")
           << ")\n";
       parser.echo(out);
       out << "# h = " << cli::format_real(mesh.h()) << "\n# steps = " << steps
@@ -334,6 +323,30 @@ int main(int argc, char** argv) {
       const mrm::PeriodPrediction law = mrm::predict_period(mesh, configuration.mass);
       std::cout << "period_law_first_impact_error = " << cli::format_real(law.first_impact_error) << '\n'
                 << "period_law_drift_per_period = " << cli::format_real(law.period_error) << '\n';
+    }
+    // On a field benchmark: the exact contact windows over [0, T] (lib/impact_solution.hpp, computed in the
+    // benchmark's own units) and the run's (the crossings of the contact indicator, phase.hpp), in the
+    // benchmark's time unit.
+    if (field_benchmark) {
+      std::vector<mrm::ContactInterval> windows;
+      mrm::repro::as_usage_error({{"final_time", "--final-time"}, {"configuration", "--final-time"}}, [&] {
+        windows = mrm::repro::configuration_contact_windows(configuration, final_time);
+      });
+      const auto print = [](const char* name, const std::vector<mrm::ContactInterval>& list) {
+        std::cout << name << " =";
+        for (const mrm::ContactInterval& w : list)
+          std::cout << " [" << cli::format_real(w.start) << ", " << cli::format_real(w.end) << "]";
+        std::cout << (list.empty() ? " none" : "") << '\n';
+      };
+      if (!mrm::impact_benchmark(benchmark).time_unit.empty())
+        std::cout << "time_unit = " << mrm::impact_benchmark(benchmark).time_unit << '\n';
+      print("exact_contact_windows", windows);
+      print("measured_contact_windows", measures.contact_windows);
+      std::cout << "exact_contact_held_at_final_time = " << (!windows.empty() && windows.back().open ? "true" : "false")
+                << '\n'
+                << "measured_contact_held_at_final_time = "
+                << (!measures.contact_windows.empty() && measures.contact_windows.back().open ? "true" : "false")
+                << '\n';
     }
     if (!no_timing) std::cout << "wall_seconds = " << cli::format_real(std::round(wall * 1e4) / 1e4) << '\n';
     if (series) series->commit();

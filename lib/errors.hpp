@@ -75,6 +75,8 @@ class ErrorAccumulator {
   const ExactSolution* closed_form_ = nullptr;                  // exact_ when it is the paper's closed form (its runs)
   Tridiagonal mass_, stiffness_;                                // the P1 mass and stiffness of the mesh
   Eigen::VectorXd nodes_, interpolant_, velocity_interpolant_;  // x_i; u_I and (u_t)_I at one level
+  Eigen::VectorXd error_;                                       // e = W − w_I (a mesh that is not Toeplitz)
+  bool general_ = false;  // the mesh's P1 matrices are not Toeplitz: the forms by Tridiagonal::bilinear
   TimeHistory u_l2_, u_h1_, v_l2_, u0_, lambda_;
 };
 

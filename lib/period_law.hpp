@@ -73,4 +73,15 @@ double first_order_period_change(const UniformMesh& mesh, const MassRedistributi
 /// it) and δℓ_c = Σ δm_i sin²(πx_i/L), as an EffectiveLengths of changes (period() is ΔP). Same refusals.
 EffectiveLengths first_order_length_changes(const UniformMesh& mesh, const MassRedistribution& redistribution);
 
+/// The phase of the paper's benchmark measured on a mesh (graded or not): Crank–Nicolson with Δt =
+/// courant·h₀ over `periods` periods, the impacts read off the contact indicator u₀ + (h₀/E₀)λ, their
+/// errors against the exact 1 + 3k, the drift the least-squares slope per period (phase.hpp).
+struct MeasuredPhase {
+  double drift_per_period;    ///< time units per period, early = negative
+  double first_impact_error;  ///< the first impact's error
+};
+/// Runs it; throws std::runtime_error when the run does not have one impact per period.
+MeasuredPhase measure_benchmark_phase(const UniformMesh& mesh, const MassRedistribution& redistribution, double courant,
+                                      double periods);
+
 }  // namespace mrm

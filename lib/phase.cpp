@@ -99,16 +99,25 @@ void ImpactDetector::add(double time, double indicator) {
   const bool contact = indicator <= 0;
   if (!started_) {
     in_contact_ = contact_seen_ = contact;
+    if (contact) windows_.push_back({time, time, true});
   } else if (contact != in_contact_) {
     const double crossing = time_ + (time - time_) * indicator_ / (indicator_ - indicator);
     if (contact) {
-      if (!contact_seen_ || crossing - release_ >= minimum_free_interval_) impacts_.push_back(crossing);
+      if (!contact_seen_ || crossing - release_ >= minimum_free_interval_) {
+        impacts_.push_back(crossing);
+        windows_.push_back({crossing, crossing, true});
+      } else {
+        windows_.back().open = true;  // chatter: the previous window continues
+      }
       contact_seen_ = true;
     } else {
       release_ = crossing;
+      windows_.back().end = crossing;
+      windows_.back().open = false;
     }
     in_contact_ = contact;
   }
+  if (in_contact_) windows_.back().end = time;
   started_ = true;
   time_ = time;
   indicator_ = indicator;
@@ -288,6 +297,24 @@ TEST_CASE("a contact that reopens for a moment is one impact when the free inter
   REQUIRE(chatter_aware.impacts().size() == 2);
   CHECK(std::abs(chatter_aware.impacts()[0] - 1.0) < 1e-12);
   CHECK(std::abs(chatter_aware.impacts()[1] - 4.0) < 1e-12);
+  // The windows: [1, 2] (the chatter inside it continues it) and [4, 4.5]; the strict detector splits
+  // the first at the opening, whose crossings lie within the sampling step of 1.5.
+  REQUIRE(chatter_aware.windows().size() == 2);
+  CHECK(std::abs(chatter_aware.windows()[0].start - 1.0) < 1e-12);
+  CHECK(std::abs(chatter_aware.windows()[0].end - 2.0) < 1e-12);
+  CHECK(std::abs(chatter_aware.windows()[1].end - 4.5) < 1e-12);
+  CHECK_FALSE(chatter_aware.windows()[1].open);
+  REQUIRE(strict.windows().size() == 3);
+  CHECK(std::abs(strict.windows()[0].end - 1.5) < 0.01);
+  CHECK(std::abs(strict.windows()[1].start - 1.5) < 0.01);
+  ImpactDetector held;  // active from the first level, still active at the last: one open window [0, 1]
+  held.add(0.0, -1.0);
+  held.add(1.0, -0.5);
+  REQUIRE(held.windows().size() == 1);
+  CHECK(held.windows()[0].start == 0.0);
+  CHECK(held.windows()[0].end == 1.0);
+  CHECK(held.windows()[0].open);
+  CHECK(held.impacts().empty());
   ImpactDetector d;
   d.add(0.0, 1.0);
   CHECK_THROWS_AS(d.add(0.0, 0.5), std::invalid_argument);

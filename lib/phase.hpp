@@ -33,12 +33,18 @@ class ImpactDetector {
   void add(double time, double indicator);
   /// The impact times found so far, in increasing order.
   const std::vector<double>& impacts() const { return impacts_; }
+  /// The contact windows found so far: [start, end] between the interpolated crossings of the
+  /// indicator, one per impact (a chatter contact extends the window it continues), the first from t₀
+  /// when the contact is active at the first level; the last one `open` (ending at the last level) if
+  /// still active.
+  const std::vector<ContactInterval>& windows() const { return windows_; }
 
  private:
   double minimum_free_interval_;
   bool started_ = false, in_contact_ = false, contact_seen_ = false;
   double time_ = 0, indicator_ = 0, release_ = 0;
   std::vector<double> impacts_;
+  std::vector<ContactInterval> windows_;
 };
 
 /// The phase of a run against the exact solution. The k-th measured impact is compared with the

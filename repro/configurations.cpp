@@ -19,13 +19,40 @@
 
 namespace mrm::repro {
 
+const ImpactBenchmark* configuration_field(const Configuration& c) {
+  if (c.data) return nullptr;
+  if (c.field) return c.field.get();
+  for (const ImpactBenchmark& b : impact_benchmarks())
+    if (b.id == c.benchmark) return &b;
+  return nullptr;
+}
+
 double Configuration::bar_length() const {
   if (data) return data->length();
+  if (const ImpactBenchmark* b = configuration_field(*this)) return b->configuration.length();
   return benchmark == "paper" ? length : 1.0;
+}
+
+namespace {
+// The wave speed √(E/ρ) of a field benchmark's contact segment (1 for any other configuration).
+double contact_wave_speed(const Configuration& c) {
+  const ImpactBenchmark* b = configuration_field(c);
+  if (!b) return 1.0;
+  const BarSegment& s = b->configuration.segments.front();
+  return std::sqrt(s.modulus / s.density);
+}
+}  // namespace
+
+double Configuration::step() const {
+  if (dt > 0) return dt;
+  const ImpactBenchmark* b = configuration_field(*this);
+  if (!b) return courant * UniformMesh(bar_length(), elements).h();
+  return courant * (UniformMesh(bar_length(), elements).h() / contact_wave_speed(*this));
 }
 
 InitialData configuration_data(const Configuration& c) {
   if (c.data) return *c.data;
+  if (const ImpactBenchmark* b = configuration_field(c)) return b->data;
   if (c.benchmark == "paper") return benchmark_initial_data(c.length, c.amplitude);
   if (c.benchmark == "smooth-impact") return smooth_benchmark(SmoothBenchmark::generic_impact).data;
   if (c.benchmark == "grazing") return smooth_benchmark(SmoothBenchmark::grazing).data;
@@ -39,10 +66,8 @@ bool is_impact_benchmark(const std::string& benchmark) {
 }
 
 std::vector<ContactInterval> configuration_contact_windows(const Configuration& c, double final_time) {
-  if (!c.data && is_impact_benchmark(c.benchmark)) {
-    const ImpactBenchmark& b = impact_benchmark(c.benchmark);
-    return exact_contact_windows(b.configuration, b.data, final_time);
-  }
+  if (const ImpactBenchmark* b = configuration_field(c))
+    return exact_contact_windows(b->configuration, b->data, final_time);
   const InitialData data = configuration_data(c);
   ImpactConfiguration bar;
   BarSegment segment;
@@ -73,7 +98,79 @@ TEST_CASE("the exact contact windows of the paper's benchmark are [1 + 3k, 2 + 3
 // harness runs unit_configuration's).
 Problem configuration_problem(const Configuration& c) {
   if (!c.data && c.benchmark == "paper") return benchmark_problem(c.length, c.amplitude);
-  return configuration_data(c).problem();
+  const ImpactBenchmark* b = configuration_field(c);
+  Problem problem = configuration_data(c).problem();
+  if (!b) return problem;
+  configuration_mesh(c);  // refuses what the finite element runs do not take
+  // The chain's load f (a polynomial in each segment's σ = (x − centre)/(ℓ/2)) and the obstacle's gap.
+  const ImpactConfiguration& chain = b->configuration;
+  problem.length = chain.length();
+  problem.gap = chain.obstacle_gap;
+  bool loaded = false;
+  for (const BarSegment& segment : chain.segments)
+    for (const double v : segment.load) loaded = loaded || v != 0.0;
+  if (loaded)
+    problem.load = [segments = chain.segments](double x, double) {
+      double origin = 0;
+      std::size_t j = 0;
+      while (j + 1 < segments.size() && x > origin + segments[j].length) origin += segments[j++].length;
+      const BarSegment& s = segments[j];
+      return s.load.empty() ? 0.0 : poly::evaluate(s.load, (x - origin) / (0.5 * s.length) - 1);
+    };
+  return problem;
+}
+
+// The mesh of a field benchmark. The material is constant on each element (the midpoint's segment), so
+// an interface must be a node: x_j/L = k/N for an integer k, that is N a multiple of the denominator q_j
+// of x_j/L (found as the least q ≤ 10⁴ with q x_j/L within 1e-9 of an integer); the allowed N are the
+// multiples of the least common multiple of the q_j.
+UniformMesh configuration_mesh(const Configuration& c) {
+  UniformMesh mesh(c.bar_length(), c.elements);
+  const ImpactBenchmark* b = configuration_field(c);
+  if (!b) return mesh;
+  const ImpactConfiguration& chain = b->configuration;
+  bool two_bodies = !chain.obstacle;
+  for (const SegmentJunction& j : chain.junctions) two_bodies = two_bodies || j.contact;
+  if (two_bodies)
+    throw InvalidParameter("benchmark", b->id +
+                                            ": the finite element runs take one body against a rigid obstacle; "
+                                            "two bars coupled by one contact multiplier are not implemented "
+                                            "(allowed: bouncing, impacting, gravity-paper, layered, paper, "
+                                            "smooth-impact, grazing)");
+  const double length = chain.length(), n = static_cast<double>(c.elements);
+  long multiple = 1;
+  bool misplaced = false;
+  std::string interface;
+  double x = 0;
+  for (std::size_t j = 0; j + 1 < chain.segments.size(); ++j) {
+    x += chain.segments[j].length;
+    const double fraction = x / length;
+    long q = 1;
+    while (q < 10000 && std::abs(q * fraction - std::round(q * fraction)) > 1e-9 * q) ++q;
+    multiple = std::lcm(multiple, q);
+    const double k = fraction * n;
+    if (std::abs(k - std::round(k)) > 1e-9 * n) misplaced = true, interface = cli::format_real(x);
+  }
+  if (misplaced)
+    throw InvalidParameter("elements", "the interface at x = " + interface + " of benchmark " + b->id +
+                                           " must be a node (allowed: N a multiple of " + std::to_string(multiple) +
+                                           ")");
+  bool homogeneous = true;
+  for (const BarSegment& s : chain.segments) homogeneous = homogeneous && s.modulus == 1.0 && s.density == 1.0;
+  if (!homogeneous) {
+    std::vector<double> young(static_cast<std::size_t>(c.elements)), density(young.size());
+    for (Index e = 0; e < c.elements; ++e) {
+      const double middle = 0.5 * (mesh.x(e) + mesh.x(e + 1));
+      double origin = 0;
+      std::size_t j = 0;
+      while (j + 1 < chain.segments.size() && middle > origin + chain.segments[j].length)
+        origin += chain.segments[j++].length;
+      young[static_cast<std::size_t>(e)] = chain.segments[j].modulus;
+      density[static_cast<std::size_t>(e)] = chain.segments[j].density;
+    }
+    mesh = with_material(mesh, young, density);
+  }
+  return with_far_end(mesh, chain.far_end);
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -134,29 +231,29 @@ class ScaledSolution : public ReferenceSolution {
   const Scaling& scaling() const { return scaling_; }
   double length() const override { return scaling_.length * unit_->length(); }
   double displacement(double x, double t) const override {
-    return scaling_.displacement(unit_->displacement(x / scaling_.length, t / scaling_.length));
+    return scaling_.displacement(unit_->displacement(x / scaling_.length, t / scaling_.time_scale()));
   }
   double strain(double x, double t) const override {
-    return scaling_.velocity(unit_->strain(x / scaling_.length, t / scaling_.length));
+    return scaling_.strain(unit_->strain(x / scaling_.length, t / scaling_.time_scale()));
   }
   double velocity(double x, double t) const override {
-    return scaling_.velocity(unit_->velocity(x / scaling_.length, t / scaling_.length));
+    return scaling_.velocity(unit_->velocity(x / scaling_.length, t / scaling_.time_scale()));
   }
   double contact_displacement(double t) const override {
-    return scaling_.displacement(unit_->contact_displacement(t / scaling_.length));
+    return scaling_.displacement(unit_->contact_displacement(t / scaling_.time_scale()));
   }
   double contact_multiplier(double t) const override {
-    return scaling_.velocity(unit_->contact_multiplier(t / scaling_.length));
+    return scaling_.stress(unit_->contact_multiplier(t / scaling_.time_scale()));
   }
   double energy() const override { return scaling_.energy(unit_->energy()); }
   void displacement_at_points(double t, const double* x, long count, double* u) const override {
     const std::vector<double> xi = unit_points(x, count);
-    unit_->displacement_at_points(t / scaling_.length, xi.data(), count, u);
+    unit_->displacement_at_points(t / scaling_.time_scale(), xi.data(), count, u);
     for (long k = 0; k < count; ++k) u[k] = scaling_.displacement(u[k]);
   }
   void velocity_at_points(double t, const double* x, long count, double* v) const override {
     const std::vector<double> xi = unit_points(x, count);
-    unit_->velocity_at_points(t / scaling_.length, xi.data(), count, v);
+    unit_->velocity_at_points(t / scaling_.time_scale(), xi.data(), count, v);
     for (long k = 0; k < count; ++k) v[k] = scaling_.velocity(v[k]);
   }
 
@@ -170,6 +267,29 @@ class ScaledSolution : public ReferenceSolution {
   Scaling scaling_;
 };
 
+// A field benchmark's chain and data in the unit problem (see Scaling): lengths by L, E and ρ by those of
+// the contact segment, the load by E_c σ/L, the gaps and u⁰ by σL, v⁰ by σc, T by L/c.
+ImpactBenchmark unit_benchmark(const ImpactBenchmark& b, const Scaling& s) {
+  ImpactBenchmark unit = b;
+  const double density = s.modulus / (s.wave_speed * s.wave_speed), u_factor = s.amplitude * s.length;
+  for (BarSegment& segment : unit.configuration.segments) {
+    segment.length /= s.length;
+    segment.modulus /= s.modulus;
+    segment.density /= density;
+    for (double& f : segment.load) f *= s.length / (s.modulus * s.amplitude);
+  }
+  unit.configuration.obstacle_gap /= u_factor;
+  for (SegmentJunction& j : unit.configuration.junctions) j.gap /= u_factor;
+  for (InitialDataPiece& piece : unit.data.pieces) {
+    piece.a /= s.length;
+    piece.b /= s.length;
+    for (double& u : piece.displacement) u /= u_factor;
+    for (double& v : piece.velocity) v /= s.amplitude * s.wave_speed;
+  }
+  unit.final_time /= s.time_scale();
+  return unit;
+}
+
 }  // namespace
 
 Scaling configuration_scaling(const Configuration& c) {
@@ -177,6 +297,25 @@ Scaling configuration_scaling(const Configuration& c) {
   s.length = c.bar_length();
   if (!c.data && c.benchmark == "paper") {
     s.amplitude = amplitude_normaliser(std::abs(c.amplitude));
+    return s;
+  }
+  if (const ImpactBenchmark* b = configuration_field(c)) {
+    // The contact segment's c and E; σ from the largest of |u⁰|/L, |v⁰|/c at the breakpoints, the gaps
+    // over L and the load's strain |f| L/E at the segments' ends.
+    const BarSegment& contact = b->configuration.segments.front();
+    s.wave_speed = std::sqrt(contact.modulus / contact.density);
+    s.modulus = contact.modulus;
+    double amplitude = b->configuration.obstacle_gap / s.length;
+    for (const SegmentJunction& j : b->configuration.junctions) amplitude = std::max(amplitude, j.gap / s.length);
+    for (const InitialDataPiece& piece : b->data.pieces)
+      for (const double x : {piece.a, piece.b})
+        amplitude = std::max(
+            {amplitude, std::abs(b->data.displacement(x)) / s.length, std::abs(b->data.velocity(x)) / s.wave_speed});
+    for (const BarSegment& segment : b->configuration.segments)
+      if (!segment.load.empty())
+        for (const double sigma : {-1.0, 1.0})
+          amplitude = std::max(amplitude, std::abs(poly::evaluate(segment.load, sigma)) * s.length / s.modulus);
+    s.amplitude = amplitude_normaliser(amplitude);
     return s;
   }
   const InitialData data = configuration_data(c);
@@ -193,12 +332,14 @@ Configuration unit_configuration(const Configuration& c, const Scaling& s) {
   unit.length = 1.0;
   if (!c.data && c.benchmark == "paper") {
     unit.amplitude = c.amplitude / s.amplitude;
+  } else if (const ImpactBenchmark* b = configuration_field(c)) {
+    unit.field = std::make_shared<const ImpactBenchmark>(unit_benchmark(*b, s));
   } else if (!s.identity()) {
     unit.data = std::make_shared<const InitialData>(unit_data(configuration_data(c), s));
   }
-  if (c.dt > 0) unit.dt = c.dt / s.length;
-  unit.final_time = c.final_time / s.length;
-  for (double& t : unit.horizons) t /= s.length;
+  if (c.dt > 0) unit.dt = c.dt / s.time_scale();
+  unit.final_time = c.final_time / s.time_scale();
+  for (double& t : unit.horizons) t /= s.time_scale();
   return unit;
 }
 
@@ -209,6 +350,8 @@ namespace {
 // otherwise the characteristic solution is evaluated directly.
 std::shared_ptr<const ReferenceSolution> unit_reference(const Configuration& c, double horizon) {
   if (!c.data && c.benchmark == "paper") return std::make_shared<const ExactSolution>(c.length, c.amplitude);
+  if (const ImpactBenchmark* b = configuration_field(c))
+    return std::make_shared<const ImpactReference>(b->configuration, b->data, horizon);
   CharacteristicSolution solution(configuration_data(c), horizon);
   const double h = UniformMesh(c.bar_length(), c.elements).h(), dt = c.step();
   const double small = std::min(h, dt), ratio = std::max(h, dt) / small;
@@ -226,14 +369,18 @@ std::shared_ptr<const ReferenceSolution> to_unit(std::shared_ptr<const Reference
     return std::make_shared<const ExactSolution>(closed_form->length() / s.length,
                                                  closed_form->amplitude() / s.amplitude);
   if (const auto* scaled = dynamic_cast<const ScaledSolution*>(reference.get()))
-    if (scaled->scaling().length == s.length && scaled->scaling().amplitude == s.amplitude) return scaled->unit();
-  return std::make_shared<const ScaledSolution>(std::move(reference), Scaling{1 / s.length, 1 / s.amplitude});
+    if (scaled->scaling().length == s.length && scaled->scaling().amplitude == s.amplitude &&
+        scaled->scaling().wave_speed == s.wave_speed && scaled->scaling().modulus == s.modulus)
+      return scaled->unit();
+  return std::make_shared<const ScaledSolution>(
+      std::move(reference), Scaling{1 / s.length, 1 / s.amplitude, 1 / s.wave_speed, 1 / s.modulus});
 }
 
 }  // namespace
 
 void require_reference_memory(const Configuration& c, double horizon, std::string_view option) {
-  if (!c.data && c.benchmark == "paper") return;
+  // The paper's closed form needs none; a field benchmark's solver bounds its own pieces (ImpactSolution).
+  if (!c.data && (c.benchmark == "paper" || configuration_field(c))) return;
   double coefficients = 0;
   for (const InitialDataPiece& piece : configuration_data(c).pieces)
     coefficients += static_cast<double>(piece.displacement.size() + piece.velocity.size());
@@ -246,7 +393,7 @@ void require_reference_memory(const Configuration& c, double horizon, std::strin
 std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& c, double horizon) {
   if (!c.data && c.benchmark == "paper") return std::make_shared<const ExactSolution>(c.length, c.amplitude);
   const Scaling s = configuration_scaling(c);
-  std::shared_ptr<const ReferenceSolution> unit = unit_reference(unit_configuration(c, s), horizon / s.length);
+  std::shared_ptr<const ReferenceSolution> unit = unit_reference(unit_configuration(c, s), horizon / s.time_scale());
   if (s.identity()) return unit;
   return std::make_shared<const ScaledSolution>(std::move(unit), s);
 }
@@ -389,15 +536,20 @@ std::optional<PhaseMeasures> phase_against(const std::vector<double>& impacts, c
     return benchmark_phase(impacts, *closed_form);
   const CharacteristicSolution* characteristic = dynamic_cast<const CharacteristicSolution*>(&exact);
   if (const auto* tabulated = dynamic_cast<const TabulatedSolution*>(&exact)) characteristic = &tabulated->solution();
-  if (!characteristic) return std::nullopt;
-  const std::vector<double> exact_impacts = impact_times(characteristic->contact_intervals(), minimum_free_interval);
+  const auto* chain = dynamic_cast<const ImpactReference*>(&exact);
+  if (!characteristic && !chain) return std::nullopt;
+  const std::vector<ContactInterval>& contacts =
+      characteristic ? characteristic->contact_intervals() : chain->contact_windows();
+  const std::vector<double> exact_impacts = impact_times(contacts, minimum_free_interval);
   // The free flight before a lone exact impact starts at the release from a contact held from t = 0.
   double free_flight_start = 0;
-  for (const ContactInterval& contact : characteristic->contact_intervals())
+  for (const ContactInterval& contact : contacts)
     if (!exact_impacts.empty() && contact.end <= exact_impacts.front()) free_flight_start = contact.end;
   const auto [measured, exact_paired] = nearest_impact_pairs(impacts, exact_impacts, free_flight_start);
   if (exact_paired.empty() || exact_paired.front() != exact_impacts.front()) return std::nullopt;
-  const double unit = exact_impacts.size() >= 2 ? mean_impact_interval(exact_impacts) : characteristic->horizon();
+  const double unit = exact_impacts.size() >= 2 ? mean_impact_interval(exact_impacts)
+                      : characteristic          ? characteristic->horizon()
+                                                : chain->solution().horizon();
   return phase_measures(measured, exact_paired, unit);
 }
 }  // namespace
@@ -413,17 +565,19 @@ Measures run_configuration(const Configuration& configuration, const std::functi
                            const ReferenceSolution* reference) {
   const Scaling scaling = configuration_scaling(configuration);
   const Configuration c = unit_configuration(configuration, scaling);
-  const UniformMesh mesh(c.bar_length(), c.elements);
+  const UniformMesh mesh = configuration_mesh(c);
   const double dt = c.step();
   for (std::size_t k = 0; k < c.horizons.size(); ++k)
     if (!(c.horizons[k] > 0 && c.horizons[k] <= c.final_time && (k == 0 || c.horizons[k] > c.horizons[k - 1])))
       throw std::invalid_argument("run_configuration: the horizons must increase within (0, T]");
-  BarSimulation simulation(configuration_problem(c), mesh, c.mass, c.scheme, dt, c.initial);
+  const Problem problem = configuration_problem(c);
+  BarSimulation simulation(problem, mesh, c.mass, c.scheme, dt, c.initial);
   ImpactDetector impacts(mesh.length);
   std::vector<Index> horizon_levels;
   for (double t : c.horizons) horizon_levels.push_back(steps_to_reach(t, dt));
   std::size_t next_horizon = 0;
-  const double h = mesh.h();
+  // The contact indicator's compliance h₀/E₀ (h on the paper's mesh, the same double) and the gap.
+  const double compliance = mesh.contact_compliance(), gap = problem.gap;
   Measures m;
   m.steps = c.steps >= 0 ? c.steps : steps_to_reach(c.final_time, dt);
   // A given reference is the caller's, at the configuration's scale (not owned: an aliasing pointer
@@ -440,7 +594,6 @@ Measures run_configuration(const Configuration& configuration, const std::functi
   double u0_previous = 0;
   // TV(λ_h) and TV(λ_exact) summed over the successive multiplier samples; the penetration against the
   // problem's gap (unit scale).
-  const double gap = configuration_problem(c).gap;
   double tv = 0, tv_exact = 0, lambda_previous = 0, exact_previous = 0, penetration = 0;
   bool first_multiplier = true;
   run(simulation, m.steps, [&](const Sample& s) {
@@ -461,7 +614,7 @@ Measures run_configuration(const Configuration& configuration, const std::functi
       errors.add(s);
     }
     u0_previous = (*s.displacement)[0];
-    impacts.add(s.time, contact_indicator(s, h));
+    impacts.add(s.time, contact_indicator(s, compliance) + gap);
     while (next_horizon < horizon_levels.size() && s.level == horizon_levels[next_horizon]) {
       m.horizon_errors.push_back(errors.relative());
       ++next_horizon;
@@ -482,7 +635,7 @@ Measures run_configuration(const Configuration& configuration, const std::functi
     scaled.velocity_time = scaling.time(s.velocity_time);
     scaled.velocity = &scaled_velocity;
     scaled.multiplier_time = scaling.time(s.multiplier_time);
-    scaled.multiplier = scaling.velocity(s.multiplier);
+    scaled.multiplier = scaling.stress(s.multiplier);
     scaled.energy_time = scaling.time(s.energy_time);
     scaled.energy = scaling.energy(s.energy);
     observe(scaled);
@@ -503,6 +656,11 @@ Measures run_configuration(const Configuration& configuration, const std::functi
     }
   }
   for (const double t : impacts.impacts()) m.impacts.push_back(scaling.time(t));
+  for (ContactInterval w : impacts.windows()) {
+    w.start = scaling.time(w.start);
+    w.end = scaling.time(w.end);
+    m.contact_windows.push_back(w);
+  }
   return m;
 }
 
@@ -657,6 +815,67 @@ TEST_CASE("every benchmark runs with its reference, and the smooth ones converge
     CAPTURE(std::string(ErrorAccumulator::names[k]));
     CHECK(std::abs(a[k] - b[k]) <= 1e-9 * a[k]);
   }
+}
+
+TEST_CASE("the field's benchmarks run through the harness in their own units against the chain's exact solution") {
+  // The prediction (repro/configurations.hpp, Scaling): impacting (SI units) is run at the unit scale with
+  // c and E of its bar, so the unit chain has Ê = ρ̂ = 1 and length 1, and the measures come back in
+  // seconds and J/m². Mod 3 keeps the total mass (its level-0 energy is ½ρLv² = 8e6 J/m² to round-off);
+  // the bar flies freely across the gap, so the contact starts at g₀/v within one step and lasts 2L/c
+  // within 4h/c (lib/problem_extensions.cpp, derivation 4). Every benchmark the runs take gives eight
+  // finite positive errors, or 0 for u(0,·) where the exact u(0,·) ≡ 0 (gravity-paper, held: the
+  // absolute error, as ErrorNorms says, and the run's u₀ is exactly 0 too), and the error of u in
+  // L²(0,T; L²) decreases from N = 20 to 40.
+  Configuration c = paper_configuration(Scheme::crank_nicolson, "algebraic", "mod3", 40, 0.5, 1.0);
+  c.benchmark = "impacting";
+  c.final_time = impact_benchmark("impacting").final_time;
+  const Scaling s = configuration_scaling(c);
+  const BarSegment& bar = impact_benchmark("impacting").configuration.segments.front();
+  const double wave_speed = std::sqrt(bar.modulus / bar.density);
+  CHECK(s.wave_speed == wave_speed);
+  CHECK(s.modulus == bar.modulus);
+  const Configuration unit = unit_configuration(c, s);
+  REQUIRE(unit.field);
+  CHECK(unit.field->configuration.segments.front().modulus == 1.0);
+  CHECK(std::abs(unit.field->configuration.segments.front().density - 1.0) <= 1e-15);
+  CHECK(unit.bar_length() == 1.0);
+  const Measures m = run_configuration(c);
+  CHECK(std::abs(m.energy_initial - 0.5 * 8000 * 0.2 * 100 * 100) <= 1e-12 * 8e6);
+  REQUIRE(m.contact_windows.size() == 1);
+  const double h_over_c = 0.2 / 40 / wave_speed, t1 = 2e-3 / 100;
+  CHECK(std::abs(m.contact_windows[0].start - t1) <= 0.5 * h_over_c);
+  CHECK(std::abs(m.contact_windows[0].end - m.contact_windows[0].start - 2 * 0.2 / wave_speed) <= 4 * h_over_c);
+  CHECK(m.max_penetration <= 1e-12 * 2e-3);
+  for (const std::string benchmark : {"bouncing", "impacting", "gravity-paper", "layered"}) {
+    double previous = HUGE_VAL;
+    for (const Index elements : {20, 40}) {
+      Configuration b = paper_configuration(Scheme::crank_nicolson, "algebraic", "mod1", elements, 0.5, 1.0);
+      b.benchmark = benchmark;
+      b.final_time = impact_benchmark(benchmark).final_time;
+      const auto errors = ErrorAccumulator::values(run_configuration(b).errors);
+      CAPTURE(benchmark);
+      CAPTURE(elements);
+      for (std::size_t k = 0; k < errors.size(); ++k) {
+        CAPTURE(std::string(ErrorAccumulator::names[k]));
+        if (benchmark == "gravity-paper" && k == 0)
+          CHECK(errors[k] == 0.0);
+        else
+          CHECK((std::isfinite(errors[k]) && errors[k] > 0));
+      }
+      CHECK(errors[5] < previous);  // err_u_L2L2 decreases from N = 20 to 40
+      previous = errors[5];
+    }
+  }
+  c.benchmark = "two-bars";
+  CHECK_THROWS_WITH_AS(run_configuration(c), doctest::Contains("benchmark: two-bars"), InvalidParameter);
+  c.benchmark = "layered";
+  c.elements = 42;
+  CHECK_THROWS_WITH_AS(configuration_mesh(c), doctest::Contains("N a multiple of 5"), InvalidParameter);
+  c.elements = 45;
+  const UniformMesh layered = configuration_mesh(c);
+  CHECK(layered.young(17) == 4.0);  // the interface at x = 1 of L = 2.5 is node 18
+  CHECK(layered.young(18) == 1.0);
+  CHECK(layered.far_end == FarEnd::free);
 }
 
 TEST_CASE("a configuration run for a given number of steps is measured against the reference given") {

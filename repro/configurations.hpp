@@ -21,6 +21,7 @@
 
 #include "characteristics.hpp"
 #include "errors.hpp"
+#include "impact_solution.hpp"
 #include "mass_redistribution.hpp"
 #include "phase.hpp"
 #include "reference_solution.hpp"
@@ -79,17 +80,25 @@ struct Configuration {
   /// from the same run: a prefix of the run is the run to T_k.
   std::vector<double> horizons;
   /// One of benchmark_names(); `length` and `amplitude` apply to "paper" only (the smooth benchmarks have
-  /// L = 1). Ignored when `data` is set.
+  /// L = 1). Ignored when `data` is set. A field benchmark (is_impact_benchmark: bouncing, impacting,
+  /// gravity-paper, layered) runs its chain of lib/impact_solution.hpp: its load, gap, material and far
+  /// end, in its own units, with the exact ImpactSolution as the reference.
   std::string benchmark = "paper";
+  /// The field benchmark's chain and data when they are not the registry's: set by unit_configuration
+  /// to the dimensionless ones (empty: the registry's entry named `benchmark`).
+  std::shared_ptr<const ImpactBenchmark> field;
   /// Initial data of one's own (bar1d --initial-data), L = their last x; the reference is then the
   /// characteristic solution.
   std::shared_ptr<const InitialData> data;
   /// The contact node's velocity in the velocity measures (the library's by default).
   ContactVelocity contact_velocity = ContactVelocity::algebraic;
 
-  /// The length of the bar: L of the data, of the smooth benchmarks (1), or `length`.
+  /// The length of the bar: L of the data, of a field benchmark's chain, of the smooth benchmarks (1), or
+  /// `length`.
   double bar_length() const;
-  double step() const { return dt > 0 ? dt : courant * UniformMesh(bar_length(), elements).h(); }
+  /// Δt: dt if given, otherwise C h/c with c the wave speed at the contact end (1 but on a field
+  /// benchmark: C is the Courant number of the contact element).
+  double step() const;
 };
 
 /// The scaling law of the problem (configurations.cpp, mathematics.md §1): with x = Lξ, t = Lτ and
@@ -97,14 +106,26 @@ struct Configuration {
 /// u_t = σ û_τ, λ = u_x(0, ·) = σ λ̂, E = σ²L Ê. The library runs the unit problem; the harness maps a
 /// configuration to it and its outputs back. σ is a power of two (configuration_scaling), so that the
 /// mapping is exact in floating point whenever L is one too.
+///
+/// A field benchmark (lib/impact_solution.hpp) has its own units: a wave speed c and a modulus E at the
+/// contact end (E = ρc²). With t = (L/c)τ, u = σL û, E = E_c Ê, ρ = ρ_c ρ̂ the equation
+/// ρu_tt − (E u_x)_x = f becomes (E_c σ/L)(ρ̂û_ττ − (Êû_ξ)_ξ) = f, so the unit problem has the load
+/// f̂ = f L/(E_c σ), the gaps ĝ = g/(σL), the material Ê, ρ̂ (1 at the contact end), and u_t = σc û_τ,
+/// u_x = σ û_ξ, the stress E u_x = E_c σ σ̂ (λ), the energy E_c σ²L Ê. c = E_c = 1 is the law above.
 struct Scaling {
-  double length = 1.0;                                                            ///< L
-  double amplitude = 1.0;                                                         ///< σ, a power of two
-  double time(double unit) const { return length * unit; }                        ///< t = Lτ
+  double length = 1.0;                                            ///< L
+  double amplitude = 1.0;                                         ///< σ, a power of two
+  double wave_speed = 1.0;                                        ///< c, the wave speed at the contact end
+  double modulus = 1.0;                                           ///< E_c, the modulus at the contact end
+  double time_scale() const { return length / wave_speed; }       ///< L/c
+  double time(double unit) const { return time_scale() * unit; }  ///< t = (L/c)τ
   double displacement(double unit) const { return (amplitude * length) * unit; }  ///< u = σL û
-  double velocity(double unit) const { return amplitude * unit; }                 ///< u_t = σ û_τ, also λ, u_x
-  double energy(double unit) const { return (amplitude * amplitude * length) * unit; }  ///< E = σ²L Ê
-  bool identity() const { return length == 1.0 && amplitude == 1.0; }                   ///< nothing to scale
+  double velocity(double unit) const { return (amplitude * wave_speed) * unit; }  ///< u_t = σc û_τ
+  double strain(double unit) const { return amplitude * unit; }                   ///< u_x = σ û_ξ
+  double stress(double unit) const { return (modulus * amplitude) * unit; }       ///< E u_x = E_c σ σ̂, also λ
+  double energy(double unit) const { return modulus * ((amplitude * amplitude * length) * unit); }  ///< E_c σ²L Ê
+  /// Nothing to scale.
+  bool identity() const { return length == 1.0 && amplitude == 1.0 && wave_speed == 1.0 && modulus == 1.0; }
 };
 /// The scaling of a configuration: L its bar's length, σ = 2^e for the amplitude a = m 2^e, m ∈ [½, 1),
 /// of its data (the paper's a; for other data the largest of |u⁰|/L and |v⁰| at the breakpoints;
@@ -115,9 +136,19 @@ Scaling configuration_scaling(const Configuration& configuration);
 /// divided by L.
 Configuration unit_configuration(const Configuration& configuration, const Scaling& scaling);
 
-/// The problem (f = 0) of a configuration's initial data. Throws std::invalid_argument for an unknown
-/// benchmark name.
+/// The problem of a configuration: its initial data, f = 0 (a field benchmark: its load and gap). Throws
+/// std::invalid_argument for an unknown benchmark name, InvalidParameter ("benchmark") for two-bars.
 Problem configuration_problem(const Configuration& configuration);
+
+/// The field benchmark of a configuration (its `field`, or the registry's entry named `benchmark`), or
+/// null for the paper's, the smooth ones and data of one's own.
+const ImpactBenchmark* configuration_field(const Configuration& configuration);
+
+/// The mesh of a configuration: N uniform elements on (0, L), and on a field benchmark its material per
+/// element and its far end. Throws InvalidParameter ("elements") when an interface between two
+/// materials is not a node (the allowed N named), InvalidParameter ("benchmark") for a benchmark the
+/// finite element runs do not take (two-bars: two bodies).
+UniformMesh configuration_mesh(const Configuration& configuration);
 
 /// The initial data of a configuration as piecewise polynomials (the paper's, a smooth benchmark's or
 /// the file's).
@@ -166,6 +197,9 @@ struct Measures {
   Index steps = 0;
   std::vector<double> impacts;
   std::optional<PhaseMeasures> phase;  ///< absent when the run or the exact solution has no impact
+  /// The contact windows of the run (ImpactDetector::windows, same chatter rule as the impacts), in the
+  /// configuration's time unit.
+  std::vector<ContactInterval> contact_windows;
   /// The oscillation of the contact stress: TV(λ_h)/TV(λ_exact), the total variations of the scheme's
   /// multiplier and of the exact λ over the same instants (the samples' multiplier_time), levels 0..n.
   /// Absent when the exact λ does not vary over the run (no contact: the ratio is undefined).

@@ -1,0 +1,53 @@
+# Convergence on the field's benchmarks (bouncing, impacting, gravity-paper, layered; Crank–Nicolson,
+# dt = h/(2c)): four relative errors against h, one panel per benchmark and measure, one curve per mass
+# (Mod 1 red, Mod 2 blue, Mod 3 green); the grey lines are reference slopes h^{1/2} and h^1. Blocks
+# 0..11 of the data file ("benchmark = b, mass = m"); the axes are set by the data.
+# Usage: gnuplot -e "data='output/data/fig_benchmark_convergence.dat'; output='output/figures/fig_benchmark_convergence.pdf'" figures/fig_benchmark_convergence.gp
+if (!exists("data")) data = 'output/data/fig_benchmark_convergence.dat'
+if (!exists("output")) output = 'output/figures/fig_benchmark_convergence.pdf'
+dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
+load dir.'style.gp'
+
+set terminal pdfcairo size 16cm,21cm font font(9) linewidth 1.5 enhanced
+set output output
+
+benchmarks = "bouncing impacting gravity-paper layered"
+masses = "mod1 mod2 mod3"
+measures = "err_u_L2L2 err_lambda_L2 err_u_L2H1 err_v_L2L2"
+block_of(b, m) = system(sprintf("awk '/^# block [0-9]+: benchmark = %s, mass = %s,/{sub(/:/, \"\", $3); print $3; exit}' '%s'", \
+  b, m, data)) + 0
+column_of(id) = system(sprintf("awk '/^# columns: N h dt/{for (i = 3; i <= NF; ++i) if ($i == \"%s\") {print i - 2; exit}}' '%s'", id, data)) + 0
+mass_index(id) = id eq "mod1" ? 1 : id eq "mod2" ? 2 : 3
+
+set logscale x 2
+set logscale y 10
+set format x "2^{%L}"
+set format y "10^{%L}"
+set autoscale xfix
+set offsets graph 0.05, graph 0.05, 0, 0
+set multiplot layout 4,4 title "Convergence on the field's benchmarks (Crank–Nicolson, ".Delta_t." = ".italic("h")."/2".italic("c").")" \
+  font font(11) margins 0.08,0.98,0.05,0.9 spacing 0.06,0.05
+do for [i=1:4] {
+  b = word(benchmarks, i)
+  do for [k=1:4] {
+    id = word(measures, k)
+    c = column_of(id)
+    set title b.": ".measure_short(id)
+    anchor = block_of(b, "mod1")
+    stats data index anchor using 2 nooutput
+    h0 = STATS_max
+    stats data index anchor every ::0::0 using (column(c)) nooutput
+    e0 = STATS_max / 2.0
+    if (i == 4) { set xlabel italic("h") } else { unset xlabel }
+    if (i == 1 && k == 1) {
+      set key at screen 0.5,0.945 center top horizontal samplen 3 width 1
+    } else {
+      unset key
+    }
+    plot for [m in masses] data index block_of(b, m) using 2:(column(c) > 0 ? column(c) : 1/0) \
+           with linespoints lc rgb mass_colour(mass_index(m)) lw 1.2 pt 7 ps 0.5 title mass_name(m), \
+         e0*(x/h0)**0.5 with lines lc rgb "#777777" dt 3 lw 1 title "slope 1/2", \
+         e0*(x/h0) with lines lc rgb "#777777" dt 4 lw 1 title "slope 1"
+  }
+}
+unset multiplot
