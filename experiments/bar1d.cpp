@@ -48,8 +48,10 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "options.hpp"
+#include "peers.hpp"
 #include "output_file.hpp"
 #include "configurations.hpp"
 #include "figure_program.hpp"
@@ -59,6 +61,7 @@
 #include "exact_solution.hpp"
 #include "impact_solution.hpp"
 #include "period_law.hpp"
+#include "contact_classes.hpp"
 #include "schemes.hpp"
 
 namespace cli = mrm::cli;
@@ -69,6 +72,12 @@ int main(int argc, char** argv) {
     long elements = 100;
     double courant = 0.5, dt = 0.0, final_time = 6.0, length = 1.0, amplitude = 0.5, beta = 0.25, restitution = 0.0,
            switch_theta = 1.0;
+    // The contact classes' parameters (lib/contact_classes.cpp), their defaults the library's.
+    const mrm::SchemeParameters class_defaults;
+    double newmark_beta = class_defaults.newmark_beta, newmark_gamma = class_defaults.newmark_gamma,
+           penalty = class_defaults.penalty, nitsche_theta = class_defaults.nitsche_theta,
+           nitsche_gamma = class_defaults.nitsche_gamma, moreau_theta = class_defaults.moreau_theta;
+    std::string peer = "none";
     std::string scheme = mrm::to_string(mrm::Scheme::crank_nicolson), mass = "mod3", ps_form = "algebraic",
                 initial = "consistent", contact_velocity = "algebraic", output;
     std::string benchmark = "paper", initial_data;
@@ -125,8 +134,46 @@ int main(int argc, char** argv) {
                     "Paoli-Schatzman's beta, in [0, 1e6]; at least 1/4 with --ps-form literal and a massless "
                     "contact node",
                     &beta, cli::in_closed_range(0, 1e6));
-    parser.add_real("--restitution", "-e", "E", "Paoli-Schatzman's restitution coefficient e in [0, 1]", &restitution,
-                    cli::in_closed_range(0, 1));
+    parser.add_real("--restitution", "-e", "E",
+                    "restitution coefficient e in [0, 1] of the schemes with an impact law (ps: the constraint on "
+                    "(u0^{n+1} + e u0^{n-1})/(1 + e); moreau-jean: v+ = -e v-)",
+                    &restitution, cli::in_closed_range(0, 1));
+    parser.add_real("--newmark-beta", "", "B",
+                    "Newmark's beta of newmark, penalty, nitsche, in [0, 1e6] (0: explicit, the step solves with "
+                    "the mass; 1/4 with gamma 1/2 is Crank-Nicolson)",
+                    &newmark_beta, cli::in_closed_range(0, 1e6));
+    parser.add_real("--newmark-gamma", "", "G",
+                    "Newmark's gamma of newmark, penalty, nitsche, in [0.5, 1e6] (below 1/2 Newmark amplifies)",
+                    &newmark_gamma, cli::in_closed_range(0.5, 1e6));
+    parser.add_real("--penalty", "", "G0",
+                    "penalty: the parameter gamma0 of the contact force (gamma0/h) min(0, u0), in (0, 1e12]", &penalty,
+                    [](std::string_view option, double value) {
+                      cli::require_positive(option, value);
+                      cli::require_in_closed_range(option, value, 0, 1e12);
+                    });
+    parser.add_real("--nitsche-theta", "", "TH",
+                    "nitsche: the symmetry parameter theta in [-1, 1] (1 symmetric, 0 skew-free, -1 "
+                    "skew-symmetric), below --nitsche-gamma",
+                    &nitsche_theta, cli::in_closed_range(-1, 1));
+    parser.add_real("--nitsche-gamma", "", "G0", "nitsche: the parameter gamma0 (gamma = gamma0/h), in (0, 1e12]",
+                    &nitsche_gamma, [](std::string_view option, double value) {
+                      cli::require_positive(option, value);
+                      cli::require_in_closed_range(option, value, 0, 1e12);
+                    });
+    parser.add_real("--moreau-theta", "", "TH",
+                    "moreau-jean: theta of the theta-method, in [0.5, 1] (below 1/2 the method amplifies)",
+                    &moreau_theta, cli::in_closed_range(0.5, 1));
+    parser.add_choice(
+        "--peer", "", "P",
+        "set every parameter to a peer's defaults (the options given override them): GetFEM's "
+        "demo_dynamic_contact_1D.py, version K, standard mass, NX 20, dt 0.002, T 12, Newmark "
+        "(0, 1/2) (repro/peers.cpp); none: no preset",
+        [] {
+          std::vector<std::string> names{"none"};
+          for (const std::string& name : mrm::repro::peer_names()) names.push_back(name);
+          return names;
+        }(),
+        &peer);
     parser.add_choice("--ps-form", "", "F",
                       "Paoli-Schatzman's contact row: algebraic at every level, or the literal three-level formula "
                       "(the consistent mass needs literal, which is then the default)",
@@ -161,7 +208,8 @@ int main(int argc, char** argv) {
     if (field_benchmark) {  // the exact solution's contact windows (lib/impact_solution.hpp), nothing else
       for (const char* option :
            {"--elements", "--courant", "--dt", "--scheme", "--mass", "--beta", "--restitution", "--ps-form",
-            "--switch-theta", "--initial-contact-node", "--contact-velocity", "--output"})
+            "--switch-theta", "--initial-contact-node", "--contact-velocity", "--output", "--newmark-beta",
+            "--newmark-gamma", "--penalty", "--nitsche-theta", "--nitsche-gamma", "--moreau-theta", "--peer"})
         if (parser.given(option))
           throw cli::UsageError(std::string(option) + ": --benchmark " + benchmark +
                                 " has no finite element run yet: it needs " +
@@ -185,12 +233,50 @@ int main(int argc, char** argv) {
       std::cout << text.str();
       return 0;
     }
+    // A peer's defaults (repro/peers.cpp): every parameter the command line does not give.
+    const bool use_peer = peer != "none";
+    bool step_given = parser.given("--dt");
+    if (use_peer) {
+      const mrm::repro::PeerPreset& preset = mrm::repro::peer_preset(peer);
+      const auto set = [&](const char* option, auto& variable, const auto& value) {
+        if (!parser.given(option)) variable = value;
+      };
+      set("--elements", elements, preset.elements);
+      if (!parser.given("--dt") && !parser.given("--courant")) {
+        dt = preset.dt;
+        step_given = true;
+      }
+      set("--final-time", final_time, preset.final_time);
+      set("--scheme", scheme, mrm::to_string(preset.scheme.scheme));
+      set("--mass", mass, preset.mass);
+      set("--initial-contact-node", initial, preset.initial);
+      set("--contact-velocity", contact_velocity, preset.contact_velocity);
+      const mrm::Scheme s = mrm::scheme_by_name(scheme);
+      const auto set_taken = [&](const char* option, mrm::SchemeParameter parameter, double& variable, double value) {
+        if (mrm::takes(s, parameter)) set(option, variable, value);
+      };
+      set_taken("--beta", mrm::SchemeParameter::beta, beta, preset.scheme.beta);
+      set_taken("--restitution", mrm::SchemeParameter::restitution, restitution, preset.scheme.restitution);
+      if (mrm::takes(s, mrm::SchemeParameter::contact_row) && !parser.given("--ps-form"))
+        ps_form = mrm::to_string(preset.scheme.contact_row);
+      set_taken("--newmark-beta", mrm::SchemeParameter::newmark_beta, newmark_beta, preset.scheme.newmark_beta);
+      set_taken("--newmark-gamma", mrm::SchemeParameter::newmark_gamma, newmark_gamma, preset.scheme.newmark_gamma);
+      set_taken("--penalty", mrm::SchemeParameter::penalty, penalty, preset.scheme.penalty);
+      set_taken("--nitsche-theta", mrm::SchemeParameter::nitsche_theta, nitsche_theta, preset.scheme.nitsche_theta);
+      set_taken("--nitsche-gamma", mrm::SchemeParameter::nitsche_gamma, nitsche_gamma, preset.scheme.nitsche_gamma);
+    }
     const mrm::Scheme scheme_id = mrm::scheme_by_name(scheme);
     mrm::repro::refuse_untaken(parser, scheme_id,
                                {{"--beta", mrm::SchemeParameter::beta},
                                 {"--restitution", mrm::SchemeParameter::restitution},
                                 {"--ps-form", mrm::SchemeParameter::contact_row},
-                                {"--switch-theta", mrm::SchemeParameter::switch_theta}});
+                                {"--switch-theta", mrm::SchemeParameter::switch_theta},
+                                {"--newmark-beta", mrm::SchemeParameter::newmark_beta},
+                                {"--newmark-gamma", mrm::SchemeParameter::newmark_gamma},
+                                {"--penalty", mrm::SchemeParameter::penalty},
+                                {"--nitsche-theta", mrm::SchemeParameter::nitsche_theta},
+                                {"--nitsche-gamma", mrm::SchemeParameter::nitsche_gamma},
+                                {"--moreau-theta", mrm::SchemeParameter::moreau_theta}});
 
     // 2. The output, opened now so that an unwritable path fails before the run.
     std::unique_ptr<cli::AtomicFile> series;
@@ -203,7 +289,7 @@ int main(int argc, char** argv) {
     configuration.length = length;
     configuration.amplitude = amplitude;
     const mrm::UniformMesh mesh(configuration.bar_length(), elements);
-    const double step_request = parser.given("--dt") ? dt : courant * mesh.h();
+    const double step_request = step_given ? dt : courant * mesh.h();
     if (!(step_request <= largest_courant * mesh.h()))
       throw cli::UsageError("--dt: " + cli::format_real(step_request) + " is more than 1e6 h = " +
                             cli::format_real(largest_courant * mesh.h()) + " (allowed: 0 < dt <= 1e6 h, h = L/N)");
@@ -233,6 +319,14 @@ int main(int argc, char** argv) {
     if (mrm::takes(configuration.scheme.scheme, mrm::SchemeParameter::contact_row))
       configuration.scheme.contact_row = mrm::contact_row_by_name(ps_form);
     configuration.scheme.switch_theta = switch_theta;
+    if (mrm::is_contact_class(scheme_id)) {
+      configuration.scheme.newmark_beta = newmark_beta;
+      configuration.scheme.newmark_gamma = newmark_gamma;
+      configuration.scheme.penalty = penalty;
+      configuration.scheme.nitsche_theta = nitsche_theta;
+      configuration.scheme.nitsche_gamma = nitsche_gamma;
+      configuration.scheme.moreau_theta = moreau_theta;
+    }
     configuration.elements = elements;
     configuration.dt = step;
     configuration.final_time = final_time;
@@ -246,6 +340,12 @@ int main(int argc, char** argv) {
                                 {"restitution", "--restitution"},
                                 {"contact_row", "--ps-form"},
                                 {"switch_theta", "--switch-theta"},
+                                {"newmark_beta", "--newmark-beta"},
+                                {"newmark_gamma", "--newmark-gamma"},
+                                {"penalty", "--penalty"},
+                                {"nitsche_theta", "--nitsche-theta"},
+                                {"nitsche_gamma", "--nitsche-gamma"},
+                                {"moreau_theta", "--moreau-theta"},
                                 {"mass", "--mass"},
                                 {"scheme", "--scheme"}},
                                [&] {
