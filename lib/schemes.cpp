@@ -531,6 +531,20 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   const bool contact_class = is_contact_class(parameters.scheme);
   validate_contact_class(parameters, massless_, static_cast<bool>(problem.load), problem.gap);
 
+  // The literal row with a massless contact node and a restitution e > 0 (issue 23). The restitution
+  // law is a law on the velocity of a node with inertia; on the massless node the obstacle −e u₀ⁿ⁻¹
+  // follows the literal row's undamped sawtooth of u₀ − u₁ (above: β dⁿ⁺¹ + (1 − 2β) dⁿ + β dⁿ⁻¹ = 0 off
+  // contact, roots on the unit circle) and, as measured, feeds it: E(T) = 7e9 at e = ½ (N = 100, c = ½,
+  // T = 30, Mod 3), a non-finite energy at e = 1 on N = 20 and 100, c = ¼ and 1, Mod 1 and Mod 3 (bounded at
+  // e = 0 and e = 0.1 on those runs; the ratchet is our reading of the measurements, not a proof). The
+  // algebraic row with e ∈ [0, 1] stays bounded on the same runs (E(T)/E(0) ≤ 1.01): it is the sound
+  // form, and the literal one is refused with e > 0.
+  if (massless_ && three_level_ && !algebraic_row_ && parameters.restitution > 0)
+    throw InvalidParameter("restitution",
+                           "above 0 with the literal Paoli–Schatzman row and a massless contact node: the restitution "
+                           "acts on a node without inertia and the run grows without bound (measured: E = 7e9 at "
+                           "e = 0.5, N = 100) (allowed: e = 0, the algebraic row, or the consistent mass)");
+
   // The matrices and scalars of (★) (step_matrices above), A factorised once per run.
   const Tridiagonal& M = mass_;
   const Tridiagonal& S = stiffness_;
