@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
     double newmark_beta = class_defaults.newmark_beta, newmark_gamma = class_defaults.newmark_gamma,
            penalty = class_defaults.penalty, nitsche_theta = class_defaults.nitsche_theta,
            nitsche_gamma = class_defaults.nitsche_gamma, moreau_theta = class_defaults.moreau_theta;
-    std::string peer = "none";
+    std::string peer = "none", ps_start = "cn";
     std::string scheme = mrm::to_string(mrm::Scheme::crank_nicolson), mass = "mod3", ps_form = "algebraic",
                 initial = "consistent", contact_velocity = "algebraic", output;
     std::string benchmark = "paper", initial_data;
@@ -178,6 +178,10 @@ int main(int argc, char** argv) {
                       "Paoli-Schatzman's contact row: algebraic at every level, or the literal three-level formula "
                       "(the consistent mass needs literal, which is then the default)",
                       {"algebraic", "literal"}, &ps_form);
+    parser.add_choice("--ps-start", "", "S",
+                      "Paoli-Schatzman's first step: cn (one Crank-Nicolson step) or explicit (the explicit Newmark "
+                      "step of GetFEM's demo; a contact node with inertia)",
+                      {"cn", "explicit"}, &ps_start);
     parser.add_choice("--initial-contact-node", "", "I",
                       "initial value of a massless contact node: solved from its algebraic row, or the interpolant",
                       {"consistent", "interpolant"}, &initial);
@@ -206,10 +210,26 @@ int main(int argc, char** argv) {
     if (!parser.given("--final-time") && !own_data && benchmark != "paper")
       final_time = field_benchmark ? mrm::impact_benchmark(benchmark).final_time : 2.0;
     if (field_benchmark) {  // the exact solution's contact windows (lib/impact_solution.hpp), nothing else
-      for (const char* option :
-           {"--elements", "--courant", "--dt", "--scheme", "--mass", "--beta", "--restitution", "--ps-form",
-            "--switch-theta", "--initial-contact-node", "--contact-velocity", "--output", "--newmark-beta",
-            "--newmark-gamma", "--penalty", "--nitsche-theta", "--nitsche-gamma", "--moreau-theta", "--peer"})
+      for (const char* option : {"--elements",
+                                 "--courant",
+                                 "--dt",
+                                 "--scheme",
+                                 "--mass",
+                                 "--beta",
+                                 "--restitution",
+                                 "--ps-form",
+                                 "--switch-theta",
+                                 "--initial-contact-node",
+                                 "--contact-velocity",
+                                 "--output",
+                                 "--newmark-beta",
+                                 "--newmark-gamma",
+                                 "--penalty",
+                                 "--nitsche-theta",
+                                 "--nitsche-gamma",
+                                 "--moreau-theta",
+                                 "--peer",
+                                 "--ps-start"})
         if (parser.given(option))
           throw cli::UsageError(std::string(option) + ": --benchmark " + benchmark +
                                 " has no finite element run yet: it needs " +
@@ -259,6 +279,8 @@ int main(int argc, char** argv) {
       set_taken("--restitution", mrm::SchemeParameter::restitution, restitution, preset.scheme.restitution);
       if (mrm::takes(s, mrm::SchemeParameter::contact_row) && !parser.given("--ps-form"))
         ps_form = mrm::to_string(preset.scheme.contact_row);
+      if (mrm::takes(s, mrm::SchemeParameter::ps_start) && !parser.given("--ps-start"))
+        ps_start = preset.scheme.ps_explicit_start ? "explicit" : "cn";
       set_taken("--newmark-beta", mrm::SchemeParameter::newmark_beta, newmark_beta, preset.scheme.newmark_beta);
       set_taken("--newmark-gamma", mrm::SchemeParameter::newmark_gamma, newmark_gamma, preset.scheme.newmark_gamma);
       set_taken("--penalty", mrm::SchemeParameter::penalty, penalty, preset.scheme.penalty);
@@ -270,6 +292,7 @@ int main(int argc, char** argv) {
                                {{"--beta", mrm::SchemeParameter::beta},
                                 {"--restitution", mrm::SchemeParameter::restitution},
                                 {"--ps-form", mrm::SchemeParameter::contact_row},
+                                {"--ps-start", mrm::SchemeParameter::ps_start},
                                 {"--switch-theta", mrm::SchemeParameter::switch_theta},
                                 {"--newmark-beta", mrm::SchemeParameter::newmark_beta},
                                 {"--newmark-gamma", mrm::SchemeParameter::newmark_gamma},
@@ -319,6 +342,7 @@ int main(int argc, char** argv) {
     if (mrm::takes(configuration.scheme.scheme, mrm::SchemeParameter::contact_row))
       configuration.scheme.contact_row = mrm::contact_row_by_name(ps_form);
     configuration.scheme.switch_theta = switch_theta;
+    configuration.scheme.ps_explicit_start = ps_start == "explicit";
     if (mrm::is_contact_class(scheme_id)) {
       configuration.scheme.newmark_beta = newmark_beta;
       configuration.scheme.newmark_gamma = newmark_gamma;
@@ -339,6 +363,7 @@ int main(int argc, char** argv) {
                                 {"beta", "--beta"},
                                 {"restitution", "--restitution"},
                                 {"contact_row", "--ps-form"},
+                                {"ps_start", "--ps-start"},
                                 {"switch_theta", "--switch-theta"},
                                 {"newmark_beta", "--newmark-beta"},
                                 {"newmark_gamma", "--newmark-gamma"},
@@ -375,11 +400,15 @@ int main(int argc, char** argv) {
           << "# columns: t u0_h u0_exact t_lambda lambda_h lambda_exact t_energy energy_h energy_exact\n";
     }
 
-    // 4. The run (repro/configurations: the errors and the energy range), writing the series if asked.
+    // 4. The run (repro/configurations: the errors and the energy range), writing the series if asked;
+    // with a peer, its own measures beside (repro/peers.hpp).
+    std::unique_ptr<mrm::repro::PeerMeasures> peer_measures;
+    if (use_peer) peer_measures = std::make_unique<mrm::repro::PeerMeasures>(mesh, exact);
     const auto start = std::chrono::steady_clock::now();
     const mrm::repro::Measures measures = mrm::repro::run_configuration(
         configuration,
         [&](const mrm::Sample& s) {
+          if (peer_measures) peer_measures->add(s);
           if (series) {
             std::ostream& out = series->stream();
             out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
@@ -409,6 +438,12 @@ int main(int argc, char** argv) {
     // each), against the exact impacts of the reference: L + 3Lk for the paper's benchmark, the
     // characteristic solution's for any other data. The period law's predictions (ℓ_f and 2ℓ_f + ℓ_c)
     // are derived for the paper's benchmark and printed for it alone.
+    if (peer_measures) {  // the peer's definitions of the displacement measures (repro/peers.hpp)
+      const auto peer_values = peer_measures->values();
+      for (std::size_t k = 0; k < peer_values.size(); ++k)
+        std::cout << "peer_" << mrm::repro::PeerMeasures::names[k] << " = " << cli::format_real(peer_values[k]) << '\n';
+      std::cout << "peer_formulation = " << mrm::repro::peer_preset(peer).formulation << '\n';
+    }
     std::cout << "impacts = " << measures.impacts.size() << '\n';
     if (measures.phase) {
       std::cout << "impacts_compared = " << measures.phase->matched << '\n';

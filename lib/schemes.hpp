@@ -58,7 +58,8 @@ enum class SchemeParameter {
   penalty,        ///< the penalty parameter γ₀ (stiffness γ₀/h)
   nitsche_theta,  ///< Nitsche's symmetry parameter θ ∈ [−1, 1]
   nitsche_gamma,  ///< Nitsche's γ₀ (γ = γ₀/h)
-  moreau_theta    ///< Moreau–Jean's θ ∈ [½, 1]
+  moreau_theta,   ///< Moreau–Jean's θ ∈ [½, 1]
+  ps_start        ///< Paoli–Schatzman's first step (Crank–Nicolson, or GetFEM's explicit Newmark step)
 };
 
 /// One entry of the registry of schemes: what the programs' help texts, choice lists, data headers
@@ -116,6 +117,9 @@ struct SchemeParameters {
   double nitsche_theta = 0.0;  ///< Nitsche's θ ∈ [−1, 1] (1 symmetric, 0 skew-free, −1 skew-symmetric)
   double nitsche_gamma = 5.0;  ///< Nitsche's γ₀ > 0 (and > θ): γ = γ₀/h
   double moreau_theta = 0.5;   ///< Moreau–Jean's θ ∈ [½, 1]
+  /// Paoli–Schatzman's first step: false, one Crank–Nicolson step (the library's); true, the explicit
+  /// Newmark step U¹ = U⁰ + ΔtV⁰ + ½Δt² M⁻¹(F⁰ − SU⁰) of GetFEM's demo (a contact node with inertia only).
+  bool ps_explicit_start = false;
 };
 
 /// The matrices and scalars of one step (★) of schemes.cpp,
@@ -279,6 +283,8 @@ class BarSimulation {
   double lambda_time_ = 0.0, energy_time_ = 0.0;
   bool has_lambda_ = true;
   std::unique_ptr<BarSimulation> start_;  // the Crank–Nicolson first step of Paoli–Schatzman
+  bool explicit_start_ = false;           // Paoli–Schatzman's first step is the explicit Newmark one (pending)
+  void explicit_first_step();
   // The step of a contact class (newmark, penalty, nitsche, moreau-jean: lib/contact_classes.cpp),
   // which replaces (★) and its kernels; null for the schemes of this file.
   std::unique_ptr<ContactClassStep> class_step_;
