@@ -219,12 +219,15 @@ $(DATA)/cn_large_step.tex: $(BUILD)/bin/cn_large_step | $(DATA)
 
 # The report: every figure and fragment is found through TEXINPUTS (so OUT=dir works); latexmk keeps its
 # auxiliary files in $(OUT)/latex. The full benchmark's table and plot (make bench) are included if
-# present, the short benchmark's otherwise.
+# present, the short benchmark's otherwise. A bitmap (Type 3) font in the PDF fails the rule: the report is
+# vector throughout (issue 27).
 $(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/cn_large_step.tex $(BASELINE) \
            $(DATA)/report_meta.tex $(BENCH_SHORT)/bench_short.tex $(PEER_TEX) \
            $(wildcard $(OUT)/bench/bench_step.tex $(OUT)/bench/bench_step.pdf) | $(DATA)
 	TEXINPUTS=paper:$(DATA):$(FIGURES):$(OUT)/bench:$(BENCH_SHORT): $(REPRODUCIBLE) \
 	  latexmk -pdf -silent -interaction=nonstopmode -halt-on-error -outdir=$(OUT)/latex paper/report.tex
+	@! pdffonts $(OUT)/latex/report.pdf | grep -q 'Type 3' \
+	  || { echo 'report: a bitmap (Type 3) font in the PDF (pdffonts $(OUT)/latex/report.pdf)'; exit 1; }
 	cp $(OUT)/latex/report.pdf $@.tmp
 	mv $@.tmp $@
 

@@ -303,6 +303,16 @@ int main(int argc, char** argv) {
     for (std::size_t a = 0; a < meshes.size(); ++a)
       computed += (a ? ", " : "") + ("$N=" + std::to_string(meshes[a]) + "$ to " + cli::format_real(reach[a]));
     mrm::tex_define(defs, "baseline:region", computed);
+    // The grid itself, for the report's sentences: "25, 100, 400 and 1600", "0.25, 0.5 and 1", ...
+    const auto list = [](const auto& values, const auto& format) {
+      std::string text;
+      for (std::size_t k = 0; k < values.size(); ++k)
+        text += (k ? (k + 1 == values.size() ? " and " : ", ") : "") + format(values[k]);
+      return text;
+    };
+    mrm::tex_define(defs, "baseline:meshes", list(meshes, [](mrm::Index n) { return std::to_string(n); }));
+    mrm::tex_define(defs, "baseline:courants", list(courants, [](double c) { return cli::format_real(c); }));
+    mrm::tex_define(defs, "baseline:horizons", list(horizons, [](double p) { return cli::format_real(p); }));
 
     // 5. Commit.
     program.commit();

@@ -184,8 +184,11 @@ int main(int argc, char** argv) {
             if (impacts.size() < 2)
               throw std::runtime_error("fig_family: " + member.spec(n) + " at N = " + std::to_string(n) +
                                        ": fewer than two impacts, no drift can be measured");
-            const mrm::PhaseMeasures phase =
-                mrm::phase_measures(impacts, mrm::benchmark_impact_times(exact, impacts.size()), exact.period());
+            const std::optional<mrm::PhaseMeasures> paired = mrm::benchmark_phase(impacts, exact);
+            if (!paired || paired->matched != impacts.size())
+              throw std::runtime_error("fig_family: " + member.spec(n) + " at N = " + std::to_string(n) +
+                                       ": an impact farther than 3L/2 from its exact partner");
+            const mrm::PhaseMeasures& phase = *paired;
             r.total_mass = mrm::total_mass(mesh, configuration.mass);
             r.local = in_h(masses.local);
             r.uniform = in_h(masses.uniform);

@@ -113,8 +113,9 @@ int main(int argc, char** argv) {
     for (std::size_t m = 0; m < measures.size(); ++m) {
       const std::string& mass = mrm::repro::mass_names()[m];
       const mrm::repro::Measures& r = measures[m];
-      if (!r.phase || !r.phase->drift_per_period)
-        throw std::runtime_error("fig_phase: the " + mass + " run has fewer than two impacts");
+      if (!r.phase || !r.phase->drift_per_period || r.phase->matched != r.impacts.size())
+        throw std::runtime_error("fig_phase: the " + mass +
+                                 " run has fewer than two impacts, or one farther than 3L/2 from its exact partner");
       const mrm::PeriodPrediction law = mrm::predict_period(mesh, mrm::mass_redistribution_by_name(mass));
       const std::vector<double> t = mrm::benchmark_impact_times(exact, r.impacts.size());
       out << "\n\n# block " << block << ": impacts, mass = " << mass << "\n# columns: k t_exact error law\n";

@@ -31,17 +31,21 @@ do for [k=1:words(horizons)] { set xtics add (word(horizons, k) word(horizons, k
 set autoscale xfix
 set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05
 set yrange [0:*]
-set key bottom right samplen 2
+# One legend for the whole figure, above the panels (inside a panel it covered the curves): the first
+# panel, which has every entry (the baseline's too), draws it; the others draw none.
+set key at screen 0.5,0.945 center top vertical maxrows 2 samplen 2 width 1
 set xlabel "horizon (periods)"
 set ylabel "order in ".italic("h")
-set multiplot layout 2,2 margins 0.08,0.98,0.08,0.9 spacing 0.08,0.15 \
+set multiplot layout 2,2 margins 0.08,0.98,0.08,0.83 spacing 0.08,0.15 \
   title sprintf("%s = %s%s", Delta_t, ratio, italic("h")) font font(10)
+first_panel = 1
 do for [scheme in header("panels")] {
   do for [q=1:2] {
     col = column_of(word(measures, q))
     pcol = column_of(word(predicted, q))
     phase = q == 1 ? 1.0 : 0.5
     set title scheme_name(scheme).", ".measure_name(word(measures, q))
+    if (!first_panel) { unset key }
     base = block("ps-consistent", "consistent")
     if (scheme eq header("baseline_with") && base >= 0) {
       plot for [m=1:3] data index block(scheme, word(masses, m)) using 1:col with linespoints \
@@ -56,6 +60,7 @@ do for [scheme in header("panels")] {
            data index block(scheme, "mod3") using 1:pcol with lines lc rgb "black" dt 2 title "predicted", \
            phase with lines lc rgb "black" dt 3 title "phase error (Mod 1, 2)"
     }
+    first_panel = 0
   }
 }
 unset multiplot

@@ -169,7 +169,8 @@ std::vector<double> impact_times(const std::vector<ContactInterval>& contacts, d
 }
 
 std::pair<std::vector<double>, std::vector<double>> nearest_impact_pairs(const std::vector<double>& impacts,
-                                                                         const std::vector<double>& exact_impacts) {
+                                                                         const std::vector<double>& exact_impacts,
+                                                                         double free_flight_start) {
   // The index of the entry of the sorted `times` nearest to t (the earlier one on a tie).
   const auto nearest = [](const std::vector<double>& times, double t) {
     const auto above = std::lower_bound(times.begin(), times.end(), t);
@@ -181,6 +182,7 @@ std::pair<std::vector<double>, std::vector<double>> nearest_impact_pairs(const s
   double gate = std::numeric_limits<double>::infinity();
   for (std::size_t k = 1; k < exact_impacts.size(); ++k)
     gate = std::min(gate, 0.5 * (exact_impacts[k] - exact_impacts[k - 1]));
+  if (exact_impacts.size() == 1) gate = 0.5 * (exact_impacts.front() - free_flight_start);
   std::pair<std::vector<double>, std::vector<double>> pairs;
   if (impacts.empty()) return pairs;
   for (std::size_t k = 0; k < exact_impacts.size(); ++k) {
@@ -191,6 +193,17 @@ std::pair<std::vector<double>, std::vector<double>> nearest_impact_pairs(const s
     }
   }
   return pairs;
+}
+
+std::optional<PhaseMeasures> benchmark_phase(const std::vector<double>& impacts, const ExactSolution& exact) {
+  const std::vector<double> exact_impacts = benchmark_impact_times(exact, impacts.size());
+  std::size_t kept = 0;
+  while (kept < impacts.size() && std::abs(impacts[kept] - exact_impacts[kept]) < 0.5 * exact.period()) ++kept;
+  if (kept == 0) return std::nullopt;
+  return phase_measures(
+      std::vector<double>(impacts.begin(), impacts.begin() + static_cast<std::ptrdiff_t>(kept)),
+      std::vector<double>(exact_impacts.begin(), exact_impacts.begin() + static_cast<std::ptrdiff_t>(kept)),
+      exact.period());
 }
 
 double mean_impact_interval(const std::vector<double>& impacts) {
@@ -323,8 +336,30 @@ TEST_CASE("nearest pairing leaves a run's extra contacts and the exact impacts i
   CHECK(missed.second == std::vector<double>{1, 7, 10});
   CHECK(nearest_impact_pairs({5.5}, exact).first.empty());
   CHECK(nearest_impact_pairs({}, exact).first.empty());
-  // One exact impact: the nearest measured one, at any distance.
-  CHECK(nearest_impact_pairs({0.2, 3.0}, {2.0}).first == std::vector<double>{3.0});
+  // One exact impact at 2 after a free flight from 0: the gate is half that flight, 1. The nearest
+  // measured impact, 3.0, is 1 away: refused; 2.9 is paired; after a release at 1.5 the gate is 0.25.
+  CHECK(nearest_impact_pairs({0.2, 3.0}, {2.0}).first.empty());
+  CHECK(nearest_impact_pairs({0.2, 2.9}, {2.0}).first == std::vector<double>{2.9});
+  CHECK(nearest_impact_pairs({2.3}, {2.0}, 1.5).first.empty());
+  CHECK(nearest_impact_pairs({2.2}, {2.0}, 1.5).first == std::vector<double>{2.2});
+}
+
+// The benchmark's phase pairs by rank while the pairs are less than 3L/2 apart. A run that drifts by
+// −0.5 per period (impacts 0.9, 3.4, 5.9, 8.4, 10.9, 13.4 against 1, 4, 7, 10, 13, 16) keeps the first
+// three pairs (errors −0.1, −0.6, −1.1; the fourth, −1.6, is not less than 1.5), with a drift of −0.5
+// per period; pairing by nearest time would pair 8.4 with 7 and 10.9 with 10, and report a wrong drift. A run whose first impact comes 1.6 late has no phase instead of an error 1.6.
+TEST_CASE("the benchmark's phase pairs impacts by rank, no farther apart than half the period") {
+  const ExactSolution exact;  // L = 1: impacts 1, 4, 7, 10, ...
+  const std::optional<PhaseMeasures> m = benchmark_phase({0.9, 3.4, 5.9, 8.4, 10.9, 13.4}, exact);
+  REQUIRE(m.has_value());
+  CHECK(m->matched == 3);
+  CHECK(std::abs(m->first_impact_error + 0.1) < 1e-14);
+  REQUIRE(m->drift_per_period.has_value());
+  CHECK(std::abs(*m->drift_per_period + 0.5) < 1e-12);
+  CHECK_FALSE(benchmark_phase({2.6, 5.6}, exact).has_value());
+  CHECK_FALSE(benchmark_phase({}, exact).has_value());
+  // Unrestricted pairing by rank, which this replaces, would have reported 2.6 − 1 = 1.6.
+  CHECK(phase_measures({2.6, 5.6}, benchmark_impact_times(exact, 2), exact.period()).first_impact_error > 1.5);
 }
 
 TEST_CASE("the characteristic solution's impacts of the benchmark are L + 3Lk, their mean interval 3L") {

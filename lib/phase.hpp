@@ -68,11 +68,24 @@ std::vector<double> impact_times(const std::vector<ContactInterval>& contacts, d
 
 /// Measured impacts paired with exact ones as mutual nearest neighbours: t̂ and t are a pair when t is
 /// the exact impact nearest to t̂, t̂ the measured impact nearest to t, and |t̂ − t| is less than half
-/// the smallest interval between consecutive exact impacts (any distance when there is one). Returns
-/// the pairs as two sequences of equal length (measured, exact), in increasing order; impacts without
-/// a partner (a run's extra contact, an exact impact the run misses) are left out.
+/// the smallest interval between consecutive exact impacts. A pair farther apart would compare two
+/// unrelated events: a measured impact that far from t is nearer (or as near) to the exact impact
+/// before or after t, so its error says nothing about t's phase. With a single exact impact there is
+/// no such interval; the gate is then half the exact free flight before it, t − `free_flight_start`
+/// (the release from a contact held from the start, or 0), for the same reason. Returns the pairs as
+/// two sequences of equal length (measured, exact), in increasing order; impacts without a partner (a
+/// run's extra contact, an exact impact the run misses or hits too far off) are left out.
 std::pair<std::vector<double>, std::vector<double>> nearest_impact_pairs(const std::vector<double>& impacts,
-                                                                         const std::vector<double>& exact_impacts);
+                                                                         const std::vector<double>& exact_impacts,
+                                                                         double free_flight_start = 0.0);
+
+/// The phase of a run on the benchmark (exact impacts L + 3Lk, period 3L): the k-th measured impact is
+/// paired with the k-th exact one (every resolved run has one impact per period, and its error grows
+/// steadily with k by the period law, so the rank, not the nearest time, identifies the partner), up to
+/// the first pair farther apart than half the period 3L/2: from there on the run is more than half a
+/// period off and the k-th impacts are no longer the same event, so they are not compared (matched
+/// counts the pairs kept). std::nullopt when even the first pair is that far apart.
+std::optional<PhaseMeasures> benchmark_phase(const std::vector<double>& impacts, const ExactSolution& exact);
 
 /// The mean time between consecutive impacts, (t_last − t_first)/(n − 1): the unit of the drift for
 /// data whose motion has no period (3L for the benchmark's impacts). Throws std::invalid_argument for

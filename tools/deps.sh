@@ -25,7 +25,7 @@ packages=(
   doxygen libjs-mathjax            # the API documentation (MathJax renders its formulas offline)
   latexmk texlive-latex-base texlive-latex-recommended texlive-latex-extra
   texlive-fonts-recommended texlive-pictures  # the report
-  poppler-utils                    # pdftoppm, to check the report's pages
+  poppler-utils                    # pdftoppm and pdffonts, to check the report's pages and fonts
   clang-format                     # the one C++ style, checked by tests/format.sh
 )
 
