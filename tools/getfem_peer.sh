@@ -59,7 +59,12 @@ while read -r peer options demo_args tolerance m0 m1 m2 m3 m4 m5 m6; do
     shown_options=${options//,/ }
     [[ $shown_options == - ]] && shown_options=""
     if [[ $tolerance == none ]]; then agreement="not compared"; else agreement=$(printf '%.0e' "$largest"); fi
-    rows+="\\texttt{${peer}}${shown_options:+ \\texttt{${shown_options//--/-{}-}}}${cells} & ${agreement} \\\\ "
+    run="\\texttt{${peer}}"
+    if [[ -n $shown_options ]]; then
+      dashes='-{}-'
+      run+=" \\texttt{${shown_options//--/$dashes}}"
+    fi
+    rows+="${run}${cells} & ${agreement} \\\\ "
   fi
 done < "$data"
 if [[ -n $tex ]]; then
