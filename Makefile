@@ -58,7 +58,8 @@ BASELINE := $(DATA)/baseline_regions.dat $(DATA)/baseline_regions.tex
 # values (named here, so that make does not take them for intermediate files and delete them), the
 # short benchmark, the report and the API documentation. Each has its section below.
 all: build $(DATA)/benchmark.dat $(DATA)/benchmark.txt $(CLAIMS_OUTPUTS) $(FIGURE_DATA) $(FIGURE_TEX) \
-     $(BASELINE) $(FIGURE_PDFS) $(BENCH_SHORT)/bench_short.tex $(REPORT) $(DOC)/html/index.html
+     $(BASELINE) $(FIGURE_PDFS) $(BENCH_SHORT)/bench_short.tex $(REPORT) $(DOC)/html/index.html \
+     $(PEER_TEX)
 
 .PHONY: all build clean deps help test test-unit bench
 
@@ -206,6 +207,13 @@ $(DATA)/fig_energy_schemes_%.dat $(DATA)/fig_energy_schemes_%.tex: $(BUILD)/bin/
 $(BASELINE) &: $(BUILD)/bin/baseline_regions | $(DATA)
 	$< --output $(DATA)/baseline_regions.dat --tex $(DATA)/baseline_regions.tex
 
+# The peer match (issue 23): bar1d --peer getfem-vK against the measures GetFEM's demo printed
+# (tests/data/getfem/measures.dat, its header says how they were made), compared and tabulated by
+# tools/getfem_peer.sh (a few seconds; the same comparison is the ctest entry getfem_peer).
+PEER_TEX := $(DATA)/peer_getfem.tex
+$(PEER_TEX): $(BUILD)/bin/bar1d tests/data/getfem/measures.dat tools/getfem_peer.sh | $(DATA)
+	tools/getfem_peer.sh $< tests/data/getfem/measures.dat $@ > $(DATA)/peer_getfem.txt
+
 # Crank–Nicolson's largest energy for Δt ≫ h, relative to E_h(0) (experiments/cn_large_step.cpp).
 $(DATA)/cn_large_step.tex: $(BUILD)/bin/cn_large_step | $(DATA)
 	$< --tex $@
@@ -215,7 +223,7 @@ $(DATA)/cn_large_step.tex: $(BUILD)/bin/cn_large_step | $(DATA)
 # present, the short benchmark's otherwise. A bitmap (Type 3) font in the PDF fails the rule: the report is
 # vector throughout (issue 27).
 $(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/cn_large_step.tex $(BASELINE) \
-           $(DATA)/report_meta.tex $(BENCH_SHORT)/bench_short.tex \
+           $(DATA)/report_meta.tex $(BENCH_SHORT)/bench_short.tex $(PEER_TEX) \
            $(wildcard $(OUT)/bench/bench_step.tex $(OUT)/bench/bench_step.pdf) | $(DATA)
 	TEXINPUTS=paper:$(DATA):$(FIGURES):$(OUT)/bench:$(BENCH_SHORT): $(REPRODUCIBLE) \
 	  latexmk -pdf -silent -interaction=nonstopmode -halt-on-error -outdir=$(OUT)/latex paper/report.tex

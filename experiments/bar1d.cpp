@@ -53,8 +53,10 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "options.hpp"
+#include "peers.hpp"
 #include "output_file.hpp"
 #include "configurations.hpp"
 #include "figure_program.hpp"
@@ -64,6 +66,7 @@
 #include "exact_solution.hpp"
 #include "impact_solution.hpp"
 #include "period_law.hpp"
+#include "contact_classes.hpp"
 #include "schemes.hpp"
 
 namespace cli = mrm::cli;
@@ -74,6 +77,12 @@ int main(int argc, char** argv) {
     long elements = 100;
     double courant = 0.5, dt = 0.0, final_time = 6.0, length = 1.0, amplitude = 0.5, beta = 0.25, restitution = 0.0,
            switch_theta = 1.0;
+    // The contact classes' parameters (lib/contact_classes.cpp), their defaults the library's.
+    const mrm::SchemeParameters class_defaults;
+    double newmark_beta = class_defaults.newmark_beta, newmark_gamma = class_defaults.newmark_gamma,
+           penalty = class_defaults.penalty, nitsche_theta = class_defaults.nitsche_theta,
+           nitsche_gamma = class_defaults.nitsche_gamma, moreau_theta = class_defaults.moreau_theta;
+    std::string peer = "none", ps_start = "cn";
     std::string scheme = mrm::to_string(mrm::Scheme::crank_nicolson), mass = "mod3", ps_form = "algebraic",
                 initial = "consistent", contact_velocity = "algebraic", output;
     std::string benchmark = "paper", initial_data;
@@ -130,12 +139,54 @@ int main(int argc, char** argv) {
                     "Paoli-Schatzman's beta, in [0, 1e6]; at least 1/4 with --ps-form literal and a massless "
                     "contact node",
                     &beta, cli::in_closed_range(0, 1e6));
-    parser.add_real("--restitution", "-e", "E", "Paoli-Schatzman's restitution coefficient e in [0, 1]", &restitution,
-                    cli::in_closed_range(0, 1));
+    parser.add_real("--restitution", "-e", "E",
+                    "restitution coefficient e in [0, 1] of the schemes with an impact law (ps: the constraint on "
+                    "(u0^{n+1} + e u0^{n-1})/(1 + e); moreau-jean: v+ = -e v-)",
+                    &restitution, cli::in_closed_range(0, 1));
+    parser.add_real("--newmark-beta", "", "B",
+                    "Newmark's beta of newmark, penalty, nitsche, in [0, 1e6] (0: explicit, the step solves with "
+                    "the mass; 1/4 with gamma 1/2 is Crank-Nicolson)",
+                    &newmark_beta, cli::in_closed_range(0, 1e6));
+    parser.add_real("--newmark-gamma", "", "G",
+                    "Newmark's gamma of newmark, penalty, nitsche, in [0.5, 1e6] (below 1/2 Newmark amplifies)",
+                    &newmark_gamma, cli::in_closed_range(0.5, 1e6));
+    parser.add_real("--penalty", "", "G0",
+                    "penalty: the parameter gamma0 of the contact force (gamma0/h) min(0, u0), in (0, 1e12]", &penalty,
+                    [](std::string_view option, double value) {
+                      cli::require_positive(option, value);
+                      cli::require_in_closed_range(option, value, 0, 1e12);
+                    });
+    parser.add_real("--nitsche-theta", "", "TH",
+                    "nitsche: the symmetry parameter theta in [-1, 1] (1 symmetric, 0 skew-free, -1 "
+                    "skew-symmetric), below --nitsche-gamma",
+                    &nitsche_theta, cli::in_closed_range(-1, 1));
+    parser.add_real("--nitsche-gamma", "", "G0", "nitsche: the parameter gamma0 (gamma = gamma0/h), in (0, 1e12]",
+                    &nitsche_gamma, [](std::string_view option, double value) {
+                      cli::require_positive(option, value);
+                      cli::require_in_closed_range(option, value, 0, 1e12);
+                    });
+    parser.add_real("--moreau-theta", "", "TH",
+                    "moreau-jean: theta of the theta-method, in [0.5, 1] (below 1/2 the method amplifies)",
+                    &moreau_theta, cli::in_closed_range(0.5, 1));
+    parser.add_choice(
+        "--peer", "", "P",
+        "set every parameter to a peer's defaults (the options given override them): GetFEM's "
+        "demo_dynamic_contact_1D.py, version K, standard mass, NX 20, dt 0.002, T 12, Newmark "
+        "(0, 1/2) (repro/peers.cpp); none: no preset",
+        [] {
+          std::vector<std::string> names{"none"};
+          for (const std::string& name : mrm::repro::peer_names()) names.push_back(name);
+          return names;
+        }(),
+        &peer);
     parser.add_choice("--ps-form", "", "F",
                       "Paoli-Schatzman's contact row: algebraic at every level, or the literal three-level formula "
                       "(the consistent mass needs literal, which is then the default)",
                       {"algebraic", "literal"}, &ps_form);
+    parser.add_choice("--ps-start", "", "S",
+                      "Paoli-Schatzman's first step: cn (one Crank-Nicolson step) or explicit (the explicit Newmark "
+                      "step of GetFEM's demo; a contact node with inertia)",
+                      {"cn", "explicit"}, &ps_start);
     parser.add_choice("--initial-contact-node", "", "I",
                       "initial value of a massless contact node: solved from its algebraic row, or the interpolant",
                       {"consistent", "interpolant"}, &initial);
@@ -163,12 +214,53 @@ int main(int argc, char** argv) {
     const bool field_benchmark = !own_data && mrm::repro::is_impact_benchmark(benchmark);
     if (!parser.given("--final-time") && !own_data && benchmark != "paper")
       final_time = field_benchmark ? mrm::impact_benchmark(benchmark).final_time : 2.0;
+    // A peer's defaults (repro/peers.cpp): every parameter the command line does not give.
+    const bool use_peer = peer != "none";
+    bool step_given = parser.given("--dt");
+    if (use_peer) {
+      const mrm::repro::PeerPreset& preset = mrm::repro::peer_preset(peer);
+      const auto set = [&](const char* option, auto& variable, const auto& value) {
+        if (!parser.given(option)) variable = value;
+      };
+      set("--elements", elements, preset.elements);
+      if (!parser.given("--dt") && !parser.given("--courant")) {
+        dt = preset.dt;
+        step_given = true;
+      }
+      set("--final-time", final_time, preset.final_time);
+      set("--scheme", scheme, mrm::to_string(preset.scheme.scheme));
+      set("--mass", mass, preset.mass);
+      set("--initial-contact-node", initial, preset.initial);
+      set("--contact-velocity", contact_velocity, preset.contact_velocity);
+      const mrm::Scheme s = mrm::scheme_by_name(scheme);
+      const auto set_taken = [&](const char* option, mrm::SchemeParameter parameter, double& variable, double value) {
+        if (mrm::takes(s, parameter)) set(option, variable, value);
+      };
+      set_taken("--beta", mrm::SchemeParameter::beta, beta, preset.scheme.beta);
+      set_taken("--restitution", mrm::SchemeParameter::restitution, restitution, preset.scheme.restitution);
+      if (mrm::takes(s, mrm::SchemeParameter::contact_row) && !parser.given("--ps-form"))
+        ps_form = mrm::to_string(preset.scheme.contact_row);
+      if (mrm::takes(s, mrm::SchemeParameter::ps_start) && !parser.given("--ps-start"))
+        ps_start = preset.scheme.ps_explicit_start ? "explicit" : "cn";
+      set_taken("--newmark-beta", mrm::SchemeParameter::newmark_beta, newmark_beta, preset.scheme.newmark_beta);
+      set_taken("--newmark-gamma", mrm::SchemeParameter::newmark_gamma, newmark_gamma, preset.scheme.newmark_gamma);
+      set_taken("--penalty", mrm::SchemeParameter::penalty, penalty, preset.scheme.penalty);
+      set_taken("--nitsche-theta", mrm::SchemeParameter::nitsche_theta, nitsche_theta, preset.scheme.nitsche_theta);
+      set_taken("--nitsche-gamma", mrm::SchemeParameter::nitsche_gamma, nitsche_gamma, preset.scheme.nitsche_gamma);
+    }
     const mrm::Scheme scheme_id = mrm::scheme_by_name(scheme);
     mrm::repro::refuse_untaken(parser, scheme_id,
                                {{"--beta", mrm::SchemeParameter::beta},
                                 {"--restitution", mrm::SchemeParameter::restitution},
                                 {"--ps-form", mrm::SchemeParameter::contact_row},
-                                {"--switch-theta", mrm::SchemeParameter::switch_theta}});
+                                {"--ps-start", mrm::SchemeParameter::ps_start},
+                                {"--switch-theta", mrm::SchemeParameter::switch_theta},
+                                {"--newmark-beta", mrm::SchemeParameter::newmark_beta},
+                                {"--newmark-gamma", mrm::SchemeParameter::newmark_gamma},
+                                {"--penalty", mrm::SchemeParameter::penalty},
+                                {"--nitsche-theta", mrm::SchemeParameter::nitsche_theta},
+                                {"--nitsche-gamma", mrm::SchemeParameter::nitsche_gamma},
+                                {"--moreau-theta", mrm::SchemeParameter::moreau_theta}});
 
     // 2. The output, opened now so that an unwritable path fails before the run.
     std::unique_ptr<cli::AtomicFile> series;
@@ -190,7 +282,7 @@ int main(int argc, char** argv) {
                                [&] { mesh = mrm::repro::configuration_mesh(configuration); });
     configuration.courant = 1.0;
     const double transit = configuration.step();
-    const double step_request = parser.given("--dt") ? dt : courant * transit;
+    const double step_request = step_given ? dt : courant * transit;
     if (!(step_request <= largest_courant * transit))
       throw cli::UsageError("--dt: " + cli::format_real(step_request) +
                             " is more than 1e6 h/c = " + cli::format_real(largest_courant * transit) +
@@ -220,6 +312,15 @@ int main(int argc, char** argv) {
     if (mrm::takes(configuration.scheme.scheme, mrm::SchemeParameter::contact_row))
       configuration.scheme.contact_row = mrm::contact_row_by_name(ps_form);
     configuration.scheme.switch_theta = switch_theta;
+    configuration.scheme.ps_explicit_start = ps_start == "explicit";
+    if (mrm::is_contact_class(scheme_id)) {
+      configuration.scheme.newmark_beta = newmark_beta;
+      configuration.scheme.newmark_gamma = newmark_gamma;
+      configuration.scheme.penalty = penalty;
+      configuration.scheme.nitsche_theta = nitsche_theta;
+      configuration.scheme.nitsche_gamma = nitsche_gamma;
+      configuration.scheme.moreau_theta = moreau_theta;
+    }
     configuration.elements = elements;
     configuration.dt = step;
     configuration.final_time = final_time;
@@ -232,7 +333,14 @@ int main(int argc, char** argv) {
                                 {"beta", "--beta"},
                                 {"restitution", "--restitution"},
                                 {"contact_row", "--ps-form"},
+                                {"ps_start", "--ps-start"},
                                 {"switch_theta", "--switch-theta"},
+                                {"newmark_beta", "--newmark-beta"},
+                                {"newmark_gamma", "--newmark-gamma"},
+                                {"penalty", "--penalty"},
+                                {"nitsche_theta", "--nitsche-theta"},
+                                {"nitsche_gamma", "--nitsche-gamma"},
+                                {"moreau_theta", "--moreau-theta"},
                                 {"mass", "--mass"},
                                 {"gap", "--scheme"},
                                 {"scheme", "--scheme"}},
@@ -266,11 +374,15 @@ int main(int argc, char** argv) {
           << "# columns: t u0_h u0_exact t_lambda lambda_h lambda_exact t_energy energy_h energy_exact\n";
     }
 
-    // 4. The run (repro/configurations: the errors and the energy range), writing the series if asked.
+    // 4. The run (repro/configurations: the errors and the energy range), writing the series if asked;
+    // with a peer, its own measures beside (repro/peers.hpp).
+    std::unique_ptr<mrm::repro::PeerMeasures> peer_measures;
+    if (use_peer) peer_measures = std::make_unique<mrm::repro::PeerMeasures>(mesh, exact);
     const auto start = std::chrono::steady_clock::now();
     const mrm::repro::Measures measures = mrm::repro::run_configuration(
         configuration,
         [&](const mrm::Sample& s) {
+          if (peer_measures) peer_measures->add(s);
           if (series) {
             std::ostream& out = series->stream();
             out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
@@ -307,6 +419,12 @@ int main(int argc, char** argv) {
     // each), against the exact impacts of the reference: L + 3Lk for the paper's benchmark, the
     // characteristic solution's for any other data. The period law's predictions (ℓ_f and 2ℓ_f + ℓ_c)
     // are derived for the paper's benchmark and printed for it alone.
+    if (peer_measures) {  // the peer's definitions of the displacement measures (repro/peers.hpp)
+      const auto peer_values = peer_measures->values();
+      for (std::size_t k = 0; k < peer_values.size(); ++k)
+        std::cout << "peer_" << mrm::repro::PeerMeasures::names[k] << " = " << cli::format_real(peer_values[k]) << '\n';
+      std::cout << "peer_formulation = " << mrm::repro::peer_preset(peer).formulation << '\n';
+    }
     std::cout << "impacts = " << measures.impacts.size() << '\n';
     if (!measures.impacts.empty() && !measures.phase)
       std::cout << "impacts_compared = 0\n"

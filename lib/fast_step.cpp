@@ -370,7 +370,9 @@ TEST_CASE("the fast step and the reference step agree to round-off for every sch
           p.contact_row = form.row;
           const bool large = courant > 1;
           p.beta = form.scheme == Scheme::paoli_schatzman && large ? 0.3 : 0.25;
-          p.restitution = form.scheme == Scheme::paoli_schatzman && large ? 0.5 : 0.0;
+          // (e > 0 with the literal row and a massless contact node is refused: schemes.cpp, issue 23.)
+          const bool literal_massless = form.row == ContactRow::literal && mass.name != "consistent";
+          p.restitution = form.scheme == Scheme::paoli_schatzman && large && !literal_massless ? 0.5 : 0.0;
           const double dt = courant * mesh.h();
           p.kernel = StepKernel::fast;
           BarSimulation fast(problem, mesh, mass, p, dt);

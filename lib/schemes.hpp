@@ -21,7 +21,12 @@ enum class Scheme {
   backward_euler,     ///< backward Euler, two levels
   paoli_schatzman,    ///< Paoli–Schatzman (β, e), three levels
   energy_conserving,  ///< EC: Crank–Nicolson with the discrete gradient of the contact energy (mathematics.md §12)
-  switching           ///< CN-switch: Crank–Nicolson, a θ-step where the contact status changes (mathematics.md §12)
+  switching,          ///< CN-switch: Crank–Nicolson, a θ-step where the contact status changes (mathematics.md §12)
+  // The field's contact treatments (Doyen–Ern–Piperno's classes, field.md §2; lib/contact_classes.cpp):
+  newmark,     ///< Newmark(β, γ) with exact (Signorini) enforcement by a multiplier at the new level
+  penalty,     ///< Newmark(β, γ) with the penalty force (γ₀/h) min(0, u₀)
+  nitsche,     ///< Newmark(β, γ) with Nitsche's boundary terms (θ, γ₀), GetFEM's formulation
+  moreau_jean  ///< Moreau–Jean (θ, e): the θ-method with a velocity-level impact law (inertial contact node)
 };
 
 /// How the Paoli–Schatzman scheme treats the contact row when the contact node is massless:
@@ -44,10 +49,17 @@ enum class StepKernel { reference, fast };
 
 /// A parameter of SchemeParameters that only some schemes take (the registry says which).
 enum class SchemeParameter {
-  beta,         ///< Paoli–Schatzman's β
-  restitution,  ///< Paoli–Schatzman's restitution coefficient e
-  contact_row,  ///< Paoli–Schatzman's contact-row form (algebraic or literal)
-  switch_theta  ///< CN-switch's θ of the step taken at a change of the contact status
+  beta,           ///< Paoli–Schatzman's β
+  restitution,    ///< Paoli–Schatzman's restitution coefficient e
+  contact_row,    ///< Paoli–Schatzman's contact-row form (algebraic or literal)
+  switch_theta,   ///< CN-switch's θ of the step taken at a change of the contact status
+  newmark_beta,   ///< Newmark's β of the contact classes (newmark, penalty, nitsche)
+  newmark_gamma,  ///< Newmark's γ of the contact classes
+  penalty,        ///< the penalty parameter γ₀ (stiffness γ₀/h)
+  nitsche_theta,  ///< Nitsche's symmetry parameter θ ∈ [−1, 1]
+  nitsche_gamma,  ///< Nitsche's γ₀ (γ = γ₀/h)
+  moreau_theta,   ///< Moreau–Jean's θ ∈ [½, 1]
+  ps_start        ///< Paoli–Schatzman's first step (Crank–Nicolson, or GetFEM's explicit Newmark step)
 };
 
 /// One entry of the registry of schemes: what the programs' help texts, choice lists, data headers
@@ -97,6 +109,17 @@ struct SchemeParameters {
   /// CN-switch's θ ∈ [½, 1] of the step that replaces a Crank–Nicolson step across which the contact
   /// status changes: 1 is backward Euler, the only value for which the energy provably never increases.
   double switch_theta = 1.0;
+  // The contact classes (lib/contact_classes.cpp). The defaults of γ₀ and θ are GetFEM's demo's
+  // (demo_dynamic_contact_1D.py: γ₀_P = 1, γ₀_N = 5, θ_N = 0); Newmark's default is (¼, ½), Crank–Nicolson.
+  double newmark_beta = 0.25;  ///< Newmark's β ≥ 0 (0: explicit, the step solves with the mass)
+  double newmark_gamma = 0.5;  ///< Newmark's γ ≥ ½
+  double penalty = 1.0;        ///< the penalty's γ₀ > 0: the contact force (γ₀/h) min(0, u₀)
+  double nitsche_theta = 0.0;  ///< Nitsche's θ ∈ [−1, 1] (1 symmetric, 0 skew-free, −1 skew-symmetric)
+  double nitsche_gamma = 5.0;  ///< Nitsche's γ₀ > 0 (and > θ): γ = γ₀/h
+  double moreau_theta = 0.5;   ///< Moreau–Jean's θ ∈ [½, 1]
+  /// Paoli–Schatzman's first step: false, one Crank–Nicolson step (the library's); true, the explicit
+  /// Newmark step U¹ = U⁰ + ΔtV⁰ + ½Δt² M⁻¹(F⁰ − SU⁰) of GetFEM's demo (a contact node with inertia only).
+  bool ps_explicit_start = false;
 };
 
 /// The matrices and scalars of one step (★) of schemes.cpp,
@@ -187,6 +210,7 @@ struct StepState {
 };
 
 class FastStep;
+class ContactClassStep;
 
 /// One run of one scheme on one mesh with one mass: the state, the constant step matrix factorised
 /// once, and the step (the reference step of schemes.cpp or the fast kernel of fast_step.cpp, as
@@ -259,6 +283,11 @@ class BarSimulation {
   double lambda_time_ = 0.0, energy_time_ = 0.0;
   bool has_lambda_ = true;
   std::unique_ptr<BarSimulation> start_;  // the Crank–Nicolson first step of Paoli–Schatzman
+  bool explicit_start_ = false;           // Paoli–Schatzman's first step is the explicit Newmark one (pending)
+  void explicit_first_step();
+  // The step of a contact class (newmark, penalty, nitsche, moreau-jean: lib/contact_classes.cpp),
+  // which replaces (★) and its kernels; null for the schemes of this file.
+  std::unique_ptr<ContactClassStep> class_step_;
 };
 
 /// The θ of CN-switch's step for which the θ-step's energy identity proves that no step gains energy

@@ -14,13 +14,18 @@ namespace mrm::repro {
 
 const Label& scheme_label(Scheme scheme) {
   // One entry per scheme of mrm::scheme_registry(), in its order (the test below checks both).
-  static const std::array<Label, 5> labels{{
+  static const std::array<Label, 9> labels{{
       {to_string(Scheme::crank_nicolson), "Crank–Nicolson", "Crank--Nicolson", "CN"},
       {to_string(Scheme::backward_euler), "backward Euler", "backward Euler", "BE"},
       {to_string(Scheme::paoli_schatzman), "Paoli–Schatzman (¼, 0)", "Paoli--Schatzman $(\\frac14, 0)$", "PS"},
       {to_string(Scheme::energy_conserving), "EC", "energy-conserving Crank--Nicolson", "EC"},
       {to_string(Scheme::switching), "CN-switch", "Crank--Nicolson with a $\\theta$-step at each status change",
        "CN-switch"},
+      {to_string(Scheme::newmark), "Newmark (β, γ), exact contact", "Newmark $(\\beta, \\gamma)$, exact contact",
+       "Newmark"},
+      {to_string(Scheme::penalty), "penalty", "Newmark $(\\beta, \\gamma)$ with a penalty", "penalty"},
+      {to_string(Scheme::nitsche), "Nitsche", "Newmark $(\\beta, \\gamma)$ with Nitsche's terms", "Nitsche"},
+      {to_string(Scheme::moreau_jean), "Moreau–Jean", "Moreau--Jean $(\\theta, e)$", "MJ"},
   }};
   const auto& registry = scheme_registry();
   for (std::size_t k = 0; k < registry.size(); ++k)

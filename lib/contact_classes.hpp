@@ -1,0 +1,43 @@
+/// @file contact_classes.hpp
+/// @brief The field's contact treatments in time (Doyen–Ern–Piperno's classes, field.md §2) as schemes
+/// of the registry: Newmark(β, γ) with exact enforcement (`newmark`), with a penalty (`penalty`), with
+/// Nitsche's terms (`nitsche`), and Moreau–Jean's velocity-level impact law (`moreau-jean`). Derived in
+/// contact_classes.cpp; BarSimulation (schemes.hpp) runs them through ContactClassStep.
+#pragma once
+
+#include <memory>
+
+#include "schemes.hpp"
+
+namespace mrm {
+
+/// Whether `scheme` is one of the contact classes of this file (its step is a ContactClassStep, not (★)).
+bool is_contact_class(Scheme scheme);
+
+/// The checks of a contact class's parameters and mass, before any work; throws InvalidParameter naming
+/// the parameter: β < 0 or not finite, γ < ½ (Newmark amplifies), γ₀ ≤ 0, θ_N ∉ [−1, 1], θ_N ≥ γ₀_N
+/// (the first element's stiffness (1 − θ/γ₀)/h is not positive), Moreau–Jean's θ ∉ [½, 1]; exact
+/// enforcement with β = 0 and a contact node with inertia (no explicit step exists: the constraint
+/// has no force to act through in the step); Moreau–Jean with a massless contact node (a velocity law
+/// needs the node's inertia); a load or a gap (not yet in these steps).
+void validate_contact_class(const SchemeParameters& parameters, bool massless_contact_node, bool has_load, double gap);
+
+/// One run's step of a contact class, on the unknowns 0..N−1 with mass M and stiffness S. It reads the
+/// initial level from the StepState (U⁰ in u, V⁰ in w, the massless node's λ⁰ in lambda) and writes
+/// every level there: u, w (the velocity), lambda (the contact stress λ ≤ 0 at the new level; Moreau–Jean:
+/// the impulse per step −p/Δt), energy (the class's discrete energy), active. A run that loses
+/// finiteness throws std::runtime_error naming the level.
+class ContactClassStep {
+ public:
+  virtual ~ContactClassStep() = default;
+  /// Advances `state` from level n to n+1 (n the argument, for the error message).
+  virtual void step(StepState& state, Index level) = 0;
+};
+
+/// The step of `parameters.scheme` (a contact class), set up on `state`'s initial level (which it
+/// completes: λ⁰, the energy E⁰). `contact_compliance` is h/E of the contact element (h on the paper's mesh).
+std::unique_ptr<ContactClassStep> make_contact_class_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
+                                                          const SchemeParameters& parameters, double dt,
+                                                          double contact_compliance, StepState& state);
+
+}  // namespace mrm

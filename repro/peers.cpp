@@ -1,0 +1,128 @@
+/// @file peers.cpp
+/// @brief GetFEM's demo_dynamic_contact_1D.py (interface/tests/python, GetFEM 5.4) as bar1d presets.
+///
+/// The demo's defaults: NX = 20, T = 12, dt = 0.002, Newmark β = 0 (explicit: the step solves with the
+/// mass), γ = ½, γ₀_N = 5, θ_N = 0, γ₀_P = 1, e_PS = 0, the standard (consistent) mass. Per version, the
+/// formulation of this library that reproduces its displacement measures (tests/getfem_peer.sh compares
+/// them with the demo's printed values, tests/data/getfem/measures.dat):
+///   v0, Signorini with a multiplier: `newmark`; the demo has no explicit step with the standard mass
+///       (it stops on `assert(false)`), and so does the library (refused, exit 2): run it with
+///       --newmark-beta 0.25 (implicit, the demo's blowing-up run) or a massless contact node.
+///   v1, Paoli–Schatzman: `ps` with β = 0, e = e_PS and the literal row: the demo's explicit Newmark with
+///       γ = ½ and the impulse (U − U_pred)/Δt added to V is, with V eliminated, the three-level scheme
+///       M(Uⁿ⁺¹ − 2Uⁿ + Uⁿ⁻¹) + Δt² SUⁿ = −Δt²λⁿe₀ with (u₀ⁿ⁺¹ + e u₀ⁿ⁻¹)/(1 + e) ≥ 0 (contact_classes.cpp's
+///       derivation for the penalty, with the impulse in place of the force), started as the demo starts:
+///       by the explicit Newmark step U¹ = U⁰ + ΔtV⁰ + ½Δt²M⁻¹(−SU⁰) (--ps-start explicit; the library's
+///       Crank–Nicolson start differs by 5e-5 relative at T = 0.1, 8e-6 at T = 12). Its β is --beta.
+///   v2, penalty: `penalty` with Newmark (0, ½) and γ₀ = γ₀_P.
+///   v3, Nitsche: `nitsche` with Newmark (0, ½), γ₀ = γ₀_N, θ = θ_N.
+#include "peers.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "mass_redistribution.hpp"
+
+namespace mrm::repro {
+
+namespace {
+
+PeerPreset demo_version(int version) {
+  PeerPreset p;
+  p.id = "getfem-v" + std::to_string(version);
+  p.scheme.newmark_beta = 0.0;
+  p.scheme.newmark_gamma = 0.5;
+  switch (version) {
+    case 0:
+      p.summary = "pure Signorini contact by a multiplier (newmark)";
+      p.scheme.scheme = Scheme::newmark;
+      p.formulation = "newmark: Newmark (beta, gamma), u0 >= 0 by a multiplier at the new level";
+      break;
+    case 1:
+      p.summary = "Paoli-Schatzman with restitution e_PS = 0 (ps, beta 0, literal row)";
+      p.scheme.scheme = Scheme::paoli_schatzman;
+      p.scheme.newmark_beta = SchemeParameters().newmark_beta;  // ps takes --beta, not Newmark's
+      p.scheme.newmark_gamma = SchemeParameters().newmark_gamma;
+      p.scheme.beta = 0.0;
+      p.scheme.restitution = 0.0;
+      p.scheme.contact_row = ContactRow::literal;
+      p.scheme.ps_explicit_start = true;
+      p.formulation =
+          "ps: three-level Paoli-Schatzman (beta = 0), the literal contact row, e = e_PS, started by "
+          "the explicit Newmark step";
+      break;
+    case 2:
+      p.summary = "penalty gamma0_P = 1 (penalty)";
+      p.scheme.scheme = Scheme::penalty;
+      p.scheme.penalty = 1.0;
+      p.formulation = "penalty: Newmark (beta, gamma) with the force (gamma0/h) min(0, u0) at the new level";
+      break;
+    case 3:
+      p.summary = "Nitsche gamma0_N = 5, theta_N = 0 (nitsche)";
+      p.scheme.scheme = Scheme::nitsche;
+      p.scheme.nitsche_gamma = 5.0;
+      p.scheme.nitsche_theta = 0.0;
+      p.formulation =
+          "nitsche: Newmark (beta, gamma) with lambda = min(0, gamma u0 + u_x(0)), active set on the predictor";
+      break;
+    default:
+      throw std::logic_error("demo_version: no such version");
+  }
+  return p;
+}
+
+}  // namespace
+
+const std::vector<PeerPreset>& peer_presets() {
+  static const std::vector<PeerPreset> presets = {demo_version(0), demo_version(1), demo_version(2), demo_version(3)};
+  return presets;
+}
+
+std::vector<std::string> peer_names() {
+  std::vector<std::string> names;
+  for (const PeerPreset& p : peer_presets()) names.push_back(p.id);
+  return names;
+}
+
+const PeerPreset& peer_preset(const std::string& id) {
+  std::string allowed;
+  for (const PeerPreset& p : peer_presets()) {
+    if (p.id == id) return p;
+    allowed += (allowed.empty() ? "" : ", ") + p.id;
+  }
+  throw std::invalid_argument("unknown peer \"" + id + "\" (allowed: " + allowed + ")");
+}
+
+const std::array<const char*, 4> PeerMeasures::names = {"LinfL2u", "LinfH1u", "L2L2u", "L2H1u"};
+
+PeerMeasures::PeerMeasures(const UniformMesh& mesh, const ReferenceSolution& exact)
+    : exact_(exact),
+      mass_(modified_mass(mesh, consistent_mass())),
+      h1_(modified_mass(mesh, consistent_mass()).plus(1.0, p1_stiffness(mesh))) {
+  for (Index i = 0; i < mesh.unknowns(); ++i) x_.push_back(mesh.x(i));
+}
+
+void PeerMeasures::add(const Sample& sample) {
+  const Eigen::VectorXd& u = *sample.displacement;
+  Eigen::VectorXd exact(u.size());
+  for (Index i = 0; i < u.size(); ++i) exact[i] = exact_.displacement(x_[static_cast<std::size_t>(i)], sample.time);
+  const Eigen::VectorXd error = u - exact;
+  const double e_l2 = mass_.bilinear(error, error), x_l2 = mass_.bilinear(exact, exact);
+  const double e_h1 = h1_.bilinear(error, error), x_h1 = h1_.bilinear(exact, exact);
+  error_l2_max_ = std::max(error_l2_max_, e_l2);
+  exact_l2_max_ = std::max(exact_l2_max_, x_l2);
+  error_h1_max_ = std::max(error_h1_max_, e_h1);
+  exact_h1_max_ = std::max(exact_h1_max_, x_h1);
+  error_l2_sum_ += e_l2;
+  exact_l2_sum_ += x_l2;
+  error_h1_sum_ += e_h1;
+  exact_h1_sum_ += x_h1;
+}
+
+std::array<double, 4> PeerMeasures::values() const {
+  return {std::sqrt(error_l2_max_ / exact_l2_max_), std::sqrt(error_h1_max_ / exact_h1_max_),
+          std::sqrt(error_l2_sum_ / exact_l2_sum_), std::sqrt(error_h1_sum_ / exact_h1_sum_)};
+}
+
+}  // namespace mrm::repro
