@@ -26,6 +26,7 @@
 
 #include "energy_step.hpp"
 #include "exact_solution.hpp"
+#include "explicit_schemes.hpp"
 #include "fast_step.hpp"
 
 namespace mrm {
@@ -76,6 +77,15 @@ const std::vector<SchemeInfo>& scheme_registry() {
        "cn-switch",
        "Crank–Nicolson with a θ-step at each change of the contact status (θ = 1: backward Euler)",
        {P::switch_theta}},
+      // The explicit contact classes (explicit_schemes.cpp): central differences with a lumped mass.
+      {Scheme::taylor_flanagan,
+       "taylor-flanagan",
+       "central differences, lumped mass, contact by Taylor–Flanagan's velocity correction (GetFEM's version 4)",
+       {P::mass_lumping}},
+      {Scheme::explicit_central,
+       "explicit",
+       "central differences, lumped mass, massless contact node on its algebraic row (no impact law)",
+       {}},
   };
   return registry;
 }
@@ -95,7 +105,7 @@ std::string to_string(Scheme s) { return scheme_info(s).id; }
 
 // The names in the order of the enum.
 std::string to_string(SchemeParameter p) {
-  static const char* const names[] = {"beta", "restitution", "contact_row", "switch_theta"};
+  static const char* const names[] = {"beta", "restitution", "contact_row", "switch_theta", "mass_lumping"};
   return names[static_cast<int>(p)];
 }
 
@@ -109,7 +119,7 @@ Scheme scheme_by_name(const std::string& name) {
 }
 
 TEST_CASE("the registry names every scheme once, and its ids read back") {
-  CHECK(scheme_registry().size() == 5);
+  CHECK(scheme_registry().size() == 7);
   for (const SchemeInfo& info : scheme_registry()) {
     CAPTURE(info.id);
     CHECK(scheme_by_name(info.id) == info.scheme);
@@ -126,7 +136,11 @@ TEST_CASE("the registry names every scheme once, and its ids read back") {
   CHECK(to_string(SchemeParameter::restitution) == "restitution");
   CHECK(to_string(SchemeParameter::contact_row) == "contact_row");
   CHECK(to_string(SchemeParameter::switch_theta) == "switch_theta");
-  CHECK_THROWS_WITH_AS(scheme_by_name("rk4"), "unknown scheme \"rk4\" (allowed: cn, be, ps, ec, cn-switch)",
+  CHECK(to_string(SchemeParameter::mass_lumping) == "mass_lumping");
+  CHECK(takes(Scheme::taylor_flanagan, SchemeParameter::mass_lumping));
+  CHECK(!takes(Scheme::explicit_central, SchemeParameter::mass_lumping));
+  CHECK_THROWS_WITH_AS(scheme_by_name("rk4"),
+                       "unknown scheme \"rk4\" (allowed: cn, be, ps, ec, cn-switch, taylor-flanagan, explicit)",
                        std::invalid_argument);
 }
 
@@ -279,6 +293,9 @@ StepMatrices step_matrices(const Tridiagonal& mass, const Tridiagonal& stiffness
       return theta_step_matrices(mass, stiffness, 1.0, dt);
     case Scheme::paoli_schatzman:
       break;
+    case Scheme::taylor_flanagan:  // explicit: no (★) (explicit_schemes.cpp); never asked by BarSimulation
+    case Scheme::explicit_central:
+      throw InvalidParameter("scheme", to_string(p.scheme) + " is explicit and has no implicit step (★)");
   }
   const double dt2 = dt * dt, beta = p.beta;
   StepMatrices m;
@@ -433,6 +450,7 @@ void validate(const SchemeParameters& p, double dt) {
   refuse_unless_default(SchemeParameter::restitution, p.restitution == defaults.restitution);
   refuse_unless_default(SchemeParameter::contact_row, p.contact_row == defaults.contact_row);
   refuse_unless_default(SchemeParameter::switch_theta, p.switch_theta == defaults.switch_theta);
+  refuse_unless_default(SchemeParameter::mass_lumping, p.lumping == defaults.lumping);
 }
 
 // M^mod on the mesh, its refusal (weights not symmetric or not finite, a matrix that is not
@@ -493,14 +511,22 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
                            "grows at every step of free flight (allowed: beta >= 1/4, the algebraic row, or the "
                            "consistent mass)");
 
+  // The explicit schemes (explicit_schemes.cpp) have no (★): their step checks its own mass and stability
+  // limit, and its mass (row-sum lumped, or the consistent one) is the run's. One implementation of the
+  // step, whatever StepKernel asks (the fast path falls back to it).
+  if (is_explicit(parameters.scheme)) {
+    explicit_ = std::make_unique<const ExplicitStep>(mesh, mass, stiffness_, parameters, dt, problem.gap);
+    mass_ = explicit_->mass();
+  }
+
   // The matrices and scalars of (★) (step_matrices above), A factorised once per run.
   const Tridiagonal& M = mass_;
   const Tridiagonal& S = stiffness_;
-  step_ = step_matrices(M, S, parameters, dt);
+  if (!explicit_) step_ = step_matrices(M, S, parameters, dt);
   // The gap moves the obstacle: u₀ⁿ⁺¹ ≥ −gap (Paoli–Schatzman: the averaged constraint, see StepMatrices).
   // (+0.0 without a gap: a −0.0 would print as "-0" where the contact node sits on the obstacle.)
   if (problem.gap != 0.0) step_.obstacle_offset = -(three_level_ ? 1 + parameters.restitution : 1.0) * problem.gap;
-  solver_ = ContactSolver(step_.a);
+  if (!explicit_) solver_ = ContactSolver(step_.a);
   // CN-switch's θ-step, with its own factorisation (once per run, like A's).
   if (parameters.scheme == Scheme::switching) {
     SwitchStep redo;
@@ -511,7 +537,7 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   }
   // The fast path reads B₁, B₂, M and S from its own rows (fast_step.cpp): B₁ and B₂ are kept only
   // for the reference step, so that the fast path's memory is that of the state and the factors.
-  if (parameters.kernel == StepKernel::fast) {
+  if (parameters.kernel == StepKernel::fast && !explicit_) {
     fast_ = std::make_unique<const FastStep>(step_, M, S, parameters, mesh.contact_compliance());
     step_.b1 = Tridiagonal();
     step_.b2 = Tridiagonal();
@@ -993,7 +1019,10 @@ void BarSimulation::step() {
   const double t_next = static_cast<double>(level_ + 1) * dt_;
   const bool has_load = static_cast<bool>(problem_.load);
   if (has_load) load_at(t_next, state_.f_next);
-  if (!fast_)
+  if (explicit_) {
+    explicit_->step(state_, has_load);
+    state_.energy = 0.5 * mass_.bilinear(state_.w, state_.w) + 0.5 * stiffness_form(state_.u, state_.u, mesh_);
+  } else if (!fast_)
     reference_step(has_load);
   else if (!fast_->step(state_, solver_, has_load))
     switch_step(has_load);  // CN-switch at a change of status

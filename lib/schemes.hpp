@@ -21,8 +21,15 @@ enum class Scheme {
   backward_euler,     ///< backward Euler, two levels
   paoli_schatzman,    ///< Paoli–Schatzman (β, e), three levels
   energy_conserving,  ///< EC: Crank–Nicolson with the discrete gradient of the contact energy (mathematics.md §12)
-  switching           ///< CN-switch: Crank–Nicolson, a θ-step where the contact status changes (mathematics.md §12)
+  switching,          ///< CN-switch: Crank–Nicolson, a θ-step where the contact status changes (mathematics.md §12)
+  taylor_flanagan,    ///< central differences, contact by Taylor–Flanagan's velocity correction (explicit_schemes.cpp)
+  explicit_central    ///< central differences with a massless contact node on its algebraic row (explicit_schemes.cpp)
 };
+
+/// The mass an explicit scheme uses (explicit_schemes.cpp): `row_sum` lumps the run's mass by row sums
+/// (the default), `none` keeps the consistent mass and solves with it at every step (GetFEM's demo with
+/// lump_mass_matrix = 0; taylor-flanagan with the consistent mass only).
+enum class MassLumping { row_sum, none };
 
 /// How the Paoli–Schatzman scheme treats the contact row when the contact node is massless:
 /// `literal` applies the three-level formula to every row, the contact row included;
@@ -47,7 +54,8 @@ enum class SchemeParameter {
   beta,         ///< Paoli–Schatzman's β
   restitution,  ///< Paoli–Schatzman's restitution coefficient e
   contact_row,  ///< Paoli–Schatzman's contact-row form (algebraic or literal)
-  switch_theta  ///< CN-switch's θ of the step taken at a change of the contact status
+  switch_theta,  ///< CN-switch's θ of the step taken at a change of the contact status
+  mass_lumping   ///< the explicit schemes' mass lumping (row-sum or none)
 };
 
 /// One entry of the registry of schemes: what the programs' help texts, choice lists, data headers
@@ -71,6 +79,8 @@ std::string to_string(SchemeParameter);     ///< "beta", "restitution", "contact
 std::string to_string(ContactRow);          ///< "algebraic", "literal"
 std::string to_string(InitialContactNode);  ///< "consistent", "interpolant"
 std::string to_string(StepKernel);          ///< "reference", "fast"
+std::string to_string(MassLumping);         ///< "row-sum", "none"
+MassLumping mass_lumping_by_name(const std::string&);  ///< row-sum, none; std::invalid_argument otherwise
 /// Parsers of the names above; throw std::invalid_argument listing the allowed names.
 Scheme scheme_by_name(const std::string&);                            ///< an id of the registry
 ContactRow contact_row_by_name(const std::string&);                   ///< algebraic, literal
@@ -97,6 +107,7 @@ struct SchemeParameters {
   /// CN-switch's θ ∈ [½, 1] of the step that replaces a Crank–Nicolson step across which the contact
   /// status changes: 1 is backward Euler, the only value for which the energy provably never increases.
   double switch_theta = 1.0;
+  MassLumping lumping = MassLumping::row_sum;  ///< the explicit schemes' mass (explicit_schemes.hpp)
 };
 
 /// The matrices and scalars of one step (★) of schemes.cpp,
@@ -187,6 +198,7 @@ struct StepState {
 };
 
 class FastStep;
+class ExplicitStep;
 
 /// One run of one scheme on one mesh with one mass: the state, the constant step matrix factorised
 /// once, and the step (the reference step of schemes.cpp or the fast kernel of fast_step.cpp, as
@@ -252,6 +264,8 @@ class BarSimulation {
     ContactSolver solver;
   };
   std::unique_ptr<const SwitchStep> switch_;
+  // The explicit schemes' step (explicit_schemes.cpp), null for the others; it replaces (★) and both kernels.
+  std::unique_ptr<const ExplicitStep> explicit_;
   bool energy_conserving_ = false;
 
   Index level_ = 0;

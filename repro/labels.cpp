@@ -14,13 +14,16 @@ namespace mrm::repro {
 
 const Label& scheme_label(Scheme scheme) {
   // One entry per scheme of mrm::scheme_registry(), in its order (the test below checks both).
-  static const std::array<Label, 5> labels{{
+  static const std::array<Label, 7> labels{{
       {to_string(Scheme::crank_nicolson), "Crank–Nicolson", "Crank--Nicolson", "CN"},
       {to_string(Scheme::backward_euler), "backward Euler", "backward Euler", "BE"},
       {to_string(Scheme::paoli_schatzman), "Paoli–Schatzman (¼, 0)", "Paoli--Schatzman $(\\frac14, 0)$", "PS"},
       {to_string(Scheme::energy_conserving), "EC", "energy-conserving Crank--Nicolson", "EC"},
       {to_string(Scheme::switching), "CN-switch", "Crank--Nicolson with a $\\theta$-step at each status change",
        "CN-switch"},
+      {to_string(Scheme::taylor_flanagan), "Taylor–Flanagan", "Taylor--Flanagan (central differences)", "TF"},
+      {to_string(Scheme::explicit_central), "explicit, massless contact node",
+       "central differences with a massless contact node", "CD"},
   }};
   const auto& registry = scheme_registry();
   for (std::size_t k = 0; k < registry.size(); ++k)
