@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
     double courant = 0.5, dt = 0.0, final_time = 6.0, length = 1.0, amplitude = 0.5, beta = 0.25, restitution = 0.0,
            switch_theta = 1.0;
     std::string scheme = mrm::to_string(mrm::Scheme::crank_nicolson), mass = "mod3", ps_form = "algebraic",
-                initial = "consistent", contact_velocity = "algebraic", output;
+                initial = "consistent", contact_velocity = "algebraic", output, lumping = "row-sum";
     std::string benchmark = "paper", initial_data;
     bool no_timing = false;
     // The ranges below keep every quantity of the run (h, Δt², the matrices' entries, the energy a²L/2)
@@ -132,6 +132,10 @@ int main(int argc, char** argv) {
                       "Paoli-Schatzman's contact row: algebraic at every level, or the literal three-level formula "
                       "(the consistent mass needs literal, which is then the default)",
                       {"algebraic", "literal"}, &ps_form);
+    parser.add_choice("--lumping", "", "K",
+                      "taylor-flanagan's mass: row-sum lumped (the default; dt <= h), or none, the consistent mass "
+                      "solved at every step as GetFEM's demo (dt <= h/sqrt(3))",
+                      {"row-sum", "none"}, &lumping);
     parser.add_choice("--initial-contact-node", "", "I",
                       "initial value of a massless contact node: solved from its algebraic row, or the interpolant",
                       {"consistent", "interpolant"}, &initial);
@@ -162,7 +166,7 @@ int main(int argc, char** argv) {
     if (field_benchmark) {  // the exact solution's contact windows (lib/impact_solution.hpp), nothing else
       for (const char* option :
            {"--elements", "--courant", "--dt", "--scheme", "--mass", "--beta", "--restitution", "--ps-form",
-            "--switch-theta", "--initial-contact-node", "--contact-velocity", "--output"})
+            "--switch-theta", "--lumping", "--initial-contact-node", "--contact-velocity", "--output"})
         if (parser.given(option))
           throw cli::UsageError(std::string(option) + ": --benchmark " + benchmark +
                                 " has no finite element run yet: it needs " +
@@ -191,7 +195,8 @@ int main(int argc, char** argv) {
                                {{"--beta", mrm::SchemeParameter::beta},
                                 {"--restitution", mrm::SchemeParameter::restitution},
                                 {"--ps-form", mrm::SchemeParameter::contact_row},
-                                {"--switch-theta", mrm::SchemeParameter::switch_theta}});
+                                {"--switch-theta", mrm::SchemeParameter::switch_theta},
+                                {"--lumping", mrm::SchemeParameter::mass_lumping}});
 
     // 2. The output, opened now so that an unwritable path fails before the run.
     std::unique_ptr<cli::AtomicFile> series;
@@ -234,6 +239,7 @@ int main(int argc, char** argv) {
     if (mrm::takes(configuration.scheme.scheme, mrm::SchemeParameter::contact_row))
       configuration.scheme.contact_row = mrm::contact_row_by_name(ps_form);
     configuration.scheme.switch_theta = switch_theta;
+    configuration.scheme.lumping = mrm::mass_lumping_by_name(lumping);
     configuration.elements = elements;
     configuration.dt = step;
     configuration.final_time = final_time;
@@ -242,7 +248,9 @@ int main(int argc, char** argv) {
     // The simulation, built once before any work: the library refuses a combination that cannot run (the
     // algebraic row or ec with a contact node that has inertia, a literal row with beta < 1/4 and a massless
     // node) and names the parameter, worded here as the option that sets it.
-    mrm::repro::as_usage_error({{"dt", "--dt"},
+    // An explicit scheme's stability limit names the option that set the step.
+    mrm::repro::as_usage_error({{"dt", parser.given("--dt") ? "--dt" : "--courant"},
+                                {"mass_lumping", "--lumping"},
                                 {"beta", "--beta"},
                                 {"restitution", "--restitution"},
                                 {"contact_row", "--ps-form"},

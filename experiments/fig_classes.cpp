@@ -14,8 +14,8 @@
 // 1/√3 is the explicit limit of central differences with the consistent mass (explicit_schemes.cpp),
 // 1 the limit with the lumped mass (both explicit schemes), ½ a step every class takes. Each run goes to
 // T = 6 (the paper's benchmark: two periods) or 2 (the smooth benchmarks, bar1d's default), and gives:
-// the eight relative errors (mathematics.md §5), TV(λ)/TV(λ_exact) over the run, the largest
-// penetration max(−u₀), the energy change per impact (E(T) − E(0))/(E(0) · impacts), and the work
+// the eight relative errors (mathematics.md §5), TV(λ)/TV(λ_exact) over the run and the largest
+// penetration max(−u₀) (repro::Measures::lambda_tv_ratio, max_penetration), the energy change per impact (E(T) − E(0))/(E(0) · impacts), and the work
 // N × steps; per (benchmark, class, mass, C) the observed order of each error (least-squares slope of
 // log error against log h over the four meshes). The long run: the paper's benchmark for 10³ periods
 // (10³ impacts, T = 3000) on N = 25 at each C, E(T)/E(0) and the energy every 10 periods.
@@ -31,7 +31,8 @@
 // Data file: block 0 the runs (columns benchmark scheme mass courant elements h dt, the eight errors,
 // tv_ratio max_penetration energy_change_per_impact impacts node_steps); block 1 the observed orders
 // (benchmark scheme mass courant, the eight orders); block 2 the long runs (scheme mass courant impacts
-// energy_ratio); block 3 the long runs' energy every 10 periods (scheme mass courant periods energy_ratio).
+// energy_ratio); block 3 the long runs' energy every 10 periods (scheme mass courant periods energy_ratio);
+// block 4 the largest nodal error at dt = h (scheme mass elements T max_nodal_error).
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -50,6 +51,9 @@
 #include "table.hpp"
 
 #include "errors.hpp"
+#include "exact_solution.hpp"
+#include "mass_redistribution.hpp"
+#include "schemes.hpp"
 
 namespace cli = mrm::cli;
 namespace repro = mrm::repro;
@@ -236,26 +240,13 @@ int main(int argc, char** argv) {
       const std::string& benchmark = benchmarks[job.benchmark];
       const repro::Configuration configuration = configuration_of(
           cases[job.c], benchmark, meshes[job.mesh], courants[job.courant], final_time(benchmark));
-      const mrm::Index steps = mrm::steps_to_reach(configuration.final_time, configuration.step());
-      const std::shared_ptr<const mrm::ReferenceSolution> reference =
-          repro::configuration_reference(configuration, repro::reference_horizon(steps, configuration.step()));
-      // TV(λ) and TV(λ_exact) at the multiplier's instants, and the largest penetration max(−u₀).
-      double tv = 0, tv_exact = 0, last = 0, last_exact = 0, penetration = 0;
-      bool first = true;
-      const repro::Measures m = repro::run_configuration(
-          configuration,
-          [&](const mrm::Sample& s) {
-            penetration = std::max(penetration, -(*s.displacement)[0]);
-            if (!s.has_multiplier) return;
-            const double exact = reference->contact_multiplier(s.multiplier_time);
-            if (!first) tv += std::abs(s.multiplier - last), tv_exact += std::abs(exact - last_exact);
-            last = s.multiplier, last_exact = exact, first = false;
-          },
-          reference.get());
+      const repro::Measures m = repro::run_configuration(configuration);
+      if (!m.lambda_tv_ratio)
+        throw std::runtime_error("fig_classes: the exact contact stress does not vary on " + benchmark);
       cell.run = true;
       cell.errors = mrm::ErrorAccumulator::values(m.errors);
-      cell.tv_ratio = tv / tv_exact;
-      cell.penetration = penetration;
+      cell.tv_ratio = *m.lambda_tv_ratio;   // repro::Measures (configurations.hpp)
+      cell.penetration = m.max_penetration;
       cell.impacts = m.impacts.size();
       cell.energy_per_impact =
           cell.impacts ? (m.energy_final - m.energy_initial) / (m.energy_initial * static_cast<double>(cell.impacts))
@@ -365,6 +356,49 @@ int main(int argc, char** argv) {
       mrm::tex_define(defs, "classes:benchmarks", benchmark_list);
       mrm::tex_define(defs, "classes:runs", std::to_string(cells.size() + longs.size()));
     }
+    // Is a scheme exact at the nodes at Δt = h (explicit_schemes.cpp, "Is `explicit` exact ...")? The
+    // largest nodal error max_n max_i |u_i − u(x_i, t_n)| of the paper's benchmark over one period, for
+    // explicit + Mod 3 and cn + Mod 3, and for taylor-flanagan (lumped) up to the first impact (t < 1,
+    // the free wave equation) and over the period.
+    out << "\n\n# block 4: the largest nodal error at dt = h on the paper's benchmark (t <= T)\n"
+           "# columns: scheme mass elements T max_nodal_error\n";
+    {
+      const mrm::ExactSolution exact;
+      const auto nodal = [&](mrm::Scheme scheme, const std::string& mass, mrm::Index n, double horizon) {
+        const mrm::UniformMesh mesh(1.0, n);
+        mrm::SchemeParameters p;
+        p.scheme = scheme;
+        mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(mass), p,
+                                      mesh.h());
+        double worst = 0;
+        mrm::run(simulation, mrm::steps_to_reach(horizon, mesh.h()) - (horizon < 1.5 ? 1 : 0),
+                 [&](const mrm::Sample& x) {
+                   for (mrm::Index i = 0; i < n; ++i)
+                     worst = std::max(worst, std::abs((*x.displacement)[i] - exact.displacement(mesh.x(i), x.time)));
+                 });
+        out << mrm::to_string(scheme) << ' ' << mass << ' ' << n << ' ' << cli::format_real(horizon) << ' '
+            << cli::format_real(worst) << '\n';
+        return worst;
+      };
+      for (const mrm::Index n : {20, 40, 80}) {
+        const std::string N = std::to_string(n);
+        mrm::tex_define(defs, "classes:dth:explicit:" + N, mrm::tex_number(nodal(mrm::Scheme::explicit_central, "mod3", n, 3.0), 2));
+        mrm::tex_define(defs, "classes:dth:cn:" + N, mrm::tex_number(nodal(mrm::Scheme::crank_nicolson, "mod3", n, 3.0), 2));
+        mrm::tex_define(defs, "classes:dth:tf-free:" + N,
+                        mrm::tex_number(nodal(mrm::Scheme::taylor_flanagan, "consistent", n, 1.0), 2));
+        mrm::tex_define(defs, "classes:dth:tf:" + N, mrm::tex_number(nodal(mrm::Scheme::taylor_flanagan, "consistent", n, 3.0), 2));
+      }
+    }
+    // Values of the summary the report's sentences quote: per benchmark and pair at N = 200, Δt = h/2.
+    for (std::size_t b = 0; b < benchmarks.size(); ++b)
+      for (std::size_t c = 0; c < cases.size(); ++c) {
+        const Cell& x = cell(b, c, fine, half);
+        const std::string key = "classes:" + benchmarks[b] + ":" + cases[c].id() + ":";
+        mrm::tex_define(defs, key + "tv", mrm::tex_number(x.tv_ratio, 3));
+        mrm::tex_define(defs, key + "g", mrm::tex_number(geometric_mean(x.errors), 3));
+        mrm::tex_define(defs, key + "lambda", mrm::tex_number(x.errors[1], 3));
+        if (b == 0) mrm::tex_define(defs, key + "long", mrm::tex_number(long_run(c, half).energy_ratio, 3));
+      }
     std::cout << "fig_classes: " << cases.size() << " class-mass pairs x " << benchmarks.size() << " benchmarks x "
               << meshes.size() << " meshes x " << courants.size() << " steps = " << cells.size() << " runs, and "
               << longs.size() << " runs of 1000 impacts\n";
