@@ -393,7 +393,7 @@ int main(int argc, char** argv) {
     for (std::size_t b = 0; b < benchmarks.size(); ++b)
       for (std::size_t c = 0; c < cases.size(); ++c) {
         const Cell& x = cell(b, c, fine, half);
-        const std::string key = "classes:" + benchmarks[b] + ":" + cases[c].id() + ":";
+        const std::string key = "classes:" + benchmarks[b] + ":" + mrm::to_string(cases[c].scheme) + ":" + cases[c].mass + ":";
         mrm::tex_define(defs, key + "tv", mrm::tex_number(x.tv_ratio, 3));
         mrm::tex_define(defs, key + "g", mrm::tex_number(geometric_mean(x.errors), 3));
         mrm::tex_define(defs, key + "lambda", mrm::tex_number(x.errors[1], 3));
