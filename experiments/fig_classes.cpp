@@ -83,8 +83,8 @@ struct Long {
   std::vector<double> every_ten;  // E/E(0) every 10 periods
 };
 
-repro::Configuration configuration_of(const Case& c, const std::string& benchmark, mrm::Index elements,
-                                      double courant, double final_time) {
+repro::Configuration configuration_of(const Case& c, const std::string& benchmark, mrm::Index elements, double courant,
+                                      double final_time) {
   repro::Configuration configuration = repro::paper_configuration(
       c.scheme, c.mass == "consistent" ? "literal" : "algebraic", c.mass, elements, courant, final_time);
   configuration.benchmark = benchmark;
@@ -238,14 +238,14 @@ int main(int argc, char** argv) {
       }
       Cell& cell = cells[k];
       const std::string& benchmark = benchmarks[job.benchmark];
-      const repro::Configuration configuration = configuration_of(
-          cases[job.c], benchmark, meshes[job.mesh], courants[job.courant], final_time(benchmark));
+      const repro::Configuration configuration =
+          configuration_of(cases[job.c], benchmark, meshes[job.mesh], courants[job.courant], final_time(benchmark));
       const repro::Measures m = repro::run_configuration(configuration);
       if (!m.lambda_tv_ratio)
         throw std::runtime_error("fig_classes: the exact contact stress does not vary on " + benchmark);
       cell.run = true;
       cell.errors = mrm::ErrorAccumulator::values(m.errors);
-      cell.tv_ratio = *m.lambda_tv_ratio;   // repro::Measures (configurations.hpp)
+      cell.tv_ratio = *m.lambda_tv_ratio;  // repro::Measures (configurations.hpp)
       cell.penetration = m.max_penetration;
       cell.impacts = m.impacts.size();
       cell.energy_per_impact =
@@ -286,8 +286,7 @@ int main(int argc, char** argv) {
                 << cli::format_real(courants[k] * h);
             for (double v : x.errors) out << ' ' << cli::format_real(v);
             out << ' ' << cli::format_real(x.tv_ratio) << ' ' << cli::format_real(x.penetration) << ' '
-                << cli::format_real(x.energy_per_impact) << ' ' << x.impacts << ' ' << cli::format_real(x.work)
-                << '\n';
+                << cli::format_real(x.energy_per_impact) << ' ' << x.impacts << ' ' << cli::format_real(x.work) << '\n';
           }
     out << "\n\n# block 1: the observed orders (least-squares slope over N = 25..200)\n"
            "# columns: benchmark scheme mass courant";
@@ -307,7 +306,8 @@ int main(int argc, char** argv) {
       for (std::size_t k = 0; k < courants.size(); ++k)
         out << mrm::to_string(cases[c].scheme) << ' ' << cases[c].mass << ' ' << cli::format_real(courants[k]) << ' '
             << long_run(c, k).impacts << ' ' << cli::format_real(long_run(c, k).energy_ratio) << '\n';
-    out << "\n\n# block 3: the long runs' energy every 10 periods\n# columns: scheme mass courant periods energy_ratio\n";
+    out << "\n\n# block 3: the long runs' energy every 10 periods\n# columns: scheme mass courant periods "
+           "energy_ratio\n";
     for (std::size_t c = 0; c < cases.size(); ++c)
       for (std::size_t k = 0; k < courants.size(); ++k) {
         const Long& l = long_run(c, k);
@@ -322,8 +322,11 @@ int main(int argc, char** argv) {
     // penetration, the energy change per impact; the paper's benchmark's order of the geometric mean;
     // E(T)/E(0) after 10³ impacts at N = 25, Δt = h/2.
     const std::size_t fine = meshes.size() - 1, half = 0;
-    std::vector<std::string> head = {"benchmark", "class", "mass", "$g$", "$\\lambda$ err", "TV ratio",
-                                     "max pen.", "$\\Delta E$/impact", "order $g$", "$E/E_0$, $10^3$ imp."};
+    std::vector<std::string> head = {"benchmark",      "class",
+                                     "mass",           "$g$",
+                                     "$\\lambda$ err", "TV ratio",
+                                     "max pen.",       "$\\Delta E$/impact",
+                                     "order $g$",      "$E/E_0$, $10^3$ imp."};
     repro::Table table(head);
     for (std::size_t b = 0; b < benchmarks.size(); ++b) {
       for (std::size_t c = 0; c < cases.size(); ++c) {
@@ -382,18 +385,22 @@ int main(int argc, char** argv) {
       };
       for (const mrm::Index n : {20, 40, 80}) {
         const std::string N = std::to_string(n);
-        mrm::tex_define(defs, "classes:dth:explicit:" + N, mrm::tex_number(nodal(mrm::Scheme::explicit_central, "mod3", n, 3.0), 2));
-        mrm::tex_define(defs, "classes:dth:cn:" + N, mrm::tex_number(nodal(mrm::Scheme::crank_nicolson, "mod3", n, 3.0), 2));
+        mrm::tex_define(defs, "classes:dth:explicit:" + N,
+                        mrm::tex_number(nodal(mrm::Scheme::explicit_central, "mod3", n, 3.0), 2));
+        mrm::tex_define(defs, "classes:dth:cn:" + N,
+                        mrm::tex_number(nodal(mrm::Scheme::crank_nicolson, "mod3", n, 3.0), 2));
         mrm::tex_define(defs, "classes:dth:tf-free:" + N,
                         mrm::tex_number(nodal(mrm::Scheme::taylor_flanagan, "consistent", n, 1.0), 2));
-        mrm::tex_define(defs, "classes:dth:tf:" + N, mrm::tex_number(nodal(mrm::Scheme::taylor_flanagan, "consistent", n, 3.0), 2));
+        mrm::tex_define(defs, "classes:dth:tf:" + N,
+                        mrm::tex_number(nodal(mrm::Scheme::taylor_flanagan, "consistent", n, 3.0), 2));
       }
     }
     // Values of the summary the report's sentences quote: per benchmark and pair at N = 200, Δt = h/2.
     for (std::size_t b = 0; b < benchmarks.size(); ++b)
       for (std::size_t c = 0; c < cases.size(); ++c) {
         const Cell& x = cell(b, c, fine, half);
-        const std::string key = "classes:" + benchmarks[b] + ":" + mrm::to_string(cases[c].scheme) + ":" + cases[c].mass + ":";
+        const std::string key =
+            "classes:" + benchmarks[b] + ":" + mrm::to_string(cases[c].scheme) + ":" + cases[c].mass + ":";
         mrm::tex_define(defs, key + "tv", mrm::tex_number(x.tv_ratio, 3));
         mrm::tex_define(defs, key + "g", mrm::tex_number(geometric_mean(x.errors), 3));
         mrm::tex_define(defs, key + "lambda", mrm::tex_number(x.errors[1], 3));
@@ -413,7 +420,8 @@ int main(int argc, char** argv) {
         double seconds = 0, work = 0;
         for (std::size_t k = 0; k < cells.size(); ++k)
           if (jobs[k].c == c) seconds += cells[k].seconds, work += cells[k].work;
-        std::cout << "  " << cases[c].id() << ": " << cli::format_real(std::round(1e9 * seconds / work * 10) / 10) << '\n';
+        std::cout << "  " << cases[c].id() << ": " << cli::format_real(std::round(1e9 * seconds / work * 10) / 10)
+                  << '\n';
       }
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
       std::cout << "wall_seconds = " << cli::format_real(std::round(wall * 100) / 100) << '\n';

@@ -184,14 +184,17 @@ ExplicitStep::ExplicitStep(const UniformMesh& mesh, const MassRedistribution& ma
   massless_ = contact_node_is_massless(consistent);
   const std::string id = to_string(parameters.scheme);
   if (taylor_flanagan_ && massless_)
-    throw InvalidParameter("mass", "taylor-flanagan needs a contact node with inertia (allowed: consistent; with a "
-                                   "massless contact node the explicit step is the scheme explicit)");
+    throw InvalidParameter("mass",
+                           "taylor-flanagan needs a contact node with inertia (allowed: consistent; with a "
+                           "massless contact node the explicit step is the scheme explicit)");
   if (!taylor_flanagan_ && !massless_)
-    throw InvalidParameter("mass", "the scheme explicit needs a massless contact node (allowed: any mass but "
-                                   "consistent, e.g. mod3; with inertia at the contact node use taylor-flanagan)");
+    throw InvalidParameter("mass",
+                           "the scheme explicit needs a massless contact node (allowed: any mass but "
+                           "consistent, e.g. mod3; with inertia at the contact node use taylor-flanagan)");
   if (!lumped_ && !(mass.name == consistent_mass().name && mesh.uniform() && mesh.homogeneous()))
-    throw InvalidParameter("mass_lumping", "none (the consistent mass solved at every step) needs the consistent "
-                                           "mass on the paper's mesh (allowed: row-sum)");
+    throw InvalidParameter("mass_lumping",
+                           "none (the consistent mass solved at every step) needs the consistent "
+                           "mass on the paper's mesh (allowed: row-sum)");
   const Index n = mesh.unknowns();
   Eigen::VectorXd lumped_mass;
   if (lumped_) {
@@ -216,8 +219,8 @@ ExplicitStep::ExplicitStep(const UniformMesh& mesh, const MassRedistribution& ma
   if (!(dt <= limit_ * (1 + 1e-12))) {
     const double courant = mesh.uniform() && mesh.homogeneous() ? limit_ / mesh.h() : 0.0;
     char text[160];
-    std::snprintf(text, sizeof text, "%.6g is above the stability limit of %s (allowed: 0 < dt <= %.6g", dt,
-                  id.c_str(), limit_);
+    std::snprintf(text, sizeof text, "%.6g is above the stability limit of %s (allowed: 0 < dt <= %.6g", dt, id.c_str(),
+                  limit_);
     std::string message = text;
     if (courant > 0) {
       std::snprintf(text, sizeof text, ", i.e. Courant number <= %.6g", courant);
@@ -233,7 +236,8 @@ ExplicitStep::ExplicitStep(const UniformMesh& mesh, const MassRedistribution& ma
     else {
       for (Index i = 1; i < n; ++i) impulse_response_[i] -= factor_[i] * impulse_response_[i - 1];
       for (Index i = n - 1; i >= 0; --i)
-        impulse_response_[i] = impulse_response_[i] / pivot_[i] - (i + 1 < n ? factor_[i + 1] * impulse_response_[i + 1] : 0.0);
+        impulse_response_[i] =
+            impulse_response_[i] / pivot_[i] - (i + 1 < n ? factor_[i + 1] * impulse_response_[i + 1] : 0.0);
     }
   }
 }

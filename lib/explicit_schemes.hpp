@@ -58,9 +58,9 @@ class ExplicitStep {
   bool taylor_flanagan_, lumped_, massless_;
   double dt_, gap_, compliance_, limit_;
   Tridiagonal mass_, stiffness_;
-  Eigen::VectorXd inverse_mass_;     // 1/m_i (lumped; 0 at a massless node)
-  Eigen::VectorXd pivot_, factor_;   // LDLᵀ of the consistent mass (lumping none)
-  Eigen::VectorXd impulse_response_; // r = M⁻¹e₀ (taylor-flanagan)
+  Eigen::VectorXd inverse_mass_;      // 1/m_i (lumped; 0 at a massless node)
+  Eigen::VectorXd pivot_, factor_;    // LDLᵀ of the consistent mass (lumping none)
+  Eigen::VectorXd impulse_response_;  // r = M⁻¹e₀ (taylor-flanagan)
 };
 
 }  // namespace mrm

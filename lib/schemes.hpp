@@ -22,8 +22,8 @@ enum class Scheme {
   paoli_schatzman,    ///< Paoli–Schatzman (β, e), three levels
   energy_conserving,  ///< EC: Crank–Nicolson with the discrete gradient of the contact energy (mathematics.md §12)
   switching,          ///< CN-switch: Crank–Nicolson, a θ-step where the contact status changes (mathematics.md §12)
-  taylor_flanagan,    ///< central differences, contact by Taylor–Flanagan's velocity correction (explicit_schemes.cpp)
-  explicit_central    ///< central differences with a massless contact node on its algebraic row (explicit_schemes.cpp)
+  taylor_flanagan,  ///< central differences, contact by Taylor–Flanagan's velocity correction (explicit_schemes.cpp)
+  explicit_central  ///< central differences with a massless contact node on its algebraic row (explicit_schemes.cpp)
 };
 
 /// The mass an explicit scheme uses (explicit_schemes.cpp): `row_sum` lumps the run's mass by row sums
@@ -51,9 +51,9 @@ enum class StepKernel { reference, fast };
 
 /// A parameter of SchemeParameters that only some schemes take (the registry says which).
 enum class SchemeParameter {
-  beta,         ///< Paoli–Schatzman's β
-  restitution,  ///< Paoli–Schatzman's restitution coefficient e
-  contact_row,  ///< Paoli–Schatzman's contact-row form (algebraic or literal)
+  beta,          ///< Paoli–Schatzman's β
+  restitution,   ///< Paoli–Schatzman's restitution coefficient e
+  contact_row,   ///< Paoli–Schatzman's contact-row form (algebraic or literal)
   switch_theta,  ///< CN-switch's θ of the step taken at a change of the contact status
   mass_lumping   ///< the explicit schemes' mass lumping (row-sum or none)
 };
@@ -74,12 +74,12 @@ const SchemeInfo& scheme_info(Scheme);
 /// Whether `scheme` takes `parameter` (its registry entry lists it).
 bool takes(Scheme scheme, SchemeParameter parameter);
 
-std::string to_string(Scheme);              ///< the registry's id: "cn", "be", "ps", "ec", "cn-switch"
-std::string to_string(SchemeParameter);     ///< "beta", "restitution", "contact_row", "switch_theta"
-std::string to_string(ContactRow);          ///< "algebraic", "literal"
-std::string to_string(InitialContactNode);  ///< "consistent", "interpolant"
-std::string to_string(StepKernel);          ///< "reference", "fast"
-std::string to_string(MassLumping);         ///< "row-sum", "none"
+std::string to_string(Scheme);                         ///< the registry's id: "cn", "be", "ps", "ec", "cn-switch"
+std::string to_string(SchemeParameter);                ///< "beta", "restitution", "contact_row", "switch_theta"
+std::string to_string(ContactRow);                     ///< "algebraic", "literal"
+std::string to_string(InitialContactNode);             ///< "consistent", "interpolant"
+std::string to_string(StepKernel);                     ///< "reference", "fast"
+std::string to_string(MassLumping);                    ///< "row-sum", "none"
 MassLumping mass_lumping_by_name(const std::string&);  ///< row-sum, none; std::invalid_argument otherwise
 /// Parsers of the names above; throw std::invalid_argument listing the allowed names.
 Scheme scheme_by_name(const std::string&);                            ///< an id of the registry

@@ -93,7 +93,8 @@ std::vector<ClaimResult> check_classes(const ClassesSettings& settings, Judge& j
 
   std::vector<ClaimResult> rows;
   std::string region = "N = ";
-  for (std::size_t a = 0; a < settings.meshes.size(); ++a) region += (a ? ", " : "") + std::to_string(settings.meshes[a]);
+  for (std::size_t a = 0; a < settings.meshes.size(); ++a)
+    region += (a ? ", " : "") + std::to_string(settings.meshes[a]);
   region += "; dt/h = 1/2, 1/sqrt(3)";
   // (O): per benchmark and inertial class, the worst cell: the largest TV_R/(TV_X/(1 + band)) over the
   // redistributed pairs and the region (< 1 holds).
@@ -127,8 +128,8 @@ std::vector<ClaimResult> check_classes(const ClassesSettings& settings, Judge& j
     const repro::Measures& m = measures[long_first + 1 + i];
     const double ratio = m.energy_final / m.energy_initial;
     const Margin conserved = at_most("|E/E0 - 1| of ec+mod3", std::abs(ec - 1), 1e-6);
-    const Margin away = at_least("|E/E0 - 1| of " + to_string(inertial[i]) + "+consistent", std::abs(ratio - 1),
-                                 settings.band);
+    const Margin away =
+        at_least("|E/E0 - 1| of " + to_string(inertial[i]) + "+consistent", std::abs(ratio - 1), settings.band);
     std::ostringstream measured;
     measured << "after " << m.impacts.size() << " impacts (N = " << settings.long_mesh
              << ", dt = h/2): E/E0 = " << cli::format_real(ec) << " for ec+mod3, " << cli::format_real(ratio) << " for "

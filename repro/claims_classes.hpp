@@ -14,8 +14,8 @@ namespace mrm::claims {
 struct ClassesSettings {
   std::vector<Index> meshes{50, 100, 200};
   std::vector<double> courants{0.5, 0.5773502691896257};  ///< ½ and 1/√3 (every class runs both)
-  double band = 0.1;          ///< "equal" within ±10 %: the band of baseline_regions' verdicts
-  Index long_mesh = 25;       ///< the long runs: the paper's benchmark, 10³ impacts
+  double band = 0.1;     ///< "equal" within ±10 %: the band of baseline_regions' verdicts
+  Index long_mesh = 25;  ///< the long runs: the paper's benchmark, 10³ impacts
   double long_periods = 1000;
 };
 

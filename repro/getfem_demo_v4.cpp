@@ -8,8 +8,7 @@
 
 namespace mrm::repro {
 
-const char* const GetfemDemoMeasures::names[7] = {"LinfL2u", "LinfH1u", "LinfL2v", "L2L2u",
-                                                  "L2H1u",   "L2L2v",   "L2sn"};
+const char* const GetfemDemoMeasures::names[7] = {"LinfL2u", "LinfH1u", "LinfL2v", "L2L2u", "L2H1u", "L2L2v", "L2sn"};
 
 Configuration getfem_demo_v4_configuration() {
   Configuration c;
@@ -36,16 +35,24 @@ double demo_exact(double x, double t, int d) {
     zone = tf <= 1 - x ? 2 : 4;
   double u = 0, dxu = 0, dtu = 0;
   if (nf == 0) {
-    if (zone == 1 || zone == 3) u = 0.5 - x / 2, dxu = -0.5, dtu = 0;
-    else u = 0.5 - tf / 2, dxu = 0, dtu = -0.5;
+    if (zone == 1 || zone == 3)
+      u = 0.5 - x / 2, dxu = -0.5, dtu = 0;
+    else
+      u = 0.5 - tf / 2, dxu = 0, dtu = -0.5;
   } else if (nf == 1) {
-    if (zone == 1) u = -tf / 2, dxu = 0, dtu = -0.5;
-    else if (zone == 2) u = -x / 2, dxu = -0.5, dtu = 0;
-    else if (zone == 3) u = -0.5 + x / 2, dxu = 0.5, dtu = 0;
-    else u = -0.5 + tf / 2, dxu = 0, dtu = 0.5;
+    if (zone == 1)
+      u = -tf / 2, dxu = 0, dtu = -0.5;
+    else if (zone == 2)
+      u = -x / 2, dxu = -0.5, dtu = 0;
+    else if (zone == 3)
+      u = -0.5 + x / 2, dxu = 0.5, dtu = 0;
+    else
+      u = -0.5 + tf / 2, dxu = 0, dtu = 0.5;
   } else {
-    if (zone == 1 || zone == 2) u = tf / 2, dxu = 0, dtu = 0.5;
-    else u = 0.5 - x / 2, dxu = -0.5, dtu = 0;
+    if (zone == 1 || zone == 2)
+      u = tf / 2, dxu = 0, dtu = 0.5;
+    else
+      u = 0.5 - x / 2, dxu = -0.5, dtu = 0;
   }
   return d == 0 ? u : (d == 1 ? dxu : dtu);
 }
@@ -95,9 +102,9 @@ GetfemDemoMeasures getfem_demo_measures(const Configuration& configuration) {
 
 TEST_CASE("the demo's uExact: its zones and one-sided values on the characteristics") {
   CHECK(demo_exact(0.3, 0.1, 0) == doctest::Approx(0.35));  // zone I, phase 0: u = 1/2 − x/2
-  CHECK(demo_exact(0.0, 1.5, 0) == 0.0);                     // in contact
-  CHECK(demo_exact(1.0, 1.0, 2) == -0.5);                    // at the clamp at t = 1: the zone-I value
-  CHECK(demo_exact(0.0, 1.5, 1) == -0.5);                    // the contact stress
+  CHECK(demo_exact(0.0, 1.5, 0) == 0.0);                    // in contact
+  CHECK(demo_exact(1.0, 1.0, 2) == -0.5);                   // at the clamp at t = 1: the zone-I value
+  CHECK(demo_exact(0.0, 1.5, 1) == -0.5);                   // the contact stress
 }
 
 }  // namespace mrm::repro
