@@ -214,6 +214,21 @@ PEER_TEX := $(DATA)/peer_getfem.tex
 $(PEER_TEX): $(BUILD)/bin/bar1d tests/data/getfem/measures.dat tools/getfem_peer.sh | $(DATA)
 	tools/getfem_peer.sh $< tests/data/getfem/measures.dat $@ > $(DATA)/peer_getfem.txt
 
+# The contact classes side by side (issue 23, experiments/fig_classes.cpp): one run (its wall time on
+# standard output, ~10 s), one data file and values, four figures read from that file.
+CLASSES_VIEWS := accuracy oscillation energy penetration
+CLASSES := $(DATA)/fig_classes.dat $(DATA)/fig_classes.tex
+CLASSES_PDFS := $(CLASSES_VIEWS:%=$(FIGURES)/fig_classes_%.pdf)
+all: $(CLASSES) $(CLASSES_PDFS)
+$(REPORT): $(CLASSES) $(CLASSES_PDFS)
+.SECONDARY: $(BUILD)/bin/fig_classes
+$(CLASSES) &: $(BUILD)/bin/fig_classes | $(DATA)
+	$< --output $(DATA)/fig_classes.dat --tex $(DATA)/fig_classes.tex
+$(FIGURES)/fig_classes_%.pdf: figures/fig_classes_%.gp figures/style.gp $(DATA)/fig_classes.dat | $(FIGURES)
+	$(REPRODUCIBLE) gnuplot -e "data='$(DATA)/fig_classes.dat'; output='$@.tmp'" $<
+	LC_ALL=C sed -i 's|/CreationDate (D:[0-9]\{14\}Z)|/CreationDate (D:19700101000000Z)|' $@.tmp
+	mv $@.tmp $@
+
 # Crank–Nicolson's largest energy for Δt ≫ h, relative to E_h(0) (experiments/cn_large_step.cpp).
 $(DATA)/cn_large_step.tex: $(BUILD)/bin/cn_large_step | $(DATA)
 	$< --tex $@

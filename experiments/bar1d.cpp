@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
            nitsche_gamma = class_defaults.nitsche_gamma, moreau_theta = class_defaults.moreau_theta;
     std::string peer = "none", ps_start = "cn";
     std::string scheme = mrm::to_string(mrm::Scheme::crank_nicolson), mass = "mod3", ps_form = "algebraic",
-                initial = "consistent", contact_velocity = "algebraic", output;
+                initial = "consistent", contact_velocity = "algebraic", output, lumping = "row-sum";
     std::string benchmark = "paper", initial_data;
     bool no_timing = false;
     // The ranges below keep every quantity of the run (h, Δt², the matrices' entries, the energy a²L/2)
@@ -187,6 +187,10 @@ int main(int argc, char** argv) {
                       "Paoli-Schatzman's first step: cn (one Crank-Nicolson step) or explicit (the explicit Newmark "
                       "step of GetFEM's demo; a contact node with inertia)",
                       {"cn", "explicit"}, &ps_start);
+    parser.add_choice("--lumping", "", "K",
+                      "taylor-flanagan's mass: row-sum lumped (the default; dt <= h), or none, the consistent mass "
+                      "solved at every step as GetFEM's demo (dt <= h/sqrt(3))",
+                      {"row-sum", "none"}, &lumping);
     parser.add_choice("--initial-contact-node", "", "I",
                       "initial value of a massless contact node: solved from its algebraic row, or the interpolant",
                       {"consistent", "interpolant"}, &initial);
@@ -260,7 +264,8 @@ int main(int argc, char** argv) {
                                 {"--penalty", mrm::SchemeParameter::penalty},
                                 {"--nitsche-theta", mrm::SchemeParameter::nitsche_theta},
                                 {"--nitsche-gamma", mrm::SchemeParameter::nitsche_gamma},
-                                {"--moreau-theta", mrm::SchemeParameter::moreau_theta}});
+                                {"--moreau-theta", mrm::SchemeParameter::moreau_theta},
+                                {"--lumping", mrm::SchemeParameter::mass_lumping}});
 
     // 2. The output, opened now so that an unwritable path fails before the run.
     std::unique_ptr<cli::AtomicFile> series;
@@ -321,6 +326,7 @@ int main(int argc, char** argv) {
       configuration.scheme.nitsche_gamma = nitsche_gamma;
       configuration.scheme.moreau_theta = moreau_theta;
     }
+    configuration.scheme.lumping = mrm::mass_lumping_by_name(lumping);
     configuration.elements = elements;
     configuration.dt = step;
     configuration.final_time = final_time;
@@ -329,7 +335,9 @@ int main(int argc, char** argv) {
     // The simulation, built once before any work: the library refuses a combination that cannot run (the
     // algebraic row or ec with a contact node that has inertia, a literal row with beta < 1/4 and a massless
     // node) and names the parameter, worded here as the option that sets it.
-    mrm::repro::as_usage_error({{"dt", "--dt"},
+    // An explicit scheme's stability limit names the option that set the step.
+    mrm::repro::as_usage_error({{"dt", parser.given("--dt") ? "--dt" : "--courant"},
+                                {"mass_lumping", "--lumping"},
                                 {"beta", "--beta"},
                                 {"restitution", "--restitution"},
                                 {"contact_row", "--ps-form"},

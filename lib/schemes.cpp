@@ -27,6 +27,7 @@
 #include "contact_classes.hpp"
 #include "energy_step.hpp"
 #include "exact_solution.hpp"
+#include "explicit_schemes.hpp"
 #include "fast_step.hpp"
 
 namespace mrm {
@@ -94,6 +95,15 @@ const std::vector<SchemeInfo>& scheme_registry() {
        "moreau-jean",
        "Moreau–Jean (θ, e): the θ-method with the velocity impact law v⁺ = −e v⁻ (contact node with inertia)",
        {P::moreau_theta, P::restitution}},
+      // The explicit contact classes (explicit_schemes.cpp): central differences with a lumped mass.
+      {Scheme::taylor_flanagan,
+       "taylor-flanagan",
+       "central differences, lumped mass, contact by Taylor–Flanagan's velocity correction (GetFEM's version 4)",
+       {P::mass_lumping}},
+      {Scheme::explicit_central,
+       "explicit",
+       "central differences, lumped mass, massless contact node on its algebraic row (no impact law)",
+       {}},
   };
   return registry;
 }
@@ -115,7 +125,7 @@ std::string to_string(Scheme s) { return scheme_info(s).id; }
 std::string to_string(SchemeParameter p) {
   static const char* const names[] = {"beta",          "restitution",   "contact_row", "switch_theta",
                                       "newmark_beta",  "newmark_gamma", "penalty",     "nitsche_theta",
-                                      "nitsche_gamma", "moreau_theta",  "ps_start"};
+                                      "nitsche_gamma", "moreau_theta",  "ps_start", "mass_lumping"};
   return names[static_cast<int>(p)];
 }
 
@@ -129,7 +139,7 @@ Scheme scheme_by_name(const std::string& name) {
 }
 
 TEST_CASE("the registry names every scheme once, and its ids read back") {
-  CHECK(scheme_registry().size() == 9);
+  CHECK(scheme_registry().size() == 11);
   for (const SchemeInfo& info : scheme_registry()) {
     CAPTURE(info.id);
     CHECK(scheme_by_name(info.id) == info.scheme);
@@ -146,10 +156,13 @@ TEST_CASE("the registry names every scheme once, and its ids read back") {
   CHECK(to_string(SchemeParameter::restitution) == "restitution");
   CHECK(to_string(SchemeParameter::contact_row) == "contact_row");
   CHECK(to_string(SchemeParameter::switch_theta) == "switch_theta");
-  CHECK_THROWS_WITH_AS(
-      scheme_by_name("rk4"),
-      "unknown scheme \"rk4\" (allowed: cn, be, ps, ec, cn-switch, newmark, penalty, nitsche, moreau-jean)",
-      std::invalid_argument);
+  CHECK(to_string(SchemeParameter::mass_lumping) == "mass_lumping");
+  CHECK(takes(Scheme::taylor_flanagan, SchemeParameter::mass_lumping));
+  CHECK(!takes(Scheme::explicit_central, SchemeParameter::mass_lumping));
+  CHECK_THROWS_WITH_AS(scheme_by_name("rk4"),
+                       "unknown scheme \"rk4\" (allowed: cn, be, ps, ec, cn-switch, newmark, penalty, nitsche, moreau-jean, "
+                       "taylor-flanagan, explicit)",
+                       std::invalid_argument);
 }
 
 InvalidParameter::InvalidParameter(const std::string& name, const std::string& message)
@@ -307,6 +320,9 @@ StepMatrices step_matrices(const Tridiagonal& mass, const Tridiagonal& stiffness
     case Scheme::moreau_jean:  // their steps are not (★): lib/contact_classes.cpp
       throw std::invalid_argument("step_matrices: the scheme " + to_string(p.scheme) +
                                   " has no step of the form (★) (lib/contact_classes.cpp)");
+    case Scheme::taylor_flanagan:  // explicit: no (★) (explicit_schemes.cpp); never asked by BarSimulation
+    case Scheme::explicit_central:
+      throw InvalidParameter("scheme", to_string(p.scheme) + " is explicit and has no implicit step (★)");
   }
   const double dt2 = dt * dt, beta = p.beta;
   StepMatrices m;
@@ -468,6 +484,7 @@ void validate(const SchemeParameters& p, double dt) {
   refuse_unless_default(SchemeParameter::nitsche_gamma, p.nitsche_gamma == defaults.nitsche_gamma);
   refuse_unless_default(SchemeParameter::moreau_theta, p.moreau_theta == defaults.moreau_theta);
   refuse_unless_default(SchemeParameter::ps_start, p.ps_explicit_start == defaults.ps_explicit_start);
+  refuse_unless_default(SchemeParameter::mass_lumping, p.lumping == defaults.lumping);
 }
 
 // M^mod on the mesh, its refusal (weights not symmetric or not finite, a matrix that is not
@@ -546,11 +563,18 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
                            "above 0 with the literal Paoli–Schatzman row and a massless contact node: the restitution "
                            "acts on a node without inertia and the run grows without bound (measured: E = 7e9 at "
                            "e = 0.5, N = 100) (allowed: e = 0, the algebraic row, or the consistent mass)");
+  // The explicit schemes (explicit_schemes.cpp) have no (★): their step checks its own mass and stability
+  // limit, and its mass (row-sum lumped, or the consistent one) is the run's. One implementation of the
+  // step, whatever StepKernel asks (the fast path falls back to it).
+  if (is_explicit(parameters.scheme)) {
+    explicit_ = std::make_unique<const ExplicitStep>(mesh, mass, stiffness_, parameters, dt, problem.gap);
+    mass_ = explicit_->mass();
+  }
 
   // The matrices and scalars of (★) (step_matrices above), A factorised once per run.
   const Tridiagonal& M = mass_;
   const Tridiagonal& S = stiffness_;
-  if (!contact_class) {
+  if (!contact_class && !explicit_) {
     step_ = step_matrices(M, S, parameters, dt);
     // The gap moves the obstacle: u₀ⁿ⁺¹ ≥ −gap (Paoli–Schatzman: the averaged constraint, see StepMatrices).
     // (+0.0 without a gap: a −0.0 would print as "-0" where the contact node sits on the obstacle.)
@@ -1093,7 +1117,10 @@ void BarSimulation::step() {
   if (has_load) load_at(t_next, state_.f_next);
   if (class_step_)
     class_step_->step(state_, level_);
-  else if (!fast_)
+  else if (explicit_) {
+    explicit_->step(state_, has_load);
+    state_.energy = 0.5 * mass_.bilinear(state_.w, state_.w) + 0.5 * stiffness_form(state_.u, state_.u, mesh_);
+  } else if (!fast_)
     reference_step(has_load);
   else if (!fast_->step(state_, solver_, has_load))
     switch_step(has_load);  // CN-switch at a change of status

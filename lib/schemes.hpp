@@ -26,8 +26,15 @@ enum class Scheme {
   newmark,     ///< Newmark(β, γ) with exact (Signorini) enforcement by a multiplier at the new level
   penalty,     ///< Newmark(β, γ) with the penalty force (γ₀/h) min(0, u₀)
   nitsche,     ///< Newmark(β, γ) with Nitsche's boundary terms (θ, γ₀), GetFEM's formulation
-  moreau_jean  ///< Moreau–Jean (θ, e): the θ-method with a velocity-level impact law (inertial contact node)
+  moreau_jean,  ///< Moreau–Jean (θ, e): the θ-method with a velocity-level impact law (inertial contact node)
+  taylor_flanagan,  ///< central differences, contact by Taylor–Flanagan's velocity correction (explicit_schemes.cpp)
+  explicit_central  ///< central differences with a massless contact node on its algebraic row (explicit_schemes.cpp)
 };
+
+/// The mass an explicit scheme uses (explicit_schemes.cpp): `row_sum` lumps the run's mass by row sums
+/// (the default), `none` keeps the consistent mass and solves with it at every step (GetFEM's demo with
+/// lump_mass_matrix = 0; taylor-flanagan with the consistent mass only).
+enum class MassLumping { row_sum, none };
 
 /// How the Paoli–Schatzman scheme treats the contact row when the contact node is massless:
 /// `literal` applies the three-level formula to every row, the contact row included;
@@ -59,7 +66,12 @@ enum class SchemeParameter {
   nitsche_theta,  ///< Nitsche's symmetry parameter θ ∈ [−1, 1]
   nitsche_gamma,  ///< Nitsche's γ₀ (γ = γ₀/h)
   moreau_theta,   ///< Moreau–Jean's θ ∈ [½, 1]
-  ps_start        ///< Paoli–Schatzman's first step (Crank–Nicolson, or GetFEM's explicit Newmark step)
+  ps_start,       ///< Paoli–Schatzman's first step (Crank–Nicolson, or GetFEM's explicit Newmark step)
+  beta,          ///< Paoli–Schatzman's β
+  restitution,   ///< Paoli–Schatzman's restitution coefficient e
+  contact_row,   ///< Paoli–Schatzman's contact-row form (algebraic or literal)
+  switch_theta,  ///< CN-switch's θ of the step taken at a change of the contact status
+  mass_lumping   ///< the explicit schemes' mass lumping (row-sum or none)
 };
 
 /// One entry of the registry of schemes: what the programs' help texts, choice lists, data headers
@@ -78,11 +90,13 @@ const SchemeInfo& scheme_info(Scheme);
 /// Whether `scheme` takes `parameter` (its registry entry lists it).
 bool takes(Scheme scheme, SchemeParameter parameter);
 
-std::string to_string(Scheme);              ///< the registry's id: "cn", "be", "ps", "ec", "cn-switch"
-std::string to_string(SchemeParameter);     ///< "beta", "restitution", "contact_row", "switch_theta"
-std::string to_string(ContactRow);          ///< "algebraic", "literal"
-std::string to_string(InitialContactNode);  ///< "consistent", "interpolant"
-std::string to_string(StepKernel);          ///< "reference", "fast"
+std::string to_string(Scheme);                         ///< the registry's id: "cn", "be", "ps", "ec", "cn-switch"
+std::string to_string(SchemeParameter);                ///< "beta", "restitution", "contact_row", "switch_theta"
+std::string to_string(ContactRow);                     ///< "algebraic", "literal"
+std::string to_string(InitialContactNode);             ///< "consistent", "interpolant"
+std::string to_string(StepKernel);                     ///< "reference", "fast"
+std::string to_string(MassLumping);                    ///< "row-sum", "none"
+MassLumping mass_lumping_by_name(const std::string&);  ///< row-sum, none; std::invalid_argument otherwise
 /// Parsers of the names above; throw std::invalid_argument listing the allowed names.
 Scheme scheme_by_name(const std::string&);                            ///< an id of the registry
 ContactRow contact_row_by_name(const std::string&);                   ///< algebraic, literal
@@ -120,6 +134,7 @@ struct SchemeParameters {
   /// Paoli–Schatzman's first step: false, one Crank–Nicolson step (the library's); true, the explicit
   /// Newmark step U¹ = U⁰ + ΔtV⁰ + ½Δt² M⁻¹(F⁰ − SU⁰) of GetFEM's demo (a contact node with inertia only).
   bool ps_explicit_start = false;
+  MassLumping lumping = MassLumping::row_sum;  ///< the explicit schemes' mass (explicit_schemes.hpp)
 };
 
 /// The matrices and scalars of one step (★) of schemes.cpp,
@@ -211,6 +226,7 @@ struct StepState {
 
 class FastStep;
 class ContactClassStep;
+class ExplicitStep;
 
 /// One run of one scheme on one mesh with one mass: the state, the constant step matrix factorised
 /// once, and the step (the reference step of schemes.cpp or the fast kernel of fast_step.cpp, as
@@ -276,6 +292,8 @@ class BarSimulation {
     ContactSolver solver;
   };
   std::unique_ptr<const SwitchStep> switch_;
+  // The explicit schemes' step (explicit_schemes.cpp), null for the others; it replaces (★) and both kernels.
+  std::unique_ptr<const ExplicitStep> explicit_;
   bool energy_conserving_ = false;
 
   Index level_ = 0;

@@ -14,7 +14,7 @@ namespace mrm::repro {
 
 const Label& scheme_label(Scheme scheme) {
   // One entry per scheme of mrm::scheme_registry(), in its order (the test below checks both).
-  static const std::array<Label, 9> labels{{
+  static const std::array<Label, 11> labels{{
       {to_string(Scheme::crank_nicolson), "Crank–Nicolson", "Crank--Nicolson", "CN"},
       {to_string(Scheme::backward_euler), "backward Euler", "backward Euler", "BE"},
       {to_string(Scheme::paoli_schatzman), "Paoli–Schatzman (¼, 0)", "Paoli--Schatzman $(\\frac14, 0)$", "PS"},
@@ -26,6 +26,9 @@ const Label& scheme_label(Scheme scheme) {
       {to_string(Scheme::penalty), "penalty", "Newmark $(\\beta, \\gamma)$ with a penalty", "penalty"},
       {to_string(Scheme::nitsche), "Nitsche", "Newmark $(\\beta, \\gamma)$ with Nitsche's terms", "Nitsche"},
       {to_string(Scheme::moreau_jean), "Moreau–Jean", "Moreau--Jean $(\\theta, e)$", "MJ"},
+      {to_string(Scheme::taylor_flanagan), "Taylor–Flanagan", "Taylor--Flanagan (central differences)", "TF"},
+      {to_string(Scheme::explicit_central), "explicit, massless contact node",
+       "central differences with a massless contact node", "CD"},
   }};
   const auto& registry = scheme_registry();
   for (std::size_t k = 0; k < registry.size(); ++k)

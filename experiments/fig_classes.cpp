@@ -1,0 +1,434 @@
+// fig_classes: the field's contact treatments side by side (issue 23): every contact class of the
+// scheme registry, with the standard mass and, where the class allows it, with Mod 3, on every benchmark
+// the harness can run, four meshes and three steps.
+//
+// What it computes. The classes are the registry's schemes (mrm::scheme_registry) except backward Euler
+// (the paper's dissipative reference, not one of Doyen–Ern–Piperno's contact treatments): today cn, ps,
+// ec, cn-switch, taylor-flanagan and explicit; a scheme added to the registry appears here without a
+// change. Each runs with the consistent ("standard") mass and with Mod 3; a pair the library refuses
+// (ec with a contact node that has inertia, taylor-flanagan with a massless one, explicit with inertia)
+// is listed as refused with the library's reason. Paoli–Schatzman is (¼, 0), its literal row with the
+// consistent mass, the algebraic row with Mod 3. The benchmarks are the harness's (benchmark_names())
+// that run_configuration accepts (a probe run of one step decides: the field's benchmarks join when the
+// finite element side runs them). The grid: N ∈ {25, 50, 100, 200}, Δt = C h with C ∈ {½, 1/√3, 1}:
+// 1/√3 is the explicit limit of central differences with the consistent mass (explicit_schemes.cpp),
+// 1 the limit with the lumped mass (both explicit schemes), ½ a step every class takes. Each run goes to
+// T = 6 (the paper's benchmark: two periods) or 2 (the smooth benchmarks, bar1d's default), and gives:
+// the eight relative errors (mathematics.md §5), TV(λ)/TV(λ_exact) over the run and the largest
+// penetration max(−u₀) (repro::Measures::lambda_tv_ratio, max_penetration), the energy change per impact (E(T) − E(0))/(E(0) · impacts), and the work
+// N × steps; per (benchmark, class, mass, C) the observed order of each error (least-squares slope of
+// log error against log h over the four meshes). The long run: the paper's benchmark for 10³ periods
+// (10³ impacts, T = 3000) on N = 25 at each C, E(T)/E(0) and the energy every 10 periods.
+//
+// Cost. ~3·10⁸ node-steps for the matrix and ~10⁸ for the long runs, 2 threads: the program prints
+// its own wall time (within 60 s on the 2-core machine; no timed test), and the measured cost of a
+// step per node of each class (wall time, so not in the data file: the data stay deterministic).
+//
+// Sample runs:
+//   fig_classes --output output/data/fig_classes.dat --tex output/data/fig_classes.tex
+//   fig_classes --threads 1 --no-timing --output c.dat
+//
+// Data file: block 0 the runs (columns benchmark scheme mass courant elements h dt, the eight errors,
+// tv_ratio max_penetration energy_change_per_impact impacts node_steps); block 1 the observed orders
+// (benchmark scheme mass courant, the eight orders); block 2 the long runs (scheme mass courant impacts
+// energy_ratio); block 3 the long runs' energy every 10 periods (scheme mass courant periods energy_ratio);
+// block 4 the largest nodal error at dt = h (scheme mass elements T max_nodal_error).
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "configurations.hpp"
+#include "figure_program.hpp"
+#include "labels.hpp"
+#include "options.hpp"
+#include "parallel.hpp"
+#include "report_values.hpp"
+#include "table.hpp"
+
+#include "errors.hpp"
+#include "exact_solution.hpp"
+#include "mass_redistribution.hpp"
+#include "schemes.hpp"
+
+namespace cli = mrm::cli;
+namespace repro = mrm::repro;
+
+namespace {
+
+// One class with one mass.
+struct Case {
+  mrm::Scheme scheme;
+  std::string mass;
+  std::string id() const { return mrm::to_string(scheme) + "+" + mass; }
+};
+
+// What one run measures.
+struct Cell {
+  bool run = false;
+  std::array<double, 8> errors{};
+  double tv_ratio = 0, penetration = 0, energy_per_impact = 0, work = 0, seconds = 0;
+  std::size_t impacts = 0;
+};
+
+// What one long run measures.
+struct Long {
+  bool run = false;
+  double energy_ratio = 0, seconds = 0, work = 0;
+  std::size_t impacts = 0;
+  std::vector<double> every_ten;  // E/E(0) every 10 periods
+};
+
+repro::Configuration configuration_of(const Case& c, const std::string& benchmark, mrm::Index elements, double courant,
+                                      double final_time) {
+  repro::Configuration configuration = repro::paper_configuration(
+      c.scheme, c.mass == "consistent" ? "literal" : "algebraic", c.mass, elements, courant, final_time);
+  configuration.benchmark = benchmark;
+  return configuration;
+}
+
+// Why a class refuses a mass (the library's reason), or "" if it runs it.
+std::string refusal(const Case& c) {
+  try {
+    const repro::Configuration configuration = configuration_of(c, "paper", 25, 0.5, 3.0);
+    const mrm::UniformMesh mesh(1.0, 25);
+    mrm::BarSimulation(repro::configuration_problem(configuration), mesh, configuration.mass, configuration.scheme,
+                       configuration.step(), configuration.initial);
+  } catch (const mrm::InvalidParameter& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Whether run_configuration runs a benchmark (a probe of one step with Crank–Nicolson and Mod 3), and why not.
+std::string benchmark_refusal(const std::string& benchmark) {
+  try {
+    repro::Configuration probe = configuration_of({mrm::Scheme::crank_nicolson, "mod3"}, benchmark, 8, 0.5, 1.0);
+    probe.steps = 1;
+    repro::run_configuration(probe);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+double slope(const std::vector<double>& h, const std::vector<double>& e) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(h.size());
+  for (std::size_t k = 0; k < h.size(); ++k) {
+    const double x = std::log(h[k]), y = std::log(e[k]);
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+double geometric_mean(const std::array<double, 8>& values) {
+  double log_sum = 0;
+  for (double v : values) log_sum += std::log(v);
+  return std::exp(log_sum / 8);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return cli::guarded_main("fig_classes", [&] {
+    const auto wall_start = std::chrono::steady_clock::now();
+    // 1. Options.
+    long threads = 2;
+    bool no_timing = false;
+    repro::FigureProgram program(
+        "fig_classes",
+        "Runs every contact class of the scheme registry (all but be) with the consistent mass and Mod 3 on the "
+        "benchmarks the harness runs, N = 25, 50, 100, 200 and dt/h = 1/2, 1/sqrt(3), 1: the eight errors, "
+        "TV(lambda)/TV(lambda_exact), the largest penetration, the energy per impact, the observed orders, and "
+        "1000 impacts on N = 25.",
+        {"fig_classes --output output/data/fig_classes.dat --tex output/data/fig_classes.tex",
+         "fig_classes --threads 1 --no-timing --output c.dat"});
+    program.parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it",
+                               &threads, cli::at_least(1));
+    program.parser.add_flag("--no-timing", "",
+                            "leave out the wall times and costs per step on standard output (the only values "
+                            "that vary from run to run; they are never in the data file)",
+                            &no_timing);
+    if (!program.parse(argc, argv, "also write the tables and the values the report quotes")) return 0;
+
+    // 2. The matrix, decided before any long work: classes × masses (refusals listed), benchmarks (probe).
+    program.open();
+    std::vector<Case> cases;
+    std::vector<std::pair<std::string, std::string>> refused;
+    for (const mrm::SchemeInfo& info : mrm::scheme_registry()) {
+      if (info.scheme == mrm::Scheme::backward_euler) continue;
+      for (const std::string mass : {"consistent", "mod3"}) {
+        const Case c{info.scheme, mass};
+        const std::string why = refusal(c);
+        if (why.empty())
+          cases.push_back(c);
+        else
+          refused.emplace_back(c.id(), why);
+      }
+    }
+    std::vector<std::string> benchmarks;
+    std::vector<std::pair<std::string, std::string>> skipped;
+    for (const std::string& b : repro::benchmark_names()) {
+      const std::string why = benchmark_refusal(b);
+      if (why.empty())
+        benchmarks.push_back(b);
+      else
+        skipped.emplace_back(b, why);
+    }
+    const std::vector<mrm::Index> meshes{25, 50, 100, 200};
+    const std::vector<double> courants{0.5, 1 / std::sqrt(3.0), 1.0};
+    const auto final_time = [](const std::string& b) { return b == "paper" ? 6.0 : 2.0; };
+    constexpr double long_periods = 1000;
+    constexpr mrm::Index long_mesh = 25;
+
+    std::ostream& out = program.header("the contact classes side by side (issue 23)");
+    for (const auto& [id, why] : refused) out << "# refused: " << id << ": " << why << '\n';
+    for (const auto& [b, why] : skipped) out << "# benchmark not run: " << b << ": " << why << '\n';
+    // One colour per class (its position in the registry); the mass is the line's dash (figures/fig_classes_*.gp).
+    static const char* const palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                          "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
+    for (std::size_t k = 0; k < mrm::scheme_registry().size(); ++k)
+      out << "# colour " << mrm::scheme_registry()[k].id << " = " << palette[k % 10] << '\n';
+    out << "# long_mesh = " << long_mesh << "\n# long_periods = " << long_periods << '\n';
+
+    // 3. The runs: the matrix and the long runs, costliest first, on --threads workers.
+    struct Job {
+      std::size_t benchmark, c, mesh, courant;
+    };
+    std::vector<Job> jobs;
+    for (std::size_t b = 0; b < benchmarks.size(); ++b)
+      for (std::size_t c = 0; c < cases.size(); ++c)
+        for (std::size_t a = 0; a < meshes.size(); ++a)
+          for (std::size_t k = 0; k < courants.size(); ++k) jobs.push_back({b, c, a, k});
+    const std::size_t long_first = jobs.size();
+    for (std::size_t c = 0; c < cases.size(); ++c)
+      for (std::size_t k = 0; k < courants.size(); ++k) jobs.push_back({0, c, 0, k});
+    std::vector<Cell> cells(long_first);
+    std::vector<Long> longs(jobs.size() - long_first);
+    const auto is_long = [&](std::size_t k) { return k >= long_first; };
+    const std::vector<std::size_t> order = repro::costliest_first(jobs.size(), [&](std::size_t k) {
+      const double n = is_long(k) ? long_mesh : static_cast<double>(meshes[jobs[k].mesh]);
+      const double t = is_long(k) ? 3 * long_periods : final_time(benchmarks[jobs[k].benchmark]);
+      return n * n * t / courants[jobs[k].courant];
+    });
+    repro::run_in_parallel(order, threads, [&](std::size_t k) {
+      const Job& job = jobs[k];
+      const auto start = std::chrono::steady_clock::now();
+      if (is_long(k)) {
+        Long& result = longs[k - long_first];
+        const repro::Configuration configuration =
+            configuration_of(cases[job.c], "paper", long_mesh, courants[job.courant], 3 * long_periods);
+        double e0 = 0;
+        const mrm::Index every = mrm::steps_to_reach(30.0, configuration.step());
+        const repro::Measures m = repro::run_configuration(configuration, [&](const mrm::Sample& s) {
+          if (s.level == 0) e0 = s.energy;
+          if (s.level > 0 && s.level % every == 0) result.every_ten.push_back(s.energy / e0);
+        });
+        result.run = true;
+        result.energy_ratio = m.energy_final / m.energy_initial;
+        result.impacts = m.impacts.size();
+        result.work = static_cast<double>(long_mesh) * static_cast<double>(m.steps);
+        result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return;
+      }
+      Cell& cell = cells[k];
+      const std::string& benchmark = benchmarks[job.benchmark];
+      const repro::Configuration configuration =
+          configuration_of(cases[job.c], benchmark, meshes[job.mesh], courants[job.courant], final_time(benchmark));
+      const repro::Measures m = repro::run_configuration(configuration);
+      if (!m.lambda_tv_ratio)
+        throw std::runtime_error("fig_classes: the exact contact stress does not vary on " + benchmark);
+      cell.run = true;
+      cell.errors = mrm::ErrorAccumulator::values(m.errors);
+      cell.tv_ratio = *m.lambda_tv_ratio;  // repro::Measures (configurations.hpp)
+      cell.penetration = m.max_penetration;
+      cell.impacts = m.impacts.size();
+      cell.energy_per_impact =
+          cell.impacts ? (m.energy_final - m.energy_initial) / (m.energy_initial * static_cast<double>(cell.impacts))
+                       : 0.0;
+      cell.work = static_cast<double>(meshes[job.mesh]) * static_cast<double>(m.steps);
+      cell.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      for (double v : cell.errors)
+        if (!std::isfinite(v)) throw std::runtime_error("fig_classes: a non-finite error in " + cases[job.c].id());
+    });
+    const auto cell = [&](std::size_t b, std::size_t c, std::size_t a, std::size_t k) -> const Cell& {
+      return cells[((b * cases.size() + c) * meshes.size() + a) * courants.size() + k];
+    };
+    const auto long_run = [&](std::size_t c, std::size_t k) -> const Long& { return longs[c * courants.size() + k]; };
+    const auto orders = [&](std::size_t b, std::size_t c, std::size_t k) {
+      std::array<double, 8> p{};
+      for (std::size_t q = 0; q < 8; ++q) {
+        std::vector<double> hs, es;
+        for (std::size_t a = 0; a < meshes.size(); ++a)
+          hs.push_back(1.0 / static_cast<double>(meshes[a])), es.push_back(cell(b, c, a, k).errors[q]);
+        p[q] = slope(hs, es);
+      }
+      return p;
+    };
+
+    // 4. The data.
+    out << "# block 0: the runs\n# columns: benchmark scheme mass courant elements h dt";
+    for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
+    out << " tv_ratio max_penetration energy_change_per_impact impacts node_steps\n";
+    for (std::size_t b = 0; b < benchmarks.size(); ++b)
+      for (std::size_t c = 0; c < cases.size(); ++c)
+        for (std::size_t k = 0; k < courants.size(); ++k)
+          for (std::size_t a = 0; a < meshes.size(); ++a) {
+            const Cell& x = cell(b, c, a, k);
+            const double h = 1.0 / static_cast<double>(meshes[a]);
+            out << benchmarks[b] << ' ' << mrm::to_string(cases[c].scheme) << ' ' << cases[c].mass << ' '
+                << cli::format_real(courants[k]) << ' ' << meshes[a] << ' ' << cli::format_real(h) << ' '
+                << cli::format_real(courants[k] * h);
+            for (double v : x.errors) out << ' ' << cli::format_real(v);
+            out << ' ' << cli::format_real(x.tv_ratio) << ' ' << cli::format_real(x.penetration) << ' '
+                << cli::format_real(x.energy_per_impact) << ' ' << x.impacts << ' ' << cli::format_real(x.work) << '\n';
+          }
+    out << "\n\n# block 1: the observed orders (least-squares slope over N = 25..200)\n"
+           "# columns: benchmark scheme mass courant";
+    for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
+    out << '\n';
+    for (std::size_t b = 0; b < benchmarks.size(); ++b)
+      for (std::size_t c = 0; c < cases.size(); ++c)
+        for (std::size_t k = 0; k < courants.size(); ++k) {
+          out << benchmarks[b] << ' ' << mrm::to_string(cases[c].scheme) << ' ' << cases[c].mass << ' '
+              << cli::format_real(courants[k]);
+          for (double p : orders(b, c, k)) out << ' ' << cli::format_real(p);
+          out << '\n';
+        }
+    out << "\n\n# block 2: the long runs (paper, N = " << long_mesh << ", " << long_periods
+        << " periods)\n# columns: scheme mass courant impacts energy_ratio\n";
+    for (std::size_t c = 0; c < cases.size(); ++c)
+      for (std::size_t k = 0; k < courants.size(); ++k)
+        out << mrm::to_string(cases[c].scheme) << ' ' << cases[c].mass << ' ' << cli::format_real(courants[k]) << ' '
+            << long_run(c, k).impacts << ' ' << cli::format_real(long_run(c, k).energy_ratio) << '\n';
+    out << "\n\n# block 3: the long runs' energy every 10 periods\n# columns: scheme mass courant periods "
+           "energy_ratio\n";
+    for (std::size_t c = 0; c < cases.size(); ++c)
+      for (std::size_t k = 0; k < courants.size(); ++k) {
+        const Long& l = long_run(c, k);
+        for (std::size_t j = 0; j < l.every_ten.size(); ++j)
+          out << mrm::to_string(cases[c].scheme) << ' ' << cases[c].mass << ' ' << cli::format_real(courants[k]) << ' '
+              << 10 * (j + 1) << ' ' << cli::format_real(l.every_ten[j]) << '\n';
+        out << '\n';
+      }
+
+    // The summary table (stdout and the report): per class and mass, on each benchmark at N = 200 and
+    // Δt = h/2, the geometric mean of the eight errors, the λ error, TV(λ)/TV(λ_exact), the largest
+    // penetration, the energy change per impact; the paper's benchmark's order of the geometric mean;
+    // E(T)/E(0) after 10³ impacts at N = 25, Δt = h/2.
+    const std::size_t fine = meshes.size() - 1, half = 0;
+    std::vector<std::string> head = {"benchmark",      "class",
+                                     "mass",           "$g$",
+                                     "$\\lambda$ err", "TV ratio",
+                                     "max pen.",       "$\\Delta E$/impact",
+                                     "order $g$",      "$E/E_0$, $10^3$ imp."};
+    repro::Table table(head);
+    for (std::size_t b = 0; b < benchmarks.size(); ++b) {
+      for (std::size_t c = 0; c < cases.size(); ++c) {
+        const Cell& x = cell(b, c, fine, half);
+        std::array<double, 8> g_by_mesh{};
+        std::vector<double> hs, gs;
+        for (std::size_t a = 0; a < meshes.size(); ++a)
+          hs.push_back(1.0 / static_cast<double>(meshes[a])), gs.push_back(geometric_mean(cell(b, c, a, half).errors));
+        (void)g_by_mesh;
+        table.add_row({benchmarks[b], mrm::to_string(cases[c].scheme), cases[c].mass,
+                       mrm::tex_number(geometric_mean(x.errors), 3), mrm::tex_number(x.errors[1], 3),
+                       mrm::tex_number(x.tv_ratio, 3), mrm::tex_number(x.penetration, 2),
+                       mrm::tex_number(x.energy_per_impact, 2), mrm::tex_number(slope(hs, gs), 2),
+                       b == 0 ? mrm::tex_number(long_run(c, half).energy_ratio, 3) : "--"});
+      }
+      table.add_rule();
+    }
+    std::ostream& defs = program.values();
+    {
+      std::ostringstream tex;
+      repro::LatexLayout layout;
+      layout.columns = "lll" + std::string(head.size() - 3, 'r');
+      table.write_latex(tex, layout);
+      mrm::tex_define(defs, "classes:summary", tex.str());
+      std::string refusals;
+      for (const auto& [id, why] : refused) refusals += (refusals.empty() ? "" : "; ") + id;
+      mrm::tex_define(defs, "classes:refused", refusals.empty() ? "none" : refusals);
+      std::string benchmark_list;
+      for (const std::string& b : benchmarks) benchmark_list += (benchmark_list.empty() ? "" : ", ") + b;
+      mrm::tex_define(defs, "classes:benchmarks", benchmark_list);
+      mrm::tex_define(defs, "classes:runs", std::to_string(cells.size() + longs.size()));
+    }
+    // Is a scheme exact at the nodes at Δt = h (explicit_schemes.cpp, "Is `explicit` exact ...")? The
+    // largest nodal error max_n max_i |u_i − u(x_i, t_n)| of the paper's benchmark over one period, for
+    // explicit + Mod 3 and cn + Mod 3, and for taylor-flanagan (lumped) up to the first impact (t < 1,
+    // the free wave equation) and over the period.
+    out << "\n\n# block 4: the largest nodal error at dt = h on the paper's benchmark (t <= T)\n"
+           "# columns: scheme mass elements T max_nodal_error\n";
+    {
+      const mrm::ExactSolution exact;
+      const auto nodal = [&](mrm::Scheme scheme, const std::string& mass, mrm::Index n, double horizon) {
+        const mrm::UniformMesh mesh(1.0, n);
+        mrm::SchemeParameters p;
+        p.scheme = scheme;
+        mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(mass), p,
+                                      mesh.h());
+        double worst = 0;
+        mrm::run(simulation, mrm::steps_to_reach(horizon, mesh.h()) - (horizon < 1.5 ? 1 : 0),
+                 [&](const mrm::Sample& x) {
+                   for (mrm::Index i = 0; i < n; ++i)
+                     worst = std::max(worst, std::abs((*x.displacement)[i] - exact.displacement(mesh.x(i), x.time)));
+                 });
+        out << mrm::to_string(scheme) << ' ' << mass << ' ' << n << ' ' << cli::format_real(horizon) << ' '
+            << cli::format_real(worst) << '\n';
+        return worst;
+      };
+      for (const mrm::Index n : {20, 40, 80}) {
+        const std::string N = std::to_string(n);
+        mrm::tex_define(defs, "classes:dth:explicit:" + N,
+                        mrm::tex_number(nodal(mrm::Scheme::explicit_central, "mod3", n, 3.0), 2));
+        mrm::tex_define(defs, "classes:dth:cn:" + N,
+                        mrm::tex_number(nodal(mrm::Scheme::crank_nicolson, "mod3", n, 3.0), 2));
+        mrm::tex_define(defs, "classes:dth:tf-free:" + N,
+                        mrm::tex_number(nodal(mrm::Scheme::taylor_flanagan, "consistent", n, 1.0), 2));
+        mrm::tex_define(defs, "classes:dth:tf:" + N,
+                        mrm::tex_number(nodal(mrm::Scheme::taylor_flanagan, "consistent", n, 3.0), 2));
+      }
+    }
+    // Values of the summary the report's sentences quote: per benchmark and pair at N = 200, Δt = h/2.
+    for (std::size_t b = 0; b < benchmarks.size(); ++b)
+      for (std::size_t c = 0; c < cases.size(); ++c) {
+        const Cell& x = cell(b, c, fine, half);
+        const std::string key =
+            "classes:" + benchmarks[b] + ":" + mrm::to_string(cases[c].scheme) + ":" + cases[c].mass + ":";
+        mrm::tex_define(defs, key + "tv", mrm::tex_number(x.tv_ratio, 3));
+        mrm::tex_define(defs, key + "g", mrm::tex_number(geometric_mean(x.errors), 3));
+        mrm::tex_define(defs, key + "lambda", mrm::tex_number(x.errors[1], 3));
+        if (b == 0) mrm::tex_define(defs, key + "long", mrm::tex_number(long_run(c, half).energy_ratio, 3));
+      }
+    std::cout << "fig_classes: " << cases.size() << " class-mass pairs x " << benchmarks.size() << " benchmarks x "
+              << meshes.size() << " meshes x " << courants.size() << " steps = " << cells.size() << " runs, and "
+              << longs.size() << " runs of 1000 impacts\n";
+    for (const auto& [id, why] : refused) std::cout << "refused: " << id << ": " << why << '\n';
+    for (const auto& [b, why] : skipped) std::cout << "benchmark not run: " << b << ": " << why << '\n';
+    std::cout << "summary (N = 200, dt = h/2; g: geometric mean of the 8 errors; last column: N = 25, dt = h/2):\n";
+    table.write_markdown(std::cout);
+    if (!no_timing) {
+      // The cost of a step per node, per class and mass: wall time over node-steps of its matrix runs.
+      std::cout << "cost per step and node (ns, all runs of the matrix, " << threads << " threads):\n";
+      for (std::size_t c = 0; c < cases.size(); ++c) {
+        double seconds = 0, work = 0;
+        for (std::size_t k = 0; k < cells.size(); ++k)
+          if (jobs[k].c == c) seconds += cells[k].seconds, work += cells[k].work;
+        std::cout << "  " << cases[c].id() << ": " << cli::format_real(std::round(1e9 * seconds / work * 10) / 10)
+                  << '\n';
+      }
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+      std::cout << "wall_seconds = " << cli::format_real(std::round(wall * 100) / 100) << '\n';
+    }
+
+    // 5. Commit.
+    program.commit();
+    return 0;
+  });
+}

@@ -1,0 +1,32 @@
+# Energy over long times (experiments/fig_classes.cpp, block 3): E_h/E_h(0) every 10 periods of the
+# paper's benchmark (one impact per period) on the long runs' mesh, one panel per Δt/h; one colour per
+# class, solid with Mod 3, dashed with the consistent ("standard") mass. Log scale in y.
+# Usage: gnuplot -e "data='output/data/fig_classes.dat'; output='output/figures/fig_classes_energy.pdf'" figures/fig_classes_energy.gp
+if (!exists("data")) data = 'output/data/fig_classes.dat'
+if (!exists("output")) output = 'output/figures/fig_classes_energy.pdf'
+dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
+load dir.'style.gp'
+set terminal pdfcairo size 16cm,7cm font font(9) linewidth 1.5 enhanced
+set output output
+pairs = system(sprintf("awk '!/^#/ && NF == 20 {print $2\"/\"$3}' '%s' | awk '!seen[$0]++'", data))
+courants = system(sprintf("awk '!/^#/ && NF == 5 && $4 == 10 {print $3}' '%s' | awk '!seen[$0]++'", data))
+scheme_of(p) = p[1:strstrt(p, "/") - 1]
+mass_of(p) = p[strstrt(p, "/") + 1:]
+dash(p) = mass_of(p) eq "mod3" ? 1 : 2
+set logscale y
+set xlabel "periods (impacts)"
+set ylabel E_h." / ".E_h."(0)"
+set yrange [1e-8:1e8]
+set format y "10^{%L}"
+set multiplot layout 1,words(courants) margins 0.08,0.98,0.16,0.66 spacing 0.06,0
+set key at screen 0.5,0.995 center top horizontal maxcols 5 samplen 2 width 0
+do for [k=1:words(courants)] {
+  set title sprintf("%s = %.3g %s, %s = %s", Delta_t, word(courants, k) + 0, italic("h"), italic("N"), header("long_mesh"))
+  plot 1 with lines lc rgb "#000000" dt 3 notitle, \
+       for [p=1:words(pairs)] data index 3 \
+       using (strcol(1) eq scheme_of(word(pairs, p)) && strcol(2) eq mass_of(word(pairs, p)) && strcol(3) eq word(courants, k) ? $4 : NaN):5 \
+       with lines lc rgb scheme_colour(scheme_of(word(pairs, p))) dt dash(word(pairs, p)) \
+       title (k == 1 ? scheme_of(word(pairs, p))." + ".mass_of(word(pairs, p)) : "")
+  unset key
+}
+unset multiplot
