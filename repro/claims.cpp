@@ -37,6 +37,7 @@
 // row holds after all, it is reported as FAILED so that somebody updates the table, and an entry that
 // no check produces is reported as well.
 #include "claims.hpp"
+#include "claims_phase.hpp"
 #include "time_family.hpp"
 
 #include <algorithm>
@@ -1712,6 +1713,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
         [&] { append(check_contact_step(paper_contact_step_cases(), ContactStepSettings(), judge)); });
   timed("6 exact solution",
         [&] { rows.push_back(check_exact_solution(ExactSolution(1.0, 0.5), FineSolutionSettings(), judge)); });
+  timed("7 phase-matched mass", [&] { append(check_phase_matched(PhaseMatchedSettings(), judge)); });  // claims_phase
   append(judge.stale());
 
   // The summary: one line per claim (claim 3 per scheme, with its mechanism and its sensitivity).
