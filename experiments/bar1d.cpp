@@ -18,7 +18,8 @@
 // the paper's benchmark, the mean interval between the exact impacts for other data; on the paper's
 // benchmark the period law's predictions beside them), one `name = value` line each, and optionally
 // writes the time series of the contact point (u(0,t), λ(t), the energy, and the exact values beside
-// them). On the field's benchmarks (bouncing, impacting, gravity-paper, two-bars, layered: field.md sec. 1)
+// them), and the contact stress's oscillation (lambda_tv_ratio = TV(λ_h)/TV(λ_exact)) and the largest
+// penetration (max_penetration). On the field's benchmarks (bouncing, impacting, gravity-paper, two-bars, layered: field.md sec. 1)
 // it prints only the exact solution's contact windows over [0, T] (exact_contact_windows = [t1, t2] ...,
 // lib/impact_solution.hpp, in the benchmark's time unit) and refuses every finite element option (exit 2,
 // naming what the run needs) until the schemes have loads, free ends, gaps, layers and two bodies. Its
@@ -328,6 +329,13 @@ int main(int argc, char** argv) {
     if (blend != 0.0) std::cout << "interior_mass = " << mrm::interior_mass_name(blend) << '\n';
     std::cout
               << "final_time_reached = " << cli::format_real(static_cast<double>(measures.steps) * step) << '\n';
+    // The contact stress's oscillation, TV(λ_h)/TV(λ_exact) over the run's multiplier samples ("n/a" when
+    // the exact λ does not vary: no contact), and the largest penetration of the contact node.
+    std::cout << "lambda_tv_ratio = "
+              << (measures.lambda_tv_ratio ? cli::format_real(*measures.lambda_tv_ratio)
+                                           : std::string("n/a: the exact stress does not vary over the run"))
+              << '\n'
+              << "max_penetration = " << cli::format_real(measures.max_penetration) << '\n';
     // The phase (mathematics.md §8): the impacts found, the error of the first one and the drift of
     // the impact times per period (time units per period, early = negative) with that period, each
     // printed only when it can be computed (an impact in the run and in the exact solution; two of

@@ -433,7 +433,19 @@ Measures run_configuration(const Configuration& configuration, const std::functi
       c.contact_velocity == ContactVelocity::backward_difference && simulation.massless_contact_node();
   Eigen::VectorXd velocity, scaled_displacement, scaled_velocity;
   double u0_previous = 0;
+  // TV(λ_h) and TV(λ_exact) summed over the successive multiplier samples; the penetration against the
+  // problem's gap (unit scale).
+  const double gap = configuration_problem(c).gap;
+  double tv = 0, tv_exact = 0, lambda_previous = 0, exact_previous = 0, penetration = 0;
+  bool first_multiplier = true;
   run(simulation, m.steps, [&](const Sample& s) {
+    penetration = std::max(penetration, -((*s.displacement)[0] + gap));
+    if (s.has_multiplier) {
+      const double lambda_exact = exact->contact_multiplier(s.multiplier_time);
+      if (!first_multiplier)
+        tv += std::abs(s.multiplier - lambda_previous), tv_exact += std::abs(lambda_exact - exact_previous);
+      lambda_previous = s.multiplier, exact_previous = lambda_exact, first_multiplier = false;
+    }
     if (difference && s.level >= 1) {
       velocity = *s.velocity;
       velocity[0] = ((*s.displacement)[0] - u0_previous) / dt;
@@ -475,6 +487,8 @@ Measures run_configuration(const Configuration& configuration, const std::functi
   m.energy_final = scaling.energy(m.energy_final);
   m.energy_min = scaling.energy(energy_min);
   m.energy_max = scaling.energy(energy_max);
+  if (tv_exact > 0) m.lambda_tv_ratio = tv / tv_exact;  // a ratio of two stresses: scale-free
+  m.max_penetration = scaling.displacement(1.0) * penetration;
   if (!impacts.impacts().empty()) {
     m.phase = phase_against(impacts.impacts(), *exact, mesh.length);
     if (m.phase) {

@@ -167,6 +167,14 @@ struct Measures {
   Index steps = 0;
   std::vector<double> impacts;
   std::optional<PhaseMeasures> phase;  ///< absent when the run or the exact solution has no impact
+  /// The oscillation of the contact stress: TV(λ_h)/TV(λ_exact), the total variations of the scheme's
+  /// multiplier and of the exact λ over the same instants (the samples' multiplier_time), levels 0..n.
+  /// Absent when the exact λ does not vary over the run (no contact: the ratio is undefined).
+  std::optional<double> lambda_tv_ratio;
+  /// The largest penetration max_n max(0, −(u₀ⁿ + gap)) at the configuration's scale: 0 up to round-off
+  /// for a scheme that enforces the constraint at the levels (CN, BE, EC, cn-switch); for
+  /// Paoli–Schatzman only the average (u₀ⁿ⁺¹ + e u₀ⁿ⁻¹)/(1 + e) is constrained, so a level may penetrate.
+  double max_penetration = 0;
 };
 
 /// Runs the configuration to its final time, calling `observe` (if given) on every sample from level 0
