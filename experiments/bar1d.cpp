@@ -148,8 +148,8 @@ int main(int argc, char** argv) {
                     "from run to run)",
                     &no_timing);
     parser.add_string("--interior-mass", "", "I",
-                      "interior mass the --mass member is defined on (issue 26): " +
-                          mrm::repro::interior_mass_forms() + "; the paper's is consistent",
+                      "interior mass the --mass member is defined on (issue 26): " + mrm::repro::interior_mass_forms() +
+                          "; the paper's is consistent",
                       &interior_mass);
     parser.add_flag("--phase-matched", "",
                     "interior mass blend:A with A = 1/2 - (dt/h)^2, which cancels Crank-Nicolson's leading phase "
@@ -327,8 +327,7 @@ int main(int argc, char** argv) {
               << "steps = " << measures.steps << '\n';
     // The interior mass, printed when it is not the paper's consistent one (issue 26).
     if (blend != 0.0) std::cout << "interior_mass = " << mrm::interior_mass_name(blend) << '\n';
-    std::cout
-              << "final_time_reached = " << cli::format_real(static_cast<double>(measures.steps) * step) << '\n';
+    std::cout << "final_time_reached = " << cli::format_real(static_cast<double>(measures.steps) * step) << '\n';
     // The contact stress's oscillation, TV(λ_h)/TV(λ_exact) over the run's multiplier samples ("n/a" when
     // the exact λ does not vary: no contact), and the largest penetration of the contact node.
     std::cout << "lambda_tv_ratio = "

@@ -113,7 +113,8 @@ int main(int argc, char** argv) {
     program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
                                &threads, cli::in_closed_range(1, cli::max_threads));
     if (!program.parse(argc, argv, "also write the tables and values the report quotes")) return 0;
-    if (long_refinements > refinements) throw cli::UsageError("--long-refinements: at most --refinements (allowed: 2..K)");
+    if (long_refinements > refinements)
+      throw cli::UsageError("--long-refinements: at most --refinements (allowed: 2..K)");
     if (energy_refinements > refinements)
       throw cli::UsageError("--energy-refinements: at most --refinements (allowed: 2..K)");
     if (!(static_cast<double>(coarsest) * std::ldexp(1.0, static_cast<int>(refinements - 1)) <= 1e4))
@@ -123,9 +124,8 @@ int main(int argc, char** argv) {
     program.open();
 
     // 3. The runs.
-    const std::vector<Benchmark> benchmarks{{"paper", "paper", {3.0, 30.0, 90.0}},
-                                            {"smooth-impact", "s1", {2.0}},
-                                            {"grazing", "s2", {2.0}}};
+    const std::vector<Benchmark> benchmarks{
+        {"paper", "paper", {3.0, 30.0, 90.0}}, {"smooth-impact", "s1", {2.0}}, {"grazing", "s2", {2.0}}};
     std::vector<Run> runs;
     for (std::size_t b = 0; b < benchmarks.size(); ++b)
       for (std::size_t v = 0; v < variants.size(); ++v) {
@@ -191,8 +191,9 @@ int main(int argc, char** argv) {
           const std::size_t levels = levels_of(b, v, t);
           if (levels == 0) continue;
           out << "\n\n# block " << block++ << ": benchmark = " << benchmarks[b].name
-              << ", scheme = " << mrm::to_string(variants[v].scheme) << ", mass = mod3, interior_mass = "
-              << mrm::interior_mass_name(variants[v].blend) << ", dt/h = " << cli::format_real(variants[v].courant)
+              << ", scheme = " << mrm::to_string(variants[v].scheme)
+              << ", mass = mod3, interior_mass = " << mrm::interior_mass_name(variants[v].blend)
+              << ", dt/h = " << cli::format_real(variants[v].courant)
               << ", T = " << cli::format_real(benchmarks[b].horizons[t]) << '\n';
           std::vector<mrm::repro::ErrorRow> rows;
           for (std::size_t l = 0; l < levels; ++l) rows.push_back({at(b, v, l).elements, at(b, v, l).errors[t]});
@@ -222,7 +223,8 @@ int main(int argc, char** argv) {
           for (std::size_t l = 0; l < levels; ++l) steps.push_back(1.0 / static_cast<double>(at(b, v, l).elements));
           const std::string key = std::string(benchmarks[b].key) + ":" + variants[v].key + ":T" +
                                   cli::format_real(benchmarks[b].horizons[t]);
-          std::vector<std::string> row{benchmarks[b].key, variants[v].label, cli::format_real(benchmarks[b].horizons[t])};
+          std::vector<std::string> row{benchmarks[b].key, variants[v].label,
+                                       cli::format_real(benchmarks[b].horizons[t])};
           std::vector<std::string> orders;
           for (Measure k : shown) {
             std::vector<double> errors;
@@ -234,7 +236,8 @@ int main(int argc, char** argv) {
             for (std::size_t l = 0; l < levels; ++l)
               mrm::tex_define(defs, "pm:err:" + name + ":N" + std::to_string(at(b, v, l).elements),
                               mrm::tex_number(errors[l], 2));
-            row.push_back(mrm::tex_number(errors.back(), 2) + " (" + std::to_string(at(b, v, levels - 1).elements) + ")");
+            row.push_back(mrm::tex_number(errors.back(), 2) + " (" + std::to_string(at(b, v, levels - 1).elements) +
+                          ")");
             orders.push_back(mrm::tex_number(fit.order, 2));
           }
           row.insert(row.end(), orders.begin(), orders.end());
@@ -244,7 +247,8 @@ int main(int argc, char** argv) {
     }
     // In two halves at the text size (the errors, then the orders), not shrunk.
     defs << "\\mrmdef{pm:table:errors}{"
-         << mrm::repro::latex_tabular(table.columns_subset({0, 1, 2, 3, 4, 5, 6}), "lll" + std::string(4, 'r')) << "}\n";
+         << mrm::repro::latex_tabular(table.columns_subset({0, 1, 2, 3, 4, 5, 6}), "lll" + std::string(4, 'r'))
+         << "}\n";
     defs << "\\mrmdef{pm:table:orders}{"
          << mrm::repro::latex_tabular(table.columns_subset({0, 1, 2, 7, 8, 9, 10}), "lll" + std::string(4, 'r'))
          << "}\n";
@@ -264,8 +268,8 @@ int main(int argc, char** argv) {
       mrm::tex_define(defs, "pm:target:" + key + ":measured", mrm::tex_number(measured, 3));
       mrm::tex_define(defs, "pm:target:" + key + ":margin", mrm::tex_number(margin, 3));
       mrm::tex_define(defs, "pm:target:" + key + ":met", margin >= 1.0 ? "met" : "not met");
-      summary << "  " << key << ": " << measured << " / " << target << " = " << margin << (margin >= 1 ? "" : "  NOT MET")
-              << '\n';
+      summary << "  " << key << ": " << measured << " / " << target << " = " << margin
+              << (margin >= 1 ? "" : "  NOT MET") << '\n';
     };
     const std::size_t ten = 1;  // the horizon T = 30 of the paper's benchmark
     for (std::size_t v : {std::size_t{1}, std::size_t{2}}) {

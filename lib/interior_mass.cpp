@@ -99,7 +99,8 @@ double largest_phase_matched_courant() { return 1.0 / std::sqrt(2.0); }
 
 double phase_matched_blend(double courant) {
   if (!(std::isfinite(courant) && courant > 0.0))
-    throw std::invalid_argument("phase-matched blend: dt/h must be positive and finite (allowed: 0 < dt/h <= 1/sqrt(2))");
+    throw std::invalid_argument(
+        "phase-matched blend: dt/h must be positive and finite (allowed: 0 < dt/h <= 1/sqrt(2))");
   double a = 0.5 - courant * courant;
   if (a < 0.0 && a >= -1e-12) a = 0.0;
   if (a < 0.0)
@@ -169,7 +170,7 @@ TEST_CASE("the phase error of CN with the blended mass is O(xi^4) at A = 1/2 - c
 TEST_CASE("the phase-matched blend is 1/2 - c^2, and does not exist above c = 1/sqrt(2)") {
   CHECK(phase_matched_blend(0.5) == 0.25);
   CHECK(std::abs(phase_matched_blend(1.0 / std::sqrt(2.0))) < 1e-15);  // c² rounds to 0.4999999999999999
-  CHECK(phase_matched_blend(0.70710678118655) == 0.0);  // c² = 0.5 + 8e-15: within 1e-12, taken as 0
+  CHECK(phase_matched_blend(0.70710678118655) == 0.0);                 // c² = 0.5 + 8e-15: within 1e-12, taken as 0
   CHECK(phase_matched_blend(0.1) == doctest::Approx(0.49));
   CHECK_THROWS_WITH_AS(phase_matched_blend(0.75), doctest::Contains("1/sqrt(2)"), std::invalid_argument);
   CHECK_THROWS_AS(phase_matched_blend(1.0), std::invalid_argument);
@@ -199,8 +200,10 @@ TEST_CASE("the family on the blend: Mod 3 is P^T M^A P and every member keeps it
       CHECK(total_mass(mesh, mod1(a)) == doctest::Approx(m_bar - lost).epsilon(1e-14));
       CHECK(total_mass(mesh, consistent_mass(a)) == doctest::Approx(m_bar).epsilon(1e-14));
       // node1:(4/3 − A/6) and beta:(2/3 − A/6) are Mod 3 on the blend; beta:0 is Mod 2.
-      CHECK(modified_mass_all_nodes(mesh, node1(4.0 / 3 - a / 6, a)).diag[1] == doctest::Approx(m3.diag[1]).epsilon(1e-14));
-      CHECK(modified_mass_all_nodes(mesh, beta(2.0 / 3 - a / 6, a)).diag[1] == doctest::Approx(m3.diag[1]).epsilon(1e-14));
+      CHECK(modified_mass_all_nodes(mesh, node1(4.0 / 3 - a / 6, a)).diag[1] ==
+            doctest::Approx(m3.diag[1]).epsilon(1e-14));
+      CHECK(modified_mass_all_nodes(mesh, beta(2.0 / 3 - a / 6, a)).diag[1] ==
+            doctest::Approx(m3.diag[1]).epsilon(1e-14));
       CHECK(modified_mass_all_nodes(mesh, beta(0.0, a)).diag[5] ==
             doctest::Approx(modified_mass_all_nodes(mesh, mod2(a)).diag[5]).epsilon(1e-14));
     }

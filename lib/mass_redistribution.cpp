@@ -67,8 +67,9 @@ namespace {
 // A member's blend, checked at construction.
 double checked_blend(double blend) {
   if (!(blend >= 0.0 && blend <= 1.0))
-    throw std::invalid_argument("mass redistribution: the interior mass blend A must be in [0, 1] (allowed: "
-                                "0 consistent, 1 lumped, in between blend:A)");
+    throw std::invalid_argument(
+        "mass redistribution: the interior mass blend A must be in [0, 1] (allowed: "
+        "0 consistent, 1 lumped, in between blend:A)");
   return blend;
 }
 
@@ -134,9 +135,7 @@ double node_mass(const UniformMesh& mesh, Index i, double blend) {
 }
 
 // Whether a weight may take the paper's own expression (the uniform mesh of a homogeneous bar, A = 0).
-bool paper_mesh(const UniformMesh& mesh, double blend) {
-  return blend == 0.0 && mesh.uniform() && mesh.homogeneous();
-}
+bool paper_mesh(const UniformMesh& mesh, double blend) { return blend == 0.0 && mesh.uniform() && mesh.homogeneous(); }
 
 }  // namespace
 
@@ -157,16 +156,16 @@ MassRedistribution mod2(double blend) {
 MassRedistribution spread_over_first_nodes(Index k, double blend) {
   if (k < 1) throw std::invalid_argument("spread_over_first_nodes: k must be >= 1");
   checked_blend(blend);
-  return on_blend({"spread:" + std::to_string(k),
-                   "the contact node's mass spread on the diagonal of nodes 1.." + std::to_string(k),
-                   [k, blend](Index i, Index j, const UniformMesh& mesh) {
-                     if (i == 0 || j == 0) return 0.0;
-                     if (k >= mesh.elements) throw std::invalid_argument("spread_over_first_nodes: k must be < N");
-                     if (!(i == j && i <= k)) return 1.0;
-                     if (paper_mesh(mesh, blend)) return 1.0 + 1.0 / static_cast<double>(k);
-                     return 1.0 + lost_mass(mesh, blend) / (static_cast<double>(k) * node_mass(mesh, i, blend));
-                   }},
-                  blend);
+  return on_blend(
+      {"spread:" + std::to_string(k), "the contact node's mass spread on the diagonal of nodes 1.." + std::to_string(k),
+       [k, blend](Index i, Index j, const UniformMesh& mesh) {
+         if (i == 0 || j == 0) return 0.0;
+         if (k >= mesh.elements) throw std::invalid_argument("spread_over_first_nodes: k must be < N");
+         if (!(i == j && i <= k)) return 1.0;
+         if (paper_mesh(mesh, blend)) return 1.0 + 1.0 / static_cast<double>(k);
+         return 1.0 + lost_mass(mesh, blend) / (static_cast<double>(k) * node_mass(mesh, i, blend));
+       }},
+      blend);
 }
 
 MassRedistribution mod3(double blend) {

@@ -14,8 +14,8 @@ namespace mrm::claims {
 struct PhaseMatchedSettings {
   Index coarsest = 50;
   Index finest = 400;
-  double final_time = 30;  ///< ten periods
-  double ratio_u = 2.5;    ///< the issue's target: the u error (L²L²) at least this much lower with A = ¼
+  double final_time = 30;        ///< ten periods
+  double ratio_u = 2.5;          ///< the issue's target: the u error (L²L²) at least this much lower with A = ¼
   double ratio_h1_lambda = 1.6;  ///< the same for u in L²H¹ and λ in L²
   double order_u = 0.85;         ///< the fitted order of u at A = ¼ at least this
   double order_h1_lambda = 0.4;  ///< the same for u in L²H¹ and λ

@@ -120,7 +120,8 @@ TEST_CASE("the interior mass specs read consistent, lumped and blend:A in [0, 1]
   CHECK(interior_blend_from_spec("blend:0.3") == 0.3);
   CHECK(interior_blend_from_spec("blend:0") == 0.0);
   CHECK(interior_blend_from_spec("blend:1") == 1.0);
-  for (const char* bad : {"blend:1.5", "blend:-0.1", "blend:", "blend:x", "blend:1/0", "blend: 0.5", "Lumped", "blend:nan"})
+  for (const char* bad :
+       {"blend:1.5", "blend:-0.1", "blend:", "blend:x", "blend:1/0", "blend: 0.5", "Lumped", "blend:nan"})
     CHECK_THROWS_WITH_AS(interior_blend_from_spec(bad), doctest::Contains("(allowed: consistent, lumped, blend:A"),
                          std::invalid_argument);
   // The member is built on the blend: Mod 3's M̄₁₁ = (4/3 + A/6) h.
