@@ -44,7 +44,8 @@ ENERGY_SCHEMES_VIEWS := history map measures
 FIGURE_NAMES := fig_contact_history fig_energy fig_convergence fig_time_error fig_ps_forms fig_profiles fig_phase \
                 fig_stability_map fig_smooth_convergence fig_smooth_benchmarks fig_family \
                 $(SWEEP_MAPS) $(ENERGY_SCHEMES_VIEWS:%=fig_energy_schemes_%) \
-                fig_benchmark_convergence
+                fig_benchmark_convergence \
+                fig_phase_matched
 FIGURE_PDFS := $(FIGURE_NAMES:%=$(FIGURES)/%.pdf)
 FIGURE_DATA := $(FIGURE_NAMES:%=$(DATA)/%.dat)
 FIGURE_TEX := $(FIGURE_NAMES:%=$(DATA)/%.tex)

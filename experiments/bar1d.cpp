@@ -65,6 +65,7 @@
 #include "errors.hpp"
 #include "exact_solution.hpp"
 #include "impact_solution.hpp"
+#include "interior_mass.hpp"
 #include "period_law.hpp"
 #include "contact_classes.hpp"
 #include "schemes.hpp"
@@ -86,7 +87,8 @@ int main(int argc, char** argv) {
     std::string scheme = mrm::to_string(mrm::Scheme::crank_nicolson), mass = "mod3", ps_form = "algebraic",
                 initial = "consistent", contact_velocity = "algebraic", output, lumping = "row-sum";
     std::string benchmark = "paper", initial_data;
-    bool no_timing = false;
+    bool no_timing = false, phase_matched = false;
+    std::string interior_mass = "consistent";
     // The ranges below keep every quantity of the run (h, Δt², the matrices' entries, the energy a²L/2)
     // far from overflow and underflow of a double (the energy and the errors are computed scale-free:
     // errors.cpp, schemes.cpp), and the memory bounded: the peak memory of a run, measured at N = 1e6
@@ -204,9 +206,24 @@ int main(int argc, char** argv) {
                     "leave out the wall time of the run (wall_seconds, the one value that varies "
                     "from run to run)",
                     &no_timing);
+    parser.add_string("--interior-mass", "", "I",
+                      "interior mass the --mass member is defined on (issue 26): " + mrm::repro::interior_mass_forms() +
+                          "; the paper's is consistent",
+                      &interior_mass);
+    parser.add_flag("--phase-matched", "",
+                    "interior mass blend:A with A = 1/2 - (dt/h)^2, which cancels Crank-Nicolson's leading phase "
+                    "error (needs dt/h <= 1/sqrt(2))",
+                    &phase_matched);
     parser.add_conflict("--dt", "--courant");
+    parser.add_conflict("--interior-mass", "--phase-matched");
     parser.add_conflict("--initial-data", "--benchmark");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    double blend = 0.0;  // the interior mass blend A (lib/interior_mass.hpp)
+    try {
+      blend = mrm::repro::interior_blend_from_spec(interior_mass);
+    } catch (const std::invalid_argument& e) {
+      throw cli::UsageError(std::string("--interior-mass: ") + e.what());
+    }
     const bool own_data = parser.given("--initial-data");
     for (const char* option : {"--length", "--amplitude"})
       if (parser.given(option) && (own_data || benchmark != "paper"))
@@ -307,7 +324,12 @@ int main(int argc, char** argv) {
     // The mass, checked on the mesh of the run (a spread over more nodes than the mesh has, a matrix
     // that is not positive definite) once the mesh is known to fit in memory, before the run: a bad
     // value exits 2 and leaves no output behind.
-    configuration.mass = mrm::repro::mass_from_option("--mass", mass, mesh);
+    if (phase_matched) try {
+        blend = mrm::phase_matched_blend(step / mesh.h());
+      } catch (const std::invalid_argument& e) {
+        throw cli::UsageError(std::string("--phase-matched: ") + e.what());
+      }
+    configuration.mass = mrm::repro::mass_from_option("--mass", mass, mesh, false, blend);
     const bool massless = mrm::contact_node_is_massless(mrm::modified_mass(mesh, configuration.mass));
     if (!massless && !parser.given("--ps-form")) ps_form = "literal";  // the only row of a node with inertia
     dt = step;                                                         // the header echoes the effective step
@@ -412,8 +434,10 @@ int main(int argc, char** argv) {
               << "energy_final = " << cli::format_real(measures.energy_final) << '\n'
               << "energy_min = " << cli::format_real(measures.energy_min) << '\n'
               << "energy_max = " << cli::format_real(measures.energy_max) << '\n'
-              << "steps = " << measures.steps << '\n'
-              << "final_time_reached = " << cli::format_real(static_cast<double>(measures.steps) * step) << '\n';
+              << "steps = " << measures.steps << '\n';
+    // The interior mass, printed when it is not the paper's consistent one (issue 26).
+    if (blend != 0.0) std::cout << "interior_mass = " << mrm::interior_mass_name(blend) << '\n';
+    std::cout << "final_time_reached = " << cli::format_real(static_cast<double>(measures.steps) * step) << '\n';
     // The contact stress's oscillation, TV(λ_h)/TV(λ_exact) over the run's multiplier samples ("n/a" when
     // the exact λ does not vary: no contact), and the largest penetration of the contact node.
     std::cout << "lambda_tv_ratio = "

@@ -32,14 +32,66 @@
 
 namespace mrm {
 
-MassRedistribution consistent_mass() {
-  return {"consistent", "consistent P1 mass (the contact node keeps its inertia)",
-          [](Index, Index, const UniformMesh&) { return 1.0; }};
+// ---------------------------------------------------------------------------------------------------
+// The family on the blended interior mass (issue 26; the paper has the consistent mass only, this is the
+// project's construction). The interior mass M^A = (1 − A) M + A M_L (p1.cpp: per element
+// m/6 [2 + A, 1 − A; 1 − A, 2 + A]) replaces M before any redistribution, and each member is defined by
+// what it does with the mass that removing row and column 0 takes off M^A,
+//
+//     m_lost(A) = M^A₀₀ + 2M^A₀₁ = ρ₀h₀ (2 + A)/6 + 2ρ₀h₀ (1 − A)/6 = (2/3 − A/6) ρ₀h₀,
+//
+// exactly as on M: Mod 1 drops it, Mod 2 scales the density by m_bar/(m_bar − m_lost(A)), spread:K puts
+// m_lost(A)/K on the diagonal of nodes 1..K, Mod 3 = spread:1 moves it to node 1:
+//
+//     M̄₁₁ = M^A₁₁ + m_lost(A) = M^A₀₀ + 2M^A₀₁ + M^A₁₁ = (PᵀM^AP)₁₁   (u₀ := u₁),
+//
+// still the Galerkin mass of the free-flight kinematics, (4/3 + A/6) h on the uniform mesh; node1:X adds
+// (X − 2/3) ρ₀h₀ beyond Mod 1's M^A₁₁ (so node1:X is M̄₁₁ = (X + A/3) h: Mod 3 is node1:(4/3 − A/6)), and
+// beta:B puts the point mass B ρ₀h₀ on node 1 and the rest by the density scale (Mod 3 is
+// beta:(2/3 − A/6)). The weights are w_ij = M̄_ij / M^A_ij, with the diagonal M^A_ii = (1 + A/2) M_ii.
+// Why this and not the literal weight w₁₁ = 2 on M^A (M̄₁₁ = (4/3 + 2A/3) h): the period law reads the
+// drift off the row sums (lumped masses) of M̄ − M̄_Mod3 (period_law.cpp), the blend keeps every row sum
+// of the elements it touches, and m_lost(A) + (row sum of node 1 in M^A without node 0) = ρ₀h₀ + ρ₁h₁/2
+// for every A: the Galerkin member has Mod 3's row sums, hence Mod 3's zero drift, for every A, while
+// the literal weight adds A h/2 at node 1 and drifts by ΔP = 2 · A h/2 = A h per period (doctests in
+// interior_mass.cpp).
+double lost_mass(const UniformMesh& mesh, double blend) {
+  if (!(blend >= 0.0 && blend <= 1.0))
+    throw std::invalid_argument("mass redistribution: the interior mass blend A must be in [0, 1]");
+  if (blend == 0.0) return lost_mass(mesh);
+  return (4.0 - blend) * mesh.density(0) * mesh.h(0) / 6.0;
 }
 
-MassRedistribution mod1() {
-  return {"mod1", "Mod 1: the contact node's mass is dropped",
-          [](Index i, Index j, const UniformMesh&) { return (i == 0 || j == 0) ? 0.0 : 1.0; }};
+namespace {
+
+// A member's blend, checked at construction.
+double checked_blend(double blend) {
+  if (!(blend >= 0.0 && blend <= 1.0))
+    throw std::invalid_argument(
+        "mass redistribution: the interior mass blend A must be in [0, 1] (allowed: "
+        "0 consistent, 1 lumped, in between blend:A)");
+  return blend;
+}
+
+// The member `r` on the blend A: its field set, its description saying so when A ≠ 0.
+MassRedistribution on_blend(MassRedistribution r, double blend) {
+  r.interior_blend = blend;
+  if (blend != 0.0) r.description += " (on the interior mass blend A = " + std::to_string(blend) + ")";
+  return r;
+}
+
+}  // namespace
+
+MassRedistribution consistent_mass(double blend) {
+  return on_blend({"consistent", "consistent P1 mass (the contact node keeps its inertia)",
+                   [](Index, Index, const UniformMesh&) { return 1.0; }},
+                  checked_blend(blend));
+}
+
+MassRedistribution mod1(double blend) {
+  return on_blend({"mod1", "Mod 1: the contact node's mass is dropped",
+                   [](Index i, Index j, const UniformMesh&) { return (i == 0 || j == 0) ? 0.0 : 1.0; }},
+                  checked_blend(blend));
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -77,38 +129,52 @@ double node_mass(const UniformMesh& mesh, Index i) {
   return (i < mesh.elements ? left + mesh.density(i) * mesh.h(i) : left) / 3.0;
 }
 
+// M^A_ii = (1 + A/2) M_ii, the diagonal of the blended mass (each element's diagonal entry m(2 + A)/6).
+double node_mass(const UniformMesh& mesh, Index i, double blend) {
+  return blend == 0.0 ? node_mass(mesh, i) : (1.0 + 0.5 * blend) * node_mass(mesh, i);
+}
+
+// Whether a weight may take the paper's own expression (the uniform mesh of a homogeneous bar, A = 0).
+bool paper_mesh(const UniformMesh& mesh, double blend) { return blend == 0.0 && mesh.uniform() && mesh.homogeneous(); }
+
 }  // namespace
 
-MassRedistribution mod2() {
-  return {"mod2", "Mod 2: the contact node's mass is spread uniformly on the other nodes",
-          [](Index i, Index j, const UniformMesh& mesh) {
-            if (i == 0 || j == 0) return 0.0;
-            const double m_bar = mesh.bar_mass();
-            return m_bar / (m_bar - lost_mass(mesh));
-          }};
+MassRedistribution mod2(double blend) {
+  checked_blend(blend);
+  return on_blend({"mod2", "Mod 2: the contact node's mass is spread uniformly on the other nodes",
+                   [blend](Index i, Index j, const UniformMesh& mesh) {
+                     if (i == 0 || j == 0) return 0.0;
+                     const double m_bar = mesh.bar_mass();
+                     return m_bar / (m_bar - lost_mass(mesh, blend));
+                   }},
+                  blend);
 }
 
 // Spreading the lost mass 2h/3 in equal parts 2h/(3k) on the diagonal entries M_ii = 2h/3 of the
 // nodes i = 1..k means the weight w_ii = 1 + 1/k there (node N, clamped, is never among them); on
 // any other mesh, w_ii = 1 + m_lost/(k M_ii).
-MassRedistribution spread_over_first_nodes(Index k) {
+MassRedistribution spread_over_first_nodes(Index k, double blend) {
   if (k < 1) throw std::invalid_argument("spread_over_first_nodes: k must be >= 1");
-  return {"spread:" + std::to_string(k),
-          "the contact node's mass spread on the diagonal of nodes 1.." + std::to_string(k),
-          [k](Index i, Index j, const UniformMesh& mesh) {
-            if (i == 0 || j == 0) return 0.0;
-            if (k >= mesh.elements) throw std::invalid_argument("spread_over_first_nodes: k must be < N");
-            if (!(i == j && i <= k)) return 1.0;
-            if (mesh.uniform() && mesh.homogeneous()) return 1.0 + 1.0 / static_cast<double>(k);
-            return 1.0 + lost_mass(mesh) / (static_cast<double>(k) * node_mass(mesh, i));
-          }};
+  checked_blend(blend);
+  return on_blend(
+      {"spread:" + std::to_string(k), "the contact node's mass spread on the diagonal of nodes 1.." + std::to_string(k),
+       [k, blend](Index i, Index j, const UniformMesh& mesh) {
+         if (i == 0 || j == 0) return 0.0;
+         if (k >= mesh.elements) throw std::invalid_argument("spread_over_first_nodes: k must be < N");
+         if (!(i == j && i <= k)) return 1.0;
+         if (paper_mesh(mesh, blend)) return 1.0 + 1.0 / static_cast<double>(k);
+         return 1.0 + lost_mass(mesh, blend) / (static_cast<double>(k) * node_mass(mesh, i, blend));
+       }},
+      blend);
 }
 
-MassRedistribution mod3() {
+MassRedistribution mod3(double blend) {
   MassRedistribution r = spread_over_first_nodes(1);
   r.name = "mod3";
   r.description = "Mod 3: the contact node's mass is moved to the neighbouring node";
-  return r;
+  if (blend == 0.0) return r;
+  r.weight = spread_over_first_nodes(1, blend).weight;
+  return on_blend(r, blend);
 }
 
 // The registry of the family: the named members and the parametrised forms (the latter defined
@@ -137,11 +203,11 @@ std::vector<std::string> mass_redistribution_names() {
   return names;
 }
 
-MassRedistribution mass_redistribution_by_name(const std::string& name) {
-  if (name == "consistent") return consistent_mass();
-  if (name == "mod1") return mod1();
-  if (name == "mod2") return mod2();
-  if (name == "mod3") return mod3();
+MassRedistribution mass_redistribution_by_name(const std::string& name, double blend) {
+  if (name == "consistent") return consistent_mass(blend);
+  if (name == "mod1") return mod1(blend);
+  if (name == "mod2") return mod2(blend);
+  if (name == "mod3") return mod3(blend);
   std::string allowed;
   for (const std::string& n : mass_redistribution_names()) allowed += (allowed.empty() ? "" : ", ") + n;
   throw std::invalid_argument("unknown mass choice \"" + name + "\" (allowed: " + allowed + ")");
@@ -164,7 +230,7 @@ Tridiagonal modified_mass_all_nodes(const UniformMesh& mesh, const MassRedistrib
   if (!redistribution.weight)
     throw std::invalid_argument("mass redistribution \"" + redistribution.name +
                                 "\": no weight function (allowed: a function w(i, j, mesh))");
-  Tridiagonal m = p1_mass_all_nodes(mesh);
+  Tridiagonal m = p1_blended_mass_all_nodes(mesh, redistribution.interior_blend);
   const Index n = m.size();
   for (Index i = 0; i < n; ++i) {
     const double w = redistribution.weight(i, i, mesh);
@@ -313,36 +379,42 @@ std::string shortest_decimal(double value) {
 
 }  // namespace
 
-MassRedistribution node1(double x) {
+MassRedistribution node1(double x, double blend) {
   if (!(std::isfinite(x) && x > 0.0))
     throw std::invalid_argument("node1: X must be a positive finite number (M̄_11 = X h)");
-  return {"node1:" + shortest_decimal(x),
-          "M̄_11 = " + shortest_decimal(x) + " h on node 1, every other entry as Mod 1 (total not renormalised)",
-          [x](Index i, Index j, const UniformMesh& mesh) {
-            if (i == 0 || j == 0) return 0.0;
-            if (!(i == 1 && j == 1)) return 1.0;
-            if (mesh.uniform() && mesh.homogeneous()) return 1.5 * x;
-            // M̄₁₁ = M₁₁ + (X − 2/3) ρ₀h₀: X − 2/3 of the contact element's mass added beyond Mod 1.
-            return 1.0 + (x - 2.0 / 3.0) * mesh.density(0) * mesh.h(0) / node_mass(mesh, 1);
-          }};
+  checked_blend(blend);
+  return on_blend(
+      {"node1:" + shortest_decimal(x),
+       "M̄_11 = " + shortest_decimal(x) + " h on node 1, every other entry as Mod 1 (total not renormalised)",
+       [x, blend](Index i, Index j, const UniformMesh& mesh) {
+         if (i == 0 || j == 0) return 0.0;
+         if (!(i == 1 && j == 1)) return 1.0;
+         if (paper_mesh(mesh, blend)) return 1.5 * x;
+         // M̄₁₁ = M^A₁₁ + (X − 2/3) ρ₀h₀: X − 2/3 of the contact element's mass added beyond Mod 1.
+         return 1.0 + (x - 2.0 / 3.0) * mesh.density(0) * mesh.h(0) / node_mass(mesh, 1, blend);
+       }},
+      blend);
 }
 
-MassRedistribution beta(double b) {
+MassRedistribution beta(double b, double blend) {
   if (!std::isfinite(b)) throw std::invalid_argument("beta: B must be a finite number");
-  return {"beta:" + shortest_decimal(b),
-          "a point mass " + shortest_decimal(b) + " h on node 1, the rest of the lost mass spread uniformly (total L)",
-          [b](Index i, Index j, const UniformMesh& mesh) {
-            if (i == 0 || j == 0) return 0.0;
-            if (mesh.uniform() && mesh.homogeneous()) {
-              const double h = mesh.h();
-              const double w = (mesh.length - b * h) / (mesh.length - 2.0 * h / 3.0);
-              return (i == 1 && j == 1) ? w + 1.5 * b : w;
-            }
-            // A point mass B ρ₀h₀ on node 1, the rest of m_lost by the density scale w.
-            const double point = b * mesh.density(0) * mesh.h(0), m_bar = mesh.bar_mass();
-            const double w = (m_bar - point) / (m_bar - lost_mass(mesh));
-            return (i == 1 && j == 1) ? w + point / node_mass(mesh, 1) : w;
-          }};
+  checked_blend(blend);
+  return on_blend(
+      {"beta:" + shortest_decimal(b),
+       "a point mass " + shortest_decimal(b) + " h on node 1, the rest of the lost mass spread uniformly (total L)",
+       [b, blend](Index i, Index j, const UniformMesh& mesh) {
+         if (i == 0 || j == 0) return 0.0;
+         if (paper_mesh(mesh, blend)) {
+           const double h = mesh.h();
+           const double w = (mesh.length - b * h) / (mesh.length - 2.0 * h / 3.0);
+           return (i == 1 && j == 1) ? w + 1.5 * b : w;
+         }
+         // A point mass B ρ₀h₀ on node 1, the rest of m_lost(A) by the density scale w.
+         const double point = b * mesh.density(0) * mesh.h(0), m_bar = mesh.bar_mass();
+         const double w = (m_bar - point) / (m_bar - lost_mass(mesh, blend));
+         return (i == 1 && j == 1) ? w + point / node_mass(mesh, 1, blend) : w;
+       }},
+      blend);
 }
 
 // ---------------------------------------------------------------------------------------------------

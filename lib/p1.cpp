@@ -188,6 +188,41 @@ Tridiagonal p1_mass_all_nodes(const UniformMesh& mesh) {
   });
 }
 
+// The blend of the consistent element mass m/6 [2, 1; 1, 2] with the lumped one m/2 [1, 0; 0, 1]:
+// (1 − A) m/6 [2, 1; 1, 2] + A m/6 [3, 0; 0, 3] = m/6 [2 + A, 1 − A; 1 − A, 2 + A]. Every row keeps the
+// sum m/2, so the total mass is the bar's for every A; for 0 ≤ A ≤ 1 the element matrix is positive
+// definite (eigenvalues (2 + A ± (1 − A))m/6 = m/2 and (1 + 2A)m/6 > 0), so M^A is
+// positive definite like M.
+Tridiagonal p1_blended_mass_all_nodes(const UniformMesh& mesh, double blend) {
+  if (!(blend >= 0.0 && blend <= 1.0))
+    throw std::invalid_argument("p1_blended_mass_all_nodes: the blend A must be in [0, 1]");
+  if (blend == 0.0) return p1_mass_all_nodes(mesh);
+  return assemble_all_nodes(mesh, [&](Index e) {
+    const double m = mesh.density(e) * mesh.h(e);
+    return std::pair{m * (2.0 + blend) / 6.0, m * (1.0 - blend) / 6.0};
+  });
+}
+
+TEST_CASE("the blended mass keeps the row sums (the lumped masses) and interpolates consistent and lumped") {
+  const UniformMesh uniform(1.0, 8), graded = graded_mesh(1.0, 8, 1.2);
+  for (const UniformMesh& mesh : {uniform, graded}) {
+    const Tridiagonal m = p1_mass_all_nodes(mesh), lumped = p1_blended_mass_all_nodes(mesh, 1.0);
+    CHECK(lumped.upper.cwiseAbs().maxCoeff() == 0.0);
+    for (double a : {0.25, 0.5}) {
+      const Tridiagonal b = p1_blended_mass_all_nodes(mesh, a);
+      const Tridiagonal expected = m.scaled(1.0 - a).plus(a, lumped);
+      for (Index i = 0; i < b.size(); ++i) {
+        CHECK(b.diag[i] == doctest::Approx(expected.diag[i]).epsilon(1e-14));
+        CHECK(b.upper[i] == doctest::Approx(expected.upper[i]).epsilon(1e-14));
+        CHECK(b.diag[i] + b.lower[i] + b.upper[i] ==
+              doctest::Approx(m.diag[i] + m.lower[i] + m.upper[i]).epsilon(1e-14));
+      }
+    }
+  }
+  CHECK_THROWS_AS(p1_blended_mass_all_nodes(uniform, -0.1), std::invalid_argument);
+  CHECK_THROWS_AS(p1_blended_mass_all_nodes(uniform, 1.5), std::invalid_argument);
+}
+
 Tridiagonal p1_stiffness_all_nodes(const UniformMesh& mesh) {
   return assemble_all_nodes(mesh, [&](Index e) {
     const double k = mesh.young(e) / mesh.h(e);

@@ -121,6 +121,11 @@ struct Tridiagonal {
 
 /// P1 mass matrix M_ij = ∫ φ_i φ_j dx on all nodes 0..N (size N+1, clamped node included).
 Tridiagonal p1_mass_all_nodes(const UniformMesh& mesh);
+/// The blended interior mass M^A = (1 − A) M + A M_L on all nodes 0..N, M_L the row-sum lumped mass
+/// (issue 26, lib/interior_mass.hpp): per element of mass m = ρ_e h_e the matrix
+/// m/6 [2 + A, 1 − A; 1 − A, 2 + A]. A = 0 returns p1_mass_all_nodes itself (the same doubles), A = 1 the
+/// lumped mass. Throws std::invalid_argument unless 0 ≤ A ≤ 1.
+Tridiagonal p1_blended_mass_all_nodes(const UniformMesh& mesh, double blend);
 /// P1 stiffness matrix S_ij = ∫ φ_i' φ_j' dx on all nodes 0..N (size N+1).
 Tridiagonal p1_stiffness_all_nodes(const UniformMesh& mesh);
 /// The stiffness matrix S on the unknowns 0..N-1 (clamped node eliminated).

@@ -38,6 +38,7 @@
 // no check produces is reported as well.
 #include "claims.hpp"
 #include "claims_classes.hpp"
+#include "claims_phase.hpp"
 #include "time_family.hpp"
 
 #include <algorithm>
@@ -1719,6 +1720,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
   timed("6 exact solution",
         [&] { rows.push_back(check_exact_solution(ExactSolution(1.0, 0.5), FineSolutionSettings(), judge)); });
   timed("classes (issue 23)", [&] { append(check_classes(ClassesSettings(), judge)); });  // claims_classes.cpp
+  timed("7 phase-matched mass", [&] { append(check_phase_matched(PhaseMatchedSettings(), judge)); });  // claims_phase
   append(judge.stale());
 
   // The summary: one line per claim (claim 3 per scheme, with its mechanism and its sensitivity).

@@ -505,12 +505,12 @@ Configuration paper_configuration(const std::string& scheme, const std::string& 
 }
 
 MassRedistribution mass_from_option(const std::string& option, const std::string& spec, const UniformMesh& mesh,
-                                    bool massless) {
+                                    bool massless, double blend) {
   try {
     if (massless && spec == "consistent")
       throw std::invalid_argument(cli::quoted_text(spec) + ": this program needs a massless contact node (allowed: " +
                                   mass_redistribution_forms() + ", except consistent)");
-    return mass_redistribution_from_spec(spec, mesh);
+    return mass_redistribution_from_spec(spec, mesh, blend);
   } catch (const std::invalid_argument& e) {
     throw cli::UsageError(option + ": " + e.what());
   }

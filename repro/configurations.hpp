@@ -49,9 +49,10 @@ inline mrm::SchemeParameters scheme_parameters(const std::string& scheme, const 
 /// The redistribution named by the value `spec` of the mass option `option`, checked on the mesh of the run
 /// (mass_redistribution_from_spec, mass_spec.hpp); a bad value throws cli::UsageError "<option>: \"spec\": why
 /// (allowed: ...)", so that the program exits with status 2 before any work. `massless` additionally refuses
-/// the consistent mass (for a program that needs a massless contact node).
+/// the consistent mass (for a program that needs a massless contact node). `blend`: the interior mass
+/// blend A the member is defined on (interior_blend_from_spec, mass_spec.hpp; 0 the paper's).
 MassRedistribution mass_from_option(const std::string& option, const std::string& spec, const UniformMesh& mesh,
-                                    bool massless = false);
+                                    bool massless = false, double blend = 0.0);
 
 /// The velocity of a massless contact node in the velocity measures. `algebraic` (the default): the
 /// library's own, defined from the algebraic contact row (mathematics.md §7; BarSimulation sets V₀ at

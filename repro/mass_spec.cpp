@@ -10,6 +10,7 @@
 
 #include <doctest/doctest.h>
 
+#include "interior_mass.hpp"
 #include "options.hpp"
 
 namespace mrm::repro {
@@ -60,9 +61,9 @@ bool parse_fraction(const std::string& text, double& value) {
 
 }  // namespace
 
-MassRedistribution mass_redistribution_from_spec(const std::string& spec) {
+MassRedistribution mass_redistribution_from_spec(const std::string& spec, double blend) {
   for (const std::string& name : mass_redistribution_names())
-    if (spec == name) return mass_redistribution_by_name(name);
+    if (spec == name) return mass_redistribution_by_name(name, blend);
   const std::size_t colon = spec.find(':');
   if (colon == std::string::npos) reject_spec(spec, "unknown mass choice");
   const std::string kind = spec.substr(0, colon), value = spec.substr(colon + 1);
@@ -71,7 +72,7 @@ MassRedistribution mass_redistribution_from_spec(const std::string& spec) {
     double v = 0.0;
     if (!parse_fraction(value, v)) reject_spec(spec, cli::quoted_text(value) + " is not a decimal or a fraction");
     if (kind == "node1" && !(v > 0.0)) reject_spec(spec, "X must be positive");
-    r = kind == "node1" ? node1(v) : beta(v);
+    r = kind == "node1" ? node1(v, blend) : beta(v, blend);
   } else if (kind == "spread") {
     long k = 0;
     try {
@@ -80,7 +81,7 @@ MassRedistribution mass_redistribution_from_spec(const std::string& spec) {
       reject_spec(spec, "K is not an integer");
     }
     if (k < 1) reject_spec(spec, "K must be at least 1");
-    r = spread_over_first_nodes(static_cast<Index>(k));
+    r = spread_over_first_nodes(static_cast<Index>(k), blend);
   } else {
     reject_spec(spec, "unknown mass choice");
   }
@@ -88,8 +89,8 @@ MassRedistribution mass_redistribution_from_spec(const std::string& spec) {
   return r;
 }
 
-MassRedistribution mass_redistribution_from_spec(const std::string& spec, const UniformMesh& mesh) {
-  MassRedistribution r = mass_redistribution_from_spec(spec);
+MassRedistribution mass_redistribution_from_spec(const std::string& spec, const UniformMesh& mesh, double blend) {
+  MassRedistribution r = mass_redistribution_from_spec(spec, blend);
   if (spec.rfind("spread:", 0) == 0 && std::stoll(spec.substr(7)) > mesh.elements - 1)
     reject_spec(spec, "K must be at most N - 1 = " + std::to_string(mesh.elements - 1));
   try {
@@ -98,6 +99,35 @@ MassRedistribution mass_redistribution_from_spec(const std::string& spec, const 
     reject_spec(spec, "the mass is not positive definite on nodes 1..N-1 for N = " + std::to_string(mesh.elements));
   }
   return r;
+}
+
+std::string interior_mass_forms() { return "consistent, lumped, blend:A with A a decimal or a fraction in [0, 1]"; }
+
+double interior_blend_from_spec(const std::string& spec) {
+  if (spec == "consistent") return 0.0;
+  if (spec == "lumped") return 1.0;
+  double a = 0.0;
+  if (spec.rfind("blend:", 0) != 0 || !parse_fraction(spec.substr(6), a) || !(a >= 0.0 && a <= 1.0))
+    throw std::invalid_argument(cli::quoted_text(spec) + ": not an interior mass (allowed: " + interior_mass_forms() +
+                                ")");
+  return interior_blend_from_value(a);
+}
+
+TEST_CASE("the interior mass specs read consistent, lumped and blend:A in [0, 1], fractions included") {
+  CHECK(interior_blend_from_spec("consistent") == 0.0);
+  CHECK(interior_blend_from_spec("lumped") == 1.0);
+  CHECK(interior_blend_from_spec("blend:1/4") == 0.25);
+  CHECK(interior_blend_from_spec("blend:0.3") == 0.3);
+  CHECK(interior_blend_from_spec("blend:0") == 0.0);
+  CHECK(interior_blend_from_spec("blend:1") == 1.0);
+  for (const char* bad :
+       {"blend:1.5", "blend:-0.1", "blend:", "blend:x", "blend:1/0", "blend: 0.5", "Lumped", "blend:nan"})
+    CHECK_THROWS_WITH_AS(interior_blend_from_spec(bad), doctest::Contains("(allowed: consistent, lumped, blend:A"),
+                         std::invalid_argument);
+  // The member is built on the blend: Mod 3's M̄₁₁ = (4/3 + A/6) h.
+  const UniformMesh mesh(1.0, 10);
+  CHECK(modified_mass(mesh, mass_redistribution_from_spec("mod3", mesh, 0.25)).diag[1] ==
+        doctest::Approx((4.0 / 3 + 0.25 / 6) * mesh.h()).epsilon(1e-14));
 }
 
 // ---------------------------------------------------------------------------------------------------

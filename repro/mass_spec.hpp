@@ -19,9 +19,17 @@ std::string mass_option_help(const std::string& what);
 /// X and B decimals or fractions ("7/6"); its name is the spec. Throws std::invalid_argument, with a
 /// message starting with the quoted spec and ending with the allowed forms, for what is wrong on any
 /// mesh (unparseable, X <= 0, K < 1).
-MassRedistribution mass_redistribution_from_spec(const std::string& spec);
+MassRedistribution mass_redistribution_from_spec(const std::string& spec, double blend = 0.0);
 /// The same, checked on the mesh at hand: also K <= N - 1 and a mass that is positive definite on
 /// the nodes that keep inertia (mrm::modified_mass).
-MassRedistribution mass_redistribution_from_spec(const std::string& spec, const UniformMesh& mesh);
+MassRedistribution mass_redistribution_from_spec(const std::string& spec, const UniformMesh& mesh, double blend = 0.0);
+
+/// The interior mass forms, in words: "consistent, lumped, blend:A with A a decimal or a fraction in [0, 1]".
+std::string interior_mass_forms();
+/// The blend A of an interior mass spec (issue 26, lib/interior_mass.hpp): consistent (0), lumped (1) or
+/// blend:A, A a decimal or a fraction such as 1/4 in [0, 1]. Throws std::invalid_argument starting with
+/// the quoted spec and ending with the allowed forms otherwise. (`blend` in the two functions above is
+/// this A: each member is then defined on the blended mass, mrm::mass_redistribution.)
+double interior_blend_from_spec(const std::string& spec);
 
 }  // namespace mrm::repro

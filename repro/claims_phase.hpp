@@ -1,0 +1,28 @@
+/// @file claims_phase.hpp
+/// @brief The claims row of issue 26: the phase-matched interior mass lowers the long-time errors of
+/// CN + Mod 3 on the paper's benchmark (predictions of the issue, checked with their margins).
+#pragma once
+
+#include <vector>
+
+#include "claims.hpp"
+
+namespace mrm::claims {
+
+/// The study: CN + Mod 3 at Δt/h = ½ with the interior mass A = 0 and the phase-matched A = ¼, on the
+/// meshes coarsest·2^k ≤ finest, over `final_time`.
+struct PhaseMatchedSettings {
+  Index coarsest = 50;
+  Index finest = 400;
+  double final_time = 30;        ///< ten periods
+  double ratio_u = 2.5;          ///< the issue's target: the u error (L²L²) at least this much lower with A = ¼
+  double ratio_h1_lambda = 1.6;  ///< the same for u in L²H¹ and λ in L²
+  double order_u = 0.85;         ///< the fitted order of u at A = ¼ at least this
+  double order_h1_lambda = 0.4;  ///< the same for u in L²H¹ and λ
+};
+
+/// Rows "7/phase-matched/ratio-u", ".../ratio-H1", ".../ratio-lambda", ".../order-u", ".../order-H1",
+/// ".../order-lambda": each measured value against the issue's target with its margin.
+std::vector<ClaimResult> check_phase_matched(const PhaseMatchedSettings& settings, Judge& judge);
+
+}  // namespace mrm::claims
