@@ -121,6 +121,18 @@ int main(int argc, char** argv) {
       for (long n : grid.elements)
         cli::checked_steps("--final-time", final_time, c / static_cast<double>(n), "dt = C h (raise --courants)");
     }
+    // A scheme that refuses a mass (EC or the algebraic Paoli–Schatzman row with the consistent mass) is
+    // refused now, by the library's own checks on each run's set-up.
+    for (std::size_t k = 0; k < grid.size(); ++k) {
+      const repro::Configuration c = grid.configuration(k);
+      try {
+        const mrm::BarSimulation check(repro::configuration_problem(c), mrm::UniformMesh(c.bar_length(), c.elements),
+                                       c.mass, c.scheme, c.step());
+      } catch (const std::invalid_argument& e) {
+        throw cli::UsageError("--schemes, --masses: " + mrm::to_string(c.scheme.scheme) + " with " + c.mass.name +
+                              ": " + e.what());
+      }
+    }
     const int modes = parser.given("--job-list") + parser.given("--merge") + parser.given("--result");
     if (modes > 1) throw cli::UsageError("--job-list, --merge, --result: give one of them at most");
     if (parser.given("--job-list") != parser.given("--results"))
