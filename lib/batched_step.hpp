@@ -22,8 +22,8 @@ struct BatchTarget {
   std::int64_t bit;
 };
 
-/// The targets compiled into this binary that this processor supports, widest first (the batched step
-/// is left on the widest).
+/// The targets compiled into this binary that this processor supports and that have at least two
+/// lanes, widest first (the batched step is left on the widest).
 std::vector<BatchTarget> batch_targets();
 /// Restricts the batched step to the target `bit` (one of batch_targets()) for the whole process, or
 /// with 0 returns to the widest supported one (the default). For benchmarks and tests; not thread-safe
