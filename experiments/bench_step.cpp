@@ -258,10 +258,10 @@ void check_energy(mrm::BarSimulation& simulation, mrm::Scheme scheme, const mrm:
     before = now, now = next, energy = s.energy;
   }
   if (checked == 0 || worst > 1)
-    throw std::runtime_error("a timed run has a wrong energy: " + mrm::to_string(scheme) + ", N = " +
-                             std::to_string(mesh.elements) + ": relative change " + cli::format_real(worst * tau) +
-                             " per step against the tolerance " + cli::format_real(tau) + " (" +
-                             std::to_string(checked) + " steps checked)");
+    throw std::runtime_error("a timed run has a wrong energy: " + mrm::to_string(scheme) +
+                             ", N = " + std::to_string(mesh.elements) + ": relative change " +
+                             cli::format_real(worst * tau) + " per step against the tolerance " +
+                             cli::format_real(tau) + " (" + std::to_string(checked) + " steps checked)");
 }
 
 // The normwise backward error max|Au − b| / (max|A| max|u| + max|b|), round-off size for a stable solve.
@@ -712,8 +712,8 @@ int main(int argc, char** argv) {
     // The last lines: the widest target, the bytes of the limit, and the speedup at the largest N.
     std::cout << "batched_target = " << targets.front().name << " (" << targets.front().lanes << " lanes)\n"
               << "batched_bytes_per_node = " << fixed(batched_bytes_per_node, 0) << "\n"
-              << "batched_speedup = " << fixed(timings.back()[v_cn].median / batched.back().per_target.front().median, 2)
-              << '\n';
+              << "batched_speedup = "
+              << fixed(timings.back()[v_cn].median / batched.back().per_target.front().median, 2) << '\n';
 
     if (data) {
       std::ostream& out = data->stream();

@@ -76,7 +76,8 @@ int main(int argc, char** argv) {
         "in this process (--output), as a job list of one command per run (--job-list, --results), or merges the "
         "results of such a list (--merge, --output) into the same bytes.",
         {"sweep --schemes cn,be --masses mod1,mod3 --elements 16,32 --courants 0.5,1 --output s.dat",
-         "sweep --schemes cn,be --masses mod1,mod3 --elements 16,32 --courants 0.5,1 --job-list jobs.txt --results runs",
+         "sweep --schemes cn,be --masses mod1,mod3 --elements 16,32 --courants 0.5,1 --job-list jobs.txt --results "
+         "runs",
          "sweep --schemes cn,be --masses mod1,mod3 --elements 16,32 --courants 0.5,1 --merge runs --output s.dat"});
     parser.add_string("--schemes", "", "LIST", "schemes of the registry, comma-separated (cn, be, ps, ec, cn-switch)",
                       &schemes);
@@ -87,12 +88,17 @@ int main(int argc, char** argv) {
     parser.add_string("--courants", "", "LIST", "ratios dt/h, comma-separated, each in (0, 100]", &courants);
     parser.add_real("--final-time", "-T", "T", "final time, in (0, 1000]", &final_time,
                     cli::in_closed_range(1e-300, 1000));
-    parser.add_integer("--threads", "-j", "J", "worker threads of --output, in [1, 256]; the output does not depend "
-                       "on it", &threads, cli::in_closed_range(1, cli::max_threads));
+    parser.add_integer("--threads", "-j", "J",
+                       "worker threads of --output, in [1, 256]; the output does not depend "
+                       "on it",
+                       &threads, cli::in_closed_range(1, cli::max_threads));
     parser.add_output("--output", "-o", "write the sweep (or, with --merge, the merged results) to FILE", &output);
-    parser.add_output("--job-list", "", "write the job list (one command per run) to FILE instead of running", &job_list);
-    parser.add_string("--results", "", "DIR", "the directory of the job list's result files (it must exist when the "
-                      "jobs run)", &results);
+    parser.add_output("--job-list", "", "write the job list (one command per run) to FILE instead of running",
+                      &job_list);
+    parser.add_string("--results", "", "DIR",
+                      "the directory of the job list's result files (it must exist when the "
+                      "jobs run)",
+                      &results);
     parser.add_string("--merge", "", "DIR", "merge the result files of DIR (with --output)", &merge);
     parser.add_output("--result", "", "one run (a grid of one): write its line alone to FILE", &result);
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;

@@ -197,8 +197,7 @@ void SweepUpT(const Kernel& k) {
   emit_up(LoadRow(k.last, W), n - 1, explicit_row);
   V energy;
   if constexpr (three_level) {
-    energy = hn::Set(d, 0.5) * kinetic +
-             hn::Set(d, 0.125) * (potential - hn::Load(d, k.ps_q_weight) * potential_q);
+    energy = hn::Set(d, 0.5) * kinetic + hn::Set(d, 0.125) * (potential - hn::Load(d, k.ps_q_weight) * potential_q);
   } else {
     energy = hn::Set(d, 0.5) * kinetic + hn::Set(d, 0.5) * potential;
   }
@@ -322,8 +321,8 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
       g->three_level = r0.fast_->three_level_;
       g->switching = r0.fast_->switching_;
       const std::size_t nw = g->n * lanes_;
-      for (auto* a : {&g->u, &g->y, &g->w, &g->x, &g->elimination, &g->elimination_pair, &g->inverse_pivot,
-                      &g->upward, &g->upward_pair})
+      for (auto* a : {&g->u, &g->y, &g->w, &g->x, &g->elimination, &g->elimination_pair, &g->inverse_pivot, &g->upward,
+                      &g->upward_pair})
         *a = hwy::AllocateAligned<double>(nw);
       g->head_rows = hwy::AllocateAligned<double>(g->head * 10 * lanes_);
       g->interior = hwy::AllocateAligned<double>(10 * lanes_);
@@ -501,12 +500,10 @@ TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for
     Scheme scheme;
     ContactRow row;
   };
-  const std::vector<Case> cases = {{Scheme::crank_nicolson, ContactRow::algebraic},
-                                   {Scheme::backward_euler, ContactRow::algebraic},
-                                   {Scheme::paoli_schatzman, ContactRow::algebraic},
-                                   {Scheme::paoli_schatzman, ContactRow::literal},
-                                   {Scheme::energy_conserving, ContactRow::algebraic},
-                                   {Scheme::switching, ContactRow::algebraic}};
+  const std::vector<Case> cases = {
+      {Scheme::crank_nicolson, ContactRow::algebraic},    {Scheme::backward_euler, ContactRow::algebraic},
+      {Scheme::paoli_schatzman, ContactRow::algebraic},   {Scheme::paoli_schatzman, ContactRow::literal},
+      {Scheme::energy_conserving, ContactRow::algebraic}, {Scheme::switching, ContactRow::algebraic}};
   const UniformMesh mesh(1.0, 24);
   const Index steps = 150;  // past the first impact (t = 1) at every Δt below
   const std::vector<BatchTarget> targets = batch_targets();
@@ -523,8 +520,10 @@ TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for
       for (std::size_t k = 0; k < count; ++k) {
         const bool inertia_allowed = c.scheme != Scheme::energy_conserving &&
                                      !(c.scheme == Scheme::paoli_schatzman && c.row == ContactRow::algebraic);
-        const MassRedistribution mass = k % 3 == 0 ? mod1() : k % 3 == 1 ? mod3() : inertia_allowed ? consistent_mass()
-                                                                                                     : mod2();
+        const MassRedistribution mass = k % 3 == 0        ? mod1()
+                                        : k % 3 == 1      ? mod3()
+                                        : inertia_allowed ? consistent_mass()
+                                                          : mod2();
         SchemeParameters p;
         p.scheme = c.scheme;
         p.contact_row = c.row;
@@ -543,17 +542,19 @@ TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for
         for (std::size_t k = 0; k < count; ++k) {
           alone[k].step();
           const Sample a = batched.run(k).sample(), b = alone[k].sample();
-          const bool same = a.level == b.level && same_bits(a.time, b.time) && same_bits(*a.displacement, *b.displacement) &&
-                            same_bits(*a.velocity, *b.velocity) && a.has_multiplier == b.has_multiplier &&
-                            same_bits(a.multiplier, b.multiplier) && same_bits(a.multiplier_time, b.multiplier_time) &&
-                            same_bits(a.energy, b.energy) && same_bits(a.energy_time, b.energy_time);
+          const bool same = a.level == b.level && same_bits(a.time, b.time) &&
+                            same_bits(*a.displacement, *b.displacement) && same_bits(*a.velocity, *b.velocity) &&
+                            a.has_multiplier == b.has_multiplier && same_bits(a.multiplier, b.multiplier) &&
+                            same_bits(a.multiplier_time, b.multiplier_time) && same_bits(a.energy, b.energy) &&
+                            same_bits(a.energy_time, b.energy_time);
           if (!same) {
             CAPTURE(k);
             CAPTURE(n);
             const std::string parts = std::string(same_bits(*a.displacement, *b.displacement) ? "" : " U") +
                                       (same_bits(*a.velocity, *b.velocity) ? "" : " V") +
                                       (same_bits(a.multiplier, b.multiplier) ? "" : " lambda") +
-                                      (same_bits(a.energy, b.energy) ? "" : " E") + (a.level == b.level ? "" : " level");
+                                      (same_bits(a.energy, b.energy) ? "" : " E") +
+                                      (a.level == b.level ? "" : " level");
             CAPTURE(parts);
             const double du = (*a.displacement - *b.displacement).cwiseAbs().maxCoeff();
             CAPTURE(du);

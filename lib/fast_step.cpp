@@ -200,11 +200,10 @@ bool FastStep::fused_step(StepState& state, const ContactSolver& solver) const {
     eliminate(i, rhs(head_[static_cast<std::size_t>(i)], i, u[i + 1], w[i + 1]));
   const double y_next = y_up;
 
-  // Row 0 and the contact decision (contact_decision below; the batched step calls it lane by lane).
+  // Row 0 and the contact decision (contact_decision above; the batched step calls it lane by lane).
   const Row& r0 = head_[0];
-  const ContactDecision decision = contact_decision(u[0], u[1], w[0], w[1], y_next, state.lambda, state.active,
-                                                    solver, has_load, has_load ? f_now[0] : 0.0,
-                                                    has_load ? f_next[0] : 0.0);
+  const ContactDecision decision = contact_decision(u[0], u[1], w[0], w[1], y_next, state.lambda, state.active, solver,
+                                                    has_load, has_load ? f_now[0] : 0.0, has_load ? f_next[0] : 0.0);
   if (decision.status_change) return false;  // CN-switch: its θ-step instead, nothing written yet
   state.lambda = decision.lambda;
   state.active = decision.active;

@@ -21,8 +21,8 @@ struct Position {
   std::size_t scheme, mass, elements, courant;
 };
 Position position(const SweepGrid& g, std::size_t k) {
-  if (k >= g.size()) throw std::out_of_range("sweep: no run " + std::to_string(k) + " in a grid of " +
-                                             std::to_string(g.size()));
+  if (k >= g.size())
+    throw std::out_of_range("sweep: no run " + std::to_string(k) + " in a grid of " + std::to_string(g.size()));
   Position p{};
   p.courant = k % g.courants.size();
   k /= g.courants.size();
@@ -110,9 +110,8 @@ void write_job_list(std::ostream& out, const std::string& program, const SweepGr
     const SweepGrid one = grid.run(k);
     // The run's index in the whole grid is what names its result file; the run itself is a grid of one.
     out << shell_word(program) << " --schemes " << one.schemes[0] << " --masses " << shell_word(one.masses[0])
-        << " --elements " << one.elements[0] << " --courants " << cli::format_real(one.courants[0])
-        << " --final-time " << cli::format_real(one.final_time) << " --result " << shell_word(result_file(directory, k))
-        << '\n';
+        << " --elements " << one.elements[0] << " --courants " << cli::format_real(one.courants[0]) << " --final-time "
+        << cli::format_real(one.final_time) << " --result " << shell_word(result_file(directory, k)) << '\n';
   }
 }
 
@@ -121,8 +120,9 @@ void merge_results(std::ostream& out, const SweepGrid& grid, const std::string& 
   for (std::size_t k = 0; k < grid.size(); ++k) {
     const std::string path = result_file(directory, k);
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw std::runtime_error("sweep --merge: " + path + ": missing (the job of run " + std::to_string(k) +
-                                      " has not written its result)");
+    if (!in)
+      throw std::runtime_error("sweep --merge: " + path + ": missing (the job of run " + std::to_string(k) +
+                               " has not written its result)");
     std::ostringstream text;
     text << in.rdbuf();
     const std::string line = text.str();
