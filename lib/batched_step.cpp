@@ -21,6 +21,7 @@
 /// fast step (its explicit head rows, the Toeplitz interior, the last row).
 #include "batched_step.hpp"
 
+/// @cond MRM_INTERNAL (the Highway plumbing and the kernel: not part of the library's interface)
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "batched_step.cpp"
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
@@ -214,6 +215,8 @@ void SweepUp(const Kernel& k) {
 }  // namespace mrm::batched
 HWY_AFTER_NAMESPACE();
 
+/// @endcond
+
 #if HWY_ONCE
 
 #include <algorithm>
@@ -233,11 +236,13 @@ HWY_AFTER_NAMESPACE();
 #include "mass_redistribution.hpp"
 
 namespace mrm {
+/// @cond MRM_INTERNAL
 namespace batched {
 HWY_EXPORT(LaneCount);
 HWY_EXPORT(SweepDown);
 HWY_EXPORT(SweepUp);
 }  // namespace batched
+/// @endcond
 
 void use_batch_target(std::int64_t bit) {
   hwy::SetSupportedTargetsForTest(bit);

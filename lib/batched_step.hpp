@@ -17,9 +17,9 @@ namespace mrm {
 /// A vector target the batched step can run on: its name (Highway's: "AVX3", "AVX2", "SSE4", "EMU128",
 /// "NEON", ...), its number of double lanes, and its Highway target bit.
 struct BatchTarget {
-  std::string name;
-  std::size_t lanes;
-  std::int64_t bit;
+  std::string name;   ///< Highway's name of the target
+  std::size_t lanes;  ///< doubles per vector
+  std::int64_t bit;   ///< Highway's target bit (use_batch_target)
 };
 
 /// The targets compiled into this binary that this processor supports and that have at least two
@@ -41,10 +41,12 @@ BatchTarget current_batch_target();
 /// as if stepped alone by BarSimulation::step (the doctest of batched_step.cpp).
 class BatchedSimulation {
  public:
+  /// Takes the runs (each at level 0), groups them by lanes of the current target and copies the
+  /// grouped runs' states and factors into the lanes.
   explicit BatchedSimulation(std::vector<BarSimulation> runs);
   ~BatchedSimulation();
-  BatchedSimulation(BatchedSimulation&&) noexcept;
-  BatchedSimulation& operator=(BatchedSimulation&&) noexcept;
+  BatchedSimulation(BatchedSimulation&&) noexcept;             ///< moves the runs and their lanes
+  BatchedSimulation& operator=(BatchedSimulation&&) noexcept;  ///< moves the runs and their lanes
 
   /// Advances every run by one step.
   void step();
