@@ -25,6 +25,7 @@
 #include <climits>
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -139,33 +140,36 @@ int main(int argc, char** argv) {
                               ": " + e.what());
       }
     }
-    const int modes = parser.given("--job-list") + parser.given("--merge") + parser.given("--result");
-    if (modes > 1) throw cli::UsageError("--job-list, --merge, --result: give one of them at most");
-    if (parser.given("--job-list") != parser.given("--results"))
+    // The outputs, opened before anything else is refused (a bad path is named first).
+    std::unique_ptr<cli::AtomicFile> out, list, one;
+    if (parser.given("--output")) out = std::make_unique<cli::AtomicFile>(output, "--output");
+    if (parser.given("--job-list")) list = std::make_unique<cli::AtomicFile>(job_list, "--job-list");
+    if (parser.given("--result")) one = std::make_unique<cli::AtomicFile>(result, "--result");
+    // One mode: --output (in this process), --job-list with --results, --merge with --output, --result.
+    const bool merging = parser.given("--merge");
+    const int modes = (out && !merging) + (list != nullptr) + merging + (one != nullptr);
+    if (modes != 1)
+      throw cli::UsageError("--output, --job-list, --merge, --result: give one of them (--merge with --output)");
+    if (merging && !out) throw cli::UsageError("--merge: needs --output");
+    if ((list != nullptr) != parser.given("--results"))
       throw cli::UsageError("--results: needed with --job-list, and only with it");
-    if (!parser.given("--job-list") && !parser.given("--result") && !parser.given("--output"))
-      throw cli::UsageError("--output: needed (or --job-list, --result)");
-    if (parser.given("--result") && grid.size() != 1)
+    if (one && grid.size() != 1)
       throw cli::UsageError("--result: one run only (every list of one value), not " + std::to_string(grid.size()));
 
     // 2. The mode.
-    if (parser.given("--job-list")) {
-      cli::AtomicFile list(job_list, "--job-list");
-      repro::write_job_list(list.stream(), own_path(argv[0]), grid, results);
-      list.commit();
-    } else if (parser.given("--merge")) {
-      cli::AtomicFile out(output, "--output");
-      repro::merge_results(out.stream(), grid, merge);
-      out.commit();
-    } else if (parser.given("--result")) {
-      cli::AtomicFile out(result, "--result");
-      out.stream() << repro::run_sweep(grid, 1).front();
-      out.commit();
+    if (list) {
+      repro::write_job_list(list->stream(), own_path(argv[0]), grid, results);
+      list->commit();
+    } else if (merging) {
+      repro::merge_results(out->stream(), grid, merge);
+      out->commit();
+    } else if (one) {
+      one->stream() << repro::run_sweep(grid, 1).front();
+      one->commit();
     } else {
-      cli::AtomicFile out(output, "--output");
-      repro::write_sweep_header(out.stream(), grid);
-      for (const std::string& line : repro::run_sweep(grid, static_cast<unsigned>(threads))) out.stream() << line;
-      out.commit();
+      repro::write_sweep_header(out->stream(), grid);
+      for (const std::string& line : repro::run_sweep(grid, static_cast<unsigned>(threads))) out->stream() << line;
+      out->commit();
     }
     return 0;
   });
