@@ -147,14 +147,14 @@ int main(int argc, char** argv) {
     if (parser.given("--result")) one = std::make_unique<cli::AtomicFile>(result, "--result");
     // One mode: --output (in this process), --job-list with --results, --merge with --output, --result.
     const bool merging = parser.given("--merge");
+    if (one && grid.size() != 1)
+      throw cli::UsageError("--result: one run only (every list of one value), not " + std::to_string(grid.size()));
+    if ((list != nullptr) != parser.given("--results"))
+      throw cli::UsageError("--results: needed with --job-list, and only with it");
+    if (merging && !out) throw cli::UsageError("--merge: needs --output");
     const int modes = (out && !merging) + (list != nullptr) + merging + (one != nullptr);
     if (modes != 1)
       throw cli::UsageError("--output, --job-list, --merge, --result: give one of them (--merge with --output)");
-    if (merging && !out) throw cli::UsageError("--merge: needs --output");
-    if ((list != nullptr) != parser.given("--results"))
-      throw cli::UsageError("--results: needed with --job-list, and only with it");
-    if (one && grid.size() != 1)
-      throw cli::UsageError("--result: one run only (every list of one value), not " + std::to_string(grid.size()));
 
     // 2. The mode.
     if (list) {
