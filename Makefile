@@ -25,6 +25,14 @@ endif
 MRM_WERROR := $(if $(filter 1,$(WERROR)),ON,OFF)
 CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DMRM_WERROR=$(MRM_WERROR) -DMRM_SANITIZE=$(MRM_SANITIZE)
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+# The results are made on $(JOBS) cores (a -j on the command line takes precedence): every rule writes
+# its own files and temporary names, a rule with several outputs is grouped (&: or a pattern rule), and
+# the programs' own threads and gnuplot share the cores through this one job list. `clean` with another
+# goal runs alone first.
+MAKEFLAGS += -j$(JOBS)
+ifneq ($(filter clean,$(MAKECMDGOALS)),)
+.NOTPARALLEL:
+endif
 
 # Generated results: data, figures, the report and the API documentation.
 OUT ?= output
@@ -127,7 +135,10 @@ $(BENCH):
 # the report when its table exists.
 BENCH_SHORT_OPTIONS := --min-log2 8 --max-log2 14 --repetitions 3 --batch-ms 5
 
-$(BENCH_SHORT)/bench_short.tex: $(BUILD)/bin/bench_step | $(BENCH_SHORT)
+# Its timings run alone: after every other result of `make all` (order only: they do not remake it).
+BENCH_SHORT_AFTER := $(DATA)/benchmark.dat $(CLAIMS_OUTPUTS) $(FIGURE_DATA) $(FIGURE_TEX) $(BASELINE) $(FIGURE_PDFS) \
+                     $(DATA)/cn_large_step.tex
+$(BENCH_SHORT)/bench_short.tex: $(BUILD)/bin/bench_step | $(BENCH_SHORT) $(BENCH_SHORT_AFTER)
 	$< $(BENCH_SHORT_OPTIONS) --clock $(BENCH_CLOCK) --tex $@ > $(BENCH_SHORT)/bench_short.txt
 
 $(BENCH_SHORT):

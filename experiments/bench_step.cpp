@@ -21,6 +21,12 @@
 //                fused step uses, contact.hpp): what the dependency chain of the substitution costs;
 //   eigen        Eigen's SimplicialLDLT solve (factorised once) of the same matrix, symmetrised by
 //                scaling its algebraic contact row 0 by θ (same sparsity, same cost).
+// A second table, "batched", gives for the same N the cost per node, step and run of W runs of the cn
+// configuration advanced together in the W lanes of each vector target the machine has (lib/batched_step.cpp:
+// AVX-512, AVX2, SSE4, ..., chosen at run time), beside the scalar step, the bare solve (plain, two-chain,
+// and two right-hand sides at a time, "bare_x2"), the bandwidth measured over the batched step's working
+// set and the limit its memory traffic sets (104 bytes per node and run; flops are not counted); its
+// last lines give the widest target and batched_speedup, scalar over batched at the largest N.
 // Then the ratio of each scheme (fast and reference steps) and of a run with its error measures (cn+errors:
 // the budget of issue 11 is 1.5) to the bare solve, the log-log slope of the cost per step against N
 // over 2^10 … 2^20 (least squares), and the peak resident memory of a Crank–Nicolson and of a
@@ -54,6 +60,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -69,6 +76,7 @@
 #include "run_limits.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
+#include "batched_step.hpp"
 #include "contact.hpp"
 #include "errors.hpp"
 #include "exact_solution.hpp"
@@ -213,8 +221,48 @@ mrm::ContactStep two_chain_solve(const mrm::ContactSolver& solver, const double*
 // the backward error of the bare and Eigen solves, and the energy of the runs.
 struct Sanity {
   double bare_residual = 0, eigen_residual = 0;
-  std::vector<double> energies;  // the energy at the end of every timed run of a scheme
 };
+
+// The energy of a timed run, checked after its batches on 64 more (untimed) steps, by what each scheme
+// is proved to do (mathematics.md §4, the doctests of schemes.cpp): Crank–Nicolson and Paoli–Schatzman
+// (β = ¼) conserve their discrete energy at every step that does not change the contact status, backward
+// Euler never increases it. One step changes the energy by the round-off of its evaluation and of the
+// state: E is evaluated (fast_step.cpp) from sums of N terms, each sum within γ_N ≈ N ε of the sum of the
+// magnitudes of its terms (recursive summation); the stiffness forms are sums of squares, and the mass
+// form's telescoped −l D + (d + 2l) Q cancels at most a factor 3 (D ≤ 4 Q, l ≤ d/4), so each evaluation is
+// within 3 (N + c) ε of E; two evaluations (E_k and E_{k+1}) and the rounding of the state (a few ε) give the
+// tolerance per step τ = 8 (N + 16) ε relative to E, from N = 2² (τ ≈ 4e-14) to 2²⁰
+// (τ ≈ 2e-9). A wrong step errs by O(h) or more. Status changes (λ < 0 switching on or off at either level
+// of a step, or the level before) are skipped for Crank–Nicolson and Paoli–Schatzman, whose energy may jump
+// there; at least one step must remain. The earlier check (E ∈ [0, 12.5) after millions of steps) refused
+// N = 2² … 2⁴, where the drift of the contact steps over a long run is not a bound of anything.
+void check_energy(mrm::BarSimulation& simulation, mrm::Scheme scheme, const mrm::UniformMesh& mesh) {
+  const double tau = 8 * (static_cast<double>(mesh.unknowns()) + 16) * std::numeric_limits<double>::epsilon();
+  const bool dissipative = scheme == mrm::Scheme::backward_euler;
+  bool before = simulation.sample().multiplier < 0, now = before;
+  double energy = simulation.sample().energy, worst = 0;
+  int checked = 0;
+  for (int k = 0; k < 64; ++k) {
+    simulation.step();
+    const mrm::Sample s = simulation.sample();
+    const bool next = s.has_multiplier && s.multiplier < 0;
+    if (!std::isfinite(s.energy) || s.energy < 0)
+      throw std::runtime_error("a timed run has a wrong energy: " + cli::format_real(s.energy) + " (" +
+                               mrm::to_string(scheme) + ", N = " + std::to_string(mesh.elements) + ")");
+    const double change = energy > 0 ? (s.energy - energy) / energy : s.energy == 0 ? 0.0 : INFINITY;
+    if (dissipative || (before == now && now == next)) {
+      const double excess = dissipative ? change / tau : std::abs(change) / tau;
+      worst = std::max(worst, excess);
+      ++checked;
+    }
+    before = now, now = next, energy = s.energy;
+  }
+  if (checked == 0 || worst > 1)
+    throw std::runtime_error("a timed run has a wrong energy: " + mrm::to_string(scheme) +
+                             ", N = " + std::to_string(mesh.elements) + ": relative change " +
+                             cli::format_real(worst * tau) + " per step against the tolerance " +
+                             cli::format_real(tau) + " (" + std::to_string(checked) + " steps checked)");
+}
 
 // The normwise backward error max|Au − b| / (max|A| max|u| + max|b|), round-off size for a stable solve.
 double relative_residual(const mrm::Tridiagonal& a, const Eigen::VectorXd& u, const Eigen::VectorXd& b) {
@@ -242,7 +290,7 @@ std::array<Timing, variants> time_all(Index elements, int repetitions, double ta
             for (long i = 0; i < s; ++i) simulation.step();
           },
           n, repetitions, target);
-      sanity.energies.push_back(simulation.sample().energy);
+      check_energy(simulation, schemes[k], mesh);
     }
   }
   {
@@ -299,6 +347,93 @@ std::array<Timing, variants> time_all(Index elements, int repetitions, double ta
     sanity.eigen_residual = std::max(sanity.eigen_residual, relative_residual(a, u, b));
   }
   return t;
+}
+
+// ---- Batched runs, the bare solve two at a time, and the memory limit ------------------------------
+
+// The bare solve of two right-hand sides at once ("bare x2"): the plain substitution loops of
+// ContactSolver::solve, each loop carrying two independent chains (one per right-hand side), so that the
+// latency of one chain is hidden by the other; ns per node per solve.
+void two_at_a_time_solve(const mrm::ContactSolver& solver, const double* b, const double* b2, double* u, double* u2,
+                         double kappa) {
+  const Index n = solver.size();
+  const double *e = solver.elimination().data(), *q = solver.inverse_pivot().data(), *c = solver.upward().data();
+  double y = b[n - 1], y2 = b2[n - 1];
+  u[n - 1] = y, u2[n - 1] = y2;
+  for (Index i = n - 2; i >= 0; --i) {
+    y = b[i] - e[i] * y, y2 = b2[i] - e[i] * y2;
+    u[i] = y, u2[i] = y2;
+  }
+  const mrm::ContactStep s = solver.resolve_contact(u[0], kappa, 0.0), s2 = solver.resolve_contact(u2[0], kappa, 0.0);
+  u[0] = s.u0, u2[0] = s2.u0;
+  for (Index i = 1; i < n; ++i) {
+    u[i] = q[i] * u[i] - c[i] * u[i - 1];
+    u2[i] = q[i] * u2[i] - c[i] * u2[i - 1];
+  }
+}
+
+struct BatchedTimings {
+  std::vector<Timing> per_target;  // ns per node per step per run, one per batch_targets()
+  Timing bare_x2;                  // ns per node per solve
+  double bandwidth = 0;            // bytes per ns streamed over the batched step's working set
+  double limit = 0;                // ns per node per step per run that its memory traffic needs
+};
+
+// The batched step's memory traffic per node, step and run (lib/batched_step.cpp): the sweep down reads
+// U, W', ε, εε and writes y; the sweep up reads y, 1/d, c, cc, U, W' and writes Uⁿ⁺¹ and W': 13 doubles,
+// 104 bytes. Its arithmetic, about 30 flops per node and run, is not the limit of a memory-resident
+// sweep (not measured here: the limit below counts the bytes only).
+constexpr double batched_bytes_per_node = 13 * 8;
+
+BatchedTimings time_batched(Index elements, int repetitions, double target) {
+  BatchedTimings result;
+  const mrm::UniformMesh mesh(1.0, elements);
+  const Index n = mesh.unknowns();
+  const double dt = courant * mesh.h();
+  for (const mrm::BatchTarget& t : mrm::batch_targets()) {
+    mrm::use_batch_target(t.bit);
+    std::vector<mrm::BarSimulation> runs;
+    for (std::size_t k = 0; k < t.lanes; ++k)
+      runs.emplace_back(mrm::benchmark_problem(), mesh, mrm::mod3(), parameters_of(mrm::Scheme::crank_nicolson), dt);
+    mrm::BatchedSimulation batch(std::move(runs));
+    if (batch.batched_runs() != t.lanes) throw std::runtime_error("the batched step did not batch its runs");
+    Timing timing = measure(
+        [&](long s) {
+          for (long i = 0; i < s; ++i) batch.step();
+        },
+        n * static_cast<Index>(t.lanes), repetitions, target);
+    if (!std::isfinite(batch.run(0).sample().energy)) throw std::runtime_error("a batched run has a wrong energy");
+    result.per_target.push_back(timing);
+  }
+  mrm::use_batch_target(0);
+  {
+    const mrm::ContactSolver solver(crank_nicolson_matrix(mesh, false));
+    const Eigen::VectorXd b = random_vector(n, 1), b2 = random_vector(n, 3);
+    Eigen::VectorXd u(n), u2(n);
+    result.bare_x2 = measure(
+        [&](long k) {
+          for (long s = 0; s < k; ++s) two_at_a_time_solve(solver, b.data(), b2.data(), u.data(), u2.data(), 1.0);
+        },
+        2 * n, repetitions, target);
+  }
+  {
+    // The bandwidth over a working set the size of a group's (9 interleaved arrays of n·W doubles, W = 8
+    // for the widest case): c = a + s b over three arrays of a third of it each, 24 bytes per element.
+    const std::size_t count = std::max<std::size_t>(3 * static_cast<std::size_t>(n) * 8 / 3, 64);
+    std::vector<double> a(count, 1.0), b(count, 0.5), c(count, 0.0);
+    double scale = 0.999;
+    const Timing stream = measure(
+        [&](long k) {
+          for (long s = 0; s < k; ++s) {
+            for (std::size_t i = 0; i < count; ++i) c[i] = a[i] + scale * b[i];
+            std::swap(a, c);
+          }
+        },
+        static_cast<Index>(count), repetitions, target);
+    result.bandwidth = 24 / stream.median;  // bytes per ns
+    result.limit = batched_bytes_per_node / result.bandwidth;
+  }
+  return result;
 }
 
 // ---- Peak memory --------------------------------------------------------------------------------
@@ -476,22 +611,19 @@ int main(int argc, char** argv) {
     }
     std::vector<Index> sizes;
     std::vector<std::array<Timing, variants>> timings;
+    std::vector<BatchedTimings> batched;
     Sanity sanity;
     for (long k = min_log2; k <= max_log2; ++k) {
       const Index elements = Index{1} << k;
       std::cerr << "bench_step: N = 2^" << k << '\n';
       sizes.push_back(elements);
       timings.push_back(time_all(elements, static_cast<int>(repetitions), target_ms * 1e-3, sanity));
+      batched.push_back(time_batched(elements, static_cast<int>(repetitions), target_ms * 1e-3));
     }
     if (!(sanity.bare_residual < 1e-13 && sanity.eigen_residual < 1e-13))
       throw std::runtime_error("a timed solve is wrong: relative residual " + cli::format_real(sanity.bare_residual) +
                                " (bare), " + cli::format_real(sanity.eigen_residual) + " (eigen)");
-    // The energy after the timed steps: finite, not negative, and not blown up (below 100 E0, E0 = 1/8).
-    // Not closer: over the millions of steps of a small mesh backward Euler dissipates it to 0 and the
-    // contact steps of Crank-Nicolson and Paoli-Schatzman make it drift (bar1d, N = 16, t = 3e4:
-    // 0.23), so that a tighter bound refused N = 2^2 .. 2^4, which the range allows.
-    for (double e : sanity.energies)
-      if (!(std::isfinite(e) && e >= 0 && e < 12.5)) throw std::runtime_error("a timed run has a wrong energy");
+    // The energy of every timed run was checked after its batches (check_energy, above).
 
     // 5. Slopes of the cost per step against N over 2^10 .. 2^20, for every variant.
     std::array<double, variants> slope{};
@@ -548,6 +680,40 @@ int main(int argc, char** argv) {
       screen.write_text(std::cout, widths);
     }
     std::cout << summary.str();
+
+    // The batched step (lib/batched_step.cpp): W runs of Crank–Nicolson (the same configuration as the
+    // cn column) in the W lanes of each vector target the machine has, ns per node per step per run,
+    // against the scalar step, the bare solve (one and two at a time) and the limit of its memory
+    // traffic at the bandwidth measured over its working set.
+    const std::vector<mrm::BatchTarget> targets = mrm::batch_targets();
+    {
+      std::cout << "# batched: ns per node per step per run (median of " << repetitions << " batches)\n";
+      std::vector<std::string> headers{"N", "scalar"};
+      for (const mrm::BatchTarget& t : targets) headers.push_back(t.name + "x" + std::to_string(t.lanes));
+      for (const char* h : {"bare", "bare2", "bare_x2", "GB/s", "limit", "scalar/widest", "widest/limit"})
+        headers.push_back(h);
+      mrm::repro::Table screen(headers);
+      for (std::size_t k = 0; k < sizes.size(); ++k) {
+        const auto& t = timings[k];
+        const BatchedTimings& b = batched[k];
+        std::vector<std::string> cells{std::to_string(sizes[k]), fixed(t[v_cn].median, 2)};
+        for (const Timing& x : b.per_target) cells.push_back(fixed(x.median, 3));
+        cells.push_back(fixed(t[v_bare].median, 2));
+        cells.push_back(fixed(t[v_bare2].median, 2));
+        cells.push_back(fixed(b.bare_x2.median, 2));
+        cells.push_back(fixed(b.bandwidth, 1));
+        cells.push_back(fixed(b.limit, 3));
+        cells.push_back(fixed(t[v_cn].median / b.per_target.front().median, 2));
+        cells.push_back(fixed(b.per_target.front().median / b.limit, 2));
+        screen.add_row(cells);
+      }
+      screen.write_text(std::cout, std::vector<std::size_t>(headers.size(), 11));
+    }
+    // The last lines: the widest target, the bytes of the limit, and the speedup at the largest N.
+    std::cout << "batched_target = " << targets.front().name << " (" << targets.front().lanes << " lanes)\n"
+              << "batched_bytes_per_node = " << fixed(batched_bytes_per_node, 0) << "\n"
+              << "batched_speedup = "
+              << fixed(timings.back()[v_cn].median / batched.back().per_target.front().median, 2) << '\n';
 
     if (data) {
       std::ostream& out = data->stream();
@@ -711,6 +877,16 @@ int main(int argc, char** argv) {
         mrm::tex_define(out, "bench:cn-ref:ratio", fixed(ratio(*t, v_cn_ref), 2));
         mrm::tex_define(out, "bench:be-ref:ratio", fixed(ratio(*t, v_be_ref), 2));
         mrm::tex_define(out, "bench:ps-ref:ratio", fixed(ratio(*t, v_ps_ref), 2));
+        // The batched step at the same N: the widest target, its cost per run, the speedup over the
+        // scalar step, the bare solve two at a time, and the limit of its memory traffic.
+        const BatchedTimings& b = batched[static_cast<std::size_t>(t - timings.data())];
+        mrm::tex_define(out, "bench:batched:target", targets.front().name);
+        mrm::tex_define(out, "bench:batched:lanes", std::to_string(targets.front().lanes));
+        mrm::tex_define(out, "bench:batched:ns", fixed(b.per_target.front().median, 3));
+        mrm::tex_define(out, "bench:batched:speedup", fixed((*t)[v_cn].median / b.per_target.front().median, 2));
+        mrm::tex_define(out, "bench:batched:limit", fixed(b.limit, 3));
+        mrm::tex_define(out, "bench:batched:bandwidth", fixed(b.bandwidth, 1));
+        mrm::tex_define(out, "bench:bare-x2:ns", fixed(b.bare_x2.median, 2));
       }
       mrm::tex_define(out, "bench:cn:slope", fixed(slope[v_cn], 3));
       mrm::tex_define(out, "bench:be:slope", fixed(slope[v_be], 3));

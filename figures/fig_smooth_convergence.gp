@@ -20,8 +20,9 @@ benchmarks = unique(1)
 schemes = unique(2)
 masses = unique(3)
 ratios = unique(0)
-block_of(b, s, m, r) = system(sprintf("awk '/^# block [0-9]+: benchmark = %s, scheme = %s, mass = %s, dt\\/h = %s$/{sub(/:/, \"\", $3); print $3; exit}' '%s'", \
-  b, s, m, r, data)) + 0
+# The block of each (benchmark, scheme, mass, ratio), read once: "b s m r=index" lines (style.gp's comment).
+block_table = "\n".system(sprintf("awk '/^# block [0-9]+: benchmark = /{gsub(/,/, \"\"); sub(/:/, \"\", $3); print $6, $9, $12, $15 \"=\" $3}' '%s'", data))."\n"
+block_of(b, s, m, r) = comment(block_table, b." ".s." ".m." ".r."=") + 0
 benchmark_name(id) = id eq "smooth-impact" ? "S1 (an impact)" : id eq "grazing" ? "S2 (a grazing contact)" : id
 mass_index(id) = id eq "mod1" ? 1 : id eq "mod2" ? 2 : id eq "mod3" ? 3 : 4
 step(r) = r eq "1" ? italic("h") : (r + 0 < 1 ? italic("h")."/".sprintf("%g", 1 / (r + 0)) : r.italic("h"))

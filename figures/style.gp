@@ -13,7 +13,17 @@
 set encoding utf8
 fontface = "Latin Modern Roman"
 font(size) = sprintf("%s,%g", fontface, size)
-header(key) = system(sprintf("sed -n 's/^# %s = //p' '%s' | head -n 1 | tr -d '\"'", key, data))
+# The data file's comment lines, read once (one process each, instead of one per lookup: a figure looks
+# up hundreds of labels and values, and a process each made gnuplot most of `make all`'s time):
+# comment(text, prefix) is the rest of the first line of `text` that starts with `prefix`, or "".
+comments = "\n".system(sprintf("grep '^# ' '%s'", data))."\n"
+comments_unquoted = "\n".system(sprintf("grep '^# ' '%s' | tr -d '\"'", data))."\n"
+comment_rest(text, p, n) = p == 0 ? "" : text[p + 1 + n:]
+comment_line(r) = r[1:strstrt(r, "\n") - 1]
+comment(text, prefix) = comment_line(comment_rest(text, strstrt(text, "\n".prefix), strlen(prefix)))
+# A key may be written as a sed pattern ("dt\\/h"): its backslashes are dropped.
+unescape(k) = strstrt(k, "\\") == 0 ? k : k[1:strstrt(k, "\\") - 1].unescape(k[strstrt(k, "\\") + 1:])
+header(key) = comment(comments_unquoted, "# ".unescape(key)." = ")
 italic(s) = "{/:Italic ".s."}"
 # Math italic lambda (U+1D706) from the math font, as the report's $\lambda$.
 lambda_ = "{/'Latin Modern Math' 𝜆}"
@@ -21,12 +31,12 @@ Delta_t = "Δ".italic("t")
 mass_colour(m) = m == 1 ? "#d62728" : m == 2 ? "#1f77b4" : m == 3 ? "#2ca02c" : "#9467bd"
 # The names of schemes and masses: the `# label <id> = <name>` lines the program wrote into the data
 # file (repro/labels.cpp, the one table of labels); an id without a line is its own name.
-label(id) = system(sprintf("sed -n 's|^# label %s = ||p' '%s' | head -n 1", id, data))
+label(id) = comment(comments, "# label ".id." = ")
 mass_name(id) = label(id) eq "" ? id : label(id)
 scheme_name(id) = label(id) eq "" ? id : label(id)
 # The title of a figure's row of scheme `id`: the `# title <id> = <title>` line of the data file (its
 # name, with the contact row for a scheme that takes one; repro/labels.cpp, write_scheme_titles).
-scheme_title(id) = system(sprintf("sed -n 's|^# title %s = ||p' '%s' | head -n 1", id, data))
+scheme_title(id) = comment(comments, "# title ".id." = ")
 # One colour per scheme where the schemes are the curves (the energy-conserving schemes' figures), none
 # of them a mass's colour: the data file's `# colour <id> = <colour>` line (grey without one).
 scheme_colour(id) = header("colour ".id) eq "" ? "#7f7f7f" : header("colour ".id)

@@ -73,6 +73,55 @@ bool FastStep::step(StepState& state, const ContactSolver& solver, bool has_load
   return has_load ? fused_step<false, true>(state, solver) : fused_step<false, false>(state, solver);
 }
 
+// Row 0 and the contact decision (κ = 1 for the algebraic contact row, set at assembly), from the
+// values of Uⁿ and W' at nodes 0 and 1, y₁ of the sweep down, λⁿ and the status (the load's values at
+// node 0 are read only with a load). The same code for the fused step and each lane of the batched step
+// (batched_step.cpp), so that both do the same operations in the same order.
+FastStep::ContactDecision FastStep::contact_decision(double u0, double u1, double w0, double w1, double y_next,
+                                                     double lambda, bool active, const ContactSolver& solver,
+                                                     bool has_load, double f0_now, double f0_next) const {
+  const double g_now = coefficients_.load_now, g_next = coefficients_.load_next;
+  const Row& r0 = head_[0];
+  double b0;
+  if (coefficients_.algebraic_row) {
+    b0 = r0.c1d * u0 + r0.c1u * u1 + (has_load ? f0_next : 0.0);  // F₀ⁿ⁺¹ − S₀·Uⁿ
+  } else {
+    b0 = r0.c1d * u0 + r0.c1u * u1 + r0.c2d * w0 + r0.c2u * w1 - coefficients_.lambda_in_rhs * lambda;
+    if (has_load) b0 += g_now * f0_now + g_next * f0_next;
+  }
+  // EC decides the contact on row 1 instead (energy_step.cpp: its sweep up starts from the value u₀
+  // that carries the discrete-gradient force, which is not the contact node's new value at a status
+  // change); CN-switch returns before writing anything when the status changes.
+  // The obstacle g = −e u₀ⁿ⁻¹ = −e (u₀ⁿ − W'₀), moved by the gap (issue 22), and of the increment g − u₀ⁿ;
+  // on contact u₀ⁿ⁺¹ = g exactly. EC's scalar problem is written for u: row 1's ΔU₁ = z + μΔU₀ is passed as
+  // u₁ⁿ⁺¹ = (u₁ⁿ + z − μu₀ⁿ) + μu₀ⁿ⁺¹ (schemes.cpp, the reference step).
+  double obstacle = three_level_ ? -restitution_ * (u0 - w0) : 0.0;
+  if (coefficients_.obstacle_offset != 0.0) obstacle += coefficients_.obstacle_offset;  // (keeps a −0)
+  ContactDecision decision;
+  if (energy_conserving_) {
+    const double h = h_, mu = -solver.upward()[1];
+    const double load0_now = has_load ? f0_now : 0.0, load0_next = has_load ? f0_next : 0.0;
+    const EnergyConservingContact c = energy_conserving_contact(u1 + solver.inverse_pivot()[1] * y_next - mu * u0, mu,
+                                                                u0, u1 + h * load0_now, h, load0_next);
+    decision.lambda = c.multiplier;
+    decision.active = c.active;
+    decision.u0_next = c.u0;
+    decision.recurrence_d0 = c.recurrence_u0 - u0;
+  } else {
+    const ContactStep contact =
+        solver.resolve_contact(b0 - solver.elimination()[0] * y_next, coefficients_.kappa, obstacle - u0);
+    if (switching_ && contact.active != active) {
+      decision.status_change = true;
+      return decision;
+    }
+    decision.lambda = contact.multiplier;
+    decision.active = contact.active;
+    decision.u0_next = contact.active ? obstacle : u0 + contact.u0;
+    decision.recurrence_d0 = contact.u0;
+  }
+  return decision;
+}
+
 /// @file fast_step.cpp
 /// ## One step fused into the two sweeps of the solve
 ///
@@ -151,42 +200,14 @@ bool FastStep::fused_step(StepState& state, const ContactSolver& solver) const {
     eliminate(i, rhs(head_[static_cast<std::size_t>(i)], i, u[i + 1], w[i + 1]));
   const double y_next = y_up;
 
-  // Row 0 and the contact decision (κ = 1 for the algebraic contact row, set at assembly).
+  // Row 0 and the contact decision (contact_decision above; the batched step calls it lane by lane).
   const Row& r0 = head_[0];
-  double b0;
-  if (coefficients_.algebraic_row) {
-    b0 = r0.c1d * u[0] + r0.c1u * u[1] + (has_load ? f_next[0] : 0.0);  // F₀ⁿ⁺¹ − S₀·Uⁿ
-  } else {
-    b0 = r0.c1d * u[0] + r0.c1u * u[1] + r0.c2d * w[0] + r0.c2u * w[1] - coefficients_.lambda_in_rhs * state.lambda;
-    if constexpr (has_load) b0 += g_now * f_now[0] + g_next * f_next[0];
-  }
-  // EC decides the contact on row 1 instead (energy_step.cpp: its sweep up starts from the value u₀
-  // that carries the discrete-gradient force, which is not the contact node's new value at a status
-  // change); CN-switch returns before writing anything when the status changes.
-  // The obstacle g = −e u₀ⁿ⁻¹ = −e (u₀ⁿ − W'₀), moved by the gap (issue 22), and of the increment g − u₀ⁿ;
-  // on contact u₀ⁿ⁺¹ = g exactly. EC's scalar problem is written for u: row 1's ΔU₁ = z + μΔU₀ is passed as
-  // u₁ⁿ⁺¹ = (u₁ⁿ + z − μu₀ⁿ) + μu₀ⁿ⁺¹ (schemes.cpp, the reference step).
-  double obstacle = three_level ? -restitution_ * (u[0] - w[0]) : 0.0;
-  if (coefficients_.obstacle_offset != 0.0) obstacle += coefficients_.obstacle_offset;  // (keeps a −0)
-  double u0_next, recurrence_d0;
-  if (energy_conserving_) {
-    const double h = h_, mu = -upward[1];
-    const double load0_now = has_load ? f_now[0] : 0.0, load0_next = has_load ? f_next[0] : 0.0;
-    const EnergyConservingContact c = energy_conserving_contact(u[1] + inverse_pivot[1] * y_next - mu * u[0], mu, u[0],
-                                                                u[1] + h * load0_now, h, load0_next);
-    state.lambda = c.multiplier;
-    state.active = c.active;
-    u0_next = c.u0;
-    recurrence_d0 = c.recurrence_u0 - u[0];
-  } else {
-    const ContactStep contact =
-        solver.resolve_contact(b0 - elimination[0] * y_next, coefficients_.kappa, obstacle - u[0]);
-    if (switching_ && contact.active != state.active) return false;
-    state.lambda = contact.multiplier;
-    state.active = contact.active;
-    u0_next = contact.active ? obstacle : u[0] + contact.u0;
-    recurrence_d0 = contact.u0;
-  }
+  const ContactDecision decision = contact_decision(u[0], u[1], w[0], w[1], y_next, state.lambda, state.active, solver,
+                                                    has_load, has_load ? f_now[0] : 0.0, has_load ? f_next[0] : 0.0);
+  if (decision.status_change) return false;  // CN-switch: its θ-step instead, nothing written yet
+  state.lambda = decision.lambda;
+  state.active = decision.active;
+  const double u0_next = decision.u0_next, recurrence_d0 = decision.recurrence_d0;
 
   // Sweep up. Two-level: V' = rate ΔU − memory V, written over W', kinetic form V'ᵀMV', potential
   // U'ᵀSU'. Three-level: X = ΔU/Δt, forms XᵀMX, PᵀSP, QᵀSQ (Q = ΔU); ΔU written over W'.

@@ -43,6 +43,15 @@ class FastStep {
   StepMatrices coefficients_;  // the step's scalars (its matrices are in the Rows)
   bool three_level_, energy_conserving_, switching_;
   double restitution_, beta_, h_;
+  friend class BatchedSimulation;  // reads the rows and scalars (batched_step.cpp)
+  // Row 0 and the contact decision of one run (fast_step.cpp), shared with the batched step.
+  struct ContactDecision {
+    double u0_next = 0, recurrence_d0 = 0, lambda = 0;
+    bool active = false, status_change = false;  // status_change: CN-switch must take its θ-step
+  };
+  ContactDecision contact_decision(double u0, double u1, double w0, double w1, double y_next, double lambda,
+                                   bool active, const ContactSolver& solver, bool has_load, double f0_now,
+                                   double f0_next) const;
   template <bool three_level, bool has_load>
   bool fused_step(StepState& state, const ContactSolver& solver) const;
 };

@@ -1111,10 +1111,8 @@ void BarSimulation::step() {
     ++level_;
     return;
   }
-  const double t_now = static_cast<double>(level_) * dt_;
-  const double t_next = static_cast<double>(level_ + 1) * dt_;
   const bool has_load = static_cast<bool>(problem_.load);
-  if (has_load) load_at(t_next, state_.f_next);
+  if (has_load) load_at(static_cast<double>(level_ + 1) * dt_, state_.f_next);
   if (class_step_)
     class_step_->step(state_, level_);
   else if (explicit_) {
@@ -1124,6 +1122,14 @@ void BarSimulation::step() {
     reference_step(has_load);
   else if (!fast_->step(state_, solver_, has_load))
     switch_step(has_load);  // CN-switch at a change of status
+  finish_step();
+}
+
+// After the state has been advanced (by either kernel, or by a lane of the batched step,
+// batched_step.cpp): the massless node's velocity, the instants of λ and of the energy, the level.
+void BarSimulation::finish_step() {
+  const double t_now = static_cast<double>(level_) * dt_;
+  const double t_next = static_cast<double>(level_ + 1) * dt_;
   if (algebraic_row_ && !three_level_) state_.w[0] = massless_node_velocity(t_next);
 
   has_lambda_ = true;

@@ -273,6 +273,8 @@ class BarSimulation {
   double massless_node_velocity(double t) const;
   void reference_step(bool has_load);
   void switch_step(bool has_load);  // CN-switch's θ-step, replacing a Crank–Nicolson step
+  void finish_step();               // the bookkeeping after the state has been advanced
+  friend class BatchedSimulation;   // advances many runs' states together (batched_step.hpp)
 
   Problem problem_;
   UniformMesh mesh_;

@@ -1,0 +1,586 @@
+/// @file batched_step.cpp
+/// @brief The fused step of fast_step.cpp, one run per vector lane (Google Highway, the widest target
+/// of the processor chosen at run time: AVX-512, AVX2, SSE4, NEON, ... or a portable 128-bit emulation).
+///
+/// A step of one run is two long chains of dependent operations (the sweeps of the tridiagonal solve,
+/// fast_step.cpp), so a run fills one lane of a vector unit. W runs with the same number of unknowns and
+/// the same scheme family have the same sequence of operations, node by node, on different numbers: the
+/// batched step does that sequence once on vectors of W doubles, lane j holding run j. Nothing mixes the
+/// lanes (every operation is lane-wise: +, −, ×, and the per-lane contact decision between the sweeps is
+/// FastStep::contact_decision itself), and the vector operations are IEEE-754 double operations with the
+/// same rounding as the scalar ones, so each lane is bitwise the run stepped alone, provided that the
+/// compiler neither contracts a×b + c into a fused multiply-add in one path and not the other: the
+/// project compiles everything with -ffp-contract=off (CMakeLists.txt; ISO C++'s default under GCC,
+/// made explicit because the vector targets enable FMA instructions). The operations below are
+/// fast_step.cpp's, written in the same order, operand for operand; the doctest at the end checks the
+/// identity bit for bit, lane by lane, for every scheme and every target the machine has.
+///
+/// Layout: the state and factor vectors of a group are interleaved, element i of lane j at i·W + j, so
+/// that one aligned load gives node i of the W runs. Each lane keeps its own factors and rows (runs may
+/// differ in Δt, mass, restitution, β): nothing is shared but the number of unknowns and the layout of the
+/// fast step (its explicit head rows, the Toeplitz interior, the last row).
+#include "batched_step.hpp"
+
+/// @cond MRM_INTERNAL (the Highway plumbing and the kernel: not part of the library's interface)
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "batched_step.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#ifndef MRM_BATCHED_STEP_ONCE
+#define MRM_BATCHED_STEP_ONCE
+namespace mrm::batched {
+
+// The interleaved arrays of one group and what the two sweeps exchange with the per-lane contact
+// decision between them (plain pointers: the same struct for every target).
+struct Kernel {
+  std::size_t n = 0, lanes = 0, head = 0;
+  bool three_level = false, keeps = false;  // keeps: a lane may be left untouched (CN-switch)
+  double *u = nullptr, *y = nullptr, *w = nullptr, *x = nullptr;
+  const double *elimination = nullptr, *elimination_pair = nullptr, *inverse_pivot = nullptr, *upward = nullptr,
+               *upward_pair = nullptr;
+  const double *head_rows = nullptr, *interior = nullptr, *last = nullptr;  // 10 coefficients × lanes per row
+  const double *rate = nullptr, *memory = nullptr, *ps_q_weight = nullptr;  // per lane; 1 − 4β for PS
+  const double *u0_next = nullptr, *recurrence_d0 = nullptr, *keep = nullptr;
+  double* energy = nullptr;  // per lane, written by the sweep up
+};
+
+}  // namespace mrm::batched
+#endif
+
+HWY_BEFORE_NAMESPACE();
+namespace mrm::batched {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using D = hn::ScalableTag<double>;
+using V = hn::Vec<D>;
+
+std::size_t LaneCount() { return hn::Lanes(D()); }
+
+// The row coefficients in the order of FastStep::Row: c1l, c1d, c1u, c2l, c2d, c2u, md, ml2, sd, sl2.
+struct RowV {
+  V c1l, c1d, c1u, c2l, c2d, c2u, md, ml2, sd, sl2;
+};
+inline RowV LoadRow(const double* row, std::size_t lanes) {
+  const D d;
+  const auto at = [&](std::size_t k) { return hn::Load(d, row + k * lanes); };
+  return {at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7), at(8), at(9)};
+}
+
+// The sweep down of FastStep::fused_step (no load), on W lanes.
+void SweepDown(const Kernel& k) {
+  const D d;
+  const std::size_t W = k.lanes;
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(k.n), head = static_cast<std::ptrdiff_t>(k.head);
+  const auto at = [&](const double* a, std::ptrdiff_t i) { return hn::Load(d, a + static_cast<std::size_t>(i) * W); };
+  const double* u = k.u;
+  const double* w = k.w;
+  const auto rhs = [&](const RowV& r, std::ptrdiff_t i, V u_up, V w_up) {
+    return r.c1l * at(u, i - 1) + r.c1d * at(u, i) + r.c1u * u_up + r.c2l * at(w, i - 1) + r.c2d * at(w, i) +
+           r.c2u * w_up;
+  };
+  const auto rhs_interior = [&](const RowV& r, std::ptrdiff_t i) {
+    return r.c1l * (at(u, i - 1) + at(u, i + 1)) + r.c1d * at(u, i) + r.c2l * (at(w, i - 1) + at(w, i + 1)) +
+           r.c2d * at(w, i);
+  };
+  V b_up = hn::Zero(d), y_up = hn::Zero(d), y_up2 = hn::Zero(d);
+  const auto eliminate = [&](std::ptrdiff_t i, V b) {
+    const V yi = (b - at(k.elimination, i) * b_up) + at(k.elimination_pair, i) * y_up2;
+    hn::Store(yi, d, k.y + static_cast<std::size_t>(i) * W);
+    b_up = b, y_up2 = y_up, y_up = yi;
+  };
+  eliminate(n - 1, rhs(LoadRow(k.last, W), n - 1, hn::Zero(d), hn::Zero(d)));
+  {
+    const RowV r = LoadRow(k.interior, W);
+    for (std::ptrdiff_t i = n - 2; i >= head; --i) eliminate(i, rhs_interior(r, i));
+  }
+  for (std::ptrdiff_t i = std::min(head, n - 1) - 1; i >= 1; --i)
+    eliminate(i, rhs(LoadRow(k.head_rows + static_cast<std::size_t>(i) * 10 * W, W), i, at(u, i + 1), at(w, i + 1)));
+}
+
+// The sweep up of FastStep::fused_step, from the lanes' contact decisions; a lane with keep ≠ 0 is
+// written back unchanged (CN-switch takes its θ-step there, alone).
+template <bool three_level, bool keeps>
+void SweepUpT(const Kernel& k) {
+  const D d;
+  const std::size_t W = k.lanes;
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(k.n), head = static_cast<std::ptrdiff_t>(k.head);
+  const auto at = [&](const double* a, std::ptrdiff_t i) { return hn::Load(d, a + static_cast<std::size_t>(i) * W); };
+  const auto put = [&](V v, double* a, std::ptrdiff_t i) { hn::Store(v, d, a + static_cast<std::size_t>(i) * W); };
+  const double* u = k.u;
+  double* y = k.y;
+  double* w_out = k.w;
+  double* x_out = k.x;
+  const V rate = hn::Load(d, k.rate), memory = hn::Load(d, k.memory);
+  const auto keep = hn::Ne(hn::Load(d, k.keep), hn::Zero(d));
+  const V zero = hn::Zero(d);
+  V kinetic = zero, potential = zero, potential_q = zero;
+  V un_prev = zero, d_prev = zero, d_prev2 = zero, z_prev = zero, v_prev = zero, p_prev = zero, q_prev = zero;
+  V k_d = zero, k_q = zero, p_d = zero, p_q = zero, q_d = zero, q_q = zero;
+  const auto emit = [&](const RowV& r, std::ptrdiff_t i, V dd, V un, auto toeplitz) {
+    constexpr bool sums = decltype(toeplitz)::value;
+    const V uo = at(u, i);
+    if constexpr (keeps) {
+      put(hn::IfThenElse(keep, uo, un), y, i);
+    } else {
+      put(un, y, i);
+    }
+    if constexpr (three_level) {
+      const V xx = rate * dd, p = un + uo, q = dd;
+      put(xx, x_out, i);
+      put(dd, w_out, i);
+      if constexpr (sums) {
+        const V dx = xx - v_prev, dp = p - p_prev, dq = q - q_prev;
+        k_d = k_d + dx * dx, k_q = k_q + xx * xx;
+        p_d = p_d + dp * dp, p_q = p_q + p * p;
+        q_d = q_d + dq * dq, q_q = q_q + q * q;
+      } else {
+        kinetic = kinetic + (r.md * xx * xx + r.ml2 * v_prev * xx);
+        potential = potential + (r.sd * p * p + r.sl2 * p_prev * p);
+        potential_q = potential_q + (r.sd * q * q + r.sl2 * q_prev * q);
+      }
+      v_prev = xx, p_prev = p, q_prev = q;
+    } else {
+      const V wo = at(w_out, i);
+      const V v = rate * dd - memory * wo;
+      if constexpr (keeps) {
+        put(hn::IfThenElse(keep, wo, v), w_out, i);
+      } else {
+        put(v, w_out, i);
+      }
+      if constexpr (sums) {
+        const V dv = v - v_prev, du = un - un_prev;
+        k_d = k_d + dv * dv, k_q = k_q + v * v;
+        p_d = p_d + du * du, p_q = p_q + un * un;
+      } else {
+        kinetic = kinetic + (r.md * v * v + r.ml2 * v_prev * v);
+        potential = potential + (r.sd * un * un + r.sl2 * un_prev * un);
+      }
+      v_prev = v;
+    }
+    un_prev = un;
+    d_prev2 = d_prev, d_prev = dd;
+  };
+  const std::false_type explicit_row;
+  const std::true_type toeplitz_row;
+  const auto solve_up = [&](std::ptrdiff_t i) {
+    const V z = at(k.inverse_pivot, i) * at(y, i);
+    const V dd = (z - at(k.upward, i) * z_prev) + at(k.upward_pair, i) * d_prev2;
+    z_prev = z;
+    return dd;
+  };
+  const auto emit_up = [&](const RowV& r, std::ptrdiff_t i, auto toeplitz) {
+    const V dd = solve_up(i);
+    emit(r, i, dd, at(u, i) + dd, toeplitz);
+  };
+  const V u0_next = hn::Load(d, k.u0_next), recurrence_d0 = hn::Load(d, k.recurrence_d0);
+  emit(LoadRow(k.head_rows, W), 0, u0_next - at(u, 0), u0_next, explicit_row);
+  z_prev = recurrence_d0;
+  for (std::ptrdiff_t i = 1; i < std::min(head, n - 1); ++i) {
+    emit_up(LoadRow(k.head_rows + static_cast<std::size_t>(i) * 10 * W, W), i, explicit_row);
+    if (i == 1) d_prev2 = recurrence_d0;
+  }
+  if (head < n - 1) {
+    const RowV r = LoadRow(k.interior, W);
+    const V ka = v_prev, pa = three_level ? p_prev : un_prev, qa = q_prev;
+    for (std::ptrdiff_t i = head; i < n - 1; ++i) emit_up(r, i, toeplitz_row);
+    const V kb = v_prev, pb = three_level ? p_prev : un_prev, qb = q_prev;
+    const V half = hn::Set(d, 0.5);
+    const auto form = [&](V dg, V l2, V sum_d, V sum_q, V za, V zb) {
+      const V l = half * l2;
+      return hn::Neg(l) * sum_d + (dg + l2) * sum_q - l * zb * zb + l * za * za;
+    };
+    kinetic = kinetic + form(r.md, r.ml2, k_d, k_q, ka, kb);
+    potential = potential + form(r.sd, r.sl2, p_d, p_q, pa, pb);
+    if constexpr (three_level) potential_q = potential_q + form(r.sd, r.sl2, q_d, q_q, qa, qb);
+  }
+  emit_up(LoadRow(k.last, W), n - 1, explicit_row);
+  V energy;
+  if constexpr (three_level) {
+    energy = hn::Set(d, 0.5) * kinetic + hn::Set(d, 0.125) * (potential - hn::Load(d, k.ps_q_weight) * potential_q);
+  } else {
+    energy = hn::Set(d, 0.5) * kinetic + hn::Set(d, 0.5) * potential;
+  }
+  hn::Store(energy, d, k.energy);
+}
+
+void SweepUp(const Kernel& k) {
+  if (k.three_level) return SweepUpT<true, false>(k);
+  if (k.keeps) return SweepUpT<false, true>(k);
+  SweepUpT<false, false>(k);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace mrm::batched
+HWY_AFTER_NAMESPACE();
+
+/// @endcond
+
+#if HWY_ONCE
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <string>
+#include <stdexcept>
+#include <tuple>
+
+#include <doctest/doctest.h>
+#include <hwy/aligned_allocator.h>
+
+#include "contact.hpp"
+#include "fast_step.hpp"
+#include "mass_redistribution.hpp"
+
+namespace mrm {
+/// @cond MRM_INTERNAL
+namespace batched {
+HWY_EXPORT(LaneCount);
+HWY_EXPORT(SweepDown);
+HWY_EXPORT(SweepUp);
+}  // namespace batched
+/// @endcond
+
+void use_batch_target(std::int64_t bit) {
+  hwy::SetSupportedTargetsForTest(bit);
+  hwy::GetChosenTarget().Update(hwy::SupportedTargets());
+}
+
+std::vector<BatchTarget> batch_targets() {
+  use_batch_target(0);  // every supported target, not the one a previous use_batch_target chose
+  std::vector<BatchTarget> targets;
+  for (const std::int64_t bit : hwy::SupportedAndGeneratedTargets()) {
+    use_batch_target(bit);
+    const std::size_t lanes = HWY_DYNAMIC_DISPATCH(batched::LaneCount)();
+    if (lanes >= 2) targets.push_back({hwy::TargetName(bit), lanes, bit});  // one lane is the scalar step
+  }
+  use_batch_target(0);
+  // Widest first; among equal widths the later (more capable) target first, as Highway orders them.
+  std::stable_sort(targets.begin(), targets.end(),
+                   [](const BatchTarget& a, const BatchTarget& b) { return a.lanes > b.lanes; });
+  return targets;
+}
+
+BatchTarget current_batch_target() {
+  const std::int64_t bit = hwy::SupportedAndGeneratedTargets().front();  // the best the dispatch chooses
+  return {hwy::TargetName(bit), HWY_DYNAMIC_DISPATCH(batched::LaneCount)(), bit};
+}
+
+// One group: W lanes (a run each, or a copy of lane 0's run for the lanes left over), interleaved.
+struct BatchedSimulation::Group {
+  std::vector<std::size_t> runs;  // the run of each lane; padding lanes repeat lane 0's and are ignored
+  std::size_t used = 0;           // lanes 0 … used−1 are runs of their own
+  std::size_t n = 0, head = 0;
+  bool three_level = false, switching = false;
+  hwy::AlignedFreeUniquePtr<double[]> u, y, w, x, elimination, elimination_pair, inverse_pivot, upward, upward_pair,
+      head_rows, interior, last, rate, memory, ps_q_weight, u0_next, recurrence_d0, keep, energy;
+};
+
+namespace {
+
+// The rows of a FastStep as 10 doubles (the order of batched::RowV).
+template <typename Row>
+std::array<double, 10> coefficients(const Row& r) {
+  return {r.c1l, r.c1d, r.c1u, r.c2l, r.c2d, r.c2u, r.md, r.ml2, r.sd, r.sl2};
+}
+
+}  // namespace
+
+BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(std::move(runs)) {
+  lanes_ = HWY_DYNAMIC_DISPATCH(batched::LaneCount)();
+  const std::size_t count = runs_.size();
+  stale_.assign(count, 0);
+  group_of_.assign(count, 0);
+  lane_of_.assign(count, 0);
+  // The key of runs that can share a group: the number of unknowns, the scheme family and the layout of
+  // the fast step. A run with the reference kernel or a load is stepped alone.
+  using Key = std::tuple<std::size_t, int, std::size_t>;
+  std::map<Key, std::vector<std::size_t>> families;
+  for (std::size_t k = 0; k < count; ++k) {
+    const BarSimulation& r = runs_[k];
+    const FastStep* fast = r.fast_.get();
+    const std::size_t n = static_cast<std::size_t>(r.state_.u.size());
+    if (!fast || r.problem_.load || n < 2 || lanes_ < 2 || r.level_ != 0) {
+      alone_.push_back(k);
+      continue;
+    }
+    const int family = fast->three_level_ ? 1 : fast->energy_conserving_ ? 2 : fast->switching_ ? 3 : 0;
+    families[Key{n, family, fast->head_.size()}].push_back(k);
+  }
+  for (const auto& [key, members] : families) {
+    for (std::size_t first = 0; first < members.size(); first += lanes_) {
+      const std::size_t used = std::min(lanes_, members.size() - first);
+      if (used == 1) {  // a group of one: stepped alone
+        alone_.push_back(members[first]);
+        continue;
+      }
+      auto g = std::make_unique<Group>();
+      g->used = used;
+      for (std::size_t j = 0; j < lanes_; ++j) g->runs.push_back(members[first + (j < used ? j : 0)]);
+      const BarSimulation& r0 = runs_[g->runs[0]];
+      g->n = std::get<0>(key);
+      g->head = std::get<2>(key);
+      g->three_level = r0.fast_->three_level_;
+      g->switching = r0.fast_->switching_;
+      const std::size_t nw = g->n * lanes_;
+      for (auto* a : {&g->u, &g->y, &g->w, &g->x, &g->elimination, &g->elimination_pair, &g->inverse_pivot, &g->upward,
+                      &g->upward_pair})
+        *a = hwy::AllocateAligned<double>(nw);
+      g->head_rows = hwy::AllocateAligned<double>(g->head * 10 * lanes_);
+      g->interior = hwy::AllocateAligned<double>(10 * lanes_);
+      g->last = hwy::AllocateAligned<double>(10 * lanes_);
+      for (auto* a : {&g->rate, &g->memory, &g->ps_q_weight, &g->u0_next, &g->recurrence_d0, &g->keep, &g->energy})
+        *a = hwy::AllocateAligned<double>(lanes_);
+      for (std::size_t j = 0; j < lanes_; ++j) {
+        const BarSimulation& r = runs_[g->runs[j]];
+        const FastStep& f = *r.fast_;
+        const ContactSolver& s = r.solver_;
+        for (std::size_t i = 0; i < g->n; ++i) {
+          const auto e = static_cast<Index>(i);
+          g->elimination[i * lanes_ + j] = s.elimination()[e];
+          g->elimination_pair[i * lanes_ + j] = s.elimination_pair()[e];
+          g->inverse_pivot[i * lanes_ + j] = s.inverse_pivot()[e];
+          g->upward[i * lanes_ + j] = s.upward()[e];
+          g->upward_pair[i * lanes_ + j] = s.upward_pair()[e];
+        }
+        for (std::size_t h = 0; h < g->head; ++h) {
+          const auto c = coefficients(f.head_[h]);
+          for (std::size_t m = 0; m < 10; ++m) g->head_rows[(h * 10 + m) * lanes_ + j] = c[m];
+        }
+        const auto ci = coefficients(f.interior_), cl = coefficients(f.last_);
+        for (std::size_t m = 0; m < 10; ++m) {
+          g->interior[m * lanes_ + j] = ci[m];
+          g->last[m * lanes_ + j] = cl[m];
+        }
+        g->rate[j] = f.coefficients_.velocity_rate;
+        g->memory[j] = f.coefficients_.velocity_memory;
+        g->ps_q_weight[j] = 1 - 4 * f.beta_;  // as fused_step writes it: (1 − 4β)
+        g->keep[j] = 0;
+      }
+      for (std::size_t j = 0; j < used; ++j) {
+        group_of_[g->runs[j]] = groups_.size();
+        lane_of_[g->runs[j]] = j;
+      }
+      for (std::size_t j = 0; j < lanes_; ++j) load_lane(*g, j, runs_[g->runs[j]]);
+      groups_.push_back(std::move(g));
+    }
+  }
+}
+
+BatchedSimulation::~BatchedSimulation() = default;
+BatchedSimulation::BatchedSimulation(BatchedSimulation&&) noexcept = default;
+BatchedSimulation& BatchedSimulation::operator=(BatchedSimulation&&) noexcept = default;
+
+void BatchedSimulation::load_lane(Group& g, std::size_t j, const BarSimulation& run) {
+  const std::size_t W = g.runs.size();
+  const bool has_x = static_cast<std::size_t>(run.state_.x.size()) == g.n;
+  for (std::size_t i = 0; i < g.n; ++i) {
+    const auto e = static_cast<Index>(i);
+    g.u[i * W + j] = run.state_.u[e];
+    g.w[i * W + j] = run.state_.w[e];
+    g.x[i * W + j] = has_x ? run.state_.x[e] : 0.0;
+  }
+}
+
+void BatchedSimulation::store_lane(const Group& g, std::size_t j, BarSimulation& run) {
+  const std::size_t W = g.runs.size();
+  const bool has_x = static_cast<std::size_t>(run.state_.x.size()) == g.n;
+  for (std::size_t i = 0; i < g.n; ++i) {
+    const auto e = static_cast<Index>(i);
+    run.state_.u[e] = g.u[i * W + j];
+    run.state_.w[e] = g.w[i * W + j];
+    if (has_x) run.state_.x[e] = g.x[i * W + j];
+  }
+}
+
+const BarSimulation& BatchedSimulation::run(std::size_t k) {
+  if (k >= runs_.size()) throw std::out_of_range("BatchedSimulation::run: no run " + std::to_string(k));
+  if (stale_[k]) {
+    store_lane(*groups_[group_of_[k]], lane_of_[k], runs_[k]);
+    stale_[k] = 0;
+  }
+  return runs_[k];
+}
+
+std::size_t BatchedSimulation::batched_runs() const {
+  std::size_t count = 0;
+  for (const auto& g : groups_) count += g->used;
+  return count;
+}
+
+void BatchedSimulation::step() {
+  if (HWY_DYNAMIC_DISPATCH(batched::LaneCount)() != lanes_)
+    throw std::logic_error("BatchedSimulation::step: the vector target changed since the batch was made");
+  for (const std::size_t k : alone_) runs_[k].step();
+  for (const auto& group : groups_) {
+    Group& g = *group;
+    const std::size_t W = lanes_;
+    // Paoli–Schatzman's first step is Crank–Nicolson's (BarSimulation::step's starter): each run alone.
+    bool starting = false;
+    for (std::size_t j = 0; j < g.used; ++j) starting = starting || runs_[g.runs[j]].start_ != nullptr;
+    if (starting) {
+      for (std::size_t j = 0; j < W; ++j) {
+        BarSimulation& run = runs_[g.runs[j]];
+        if (j < g.used) {
+          if (stale_[g.runs[j]]) store_lane(g, j, run);
+          run.step();
+          stale_[g.runs[j]] = 0;
+        }
+        load_lane(g, j, run);  // a padding lane repeats lane 0's run
+      }
+      continue;
+    }
+    batched::Kernel k;
+    k.n = g.n, k.lanes = W, k.head = g.head, k.three_level = g.three_level, k.keeps = g.switching;
+    k.u = g.u.get(), k.y = g.y.get(), k.w = g.w.get(), k.x = g.x.get();
+    k.elimination = g.elimination.get(), k.elimination_pair = g.elimination_pair.get();
+    k.inverse_pivot = g.inverse_pivot.get(), k.upward = g.upward.get(), k.upward_pair = g.upward_pair.get();
+    k.head_rows = g.head_rows.get(), k.interior = g.interior.get(), k.last = g.last.get();
+    k.rate = g.rate.get(), k.memory = g.memory.get(), k.ps_q_weight = g.ps_q_weight.get();
+    k.u0_next = g.u0_next.get(), k.recurrence_d0 = g.recurrence_d0.get(), k.keep = g.keep.get();
+    k.energy = g.energy.get();
+    HWY_DYNAMIC_DISPATCH(batched::SweepDown)(k);
+    // Between the sweeps, each lane's contact decision: FastStep::contact_decision, the scalar code.
+    std::vector<FastStep::ContactDecision> decisions(W);
+    for (std::size_t j = 0; j < W; ++j) {
+      const BarSimulation& run = runs_[g.runs[j]];
+      const FastStep::ContactDecision c =
+          run.fast_->contact_decision(g.u[j], g.u[W + j], g.w[j], g.w[W + j], g.y[W + j], run.state_.lambda,
+                                      run.state_.active, run.solver_, false, 0.0, 0.0);
+      decisions[j] = c;
+      g.keep[j] = c.status_change ? 1.0 : 0.0;
+      g.u0_next[j] = c.status_change ? g.u[j] : c.u0_next;  // (a kept lane's values are not written)
+      g.recurrence_d0[j] = c.status_change ? 0.0 : c.recurrence_d0;
+    }
+    HWY_DYNAMIC_DISPATCH(batched::SweepUp)(k);
+    std::swap(g.u, g.y);  // U = Uⁿ⁺¹, as fused_step swaps u and u_new
+    for (std::size_t j = 0; j < g.used; ++j) {
+      const std::size_t r = g.runs[j];
+      BarSimulation& run = runs_[r];
+      if (decisions[j].status_change) {  // CN-switch's θ-step, alone, from the untouched state
+        store_lane(g, j, run);
+        run.switch_step(false);
+        load_lane(g, j, run);
+        stale_[r] = 0;
+      } else {
+        run.state_.lambda = decisions[j].lambda;
+        run.state_.active = decisions[j].active;
+        run.state_.energy = g.energy[j];
+        // finish_step reads the new u₀ and V₁ (the massless node's velocity): those two are copied
+        // out now, the rest of the vectors when run(k) is asked for.
+        run.state_.u[0] = g.u[j];
+        run.state_.w[1] = g.w[W + j];
+        stale_[r] = 1;
+      }
+      run.finish_step();
+      if (run.algebraic_row_ && !run.three_level_) g.w[j] = run.state_.w[0];  // its massless node's velocity
+    }
+  }
+}
+
+/// @file batched_step.cpp
+/// ## The batched step against the runs stepped alone
+///
+/// Prediction: bit for bit the same states (U, W', X, λ, the energy, the status, the instants) at every
+/// step, lane by lane, for every scheme (cn, be, ps with both contact rows, ec, cn-switch) and every
+/// vector target this machine has: the batched step performs each lane's operations in the scalar
+/// order, and CN-switch's status changes and Paoli–Schatzman's first step are the lane's own scalar
+/// step. The runs of a batch differ in Δt (Courant numbers 0.5 … 1.7), mass (Mod 1, Mod 3, the
+/// consistent mass where the scheme allows it) and, for Paoli–Schatzman, β and e; their number
+/// 2W + 1 leaves a group with padding lanes or a run alone. A difference of one ulp anywhere fails.
+namespace {
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  return a.size() == b.size() && (a.size() == 0 || std::memcmp(a.data(), b.data(), sizeof(double) * a.size()) == 0);
+}
+
+}  // namespace
+
+TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for every scheme and target") {
+  struct Case {
+    Scheme scheme;
+    ContactRow row;
+  };
+  const std::vector<Case> cases = {
+      {Scheme::crank_nicolson, ContactRow::algebraic},    {Scheme::backward_euler, ContactRow::algebraic},
+      {Scheme::paoli_schatzman, ContactRow::algebraic},   {Scheme::paoli_schatzman, ContactRow::literal},
+      {Scheme::energy_conserving, ContactRow::algebraic}, {Scheme::switching, ContactRow::algebraic}};
+  const UniformMesh mesh(1.0, 24);
+  const Index steps = 150;  // past the first impact (t = 1) at every Δt below
+  const std::vector<BatchTarget> targets = batch_targets();
+  REQUIRE(!targets.empty());
+  int batched_cases = 0, status_changes = 0;
+  for (const BatchTarget& target : targets) {
+    use_batch_target(target.bit);
+    CAPTURE(target.name);
+    for (const Case& c : cases) {
+      CAPTURE(to_string(c.scheme));
+      CAPTURE(to_string(c.row));
+      std::vector<BarSimulation> batch, alone;
+      const std::size_t count = 2 * target.lanes + 1;
+      for (std::size_t k = 0; k < count; ++k) {
+        const bool inertia_allowed = c.scheme != Scheme::energy_conserving &&
+                                     !(c.scheme == Scheme::paoli_schatzman && c.row == ContactRow::algebraic);
+        const MassRedistribution mass = k % 3 == 0        ? mod1()
+                                        : k % 3 == 1      ? mod3()
+                                        : inertia_allowed ? consistent_mass()
+                                                          : mod2();
+        SchemeParameters p;
+        p.scheme = c.scheme;
+        p.contact_row = c.row;
+        if (c.scheme == Scheme::paoli_schatzman && k % 2 == 1) p.beta = 0.3, p.restitution = 0.5;
+        const double dt = (0.5 + 0.1 * static_cast<double>(k % 13)) * mesh.h();
+        batch.emplace_back(benchmark_problem(), mesh, mass, p, dt);
+        alone.emplace_back(benchmark_problem(), mesh, mass, p, dt);
+      }
+      BatchedSimulation batched(std::move(batch));
+      CHECK(batched.lanes() == target.lanes);
+      batched_cases += batched.batched_runs() > 0;
+      bool identical = true;
+      std::vector<bool> active(count, false);
+      for (Index n = 1; n <= steps && identical; ++n) {
+        batched.step();
+        for (std::size_t k = 0; k < count; ++k) {
+          alone[k].step();
+          const Sample a = batched.run(k).sample(), b = alone[k].sample();
+          const bool same = a.level == b.level && same_bits(a.time, b.time) &&
+                            same_bits(*a.displacement, *b.displacement) && same_bits(*a.velocity, *b.velocity) &&
+                            a.has_multiplier == b.has_multiplier && same_bits(a.multiplier, b.multiplier) &&
+                            same_bits(a.multiplier_time, b.multiplier_time) && same_bits(a.energy, b.energy) &&
+                            same_bits(a.energy_time, b.energy_time);
+          if (!same) {
+            CAPTURE(k);
+            CAPTURE(n);
+            const std::string parts = std::string(same_bits(*a.displacement, *b.displacement) ? "" : " U") +
+                                      (same_bits(*a.velocity, *b.velocity) ? "" : " V") +
+                                      (same_bits(a.multiplier, b.multiplier) ? "" : " lambda") +
+                                      (same_bits(a.energy, b.energy) ? "" : " E") +
+                                      (a.level == b.level ? "" : " level");
+            CAPTURE(parts);
+            const double du = (*a.displacement - *b.displacement).cwiseAbs().maxCoeff();
+            CAPTURE(du);
+            CAPTURE(a.energy - b.energy);
+            CHECK(same);
+            identical = false;
+          }
+          const bool now = b.multiplier < 0;
+          status_changes += c.scheme == Scheme::switching && now != active[k];
+          active[k] = now;
+        }
+      }
+      CHECK(identical);
+    }
+  }
+  use_batch_target(0);
+  // Not vacuous: every case went through the vector lanes on every target, CN-switch changed status.
+  CHECK(batched_cases == static_cast<int>(targets.size() * cases.size()));
+  CHECK(status_changes > 0);
+}
+
+}  // namespace mrm
+
+#endif  // HWY_ONCE

@@ -1,0 +1,74 @@
+/// @file batched_step.hpp
+/// @brief Many runs of the same mesh size and scheme advanced together, one run per lane of the
+/// machine's vector registers (Google Highway, the vector width chosen at run time), each lane
+/// bitwise identical to its run stepped alone (batched_step.cpp).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "schemes.hpp"
+
+namespace mrm {
+
+/// A vector target the batched step can run on: its name (Highway's: "AVX3", "AVX2", "SSE4", "EMU128",
+/// "NEON", ...), its number of double lanes, and its Highway target bit.
+struct BatchTarget {
+  std::string name;   ///< Highway's name of the target
+  std::size_t lanes;  ///< doubles per vector
+  std::int64_t bit;   ///< Highway's target bit (use_batch_target)
+};
+
+/// The targets compiled into this binary that this processor supports and that have at least two
+/// lanes, widest first (the batched step is left on the widest).
+std::vector<BatchTarget> batch_targets();
+/// Restricts the batched step to the target `bit` (one of batch_targets()) for the whole process, or
+/// with 0 returns to the widest supported one (the default). For benchmarks and tests; not thread-safe
+/// against a concurrent BatchedSimulation::step.
+void use_batch_target(std::int64_t bit);
+/// The target the batched step uses now.
+BatchTarget current_batch_target();
+
+/// A batch of runs (BarSimulation's at level 0, moved in) advanced one step at a time. Runs whose
+/// steps can share vector registers (the fast kernel, no load, and the same number of unknowns, scheme
+/// family — two-level, Paoli–Schatzman, EC, CN-switch — and fast-step layout, FastStep's explicit head
+/// rows) are grouped by lanes of the current target; every other run (the reference kernel, a load, a
+/// group of one) is stepped alone. Paoli–Schatzman's Crank–Nicolson first step and CN-switch's θ-step
+/// at a status change are each lane's own scalar step. Every run ends in the same state, bit for bit,
+/// as if stepped alone by BarSimulation::step (the doctest of batched_step.cpp).
+class BatchedSimulation {
+ public:
+  /// Takes the runs (each at level 0), groups them by lanes of the current target and copies the
+  /// grouped runs' states and factors into the lanes.
+  explicit BatchedSimulation(std::vector<BarSimulation> runs);
+  ~BatchedSimulation();
+  BatchedSimulation(BatchedSimulation&&) noexcept;             ///< moves the runs and their lanes
+  BatchedSimulation& operator=(BatchedSimulation&&) noexcept;  ///< moves the runs and their lanes
+
+  /// Advances every run by one step.
+  void step();
+  /// The number of runs.
+  std::size_t size() const { return runs_.size(); }
+  /// Run k with its current state (copied out of the vector lanes when needed).
+  const BarSimulation& run(std::size_t k);
+  /// The number of runs advanced in vector lanes (the others are stepped alone).
+  std::size_t batched_runs() const;
+  /// The lanes per group (the target's width in doubles).
+  std::size_t lanes() const { return lanes_; }
+
+ private:
+  struct Group;
+  static void load_lane(Group& g, std::size_t j, const BarSimulation& run);   // run's vectors → lane j
+  static void store_lane(const Group& g, std::size_t j, BarSimulation& run);  // lane j → run's vectors
+  std::vector<BarSimulation> runs_;
+  std::vector<std::unique_ptr<Group>> groups_;
+  std::vector<std::size_t> alone_;  // the runs stepped alone
+  std::vector<char> stale_;         // run k's vectors are older than its lane's
+  std::vector<std::size_t> group_of_, lane_of_;
+  std::size_t lanes_ = 1;
+};
+
+}  // namespace mrm
