@@ -67,11 +67,7 @@ enum class SchemeParameter {
   nitsche_gamma,  ///< Nitsche's γ₀ (γ = γ₀/h)
   moreau_theta,   ///< Moreau–Jean's θ ∈ [½, 1]
   ps_start,       ///< Paoli–Schatzman's first step (Crank–Nicolson, or GetFEM's explicit Newmark step)
-  beta,          ///< Paoli–Schatzman's β
-  restitution,   ///< Paoli–Schatzman's restitution coefficient e
-  contact_row,   ///< Paoli–Schatzman's contact-row form (algebraic or literal)
-  switch_theta,  ///< CN-switch's θ of the step taken at a change of the contact status
-  mass_lumping   ///< the explicit schemes' mass lumping (row-sum or none)
+  mass_lumping    ///< the explicit schemes' mass lumping (row-sum or none)
 };
 
 /// One entry of the registry of schemes: what the programs' help texts, choice lists, data headers
