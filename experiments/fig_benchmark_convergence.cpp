@@ -50,6 +50,7 @@
 #include <string>
 #include <vector>
 
+#include "claims.hpp"
 #include "configurations.hpp"
 #include "convergence.hpp"
 #include "errors.hpp"
@@ -335,7 +336,7 @@ int main(int argc, char** argv) {
            "$" + mrm::tex_number(bench.configuration.obstacle_gap, 3) + "$",
            "$" + mrm::tex_number(bench.data.velocity(0.0), 3) + "$",
            "$" + mrm::tex_number(bench.final_time, 3) + "$" + (bench.time_unit.empty() ? "" : "~" + bench.time_unit),
-           bench.source});
+           mrm::claims::latex_escape(bench.source)});  // "Code_Aster", "01_bouncingBar": text, not math
       const std::vector<mrm::ContactInterval> exact =
           mrm::exact_contact_windows(bench.configuration, bench.data, bench.final_time);
       std::vector<mrm::ContactInterval> closed;
