@@ -26,7 +26,12 @@
 // Δt = C h/c with c the wave speed at the contact end), its reference is the chain's exact solution
 // (lib/impact_solution.hpp), and it also prints the exact contact windows over [0, T]
 // (exact_contact_windows = [t1, t2] ...) and the run's (measured_contact_windows), in the benchmark's
-// time unit; two-bars (two bodies) is refused. Its
+// time unit. two-bars runs two meshes, N elements on each bar, coupled by one contact multiplier
+// (lib/two_bodies.hpp; Crank-Nicolson only, a massless contact node on each bar); its errors are the
+// larger of the two bars' (repro/configurations.hpp, run_configuration). --grading R runs the paper's
+// benchmark, a smooth one or data of one's own on the mesh h_k = h0 R^k (finer toward the contact,
+// dt = C h0), and on the paper's benchmark prints the period law's predictions for that mesh beside the
+// measured drift (lib/period_law.hpp: the eigenvalue law, and the first-order change against Mod 3). Its
 // standard output is the same bytes for the same command except the wall time of the run
 // (wall_seconds), which `--no-timing` leaves out.
 //
@@ -36,6 +41,8 @@
 //   bar1d --benchmark grazing --scheme cn --mass mod1 --elements 400
 //   bar1d --initial-data tests/data/initial_data/left_going_wave.dat --elements 200 --final-time 4
 //   bar1d --benchmark bouncing --scheme cn --mass mod3 --elements 300
+//   bar1d --benchmark two-bars --scheme cn --mass mod3 --elements 100
+//   bar1d --grading 1.005 --mass mod1 --elements 200 --final-time 30
 //   bar1d --scheme be --mass consistent --elements 200 --courant 1
 //   bar1d --scheme ec --mass mod3 --elements 16 --courant 10 --final-time 300
 //   bar1d --scheme cn-switch --switch-theta 1 --mass mod1 --elements 400
@@ -69,6 +76,7 @@
 #include "period_law.hpp"
 #include "contact_classes.hpp"
 #include "schemes.hpp"
+#include "two_bodies.hpp"
 
 namespace cli = mrm::cli;
 
@@ -88,6 +96,10 @@ int main(int argc, char** argv) {
                 initial = "consistent", contact_velocity = "algebraic", output, lumping = "row-sum";
     std::string benchmark = "paper", initial_data;
     bool no_timing = false, phase_matched = false;
+    // The grading ratio R of the mesh h_k = h0 R^k (lib/p1.hpp graded_mesh): from 1 (uniform) to 1.1, a
+    // coarsest element 1.1^(N-1) h0 (Δt = C h0 sets the cost; the step count is checked below).
+    double grading = 1.0;
+    constexpr double largest_grading = 1.1;
     std::string interior_mass = "consistent";
     // The ranges below keep every quantity of the run (h, Δt², the matrices' entries, the energy a²L/2)
     // far from overflow and underflow of a double (the energy and the errors are computed scale-free:
@@ -118,6 +130,10 @@ int main(int argc, char** argv) {
                     "final time (> 0); the period of the paper's benchmark is 3L; default 6, or 2 for the smooth "
                     "benchmarks",
                     &final_time, cli::positive());
+    parser.add_real("--grading", "", "R",
+                    "grade the mesh toward the contact: element sizes h_k = h0 R^k, R in [1, 1.1] (1: uniform; "
+                    "dt = C h0); the paper's benchmark, smooth-impact, grazing and --initial-data only",
+                    &grading, cli::in_closed_range(1, largest_grading));
     parser.add_choice("--benchmark", "", "B",
                       mrm::repro::benchmark_help("initial data (S1, S2: mathematics.md sec. 11, L = 1)"),
                       mrm::repro::benchmark_names(), &benchmark);
@@ -270,6 +286,25 @@ int main(int argc, char** argv) {
       set_taken("--nitsche-gamma", mrm::SchemeParameter::nitsche_gamma, nitsche_gamma, preset.scheme.nitsche_gamma);
     }
     const mrm::Scheme scheme_id = mrm::scheme_by_name(scheme);
+    // Two bodies (two-bars, lib/two_bodies.hpp): Crank-Nicolson with a massless contact node on each bar,
+    // measured by run_configuration; the options of one body's run do not apply.
+    const bool two_bodies = field_benchmark && mrm::is_two_body_chain(mrm::impact_benchmark(benchmark).configuration);
+    if (two_bodies) {
+      if (scheme_id != mrm::Scheme::crank_nicolson)
+        throw cli::UsageError("--scheme: " + scheme + ": --benchmark " + benchmark +
+                              " (two bodies coupled by one contact multiplier) runs with cn only (allowed: cn)");
+    }
+    if (grading != 1.0 && field_benchmark)
+      throw cli::UsageError("--grading: " + cli::format_real(grading) + " with --benchmark " + benchmark +
+                            " (allowed: 1 on the field's benchmarks; in [1, 1.1] on paper, smooth-impact, grazing "
+                            "and --initial-data)");
+    // The coarsest element R^(N-1) h0: at most 1e6 h0 (beyond, h0 = L(R - 1)/(R^N - 1) underflows toward 0
+    // long before; the number of steps T/(C h0) is checked with the step below).
+    if (grading != 1.0 && (static_cast<double>(elements) - 1) * std::log(grading) > std::log(1e6))
+      throw cli::UsageError("--grading: " + cli::format_real(grading) + "^(N - 1) with N = " + std::to_string(elements) +
+                            " is more than 1e6 (allowed: R^(N - 1) <= 1e6, the coarsest element at most 1e6 h0)");
+    if (grading != 1.0 && phase_matched)
+      throw cli::UsageError("--phase-matched: its blend is derived on the uniform mesh (allowed: --grading 1)");
     mrm::repro::refuse_untaken(parser, scheme_id,
                                {{"--beta", mrm::SchemeParameter::beta},
                                 {"--restitution", mrm::SchemeParameter::restitution},
@@ -295,12 +330,13 @@ int main(int argc, char** argv) {
     configuration.length = length;
     configuration.amplitude = amplitude;
     configuration.elements = elements;
+    configuration.grading = grading;
     // The mesh (on a field benchmark with its material and far end; an interface must be a node, and
     // two-bars has no finite element run: refused here, naming the option) and h/c, the transit time of
     // one element at the contact end (h on the paper's bar): Δt = C h/c.
     cli::require_mesh_memory("--elements", static_cast<double>(elements), bytes_per_element);
     mrm::UniformMesh mesh(1.0, 2);
-    mrm::repro::as_usage_error({{"elements", "--elements"}, {"benchmark", "--benchmark"}},
+    mrm::repro::as_usage_error({{"elements", "--elements"}, {"benchmark", "--benchmark"}, {"grading", "--grading"}},
                                [&] { mesh = mrm::repro::configuration_mesh(configuration); });
     configuration.courant = 1.0;
     const double transit = configuration.step();
@@ -329,7 +365,14 @@ int main(int argc, char** argv) {
       } catch (const std::invalid_argument& e) {
         throw cli::UsageError(std::string("--phase-matched: ") + e.what());
       }
-    configuration.mass = mrm::repro::mass_from_option("--mass", mass, mesh, false, blend);
+    configuration.mass = mrm::repro::mass_from_option("--mass", mass, mesh, two_bodies, blend);
+    if (two_bodies)  // the options of one body's run (after the checks of the values the run takes)
+    for (const char* option : {"--output", "--peer", "--initial-contact-node", "--contact-velocity",
+                               "--interior-mass", "--phase-matched"})
+      if (parser.given(option))
+        throw cli::UsageError(std::string(option) + ": not with --benchmark " + benchmark +
+                              " (two bodies: the run has no one-body contact point; allowed: --scheme cn, --mass, "
+                              "--elements, --courant or --dt, --final-time, --no-timing)");
     const bool massless = mrm::contact_node_is_massless(mrm::modified_mass(mesh, configuration.mass));
     if (!massless && !parser.given("--ps-form")) ps_form = "literal";  // the only row of a node with inertia
     dt = step;                                                         // the header echoes the effective step
@@ -375,15 +418,24 @@ int main(int argc, char** argv) {
                                 {"gap", "--scheme"},
                                 {"scheme", "--scheme"}},
                                [&] {
+                                 if (two_bodies) {  // both meshes and the mass on each, Crank-Nicolson's step
+                                   for (int k = 0; k < 2; ++k)
+                                     mrm::modified_mass(mrm::repro::configuration_mesh(configuration, k),
+                                                        configuration.mass);
+                                   return;
+                                 }
                                  mrm::BarSimulation(mrm::repro::configuration_problem(configuration), mesh,
                                                     configuration.mass, configuration.scheme, step,
                                                     configuration.initial);
                                });
     std::shared_ptr<const mrm::ReferenceSolution> reference;
     mrm::repro::as_usage_error({{"final_time", "--final-time"}, {"configuration", "--final-time"}}, [&] {
+      if (two_bodies) {  // the chain's exact solution, built by the run (its horizon checked here)
+        mrm::repro::configuration_contact_windows(configuration, mrm::repro::reference_horizon(steps, step));
+        return;
+      }
       reference = mrm::repro::configuration_reference(configuration, mrm::repro::reference_horizon(steps, step));
     });
-    const mrm::ReferenceSolution& exact = *reference;
 
     if (series) {
       std::ostream& out = series->stream();
@@ -394,10 +446,11 @@ int main(int argc, char** argv) {
                                                  : "closed form, mathematics.md sec. 2")
           << ")\n";
       parser.echo(out);
-      out << "# h = " << cli::format_real(mesh.h()) << "\n# steps = " << steps
+      out << "# h = " << cli::format_real(mesh.h(0)) << (grading != 1.0 ? " (h0, the contact element)" : "")
+          << "\n# steps = " << steps
           << "\n# total_mass = " << cli::format_real(mrm::total_mass(mesh, configuration.mass))
           << "\n# massless_contact_node = " << (massless ? "true" : "false")
-          << "\n# exact_energy = " << cli::format_real(exact.energy()) << '\n'
+          << "\n# exact_energy = " << cli::format_real(reference->energy()) << '\n'
           << "# Each quantity is given at the instant it approximates: t for u0, t_lambda for lambda,\n"
           << "# t_energy for the energy (Paoli-Schatzman: lambda at t_n or t_{n+1}, energy at t_{n+1/2}).\n"
           << "# lambda_h = n/a where the level has no multiplier yet.\n"
@@ -407,13 +460,14 @@ int main(int argc, char** argv) {
     // 4. The run (repro/configurations: the errors and the energy range), writing the series if asked;
     // with a peer, its own measures beside (repro/peers.hpp).
     std::unique_ptr<mrm::repro::PeerMeasures> peer_measures;
-    if (use_peer) peer_measures = std::make_unique<mrm::repro::PeerMeasures>(mesh, exact);
+    if (use_peer) peer_measures = std::make_unique<mrm::repro::PeerMeasures>(mesh, *reference);
     const auto start = std::chrono::steady_clock::now();
-    const mrm::repro::Measures measures = mrm::repro::run_configuration(
+    const mrm::repro::Measures measures = two_bodies ? mrm::repro::run_configuration(configuration) : mrm::repro::run_configuration(
         configuration,
         [&](const mrm::Sample& s) {
           if (peer_measures) peer_measures->add(s);
           if (series) {
+            const mrm::ReferenceSolution& exact = *reference;
             std::ostream& out = series->stream();
             out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
                 << cli::format_real(exact.contact_displacement(s.time)) << ' ' << cli::format_real(s.multiplier_time)
@@ -473,6 +527,14 @@ int main(int argc, char** argv) {
       const mrm::PeriodPrediction law = mrm::predict_period(mesh, configuration.mass);
       std::cout << "period_law_first_impact_error = " << cli::format_real(law.first_impact_error) << '\n'
                 << "period_law_drift_per_period = " << cli::format_real(law.period_error) << '\n';
+      // On a graded mesh (issue 22): h0 and the coarsest element, and the first-order law's change of the
+      // drift against Mod 3's on the same mesh, Σ δm_i κ(x_i) (period_law.cpp, "unequal elements").
+      if (grading != 1.0)
+        std::cout << "grading = " << cli::format_real(grading) << '\n'
+                  << "h0 = " << cli::format_real(mesh.h(0)) << '\n'
+                  << "h_max = " << cli::format_real(mesh.h(elements - 1)) << '\n'
+                  << "period_law_first_order_drift_change_vs_mod3 = "
+                  << cli::format_real(mrm::first_order_period_change(mesh, configuration.mass)) << '\n';
     }
     // On a field benchmark: the exact contact windows over [0, T] (lib/impact_solution.hpp, computed in the
     // benchmark's own units) and the run's (the crossings of the contact indicator, phase.hpp), in the

@@ -1,8 +1,9 @@
 // fig_benchmark_convergence: convergence on the field's benchmarks, and the period law on graded meshes.
 //
-// What it computes. (1) On the field's benchmarks of lib/impact_solution.hpp that the finite element
-// runs take (bouncing, impacting, gravity-paper, layered; two-bars has two bodies and is not run), the
-// eight relative errors of mathematics.md §5 against the chain's exact solution (ImpactReference), for
+// What it computes. (1) On the field's benchmarks of lib/impact_solution.hpp (bouncing, impacting,
+// gravity-paper, layered, and two-bars: two meshes coupled by one contact multiplier, lib/two_bodies.hpp,
+// N elements on each bar, each measure the larger of the two bars'), the eight relative errors of
+// mathematics.md §5 against the chain's exact solution (ImpactReference, TwoBodyReference), for
 // Crank–Nicolson with Mod 1, 2 and 3, on the meshes N = N₀, 2N₀, …, 2^{K−1}N₀ with Δt = h/(2c) (h and
 // Δt refined together; c the wave speed at the contact end), each benchmark to its default horizon,
 // through repro::run_configuration (the harness's one path: the benchmark's load, gap, material and
@@ -16,7 +17,8 @@
 //
 // Predictions (conjectures: heuristic, from the regularity of the exact solutions, by the mechanisms
 // fig_smooth_convergence derives for S1):
-//   - bouncing, impacting, layered: an impact with non-zero velocity, then a release: λ jumps in time
+//   - bouncing, impacting, layered, two-bars: an impact with non-zero velocity (two-bars: at t = 0, the
+//     bars touching with their velocities), then a release: λ jumps in time
 //     (order ½ in L²(0,T): a jump misplaced by O(h)); u_t and u_x jump across the characteristics from the
 //     impact and release, smeared by Crank–Nicolson over W ≈ (h²t)^{1/3}: order ⅓ for the energy-type
 //     measures (u in H¹, u_t in L²); u has only kinks: order 1 in L², and u(0,·) order 1 (the release
@@ -37,8 +39,8 @@
 // blocks; (5) orders, windows, graded table and the values the report quotes; (6) commit.
 //
 // Data file: block 3b + m (b the benchmark in the order above, m ∈ mod1, mod2, mod3): columns N h dt and
-// the eight errors, h and dt in units of L and L/c; block 12: Δt alone (Mod 3, finest N; its Δt = h/(2c)
-// row is block 3b + 2's finest run); block 13: the
+// the eight errors, h and dt in units of L and L/c (two-bars: h = ℓ/N of one bar, in units of ℓ); block
+// 15: Δt alone (Mod 3, finest N; its Δt = h/(2c) row is block 3b + 2's finest run); block 16: the
 // graded table (r, h_max/h0, member, predicted, measured, |difference|, all per period in units of h₀).
 #include <algorithm>
 #include <array>
@@ -64,12 +66,13 @@
 #include "period_law.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
+#include "two_bodies.hpp"
 
 namespace cli = mrm::cli;
 
 namespace {
 
-const std::array<const char*, 4> benchmarks{"bouncing", "impacting", "gravity-paper", "layered"};
+const std::array<const char*, 5> benchmarks{"bouncing", "impacting", "gravity-paper", "layered", "two-bars"};
 const std::array<const char*, 3> masses{"mod1", "mod2", "mod3"};
 const std::array<double, 3> time_courants{2.0, 1.0, 0.5};  // Δt alone: Δt = C h/c on the finest mesh
 const std::array<double, 4> ratios{1.0, 1.0025, 1.005, 1.01};
@@ -127,7 +130,7 @@ int main(int argc, char** argv) {
     mrm::repro::FigureProgram program(
         "fig_benchmark_convergence",
         "Writes the relative errors against h on the field's benchmarks (bouncing, impacting, gravity-paper, "
-        "layered) for cn with mod1, mod2, mod3 against their exact solutions, the observed orders beside the "
+        "layered, two-bars) for cn with mod1, mod2, mod3 against their exact solutions, the observed orders beside the "
         "conjectured ones, the exact and measured contact windows, and the period law on graded meshes.",
         {"fig_benchmark_convergence --output output/data/fig_benchmark_convergence.dat --tex "
          "output/data/fig_benchmark_convergence.tex",
@@ -194,9 +197,10 @@ int main(int argc, char** argv) {
 
     // 4. The data blocks.
     std::ostream& out = program.header("relative errors against h on the field's benchmarks; graded period law");
-    out << "# blocks: 3 b + m: benchmark b in (bouncing, impacting, gravity-paper, layered), mass m in (mod1, "
-           "mod2, mod3), scheme cn, dt = h/(2c); 12: dt alone (mod3, N = "
-        << finest << "); 13: graded meshes\n";
+    const std::size_t time_block = benchmarks.size() * masses.size(), graded_block = time_block + 1;
+    out << "# blocks: 3 b + m: benchmark b in (bouncing, impacting, gravity-paper, layered, two-bars), mass m in "
+           "(mod1, mod2, mod3), scheme cn, dt = h/(2c); "
+        << time_block << ": dt alone (mod3, N = " << finest << "); " << graded_block << ": graded meshes\n";
     const auto at = [&](std::size_t b, std::size_t m, std::size_t l) -> const mrm::repro::Measures& {
       return measures[(b * masses.size() + m) * levels + l];
     };
@@ -214,7 +218,7 @@ int main(int argc, char** argv) {
           rows.push_back({static_cast<mrm::Index>(coarsest) << l, mrm::ErrorAccumulator::values(at(b, m, l).errors)});
         mrm::repro::write_error_rows(out, 1.0, courant, rows);
       }
-    out << "\n\n# block 12: dt alone, cn, mod3, N = " << finest << "\n# columns: benchmark dt_over_h_over_c";
+    out << "\n\n# block " << time_block << ": dt alone, cn, mod3, N = " << finest << "\n# columns: benchmark dt_over_h_over_c";
     for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
     out << '\n';
     for (std::size_t b = 0; b < benchmarks.size(); ++b)
@@ -223,7 +227,7 @@ int main(int argc, char** argv) {
         for (const double e : mrm::ErrorAccumulator::values(time_run(b, c).errors)) out << ' ' << cli::format_real(e);
         out << '\n';
       }
-    out << "\n\n# block 13: graded meshes h_k = h0 r^k, N = " << graded_elements << ", cn, dt = h0/2, "
+    out << "\n\n# block " << graded_block << ": graded meshes h_k = h0 r^k, N = " << graded_elements << ", cn, dt = h0/2, "
         << graded_periods << " periods; drifts per period in units of h0, each minus Mod 3's\n"
         << "# columns: r h_max_over_h0 member predicted measured difference\n";
 
@@ -331,10 +335,16 @@ int main(int argc, char** argv) {
         loads += (loads.empty() ? "" : ", ") +
                  (segment.load.empty() ? std::string("0") : "$" + mrm::tex_number(segment.load.front(), 3) + "$");
       }
+      // Two bodies: the gap between them, and the velocity of each (the left bar's, then the right one's).
+      const bool two = mrm::is_two_body_chain(bench.configuration);
+      const double gap = two ? bench.configuration.junctions.front().gap : bench.configuration.obstacle_gap;
+      const std::string velocity =
+          two ? mrm::tex_number(bench.data.velocity(0.0), 3) + ", " +
+                    mrm::tex_number(bench.data.velocity(bench.configuration.length()), 3)
+              : mrm::tex_number(bench.data.velocity(0.0), 3);
       data_table.add_row(
           {key, segments, loads, bench.configuration.far_end == mrm::FarEnd::free ? "free" : "clamped",
-           "$" + mrm::tex_number(bench.configuration.obstacle_gap, 3) + "$",
-           "$" + mrm::tex_number(bench.data.velocity(0.0), 3) + "$",
+           "$" + mrm::tex_number(gap, 3) + "$", "$" + velocity + "$",
            "$" + mrm::tex_number(bench.final_time, 3) + "$" + (bench.time_unit.empty() ? "" : "~" + bench.time_unit),
            mrm::claims::latex_escape(bench.source)});  // "Code_Aster", "01_bouncingBar": text, not math
       const std::vector<mrm::ContactInterval> exact =
@@ -350,6 +360,7 @@ int main(int argc, char** argv) {
         closed.push_back({t1, t1 + 2 * length / c, false});
       }
       if (id == "gravity-paper") closed.push_back({0.0, bench.final_time, true});
+      if (id == "two-bars") closed.push_back({0.0, 2 * bench.configuration.segments.front().length / c, false});
       const std::vector<mrm::ContactInterval>& other = closed.empty() ? at(3, 2, levels - 1).contact_windows : closed;
       double difference = exact.size() == other.size() ? 0.0 : HUGE_VAL;
       for (std::size_t w = 0; w < std::min(exact.size(), other.size()); ++w)

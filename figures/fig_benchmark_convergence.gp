@@ -1,17 +1,17 @@
-# Convergence on the field's benchmarks (bouncing, impacting, gravity-paper, layered; Crank–Nicolson,
+# Convergence on the field's benchmarks (bouncing, impacting, gravity-paper, layered, two-bars; Crank–Nicolson,
 # dt = h/(2c)): four relative errors against h, one panel per benchmark and measure, one curve per mass
 # (Mod 1 red, Mod 2 blue, Mod 3 green); the grey lines are reference slopes h^{1/2} and h^1. Blocks
-# 0..11 of the data file ("benchmark = b, mass = m"); the axes are set by the data.
+# 0..14 of the data file (two-bars: h of one bar) ("benchmark = b, mass = m"); the axes are set by the data.
 # Usage: gnuplot -e "data='output/data/fig_benchmark_convergence.dat'; output='output/figures/fig_benchmark_convergence.pdf'" figures/fig_benchmark_convergence.gp
 if (!exists("data")) data = 'output/data/fig_benchmark_convergence.dat'
 if (!exists("output")) output = 'output/figures/fig_benchmark_convergence.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,21cm font font(9) linewidth 1.5 enhanced
+set terminal pdfcairo size 16cm,25cm font font(9) linewidth 1.5 enhanced
 set output output
 
-benchmarks = "bouncing impacting gravity-paper layered"
+benchmarks = "bouncing impacting gravity-paper layered two-bars"
 masses = "mod1 mod2 mod3"
 measures = "err_u_L2L2 err_lambda_L2 err_u_L2H1 err_v_L2L2"
 block_of(b, m) = system(sprintf("awk '/^# block [0-9]+: benchmark = %s, mass = %s,/{sub(/:/, \"\", $3); print $3; exit}' '%s'", \
@@ -25,9 +25,9 @@ set format x "2^{%L}"
 set format y "10^{%L}"
 set autoscale xfix
 set offsets graph 0.05, graph 0.05, 0, 0
-set multiplot layout 4,4 title "Convergence on the field's benchmarks (Crank–Nicolson, ".Delta_t." = ".italic("h")."/2".italic("c").")" \
-  font font(11) margins 0.08,0.98,0.05,0.9 spacing 0.06,0.05
-do for [i=1:4] {
+set multiplot layout 5,4 title "Convergence on the field's benchmarks (Crank–Nicolson, ".Delta_t." = ".italic("h")."/2".italic("c").")" \
+  font font(11) margins 0.08,0.98,0.04,0.92 spacing 0.06,0.045
+do for [i=1:5] {
   b = word(benchmarks, i)
   do for [k=1:4] {
     id = word(measures, k)
@@ -38,9 +38,9 @@ do for [i=1:4] {
     h0 = STATS_max
     stats data index anchor every ::0::0 using (column(c)) nooutput
     e0 = STATS_max / 2.0
-    if (i == 4) { set xlabel italic("h") } else { unset xlabel }
+    if (i == 5) { set xlabel italic("h") } else { unset xlabel }
     if (i == 1 && k == 1) {
-      set key at screen 0.5,0.945 center top horizontal samplen 3 width 1
+      set key at screen 0.5,0.955 center top horizontal samplen 3 width 1
     } else {
       unset key
     }

@@ -16,6 +16,7 @@
 #include "impact_solution.hpp"
 #include "parallel.hpp"
 #include "smooth_benchmarks.hpp"
+#include "two_bodies.hpp"
 
 namespace mrm::repro {
 
@@ -46,8 +47,16 @@ double contact_wave_speed(const Configuration& c) {
 double Configuration::step() const {
   if (dt > 0) return dt;
   const ImpactBenchmark* b = configuration_field(*this);
-  if (!b) return courant * UniformMesh(bar_length(), elements).h();
+  if (!b) return courant * (grading == 1.0 ? UniformMesh(bar_length(), elements).h()
+                                           : graded_mesh(bar_length(), elements, grading).h(0));
+  if (is_two_body_chain(b->configuration))  // h = ℓ/N of the left body (N elements on each body)
+    return courant * (UniformMesh(b->configuration.segments.front().length, elements).h() / contact_wave_speed(*this));
   return courant * (UniformMesh(bar_length(), elements).h() / contact_wave_speed(*this));
+}
+
+bool is_two_body_configuration(const Configuration& c) {
+  const ImpactBenchmark* b = configuration_field(c);
+  return b && is_two_body_chain(b->configuration);
 }
 
 InitialData configuration_data(const Configuration& c) {
@@ -99,6 +108,9 @@ TEST_CASE("the exact contact windows of the paper's benchmark are [1 + 3k, 2 + 3
 Problem configuration_problem(const Configuration& c) {
   if (!c.data && c.benchmark == "paper") return benchmark_problem(c.length, c.amplitude);
   const ImpactBenchmark* b = configuration_field(c);
+  if (b && is_two_body_chain(b->configuration))
+    throw InvalidParameter("benchmark", b->id + ": two bodies have no one-body problem (run_configuration runs "
+                                                "them with lib/two_bodies.hpp)");
   Problem problem = configuration_data(c).problem();
   if (!b) return problem;
   configuration_mesh(c);  // refuses what the finite element runs do not take
@@ -124,19 +136,35 @@ Problem configuration_problem(const Configuration& c) {
 // an interface must be a node: x_j/L = k/N for an integer k, that is N a multiple of the denominator q_j
 // of x_j/L (found as the least q ≤ 10⁴ with q x_j/L within 1e-9 of an integer); the allowed N are the
 // multiples of the least common multiple of the q_j.
-UniformMesh configuration_mesh(const Configuration& c) {
-  UniformMesh mesh(c.bar_length(), c.elements);
+UniformMesh configuration_mesh(const Configuration& c, int body) {
   const ImpactBenchmark* b = configuration_field(c);
+  if (c.grading != 1.0) {
+    if (b)
+      throw InvalidParameter("grading", "a graded mesh is for the paper's benchmark, the smooth ones and data of "
+                                        "one's own (allowed on " + b->id + ": 1, the uniform mesh)");
+    return graded_mesh(c.bar_length(), c.elements, c.grading);
+  }
+  UniformMesh mesh(c.bar_length(), c.elements);
   if (!b) return mesh;
   const ImpactConfiguration& chain = b->configuration;
+  if (is_two_body_chain(chain)) {
+    // Body k in its own frame (lib/two_bodies.hpp): its segment, N elements, its far end (the left
+    // body's is x = 0, free: no obstacle; the right body's is the chain's far end).
+    const BarSegment& s = chain.segments.at(static_cast<std::size_t>(body));
+    UniformMesh own(s.length, c.elements);
+    if (s.modulus != 1.0 || s.density != 1.0)
+      own = with_material(own, std::vector<double>(static_cast<std::size_t>(c.elements), s.modulus),
+                          std::vector<double>(static_cast<std::size_t>(c.elements), s.density));
+    return with_far_end(own, body == 0 ? FarEnd::free : chain.far_end);
+  }
   bool two_bodies = !chain.obstacle;
   for (const SegmentJunction& j : chain.junctions) two_bodies = two_bodies || j.contact;
   if (two_bodies)
     throw InvalidParameter("benchmark", b->id +
-                                            ": the finite element runs take one body against a rigid obstacle; "
-                                            "two bars coupled by one contact multiplier are not implemented "
-                                            "(allowed: bouncing, impacting, gravity-paper, layered, paper, "
-                                            "smooth-impact, grazing)");
+                                            ": the finite element runs take one body against a rigid obstacle, "
+                                            "or two bodies in contact with each other (allowed: bouncing, "
+                                            "impacting, gravity-paper, two-bars, layered, paper, smooth-impact, "
+                                            "grazing)");
   const double length = chain.length(), n = static_cast<double>(c.elements);
   long multiple = 1;
   bool misplaced = false;
@@ -349,10 +377,14 @@ namespace {
 // (to 1e-9), which puts every node and level on it (characteristics.hpp: TabulatedSolution);
 // otherwise the characteristic solution is evaluated directly.
 std::shared_ptr<const ReferenceSolution> unit_reference(const Configuration& c, double horizon) {
-  if (!c.data && c.benchmark == "paper") return std::make_shared<const ExactSolution>(c.length, c.amplitude);
+  // The closed form's error sums need the uniform mesh (errors.cpp); a graded mesh takes the
+  // characteristic solution of the same data (equal to the closed form: the doctests of phase.cpp).
+  if (!c.data && c.benchmark == "paper" && c.grading == 1.0)
+    return std::make_shared<const ExactSolution>(c.length, c.amplitude);
   if (const ImpactBenchmark* b = configuration_field(c))
     return std::make_shared<const ImpactReference>(b->configuration, b->data, horizon);
   CharacteristicSolution solution(configuration_data(c), horizon);
+  if (c.grading != 1.0) return std::make_shared<const CharacteristicSolution>(std::move(solution));
   const double h = UniformMesh(c.bar_length(), c.elements).h(), dt = c.step();
   const double small = std::min(h, dt), ratio = std::max(h, dt) / small;
   if (std::abs(ratio - std::round(ratio)) <= 1e-9 * ratio && horizon / small <= 1e7)
@@ -380,7 +412,7 @@ std::shared_ptr<const ReferenceSolution> to_unit(std::shared_ptr<const Reference
 
 void require_reference_memory(const Configuration& c, double horizon, std::string_view option) {
   // The paper's closed form needs none; a field benchmark's solver bounds its own pieces (ImpactSolution).
-  if (!c.data && (c.benchmark == "paper" || configuration_field(c))) return;
+  if (!c.data && ((c.benchmark == "paper" && c.grading == 1.0) || configuration_field(c))) return;
   double coefficients = 0;
   for (const InitialDataPiece& piece : configuration_data(c).pieces)
     coefficients += static_cast<double>(piece.displacement.size() + piece.velocity.size());
@@ -391,7 +423,7 @@ void require_reference_memory(const Configuration& c, double horizon, std::strin
 }
 
 std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& c, double horizon) {
-  if (!c.data && c.benchmark == "paper") return std::make_shared<const ExactSolution>(c.length, c.amplitude);
+  if (!c.data && c.benchmark == "paper" && c.grading == 1.0) return std::make_shared<const ExactSolution>(c.length, c.amplitude);
   const Scaling s = configuration_scaling(c);
   std::shared_ptr<const ReferenceSolution> unit = unit_reference(unit_configuration(c, s), horizon / s.time_scale());
   if (s.identity()) return unit;
@@ -530,6 +562,9 @@ ContactVelocity contact_velocity_by_name(const std::string& name) {
 // detector's chatter rule) paired as mutual nearest neighbours, with their mean interval as the unit.
 // Any other reference (a closed form under test) gives no phase.
 namespace {
+std::optional<PhaseMeasures> phase_from_contacts(const std::vector<double>& impacts,
+                                                 const std::vector<ContactInterval>& contacts, double horizon,
+                                                 double minimum_free_interval);
 std::optional<PhaseMeasures> phase_against(const std::vector<double>& impacts, const ReferenceSolution& exact,
                                            double minimum_free_interval) {
   if (const auto* closed_form = dynamic_cast<const ExactSolution*>(&exact))
@@ -538,8 +573,15 @@ std::optional<PhaseMeasures> phase_against(const std::vector<double>& impacts, c
   if (const auto* tabulated = dynamic_cast<const TabulatedSolution*>(&exact)) characteristic = &tabulated->solution();
   const auto* chain = dynamic_cast<const ImpactReference*>(&exact);
   if (!characteristic && !chain) return std::nullopt;
-  const std::vector<ContactInterval>& contacts =
-      characteristic ? characteristic->contact_intervals() : chain->contact_windows();
+  return phase_from_contacts(impacts, characteristic ? characteristic->contact_intervals() : chain->contact_windows(),
+                             characteristic ? characteristic->horizon() : chain->solution().horizon(),
+                             minimum_free_interval);
+}
+
+// The phase against exact contact intervals over [0, horizon] (the rule above).
+std::optional<PhaseMeasures> phase_from_contacts(const std::vector<double>& impacts,
+                                                 const std::vector<ContactInterval>& contacts, double horizon,
+                                                 double minimum_free_interval) {
   const std::vector<double> exact_impacts = impact_times(contacts, minimum_free_interval);
   // The free flight before a lone exact impact starts at the release from a contact held from t = 0.
   double free_flight_start = 0;
@@ -547,9 +589,7 @@ std::optional<PhaseMeasures> phase_against(const std::vector<double>& impacts, c
     if (!exact_impacts.empty() && contact.end <= exact_impacts.front()) free_flight_start = contact.end;
   const auto [measured, exact_paired] = nearest_impact_pairs(impacts, exact_impacts, free_flight_start);
   if (exact_paired.empty() || exact_paired.front() != exact_impacts.front()) return std::nullopt;
-  const double unit = exact_impacts.size() >= 2 ? mean_impact_interval(exact_impacts)
-                      : characteristic          ? characteristic->horizon()
-                                                : chain->solution().horizon();
+  const double unit = exact_impacts.size() >= 2 ? mean_impact_interval(exact_impacts) : horizon;
   return phase_measures(measured, exact_paired, unit);
 }
 }  // namespace
@@ -561,8 +601,121 @@ std::optional<PhaseMeasures> phase_against(const std::vector<double>& impacts, c
 // the exact impacts are measured by phase_against. With
 // ContactVelocity::backward_difference the errors see a copy of the velocity whose contact entry is
 // (u₀ⁿ − u₀ⁿ⁻¹)/Δt from level 1 on; the impacts and the energy are the scheme's either way.
+// Two bodies (two-bars; lib/two_bodies.hpp). The unit configuration's chain (the scaling of the field
+// benchmarks above), each body in its own frame with its data read off the chain's exact solution at
+// t = 0 (its own side of the junction), Crank–Nicolson, and the measures of run_configuration: each
+// body's eight errors in its own frame against the chain's exact solution (TwoBodyReference: the same
+// relative measures, since the frames only flip signs), the larger of the two per measure; the energy of
+// the pair; the contact indicator s = w₁ᴬ + w₁ᴮ + g₀ (TwoBodySimulation::indicator, the one body's
+// u₁ + hF₀) for the impacts and windows, with the chatter filter of one transit of the shorter body; the
+// penetration −z; TV(λ) against the junction's exact stress.
+namespace {
+Measures run_two_bodies(const Configuration& configuration) {
+  const Scaling scaling = configuration_scaling(configuration);
+  const Configuration c = unit_configuration(configuration, scaling);
+  const ImpactBenchmark& b = *configuration_field(c);
+  if (c.scheme.scheme != Scheme::crank_nicolson)
+    throw InvalidParameter("scheme", b.id + ": two bodies coupled by one contact multiplier run with Crank-Nicolson "
+                                            "only (allowed: cn)");
+  for (const BarSegment& segment : b.configuration.segments)
+    for (const double f : segment.load)
+      if (f != 0.0) throw InvalidParameter("benchmark", b.id + ": two bodies take no load (lib/two_bodies.hpp)");
+  const double dt = c.step();
+  Measures m;
+  m.steps = c.steps >= 0 ? c.steps : steps_to_reach(c.final_time, dt);
+  for (std::size_t k = 0; k < c.horizons.size(); ++k)
+    if (!(c.horizons[k] > 0 && c.horizons[k] <= c.final_time && (k == 0 || c.horizons[k] > c.horizons[k - 1])))
+      throw std::invalid_argument("run_configuration: the horizons must increase within (0, T]");
+  const auto chain = std::make_shared<const ImpactSolution>(b.configuration, b.data, reference_horizon(m.steps, dt));
+  std::array<std::shared_ptr<const TwoBodyReference>, 2> exact;
+  std::array<TwoBodyPart, 2> parts;
+  for (int k = 0; k < 2; ++k) {
+    exact[k] = std::make_shared<const TwoBodyReference>(chain, k);
+    TwoBodyPart& part = parts[k];
+    part.mesh = configuration_mesh(c, k);
+    part.redistribution = c.mass;
+    const Index n = part.mesh.unknowns();
+    part.displacement.resize(n);
+    part.velocity.resize(n);
+    for (Index i = 0; i < n; ++i) {
+      part.displacement[i] = exact[k]->displacement(part.mesh.x(i), 0.0);
+      part.velocity[i] = exact[k]->velocity(part.mesh.x(i), 0.0);
+    }
+  }
+  TwoBodySimulation simulation(parts, b.configuration.junctions.front().gap, dt);
+  std::array<ErrorAccumulator, 2> errors{ErrorAccumulator(simulation.mesh(0), exact[0]),
+                                         ErrorAccumulator(simulation.mesh(1), exact[1])};
+  const auto larger = [&] {
+    const auto a = ErrorAccumulator::values(errors[0].relative()), e = ErrorAccumulator::values(errors[1].relative());
+    ErrorNorms n = errors[0].relative();
+    double* fields[8] = {&n.u0_L2, &n.lambda_L2, &n.u_LinfL2, &n.u_LinfH1, &n.v_LinfL2, &n.u_L2L2, &n.u_L2H1, &n.v_L2L2};
+    for (std::size_t k = 0; k < 8; ++k) *fields[k] = std::max(a[k], e[k]);
+    return n;
+  };
+  std::vector<Index> horizon_levels;
+  for (double t : c.horizons) horizon_levels.push_back(steps_to_reach(t, dt));
+  std::size_t next_horizon = 0;
+  const double transit = std::min(b.configuration.segments[0].length, b.configuration.segments[1].length);
+  ImpactDetector impacts(transit);
+  double energy_min = std::numeric_limits<double>::infinity(), energy_max = -energy_min;
+  double tv = 0, tv_exact = 0, lambda_previous = 0, exact_previous = 0, penetration = 0;
+  for (Index n = 0;; ++n) {
+    const double t = simulation.time(), lambda = simulation.multiplier(), energy = simulation.energy();
+    for (int k = 0; k < 2; ++k) {
+      const Sample s{n,      t,    &simulation.displacement(k), t, &simulation.velocity(k), true, t, lambda, t,
+                     energy};
+      errors[k].add(s);
+    }
+    const double lambda_exact = chain->contact_stress(0, t);
+    if (n > 0) tv += std::abs(lambda - lambda_previous), tv_exact += std::abs(lambda_exact - exact_previous);
+    lambda_previous = lambda, exact_previous = lambda_exact;
+    penetration = std::max(penetration, -simulation.gap());
+    impacts.add(t, simulation.indicator());
+    while (next_horizon < horizon_levels.size() && n == horizon_levels[next_horizon]) {
+      m.horizon_errors.push_back(larger());
+      ++next_horizon;
+    }
+    if (!std::isfinite(energy)) throw std::runtime_error("the run produced a non-finite energy");
+    if (n == 0) m.energy_initial = energy;
+    m.energy_final = energy;
+    energy_min = std::min(energy_min, energy);
+    energy_max = std::max(energy_max, energy);
+    if (n == m.steps) break;
+    simulation.step();
+  }
+  m.errors = larger();
+  m.energy_initial = scaling.energy(m.energy_initial);
+  m.energy_final = scaling.energy(m.energy_final);
+  m.energy_min = scaling.energy(energy_min);
+  m.energy_max = scaling.energy(energy_max);
+  if (tv_exact > 0) m.lambda_tv_ratio = tv / tv_exact;
+  m.max_penetration = scaling.displacement(1.0) * penetration;
+  if (!impacts.impacts().empty()) {
+    m.phase = phase_from_contacts(impacts.impacts(), chain->contact_windows(0), chain->horizon(), transit);
+    if (m.phase) {
+      m.phase->first_impact_error = scaling.time(m.phase->first_impact_error);
+      m.phase->period = scaling.time(m.phase->period);
+      if (m.phase->drift_per_period) m.phase->drift_per_period = scaling.time(*m.phase->drift_per_period);
+    }
+  }
+  for (const double t : impacts.impacts()) m.impacts.push_back(scaling.time(t));
+  for (ContactInterval w : impacts.windows()) {
+    w.start = scaling.time(w.start);
+    w.end = scaling.time(w.end);
+    m.contact_windows.push_back(w);
+  }
+  return m;
+}
+}  // namespace
+
 Measures run_configuration(const Configuration& configuration, const std::function<void(const Sample&)>& observe,
                            const ReferenceSolution* reference) {
+  if (is_two_body_configuration(configuration)) {
+    if (observe || reference)
+      throw std::invalid_argument("run_configuration: two bodies take no observer and no reference (a Sample is one "
+                                  "body's)");
+    return run_two_bodies(configuration);
+  }
   const Scaling scaling = configuration_scaling(configuration);
   const Configuration c = unit_configuration(configuration, scaling);
   const UniformMesh mesh = configuration_mesh(c);
@@ -866,8 +1019,20 @@ TEST_CASE("the field's benchmarks run through the harness in their own units aga
       previous = errors[5];
     }
   }
+  // Two bodies: Crank–Nicolson only (named), N elements on each 10-long bar (h = 10/N, Δt = C h).
   c.benchmark = "two-bars";
-  CHECK_THROWS_WITH_AS(run_configuration(c), doctest::Contains("benchmark: two-bars"), InvalidParameter);
+  c.elements = 20;
+  CHECK(is_two_body_configuration(c));
+  CHECK(c.step() == 0.5 * (10.0 / 20));
+  CHECK(configuration_mesh(c, 1).length == 10.0);
+  CHECK(configuration_mesh(c, 0).far_end == FarEnd::free);
+  c.scheme.scheme = Scheme::backward_euler;
+  CHECK_THROWS_WITH_AS(run_configuration(c), doctest::Contains("allowed: cn"), InvalidParameter);
+  c.scheme.scheme = Scheme::crank_nicolson;
+  CHECK_THROWS_AS(configuration_problem(c), InvalidParameter);
+  c.grading = 1.01;
+  CHECK_THROWS_WITH_AS(configuration_mesh(c), doctest::Contains("grading"), InvalidParameter);
+  c.grading = 1.0;
   c.benchmark = "layered";
   c.elements = 42;
   CHECK_THROWS_WITH_AS(configuration_mesh(c), doctest::Contains("N a multiple of 5"), InvalidParameter);

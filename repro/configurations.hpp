@@ -93,12 +93,17 @@ struct Configuration {
   std::shared_ptr<const InitialData> data;
   /// The contact node's velocity in the velocity measures (the library's by default).
   ContactVelocity contact_velocity = ContactVelocity::algebraic;
+  /// The mesh's grading ratio r: element sizes h_k = h₀ r^k, k = 0..N−1, finer toward the contact for
+  /// r > 1 (graded_mesh, lib/p1.hpp); 1, the uniform mesh, by default. Not on a field benchmark
+  /// (configuration_mesh refuses it: their interfaces and Δt = C h/c are set on the uniform mesh).
+  double grading = 1.0;
 
   /// The length of the bar: L of the data, of a field benchmark's chain, of the smooth benchmarks (1), or
   /// `length`.
   double bar_length() const;
   /// Δt: dt if given, otherwise C h/c with c the wave speed at the contact end (1 but on a field
-  /// benchmark: C is the Courant number of the contact element).
+  /// benchmark: C is the Courant number of the contact element), h the contact element's size: L/N, h₀
+  /// on a graded mesh, ℓ/N on two bodies (N elements on each body, ℓ the left body's length).
   double step() const;
 };
 
@@ -138,18 +143,24 @@ Scaling configuration_scaling(const Configuration& configuration);
 Configuration unit_configuration(const Configuration& configuration, const Scaling& scaling);
 
 /// The problem of a configuration: its initial data, f = 0 (a field benchmark: its load and gap). Throws
-/// std::invalid_argument for an unknown benchmark name, InvalidParameter ("benchmark") for two-bars.
+/// std::invalid_argument for an unknown benchmark name, InvalidParameter ("benchmark") for two-bars (two
+/// bodies have no one-body problem: run_configuration runs them).
 Problem configuration_problem(const Configuration& configuration);
 
 /// The field benchmark of a configuration (its `field`, or the registry's entry named `benchmark`), or
 /// null for the paper's, the smooth ones and data of one's own.
 const ImpactBenchmark* configuration_field(const Configuration& configuration);
 
-/// The mesh of a configuration: N uniform elements on (0, L), and on a field benchmark its material per
-/// element and its far end. Throws InvalidParameter ("elements") when an interface between two
-/// materials is not a node (the allowed N named), InvalidParameter ("benchmark") for a benchmark the
-/// finite element runs do not take (two-bars: two bodies).
-UniformMesh configuration_mesh(const Configuration& configuration);
+/// The mesh of a configuration: N uniform elements on (0, L) (graded by Configuration::grading), and on
+/// a field benchmark its material per element and its far end. Throws InvalidParameter ("elements") when
+/// an interface between two materials is not a node (the allowed N named), InvalidParameter
+/// ("grading") for a grading on a field benchmark. On two bodies (two-bars: is_two_body_chain), the
+/// mesh of body k (0 the left one) in its own frame (lib/two_bodies.hpp: ξ from its contact end): N
+/// elements on its length, its material, its far end; both bodies have N elements.
+UniformMesh configuration_mesh(const Configuration& configuration, int body = 0);
+/// Whether the configuration is a field benchmark of two bodies in contact (two-bars), which
+/// run_configuration runs with lib/two_bodies.hpp (Crank–Nicolson only).
+bool is_two_body_configuration(const Configuration& configuration);
 
 /// The initial data of a configuration as piecewise polynomials (the paper's, a smooth benchmark's or
 /// the file's).
@@ -219,6 +230,13 @@ struct Measures {
 /// configuration_reference up to reference_horizon. Throws std::runtime_error if the energy becomes
 /// non-finite (a value that cannot be computed is an error, never a nan in a table),
 /// std::invalid_argument for horizons that do not increase or exceed the final time.
+///
+/// Two bodies (is_two_body_configuration) run with mrm::TwoBodySimulation (Crank–Nicolson; any other
+/// scheme throws InvalidParameter ("scheme")), N elements and the mass on each body; each body's eight
+/// errors are measured in its own frame against the chain's exact solution (mrm::TwoBodyReference), and
+/// each measure is the larger of the two bodies'; u(0,·) is each body's contact node, λ the contact
+/// stress, the energy the pair's, the impacts, windows and penetration those of the gap between the
+/// bodies. They take no `observe` and no `reference` (std::invalid_argument: a Sample is one body's).
 Measures run_configuration(const Configuration& configuration, const std::function<void(const Sample&)>& observe = {},
                            const ReferenceSolution* reference = nullptr);
 
