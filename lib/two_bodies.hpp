@@ -56,6 +56,7 @@ class TwoBodySimulation {
   struct Body {
     UniformMesh mesh{1.0, 2};
     Tridiagonal mass, stiffness;     // M̄ and S on the unknowns (own frame)
+    Tridiagonal interior_mass;       // M̄_II: M̄ on nodes 1..
     Tridiagonal interior_stiffness;  // S̃: S on nodes 1.. with S̃₁₁ = S₁₁ + S₁₀ (u₀ eliminated)
     Eigen::VectorXd w, v;            // Wⁿ, Vⁿ on the unknowns
     Eigen::VectorXd response;        // y = A⁻¹e₁ on nodes 1..
