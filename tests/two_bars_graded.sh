@@ -4,9 +4,9 @@
 #     graded mesh (`--grading 1.01` on the paper's benchmark) against their committed outputs in
 #     tests/expected/ (numdiff -r 1e-12 -a 1e-14, the tolerance of tests/expected/README.md: a few
 #     thousand Crank-Nicolson steps on values of order one); `--update` makes them again;
-#   - two-bars: the exact windows are [0, 20] (2L/c), the measured release within 2h of it (Mod 3 keeps
-#     the bar's mass: the period law's release error is O(h), measured 0.06 h at N = 40 ... see the
-#     golden file), and the same bytes twice (deterministic);
+#   - two-bars: the exact windows are [0, 20] (2L/c), the measured release within 2h of it (0.14 h here,
+#     Mod 3, N = 40; the release error falls at an order near 2/3, so in units of h it grows: measured
+#     from N = 10 to 640 for Mod 1, 2, 3, at most 1.7 h, Mod 1 at N = 640), and the same bytes twice;
 #   - graded: the measured drift per period within 0.15 h0 of the eigenvalue law's prediction (the
 #     resolution of the measurement, fig_benchmark_convergence's graded table);
 #   - hostile: a closed standard output is an error (exit status not 0), for both paths.
@@ -49,7 +49,7 @@ done
 
 # two-bars: windows, determinism.
 grep -q '^exact_contact_windows = \[0, 20\]$' "$work/two_bars.txt" || fail "two-bars: exact windows not [0, 20]"
-release=$(awk '$1 == "measured_contact_windows" {gsub(/[],]/, "", $5); print $5}' "$work/two_bars.txt")
+release=$(awk '$1 == "measured_contact_windows" {gsub(/[],]/, "", $4); print $4}' "$work/two_bars.txt")
 awk -v r="$release" 'BEGIN {exit !(r > 20 - 2 * 10 / 40 && r < 20 + 2 * 10 / 40)}' ||
   fail "two-bars: measured release $release not within 2h = 0.5 of 20"
 cmp -s "$work/two_bars.txt" <("$bar1d" "${two_bars[@]}") || fail "two-bars: two runs differ"
