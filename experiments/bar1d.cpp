@@ -301,7 +301,8 @@ int main(int argc, char** argv) {
     // The coarsest element R^(N-1) h0: at most 1e6 h0 (beyond, h0 = L(R - 1)/(R^N - 1) underflows toward 0
     // long before; the number of steps T/(C h0) is checked with the step below).
     if (grading != 1.0 && (static_cast<double>(elements) - 1) * std::log(grading) > std::log(1e6))
-      throw cli::UsageError("--grading: " + cli::format_real(grading) + "^(N - 1) with N = " + std::to_string(elements) +
+      throw cli::UsageError("--grading: " + cli::format_real(grading) +
+                            "^(N - 1) with N = " + std::to_string(elements) +
                             " is more than 1e6 (allowed: R^(N - 1) <= 1e6, the coarsest element at most 1e6 h0)");
     if (grading != 1.0 && phase_matched)
       throw cli::UsageError("--phase-matched: its blend is derived on the uniform mesh (allowed: --grading 1)");
@@ -367,12 +368,12 @@ int main(int argc, char** argv) {
       }
     configuration.mass = mrm::repro::mass_from_option("--mass", mass, mesh, two_bodies, blend);
     if (two_bodies)  // the options of one body's run (after the checks of the values the run takes)
-    for (const char* option : {"--output", "--peer", "--initial-contact-node", "--contact-velocity",
-                               "--interior-mass", "--phase-matched"})
-      if (parser.given(option))
-        throw cli::UsageError(std::string(option) + ": not with --benchmark " + benchmark +
-                              " (two bodies: the run has no one-body contact point; allowed: --scheme cn, --mass, "
-                              "--elements, --courant or --dt, --final-time, --no-timing)");
+      for (const char* option :
+           {"--output", "--peer", "--initial-contact-node", "--contact-velocity", "--interior-mass", "--phase-matched"})
+        if (parser.given(option))
+          throw cli::UsageError(std::string(option) + ": not with --benchmark " + benchmark +
+                                " (two bodies: the run has no one-body contact point; allowed: --scheme cn, --mass, "
+                                "--elements, --courant or --dt, --final-time, --no-timing)");
     const bool massless = mrm::contact_node_is_massless(mrm::modified_mass(mesh, configuration.mass));
     if (!massless && !parser.given("--ps-form")) ps_form = "literal";  // the only row of a node with inertia
     dt = step;                                                         // the header echoes the effective step
@@ -401,6 +402,10 @@ int main(int argc, char** argv) {
     // algebraic row or ec with a contact node that has inertia, a literal row with beta < 1/4 and a massless
     // node) and names the parameter, worded here as the option that sets it.
     // An explicit scheme's stability limit names the option that set the step.
+    // Two bodies: both meshes with the mass on each (their Crank-Nicolson step needs nothing else).
+    if (two_bodies)
+      for (int k = 0; k < 2; ++k)
+        mrm::modified_mass(mrm::repro::configuration_mesh(configuration, k), configuration.mass);
     mrm::repro::as_usage_error({{"dt", parser.given("--dt") ? "--dt" : "--courant"},
                                 {"mass_lumping", "--lumping"},
                                 {"beta", "--beta"},
@@ -418,12 +423,7 @@ int main(int argc, char** argv) {
                                 {"gap", "--scheme"},
                                 {"scheme", "--scheme"}},
                                [&] {
-                                 if (two_bodies) {  // both meshes and the mass on each, Crank-Nicolson's step
-                                   for (int k = 0; k < 2; ++k)
-                                     mrm::modified_mass(mrm::repro::configuration_mesh(configuration, k),
-                                                        configuration.mass);
-                                   return;
-                                 }
+                                 if (two_bodies) return;
                                  mrm::BarSimulation(mrm::repro::configuration_problem(configuration), mesh,
                                                     configuration.mass, configuration.scheme, step,
                                                     configuration.initial);
@@ -462,22 +462,25 @@ int main(int argc, char** argv) {
     std::unique_ptr<mrm::repro::PeerMeasures> peer_measures;
     if (use_peer) peer_measures = std::make_unique<mrm::repro::PeerMeasures>(mesh, *reference);
     const auto start = std::chrono::steady_clock::now();
-    const mrm::repro::Measures measures = two_bodies ? mrm::repro::run_configuration(configuration) : mrm::repro::run_configuration(
-        configuration,
-        [&](const mrm::Sample& s) {
-          if (peer_measures) peer_measures->add(s);
-          if (series) {
-            const mrm::ReferenceSolution& exact = *reference;
-            std::ostream& out = series->stream();
-            out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
-                << cli::format_real(exact.contact_displacement(s.time)) << ' ' << cli::format_real(s.multiplier_time)
-                << ' ' << (s.has_multiplier ? cli::format_real(s.multiplier) : "n/a") << ' '
-                << cli::format_real(exact.contact_multiplier(s.multiplier_time)) << ' '
-                << cli::format_real(s.energy_time) << ' ' << cli::format_real(s.energy) << ' '
-                << cli::format_real(exact.energy()) << '\n';
-          }
-        },
-        reference.get());
+    const mrm::repro::Measures measures =
+        two_bodies ? mrm::repro::run_configuration(configuration)
+                   : mrm::repro::run_configuration(
+                         configuration,
+                         [&](const mrm::Sample& s) {
+                           if (peer_measures) peer_measures->add(s);
+                           if (series) {
+                             const mrm::ReferenceSolution& exact = *reference;
+                             std::ostream& out = series->stream();
+                             out << cli::format_real(s.time) << ' ' << cli::format_real((*s.displacement)[0]) << ' '
+                                 << cli::format_real(exact.contact_displacement(s.time)) << ' '
+                                 << cli::format_real(s.multiplier_time) << ' '
+                                 << (s.has_multiplier ? cli::format_real(s.multiplier) : "n/a") << ' '
+                                 << cli::format_real(exact.contact_multiplier(s.multiplier_time)) << ' '
+                                 << cli::format_real(s.energy_time) << ' ' << cli::format_real(s.energy) << ' '
+                                 << cli::format_real(exact.energy()) << '\n';
+                           }
+                         },
+                         reference.get());
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     // 5. The figures, then the output file.

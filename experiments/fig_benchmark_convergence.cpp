@@ -218,7 +218,8 @@ int main(int argc, char** argv) {
           rows.push_back({static_cast<mrm::Index>(coarsest) << l, mrm::ErrorAccumulator::values(at(b, m, l).errors)});
         mrm::repro::write_error_rows(out, 1.0, courant, rows);
       }
-    out << "\n\n# block " << time_block << ": dt alone, cn, mod3, N = " << finest << "\n# columns: benchmark dt_over_h_over_c";
+    out << "\n\n# block " << time_block << ": dt alone, cn, mod3, N = " << finest
+        << "\n# columns: benchmark dt_over_h_over_c";
     for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
     out << '\n';
     for (std::size_t b = 0; b < benchmarks.size(); ++b)
@@ -227,8 +228,8 @@ int main(int argc, char** argv) {
         for (const double e : mrm::ErrorAccumulator::values(time_run(b, c).errors)) out << ' ' << cli::format_real(e);
         out << '\n';
       }
-    out << "\n\n# block " << graded_block << ": graded meshes h_k = h0 r^k, N = " << graded_elements << ", cn, dt = h0/2, "
-        << graded_periods << " periods; drifts per period in units of h0, each minus Mod 3's\n"
+    out << "\n\n# block " << graded_block << ": graded meshes h_k = h0 r^k, N = " << graded_elements
+        << ", cn, dt = h0/2, " << graded_periods << " periods; drifts per period in units of h0, each minus Mod 3's\n"
         << "# columns: r h_max_over_h0 member predicted measured difference\n";
 
     // 5. Orders, windows, the graded table and the values of the prose.
@@ -338,10 +339,9 @@ int main(int argc, char** argv) {
       // Two bodies: the gap between them, and the velocity of each (the left bar's, then the right one's).
       const bool two = mrm::is_two_body_chain(bench.configuration);
       const double gap = two ? bench.configuration.junctions.front().gap : bench.configuration.obstacle_gap;
-      const std::string velocity =
-          two ? mrm::tex_number(bench.data.velocity(0.0), 3) + ", " +
-                    mrm::tex_number(bench.data.velocity(bench.configuration.length()), 3)
-              : mrm::tex_number(bench.data.velocity(0.0), 3);
+      const std::string velocity = two ? mrm::tex_number(bench.data.velocity(0.0), 3) + ", " +
+                                             mrm::tex_number(bench.data.velocity(bench.configuration.length()), 3)
+                                       : mrm::tex_number(bench.data.velocity(0.0), 3);
       data_table.add_row(
           {key, segments, loads, bench.configuration.far_end == mrm::FarEnd::free ? "free" : "clamped",
            "$" + mrm::tex_number(gap, 3) + "$", "$" + velocity + "$",

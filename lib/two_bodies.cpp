@@ -84,8 +84,7 @@ Tridiagonal without_leading(const Tridiagonal& a, Index first) {
 
 }  // namespace
 
-TwoBodySimulation::TwoBodySimulation(std::array<TwoBodyPart, 2> parts, double gap, double dt)
-    : gap_(gap), dt_(dt) {
+TwoBodySimulation::TwoBodySimulation(std::array<TwoBodyPart, 2> parts, double gap, double dt) : gap_(gap), dt_(dt) {
   if (!(std::isfinite(dt) && dt > 0)) throw InvalidParameter("dt", "the time step must be positive and finite");
   if (!(std::isfinite(gap) && gap >= 0)) throw InvalidParameter("gap", "the initial gap must be finite and >= 0");
   const double theta = 0.25 * dt * dt;
@@ -100,8 +99,9 @@ TwoBodySimulation::TwoBodySimulation(std::array<TwoBodyPart, 2> parts, double ga
     if (n < 3) throw std::invalid_argument("two bodies: each body needs two nodes beside its contact node");
     b.mass = modified_mass(b.mesh, part.redistribution);
     if (!contact_node_is_massless(b.mass))
-      throw InvalidParameter("mass", "two bodies: each contact node must be massless (allowed: a redistribution, "
-                                     "not the consistent mass)");
+      throw InvalidParameter("mass",
+                             "two bodies: each contact node must be massless (allowed: a redistribution, "
+                             "not the consistent mass)");
     b.stiffness = p1_stiffness(b.mesh);
     b.compliance = b.mesh.contact_compliance();
     b.interior_stiffness = without_leading(b.stiffness, 1);
@@ -267,10 +267,9 @@ TEST_CASE("two bodies: Crank-Nicolson's energy identity and the conservation of 
     double sum = 0;
     for (int k = 0; k < 2; ++k) {
       const double stiffness = 4 / run.mesh(k).h();
-      const Eigen::VectorXd masses = modified_mass(run.mesh(k), k == 0 ? mod3() : mod1()) *
-                                     Eigen::VectorXd::Ones(run.mesh(k).unknowns());
-      sum += stiffness * run.displacement(k).squaredNorm() +
-             (masses.array() * run.velocity(k).array().square()).sum();
+      const Eigen::VectorXd masses =
+          modified_mass(run.mesh(k), k == 0 ? mod3() : mod1()) * Eigen::VectorXd::Ones(run.mesh(k).unknowns());
+      sum += stiffness * run.displacement(k).squaredNorm() + (masses.array() * run.velocity(k).array().square()).sum();
     }
     return sum;
   };
@@ -357,12 +356,14 @@ struct TwoBarsRun {
     }
   }
   TwoBodySimulation run(parts, 0.0, dt);
-  std::array<ErrorAccumulator, 2> errors{ErrorAccumulator(run.mesh(0), exact[0]), ErrorAccumulator(run.mesh(1), exact[1])};
+  std::array<ErrorAccumulator, 2> errors{ErrorAccumulator(run.mesh(0), exact[0]),
+                                         ErrorAccumulator(run.mesh(1), exact[1])};
   double release = -1, previous = run.indicator();
   for (Index n = 0; n <= steps; ++n) {
     for (int k = 0; k < 2; ++k) {
       const double t = run.time();
-      errors[k].add(Sample{n, t, &run.displacement(k), t, &run.velocity(k), true, t, run.multiplier(), t, run.energy()});
+      errors[k].add(
+          Sample{n, t, &run.displacement(k), t, &run.velocity(k), true, t, run.multiplier(), t, run.energy()});
     }
     const double s = run.indicator();
     if (release < 0 && n > 0 && previous <= 0 && s > 0) release = run.time() - dt * s / (s - previous);
@@ -412,9 +413,9 @@ TEST_CASE("two bodies: agreement with the exact two-bars solution at the observe
 }
 
 TEST_CASE("two bodies: refusals") {
-  CHECK_THROWS_AS(TwoBodySimulation({free_body(1.0, 8, consistent_mass(), -1.0), free_body(1.0, 8, mod3(), 0.0)},
-                                    0.0, 0.01),
-                  InvalidParameter);
+  CHECK_THROWS_AS(
+      TwoBodySimulation({free_body(1.0, 8, consistent_mass(), -1.0), free_body(1.0, 8, mod3(), 0.0)}, 0.0, 0.01),
+      InvalidParameter);
   CHECK_THROWS_AS(TwoBodySimulation({free_body(1.0, 8, mod3(), -1.0), free_body(1.0, 8, mod3(), 0.0)}, -1.0, 0.01),
                   InvalidParameter);
   CHECK_THROWS_AS(TwoBodySimulation({free_body(1.0, 8, mod3(), -1.0), free_body(1.0, 8, mod3(), 0.0)}, 0.0, 0.0),

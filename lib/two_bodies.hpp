@@ -20,10 +20,10 @@ namespace mrm {
 /// displacement w counted positive along ξ (for the left body ξ = ℓ − x and w = −u; for the right one
 /// ξ = x − ℓ_left and w = u). In this frame each body is the paper's bar with its contact node 0.
 struct TwoBodyPart {
-  UniformMesh mesh{1.0, 2};        ///< its mesh (material, far end), contact node 0
+  UniformMesh mesh{1.0, 2};           ///< its mesh (material, far end), contact node 0
   MassRedistribution redistribution;  ///< its mass; the contact node must be massless
-  Eigen::VectorXd displacement;    ///< w⁰ on its unknowns (the contact node's value is recomputed)
-  Eigen::VectorXd velocity;        ///< ẇ⁰ on its unknowns (the contact node's likewise)
+  Eigen::VectorXd displacement;       ///< w⁰ on its unknowns (the contact node's value is recomputed)
+  Eigen::VectorXd velocity;           ///< ẇ⁰ on its unknowns (the contact node's likewise)
 };
 
 /// Crank–Nicolson for two bodies coupled by one contact multiplier λ ≤ 0 (the contact stress, the same
@@ -35,13 +35,13 @@ class TwoBodySimulation {
   TwoBodySimulation(std::array<TwoBodyPart, 2> parts, double gap, double dt);
   /// Advances one step.
   void step();
-  Index level() const { return level_; }                                    ///< n
-  double time() const { return static_cast<double>(level_) * dt_; }          ///< t_n
-  double dt() const { return dt_; }                                          ///< Δt
-  const UniformMesh& mesh(int k) const { return body_[k].mesh; }             ///< body k's mesh
-  const Eigen::VectorXd& displacement(int k) const { return body_[k].w; }    ///< Wₖⁿ (own frame)
-  const Eigen::VectorXd& velocity(int k) const { return body_[k].v; }        ///< Vₖⁿ (own frame)
-  double multiplier() const { return lambda_; }                              ///< λⁿ ≤ 0
+  Index level() const { return level_; }                                   ///< n
+  double time() const { return static_cast<double>(level_) * dt_; }        ///< t_n
+  double dt() const { return dt_; }                                        ///< Δt
+  const UniformMesh& mesh(int k) const { return body_[k].mesh; }           ///< body k's mesh
+  const Eigen::VectorXd& displacement(int k) const { return body_[k].w; }  ///< Wₖⁿ (own frame)
+  const Eigen::VectorXd& velocity(int k) const { return body_[k].v; }      ///< Vₖⁿ (own frame)
+  double multiplier() const { return lambda_; }                            ///< λⁿ ≤ 0
   /// zⁿ = w₀ᴬ + w₀ᴮ + g₀, 0 up to round-off while the contact holds.
   double gap() const;
   /// sⁿ = w₁ᴬ + w₁ᴮ + g₀: the contact indicator (the gap the bodies would have with no force: > 0 open,

@@ -47,8 +47,9 @@ double contact_wave_speed(const Configuration& c) {
 double Configuration::step() const {
   if (dt > 0) return dt;
   const ImpactBenchmark* b = configuration_field(*this);
-  if (!b) return courant * (grading == 1.0 ? UniformMesh(bar_length(), elements).h()
-                                           : graded_mesh(bar_length(), elements, grading).h(0));
+  if (!b)
+    return courant * (grading == 1.0 ? UniformMesh(bar_length(), elements).h()
+                                     : graded_mesh(bar_length(), elements, grading).h(0));
   if (is_two_body_chain(b->configuration))  // h = ℓ/N of the left body (N elements on each body)
     return courant * (UniformMesh(b->configuration.segments.front().length, elements).h() / contact_wave_speed(*this));
   return courant * (UniformMesh(bar_length(), elements).h() / contact_wave_speed(*this));
@@ -109,8 +110,9 @@ Problem configuration_problem(const Configuration& c) {
   if (!c.data && c.benchmark == "paper") return benchmark_problem(c.length, c.amplitude);
   const ImpactBenchmark* b = configuration_field(c);
   if (b && is_two_body_chain(b->configuration))
-    throw InvalidParameter("benchmark", b->id + ": two bodies have no one-body problem (run_configuration runs "
-                                                "them with lib/two_bodies.hpp)");
+    throw InvalidParameter("benchmark", b->id +
+                                            ": two bodies have no one-body problem (run_configuration runs "
+                                            "them with lib/two_bodies.hpp)");
   Problem problem = configuration_data(c).problem();
   if (!b) return problem;
   configuration_mesh(c);  // refuses what the finite element runs do not take
@@ -140,8 +142,10 @@ UniformMesh configuration_mesh(const Configuration& c, int body) {
   const ImpactBenchmark* b = configuration_field(c);
   if (c.grading != 1.0) {
     if (b)
-      throw InvalidParameter("grading", "a graded mesh is for the paper's benchmark, the smooth ones and data of "
-                                        "one's own (allowed on " + b->id + ": 1, the uniform mesh)");
+      throw InvalidParameter("grading",
+                             "a graded mesh is for the paper's benchmark, the smooth ones and data of "
+                             "one's own (allowed on " +
+                                 b->id + ": 1, the uniform mesh)");
     return graded_mesh(c.bar_length(), c.elements, c.grading);
   }
   UniformMesh mesh(c.bar_length(), c.elements);
@@ -423,7 +427,8 @@ void require_reference_memory(const Configuration& c, double horizon, std::strin
 }
 
 std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& c, double horizon) {
-  if (!c.data && c.benchmark == "paper" && c.grading == 1.0) return std::make_shared<const ExactSolution>(c.length, c.amplitude);
+  if (!c.data && c.benchmark == "paper" && c.grading == 1.0)
+    return std::make_shared<const ExactSolution>(c.length, c.amplitude);
   const Scaling s = configuration_scaling(c);
   std::shared_ptr<const ReferenceSolution> unit = unit_reference(unit_configuration(c, s), horizon / s.time_scale());
   if (s.identity()) return unit;
@@ -615,8 +620,9 @@ Measures run_two_bodies(const Configuration& configuration) {
   const Configuration c = unit_configuration(configuration, scaling);
   const ImpactBenchmark& b = *configuration_field(c);
   if (c.scheme.scheme != Scheme::crank_nicolson)
-    throw InvalidParameter("scheme", b.id + ": two bodies coupled by one contact multiplier run with Crank-Nicolson "
-                                            "only (allowed: cn)");
+    throw InvalidParameter("scheme", b.id +
+                                         ": two bodies coupled by one contact multiplier run with Crank-Nicolson "
+                                         "only (allowed: cn)");
   for (const BarSegment& segment : b.configuration.segments)
     for (const double f : segment.load)
       if (f != 0.0) throw InvalidParameter("benchmark", b.id + ": two bodies take no load (lib/two_bodies.hpp)");
@@ -648,7 +654,8 @@ Measures run_two_bodies(const Configuration& configuration) {
   const auto larger = [&] {
     const auto a = ErrorAccumulator::values(errors[0].relative()), e = ErrorAccumulator::values(errors[1].relative());
     ErrorNorms n = errors[0].relative();
-    double* fields[8] = {&n.u0_L2, &n.lambda_L2, &n.u_LinfL2, &n.u_LinfH1, &n.v_LinfL2, &n.u_L2L2, &n.u_L2H1, &n.v_L2L2};
+    double* fields[8] = {&n.u0_L2,    &n.lambda_L2, &n.u_LinfL2, &n.u_LinfH1,
+                         &n.v_LinfL2, &n.u_L2L2,    &n.u_L2H1,   &n.v_L2L2};
     for (std::size_t k = 0; k < 8; ++k) *fields[k] = std::max(a[k], e[k]);
     return n;
   };
@@ -662,8 +669,7 @@ Measures run_two_bodies(const Configuration& configuration) {
   for (Index n = 0;; ++n) {
     const double t = simulation.time(), lambda = simulation.multiplier(), energy = simulation.energy();
     for (int k = 0; k < 2; ++k) {
-      const Sample s{n,      t,    &simulation.displacement(k), t, &simulation.velocity(k), true, t, lambda, t,
-                     energy};
+      const Sample s{n, t, &simulation.displacement(k), t, &simulation.velocity(k), true, t, lambda, t, energy};
       errors[k].add(s);
     }
     const double lambda_exact = chain->contact_stress(0, t);
@@ -712,8 +718,9 @@ Measures run_configuration(const Configuration& configuration, const std::functi
                            const ReferenceSolution* reference) {
   if (is_two_body_configuration(configuration)) {
     if (observe || reference)
-      throw std::invalid_argument("run_configuration: two bodies take no observer and no reference (a Sample is one "
-                                  "body's)");
+      throw std::invalid_argument(
+          "run_configuration: two bodies take no observer and no reference (a Sample is one "
+          "body's)");
     return run_two_bodies(configuration);
   }
   const Scaling scaling = configuration_scaling(configuration);
