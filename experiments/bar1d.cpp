@@ -335,7 +335,8 @@ int main(int argc, char** argv) {
     // The mesh (on a field benchmark with its material and far end; an interface must be a node, and
     // two-bars has no finite element run: refused here, naming the option) and h/c, the transit time of
     // one element at the contact end (h on the paper's bar): Δt = C h/c.
-    cli::require_mesh_memory("--elements", static_cast<double>(elements), bytes_per_element);
+    cli::require_mesh_memory("--elements", static_cast<double>(elements) * (two_bodies ? 2 : 1),  // two-bars: 2 N
+                             bytes_per_element);
     mrm::UniformMesh mesh(1.0, 2);
     mrm::repro::as_usage_error({{"elements", "--elements"}, {"benchmark", "--benchmark"}, {"grading", "--grading"}},
                                [&] { mesh = mrm::repro::configuration_mesh(configuration); });

@@ -32,6 +32,8 @@ struct TwoBodyPart {
 /// g₀ < 0 or data that violate the contact, std::invalid_argument for vectors of the wrong size.
 class TwoBodySimulation {
  public:
+  /// Body 0 (the left one) and body 1 in their own frames, the initial gap g₀ between them and Δt; the
+  /// contact nodes' values are set from their rows (w₀ = w₁ − cₖλ⁰, λ⁰ = min(0, s⁰)/c).
   TwoBodySimulation(std::array<TwoBodyPart, 2> parts, double gap, double dt);
   /// Advances one step.
   void step();
@@ -76,6 +78,7 @@ class TwoBodySimulation {
 /// energy() is the body's energy at t = 0.
 class TwoBodyReference : public ReferenceSolution {
  public:
+  /// The chain's solution (shared) seen from body 0 (left) or 1 (right); std::invalid_argument otherwise.
   TwoBodyReference(std::shared_ptr<const ImpactSolution> chain, int body);
   double length() const override;
   double displacement(double xi, double t) const override;
