@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
     std::string interior_mass = "consistent";
     // The contact stress whose oscillation bar1d reports (lib/contact_stress.hpp; default: see the
     // --stress help and experiments/fig_stress.cpp's measurements).
-    std::string stress = "multiplier";
+    std::string stress = "window";
     // The ranges below keep every quantity of the run (h, Δt², the matrices' entries, the energy a²L/2)
     // far from overflow and underflow of a double (the energy and the errors are computed scale-free:
     // errors.cpp, schemes.cpp), and the memory bounded: the peak memory of a run, measured at N = 1e6
@@ -367,6 +367,12 @@ int main(int argc, char** argv) {
     configuration.initial = mrm::initial_contact_node_by_name(initial);
     configuration.contact_velocity = mrm::repro::contact_velocity_by_name(contact_velocity);
     configuration.stress = mrm::contact_stress_by_name(stress);
+    // A stress other than the multiplier is computed from the run's history (repro/configurations.hpp):
+    // 24 bytes per step, 48 for the recovered strain.
+    if (configuration.stress != mrm::ContactStress::multiplier)
+      cli::require_memory("--stress", (static_cast<double>(steps) + 1) * (stress == "recovered" ? 48.0 : 24.0),
+                          "the history of the " + stress + " stress over " + std::to_string(steps) +
+                              " steps (allowed without it: --stress multiplier)");
     // The simulation, built once before any work: the library refuses a combination that cannot run (the
     // algebraic row or ec with a contact node that has inertia, a literal row with beta < 1/4 and a massless
     // node) and names the parameter, worded here as the option that sets it.

@@ -599,6 +599,7 @@ Measures run_configuration(const Configuration& configuration, const std::functi
   // The histories of the contact stresses (unit scale), kept when asked or when a stress other than
   // the multiplier is reported.
   const bool keep = c.keep_stress_history || c.stress != ContactStress::multiplier;
+  const bool keep_recovered = c.keep_stress_history || c.stress == ContactStress::recovered;
   StressHistory history;
   if (keep) {
     history.h = mesh.h(0);  // the contact element (the recovered fit assumes uniform elements near x = 0)
@@ -618,7 +619,7 @@ Measures run_configuration(const Configuration& configuration, const std::functi
         history.exact.push_back(lambda_exact);
       }
     }
-    if (keep) {
+    if (keep_recovered) {
       // The recovered strain through the first k(t) elements (the displacement has N nodes, 0..N−1).
       const Index k = std::min<Index>(recovered_elements(smearing_width(history.h, s.time, history.order), history.h),
                                       static_cast<Index>(s.displacement->size()) - 1);

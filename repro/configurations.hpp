@@ -98,6 +98,8 @@ struct Configuration {
   /// scheme's multiplier by default, as before issue 26's item 3).
   ContactStress stress = ContactStress::multiplier;
   /// Whether Measures::stress_history keeps the histories every stress is computed from (fig_stress).
+  /// A stress other than the multiplier keeps the histories it needs (the multiplier and the exact λ,
+  /// 24 bytes per step; the recovered strain 24 more): a run's memory then grows with its steps.
   bool keep_stress_history = false;
   /// Whether the run measures the eight errors (Measures::errors and horizon_errors; false: they stay
   /// 0, for a study of the stresses only, which then costs the steps alone).
