@@ -163,7 +163,7 @@ int main(int argc, char** argv) {
     // 4. The data.
     std::ostream& out = program.header("contact stresses: oscillation TV ratio, L2 error, error away from jumps");
     const auto& stresses = mrm::contact_stress_registry();
-    out << "# st_N0 = " << coarsest << '\n';
+    out << "# st_N0 = " << coarsest << "\n# st_Nmax = " << (coarsest << (2 * (refinements - 1))) << '\n';
     std::size_t block = 0;
     for (std::size_t b = 0; b < benchmarks.size(); ++b)
       for (std::size_t v = 0; v < variants_of(b); ++v)

@@ -24,7 +24,9 @@ n0 = real(header("st_N0"))
 set size 0.5, 0.5
 set origin 0, 0.5
 set logscale xy
-set key top left
+set xrange [n0 / 1.5 : real(header("st_Nmax")) * 1.5]
+set yrange [0.9:400]
+set key top left samplen 2 spacing 0.9
 set title "TV(stress)/TV(".lambda_.")"
 set xlabel italic("N")
 set ylabel "ratio"
@@ -34,10 +36,11 @@ plot for [k=1:6] data index block(word(keys, k)) using 1:2 with linespoints pt 7
 set origin 0.5, 0.5
 set title "relative error of ".lambda_." in ".italic("L")."^2(0,".italic("T").")"
 set ylabel "error"
-set key bottom left
+set yrange [*:*]
 plot for [k=1:6] data index block(word(keys, k)) using 1:3 with linespoints pt 7 lc rgb colour(k) notitle
 
 unset logscale
+set autoscale
 set size 1, 0.5
 set origin 0, 0
 set key bottom right
