@@ -754,6 +754,51 @@ StressMeasures stress_measures(const StressHistory& history, ContactStress stres
   return m;
 }
 
+TEST_CASE("stress_measures: an exact history scores 1, 0, 0; an error next to a jump is not away from it") {
+  // λ = −½ on [1, 2), 0 elsewhere, sampled at τ = 0.01 on [0, 3]: the shortest window is 1, so ε = ¼.
+  StressHistory h;
+  h.h = 0.02, h.spacing = 0.01;
+  for (int n = 0; n <= 300; ++n) {
+    const double t = 0.01 * n;
+    h.time.push_back(t);
+    h.exact.push_back(t >= 1 && t < 2 ? -0.5 : 0.0);
+  }
+  h.multiplier = h.exact;
+  StressMeasures m = stress_measures(h, ContactStress::multiplier);
+  CHECK(m.tv_ratio == 1.0);
+  CHECK(m.l2_error == 0.0);
+  CHECK(m.max_error_away == 0.0);
+  h.multiplier[110] -= 0.1;  // t = 1.1: within ¼ of the jump at 1
+  m = stress_measures(h, ContactStress::multiplier);
+  CHECK(m.tv_ratio == doctest::Approx(1.2));  // TV 1 + 2 · 0.1 against 1
+  CHECK(m.max_error_away == 0.0);
+  h.multiplier[150] -= 0.1;  // t = 1.5: away from both jumps; relative to max|λ| = ½
+  CHECK(stress_measures(h, ContactStress::multiplier).max_error_away == doctest::Approx(0.2));
+}
+
+TEST_CASE("a run reports the stress it is asked for: the window bounds what the multiplier does not") {
+  // One run, two stresses: the multiplier's ratio is the one run_configuration has always measured, the
+  // window's is its own (contact_stress.cpp §2: bounded, so below the multiplier's wake-dominated one),
+  // and the window's L² error is the same order as the multiplier's.
+  Configuration c = paper_configuration(Scheme::crank_nicolson, "algebraic", "mod3", 100, 0.5, 30.0);
+  const Measures raw = run_configuration(c);
+  c.stress = ContactStress::window;
+  const Measures windowed = run_configuration(c);
+  REQUIRE(raw.lambda_tv_ratio);
+  REQUIRE(windowed.lambda_tv_ratio);
+  CHECK(!raw.stress_history);
+  REQUIRE(windowed.stress_history);
+  CHECK(windowed.stress == ContactStress::window);
+  CHECK(stress_measures(*windowed.stress_history, ContactStress::multiplier).tv_ratio ==
+        doctest::Approx(*raw.lambda_tv_ratio).epsilon(1e-12));
+  CHECK(*windowed.lambda_tv_ratio < 0.5 * *raw.lambda_tv_ratio);
+  const StressMeasures w = stress_measures(*windowed.stress_history, ContactStress::window);
+  const double raw_l2 = stress_measures(*windowed.stress_history, ContactStress::multiplier).l2_error;
+  CHECK(w.l2_error < 2 * raw_l2);  // the same order W^{1/2}
+  CHECK(w.l2_error > 0.25 * raw_l2);
+  CHECK(windowed.errors.lambda_L2 == raw.errors.lambda_L2);  // the scheme's measures are unchanged
+}
+
 void write_error_rows(std::ostream& out, double length, double courant, const std::vector<ErrorRow>& rows) {
   out << "# columns: N h dt";
   for (const char* name : ErrorAccumulator::names) out << ' ' << name;
