@@ -118,8 +118,8 @@ int main(int argc, char** argv) {
     for (std::size_t b = 0; b < benchmarks.size(); ++b)
       for (std::size_t v = 0; v < variants_of(b); ++v)
         for (long l = 0; l < refinements; ++l)
-          runs.push_back({b, v, static_cast<std::size_t>(l), static_cast<mrm::Index>(coarsest) << (2 * l), {}, {}, {},
-                          {}});
+          runs.push_back(
+              {b, v, static_cast<std::size_t>(l), static_cast<mrm::Index>(coarsest) << (2 * l), {}, {}, {}, {}});
     auto cost = [&](std::size_t k) {
       const double n = static_cast<double>(runs[k].elements);
       return n * n / variants[runs[k].variant].courant;
@@ -240,7 +240,8 @@ int main(int argc, char** argv) {
           const double l2_slope = mrm::fit_order(steps, l2).order;
           row.push_back(mrm::tex_number(slope, 2));
           for (double x : l2) row.push_back(mrm::tex_number(x, 2));
-          row.push_back(mrm::tex_number(at(b, v, static_cast<std::size_t>(refinements - 1)).measures[s].max_error_away, 2));
+          row.push_back(
+              mrm::tex_number(at(b, v, static_cast<std::size_t>(refinements - 1)).measures[s].max_error_away, 2));
           row.push_back(met ? "met" : "not met");
           mrm::tex_define(defs, "st:tvslope:" + key, mrm::tex_number(slope, 2));
           mrm::tex_define(defs, "st:l2order:" + key, mrm::tex_number(l2_slope, 2));

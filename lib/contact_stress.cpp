@@ -96,7 +96,8 @@ const std::vector<ContactStressEntry>& contact_stress_registry() {
 
 std::string contact_stress_names() {
   std::string names;
-  for (const ContactStressEntry& e : contact_stress_registry()) names += (names.empty() ? "" : "|") + std::string(e.name);
+  for (const ContactStressEntry& e : contact_stress_registry())
+    names += (names.empty() ? "" : "|") + std::string(e.name);
   return names;
 }
 
@@ -206,8 +207,7 @@ TEST_CASE("the phase order and the smearing width (section 1)") {
   CHECK(matched.coefficient == doctest::Approx(1.0 / 512).epsilon(1e-14));
   // W = (C h^μ t)^{1/(μ+1)}: quartering h at fixed t divides W by 4^{2/3} (μ = 2), 4^{4/5} (μ = 4).
   CHECK(smearing_width(0.01, 30, cn) / smearing_width(0.0025, 30, cn) == doctest::Approx(std::pow(4.0, 2.0 / 3)));
-  CHECK(smearing_width(0.01, 30, matched) / smearing_width(0.0025, 30, matched) ==
-        doctest::Approx(std::pow(4.0, 0.8)));
+  CHECK(smearing_width(0.01, 30, matched) / smearing_width(0.0025, 30, matched) == doctest::Approx(std::pow(4.0, 0.8)));
   CHECK_THROWS_AS(smearing_width(0.0, 1, cn), std::invalid_argument);
 }
 
@@ -221,7 +221,8 @@ TEST_CASE("a fixed window reproduces a linear history inside and does not increa
   for (WindowKernel k : {WindowKernel::box, WindowKernel::spline}) {
     const std::vector<double> width(line.size(), 0.5);
     const std::vector<double> smooth = window_average(line, tau, width, k);
-    for (int n = 30; n < 370; ++n) CHECK(smooth[static_cast<std::size_t>(n)] == doctest::Approx(line[n]).epsilon(1e-12));
+    for (int n = 30; n < 370; ++n)
+      CHECK(smooth[static_cast<std::size_t>(n)] == doctest::Approx(line[n]).epsilon(1e-12));
     const std::vector<double> averaged = window_average(rough, tau, width, k);
     CHECK(total_variation(averaged) <= total_variation(rough));
     CHECK(total_variation(averaged) >= 1.0 - 1e-12);  // it keeps the jump (TV of a monotone step)

@@ -100,8 +100,7 @@ ClaimResult check_bounded_stress(const StressSettings& settings, Judge& judge) {
   const std::vector<repro::Measures> measures = repro::run_configurations(runs);
   for (std::size_t l = 0; l < measures.size(); ++l) {
     const repro::StressMeasures s = repro::stress_measures(*measures[l].stress_history, stress);
-    const repro::StressMeasures raw =
-        repro::stress_measures(*measures[l].stress_history, ContactStress::multiplier);
+    const repro::StressMeasures raw = repro::stress_measures(*measures[l].stress_history, ContactStress::multiplier);
     ratios.push_back(s.tv_ratio), raw_ratios.push_back(raw.tv_ratio);
     worst_ratio = std::max(worst_ratio, s.tv_ratio);
     worst_l2 = std::max(worst_l2, s.l2_error / raw.l2_error);

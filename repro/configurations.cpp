@@ -739,7 +739,7 @@ StressMeasures stress_measures(const StressHistory& history, ContactStress stres
   double shortest = std::numeric_limits<double>::infinity(), start = 0;
   const double tiny = 1e-12 * largest;
   for (std::size_t i = 0; i < e.size(); ++i) {
-    const bool in = e[i] < -tiny, before = i > 0 && e[i - 1] < -tiny;
+    const bool in = e[i]<-tiny, before = i> 0 && e[i - 1] < -tiny;
     if (in && !before) start = t[i], changes.push_back(t[i]);
     if (!in && before) changes.push_back(t[i]), shortest = std::min(shortest, t[i] - start);
   }
