@@ -18,8 +18,9 @@ enum class ContactStress {
   window,      ///< λ_h averaged with the cubic B-spline window of width δ = 8W
   recovered,   ///< the strain at x = 0 of the least-squares quadratic through the first k ≈ 4W/h elements
 };
+/// One entry of the registry of contact stresses.
 struct ContactStressEntry {
-  ContactStress stress;
+  ContactStress stress;     ///< the stress
   const char* name;         ///< the command-line name
   const char* description;  ///< one line
 };
@@ -29,15 +30,17 @@ const std::vector<ContactStressEntry>& contact_stress_registry();
 ContactStress contact_stress_by_name(const std::string& name);
 /// The names joined by '|', for messages and help texts.
 std::string contact_stress_names();
+/// The name of a stress (its registry entry's).
 const char* to_string(ContactStress stress);
 
 /// The leading relative phase-speed error of CN with the blended mass as C ξ^μ: μ = 2 and
 /// C = |(1 − 2A)/24 − c²/12| (interior_mass.cpp), or μ = 4 and C = (1 − c⁴)/480 where that vanishes
 /// (the phase-matched blend, |C₂| below 1e-12).
 struct PhaseOrder {
-  int mu;
-  double coefficient;
+  int mu;              ///< μ, the power of ξ
+  double coefficient;  ///< C > 0
 };
+/// The phase order of CN with the blend A at the Courant number c = Δt/h (the rule above).
 PhaseOrder crank_nicolson_phase_order(double courant, double blend);
 
 /// The smearing width of a jump carried for a time t by a scheme of phase error C ξ^μ on a mesh of size
