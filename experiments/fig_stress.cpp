@@ -197,9 +197,10 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "st:Nmax", std::to_string(at(0, 0, static_cast<std::size_t>(refinements - 1)).elements));
     mrm::tex_define(defs, "st:Nshown", std::to_string(shown.elements));
     std::vector<std::string> headers{"data", "variant", "stress"};
-    for (long l = 0; l < refinements; ++l) headers.push_back("TV, $N = " + std::to_string(coarsest << (2 * l)) + "$");
+    for (long l = 0; l < refinements; ++l)
+      headers.push_back("$\\mathrm{TV}_{" + std::to_string(coarsest << (2 * l)) + "}$");
     headers.push_back("slope");
-    for (long l = 0; l < refinements; ++l) headers.push_back("$L^2$, $" + std::to_string(coarsest << (2 * l)) + "$");
+    for (long l = 0; l < refinements; ++l) headers.push_back("$L^2_{" + std::to_string(coarsest << (2 * l)) + "}$");
     headers.push_back("away");
     headers.push_back("target");
     mrm::repro::Table table(headers);
