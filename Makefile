@@ -53,7 +53,8 @@ FIGURE_NAMES := fig_contact_history fig_energy fig_convergence fig_time_error fi
                 fig_stability_map fig_smooth_convergence fig_smooth_benchmarks fig_family \
                 $(SWEEP_MAPS) $(ENERGY_SCHEMES_VIEWS:%=fig_energy_schemes_%) \
                 fig_benchmark_convergence \
-                fig_phase_matched
+                fig_phase_matched \
+                fig_stress
 FIGURE_PDFS := $(FIGURE_NAMES:%=$(FIGURES)/%.pdf)
 FIGURE_DATA := $(FIGURE_NAMES:%=$(DATA)/%.dat)
 FIGURE_TEX := $(FIGURE_NAMES:%=$(DATA)/%.tex)

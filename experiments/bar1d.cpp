@@ -101,6 +101,9 @@ int main(int argc, char** argv) {
     double grading = 1.0;
     constexpr double largest_grading = 1.1;
     std::string interior_mass = "consistent";
+    // The contact stress whose oscillation bar1d reports (lib/contact_stress.hpp; default: see the
+    // --stress help and experiments/fig_stress.cpp's measurements).
+    std::string stress = "window";
     // The ranges below keep every quantity of the run (h, Δt², the matrices' entries, the energy a²L/2)
     // far from overflow and underflow of a double (the energy and the errors are computed scale-free:
     // errors.cpp, schemes.cpp), and the memory bounded: the peak memory of a run, measured at N = 1e6
@@ -230,6 +233,15 @@ int main(int argc, char** argv) {
                     "interior mass blend:A with A = 1/2 - (dt/h)^2, which cancels Crank-Nicolson's leading phase "
                     "error (needs dt/h <= 1/sqrt(2))",
                     &phase_matched);
+    {
+      std::vector<std::string> stresses;
+      for (const mrm::ContactStressEntry& e : mrm::contact_stress_registry()) stresses.push_back(e.name);
+      parser.add_choice("--stress", "", "S",
+                        "contact stress whose oscillation lambda_tv_ratio reports (issue 26): the multiplier, its box "
+                        "or B-spline window average over 8 smearing widths, or the strain recovered over the first "
+                        "elements (lib/contact_stress.hpp)",
+                        stresses, &stress);
+    }
     parser.add_conflict("--dt", "--courant");
     parser.add_conflict("--interior-mass", "--phase-matched");
     parser.add_conflict("--initial-data", "--benchmark");
@@ -399,6 +411,13 @@ int main(int argc, char** argv) {
     configuration.final_time = final_time;
     configuration.initial = mrm::initial_contact_node_by_name(initial);
     configuration.contact_velocity = mrm::repro::contact_velocity_by_name(contact_velocity);
+    configuration.stress = mrm::contact_stress_by_name(stress);
+    // A stress other than the multiplier is computed from the run's history (repro/configurations.hpp):
+    // 24 bytes per step, 48 for the recovered strain.
+    if (configuration.stress != mrm::ContactStress::multiplier)
+      cli::require_memory("--stress", (static_cast<double>(steps) + 1) * (stress == "recovered" ? 48.0 : 24.0),
+                          "the history of the " + stress + " stress over " + std::to_string(steps) +
+                              " steps (allowed without it: --stress multiplier)");
     // The simulation, built once before any work: the library refuses a combination that cannot run (the
     // algebraic row or ec with a contact node that has inertia, a literal row with beta < 1/4 and a massless
     // node) and names the parameter, worded here as the option that sets it.
@@ -498,6 +517,7 @@ int main(int argc, char** argv) {
     std::cout << "final_time_reached = " << cli::format_real(static_cast<double>(measures.steps) * step) << '\n';
     // The contact stress's oscillation, TV(λ_h)/TV(λ_exact) over the run's multiplier samples ("n/a" when
     // the exact λ does not vary: no contact), and the largest penetration of the contact node.
+    std::cout << "stress = " << mrm::to_string(measures.stress) << '\n';
     std::cout << "lambda_tv_ratio = "
               << (measures.lambda_tv_ratio ? cli::format_real(*measures.lambda_tv_ratio)
                                            : std::string("n/a: the exact stress does not vary over the run"))

@@ -3,6 +3,7 @@
 /// CN + Mod 3 on the paper's benchmark (predictions of the issue, checked with their margins).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "claims.hpp"
@@ -24,5 +25,20 @@ struct PhaseMatchedSettings {
 /// Rows "7/phase-matched/ratio-u", ".../ratio-H1", ".../ratio-lambda", ".../order-u", ".../order-H1",
 /// ".../order-lambda": each measured value against the issue's target with its margin.
 std::vector<ClaimResult> check_phase_matched(const PhaseMatchedSettings& settings, Judge& judge);
+
+/// The study of the contact stress (issue 26, item 3): CN + Mod 3 at Δt/h = ½ on the paper's benchmark
+/// over ten periods, meshes coarsest·2^k ≤ finest, the stress `stress` against the multiplier.
+struct StressSettings {
+  Index coarsest = 100;
+  Index finest = 400;
+  double final_time = 30;         ///< ten periods
+  std::string stress = "window";  ///< a name of contact_stress_registry()
+  double ratio = 2.0;             ///< the issue's target: TV(stress)/TV(λ) at most this at every mesh
+  double slope = 1.0 / 12;        ///< the growth of the ratio in N at most this (contact_stress.cpp)
+};
+
+/// Row "7/stress/bounded": TV(stress)/TV(λ) at most `ratio` on every mesh, its log-slope in N at most
+/// `slope`, and its L² error no larger than the multiplier's on every mesh.
+ClaimResult check_bounded_stress(const StressSettings& settings, Judge& judge);
 
 }  // namespace mrm::claims

@@ -756,6 +756,16 @@ Measures run_configuration(const Configuration& configuration, const std::functi
   // problem's gap (unit scale).
   double tv = 0, tv_exact = 0, lambda_previous = 0, exact_previous = 0, penetration = 0;
   bool first_multiplier = true;
+  // The histories of the contact stresses (unit scale), kept when asked or when a stress other than
+  // the multiplier is reported.
+  const bool keep = c.keep_stress_history || c.stress != ContactStress::multiplier;
+  const bool keep_recovered = c.keep_stress_history || c.stress == ContactStress::recovered;
+  StressHistory history;
+  if (keep) {
+    history.h = mesh.h(0);  // the contact element (the recovered fit assumes uniform elements near x = 0)
+    history.spacing = dt;
+    history.order = crank_nicolson_phase_order(dt / history.h, c.mass.interior_blend);
+  }
   run(simulation, m.steps, [&](const Sample& s) {
     penetration = std::max(penetration, -((*s.displacement)[0] + gap));
     if (s.has_multiplier) {
@@ -763,8 +773,23 @@ Measures run_configuration(const Configuration& configuration, const std::functi
       if (!first_multiplier)
         tv += std::abs(s.multiplier - lambda_previous), tv_exact += std::abs(lambda_exact - exact_previous);
       lambda_previous = s.multiplier, exact_previous = lambda_exact, first_multiplier = false;
+      if (keep) {
+        history.time.push_back(s.multiplier_time);
+        history.multiplier.push_back(s.multiplier);
+        history.exact.push_back(lambda_exact);
+      }
     }
-    if (difference && s.level >= 1) {
+    if (keep_recovered) {
+      // The recovered strain through the first k(t) elements (the displacement has N nodes, 0..N−1).
+      const Index k = std::min<Index>(recovered_elements(smearing_width(history.h, s.time, history.order), history.h),
+                                      static_cast<Index>(s.displacement->size()) - 1);
+      history.recovered_time.push_back(s.time);
+      history.recovered.push_back(std::min(0.0, recovered_strain(s.displacement->data(), k, history.h)));
+      history.exact_at_levels.push_back(exact->contact_multiplier(s.time));
+    }
+    if (!c.measure_errors) {
+      // the stresses only: no error measures
+    } else if (difference && s.level >= 1) {
       velocity = *s.velocity;
       velocity[0] = ((*s.displacement)[0] - u0_previous) / dt;
       Sample differenced = s;
@@ -776,7 +801,7 @@ Measures run_configuration(const Configuration& configuration, const std::functi
     u0_previous = (*s.displacement)[0];
     impacts.add(s.time, contact_indicator(s, compliance) + gap);
     while (next_horizon < horizon_levels.size() && s.level == horizon_levels[next_horizon]) {
-      m.horizon_errors.push_back(errors.relative());
+      m.horizon_errors.push_back(c.measure_errors ? errors.relative() : ErrorNorms{});
       ++next_horizon;
     }
     if (s.level == 0) m.energy_initial = s.energy;
@@ -800,12 +825,22 @@ Measures run_configuration(const Configuration& configuration, const std::functi
     scaled.energy = scaling.energy(s.energy);
     observe(scaled);
   });
-  m.errors = errors.relative();
+  m.errors = c.measure_errors ? errors.relative() : ErrorNorms{};
   m.energy_initial = scaling.energy(m.energy_initial);
   m.energy_final = scaling.energy(m.energy_final);
   m.energy_min = scaling.energy(energy_min);
   m.energy_max = scaling.energy(energy_max);
   if (tv_exact > 0) m.lambda_tv_ratio = tv / tv_exact;  // a ratio of two stresses: scale-free
+  m.stress = c.stress;
+  if (keep) {
+    if (c.stress != ContactStress::multiplier) {
+      if (tv_exact > 0)
+        m.lambda_tv_ratio = stress_measures(history, c.stress).tv_ratio;
+      else
+        m.lambda_tv_ratio.reset();
+    }
+    m.stress_history = std::move(history);
+  }
   m.max_penetration = scaling.displacement(1.0) * penetration;
   if (!impacts.impacts().empty()) {
     m.phase = phase_against(impacts.impacts(), *exact, mesh.length);
@@ -822,6 +857,106 @@ Measures run_configuration(const Configuration& configuration, const std::functi
     m.contact_windows.push_back(w);
   }
   return m;
+}
+
+// The window stresses average the multiplier over 8 W(h, t_n) at each instant (contact_stress.cpp §2);
+// the multiplier's instants are uniformly spaced by Δt (one per level, or per step for the staggered
+// schemes). The recovered strain is projected onto λ ≤ 0 when it is recorded.
+std::vector<double> StressHistory::values(ContactStress stress) const {
+  if (stress == ContactStress::multiplier) return multiplier;
+  if (stress == ContactStress::recovered) return recovered;
+  std::vector<double> width;
+  width.reserve(time.size());
+  for (double t : time) width.push_back(8 * smearing_width(h, std::max(0.0, t), order));
+  return window_average(multiplier, spacing, width,
+                        stress == ContactStress::box ? WindowKernel::box : WindowKernel::spline);
+}
+const std::vector<double>& StressHistory::instants(ContactStress stress) const {
+  return stress == ContactStress::recovered ? recovered_time : time;
+}
+const std::vector<double>& StressHistory::exact_values(ContactStress stress) const {
+  return stress == ContactStress::recovered ? exact_at_levels : exact;
+}
+
+StressMeasures stress_measures(const StressHistory& history, ContactStress stress) {
+  const std::vector<double> v = history.values(stress);
+  const std::vector<double>& t = history.instants(stress);
+  const std::vector<double>& e = history.exact_values(stress);
+  StressMeasures m;
+  const double tv_exact = total_variation(e);
+  if (!(tv_exact > 0)) throw std::invalid_argument("stress_measures: the exact stress does not vary over the run");
+  m.tv_ratio = total_variation(v) / tv_exact;
+  double error = 0, norm = 0, largest = 0;
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    const double dt = t[i] - t[i - 1];
+    error += 0.5 * dt * ((v[i] - e[i]) * (v[i] - e[i]) + (v[i - 1] - e[i - 1]) * (v[i - 1] - e[i - 1]));
+    norm += 0.5 * dt * (e[i] * e[i] + e[i - 1] * e[i - 1]);
+  }
+  for (double x : e) largest = std::max(largest, std::abs(x));
+  m.l2_error = std::sqrt(error / norm);
+  // The exact status changes: the ends of the maximal runs of instants where λ < 0.
+  std::vector<double> changes;
+  double shortest = std::numeric_limits<double>::infinity(), start = 0;
+  const double tiny = 1e-12 * largest;
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    const bool in = e[i]<-tiny, before = i> 0 && e[i - 1] < -tiny;
+    if (in && !before) start = t[i], changes.push_back(t[i]);
+    if (!in && before) changes.push_back(t[i]), shortest = std::min(shortest, t[i] - start);
+  }
+  if (!changes.empty() && e.back() < -tiny) shortest = std::min(shortest, t.back() - start);
+  const double away = 0.25 * shortest;
+  std::size_t next = 0;  // the first change at or after t[i] − away
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    while (next < changes.size() && changes[next] < t[i] - away) ++next;
+    if (next < changes.size() && changes[next] <= t[i] + away) continue;
+    m.max_error_away = std::max(m.max_error_away, std::abs(v[i] - e[i]) / largest);
+  }
+  return m;
+}
+
+TEST_CASE("stress_measures: an exact history scores 1, 0, 0; an error next to a jump is not away from it") {
+  // λ = −½ on [1, 2), 0 elsewhere, sampled at τ = 0.01 on [0, 3]: the shortest window is 1, so ε = ¼.
+  StressHistory h;
+  h.h = 0.02, h.spacing = 0.01;
+  for (int n = 0; n <= 300; ++n) {
+    const double t = 0.01 * n;
+    h.time.push_back(t);
+    h.exact.push_back(t >= 1 && t < 2 ? -0.5 : 0.0);
+  }
+  h.multiplier = h.exact;
+  StressMeasures m = stress_measures(h, ContactStress::multiplier);
+  CHECK(m.tv_ratio == 1.0);
+  CHECK(m.l2_error == 0.0);
+  CHECK(m.max_error_away == 0.0);
+  h.multiplier[110] -= 0.1;  // t = 1.1: within ¼ of the jump at 1
+  m = stress_measures(h, ContactStress::multiplier);
+  CHECK(m.tv_ratio == doctest::Approx(1.2));  // TV 1 + 2 · 0.1 against 1
+  CHECK(m.max_error_away == 0.0);
+  h.multiplier[150] -= 0.1;  // t = 1.5: away from both jumps; relative to max|λ| = ½
+  CHECK(stress_measures(h, ContactStress::multiplier).max_error_away == doctest::Approx(0.2));
+}
+
+TEST_CASE("a run reports the stress it is asked for: the window bounds what the multiplier does not") {
+  // One run, two stresses: the multiplier's ratio is the one run_configuration has always measured, the
+  // window's is its own (contact_stress.cpp §2: bounded, so below the multiplier's wake-dominated one),
+  // and the window's L² error is the same order as the multiplier's.
+  Configuration c = paper_configuration(Scheme::crank_nicolson, "algebraic", "mod3", 100, 0.5, 30.0);
+  const Measures raw = run_configuration(c);
+  c.stress = ContactStress::window;
+  const Measures windowed = run_configuration(c);
+  REQUIRE(raw.lambda_tv_ratio);
+  REQUIRE(windowed.lambda_tv_ratio);
+  CHECK(!raw.stress_history);
+  REQUIRE(windowed.stress_history);
+  CHECK(windowed.stress == ContactStress::window);
+  CHECK(stress_measures(*windowed.stress_history, ContactStress::multiplier).tv_ratio ==
+        doctest::Approx(*raw.lambda_tv_ratio).epsilon(1e-12));
+  CHECK(*windowed.lambda_tv_ratio < 0.5 * *raw.lambda_tv_ratio);
+  const StressMeasures w = stress_measures(*windowed.stress_history, ContactStress::window);
+  const double raw_l2 = stress_measures(*windowed.stress_history, ContactStress::multiplier).l2_error;
+  CHECK(w.l2_error < 2 * raw_l2);  // the same order W^{1/2}
+  CHECK(w.l2_error > 0.25 * raw_l2);
+  CHECK(windowed.errors.lambda_L2 == raw.errors.lambda_L2);  // the scheme's measures are unchanged
 }
 
 void write_error_rows(std::ostream& out, double length, double courant, const std::vector<ErrorRow>& rows) {

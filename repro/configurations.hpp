@@ -20,6 +20,7 @@
 #include "run_limits.hpp"
 
 #include "characteristics.hpp"
+#include "contact_stress.hpp"
 #include "errors.hpp"
 #include "impact_solution.hpp"
 #include "mass_redistribution.hpp"
@@ -97,6 +98,16 @@ struct Configuration {
   /// r > 1 (graded_mesh, lib/p1.hpp); 1, the uniform mesh, by default. Not on a field benchmark
   /// (configuration_mesh refuses it: their interfaces and Δt = C h/c are set on the uniform mesh).
   double grading = 1.0;
+  /// The contact stress whose oscillation Measures::lambda_tv_ratio reports (lib/contact_stress.hpp; the
+  /// scheme's multiplier by default, as before issue 26's item 3).
+  ContactStress stress = ContactStress::multiplier;
+  /// Whether Measures::stress_history keeps the histories every stress is computed from (fig_stress).
+  /// A stress other than the multiplier keeps the histories it needs (the multiplier and the exact λ,
+  /// 24 bytes per step; the recovered strain 24 more): a run's memory then grows with its steps.
+  bool keep_stress_history = false;
+  /// Whether the run measures the eight errors (Measures::errors and horizon_errors; false: they stay
+  /// 0, for a study of the stresses only, which then costs the steps alone).
+  bool measure_errors = true;
 
   /// The length of the bar: L of the data, of a field benchmark's chain, of the smooth benchmarks (1), or
   /// `length`.
@@ -195,6 +206,34 @@ Configuration paper_configuration(Scheme scheme, const std::string& ps_form, con
 Configuration paper_configuration(const std::string& scheme, const std::string& ps_form, const std::string& mass,
                                   Index elements, double courant, double final_time);
 
+/// The histories of one run that every contact stress of lib/contact_stress.hpp is computed from, at the
+/// unit scale of the run (unit_configuration: a ratio or a relative error does not depend on it): the
+/// multiplier λ_h at its instants, the recovered strain at the levels (k = recovered_elements(W(t), h)),
+/// the exact λ at the multiplier's instants, h, the spacing Δt, the phase order of the run's interior
+/// step (crank_nicolson_phase_order of Δt/h and the blend: every scheme whose interior step is the
+/// trapezoidal rule; for another one the width is a conjecture).
+struct StressHistory {
+  std::vector<double> time, multiplier, recovered_time, recovered, exact, exact_at_levels;
+  double h = 0, spacing = 0;
+  PhaseOrder order{2, 1.0 / 48};
+  /// The stress's values: the multiplier, its box or spline window average of width 8 W(h, t), or the
+  /// recovered strain projected onto λ ≤ 0 (contact_stress.cpp §2–§4).
+  std::vector<double> values(ContactStress stress) const;
+  /// The instants of values(stress) and the exact λ there.
+  const std::vector<double>& instants(ContactStress stress) const;
+  const std::vector<double>& exact_values(ContactStress stress) const;
+};
+/// What fig_stress and bar1d report of a stress: TV(stress)/TV(λ_exact) over the same instants, the
+/// relative L²(0,T) error (trapezoidal, as ErrorAccumulator's λ error), and the largest error away from
+/// the exact status changes, relative to max|λ_exact|: over the instants at a distance of at least
+/// ε = ¼ of the shortest exact contact window from every start and end of one (a distance fixed in the
+/// problem's units, so that it measures pointwise convergence; 0 when no instant qualifies). The exact
+/// contact windows are read off the exact λ at the instants: the maximal runs where λ < 0.
+struct StressMeasures {
+  double tv_ratio = 0, l2_error = 0, max_error_away = 0;
+};
+StressMeasures stress_measures(const StressHistory& history, ContactStress stress);
+
 /// What a run measures: the eight relative errors against the exact solution (mathematics.md §5; the
 /// configuration's reference, see configuration_reference), the same over [0, T_k] for each horizon of
 /// the configuration, the range of the discrete energy, the number of steps, and the phase
@@ -216,6 +255,11 @@ struct Measures {
   /// multiplier and of the exact λ over the same instants (the samples' multiplier_time), levels 0..n.
   /// Absent when the exact λ does not vary over the run (no contact: the ratio is undefined).
   std::optional<double> lambda_tv_ratio;
+  /// The stress lambda_tv_ratio is of (Configuration::stress).
+  ContactStress stress = ContactStress::multiplier;
+  /// The histories of every stress (Configuration::keep_stress_history or a stress other than the
+  /// multiplier).
+  std::optional<StressHistory> stress_history;
   /// The largest penetration max_n max(0, −(u₀ⁿ + gap)) at the configuration's scale: 0 up to round-off
   /// for a scheme that enforces the constraint at the levels (CN, BE, EC, cn-switch); for
   /// Paoli–Schatzman only the average (u₀ⁿ⁺¹ + e u₀ⁿ⁻¹)/(1 + e) is constrained, so a level may penetrate.

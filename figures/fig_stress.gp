@@ -1,0 +1,55 @@
+# The contact stresses (experiments/fig_stress.cpp, issue 26 item 3), paper's benchmark, ten periods:
+# top left, TV(stress)/TV(λ) against N for CN + Mod 3 at Δt/h = 1/2 with the four stresses of
+# lib/contact_stress.hpp, the B-spline window on the phase-matched run and the multiplier of CN-switch
+# (A = 1/4), with the predicted slope 1/2 of the multiplier; top right, the relative L² error of the
+# same; bottom, the four stresses and the exact λ over the last period (the blocks are found by their
+# `# block benchmark:variant:stress = k` lines).
+# Usage: gnuplot -e "data='output/data/fig_stress.dat'; output='output/figures/fig_stress.pdf'" figures/fig_stress.gp
+if (!exists("data")) data = 'output/data/fig_stress.dat'
+if (!exists("output")) output = 'output/figures/fig_stress.pdf'
+dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
+load dir.'style.gp'
+
+set terminal pdfcairo size 16cm,17cm font font(9) linewidth 1.5 enhanced
+set output output
+set multiplot
+
+block(key) = int(header("block ".key))
+keys = "paper:cn:c12:multiplier paper:cn:c12:box paper:cn:c12:window paper:cn:c12:recovered paper:pm:c12:window paper:sw:c12:multiplier"
+titles = "'multiplier' 'box window 8W' 'B-spline window 8W' 'recovered, k = 4W/h' 'B-spline window, A = 1/4' 'CN-switch multiplier, A = 1/4'"
+colour(k) = k == 1 ? "#d62728" : k == 2 ? "#ff7f0e" : k == 3 ? "#2ca02c" : k == 4 ? "#1f77b4" : k == 5 ? "#9467bd" : "#7f7f7f"
+tv0 = real(header("tv_multiplier_N0"))
+n0 = real(header("st_N0"))
+
+set size 0.5, 0.5
+set origin 0, 0.5
+set logscale xy
+set xrange [n0 / 1.5 : real(header("st_Nmax")) * 1.5]
+set yrange [0.9:400]
+set key top left samplen 2 spacing 0.9
+set title "TV(stress)/TV(".lambda_.")"
+set xlabel italic("N")
+set ylabel "ratio"
+plot for [k=1:6] data index block(word(keys, k)) using 1:2 with linespoints pt 7 lc rgb colour(k) title word(titles, k), \
+  tv0 * (x / n0)**0.5 with lines dt 2 lc rgb "#777777" title italic("N")."^{1/2}"
+
+set origin 0.5, 0.5
+set title "relative error of ".lambda_." in ".italic("L")."^2(0,".italic("T").")"
+set ylabel "error"
+set yrange [*:*]
+plot for [k=1:6] data index block(word(keys, k)) using 1:3 with linespoints pt 7 lc rgb colour(k) notitle
+
+unset logscale
+set autoscale
+set size 1, 0.5
+set origin 0, 0
+set key bottom right
+set title "the stresses over the last period, CN + Mod 3, Δ".italic("t")."/".italic("h")." = 1/2, ".italic("N")." = ".header("history_N")
+set xlabel italic("t")
+set ylabel lambda_
+plot data index block("history") using 1:3 with lines lc rgb colour(1) title "multiplier", \
+  data index block("history") using 1:4 with lines lc rgb colour(2) title "box window", \
+  data index block("history") using 1:6 with lines lc rgb colour(4) title "recovered", \
+  data index block("history") using 1:5 with lines lw 1.5 lc rgb colour(3) title "B-spline window", \
+  data index block("history") using 1:2 with lines lw 1 lc rgb "black" title "exact"
+unset multiplot
