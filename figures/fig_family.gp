@@ -11,7 +11,7 @@ if (!exists("output")) output = 'output/figures/fig_family.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,8cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,8cm
 set output output
 
 # Blocks 4a + 2b + c: two meshes, two steps, two horizons; the longer horizon's blocks are odd. Each

@@ -8,7 +8,7 @@ if (!exists("output")) output = 'output/figures/fig_stability_map.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,7.5cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,7.5cm
 set output output
 
 # Blocks 0..n-1: one mesh each ("# block b: N = 16"); block n: the long runs.

@@ -13,6 +13,10 @@
 set encoding utf8
 fontface = "Latin Modern Roman"
 font(size) = sprintf("%s,%g", fontface, size)
+# The one terminal of the report's figures: PDF at the text width, text at 9 pt (the captions are set
+# at 10), lines 1.5 times cairo's default. A script sets `set terminal @figure_terminal size W,H`; a
+# figure with small panels may lower its own labels' font, never the terminal's.
+figure_terminal = sprintf("pdfcairo font '%s' linewidth 1.5 enhanced", font(9))
 # The data file's comment lines, read once (one process each, instead of one per lookup: a figure looks
 # up hundreds of labels and values, and a process each made gnuplot most of `make all`'s time):
 # comment(text, prefix) is the rest of the first line of `text` that starts with `prefix`, or "".
