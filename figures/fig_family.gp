@@ -27,7 +27,7 @@ small_font = font(8)
 set key at screen 0.5,0.995 center top vertical maxrows 2 font small_font samplen 1 width 1
 
 set title "drift per period against the period law" font font(10)
-set xlabel "predicted ΔP / h = 2δm_{loc} + 1.5δm_{glob}"
+set xlabel "predicted ΔP / h = 2".delta_."m_{loc} + 1.5".delta_."m_{glob}"
 set ylabel "measured drift − Mod 3's drift (per period, / h)"
 set xrange [-2.2:1.5]
 set yrange [-2.2:1.5]
