@@ -200,12 +200,13 @@ $(FIGURES)/%.pdf: figures/%.gp figures/style.gp $(DATA)/%.dat | $(FIGURES)
 
 # The report's title page and its back: the authors and version of CITATION.cff, the last commit and its
 # date, the tools' and libraries' versions, the vector target of the batched step (build_info) and the
-# command (tools/report_meta.sh). Remade on every run, but rewritten only when it changes, so that the
+# command, `make all` whatever variables were given (CI compares `make all WERROR=1` with `make all`,
+# byte for byte; tools/report_meta.sh). Remade on every run, but rewritten only when it changes, so that the
 # report is not rebuilt for nothing; the same commit gives the same bytes.
 .PHONY: FORCE
 .SECONDARY: $(BUILD)/bin/build_info
 $(DATA)/report_meta.tex: FORCE $(BUILD)/bin/build_info | $(DATA)
-	tools/report_meta.sh CITATION.cff $(BUILD)/bin/build_info '$(strip make $(or $(MAKECMDGOALS),all) $(MAKEOVERRIDES))' > $@.tmp
+	tools/report_meta.sh CITATION.cff $(BUILD)/bin/build_info > $@.tmp
 	if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv $@.tmp $@; fi
 
 # EC and CN-switch against Crank–Nicolson and backward Euler (mathematics.md §12): one program,
