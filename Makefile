@@ -199,12 +199,15 @@ $(FIGURES)/%.pdf: figures/%.gp figures/style.gp $(DATA)/%.dat | $(FIGURES)
 	LC_ALL=C sed -i 's|/CreationDate (D:[0-9]\{14\}Z)|/CreationDate (D:19700101000000Z)|' $@.tmp
 	mv $@.tmp $@
 
-# The report's title page: the authors and version of CITATION.cff and the date of the last commit
-# (tools/report_meta.sh). Remade on every run, but rewritten only when it changes, so that the report is
-# not rebuilt for nothing; the same commit gives the same bytes.
+# The report's title page and its back: the authors and version of CITATION.cff, the last commit and its
+# date, the tools' and libraries' versions, the vector target of the batched step (build_info) and the
+# command, `make all` whatever variables were given (CI compares `make all WERROR=1` with `make all`,
+# byte for byte; tools/report_meta.sh). Remade on every run, but rewritten only when it changes, so that the
+# report is not rebuilt for nothing; the same commit gives the same bytes.
 .PHONY: FORCE
-$(DATA)/report_meta.tex: FORCE | $(DATA)
-	tools/report_meta.sh CITATION.cff > $@.tmp
+.SECONDARY: $(BUILD)/bin/build_info
+$(DATA)/report_meta.tex: FORCE $(BUILD)/bin/build_info | $(DATA)
+	tools/report_meta.sh CITATION.cff $(BUILD)/bin/build_info > $@.tmp
 	if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv $@.tmp $@; fi
 
 # EC and CN-switch against Crank–Nicolson and backward Euler (mathematics.md §12): one program,
@@ -260,11 +263,12 @@ $(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/
 	cp $(OUT)/latex/report.pdf $@.tmp
 	mv $@.tmp $@
 
-# The API documentation (Doxyfile): lib/ and the documents of doc/ that exist. Any warning in
+# The API documentation (Doxyfile): lib/ and the documents of doc/ that exist (the main page, the
+# mathematics and one page per module whose derivation it renders, doc/module_*.md). Any warning in
 # $(DOC)/doxygen.log (an undocumented public member, a broken reference) fails the build. The formulas
 # are rendered by MathJax 2 from Debian's libjs-mathjax, whose needed parts are copied beside the HTML
 # (MATHJAX_RELPATH = mathjax), so that the pages work offline.
-DOC_INPUT := lib $(wildcard doc/mainpage.md doc/mathematics.md)
+DOC_INPUT := lib $(wildcard doc/mainpage.md doc/mathematics.md doc/module_*.md)
 MATHJAX := /usr/share/javascript/mathjax
 MATHJAX_PARTS := MathJax.js extensions jax/input/TeX jax/element jax/output/HTML-CSS fonts/HTML-CSS/TeX \
                  localization/en

@@ -16,7 +16,7 @@ load dir.'style.gp'
 if (format eq 'png') {
   set terminal pngcairo size 900,560 font font(12) enhanced
 } else {
-  set terminal pdfcairo size 14cm,8.6cm font font(10) enhanced
+  set terminal @figure_terminal size 14cm,8.6cm
 }
 set output output
 

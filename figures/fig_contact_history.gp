@@ -11,7 +11,7 @@ if (!exists("output")) output = 'output/figures/fig_contact_history.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,14cm font font(10) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,14cm
 set output output
 set datafile missing "n/a"
 

@@ -9,7 +9,7 @@ if (!exists("output")) output = 'output/figures/fig_convergence.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,21cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,21cm
 set output output
 
 # Block 2 (3 s + m - 1) + c is scheme s, mass m, ratio c.

@@ -8,7 +8,7 @@ if (!exists("output")) output = 'output/figures/fig_energy.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,17cm font font(10) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,17cm
 set output output
 
 # Block 3 s + m - 1 is scheme s, mass m.

@@ -7,7 +7,7 @@ if (!exists("output")) output = 'output/figures/fig_energy_schemes_history.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,17cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,17cm
 set output output
 
 blocks = system(sprintf("awk '/^# block [0-9]+: scheme = /{sub(/,/, \"\", $6); print $6, $9}' '%s'", data))

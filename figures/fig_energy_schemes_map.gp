@@ -7,7 +7,7 @@ if (!exists("output")) output = 'output/figures/fig_energy_schemes_map.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,13cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,13cm
 set output output
 
 schemes = system(sprintf("awk '/^# block [0-9]+: scheme = .*, N = /{sub(/,/, \"\", $6); print $6}' '%s' | awk '!seen[$0]++'", data))

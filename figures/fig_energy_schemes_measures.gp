@@ -8,7 +8,7 @@ if (!exists("output")) output = 'output/figures/fig_energy_schemes_measures.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,13cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,13cm
 set output output
 
 # Row layout: scheme mass, the 8 errors, the 8 ratios to Crank-Nicolson's, the energy lost.

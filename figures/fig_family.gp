@@ -11,7 +11,7 @@ if (!exists("output")) output = 'output/figures/fig_family.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,8cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,8cm
 set output output
 
 # Blocks 4a + 2b + c: two meshes, two steps, two horizons; the longer horizon's blocks are odd. Each
@@ -27,7 +27,7 @@ small_font = font(8)
 set key at screen 0.5,0.995 center top vertical maxrows 2 font small_font samplen 1 width 1
 
 set title "drift per period against the period law" font font(10)
-set xlabel "predicted ΔP / h = 2δm_{loc} + 1.5δm_{glob}"
+set xlabel "predicted ΔP / h = 2".delta_."m_{loc} + 1.5".delta_."m_{glob}"
 set ylabel "measured drift − Mod 3's drift (per period, / h)"
 set xrange [-2.2:1.5]
 set yrange [-2.2:1.5]

@@ -11,7 +11,7 @@ if (!exists("ratio")) ratio = "0.5"
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,12cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,12cm
 set output output
 
 # The index of the first block with this scheme, mass and ratio (-1 if none).

@@ -8,7 +8,7 @@ if (!exists("output")) output = 'output/figures/fig_ordering_map.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,13cm font font(8) linewidth 1.0 enhanced
+set terminal @figure_terminal size 16cm,13cm
 set output output
 
 # The first blocks of the file, one per (scheme, ratio) in order: "# block b: scheme = s, dt/h = r"

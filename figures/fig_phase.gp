@@ -8,7 +8,7 @@ if (!exists("output")) output = 'output/figures/fig_phase.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,17cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,17cm
 set output output
 
 # Blocks 0..n-1: the error histories, blocks n..2n-1: the impacts, one per mass in the same order.
@@ -18,8 +18,10 @@ mass_index(id) = id eq "mod1" ? 1 : id eq "mod2" ? 2 : id eq "mod3" ? 3 : 4
 run_title = sprintf("%s, %s = 1/%s, %s = %s%s", scheme_name(header("scheme")), italic("h"), header("elements"), \
   Delta_t, header("courant"), italic("h"))
 
-set multiplot layout 3,1 margins 0.11,0.97,0.06,0.93 spacing 0.0,0.07 title run_title font font(10)
-set key top left
+set multiplot layout 3,1 margins 0.11,0.97,0.06,0.93 spacing 0.0,0.1 title run_title font font(10)
+# The keys where no curve is: above the errors, which grow with time (the top centre stays free), and
+# below the impact-time errors at the start, where every mass is still on time.
+set key top center horizontal samplen 2
 set xlabel italic("t")
 set autoscale xfix
 set offsets 0, 0, graph 0.05, graph 0.05
@@ -34,7 +36,7 @@ plot for [m=1:n] data index m-1 using 1:3 with lines lc rgb mass_colour(mass_ind
   title mass_name(word(histories, m))
 
 set title "impact-time errors: measured (points) and the period law (dashed lines)"
-set key bottom left vertical maxrows 3 samplen 2
+set key at graph 0.03, graph 0.05 left bottom vertical maxrows 3 samplen 2
 set xlabel "exact impact time ".italic("t_k")
 set ylabel "time error"
 plot for [m=1:n] data index n+m-1 using 2:3 with points lc rgb mass_colour(mass_index(word(histories, m))) pt 7 ps 0.4 \

@@ -7,7 +7,7 @@ if (!exists("output")) output = 'output/figures/fig_profiles.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,11cm font font(10) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,11cm
 set output output
 
 # The instants, from the block headers ("# block 0: exact, t = 0.5").

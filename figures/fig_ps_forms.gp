@@ -8,7 +8,7 @@ if (!exists("output")) output = 'output/figures/fig_ps_forms.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,18cm font font(10) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,18cm
 set output output
 
 # Blocks 1..3: "form = f, mass = m".

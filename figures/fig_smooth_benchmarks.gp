@@ -9,7 +9,7 @@ if (!exists("output")) output = 'output/figures/fig_smooth_benchmarks.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,16cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,16cm
 set output output
 
 benchmarks = system(sprintf("sed -n 's/^# block [0-9]*: benchmark = \\([a-z-]*\\)$/\\1/p' '%s'", data))

@@ -10,7 +10,7 @@ if (!exists("output")) output = 'output/figures/fig_smooth_convergence.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,21cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,21cm
 set output output
 
 # The blocks in file order: benchmark scheme mass ratio, four words per block.

@@ -8,7 +8,7 @@ if (!exists("output")) output = 'output/figures/fig_stability_map.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,7.5cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,7.5cm
 set output output
 
 # Blocks 0..n-1: one mesh each ("# block b: N = 16"); block n: the long runs.
@@ -33,6 +33,8 @@ plot for [b=1:n] data index b-1 using 1:2 with linespoints lc rgb mesh_colour(b)
 long_step = header("long_courant") eq "1" ? italic("h") : header("long_courant").italic("h")
 set title sprintf("%s periods, %s = %s", header("long_periods"), Delta_t, long_step)
 set xlabel italic("N")
+# Mod 1 starts high on the coarsest mesh (top left): the key goes where no curve is.
+set key top right
 set xtics ()
 do for [b=1:n] { set xtics add (word(meshes, b) word(meshes, b) + 0) }
 plot for [m=1:3] data index n using ($1 == m ? $2 : NaN):3 with linespoints lc rgb mass_colour(m) pt 7 ps 0.5 \

@@ -11,7 +11,7 @@ if (!exists("output")) output = 'output/figures/fig_time_error.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,16cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,16cm
 set output output
 
 colour(k) = word("#1f77b4 #ff7f0e #2ca02c #d62728 #9467bd #8c564b #e377c2 #17becf", k)

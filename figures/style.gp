@@ -13,6 +13,10 @@
 set encoding utf8
 fontface = "Latin Modern Roman"
 font(size) = sprintf("%s,%g", fontface, size)
+# The one terminal of the report's figures: PDF at the text width, text at 9 pt (the captions are set
+# at 10), lines 1.5 times cairo's default. A script sets `set terminal @figure_terminal size W,H`; a
+# figure with small panels may lower its own labels' font, never the terminal's.
+figure_terminal = sprintf("pdfcairo font '%s' linewidth 1.5 enhanced", font(9))
 # The data file's comment lines, read once (one process each, instead of one per lookup: a figure looks
 # up hundreds of labels and values, and a process each made gnuplot most of `make all`'s time):
 # comment(text, prefix) is the rest of the first line of `text` that starts with `prefix`, or "".
@@ -27,6 +31,14 @@ header(key) = comment(comments_unquoted, "# ".unescape(key)." = ")
 italic(s) = "{/:Italic ".s."}"
 # Math italic lambda (U+1D706) from the math font, as the report's $\lambda$.
 lambda_ = "{/'Latin Modern Math' 𝜆}"
+# Every other lower-case Greek letter (and √) likewise: Latin Modern Roman's text font has none, and cairo
+# would fall back to DejaVu Sans for it. math(c) sets any character in the math font; the letters the
+# figures use are named. Pass the math italic letters (U+1D6FC…) for variables, as the report's $\beta$.
+math(c) = "{/'Latin Modern Math' ".c."}"
+beta_ = math("𝛽")
+delta_ = math("𝛿")
+xi_ = math("𝜉")
+omega_ = math("𝜔")
 Delta_t = "Δ".italic("t")
 mass_colour(m) = m == 1 ? "#d62728" : m == 2 ? "#1f77b4" : m == 3 ? "#2ca02c" : "#9467bd"
 # The names of schemes and masses: the `# label <id> = <name>` lines the program wrote into the data
@@ -65,4 +77,4 @@ columns = system(sprintf("sed -n 's/^# columns: //p' '%s' | head -n 1", data))
 set grid lc rgb "#dddddd" lw 0.5
 # The energies' symbols, as in the report: the two-level E_h and Paoli–Schatzman's E_h^β.
 E_h = "{/:Italic E}_{/:Italic h}"
-E_h_beta = "{/:Italic E}_{/:Italic h}^β"
+E_h_beta = "{/:Italic E}_{/:Italic h}^".beta_

@@ -48,6 +48,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -1962,6 +1963,51 @@ void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) 
   std::ostringstream table_tex;
   table.write_latex(table_tex, layout);
   out << "\\mrmdef{claims:table}{" << table_tex.str() << "}\n";
+  // The verdicts of each group of rows (the first two segments of the id: "classes/oscillation",
+  // "7/phase-matched", "3/sensitivity"), for the report's decision page and replication chapter:
+  // \mrmdef{claims:group:classes:oscillation}{5 of 6 rows reproduced, 1 marginal}; a group whose rows
+  // all hold reads "all N rows reproduced".
+  std::vector<std::string> groups;
+  std::map<std::string, std::array<int, 4>> counts;
+  for (const ClaimResult& r : rows) {
+    const std::size_t first = r.id.find('/');
+    const std::size_t second = first == std::string::npos ? first : r.id.find('/', first + 1);
+    std::string group = r.id.substr(0, second);
+    for (char& c : group)
+      if (c == '/') c = ':';
+    if (counts.find(group) == counts.end()) groups.push_back(group), counts[group] = {0, 0, 0, 0};
+    ++counts[group][static_cast<std::size_t>(r.verdict)];
+  }
+  for (const std::string& g : groups) {
+    const std::array<int, 4>& c = counts[g];
+    const int total = c[0] + c[1] + c[2] + c[3];
+    std::string text = c[0] == total ? (total == 1 ? std::string("its one row reproduced")
+                                                   : "all " + std::to_string(total) + " rows reproduced")
+                                     : std::to_string(c[0]) + " of " + std::to_string(total) + " rows reproduced";
+    for (int v = 1; v < 4; ++v)
+      if (c[static_cast<std::size_t>(v)] > 0 && c[0] != total)
+        text += ", " + std::to_string(c[static_cast<std::size_t>(v)]) + " " + to_string(Verdict(v));
+    tex_define(out, "claims:group:" + g, text);
+  }
+}
+
+TEST_CASE("the claims table's group verdicts count each group's rows by verdict") {
+  const auto row = [](std::string id, Verdict v) {
+    ClaimResult r;
+    r.id = std::move(id);
+    r.verdict = v;
+    return r;
+  };
+  std::ostringstream out;
+  write_latex_table(out, {row("classes/oscillation/paper/cn", Verdict::reproduced),
+                          row("classes/oscillation/s1/cn", Verdict::marginal),
+                          row("classes/oscillation/s1/ec", Verdict::not_reproduced), row("2/mod2", Verdict::reproduced),
+                          row("2/mod3", Verdict::reproduced)});
+  const std::string tex = out.str();
+  CHECK(tex.find("\\mrmdef{claims:group:classes:oscillation}{1 of 3 rows reproduced, 1 marginal, 1 not reproduced}") !=
+        std::string::npos);
+  CHECK(tex.find("\\mrmdef{claims:group:2:mod2}{its one row reproduced}") != std::string::npos);
+  CHECK(tex.find("claims:group:2:mod3") != std::string::npos);
 }
 
 }  // namespace mrm::claims

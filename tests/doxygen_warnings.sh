@@ -11,7 +11,7 @@ trap 'rm -rf -- "$work"' EXIT
 cd "$root"
 inputs=lib
 mainpage=doc/mainpage.md
-for f in doc/mainpage.md doc/mathematics.md; do [[ -f $f ]] && inputs+=" $f"; done
+for f in doc/mainpage.md doc/mathematics.md doc/module_*.md; do [[ -f $f ]] && inputs+=" $f"; done
 [[ -f $mainpage ]] || mainpage=''
 { cat Doxyfile; echo "OUTPUT_DIRECTORY = $work"; echo "INPUT = $inputs"; echo "USE_MDFILE_AS_MAINPAGE = $mainpage"; } |
   doxygen - >"$work/doxygen.log" 2>&1
@@ -33,5 +33,10 @@ expect schemes_8cpp.html '\( A U^{n+1} = B_1 U^n' 'a MathJax formula'
 expect contact_8cpp.html 'Condensation of the massless contact node' "the contact node's derivation"
 expect contact_8cpp.html 'The closed-form contact step' "the contact step's derivation"
 expect contact_8cpp.html '\( A U = b - \kappa \lambda e_0' 'a MathJax formula'
-((status == 0)) && echo "doxygen_warnings: no warning; derivations and formulas on the pages of schemes.cpp and contact.cpp"
+# One page per module of the field's classes, the phase-matched mass, the batched step, the impact
+# benchmarks' exact solution and the phase diagnostics, each with its derivation as MathJax formulas.
+for page in contact_classes explicit_schemes interior_mass batched_step impact_solution phase; do
+  expect "module_$page.html" '\[' "the derivation of $page as a displayed formula"
+done
+((status == 0)) && echo "doxygen_warnings: no warning; derivations and formulas on the pages of schemes.cpp, contact.cpp and the modules"
 exit "$status"
