@@ -158,9 +158,9 @@ int main(int argc, char** argv) {
       const Member& member = members()[job.member];
       const mrm::Index n = meshes[job.mesh];
       const mrm::UniformMesh mesh(1.0, n);
-      mrm::repro::Configuration configuration = mrm::repro::paper_configuration(
-          mrm::Scheme::crank_nicolson, "algebraic", member.spec(n), n, courants[job.courant],
-          exact.period() * static_cast<double>(horizons.back()));
+      mrm::repro::Configuration configuration =
+          mrm::repro::paper_configuration(mrm::Scheme::crank_nicolson, "algebraic", member.spec(n), n,
+                                          courants[job.courant], exact.period() * static_cast<double>(horizons.back()));
       configuration.mass = mrm::repro::mass_redistribution_from_spec(member.spec(n), mesh);
       for (std::size_t c = 0; c + 1 < horizons.size(); ++c)
         configuration.horizons.push_back(exact.period() * static_cast<double>(horizons[c]));

@@ -225,7 +225,8 @@ Measures run_configuration(const Configuration& configuration, const std::functi
 /// Where a run finds its reference: the unit configuration and the horizon in, the reference of that
 /// unit configuration out (run_configuration's own: unit_configuration_reference; the sweep layer's
 /// cache, repro/sweep.hpp, shares one among the runs of the same data, mesh, Δt and horizon).
-using ReferenceSource = std::function<std::shared_ptr<const ReferenceSolution>(const Configuration& unit, double horizon)>;
+using ReferenceSource =
+    std::function<std::shared_ptr<const ReferenceSolution>(const Configuration& unit, double horizon)>;
 /// The reference run_configuration measures a unit configuration (unit_configuration) against up to
 /// `horizon`: the closed form for "paper", a field benchmark's ImpactReference, otherwise the
 /// characteristic solution of its data, tabulated on the lattice of h and Δt when one of them is a

@@ -113,8 +113,7 @@ std::string result_file(const std::string& directory, std::size_t k) {
   return name.str();
 }
 
-void write_job_list(std::ostream& out, const std::string& program, const JobGrid& grid,
-                    const std::string& directory) {
+void write_job_list(std::ostream& out, const std::string& program, const JobGrid& grid, const std::string& directory) {
   for (std::size_t k = 0; k < grid.size(); ++k) {
     const JobGrid one = grid.run(k);
     // The run's index in the whole grid is what names its result file; the run itself is a grid of one.
@@ -186,8 +185,14 @@ std::string data_bytes(const InitialData* data) {
   return bytes;
 }
 ReferenceKey reference_key(const Configuration& unit, double horizon) {
-  return {data_bytes(unit.data.get()), unit.data ? std::string() : unit.benchmark, unit.field.get(), unit.length,
-          unit.amplitude, unit.elements, unit.step(), horizon};
+  return {data_bytes(unit.data.get()),
+          unit.data ? std::string() : unit.benchmark,
+          unit.field.get(),
+          unit.length,
+          unit.amplitude,
+          unit.elements,
+          unit.step(),
+          horizon};
 }
 
 }  // namespace
@@ -272,8 +277,7 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
   std::vector<std::vector<std::size_t>> batches;
   std::vector<double> batch_cost;
   for (auto& [key, members] : groups) {
-    std::stable_sort(members.begin(), members.end(),
-                     [&](std::size_t a, std::size_t b) { return costs[a] > costs[b]; });
+    std::stable_sort(members.begin(), members.end(), [&](std::size_t a, std::size_t b) { return costs[a] > costs[b]; });
     for (std::size_t first = 0; first < members.size(); first += width) {
       batches.emplace_back(members.begin() + static_cast<std::ptrdiff_t>(first),
                            members.begin() + static_cast<std::ptrdiff_t>(std::min(first + width, members.size())));
@@ -301,7 +305,8 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                       }
                     } else {
                       BatchedSimulation lanes(std::move(simulations));
-                      for (std::size_t j = 0; j < batch.size(); ++j) watching[j] = observe(batch[j], lanes.run(j).sample());
+                      for (std::size_t j = 0; j < batch.size(); ++j)
+                        watching[j] = observe(batch[j], lanes.run(j).sample());
                       for (Index n = 1; n <= most; ++n) {
                         bool any = false;
                         for (std::size_t j = 0; j < batch.size(); ++j) any = any || (watching[j] && n <= steps[j]);
