@@ -41,7 +41,6 @@
 #include "labels.hpp"
 #include "options.hpp"
 #include "parallel.hpp"
-#include "sweep.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
 
@@ -124,61 +123,47 @@ int main(int argc, char** argv) {
       for (std::size_t a = 0; a < meshes.size(); ++a)
         for (std::size_t b = 0; b < courants.size(); ++b) jobs.push_back({s, a, b});
     std::vector<std::vector<Cell>> results(jobs.size(), std::vector<Cell>(horizons.size()));
-    // The configurations and the level at which each horizon is reached (run_configuration's rule).
-    std::vector<repro::Configuration> configurations;
-    std::vector<std::vector<mrm::Index>> levels(jobs.size());
-    for (std::size_t k = 0; k < jobs.size(); ++k) {
+    const std::vector<std::size_t> order = repro::costliest_first(jobs.size(), [&](std::size_t k) {
+      const double n = static_cast<double>(meshes[jobs[k].mesh]);
+      return n * n * reach[jobs[k].mesh] / courants[jobs[k].courant];
+    });
+    repro::run_in_parallel(order, threads, [&](std::size_t k) {
       const Job& job = jobs[k];
       const Case& c = cases()[job.scheme];
       repro::Configuration configuration = repro::paper_configuration(
           c.scheme, c.ps_form, c.mass, meshes[job.mesh], courants[job.courant], exact.period() * reach[job.mesh]);
+      std::vector<mrm::Index> levels;  // the level at which each horizon is reached (run_configuration's rule)
       for (double periods : horizons)
         if (periods <= reach[job.mesh]) {
-          levels[k].push_back(mrm::steps_to_reach(exact.period() * periods, configuration.step()));
+          levels.push_back(mrm::steps_to_reach(exact.period() * periods, configuration.step()));
           if (periods < reach[job.mesh]) configuration.horizons.push_back(exact.period() * periods);
         }
-      configurations.push_back(configuration);
-    }
-    // TV(λ), TV(λ_exact) and the smallest values, sample by sample, read off at each horizon's level: one
-    // state per run, written only by the observer of that run.
-    struct Trace {
+      // TV(λ), TV(λ_exact) and the smallest values, sample by sample, read off at each horizon's level.
+      std::vector<Cell>& cells = results[k];
       double tv = 0, tv_exact = 0, lambda = 0, lambda_exact = 0, min_lambda = 0, min_exact = 0, e0 = 0;
       bool first = true;
       std::size_t next = 0;
-    };
-    std::vector<Trace> traces(jobs.size());
-    // The runs through the sweep layer (repro/sweep.hpp: batched in vector lanes on --threads workers;
-    // each run's samples and measures are its own, bit for bit).
-    repro::SweepSettings settings = repro::sweep_settings();
-    settings.threads = static_cast<unsigned>(threads);
-    const std::vector<repro::Measures> all_measures =
-        repro::run_batched(configurations, settings, [&](std::size_t k, const mrm::Sample& s) {
-          Trace& t = traces[k];
-          std::vector<Cell>& cells = results[k];
-          if (s.level == 0) t.e0 = s.energy;
-          if (s.has_multiplier) {
-            const double exact_lambda = exact.contact_multiplier(s.multiplier_time);
-            if (!t.first)
-              t.tv += std::abs(s.multiplier - t.lambda), t.tv_exact += std::abs(exact_lambda - t.lambda_exact);
-            t.min_lambda = t.first ? s.multiplier : std::min(t.min_lambda, s.multiplier);
-            t.min_exact = t.first ? exact_lambda : std::min(t.min_exact, exact_lambda);
-            t.lambda = s.multiplier, t.lambda_exact = exact_lambda, t.first = false;
-          }
-          if (t.next < levels[k].size() && s.level == levels[k][t.next]) {
-            Cell& cell = cells[t.next++];
-            cell.computed = true;
-            cell.tv = t.tv, cell.tv_exact = t.tv_exact, cell.min_lambda = t.min_lambda,
-            cell.min_lambda_exact = t.min_exact;
-            cell.energy_ratio = s.energy / t.e0;
-          }
-        });
-    for (std::size_t k = 0; k < jobs.size(); ++k) {
-      if (traces[k].next != levels[k].size()) throw std::logic_error("baseline_regions: a horizon was not reached");
-      const repro::Measures& measures = all_measures[k];
-      for (std::size_t h = 0; h < levels[k].size(); ++h)
-        results[k][h].errors =
-            mrm::ErrorAccumulator::values(h + 1 < levels[k].size() ? measures.horizon_errors[h] : measures.errors);
-    }
+      const repro::Measures measures = repro::run_configuration(configuration, [&](const mrm::Sample& s) {
+        if (s.level == 0) e0 = s.energy;
+        if (s.has_multiplier) {
+          const double exact_lambda = exact.contact_multiplier(s.multiplier_time);
+          if (!first) tv += std::abs(s.multiplier - lambda), tv_exact += std::abs(exact_lambda - lambda_exact);
+          min_lambda = first ? s.multiplier : std::min(min_lambda, s.multiplier);
+          min_exact = first ? exact_lambda : std::min(min_exact, exact_lambda);
+          lambda = s.multiplier, lambda_exact = exact_lambda, first = false;
+        }
+        if (next < levels.size() && s.level == levels[next]) {
+          Cell& cell = cells[next++];
+          cell.computed = true;
+          cell.tv = tv, cell.tv_exact = tv_exact, cell.min_lambda = min_lambda, cell.min_lambda_exact = min_exact;
+          cell.energy_ratio = s.energy / e0;
+        }
+      });
+      if (next != levels.size()) throw std::logic_error("baseline_regions: a horizon was not reached");
+      for (std::size_t h = 0; h < levels.size(); ++h)
+        cells[h].errors =
+            mrm::ErrorAccumulator::values(h + 1 < levels.size() ? measures.horizon_errors[h] : measures.errors);
+    });
     const auto cell = [&](std::size_t s, std::size_t a, std::size_t b, std::size_t h) -> const Cell& {
       return results[(s * meshes.size() + a) * courants.size() + b][h];
     };
