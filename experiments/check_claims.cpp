@@ -29,6 +29,7 @@
 
 #include "claims.hpp"
 #include "regions.hpp"
+#include "sweep.hpp"
 #include "options.hpp"
 #include "output_file.hpp"
 
@@ -57,7 +58,10 @@ int main(int argc, char** argv) {
     parser.add_output("--summary-table", "", "also write the summary as a LaTeX longtable to FILE", &summary_table);
     parser.add_output("--sweep", "",
                       "also write every measure of the sweep behind claims 3 and 4 (the maps' data) to FILE", &sweep);
+    mrm::repro::SweepOptions sweep_options;
+    mrm::repro::add_sweep_options(parser, sweep_options);
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
+    mrm::repro::apply_sweep_options(sweep_options);
 
     // 2. Outputs, opened before the checks run.
     const auto open = [&](const std::string& option, const std::string& path) {

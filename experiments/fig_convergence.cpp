@@ -37,6 +37,8 @@
 #include "labels.hpp"
 #include "figure_program.hpp"
 #include "parallel.hpp"
+#include "sweep.hpp"
+#include "sweep.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
 #include "schemes.hpp"
@@ -114,25 +116,18 @@ int main(int argc, char** argv) {
             runs.push_back(
                 {s, m, c, l, n, static_cast<double>(mrm::steps_to_reach(final_time, courants[c] * h)) * n, {}});
           }
-    const std::vector<std::size_t> order =
-        mrm::repro::costliest_first(runs.size(), [&](std::size_t k) { return runs[k].cost; });
 
-    // 4. The runs, on `threads` workers (repro/parallel: each run writes only its own slot).
-    mrm::repro::run_in_parallel(
-        order, threads,
-        [&](std::size_t k) {
-          Run& r = runs[k];
-          r.errors = mrm::ErrorAccumulator::values(
-              mrm::repro::run_configuration(mrm::repro::paper_configuration(schemes[r.scheme], ps_form, masses[r.mass],
-                                                                            r.elements, courants[r.courant],
-                                                                            final_time))
-                  .errors);
-        },
-        [&](std::size_t position, std::size_t k) {
-          const Run& r = runs[k];
-          std::cerr << "fig_convergence: " << position << '/' << order.size() << ' ' << schemes[r.scheme] << ' '
-                    << masses[r.mass] << " dt/h=" << courants[r.courant] << " N=" << r.elements << '\n';
-        });
+    // 4. The runs through the sweep layer (repro/sweep.hpp: batched in vector lanes on `threads` workers;
+    // each run's measures are its own, bit for bit, in the order of `runs`).
+    std::vector<mrm::repro::Configuration> configurations;
+    for (const Run& r : runs)
+      configurations.push_back(mrm::repro::paper_configuration(schemes[r.scheme], ps_form, masses[r.mass], r.elements,
+                                                               courants[r.courant], final_time));
+    mrm::repro::SweepSettings settings = mrm::repro::sweep_settings();
+    settings.threads = static_cast<unsigned>(threads);
+    const std::vector<mrm::repro::Measures> measures = mrm::repro::run_batched(configurations, settings);
+    for (std::size_t k = 0; k < runs.size(); ++k) runs[k].errors = mrm::ErrorAccumulator::values(measures[k].errors);
+    std::cerr << "fig_convergence: " << runs.size() << " runs done\n";
 
     // 5. The data blocks, in the fixed order of `runs` (scheme, mass, ratio, mesh).
     std::ostream& out = program.header("relative errors against h (mathematics.md sec. 5)");

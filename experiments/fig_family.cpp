@@ -35,6 +35,7 @@
 #include "mass_spec.hpp"
 #include "options.hpp"
 #include "parallel.hpp"
+#include "sweep.hpp"
 #include "report_values.hpp"
 
 #include "errors.hpp"
@@ -150,6 +151,29 @@ int main(int argc, char** argv) {
     const std::vector<std::size_t> order =
         mrm::repro::costliest_first(jobs.size(), [&](std::size_t k) { return jobs[k].cost; });
 
+    // The configuration of job k: CN, the member's mass on its mesh, to the longest horizon, measured at
+    // the shorter ones.
+    const auto job_configuration = [&](std::size_t k) {
+      const Job& job = jobs[k];
+      const Member& member = members()[job.member];
+      const mrm::Index n = meshes[job.mesh];
+      const mrm::UniformMesh mesh(1.0, n);
+      mrm::repro::Configuration configuration =
+          mrm::repro::paper_configuration(mrm::Scheme::crank_nicolson, "algebraic", member.spec(n), n,
+                                          courants[job.courant], exact.period() * static_cast<double>(horizons.back()));
+      configuration.mass = mrm::repro::mass_redistribution_from_spec(member.spec(n), mesh);
+      for (std::size_t c = 0; c + 1 < horizons.size(); ++c)
+        configuration.horizons.push_back(exact.period() * static_cast<double>(horizons[c]));
+      return configuration;
+    };
+    // The runs through the sweep layer (repro/sweep.hpp: batched in vector lanes on `threads` workers;
+    // each run's measures are its own, bit for bit), then each job's analysis on the workers.
+    std::vector<mrm::repro::Configuration> configurations;
+    for (std::size_t k = 0; k < jobs.size(); ++k) configurations.push_back(job_configuration(k));
+    mrm::repro::SweepSettings settings = mrm::repro::sweep_settings();
+    settings.threads = static_cast<unsigned>(threads);
+    const std::vector<mrm::repro::Measures> all_measures = mrm::repro::run_batched(configurations, settings);
+
     // 4. The runs, on `threads` workers (repro/parallel.hpp). Each writes only its own slots. The phase
     // is lib/phase's, as in run_configuration: the impacts read off the contact indicator, their errors
     // against the exact impacts L + 3Lk, the least-squares drift per period.
@@ -161,13 +185,8 @@ int main(int argc, char** argv) {
           const mrm::Index n = meshes[job.mesh];
           const mrm::UniformMesh mesh(1.0, n);
           const double h = mesh.h();
-          mrm::repro::Configuration configuration = mrm::repro::paper_configuration(
-              mrm::Scheme::crank_nicolson, "algebraic", member.spec(n), n, courants[job.courant],
-              exact.period() * static_cast<double>(horizons.back()));
-          configuration.mass = mrm::repro::mass_redistribution_from_spec(member.spec(n), mesh);
-          for (std::size_t c = 0; c + 1 < horizons.size(); ++c)
-            configuration.horizons.push_back(exact.period() * static_cast<double>(horizons[c]));
-          const mrm::repro::Measures measures = mrm::repro::run_configuration(configuration);
+          const mrm::repro::Configuration& configuration = configurations[k];
+          const mrm::repro::Measures& measures = all_measures[k];
           const double dt = configuration.step();
           const mrm::PeriodLawMasses masses = mrm::period_law_masses(mesh, configuration.mass);
           // The split subtracts L from a sum of 3N + 1 entries (round-off of about N ulps of L, 1e-13 h here):

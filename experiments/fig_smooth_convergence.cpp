@@ -63,6 +63,7 @@
 #include "convergence.hpp"
 #include "errors.hpp"
 #include "options.hpp"
+#include "sweep.hpp"
 #include "parallel.hpp"
 #include "report_values.hpp"
 #include "smooth_benchmarks.hpp"
@@ -161,43 +162,22 @@ int main(int argc, char** argv) {
               runs.push_back(
                   {b, s, m, c, l, n, static_cast<double>(mrm::steps_to_reach(final_time, courants[c] * h)) * n, {}});
             }
-    const std::vector<std::size_t> order =
-        mrm::repro::costliest_first(runs.size(), [&](std::size_t k) { return runs[k].cost; });
 
     // 4. The runs (repro/configurations: the scheme against the characteristic solution, tabulated on the
-    // lattice of h and Δt), on `threads` workers taking the next run from a shared counter. Each run
-    // writes only its own slot; the first exception stops the others and is rethrown here.
+    // lattice of h and Δt) through the sweep layer (repro/sweep.hpp): batched in vector lanes on `threads`
+    // workers, the characteristic solution of each benchmark, mesh and Δt computed once for the three
+    // masses; each run's measures are its own, bit for bit, in the order of `runs`.
     const auto start = std::chrono::steady_clock::now();
-    std::atomic<std::size_t> next{0};
-    std::atomic<bool> failed{false};
-    std::exception_ptr failure;
-    std::mutex failure_mutex, log_mutex;
-    auto worker = [&] {
-      while (!failed) {
-        const std::size_t k = next++;
-        if (k >= order.size()) return;
-        Run& r = runs[order[k]];
-        try {
-          mrm::repro::Configuration configuration = mrm::repro::paper_configuration(
-              schemes[r.scheme], "algebraic", masses[r.mass], r.elements, courants[r.courant], final_time);
-          configuration.benchmark = benchmarks[r.benchmark];
-          r.errors = mrm::ErrorAccumulator::values(mrm::repro::run_configuration(configuration).errors);
-          std::lock_guard<std::mutex> lock(log_mutex);
-          std::cerr << "fig_smooth_convergence: " << k + 1 << '/' << order.size() << ' ' << benchmarks[r.benchmark]
-                    << ' ' << mrm::to_string(schemes[r.scheme]) << ' ' << masses[r.mass]
-                    << " dt/h=" << courants[r.courant] << " N=" << r.elements << '\n';
-        } catch (...) {
-          std::lock_guard<std::mutex> lock(failure_mutex);
-          if (!failure) failure = std::current_exception();
-          failed = true;
-        }
-      }
-    };
-    std::vector<std::thread> pool;
-    for (long t = 1; t < threads; ++t) pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
+    std::vector<mrm::repro::Configuration> configurations;
+    for (const Run& r : runs) {
+      configurations.push_back(mrm::repro::paper_configuration(schemes[r.scheme], "algebraic", masses[r.mass],
+                                                               r.elements, courants[r.courant], final_time));
+      configurations.back().benchmark = benchmarks[r.benchmark];
+    }
+    mrm::repro::SweepSettings settings = mrm::repro::sweep_settings();
+    settings.threads = static_cast<unsigned>(threads);
+    const std::vector<mrm::repro::Measures> measures = mrm::repro::run_batched(configurations, settings);
+    for (std::size_t k = 0; k < runs.size(); ++k) runs[k].errors = mrm::ErrorAccumulator::values(measures[k].errors);
     std::cerr << "fig_smooth_convergence: " << runs.size() << " runs in "
               << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
 

@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
     parser.add_output("--result", "", "one run (a grid of one): write its line alone to FILE", &result);
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
 
-    repro::SweepGrid grid;
+    repro::JobGrid grid;
     grid.final_time = final_time;
     grid.schemes = split(schemes);
     for (const std::string& s : grid.schemes) {

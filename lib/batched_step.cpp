@@ -398,10 +398,40 @@ void BatchedSimulation::store_lane(const Group& g, std::size_t j, BarSimulation&
 
 const BarSimulation& BatchedSimulation::run(std::size_t k) {
   if (k >= runs_.size()) throw std::out_of_range("BatchedSimulation::run: no run " + std::to_string(k));
-  if (stale_[k]) {
-    store_lane(*groups_[group_of_[k]], lane_of_[k], runs_[k]);
+  if (!stale_[k]) return runs_[k];
+  // Every stale lane of k's group in one pass over the interleaved vectors: a driver that observes
+  // every run at every step asks for all of them, and one lane alone would read every cache line of the
+  // group's vectors (W passes for W lanes). Copies only: the same bits as store_lane.
+  const Group& g = *groups_[group_of_[k]];
+  const std::size_t W = g.runs.size();
+  std::vector<std::size_t> lanes;
+  for (std::size_t j = 0; j < g.used; ++j)
+    if (stale_[g.runs[j]]) lanes.push_back(j);
+  if (lanes.size() == 1) {
+    store_lane(g, lane_of_[k], runs_[k]);
     stale_[k] = 0;
+    return runs_[k];
   }
+  std::vector<double*> u, w, x;
+  for (std::size_t j : lanes) {
+    BarSimulation& r = runs_[g.runs[j]];
+    u.push_back(r.state_.u.data());
+    w.push_back(r.state_.w.data());
+    x.push_back(static_cast<std::size_t>(r.state_.x.size()) == g.n ? r.state_.x.data() : nullptr);
+  }
+  const std::size_t count = lanes.size();
+  for (std::size_t i = 0; i < g.n; ++i) {
+    const double* gu = &g.u[i * W];
+    const double* gw = &g.w[i * W];
+    const double* gx = &g.x[i * W];
+    for (std::size_t m = 0; m < count; ++m) {
+      const std::size_t j = lanes[m];
+      u[m][i] = gu[j];
+      w[m][i] = gw[j];
+      if (x[m]) x[m][i] = gx[j];
+    }
+  }
+  for (std::size_t j : lanes) stale_[g.runs[j]] = 0;
   return runs_[k];
 }
 

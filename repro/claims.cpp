@@ -63,6 +63,7 @@
 #include "period_law.hpp"
 #include "regions.hpp"
 #include "report_values.hpp"
+#include "sweep.hpp"
 #include "table.hpp"
 
 namespace mrm::claims {
@@ -334,18 +335,17 @@ struct StabilityRun {
   Index steps = 0;
 };
 
-StabilityRun stability_run(const SchemeChoice& scheme, const MassRedistribution& mass, Index elements, double courant,
-                           double final_time, double bound) {
-  const UniformMesh mesh(1.0, elements);
-  const double dt = courant * mesh.h();
-  BarSimulation simulation(benchmark_problem(), mesh, mass, scheme.parameters, dt);
+// One stability run observed at every level: the energy and the strain energy ½UⁿᵀSUⁿ against the
+// bound, until a value is not finite (nothing more to measure) or the run ends.
+struct StabilityObserver {
+  Tridiagonal stiffness;
+  double bound;
   StabilityRun r;
-  const Tridiagonal& stiffness = simulation.stiffness();
-  r.e0 = r.e_max = r.e_min = simulation.sample().energy;
-  r.steps = steps_to_reach(final_time, dt);
-  for (Index k = 0; k < r.steps; ++k) {
-    simulation.step();
-    const Sample s = simulation.sample();
+  bool add(const Sample& s) {
+    if (s.level == 0) {
+      r.e0 = r.e_max = r.e_min = s.energy;
+      return true;
+    }
     const bool finite = std::isfinite(s.energy) && std::isfinite(s.multiplier) && s.displacement->allFinite() &&
                         s.velocity->allFinite();
     const double strain = finite ? 0.5 * stiffness.bilinear(*s.displacement, *s.displacement) : 0.0;
@@ -357,14 +357,54 @@ StabilityRun stability_run(const SchemeChoice& scheme, const MassRedistribution&
     if (!finite) {
       r.finite = r.bounded = false;
       r.first_violation_time = s.time;
-      return r;  // nothing more to measure
+      return false;  // nothing more to measure
     }
     if (r.bounded && (s.energy > bound * r.e0 || strain > bound * r.e0)) {
       r.bounded = false;  // run on: the table reports how far it goes
       r.first_violation_time = s.time;
     }
+    return true;
   }
-  return r;
+};
+
+struct StabilityJob {
+  SchemeChoice scheme;
+  MassRedistribution mass;
+  Index elements;
+  double courant, final_time, bound;
+};
+
+// The runs of `jobs` through the sweep layer (repro/sweep.hpp: batched in vector lanes, on the threads);
+// each is the run stepped alone, bit for bit, so the results do not depend on how they were batched.
+std::vector<StabilityRun> stability_runs(const std::vector<StabilityJob>& jobs) {
+  std::vector<repro::BatchKey> keys;
+  std::vector<double> costs;
+  for (const StabilityJob& j : jobs) {
+    keys.push_back({j.elements, to_string(j.scheme.parameters.scheme)});
+    costs.push_back(static_cast<double>(j.elements) * j.final_time / (j.courant / static_cast<double>(j.elements)));
+  }
+  std::vector<StabilityObserver> observers(jobs.size());
+  repro::step_in_batches(
+      keys, costs,
+      [&](std::size_t k, Index& steps) {
+        const StabilityJob& j = jobs[k];
+        const UniformMesh mesh(1.0, j.elements);
+        const double dt = j.courant * mesh.h();
+        BarSimulation simulation(benchmark_problem(), mesh, j.mass, j.scheme.parameters, dt);
+        observers[k].stiffness = simulation.stiffness();
+        observers[k].bound = j.bound;
+        observers[k].r.steps = steps = steps_to_reach(j.final_time, dt);
+        return simulation;
+      },
+      [&](std::size_t k, const Sample& s) { return observers[k].add(s); }, [](std::size_t) {});
+  std::vector<StabilityRun> runs;
+  for (const StabilityObserver& o : observers) runs.push_back(o.r);
+  return runs;
+}
+
+StabilityRun stability_run(const SchemeChoice& scheme, const MassRedistribution& mass, Index elements, double courant,
+                           double final_time, double bound) {
+  return stability_runs({{scheme, mass, elements, courant, final_time, bound}}).front();
 }
 
 bool is_dissipative(const SchemeChoice& scheme) { return scheme.parameters.scheme == Scheme::backward_euler; }
@@ -396,6 +436,14 @@ std::vector<ClaimResult> check_stability(const std::vector<SchemeChoice>& scheme
                                          const std::vector<MassRedistribution>& masses,
                                          const StabilitySettings& settings, Judge& judge) {
   std::vector<ClaimResult> rows;
+  // Every scheme × mass at once (the sweep layer), judged per scheme below.
+  std::vector<StabilityJob> jobs;
+  for (const SchemeChoice& scheme : schemes)
+    for (const MassRedistribution& mass : masses)
+      jobs.push_back({scheme, mass, settings.elements, settings.courant, settings.final_time,
+                      is_dissipative(scheme) ? settings.bound_dissipative : settings.bound_conserving});
+  const std::vector<StabilityRun> runs = stability_runs(jobs);
+  std::size_t next = 0;
   for (const SchemeChoice& scheme : schemes) {
     const double bound = is_dissipative(scheme) ? settings.bound_dissipative : settings.bound_conserving;
     bool holds = true;
@@ -403,8 +451,7 @@ std::vector<ClaimResult> check_stability(const std::vector<SchemeChoice>& scheme
     std::vector<std::string> measured;
     std::vector<std::string> names;
     for (const MassRedistribution& mass : masses) {
-      const StabilityRun r =
-          stability_run(scheme, mass, settings.elements, settings.courant, settings.final_time, bound);
+      const StabilityRun& r = runs[next++];
       holds = holds && r.finite && r.bounded;
       largest = std::max(largest, growth(r));
       measured.push_back(mass.name + ": " + describe(r));
@@ -848,7 +895,7 @@ std::vector<ClaimResult> check_reconstruction_sensitivity(const SensitivitySetti
       configurations.back().mass = m;
     }
   }
-  const std::vector<repro::Measures> measures = repro::run_configurations(configurations);
+  const std::vector<repro::Measures> measures = repro::run_batched(configurations);
   for (std::size_t k = 0; k < measures.size(); ++k)
     sweep.runs.push_back({st.scheme,
                           configurations[k].mass.name,

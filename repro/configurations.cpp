@@ -599,6 +599,23 @@ std::optional<PhaseMeasures> phase_from_contacts(const std::vector<double>& impa
 }
 }  // namespace
 
+namespace {
+// The levels of the horizons T_k: they must increase within (0, T] (checked before the run is set up).
+std::vector<Index> horizon_levels(const Configuration& c, double dt) {
+  std::vector<Index> levels;
+  for (std::size_t k = 0; k < c.horizons.size(); ++k) {
+    if (!(c.horizons[k] > 0 && c.horizons[k] <= c.final_time && (k == 0 || c.horizons[k] > c.horizons[k - 1])))
+      throw std::invalid_argument("run_configuration: the horizons must increase within (0, T]");
+  }
+  for (double t : c.horizons) levels.push_back(steps_to_reach(t, dt));
+  return levels;
+}
+}  // namespace
+
+std::shared_ptr<const ReferenceSolution> unit_configuration_reference(const Configuration& unit, double horizon) {
+  return unit_reference(unit, horizon);
+}
+
 // The horizons are levels of the same run: the errors over [0, T_k] are the accumulator's relative
 // errors right after the level steps_to_reach(T_k, Δt) was added (the L∞ maxima and the L² integrals
 // of a prefix). The impacts come from the contact indicator of every level (phase.cpp), with the
@@ -714,6 +731,145 @@ Measures run_two_bodies(const Configuration& configuration) {
 }
 }  // namespace
 
+ConfigurationRun::ConfigurationRun(const Configuration& configuration, std::function<void(const Sample&)> observe,
+                                   const ReferenceSolution* reference, const ReferenceSource& source)
+    : scaling_(configuration_scaling(configuration)),
+      unit_(unit_configuration(configuration, scaling_)),
+      mesh_(configuration_mesh(unit_)),
+      dt_(unit_.step()),
+      horizon_levels_(horizon_levels(unit_, dt_)),
+      problem_(configuration_problem(unit_)),
+      simulation_(problem_, mesh_, unit_.mass, unit_.scheme, dt_, unit_.initial),
+      impacts_(mesh_.length),
+      // The contact indicator's compliance h₀/E₀ (h on the paper's mesh, the same double) and the gap.
+      compliance_(mesh_.contact_compliance()),
+      gap_(problem_.gap),
+      energy_min_(std::numeric_limits<double>::infinity()),
+      energy_max_(-energy_min_),
+      // The backward difference replaces the contact node's entry of a copy of the velocity (level ≥ 1).
+      difference_(unit_.contact_velocity == ContactVelocity::backward_difference &&
+                  simulation_.massless_contact_node()),
+      observe_(std::move(observe)) {
+  if (is_two_body_configuration(configuration))
+    throw std::invalid_argument("ConfigurationRun: two bodies run through run_configuration (run_two_bodies)");
+  measures_.steps = unit_.steps >= 0 ? unit_.steps : steps_to_reach(unit_.final_time, dt_);
+  // The histories of the contact stresses (unit scale), kept when asked or when a stress other than
+  // the multiplier is reported.
+  keep_ = unit_.keep_stress_history || unit_.stress != ContactStress::multiplier;
+  keep_recovered_ = unit_.keep_stress_history || unit_.stress == ContactStress::recovered;
+  if (keep_) {
+    history_.h = mesh_.h(0);  // the contact element (the recovered fit assumes uniform elements near x = 0)
+    history_.spacing = dt_;
+    history_.order = crank_nicolson_phase_order(dt_ / history_.h, unit_.mass.interior_blend);
+  }
+  // A given reference is the caller's, at the configuration's scale (not owned: an aliasing pointer
+  // with no owner), brought to the unit scale; otherwise the unit configuration's own, kept for the run.
+  const double horizon = reference_horizon(measures_.steps, dt_);
+  exact_ = reference ? to_unit(std::shared_ptr<const ReferenceSolution>(std::shared_ptr<void>(), reference), scaling_)
+           : source  ? source(unit_, horizon)
+                     : unit_reference(unit_, horizon);
+  errors_.emplace(mesh_, exact_);
+}
+
+void ConfigurationRun::add(const Sample& s) {
+  Measures& m = measures_;
+  // TV(λ_h) and TV(λ_exact) summed over the successive multiplier samples; the penetration against the
+  // problem's gap (unit scale).
+  penetration_ = std::max(penetration_, -((*s.displacement)[0] + gap_));
+  if (s.has_multiplier) {
+    const double lambda_exact = exact_->contact_multiplier(s.multiplier_time);
+    if (!first_multiplier_)
+      tv_ += std::abs(s.multiplier - lambda_previous_), tv_exact_ += std::abs(lambda_exact - exact_previous_);
+    lambda_previous_ = s.multiplier, exact_previous_ = lambda_exact, first_multiplier_ = false;
+    if (keep_) {
+      history_.time.push_back(s.multiplier_time);
+      history_.multiplier.push_back(s.multiplier);
+      history_.exact.push_back(lambda_exact);
+    }
+  }
+  if (keep_recovered_) {
+    // The recovered strain through the first k(t) elements (the displacement has N nodes, 0..N−1).
+    const Index k = std::min<Index>(recovered_elements(smearing_width(history_.h, s.time, history_.order), history_.h),
+                                    static_cast<Index>(s.displacement->size()) - 1);
+    history_.recovered_time.push_back(s.time);
+    history_.recovered.push_back(std::min(0.0, recovered_strain(s.displacement->data(), k, history_.h)));
+    history_.exact_at_levels.push_back(exact_->contact_multiplier(s.time));
+  }
+  if (!unit_.measure_errors) {
+    // the stresses only: no error measures
+  } else if (difference_ && s.level >= 1) {
+    velocity_ = *s.velocity;
+    velocity_[0] = ((*s.displacement)[0] - u0_previous_) / dt_;
+    Sample differenced = s;
+    differenced.velocity = &velocity_;
+    errors_->add(differenced);
+  } else {
+    errors_->add(s);
+  }
+  u0_previous_ = (*s.displacement)[0];
+  impacts_.add(s.time, contact_indicator(s, compliance_) + gap_);
+  while (next_horizon_ < horizon_levels_.size() && s.level == horizon_levels_[next_horizon_]) {
+    m.horizon_errors.push_back(unit_.measure_errors ? errors_->relative() : ErrorNorms{});
+    ++next_horizon_;
+  }
+  if (s.level == 0) m.energy_initial = s.energy;
+  m.energy_final = s.energy;
+  energy_min_ = std::min(energy_min_, s.energy);
+  energy_max_ = std::max(energy_max_, s.energy);
+  if (!std::isfinite(s.energy)) throw std::runtime_error("the run produced a non-finite energy");
+  if (!observe_) return;
+  if (scaling_.identity()) return observe_(s);
+  // The sample at the configuration's scale.
+  scaled_displacement_ = scaling_.displacement(1.0) * *s.displacement;
+  scaled_velocity_ = scaling_.velocity(1.0) * *s.velocity;
+  Sample scaled = s;
+  scaled.time = scaling_.time(s.time);
+  scaled.displacement = &scaled_displacement_;
+  scaled.velocity_time = scaling_.time(s.velocity_time);
+  scaled.velocity = &scaled_velocity_;
+  scaled.multiplier_time = scaling_.time(s.multiplier_time);
+  scaled.multiplier = scaling_.stress(s.multiplier);
+  scaled.energy_time = scaling_.time(s.energy_time);
+  scaled.energy = scaling_.energy(s.energy);
+  observe_(scaled);
+}
+
+Measures ConfigurationRun::measures() {
+  Measures m = measures_;
+  m.errors = unit_.measure_errors ? errors_->relative() : ErrorNorms{};
+  m.energy_initial = scaling_.energy(m.energy_initial);
+  m.energy_final = scaling_.energy(m.energy_final);
+  m.energy_min = scaling_.energy(energy_min_);
+  m.energy_max = scaling_.energy(energy_max_);
+  if (tv_exact_ > 0) m.lambda_tv_ratio = tv_ / tv_exact_;  // a ratio of two stresses: scale-free
+  m.stress = unit_.stress;
+  if (keep_) {
+    if (unit_.stress != ContactStress::multiplier) {
+      if (tv_exact_ > 0)
+        m.lambda_tv_ratio = stress_measures(history_, unit_.stress).tv_ratio;
+      else
+        m.lambda_tv_ratio.reset();
+    }
+    m.stress_history = std::move(history_);
+  }
+  m.max_penetration = scaling_.displacement(1.0) * penetration_;
+  if (!impacts_.impacts().empty()) {
+    m.phase = phase_against(impacts_.impacts(), *exact_, mesh_.length);
+    if (m.phase) {
+      m.phase->first_impact_error = scaling_.time(m.phase->first_impact_error);
+      m.phase->period = scaling_.time(m.phase->period);
+      if (m.phase->drift_per_period) m.phase->drift_per_period = scaling_.time(*m.phase->drift_per_period);
+    }
+  }
+  for (const double t : impacts_.impacts()) m.impacts.push_back(scaling_.time(t));
+  for (ContactInterval w : impacts_.windows()) {
+    w.start = scaling_.time(w.start);
+    w.end = scaling_.time(w.end);
+    m.contact_windows.push_back(w);
+  }
+  return m;
+}
+
 Measures run_configuration(const Configuration& configuration, const std::function<void(const Sample&)>& observe,
                            const ReferenceSolution* reference) {
   if (is_two_body_configuration(configuration)) {
@@ -723,140 +879,9 @@ Measures run_configuration(const Configuration& configuration, const std::functi
           "body's)");
     return run_two_bodies(configuration);
   }
-  const Scaling scaling = configuration_scaling(configuration);
-  const Configuration c = unit_configuration(configuration, scaling);
-  const UniformMesh mesh = configuration_mesh(c);
-  const double dt = c.step();
-  for (std::size_t k = 0; k < c.horizons.size(); ++k)
-    if (!(c.horizons[k] > 0 && c.horizons[k] <= c.final_time && (k == 0 || c.horizons[k] > c.horizons[k - 1])))
-      throw std::invalid_argument("run_configuration: the horizons must increase within (0, T]");
-  const Problem problem = configuration_problem(c);
-  BarSimulation simulation(problem, mesh, c.mass, c.scheme, dt, c.initial);
-  ImpactDetector impacts(mesh.length);
-  std::vector<Index> horizon_levels;
-  for (double t : c.horizons) horizon_levels.push_back(steps_to_reach(t, dt));
-  std::size_t next_horizon = 0;
-  // The contact indicator's compliance h₀/E₀ (h on the paper's mesh, the same double) and the gap.
-  const double compliance = mesh.contact_compliance(), gap = problem.gap;
-  Measures m;
-  m.steps = c.steps >= 0 ? c.steps : steps_to_reach(c.final_time, dt);
-  // A given reference is the caller's, at the configuration's scale (not owned: an aliasing pointer
-  // with no owner), brought to the unit scale; otherwise the unit configuration's own, kept for the run.
-  const std::shared_ptr<const ReferenceSolution> exact =
-      reference ? to_unit(std::shared_ptr<const ReferenceSolution>(std::shared_ptr<void>(), reference), scaling)
-                : unit_reference(c, reference_horizon(m.steps, dt));
-  ErrorAccumulator errors(mesh, exact);
-  double energy_min = std::numeric_limits<double>::infinity(), energy_max = -energy_min;
-  // The backward difference replaces the contact node's entry of a copy of the velocity (level ≥ 1).
-  const bool difference =
-      c.contact_velocity == ContactVelocity::backward_difference && simulation.massless_contact_node();
-  Eigen::VectorXd velocity, scaled_displacement, scaled_velocity;
-  double u0_previous = 0;
-  // TV(λ_h) and TV(λ_exact) summed over the successive multiplier samples; the penetration against the
-  // problem's gap (unit scale).
-  double tv = 0, tv_exact = 0, lambda_previous = 0, exact_previous = 0, penetration = 0;
-  bool first_multiplier = true;
-  // The histories of the contact stresses (unit scale), kept when asked or when a stress other than
-  // the multiplier is reported.
-  const bool keep = c.keep_stress_history || c.stress != ContactStress::multiplier;
-  const bool keep_recovered = c.keep_stress_history || c.stress == ContactStress::recovered;
-  StressHistory history;
-  if (keep) {
-    history.h = mesh.h(0);  // the contact element (the recovered fit assumes uniform elements near x = 0)
-    history.spacing = dt;
-    history.order = crank_nicolson_phase_order(dt / history.h, c.mass.interior_blend);
-  }
-  run(simulation, m.steps, [&](const Sample& s) {
-    penetration = std::max(penetration, -((*s.displacement)[0] + gap));
-    if (s.has_multiplier) {
-      const double lambda_exact = exact->contact_multiplier(s.multiplier_time);
-      if (!first_multiplier)
-        tv += std::abs(s.multiplier - lambda_previous), tv_exact += std::abs(lambda_exact - exact_previous);
-      lambda_previous = s.multiplier, exact_previous = lambda_exact, first_multiplier = false;
-      if (keep) {
-        history.time.push_back(s.multiplier_time);
-        history.multiplier.push_back(s.multiplier);
-        history.exact.push_back(lambda_exact);
-      }
-    }
-    if (keep_recovered) {
-      // The recovered strain through the first k(t) elements (the displacement has N nodes, 0..N−1).
-      const Index k = std::min<Index>(recovered_elements(smearing_width(history.h, s.time, history.order), history.h),
-                                      static_cast<Index>(s.displacement->size()) - 1);
-      history.recovered_time.push_back(s.time);
-      history.recovered.push_back(std::min(0.0, recovered_strain(s.displacement->data(), k, history.h)));
-      history.exact_at_levels.push_back(exact->contact_multiplier(s.time));
-    }
-    if (!c.measure_errors) {
-      // the stresses only: no error measures
-    } else if (difference && s.level >= 1) {
-      velocity = *s.velocity;
-      velocity[0] = ((*s.displacement)[0] - u0_previous) / dt;
-      Sample differenced = s;
-      differenced.velocity = &velocity;
-      errors.add(differenced);
-    } else {
-      errors.add(s);
-    }
-    u0_previous = (*s.displacement)[0];
-    impacts.add(s.time, contact_indicator(s, compliance) + gap);
-    while (next_horizon < horizon_levels.size() && s.level == horizon_levels[next_horizon]) {
-      m.horizon_errors.push_back(c.measure_errors ? errors.relative() : ErrorNorms{});
-      ++next_horizon;
-    }
-    if (s.level == 0) m.energy_initial = s.energy;
-    m.energy_final = s.energy;
-    energy_min = std::min(energy_min, s.energy);
-    energy_max = std::max(energy_max, s.energy);
-    if (!std::isfinite(s.energy)) throw std::runtime_error("the run produced a non-finite energy");
-    if (!observe) return;
-    if (scaling.identity()) return observe(s);
-    // The sample at the configuration's scale.
-    scaled_displacement = scaling.displacement(1.0) * *s.displacement;
-    scaled_velocity = scaling.velocity(1.0) * *s.velocity;
-    Sample scaled = s;
-    scaled.time = scaling.time(s.time);
-    scaled.displacement = &scaled_displacement;
-    scaled.velocity_time = scaling.time(s.velocity_time);
-    scaled.velocity = &scaled_velocity;
-    scaled.multiplier_time = scaling.time(s.multiplier_time);
-    scaled.multiplier = scaling.stress(s.multiplier);
-    scaled.energy_time = scaling.time(s.energy_time);
-    scaled.energy = scaling.energy(s.energy);
-    observe(scaled);
-  });
-  m.errors = c.measure_errors ? errors.relative() : ErrorNorms{};
-  m.energy_initial = scaling.energy(m.energy_initial);
-  m.energy_final = scaling.energy(m.energy_final);
-  m.energy_min = scaling.energy(energy_min);
-  m.energy_max = scaling.energy(energy_max);
-  if (tv_exact > 0) m.lambda_tv_ratio = tv / tv_exact;  // a ratio of two stresses: scale-free
-  m.stress = c.stress;
-  if (keep) {
-    if (c.stress != ContactStress::multiplier) {
-      if (tv_exact > 0)
-        m.lambda_tv_ratio = stress_measures(history, c.stress).tv_ratio;
-      else
-        m.lambda_tv_ratio.reset();
-    }
-    m.stress_history = std::move(history);
-  }
-  m.max_penetration = scaling.displacement(1.0) * penetration;
-  if (!impacts.impacts().empty()) {
-    m.phase = phase_against(impacts.impacts(), *exact, mesh.length);
-    if (m.phase) {
-      m.phase->first_impact_error = scaling.time(m.phase->first_impact_error);
-      m.phase->period = scaling.time(m.phase->period);
-      if (m.phase->drift_per_period) m.phase->drift_per_period = scaling.time(*m.phase->drift_per_period);
-    }
-  }
-  for (const double t : impacts.impacts()) m.impacts.push_back(scaling.time(t));
-  for (ContactInterval w : impacts.windows()) {
-    w.start = scaling.time(w.start);
-    w.end = scaling.time(w.end);
-    m.contact_windows.push_back(w);
-  }
-  return m;
+  ConfigurationRun r(configuration, observe, reference);
+  run(r.simulation(), r.steps(), [&](const Sample& s) { r.add(s); });
+  return r.measures();
 }
 
 // The window stresses average the multiplier over 8 W(h, t_n) at each instant (contact_stress.cpp §2);

@@ -284,6 +284,66 @@ struct Measures {
 Measures run_configuration(const Configuration& configuration, const std::function<void(const Sample&)>& observe = {},
                            const ReferenceSolution* reference = nullptr);
 
+/// Where a run finds its reference: the unit configuration and the horizon in, the reference of that
+/// unit configuration out (run_configuration's own: unit_configuration_reference; the sweep layer's
+/// cache, repro/sweep.hpp, shares one among the runs of the same data, mesh, Δt and horizon).
+using ReferenceSource =
+    std::function<std::shared_ptr<const ReferenceSolution>(const Configuration& unit, double horizon)>;
+/// The reference run_configuration measures a unit configuration (unit_configuration) against up to
+/// `horizon`: the closed form for "paper", a field benchmark's ImpactReference, otherwise the
+/// characteristic solution of its data, tabulated on the lattice of h and Δt when one of them is a
+/// whole multiple of the other.
+std::shared_ptr<const ReferenceSolution> unit_configuration_reference(const Configuration& unit, double horizon);
+
+/// run_configuration taken apart, for a driver that steps the simulation itself (the batched sweep of
+/// repro/sweep.hpp): the constructor does run_configuration's set-up (the unit configuration, its
+/// simulation, the reference, the accumulators), `add` takes the samples of levels 0 … steps() in order,
+/// `measures` gives the result. run_configuration(c, observe, reference) is exactly
+/// run(r.simulation(), r.steps(), add) then r.measures() on ConfigurationRun r(c, observe, reference).
+class ConfigurationRun {
+ public:
+  /// `reference` as for run_configuration; without one, the unit configuration's reference comes from
+  /// `source` (unit_configuration_reference if empty).
+  explicit ConfigurationRun(const Configuration& configuration, std::function<void(const Sample&)> observe = {},
+                            const ReferenceSolution* reference = nullptr, const ReferenceSource& source = {});
+  /// The unit configuration's simulation at level 0 (a batched driver moves it out).
+  BarSimulation& simulation() { return simulation_; }
+  /// The number of steps of the run.
+  Index steps() const { return measures_.steps; }
+  /// The unit configuration that is run.
+  const Configuration& unit() const { return unit_; }
+  /// Adds the sample of the next level (levels 0 … steps(), in order). Throws std::runtime_error for a
+  /// non-finite energy.
+  void add(const Sample& sample);
+  /// The measures of the levels added, at the configuration's scale.
+  Measures measures();
+
+ private:
+  Scaling scaling_;
+  Configuration unit_;
+  UniformMesh mesh_;
+  double dt_;
+  std::vector<Index> horizon_levels_;
+  Problem problem_;
+  BarSimulation simulation_;
+  ImpactDetector impacts_;
+  std::size_t next_horizon_ = 0;
+  double compliance_, gap_;
+  Measures measures_;
+  std::shared_ptr<const ReferenceSolution> exact_;
+  std::optional<ErrorAccumulator> errors_;
+  double energy_min_, energy_max_;
+  bool difference_;
+  Eigen::VectorXd velocity_, scaled_displacement_, scaled_velocity_;
+  double u0_previous_ = 0;
+  double tv_ = 0, tv_exact_ = 0, lambda_previous_ = 0, exact_previous_ = 0, penetration_ = 0;
+  bool first_multiplier_ = true;
+  // The contact stresses' histories (Configuration::stress, keep_stress_history).
+  bool keep_ = false, keep_recovered_ = false;
+  StressHistory history_;
+  std::function<void(const Sample&)> observe_;
+};
+
 /// The instant up to which a reference must be known for a run of `steps` steps of size dt: the last
 /// level plus one step (the schemes' staggered instants stay below it).
 inline double reference_horizon(Index steps, double dt) { return static_cast<double>(steps + 1) * dt; }

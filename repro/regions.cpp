@@ -31,6 +31,7 @@
 #include "options.hpp"
 #include "parallel.hpp"
 #include "period_law.hpp"
+#include "sweep.hpp"
 
 namespace mrm::repro {
 
@@ -77,7 +78,9 @@ Sweep run_sweep(const SweepGrid& grid, unsigned threads, std::ostream* progress)
   std::vector<Configuration> sorted;
   for (std::size_t k : order) sorted.push_back(configurations[k]);
   if (progress) *progress << "sweep: " << sorted.size() << " runs to " << cli::format_real(periods) << " periods\n";
-  const std::vector<Measures> measures = run_configurations(sorted, threads);
+  SweepSettings settings = sweep_settings();
+  if (threads > 0) settings.threads = threads;
+  const std::vector<Measures> measures = run_batched(sorted, settings);
   for (std::size_t j = 0; j < order.size(); ++j) {
     SweepRun& r = sweep.runs[order[j]];
     const Measures& m = measures[j];
@@ -324,7 +327,7 @@ StabilityRegion run_stability_region(const StabilityGrid& grid) {
       if (c <= grid.scan_up_to) add(&region.scan, "mod3", n, c, grid.periods);
   for (const std::string& mass : mass_names())
     for (Index n : grid.meshes) add(&region.long_runs, mass, n, grid.long_courant, grid.long_periods);
-  const std::vector<Measures> m = run_configurations(configurations);
+  const std::vector<Measures> m = run_batched(configurations);
   for (std::size_t k = 0; k < cells.size(); ++k) {
     cells[k].second.largest = m[k].energy_max / m[k].energy_initial;
     cells[k].first->push_back(cells[k].second);

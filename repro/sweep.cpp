@@ -1,7 +1,14 @@
 // A sweep run in this process or written out as a job list; see sweep.hpp.
 #include "sweep.hpp"
 
+#include <algorithm>
+#include <cstring>
 #include <fstream>
+#include <future>
+#include <map>
+#include <mutex>
+#include <thread>
+#include <tuple>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -10,7 +17,9 @@
 #include <doctest/doctest.h>
 
 #include "errors.hpp"
+#include "batched_step.hpp"
 #include "options.hpp"
+#include "parallel.hpp"
 
 namespace mrm::repro {
 
@@ -20,7 +29,7 @@ namespace {
 struct Position {
   std::size_t scheme, mass, elements, courant;
 };
-Position position(const SweepGrid& g, std::size_t k) {
+Position position(const JobGrid& g, std::size_t k) {
   if (k >= g.size())
     throw std::out_of_range("sweep: no run " + std::to_string(k) + " in a grid of " + std::to_string(g.size()));
   Position p{};
@@ -57,18 +66,18 @@ std::string shell_word(const std::string& word) {
 
 }  // namespace
 
-SweepGrid SweepGrid::run(std::size_t k) const {
+JobGrid JobGrid::run(std::size_t k) const {
   const Position p = position(*this, k);
   return {{schemes[p.scheme]}, {masses[p.mass]}, {elements[p.elements]}, {courants[p.courant]}, final_time};
 }
 
-Configuration SweepGrid::configuration(std::size_t k) const {
+Configuration JobGrid::configuration(std::size_t k) const {
   const Position p = position(*this, k);
   return paper_configuration(schemes[p.scheme], "algebraic", masses[p.mass], elements[p.elements], courants[p.courant],
                              final_time);
 }
 
-void write_sweep_header(std::ostream& out, const SweepGrid& grid) {
+void write_sweep_header(std::ostream& out, const JobGrid& grid) {
   out << "# sweep: the paper's benchmark, every scheme x mass x N x dt/h to T (repro/sweep.hpp)\n"
       << "# schemes = " << joined(grid.schemes) << "\n# masses = " << joined(grid.masses)
       << "\n# elements = " << joined(grid.elements) << "\n# courants = " << joined(grid.courants)
@@ -78,7 +87,7 @@ void write_sweep_header(std::ostream& out, const SweepGrid& grid) {
   out << '\n';
 }
 
-std::string sweep_line(const SweepGrid& grid, std::size_t k, const Measures& m) {
+std::string sweep_line(const JobGrid& grid, std::size_t k, const Measures& m) {
   const Position p = position(grid, k);
   std::ostringstream line;
   line << grid.schemes[p.scheme] << ' ' << grid.masses[p.mass] << ' ' << grid.elements[p.elements] << ' '
@@ -89,7 +98,7 @@ std::string sweep_line(const SweepGrid& grid, std::size_t k, const Measures& m) 
   return line.str();
 }
 
-std::vector<std::string> run_sweep(const SweepGrid& grid, unsigned threads) {
+std::vector<std::string> run_sweep(const JobGrid& grid, unsigned threads) {
   std::vector<Configuration> configurations;
   for (std::size_t k = 0; k < grid.size(); ++k) configurations.push_back(grid.configuration(k));
   const std::vector<Measures> measures = run_configurations(configurations, threads);
@@ -104,10 +113,9 @@ std::string result_file(const std::string& directory, std::size_t k) {
   return name.str();
 }
 
-void write_job_list(std::ostream& out, const std::string& program, const SweepGrid& grid,
-                    const std::string& directory) {
+void write_job_list(std::ostream& out, const std::string& program, const JobGrid& grid, const std::string& directory) {
   for (std::size_t k = 0; k < grid.size(); ++k) {
-    const SweepGrid one = grid.run(k);
+    const JobGrid one = grid.run(k);
     // The run's index in the whole grid is what names its result file; the run itself is a grid of one.
     out << shell_word(program) << " --schemes " << one.schemes[0] << " --masses " << shell_word(one.masses[0])
         << " --elements " << one.elements[0] << " --courants " << cli::format_real(one.courants[0]) << " --final-time "
@@ -115,7 +123,7 @@ void write_job_list(std::ostream& out, const std::string& program, const SweepGr
   }
 }
 
-void merge_results(std::ostream& out, const SweepGrid& grid, const std::string& directory) {
+void merge_results(std::ostream& out, const JobGrid& grid, const std::string& directory) {
   write_sweep_header(out, grid);
   for (std::size_t k = 0; k < grid.size(); ++k) {
     const std::string path = result_file(directory, k);
@@ -133,9 +141,9 @@ void merge_results(std::ostream& out, const SweepGrid& grid, const std::string& 
 }
 
 TEST_CASE("a sweep's grid numbers its runs with the last axis fastest, and a run's own grid is that run") {
-  const SweepGrid grid{{"cn", "be"}, {"mod1", "mod3", "consistent"}, {8, 16}, {0.5, 1.0}, 1.0};
+  const JobGrid grid{{"cn", "be"}, {"mod1", "mod3", "consistent"}, {8, 16}, {0.5, 1.0}, 1.0};
   CHECK(grid.size() == 24);
-  const SweepGrid one = grid.run(13);  // 13 = ((1·3 + 0)·2 + 0)·2 + 1: be, mod1, 8, 1.0
+  const JobGrid one = grid.run(13);  // 13 = ((1·3 + 0)·2 + 0)·2 + 1: be, mod1, 8, 1.0
   CHECK(one.schemes == std::vector<std::string>{"be"});
   CHECK(one.masses == std::vector<std::string>{"mod1"});
   CHECK(one.elements == std::vector<long>{8});
@@ -151,6 +159,310 @@ TEST_CASE("a sweep's grid numbers its runs with the last axis fastest, and a run
   CHECK(first ==
         "'/bin/sweep' --schemes cn --masses 'mod1' --elements 8 --courants 0.5 --final-time 1 --result "
         "'it'\\''s/run-000000.dat'");
+}
+
+// ---- The batched sweep ------------------------------------------------------------------------------
+
+namespace {
+
+// What a unit configuration's reference depends on (unit_reference in configurations.cpp): its data
+// (by content: the unit configuration of each run holds its own copy of the scaled data, so runs of the
+// same benchmark share one reference), or the benchmark's name and the paper's length and amplitude; its
+// field chain (by identity, kept alive by the cache so that its address cannot be reused by another);
+// its mesh, Δt and the horizon.
+using ReferenceKey = std::tuple<std::string, std::string, const void*, double, double, Index, double, double>;
+std::string data_bytes(const InitialData* data) {
+  if (!data) return {};
+  std::string bytes;
+  const auto put = [&](double v) { bytes.append(reinterpret_cast<const char*>(&v), sizeof v); };
+  for (const InitialDataPiece& piece : data->pieces) {
+    put(piece.a), put(piece.b);
+    put(static_cast<double>(piece.displacement.size()));
+    for (double c : piece.displacement) put(c);
+    put(static_cast<double>(piece.velocity.size()));
+    for (double c : piece.velocity) put(c);
+  }
+  return bytes;
+}
+ReferenceKey reference_key(const Configuration& unit, double horizon) {
+  return {data_bytes(unit.data.get()),
+          unit.data ? std::string() : unit.benchmark,
+          unit.field.get(),
+          unit.length,
+          unit.amplitude,
+          unit.elements,
+          unit.step(),
+          horizon};
+}
+
+}  // namespace
+
+struct ReferenceCache::Store {
+  mutable std::mutex mutex;
+  std::map<ReferenceKey, std::shared_future<std::shared_ptr<const ReferenceSolution>>> references;
+  std::vector<std::shared_ptr<const ImpactBenchmark>> fields;  // the field chains keyed by address
+  std::size_t computed = 0;
+};
+
+ReferenceCache::ReferenceCache() : store_(std::make_unique<Store>()) {}
+ReferenceCache::~ReferenceCache() = default;
+
+std::size_t ReferenceCache::computed() const {
+  std::lock_guard<std::mutex> lock(store_->mutex);
+  return store_->computed;
+}
+
+// The first caller of a key computes its reference outside the lock (other keys go on); a caller of the
+// same key meanwhile waits on the shared future. A failure is stored too: every caller of that key sees it.
+std::shared_ptr<const ReferenceSolution> ReferenceCache::operator()(const Configuration& unit, double horizon) {
+  const ReferenceKey key = reference_key(unit, horizon);
+  std::promise<std::shared_ptr<const ReferenceSolution>> promise;
+  std::shared_future<std::shared_ptr<const ReferenceSolution>> future;
+  {
+    std::lock_guard<std::mutex> lock(store_->mutex);
+    const auto found = store_->references.find(key);
+    if (found != store_->references.end()) return found->second.get();
+    future = promise.get_future().share();
+    store_->references.emplace(key, future);
+    if (unit.field) store_->fields.push_back(unit.field);
+    ++store_->computed;
+  }
+  try {
+    promise.set_value(unit_configuration_reference(unit, horizon));
+  } catch (...) {
+    promise.set_exception(std::current_exception());
+  }
+  return future.get();
+}
+
+SweepSettings& sweep_settings() {
+  static SweepSettings settings;
+  return settings;
+}
+
+void add_sweep_options(cli::Parser& parser, SweepOptions& options) {
+  parser.add_integer("--threads", "-j", "J",
+                     "worker threads, in [1, 256] (default: one per hardware thread); the output does not depend on it",
+                     &options.threads, cli::in_closed_range(1, cli::max_threads));
+  std::vector<std::string> widths{"widest", "none"};
+  for (const BatchTarget& t : batch_targets()) widths.push_back(t.name);
+  parser.add_choice("--vector", "", "W",
+                    "the vector target whose lanes carry the runs: widest (default), none (every run alone), or one "
+                    "this processor has; the output does not depend on it",
+                    widths, &options.vector);
+}
+
+void apply_sweep_options(const SweepOptions& options) {
+  sweep_settings().threads = static_cast<unsigned>(options.threads);
+  sweep_settings().batched = options.vector != "none";
+  use_batch_target(0);
+  for (const BatchTarget& t : batch_targets())
+    if (t.name == options.vector) use_batch_target(t.bit);
+}
+
+// The batches. Runs of the same N and scheme have the same sequence of operations node by node (the
+// batched step groups them further by family and layout, and steps the others alone); within a key
+// the costliest runs (the most steps) go first, so that the runs of a batch have nearly the same number
+// of steps: a lane whose run has ended, or whose observer wants no more, is stepped on with the others
+// but no longer observed. Each batch is one task of run_in_parallel, costliest first (its first run's
+// cost).
+void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double>& costs, const BatchStart& start,
+                     const BatchObserve& observe, const std::function<void(std::size_t k)>& finish,
+                     const SweepSettings& settings) {
+  const std::size_t count = keys.size();
+  if (costs.size() != count) throw std::invalid_argument("step_in_batches: one cost per run");
+  std::map<BatchKey, std::vector<std::size_t>> groups;
+  for (std::size_t k = 0; k < count; ++k) groups[keys[k]].push_back(k);
+  const std::size_t width = settings.batched ? std::max<std::size_t>(1, current_batch_target().lanes) : 1;
+  std::vector<std::vector<std::size_t>> batches;
+  std::vector<double> batch_cost;
+  for (auto& [key, members] : groups) {
+    std::stable_sort(members.begin(), members.end(), [&](std::size_t a, std::size_t b) { return costs[a] > costs[b]; });
+    for (std::size_t first = 0; first < members.size(); first += width) {
+      batches.emplace_back(members.begin() + static_cast<std::ptrdiff_t>(first),
+                           members.begin() + static_cast<std::ptrdiff_t>(std::min(first + width, members.size())));
+      batch_cost.push_back(costs[batches.back().front()]);
+    }
+  }
+  const unsigned threads = settings.threads > 0 ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
+  run_in_parallel(costliest_first(batches.size(), [&](std::size_t b) { return batch_cost[b]; }),
+                  static_cast<long>(threads), [&](std::size_t b) {
+                    const std::vector<std::size_t>& batch = batches[b];
+                    std::vector<BarSimulation> simulations;
+                    std::vector<Index> steps(batch.size(), 0);
+                    std::vector<char> watching(batch.size(), 1);
+                    Index most = 0;
+                    for (std::size_t j = 0; j < batch.size(); ++j) {
+                      simulations.push_back(start(batch[j], steps[j]));
+                      most = std::max(most, steps[j]);
+                    }
+                    if (batch.size() == 1) {
+                      BarSimulation& alone = simulations.front();
+                      bool more = observe(batch[0], alone.sample());
+                      for (Index n = 1; more && n <= steps[0]; ++n) {
+                        alone.step();
+                        more = observe(batch[0], alone.sample());
+                      }
+                    } else {
+                      BatchedSimulation lanes(std::move(simulations));
+                      for (std::size_t j = 0; j < batch.size(); ++j)
+                        watching[j] = observe(batch[j], lanes.run(j).sample());
+                      for (Index n = 1; n <= most; ++n) {
+                        bool any = false;
+                        for (std::size_t j = 0; j < batch.size(); ++j) any = any || (watching[j] && n <= steps[j]);
+                        if (!any) break;
+                        lanes.step();
+                        for (std::size_t j = 0; j < batch.size(); ++j)
+                          if (watching[j] && n <= steps[j]) watching[j] = observe(batch[j], lanes.run(j).sample());
+                      }
+                    }
+                    for (std::size_t k : batch) finish(k);
+                  });
+}
+
+std::vector<Measures> run_batched(const std::vector<Configuration>& configurations, const SweepSettings& settings,
+                                  const std::function<void(std::size_t k, const Sample& sample)>& observe) {
+  const std::size_t count = configurations.size();
+  std::vector<BatchKey> keys(count);
+  std::vector<double> costs(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const Configuration& c = configurations[k];
+    const double steps = c.steps >= 0 ? static_cast<double>(c.steps) : c.final_time / c.step();
+    costs[k] = static_cast<double>(c.elements) * steps;
+    keys[k] = {c.elements, to_string(c.scheme.scheme)};
+  }
+  ReferenceCache cache;
+  const ReferenceSource source = [&cache](const Configuration& unit, double horizon) { return cache(unit, horizon); };
+  // Each slot is written by the worker of its batch only.
+  std::vector<std::unique_ptr<ConfigurationRun>> runs(count);
+  std::vector<Measures> results(count);
+  step_in_batches(
+      keys, costs,
+      [&](std::size_t k, Index& steps) {
+        std::function<void(const Sample&)> of_k;
+        if (observe) of_k = [&observe, k](const Sample& s) { observe(k, s); };
+        runs[k] = std::make_unique<ConfigurationRun>(configurations[k], std::move(of_k), nullptr, source);
+        steps = runs[k]->steps();
+        return std::move(runs[k]->simulation());
+      },
+      [&](std::size_t k, const Sample& s) {
+        runs[k]->add(s);
+        return true;
+      },
+      [&](std::size_t k) {
+        results[k] = runs[k]->measures();
+        runs[k].reset();
+      },
+      settings);
+  return results;
+}
+
+namespace {
+
+// Every measure of a run as text, each double in hexadecimal (std::hexfloat: two texts are equal iff
+// the doubles are the same bits, up to the sign of a NaN, which no measure has).
+std::string measure_bytes(const Measures& m) {
+  std::ostringstream out;
+  out << std::hexfloat;
+  const auto norms = [&](const ErrorNorms& e) {
+    for (double v : ErrorAccumulator::values(e)) out << v << ' ';
+    out << '\n';
+  };
+  norms(m.errors);
+  for (const ErrorNorms& e : m.horizon_errors) norms(e);
+  out << m.energy_initial << ' ' << m.energy_final << ' ' << m.energy_min << ' ' << m.energy_max << ' ' << m.steps
+      << '\n';
+  for (double t : m.impacts) out << t << ' ';
+  if (m.phase) {
+    out << "\nphase " << m.phase->matched << ' ' << m.phase->first_impact_error << ' ' << m.phase->period;
+    if (m.phase->drift_per_period) out << ' ' << *m.phase->drift_per_period;
+  }
+  for (const ContactInterval& w : m.contact_windows) out << "\nwindow " << w.start << ' ' << w.end << ' ' << w.open;
+  if (m.lambda_tv_ratio) out << "\ntv " << *m.lambda_tv_ratio;
+  out << "\npenetration " << m.max_penetration << '\n';
+  return out.str();
+}
+
+}  // namespace
+
+TEST_CASE("the batched sweep gives each run's measures bit for bit, for any thread count and vector width") {
+  // Prediction: every lane of the batched step is bitwise its run stepped alone (batched_step.cpp), the
+  // measures see the same samples in the same order, and a shared reference is the same object a run
+  // would build: so run_batched gives run_configuration's bytes for every run, whatever the threads,
+  // the vector target (each one this machine has) or batching at all. The runs: the five schemes of
+  // the batched step, two masses, two meshes, two steps (runs of one batch end at different levels),
+  // with horizons; and two runs of each smooth benchmark on the same mesh and Δt, which share one reference
+  // per benchmark (and must not get the other's).
+  std::vector<Configuration> configurations;
+  for (const char* scheme : {"cn", "be", "ps", "ec", "cn-switch"})
+    for (const char* mass : {"mod1", "mod3"})
+      for (Index n : {10, 13})
+        for (double courant : {0.5, 1.0}) {
+          configurations.push_back(paper_configuration(scheme, "algebraic", mass, n, courant, 3.5));
+          configurations.back().horizons = {1.0, 3.0};
+        }
+  for (const char* benchmark : {"smooth-impact", "grazing"})
+    for (const char* mass : {"mod1", "mod3"}) {
+      Configuration c = paper_configuration("cn", "algebraic", mass, 16, 0.5, 2.0);
+      c.benchmark = benchmark;
+      configurations.push_back(c);
+    }
+  std::vector<std::string> expected;
+  for (const Configuration& c : configurations) expected.push_back(measure_bytes(run_configuration(c)));
+  std::vector<std::int64_t> targets{0};
+  for (const BatchTarget& t : batch_targets()) targets.push_back(t.bit);
+  for (std::int64_t bit : targets) {
+    use_batch_target(bit);
+    for (unsigned threads : {1u, 2u})
+      for (bool batched : {true, false}) {
+        CAPTURE(current_batch_target().name);
+        CAPTURE(threads);
+        CAPTURE(batched);
+        const std::vector<Measures> got = run_batched(configurations, {threads, batched});
+        REQUIRE(got.size() == configurations.size());
+        for (std::size_t k = 0; k < got.size(); ++k) {
+          CAPTURE(k);
+          CHECK(measure_bytes(got[k]) == expected[k]);
+        }
+      }
+  }
+  use_batch_target(0);
+}
+
+TEST_CASE("a cached reference gives the same bytes as one computed directly, and is computed once") {
+  // Prediction: the cache returns the object unit_configuration_reference builds for the first run of
+  // a key, and the same object to every later run of that key: the same values at every point (here
+  // the nodes at a few instants), and the same measures as a run that builds its own; another Δt is
+  // another key.
+  Configuration c = paper_configuration("cn", "algebraic", "mod3", 16, 0.5, 2.0);
+  c.benchmark = "smooth-impact";
+  ConfigurationRun direct_run(c);
+  const Configuration& unit = direct_run.unit();
+  const double horizon = reference_horizon(direct_run.steps(), unit.step());
+  ReferenceCache cache;
+  const std::shared_ptr<const ReferenceSolution> first = cache(unit, horizon), second = cache(unit, horizon);
+  CHECK(first.get() == second.get());
+  CHECK(cache.computed() == 1);
+  const std::shared_ptr<const ReferenceSolution> direct = unit_configuration_reference(unit, horizon);
+  const UniformMesh mesh = configuration_mesh(unit);
+  std::vector<double> x(static_cast<std::size_t>(mesh.unknowns()));
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = mesh.x(static_cast<Index>(i));
+  for (double t : {0.0, 0.3125, 1.0, 1.96875}) {
+    std::vector<double> a(x.size()), b(x.size());
+    first->displacement_at_points(t, x.data(), static_cast<long>(x.size()), a.data());
+    direct->displacement_at_points(t, x.data(), static_cast<long>(x.size()), b.data());
+    CAPTURE(t);
+    CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+  }
+  const ReferenceSource source = [&cache](const Configuration& u, double h) { return cache(u, h); };
+  ConfigurationRun cached_run(c, nullptr, nullptr, source);
+  run(cached_run.simulation(), cached_run.steps(), [&](const Sample& s) { cached_run.add(s); });
+  CHECK(cache.computed() == 1);
+  CHECK(measure_bytes(cached_run.measures()) == measure_bytes(run_configuration(c)));
+  Configuration other = c;
+  other.courant = 0.25;
+  ConfigurationRun other_run(other, nullptr, nullptr, source);
+  CHECK(cache.computed() == 2);
 }
 
 }  // namespace mrm::repro

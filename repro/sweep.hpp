@@ -7,16 +7,20 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
+#include <utility>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
 
 #include "configurations.hpp"
+#include "options.hpp"
 
 namespace mrm::repro {
 
 /// The grid: every scheme × mass × N × C (Δt = C h) to T, in that nesting order (the last fastest).
-struct SweepGrid {
+struct JobGrid {
   std::vector<std::string> schemes;  ///< ids of the registry (scheme_by_name); PS is (¼, 0), algebraic row
   std::vector<std::string> masses;   ///< mass specs (mass_spec.hpp)
   std::vector<long> elements;
@@ -25,25 +29,97 @@ struct SweepGrid {
 
   std::size_t size() const { return schemes.size() * masses.size() * elements.size() * courants.size(); }
   /// Run k of the grid (0 ≤ k < size()), as a grid of one: the options of its own command.
-  SweepGrid run(std::size_t k) const;
+  JobGrid run(std::size_t k) const;
   /// The configuration of run k.
   Configuration configuration(std::size_t k) const;
 };
 
 /// The header of a sweep's result file: the grid and the columns (the same for both ways).
-void write_sweep_header(std::ostream& out, const SweepGrid& grid);
+void write_sweep_header(std::ostream& out, const JobGrid& grid);
 /// The result line of run k: scheme, mass, N, C, the steps, the energy range and the eight errors
 /// (numbers as cli::format_real writes them: the shortest text that reads back to the same double).
-std::string sweep_line(const SweepGrid& grid, std::size_t k, const Measures& measures);
+std::string sweep_line(const JobGrid& grid, std::size_t k, const Measures& measures);
 /// Every run of the grid, in this process on `threads` threads: the result lines in grid order.
-std::vector<std::string> run_sweep(const SweepGrid& grid, unsigned threads);
+std::vector<std::string> run_sweep(const JobGrid& grid, unsigned threads);
 /// The name of run k's result file in `directory`: run-000042.dat.
 std::string result_file(const std::string& directory, std::size_t k);
 /// The job list: one line per run, `program` with the options of that run alone and --result naming its
 /// result file in `directory` (paths quoted for the shell).
-void write_job_list(std::ostream& out, const std::string& program, const SweepGrid& grid, const std::string& directory);
+void write_job_list(std::ostream& out, const std::string& program, const JobGrid& grid, const std::string& directory);
 /// The header and the lines of the result files of every run, in grid order; throws std::runtime_error
 /// naming the first file that is missing or is not one complete line.
-void merge_results(std::ostream& out, const SweepGrid& grid, const std::string& directory);
+void merge_results(std::ostream& out, const JobGrid& grid, const std::string& directory);
+
+/// The exact solutions shared by the runs of a sweep (issue 24, item 2): the reference of a unit
+/// configuration (unit_configuration_reference), computed once per benchmark or data, mesh, Δt and
+/// horizon and handed to every run that asks for the same (safe on several threads; a second run that
+/// asks while the first computes it waits for it).
+class ReferenceCache {
+ public:
+  ReferenceCache();
+  ~ReferenceCache();
+  /// The reference of `unit` up to `horizon`: computed on the first call, the same object afterwards.
+  std::shared_ptr<const ReferenceSolution> operator()(const Configuration& unit, double horizon);
+  /// The number of references computed (not found in the cache).
+  std::size_t computed() const;
+
+ private:
+  struct Store;
+  std::unique_ptr<Store> store_;
+};
+
+/// How a batched sweep runs: `threads` workers (0: one per hardware thread) and the runs in vector
+/// lanes (`batched`) or each alone. Neither changes a result.
+struct SweepSettings {
+  unsigned threads = 0;
+  bool batched = true;
+};
+/// The settings of this process's sweeps (default: every hardware thread, batched); a program's
+/// --threads and --no-batch set them (add_sweep_options), before any sweep runs.
+SweepSettings& sweep_settings();
+
+/// The options of a program whose runs go through the sweep layer: --threads J (default: one per
+/// hardware thread) and --vector W (widest: the widest vector target of this processor; one of
+/// batch_targets()' names; none: every run stepped alone). Neither changes an output byte: they exist
+/// to show it (tests/sweep_widths.sh) and to run on fewer cores.
+struct SweepOptions {
+  long threads = 0;
+  std::string vector = "widest";
+};
+void add_sweep_options(cli::Parser& parser, SweepOptions& options);
+/// Sets sweep_settings() and the batched step's target (use_batch_target) from the parsed options.
+void apply_sweep_options(const SweepOptions& options);
+
+/// What groups runs into batches: their number of elements and their scheme's id.
+using BatchKey = std::pair<Index, std::string>;
+/// Starts run k on a worker: returns its simulation at level 0 and sets `steps`, its number of steps.
+using BatchStart = std::function<BarSimulation(std::size_t k, Index& steps)>;
+/// Observes level n of run k (levels 0, 1, … in order, on the worker of its batch); returns whether
+/// the run wants the next level (false: it is no longer observed, e.g. after a non-finite value).
+using BatchObserve = std::function<bool(std::size_t k, const Sample& sample)>;
+/// The sweep layer's engine: independent simulations, run k started by `start`, observed by `observe`
+/// at each of its levels 0 … steps, then `finish(k)`. Runs of the same key are grouped, costliest first
+/// (`costs`), into batches of the vector width (lib/batched_step.hpp: each lane is bitwise its run
+/// stepped alone), and the batches are spread over the threads (repro/parallel.hpp), costliest first.
+/// Each run sees the samples it would see stepped alone, so whatever a caller writes from them, in its
+/// own order, has the same bytes for any thread count and any vector width. The first exception stops
+/// the sweep and is rethrown.
+void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double>& costs, const BatchStart& start,
+                     const BatchObserve& observe, const std::function<void(std::size_t k)>& finish,
+                     const SweepSettings& settings = sweep_settings());
+
+/// Independent configurations, each measured as run_configuration measures it, through the sweep layer:
+/// the runs of the same number of elements and scheme are grouped, costliest first, into batches of the
+/// vector width (lib/batched_step.hpp: each lane is bitwise its run stepped alone), the batches spread
+/// over the threads (repro/parallel.hpp), and the reference of each data, mesh, Δt and horizon is
+/// computed once (ReferenceCache). The measures come back in the order given, the same bytes as
+/// run_configurations for any thread count and any vector width; a run that throws stops the sweep
+/// with its exception.
+/// `observe` (if given) sees every sample of run k as run_configuration's observer would, called as
+/// observe(k, sample) on the worker of k's batch (the samples of one run in order; those of different
+/// runs interleaved: an observer writes only run k's own state).
+std::vector<Measures> run_batched(const std::vector<Configuration>& configurations,
+                                  const SweepSettings& settings = sweep_settings(),
+                                  const std::function<void(std::size_t k, const Sample& sample)>& observe = {});
 
 }  // namespace mrm::repro
