@@ -19,8 +19,9 @@ bool is_contact_class(Scheme scheme);
 /// (the first element's stiffness (1 − θ/γ₀)/h is not positive), Moreau–Jean's θ ∉ [½, 1]; exact
 /// enforcement with β = 0 and a contact node with inertia (no explicit step exists: the constraint
 /// has no force to act through in the step); Moreau–Jean with a massless contact node (a velocity law
-/// needs the node's inertia); a load or a gap (not yet in these steps).
-void validate_contact_class(const SchemeParameters& parameters, bool massless_contact_node, bool has_load, double gap);
+/// needs the node's inertia). Every class takes a load f and a gap (contact_classes.cpp, "The load and
+/// the gap").
+void validate_contact_class(const SchemeParameters& parameters, bool massless_contact_node);
 
 /// One run's step of a contact class, on the unknowns 0..N−1 with mass M and stiffness S. It reads the
 /// initial level from the StepState (U⁰ in u, V⁰ in w, the massless node's λ⁰ in lambda) and writes
@@ -35,9 +36,12 @@ class ContactClassStep {
 };
 
 /// The step of `parameters.scheme` (a contact class), set up on `state`'s initial level (which it
-/// completes: λ⁰, the energy E⁰). `contact_compliance` is h/E of the contact element (h on the paper's mesh).
+/// completes: λ⁰, the energy E⁰). `contact_compliance` is h/E of the contact element (h on the paper's mesh);
+/// with `has_load` the step reads Fⁿ from state.f_now and Fⁿ⁺¹ from state.f_next (which the caller fills
+/// before each step) and swaps them; `gap` is the initial gap g₀ ≥ 0 (the constraint u₀ + g₀ ≥ 0).
 std::unique_ptr<ContactClassStep> make_contact_class_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
                                                           const SchemeParameters& parameters, double dt,
-                                                          double contact_compliance, StepState& state);
+                                                          double contact_compliance, bool has_load, double gap,
+                                                          StepState& state);
 
 }  // namespace mrm
