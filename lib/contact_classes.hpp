@@ -23,6 +23,21 @@ bool is_contact_class(Scheme scheme);
 /// the gap").
 void validate_contact_class(const SchemeParameters& parameters, bool massless_contact_node);
 
+/// The largest eigenvalue of the pencil (K, M), K symmetric tridiagonal, M positive definite tridiagonal,
+/// by bisection on the inertia of K − σM (contact_classes.cpp, "The stability limit of Newmark"): an upper
+/// bound within a relative 1e-13.
+double largest_pencil_eigenvalue(const Tridiagonal& stiffness, const Tridiagonal& mass);
+/// The largest stable step of a Newmark contact class (newmark, penalty, nitsche) with β < γ/2:
+/// Ω_c/ω_max, Ω_c = 1/√(γ/2 − β), ω²_max over both sides of the contact law (the penalty stiffness γ₀/h,
+/// Nitsche's terms; the contact node eliminated when massless); +∞ for β ≥ γ/2 or another scheme.
+/// `contact_compliance` is h/E of the contact element.
+double newmark_stability_limit(const Tridiagonal& mass, const Tridiagonal& stiffness, const SchemeParameters& parameters,
+                               double contact_compliance);
+/// Throws InvalidParameter("dt", "… (allowed: 0 < dt <= Δt_max, i.e. Courant number <= Δt_max/h; or beta >=
+/// gamma/2)") when dt is above newmark_stability_limit; `mesh_size` is h for the Courant number (0: none).
+void check_newmark_step(const Tridiagonal& mass, const Tridiagonal& stiffness, const SchemeParameters& parameters,
+                        double dt, double contact_compliance, double mesh_size);
+
 /// One run's step of a contact class, on the unknowns 0..N−1 with mass M and stiffness S. It reads the
 /// initial level from the StepState (U⁰ in u, V⁰ in w, the massless node's λ⁰ in lambda) and writes
 /// every level there: u, w (the velocity), lambda (the contact stress λ ≤ 0 at the new level; Moreau–Jean:

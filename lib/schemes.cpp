@@ -548,6 +548,10 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   // at the end from the initial level; it has no fused kernel: StepKernel::fast runs its readable step.
   const bool contact_class = is_contact_class(parameters.scheme);
   validate_contact_class(parameters, massless_);
+  // Newmark with β < γ/2 is explicit-like: its step limit, checked before any work (contact_classes.cpp).
+  if (contact_class)
+    check_newmark_step(mass_, stiffness_, parameters, dt, mesh.contact_compliance(),
+                       mesh.uniform() && mesh.homogeneous() ? mesh.h() : 0.0);
 
   // The literal row with a massless contact node and a restitution e > 0 (issue 23). The restitution
   // law is a law on the velocity of a node with inertia; on the massless node the obstacle −e u₀ⁿ⁻¹
