@@ -453,7 +453,8 @@ int main(int argc, char** argv) {
               << longs.size() << " runs of 1000 impacts\n";
     for (const auto& [id, why] : refused) std::cout << "refused: " << id << ": " << why << '\n';
     for (const auto& [b, why] : skipped) std::cout << "benchmark not run: " << b << ": " << why << '\n';
-    std::cout << "summary (N = 200, dt = h/2; g: geometric mean of the errors nonzero in every run of the benchmark, listed in the data header; last column: N = 25, dt = h/2):\n";
+    std::cout << "summary (N = 200, dt = h/2; g: geometric mean of the errors nonzero in every run of the benchmark, "
+                 "listed in the data header; last column: N = 25, dt = h/2):\n";
     table.write_markdown(std::cout);
     if (!no_timing) {
       // The cost of a step per node, per class and mass: wall time over node-steps of its matrix runs.

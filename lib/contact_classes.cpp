@@ -421,9 +421,7 @@ class NewmarkContactStep final : public ContactClassStep {
 
  private:
   // λ(U) = k min(0, ℓ·U + offset) (penalty, Nitsche; the offset carries the gap).
-  double law(const Eigen::VectorXd& u) const {
-    return k_ * std::min(0.0, ell_[0] * u[0] + ell_[1] * u[1] + offset_);
-  }
+  double law(const Eigen::VectorXd& u) const { return k_ * std::min(0.0, ell_[0] * u[0] + ell_[1] * u[1] + offset_); }
   // R = −S_ℓ U − λ g + F, with R₀ = 0 on a massless node (its row holds).
   void force(const Eigen::VectorXd& u, double lambda, const Eigen::VectorXd* load, Eigen::VectorXd& r) const {
     r = -(linear_ * u);
@@ -509,8 +507,8 @@ class MoreauJeanStep final : public ContactClassStep {
 }  // namespace
 
 std::unique_ptr<ContactClassStep> make_contact_class_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
-                                                          const SchemeParameters& p, double dt, double h,
-                                                          bool has_load, double gap, StepState& state) {
+                                                          const SchemeParameters& p, double dt, double h, bool has_load,
+                                                          double gap, StepState& state) {
   if (p.scheme == Scheme::moreau_jean)
     return std::make_unique<MoreauJeanStep>(mass, stiffness, p, dt, has_load, gap, state);
   if (is_contact_class(p.scheme))
@@ -813,7 +811,9 @@ namespace mrm {
 // ---------------------------------------------------------------------------------------------------
 // Doctests of "The load and the gap".
 
-TEST_CASE("a constant load without contact: the contact classes' free fall (exact for Newmark, (theta - 1/2) g dt t off for Moreau-Jean)") {
+TEST_CASE(
+    "a constant load without contact: the contact classes' free fall (exact for Newmark, (theta - 1/2) g dt t off for "
+    "Moreau-Jean)") {
   // A bar free at both ends, at rest, under f = −g, the obstacle far below (g₀ = 1, the fall is 0.45 by
   // T = 0.3). The exact nodal motion is the rigid fall U = −gt²/2 (M·1 times −g is the consistent load
   // vector; with Mod 3 on the rows with mass, and node 0 hangs h²g/2 below node 1 on its algebraic row).
@@ -865,7 +865,8 @@ TEST_CASE("a constant load without contact: the contact classes' free fall (exac
   }
 }
 
-TEST_CASE("the energy identity with the load's work: (EF) for the penalty and Nitsche, (MJ) + F_theta.dU for Moreau-Jean") {
+TEST_CASE(
+    "the energy identity with the load's work: (EF) for the penalty and Nitsche, (MJ) + F_theta.dU for Moreau-Jean") {
   // The paper's bar pressed toward the obstacle by f = −1 (gravity-paper's kind) across a gap g₀ = 0.05:
   // impacts, a persistent contact phase and releases. At every step, E + Φ changes by the load's work
   // W = ½(Fⁿ + Fⁿ⁺¹)·ΔU plus the kink's defect ∓½(γ₀/h)|ab| (penalty, a = u₀ⁿ + g₀, b = u₀ⁿ⁺¹ + g₀ of
@@ -877,7 +878,8 @@ TEST_CASE("the energy identity with the load's work: (EF) for the penalty and Ni
   pressed.load = [](double, double) { return -1.0; };
   pressed.gap = gap;
   Eigen::VectorXd f;
-  p1_load(mesh, [](double) { return -1.0; }, f);
+  p1_load(
+      mesh, [](double) { return -1.0; }, f);
   for (const MassRedistribution& mass : {consistent_mass(), mod3()}) {
     BarSimulation run(pressed, mesh, mass, class_parameters(Scheme::penalty), dt);
     double worst = 0;
@@ -1013,7 +1015,8 @@ namespace {
 
 }  // namespace
 
-TEST_CASE("the Newmark step limit for beta < gamma/2: the pencil's largest eigenvalue, stable just below, refused above") {
+TEST_CASE(
+    "the Newmark step limit for beta < gamma/2: the pencil's largest eigenvalue, stable just below, refused above") {
   // For each case: Λ = (Ω_c/Δt_max)² is checked against a power iteration of M⁻¹K on the actual dense
   // matrices of every side of the contact law (free and active; with a massless node the Schur complements
   // on 1..N−1 and the held block): the largest of them equals Λ to 1e-8 (the held block or the active
@@ -1027,14 +1030,14 @@ TEST_CASE("the Newmark step limit for beta < gamma/2: the pencil's largest eigen
     MassRedistribution mass;
     double beta, gamma, parameter, theta;
   };
-  for (const Case& c : {Case{Scheme::penalty, consistent_mass(), 0.0, 0.5, 1.0, 0.0},
-                        Case{Scheme::penalty, consistent_mass(), 0.0, 0.5, 100.0, 0.0},
-                        Case{Scheme::penalty, consistent_mass(), 0.1, 0.6, 5.0, 0.0},
-                        Case{Scheme::nitsche, consistent_mass(), 0.0, 0.5, 5.0, 1.0},
-                        Case{Scheme::nitsche, consistent_mass(), 0.0, 0.5, 5.0, 0.0},
-                        Case{Scheme::newmark, consistent_mass(), 0.1, 0.5, 0.0, 0.0},
-                        Case{Scheme::newmark, mod3(), 0.0, 0.5, 0.0, 0.0},
-                        Case{Scheme::penalty, mod3(), 0.0, 0.5, 1.0, 0.0}}) {
+  for (const Case& c :
+       {Case{Scheme::penalty, consistent_mass(), 0.0, 0.5, 1.0, 0.0},
+        Case{Scheme::penalty, consistent_mass(), 0.0, 0.5, 100.0, 0.0},
+        Case{Scheme::penalty, consistent_mass(), 0.1, 0.6, 5.0, 0.0},
+        Case{Scheme::nitsche, consistent_mass(), 0.0, 0.5, 5.0, 1.0},
+        Case{Scheme::nitsche, consistent_mass(), 0.0, 0.5, 5.0, 0.0},
+        Case{Scheme::newmark, consistent_mass(), 0.1, 0.5, 0.0, 0.0}, Case{Scheme::newmark, mod3(), 0.0, 0.5, 0.0, 0.0},
+        Case{Scheme::penalty, mod3(), 0.0, 0.5, 1.0, 0.0}}) {
     SchemeParameters p = class_parameters(c.scheme, c.beta, c.gamma);
     if (c.scheme == Scheme::penalty) p.penalty = c.parameter;
     if (c.scheme == Scheme::nitsche) p.nitsche_gamma = c.parameter, p.nitsche_theta = c.theta;
@@ -1106,8 +1109,8 @@ TEST_CASE("the Newmark step limit for beta < gamma/2: the pencil's largest eigen
         if (fraction == 0.7) CHECK(largest <= 1.5);
       }
     }
-    CHECK_THROWS_WITH_AS(BarSimulation(benchmark_problem(), mesh, c.mass, p, 1.01 * limit),
-                         doctest::Contains("dt: "), InvalidParameter);
+    CHECK_THROWS_WITH_AS(BarSimulation(benchmark_problem(), mesh, c.mass, p, 1.01 * limit), doctest::Contains("dt: "),
+                         InvalidParameter);
   }
   // β ≥ γ/2: no limit.
   CHECK(newmark_stability_limit(modified_mass(mesh, consistent_mass()), p1_stiffness(mesh),

@@ -31,8 +31,8 @@ double largest_pencil_eigenvalue(const Tridiagonal& stiffness, const Tridiagonal
 /// Ω_c/ω_max, Ω_c = 1/√(γ/2 − β), ω²_max over both sides of the contact law (the penalty stiffness γ₀/h,
 /// Nitsche's terms; the contact node eliminated when massless); +∞ for β ≥ γ/2 or another scheme.
 /// `contact_compliance` is h/E of the contact element.
-double newmark_stability_limit(const Tridiagonal& mass, const Tridiagonal& stiffness, const SchemeParameters& parameters,
-                               double contact_compliance);
+double newmark_stability_limit(const Tridiagonal& mass, const Tridiagonal& stiffness,
+                               const SchemeParameters& parameters, double contact_compliance);
 /// Throws InvalidParameter("dt", "… (allowed: 0 < dt <= Δt_max, i.e. Courant number <= Δt_max/h; or beta >=
 /// gamma/2)") when dt is above newmark_stability_limit; `mesh_size` is h for the Courant number (0: none).
 void check_newmark_step(const Tridiagonal& mass, const Tridiagonal& stiffness, const SchemeParameters& parameters,

@@ -758,7 +758,8 @@ TEST_CASE("CN-switch (a backward-Euler step at each status change) never increas
 
 namespace mrm {
 
-TEST_CASE("EC with a gap: the energy is conserved to round-off at every step, and Signorini's conditions hold at -gap") {
+TEST_CASE(
+    "EC with a gap: the energy is conserved to round-off at every step, and Signorini's conditions hold at -gap") {
   // "With a gap" (§3): the paper's bar, g₀ = 0.05 and 0.3, Mod 3 and Mod 1, Δt = h and 5h, both step
   // kernels. Every step's change |Eⁿ⁺¹ − Eⁿ|/E₀ stays within §5's round-off model 16Nε(1 + h/Δt), on the
   // steps across a status change as on the others (an error in the gap's terms would show there first);

@@ -951,9 +951,9 @@ void BarSimulation::reference_step(bool has_load) {
     solver_.sweep_down(rhs.data(), du.data());
     const double load0_now = has_load ? state_.f_now[0] : 0.0, load0_next = has_load ? state_.f_next[0] : 0.0;
     const double mu = -solver_.upward()[1];
-    const EnergyConservingContact contact = energy_conserving_contact(
-        u[1] + solver_.inverse_pivot()[1] * du[1] - mu * u[0], mu, u[0], u[1] + h * load0_now, h, load0_next,
-        problem_.gap);
+    const EnergyConservingContact contact =
+        energy_conserving_contact(u[1] + solver_.inverse_pivot()[1] * du[1] - mu * u[0], mu, u[0], u[1] + h * load0_now,
+                                  h, load0_next, problem_.gap);
     solver_.sweep_up(contact.recurrence_u0 - u[0], du.data());
     u0_next = contact.u0;
     contact_multiplier = contact.multiplier;
