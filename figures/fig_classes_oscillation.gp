@@ -6,9 +6,12 @@ if (!exists("data")) data = 'output/data/fig_classes.dat'
 if (!exists("output")) output = 'output/figures/fig_classes_oscillation.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
-set terminal pdfcairo size 16cm,7cm font font(9) linewidth 1.5 enhanced
-set output output
 benchmarks = system(sprintf("awk '!/^#/ && NF == 20 {print $1}' '%s' | awk '!seen[$0]++'", data))
+# One row of panels for up to four benchmarks, two rows beyond (the field's benchmarks, issue 23).
+rows = words(benchmarks) > 4 ? 2 : 1
+cols = (words(benchmarks) + rows - 1) / rows
+eval sprintf("set terminal pdfcairo size 16cm,%dcm font font(9) linewidth 1.5 enhanced", rows == 2 ? 12 : 7)
+set output output
 pairs = system(sprintf("awk '!/^#/ && NF == 20 {print $2\"/\"$3}' '%s' | awk '!seen[$0]++'", data))
 scheme_of(p) = p[1:strstrt(p, "/") - 1]
 mass_of(p) = p[strstrt(p, "/") + 1:]
@@ -16,15 +19,27 @@ dash(p) = mass_of(p) eq "mod3" ? 1 : 2
 set logscale xy
 set xlabel italic("N")
 set ylabel "TV(".lambda_.") / TV(".lambda_."_{exact})"
-set multiplot layout 1,words(benchmarks) margins 0.08,0.98,0.16,0.66 spacing 0.06,0
-set key at screen 0.5,0.995 center top horizontal maxcols 5 samplen 2 width 0
+# Panels placed by hand (a layout would also place the key's plot): cols a row, the key above them.
+set multiplot
+panel_height = rows == 2 ? 0.40 : 0.66
+unset key
 do for [b=1:words(benchmarks)] {
+  set origin 0.01 + ((b - 1) % cols) * 0.98 / cols, (rows - 1 - (b - 1) / cols) * panel_height
+  set size 0.98 / cols, panel_height
   set title word(benchmarks, b)
   plot 1 with lines lc rgb "#000000" dt 3 notitle, \
        for [p=1:words(pairs)] data index 0 \
        using (strcol(1) eq word(benchmarks, b) && strcol(2) eq scheme_of(word(pairs, p)) && strcol(3) eq mass_of(word(pairs, p)) && $4 == 0.5 ? $5 : NaN):16 \
        with linespoints lc rgb scheme_colour(scheme_of(word(pairs, p))) dt dash(word(pairs, p)) pt 7 ps 0.4 \
-       title (b == 1 ? scheme_of(word(pairs, p))." + ".mass_of(word(pairs, p)) : "")
-  unset key
+       notitle
 }
+# The key: one frameless plot across the top of the page, four entries a row (a panel's width is too
+# narrow for a horizontal key).
+set origin 0, rows * panel_height
+set size 1, 1 - rows * panel_height
+unset border; unset tics; unset xlabel; unset ylabel; unset title; unset logscale; unset grid
+set xrange [0:1]; set yrange [0:1]
+set key center center horizontal maxcols 4 samplen 2 width 0
+plot for [p=1:words(pairs)] NaN with linespoints lc rgb scheme_colour(scheme_of(word(pairs, p))) \
+     dt dash(word(pairs, p)) pt 7 ps 0.4 title scheme_of(word(pairs, p))." + ".mass_of(word(pairs, p))
 unset multiplot

@@ -19,8 +19,24 @@ bool is_contact_class(Scheme scheme);
 /// (the first element's stiffness (1 − θ/γ₀)/h is not positive), Moreau–Jean's θ ∉ [½, 1]; exact
 /// enforcement with β = 0 and a contact node with inertia (no explicit step exists: the constraint
 /// has no force to act through in the step); Moreau–Jean with a massless contact node (a velocity law
-/// needs the node's inertia); a load or a gap (not yet in these steps).
-void validate_contact_class(const SchemeParameters& parameters, bool massless_contact_node, bool has_load, double gap);
+/// needs the node's inertia). Every class takes a load f and a gap (contact_classes.cpp, "The load and
+/// the gap").
+void validate_contact_class(const SchemeParameters& parameters, bool massless_contact_node);
+
+/// The largest eigenvalue of the pencil (K, M), K symmetric tridiagonal, M positive definite tridiagonal,
+/// by bisection on the inertia of K − σM (contact_classes.cpp, "The stability limit of Newmark"): an upper
+/// bound within a relative 1e-13.
+double largest_pencil_eigenvalue(const Tridiagonal& stiffness, const Tridiagonal& mass);
+/// The largest stable step of a Newmark contact class (newmark, penalty, nitsche) with β < γ/2:
+/// Ω_c/ω_max, Ω_c = 1/√(γ/2 − β), ω²_max over both sides of the contact law (the penalty stiffness γ₀/h,
+/// Nitsche's terms; the contact node eliminated when massless); +∞ for β ≥ γ/2 or another scheme.
+/// `contact_compliance` is h/E of the contact element.
+double newmark_stability_limit(const Tridiagonal& mass, const Tridiagonal& stiffness,
+                               const SchemeParameters& parameters, double contact_compliance);
+/// Throws InvalidParameter("dt", "… (allowed: 0 < dt <= Δt_max, i.e. Courant number <= Δt_max/h; or beta >=
+/// gamma/2)") when dt is above newmark_stability_limit; `mesh_size` is h for the Courant number (0: none).
+void check_newmark_step(const Tridiagonal& mass, const Tridiagonal& stiffness, const SchemeParameters& parameters,
+                        double dt, double contact_compliance, double mesh_size);
 
 /// One run's step of a contact class, on the unknowns 0..N−1 with mass M and stiffness S. It reads the
 /// initial level from the StepState (U⁰ in u, V⁰ in w, the massless node's λ⁰ in lambda) and writes
@@ -35,9 +51,12 @@ class ContactClassStep {
 };
 
 /// The step of `parameters.scheme` (a contact class), set up on `state`'s initial level (which it
-/// completes: λ⁰, the energy E⁰). `contact_compliance` is h/E of the contact element (h on the paper's mesh).
+/// completes: λ⁰, the energy E⁰). `contact_compliance` is h/E of the contact element (h on the paper's mesh);
+/// with `has_load` the step reads Fⁿ from state.f_now and Fⁿ⁺¹ from state.f_next (which the caller fills
+/// before each step) and swaps them; `gap` is the initial gap g₀ ≥ 0 (the constraint u₀ + g₀ ≥ 0).
 std::unique_ptr<ContactClassStep> make_contact_class_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
                                                           const SchemeParameters& parameters, double dt,
-                                                          double contact_compliance, StepState& state);
+                                                          double contact_compliance, bool has_load, double gap,
+                                                          StepState& state);
 
 }  // namespace mrm

@@ -54,15 +54,16 @@ double crank_nicolson_contact_root(double alpha, double c, double mu);
 /// The contact of one EC step, decided on row 1 of the Crank–Nicolson system after the sweep down
 /// (energy_step.cpp, "In the library's step").
 struct EnergyConservingContact {
-  double s;              ///< sⁿ⁺¹ = u₁ⁿ⁺¹ + hF₀ⁿ⁺¹
-  double u0;             ///< the contact node's value at the new level, max(0, sⁿ⁺¹)
-  double recurrence_u0;  ///< the value of u₀ the sweep up starts from: χ(sⁿ, sⁿ⁺¹) − u₀ⁿ
+  double s;              ///< sⁿ⁺¹ = u₁ⁿ⁺¹ + hF₀ⁿ⁺¹ + g₀
+  double u0;             ///< the contact node's value at the new level, max(0, sⁿ⁺¹) − g₀
+  double recurrence_u0;  ///< the value of u₀ the sweep up starts from: χ(sⁿ, sⁿ⁺¹) − 2g₀ − u₀ⁿ
   double multiplier;     ///< λⁿ⁺¹ = min(0, sⁿ⁺¹)/h, the condensed row's multiplier at the new level
   bool active;           ///< sⁿ⁺¹ < 0
 };
 /// Given z₁ (node 1's value if the contact node stayed at u₀ = 0 for the sweep up), μ = θ(Ā⁻¹)₁₁/h,
-/// the contact node's current value u₀ⁿ, sⁿ = u₁ⁿ + hF₀ⁿ, h and F₀ⁿ⁺¹.
+/// the contact node's current value u₀ⁿ, u₁ⁿ + hF₀ⁿ (`s_now`, without the gap), h, F₀ⁿ⁺¹ and the initial
+/// gap g₀ ≥ 0 (energy_step.cpp, "With a gap": s is then u₁ + hF₀ + g₀, u₀ = max(0, s) − g₀).
 EnergyConservingContact energy_conserving_contact(double z1, double mu, double u0_now, double s_now, double h,
-                                                  double load0_next);
+                                                  double load0_next, double gap = 0.0);
 
 }  // namespace mrm

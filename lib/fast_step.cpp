@@ -100,9 +100,10 @@ FastStep::ContactDecision FastStep::contact_decision(double u0, double u1, doubl
   ContactDecision decision;
   if (energy_conserving_) {
     const double h = h_, mu = -solver.upward()[1];
+    const double gap = coefficients_.obstacle_offset != 0.0 ? -coefficients_.obstacle_offset : 0.0;  // g₀
     const double load0_now = has_load ? f0_now : 0.0, load0_next = has_load ? f0_next : 0.0;
     const EnergyConservingContact c = energy_conserving_contact(u1 + solver.inverse_pivot()[1] * y_next - mu * u0, mu,
-                                                                u0, u1 + h * load0_now, h, load0_next);
+                                                                u0, u1 + h * load0_now, h, load0_next, gap);
     decision.lambda = c.multiplier;
     decision.active = c.active;
     decision.u0_next = c.u0;

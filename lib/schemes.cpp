@@ -516,8 +516,6 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
                                           ", the mesh L = " + std::to_string(mesh.length) + " (allowed: the same L)");
   if (!(std::isfinite(problem.gap) && problem.gap >= 0))
     throw InvalidParameter("gap", "the initial gap must be finite and >= 0 (got " + std::to_string(problem.gap) + ")");
-  if (problem.gap != 0 && parameters.scheme == Scheme::energy_conserving)
-    throw InvalidParameter("gap", "the energy-conserving scheme (ec) takes no gap (allowed: gap 0, or another scheme)");
   massless_ = contact_node_is_massless(mass_);
   three_level_ = parameters.scheme == Scheme::paoli_schatzman;
   if (three_level_ && parameters.contact_row == ContactRow::algebraic && !massless_)
@@ -549,7 +547,11 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   // A contact class (lib/contact_classes.cpp) checks its own parameters and has its own step, set up
   // at the end from the initial level; it has no fused kernel: StepKernel::fast runs its readable step.
   const bool contact_class = is_contact_class(parameters.scheme);
-  validate_contact_class(parameters, massless_, static_cast<bool>(problem.load), problem.gap);
+  validate_contact_class(parameters, massless_);
+  // Newmark with β < γ/2 is explicit-like: its step limit, checked before any work (contact_classes.cpp).
+  if (contact_class)
+    check_newmark_step(mass_, stiffness_, parameters, dt, mesh.contact_compliance(),
+                       mesh.uniform() && mesh.homogeneous() ? mesh.h() : 0.0);
 
   // The literal row with a massless contact node and a restitution e > 0 (issue 23). The restitution
   // law is a law on the velocity of a node with inertia; on the massless node the obstacle −e u₀ⁿ⁻¹
@@ -654,7 +656,9 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   } else {
     state_.x = Eigen::VectorXd();
   }
-  if (contact_class) class_step_ = make_contact_class_step(M, S, parameters, dt, mesh.contact_compliance(), state_);
+  if (contact_class)
+    class_step_ = make_contact_class_step(M, S, parameters, dt, mesh.contact_compliance(),
+                                          static_cast<bool>(problem.load), problem.gap, state_);
 }
 
 BarSimulation::~BarSimulation() = default;
@@ -947,8 +951,9 @@ void BarSimulation::reference_step(bool has_load) {
     solver_.sweep_down(rhs.data(), du.data());
     const double load0_now = has_load ? state_.f_now[0] : 0.0, load0_next = has_load ? state_.f_next[0] : 0.0;
     const double mu = -solver_.upward()[1];
-    const EnergyConservingContact contact = energy_conserving_contact(
-        u[1] + solver_.inverse_pivot()[1] * du[1] - mu * u[0], mu, u[0], u[1] + h * load0_now, h, load0_next);
+    const EnergyConservingContact contact =
+        energy_conserving_contact(u[1] + solver_.inverse_pivot()[1] * du[1] - mu * u[0], mu, u[0], u[1] + h * load0_now,
+                                  h, load0_next, problem_.gap);
     solver_.sweep_up(contact.recurrence_u0 - u[0], du.data());
     u0_next = contact.u0;
     contact_multiplier = contact.multiplier;

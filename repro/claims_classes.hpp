@@ -19,7 +19,8 @@ struct ClassesSettings {
   double long_periods = 1000;
 };
 
-/// Rows "classes/oscillation/<benchmark>/<class>" (TV(λ)/TV(λ_exact) of every redistributed pair below
+/// Rows "classes/oscillation/<benchmark>/<class>" on paper, smooth-impact and the field's impacting,
+/// layered and bouncing (TV(λ)/TV(λ_exact) of every redistributed pair below
 /// the class's by more than the band, in every cell of the region) and "classes/energy/<class>" (after
 /// 10³ impacts, EC + Mod 3 keeps E(0) to 1e-6 while the class loses or gains more than the band).
 std::vector<ClaimResult> check_classes(const ClassesSettings& settings, Judge& judge);
