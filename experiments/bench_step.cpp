@@ -236,9 +236,18 @@ struct Sanity {
 // of a step, or the level before) are skipped for Crank–Nicolson and Paoli–Schatzman, whose energy may jump
 // there; at least one step must remain. The earlier check (E ∈ [0, 12.5) after millions of steps) refused
 // N = 2² … 2⁴, where the drift of the contact steps over a long run is not a bound of anything.
+// Two further facts, found when CI failed on N = 2⁴ (the timed number of steps, hence the state checked,
+// depends on the machine's speed): backward Euler dissipates a small mesh's energy down to 1e-306 within
+// the timed steps, where the state's squares are subnormal and a relative tolerance no longer holds (its
+// "relative change" was +0.003); and the first step checked may follow a status change at the last timed
+// step (the level before it is not known here), where Paoli–Schatzman's energy jumped by −0.0023. So a step
+// whose energy is below DBL_MIN/ε (the squares of the state lose relative precision) is not judged, and
+// for Crank–Nicolson and Paoli–Schatzman the first step is not judged either (its level before is unknown).
 void check_energy(mrm::BarSimulation& simulation, mrm::Scheme scheme, const mrm::UniformMesh& mesh) {
   const double tau = 8 * (static_cast<double>(mesh.unknowns()) + 16) * std::numeric_limits<double>::epsilon();
   const bool dissipative = scheme == mrm::Scheme::backward_euler;
+  const double underflow = std::numeric_limits<double>::min() / std::numeric_limits<double>::epsilon();
+  int underflowed = 0;
   bool before = simulation.sample().multiplier < 0, now = before;
   double energy = simulation.sample().energy, worst = 0;
   int checked = 0;
@@ -250,14 +259,16 @@ void check_energy(mrm::BarSimulation& simulation, mrm::Scheme scheme, const mrm:
       throw std::runtime_error("a timed run has a wrong energy: " + cli::format_real(s.energy) + " (" +
                                mrm::to_string(scheme) + ", N = " + std::to_string(mesh.elements) + ")");
     const double change = energy > 0 ? (s.energy - energy) / energy : s.energy == 0 ? 0.0 : INFINITY;
-    if (dissipative || (before == now && now == next)) {
+    if (energy < underflow) {
+      ++underflowed;
+    } else if (dissipative || (k > 0 && before == now && now == next)) {
       const double excess = dissipative ? change / tau : std::abs(change) / tau;
       worst = std::max(worst, excess);
       ++checked;
     }
     before = now, now = next, energy = s.energy;
   }
-  if (checked == 0 || worst > 1)
+  if ((checked == 0 && underflowed == 0) || worst > 1)
     throw std::runtime_error("a timed run has a wrong energy: " + mrm::to_string(scheme) +
                              ", N = " + std::to_string(mesh.elements) + ": relative change " +
                              cli::format_real(worst * tau) + " per step against the tolerance " +
