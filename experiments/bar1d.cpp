@@ -239,7 +239,8 @@ int main(int argc, char** argv) {
       parser.add_choice("--stress", "", "S",
                         "contact stress whose oscillation lambda_tv_ratio reports (issue 26): the multiplier, its box "
                         "or B-spline window average over 8 smearing widths, or the strain recovered over the first "
-                        "elements (lib/contact_stress.hpp)",
+                        "elements (lib/contact_stress.hpp); default window, multiplier on two-bars (its run keeps no "
+                        "stress history)",
                         stresses, &stress);
     }
     parser.add_conflict("--dt", "--courant");
@@ -305,6 +306,12 @@ int main(int argc, char** argv) {
       if (scheme_id != mrm::Scheme::crank_nicolson)
         throw cli::UsageError("--scheme: " + scheme + ": --benchmark " + benchmark +
                               " (two bodies coupled by one contact multiplier) runs with cn only (allowed: cn)");
+      // The stresses other than the multiplier are computed from one body's history, which the two bodies'
+      // run does not keep (repro/configurations.cpp, run_two_bodies): the multiplier is its stress.
+      if (parser.given("--stress") && stress != "multiplier")
+        throw cli::UsageError("--stress: " + stress + " with --benchmark " + benchmark +
+                              " (the two bodies' run keeps no stress history; allowed: multiplier)");
+      stress = "multiplier";
     }
     if (grading != 1.0 && field_benchmark)
       throw cli::UsageError("--grading: " + cli::format_real(grading) + " with --benchmark " + benchmark +

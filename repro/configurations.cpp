@@ -610,6 +610,30 @@ std::vector<Index> horizon_levels(const Configuration& c, double dt) {
   for (double t : c.horizons) levels.push_back(steps_to_reach(t, dt));
   return levels;
 }
+
+// The measures of a run made at the unit scale, brought to the configuration's scale (Scaling): the
+// energies (initial, final, least, largest), the largest penetration, the phase's times, the impacts and
+// the contact windows. The errors are relative and the TV ratio a ratio of two stresses: both are
+// scale-free. Shared by the one-body run (ConfigurationRun::measures) and the two bodies' run.
+void to_configuration_scale(Measures& m, const Scaling& scaling, double energy_min, double energy_max,
+                            double penetration, const ImpactDetector& impacts) {
+  m.energy_initial = scaling.energy(m.energy_initial);
+  m.energy_final = scaling.energy(m.energy_final);
+  m.energy_min = scaling.energy(energy_min);
+  m.energy_max = scaling.energy(energy_max);
+  m.max_penetration = scaling.displacement(1.0) * penetration;
+  if (m.phase) {
+    m.phase->first_impact_error = scaling.time(m.phase->first_impact_error);
+    m.phase->period = scaling.time(m.phase->period);
+    if (m.phase->drift_per_period) m.phase->drift_per_period = scaling.time(*m.phase->drift_per_period);
+  }
+  for (const double t : impacts.impacts()) m.impacts.push_back(scaling.time(t));
+  for (ContactInterval w : impacts.windows()) {
+    w.start = scaling.time(w.start);
+    w.end = scaling.time(w.end);
+    m.contact_windows.push_back(w);
+  }
+}
 }  // namespace
 
 std::shared_ptr<const ReferenceSolution> unit_configuration_reference(const Configuration& unit, double horizon) {
@@ -643,12 +667,15 @@ Measures run_two_bodies(const Configuration& configuration) {
   for (const BarSegment& segment : b.configuration.segments)
     for (const double f : segment.load)
       if (f != 0.0) throw InvalidParameter("benchmark", b.id + ": two bodies take no load (lib/two_bodies.hpp)");
+  // The multiplier is the one stress the two bodies' run reports: it keeps no history of the contact
+  // stresses that lib/contact_stress.hpp computes from one body's displacement (box, window, recovered).
+  if (c.stress != ContactStress::multiplier || c.keep_stress_history)
+    throw InvalidParameter("stress", b.id + ": " + to_string(c.stress) +
+                                         ": the two bodies' run keeps no stress history (allowed: multiplier)");
   const double dt = c.step();
   Measures m;
   m.steps = c.steps >= 0 ? c.steps : steps_to_reach(c.final_time, dt);
-  for (std::size_t k = 0; k < c.horizons.size(); ++k)
-    if (!(c.horizons[k] > 0 && c.horizons[k] <= c.final_time && (k == 0 || c.horizons[k] > c.horizons[k - 1])))
-      throw std::invalid_argument("run_configuration: the horizons must increase within (0, T]");
+  const std::vector<Index> levels = horizon_levels(c, dt);
   const auto chain = std::make_shared<const ImpactSolution>(b.configuration, b.data, reference_horizon(m.steps, dt));
   std::array<std::shared_ptr<const TwoBodyReference>, 2> exact;
   std::array<TwoBodyPart, 2> parts;
@@ -676,8 +703,6 @@ Measures run_two_bodies(const Configuration& configuration) {
     for (std::size_t k = 0; k < 8; ++k) *fields[k] = std::max(a[k], e[k]);
     return n;
   };
-  std::vector<Index> horizon_levels;
-  for (double t : c.horizons) horizon_levels.push_back(steps_to_reach(t, dt));
   std::size_t next_horizon = 0;
   const double transit = std::min(b.configuration.segments[0].length, b.configuration.segments[1].length);
   ImpactDetector impacts(transit);
@@ -694,7 +719,7 @@ Measures run_two_bodies(const Configuration& configuration) {
     lambda_previous = lambda, exact_previous = lambda_exact;
     penetration = std::max(penetration, -simulation.gap());
     impacts.add(t, simulation.indicator());
-    while (next_horizon < horizon_levels.size() && n == horizon_levels[next_horizon]) {
+    while (next_horizon < levels.size() && n == levels[next_horizon]) {
       m.horizon_errors.push_back(larger());
       ++next_horizon;
     }
@@ -707,26 +732,11 @@ Measures run_two_bodies(const Configuration& configuration) {
     simulation.step();
   }
   m.errors = larger();
-  m.energy_initial = scaling.energy(m.energy_initial);
-  m.energy_final = scaling.energy(m.energy_final);
-  m.energy_min = scaling.energy(energy_min);
-  m.energy_max = scaling.energy(energy_max);
   if (tv_exact > 0) m.lambda_tv_ratio = tv / tv_exact;
-  m.max_penetration = scaling.displacement(1.0) * penetration;
-  if (!impacts.impacts().empty()) {
+  m.stress = ContactStress::multiplier;
+  if (!impacts.impacts().empty())
     m.phase = phase_from_contacts(impacts.impacts(), chain->contact_windows(0), chain->horizon(), transit);
-    if (m.phase) {
-      m.phase->first_impact_error = scaling.time(m.phase->first_impact_error);
-      m.phase->period = scaling.time(m.phase->period);
-      if (m.phase->drift_per_period) m.phase->drift_per_period = scaling.time(*m.phase->drift_per_period);
-    }
-  }
-  for (const double t : impacts.impacts()) m.impacts.push_back(scaling.time(t));
-  for (ContactInterval w : impacts.windows()) {
-    w.start = scaling.time(w.start);
-    w.end = scaling.time(w.end);
-    m.contact_windows.push_back(w);
-  }
+  to_configuration_scale(m, scaling, energy_min, energy_max, penetration, impacts);
   return m;
 }
 }  // namespace
@@ -837,10 +847,6 @@ void ConfigurationRun::add(const Sample& s) {
 Measures ConfigurationRun::measures() {
   Measures m = measures_;
   m.errors = unit_.measure_errors ? errors_->relative() : ErrorNorms{};
-  m.energy_initial = scaling_.energy(m.energy_initial);
-  m.energy_final = scaling_.energy(m.energy_final);
-  m.energy_min = scaling_.energy(energy_min_);
-  m.energy_max = scaling_.energy(energy_max_);
   if (tv_exact_ > 0) m.lambda_tv_ratio = tv_ / tv_exact_;  // a ratio of two stresses: scale-free
   m.stress = unit_.stress;
   if (keep_) {
@@ -852,21 +858,8 @@ Measures ConfigurationRun::measures() {
     }
     m.stress_history = std::move(history_);
   }
-  m.max_penetration = scaling_.displacement(1.0) * penetration_;
-  if (!impacts_.impacts().empty()) {
-    m.phase = phase_against(impacts_.impacts(), *exact_, mesh_.length);
-    if (m.phase) {
-      m.phase->first_impact_error = scaling_.time(m.phase->first_impact_error);
-      m.phase->period = scaling_.time(m.phase->period);
-      if (m.phase->drift_per_period) m.phase->drift_per_period = scaling_.time(*m.phase->drift_per_period);
-    }
-  }
-  for (const double t : impacts_.impacts()) m.impacts.push_back(scaling_.time(t));
-  for (ContactInterval w : impacts_.windows()) {
-    w.start = scaling_.time(w.start);
-    w.end = scaling_.time(w.end);
-    m.contact_windows.push_back(w);
-  }
+  if (!impacts_.impacts().empty()) m.phase = phase_against(impacts_.impacts(), *exact_, mesh_.length);
+  to_configuration_scale(m, scaling_, energy_min_, energy_max_, penetration_, impacts_);
   return m;
 }
 
@@ -1196,6 +1189,13 @@ TEST_CASE("the field's benchmarks run through the harness in their own units aga
   c.scheme.scheme = Scheme::backward_euler;
   CHECK_THROWS_WITH_AS(run_configuration(c), doctest::Contains("allowed: cn"), InvalidParameter);
   c.scheme.scheme = Scheme::crank_nicolson;
+  // The multiplier is the two bodies' stress: a stress computed from one body's history is refused, named.
+  c.stress = ContactStress::window;
+  CHECK_THROWS_WITH_AS(run_configuration(c), doctest::Contains("allowed: multiplier"), InvalidParameter);
+  c.stress = ContactStress::multiplier;
+  c.keep_stress_history = true;
+  CHECK_THROWS_WITH_AS(run_configuration(c), doctest::Contains("no stress history"), InvalidParameter);
+  c.keep_stress_history = false;
   CHECK_THROWS_AS(configuration_problem(c), InvalidParameter);
   c.grading = 1.01;
   CHECK_THROWS_WITH_AS(configuration_mesh(c), doctest::Contains("grading"), InvalidParameter);
