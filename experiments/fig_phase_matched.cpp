@@ -137,22 +137,16 @@ int main(int argc, char** argv) {
           runs.push_back({b, v, static_cast<std::size_t>(l), static_cast<mrm::Index>(coarsest) << l, horizons, {}});
         }
       }
-    auto cost = [&](std::size_t k) {
-      const Run& r = runs[k];
-      const double n = static_cast<double>(r.elements);
-      return n * n * r.horizons.back() / variants[r.variant].courant;
+    auto configuration = [&](const Run& r) {
+      const Variant& variant = variants[r.variant];
+      return mrm::repro::study_configuration(benchmarks[r.benchmark].name, variant.scheme, mrm::mod3(variant.blend),
+                                             r.elements, variant.courant, r.horizons.back());
     };
+    auto cost = [&](std::size_t k) { return mrm::repro::run_cost(configuration(runs[k])); };
     const auto start = std::chrono::steady_clock::now();
     mrm::repro::run_in_parallel(mrm::repro::costliest_first(runs.size(), cost), threads, [&](std::size_t k) {
       Run& r = runs[k];
-      const Variant& variant = variants[r.variant];
-      mrm::repro::Configuration c;
-      c.scheme.scheme = variant.scheme;
-      c.mass = mrm::mod3(variant.blend);
-      c.elements = r.elements;
-      c.courant = variant.courant;
-      c.final_time = r.horizons.back();
-      c.benchmark = benchmarks[r.benchmark].name;
+      mrm::repro::Configuration c = configuration(r);
       c.horizons.assign(r.horizons.begin(), r.horizons.end() - 1);
       const mrm::repro::Measures m = mrm::repro::run_configuration(c);
       for (const mrm::ErrorNorms& e : m.horizon_errors) r.errors.push_back(mrm::ErrorAccumulator::values(e));

@@ -120,21 +120,16 @@ int main(int argc, char** argv) {
         for (long l = 0; l < refinements; ++l)
           runs.push_back(
               {b, v, static_cast<std::size_t>(l), static_cast<mrm::Index>(coarsest) << (2 * l), {}, {}, {}, {}});
-    auto cost = [&](std::size_t k) {
-      const double n = static_cast<double>(runs[k].elements);
-      return n * n / variants[runs[k].variant].courant;
+    auto configuration = [&](const Run& r) {
+      const Variant& variant = variants[r.variant];
+      return mrm::repro::study_configuration(benchmarks[r.benchmark].name, variant.scheme, mrm::mod3(variant.blend),
+                                             r.elements, variant.courant, benchmarks[r.benchmark].final_time);
     };
+    auto cost = [&](std::size_t k) { return mrm::repro::run_cost(configuration(runs[k])); };
     const auto start = std::chrono::steady_clock::now();
     mrm::repro::run_in_parallel(mrm::repro::costliest_first(runs.size(), cost), threads, [&](std::size_t k) {
       Run& r = runs[k];
-      const Variant& variant = variants[r.variant];
-      mrm::repro::Configuration c;
-      c.scheme.scheme = variant.scheme;
-      c.mass = mrm::mod3(variant.blend);
-      c.elements = r.elements;
-      c.courant = variant.courant;
-      c.final_time = benchmarks[r.benchmark].final_time;
-      c.benchmark = benchmarks[r.benchmark].name;
+      mrm::repro::Configuration c = configuration(r);
       c.keep_stress_history = true;
       c.measure_errors = false;  // the stresses only
       const mrm::repro::Measures m = mrm::repro::run_configuration(c);
