@@ -93,7 +93,7 @@ enum Measure { u0_L2, lambda_L2, u_LinfL2, u_LinfH1, v_LinfL2, u_L2L2, u_L2H1, v
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_phase_matched", [&] {
     // 1. Options.
-    long coarsest = 50, refinements = 6, long_refinements = 4, energy_refinements = 4, field_refinements = 4,
+    long coarsest = 50, refinements = 6, long_refinements = 4, energy_refinements = 4, field_refinements = 3,
          threads = 2;
     mrm::repro::FigureProgram program(
         "fig_phase_matched",
