@@ -790,7 +790,7 @@ ConfigurationRun::ConfigurationRun(const Configuration& configuration, std::func
   if (keep_) {
     history_.h = mesh_.h(0);  // the contact element (the recovered fit assumes uniform elements near x = 0)
     history_.spacing = dt_;
-    history_.order = crank_nicolson_phase_order(dt_ / history_.h, unit_.mass.interior_blend);
+    history_.order = interior_phase_order(unit_.scheme, dt_ / history_.h, unit_.mass.interior_blend);
   }
   // A given reference is the caller's, at the configuration's scale (not owned: an aliasing pointer
   // with no owner), brought to the unit scale; otherwise the unit configuration's own, kept for the run.

@@ -219,9 +219,9 @@ double run_cost(const Configuration& c);
 /// The histories of one run that every contact stress of lib/contact_stress.hpp is computed from, at the
 /// unit scale of the run (unit_configuration: a ratio or a relative error does not depend on it): the
 /// multiplier λ_h at its instants, the recovered strain at the levels (k = recovered_elements(W(t), h)),
-/// the exact λ at the multiplier's instants, h, the spacing Δt, the phase order of the run's interior
-/// step (crank_nicolson_phase_order of Δt/h and the blend: every scheme whose interior step is the
-/// trapezoidal rule; for another one the width is a conjecture).
+/// the exact λ at the multiplier's instants, h, the spacing Δt, the smearing order of the run's interior
+/// step (interior_phase_order of the scheme, Δt/h and the blend: each scheme's own symbol, derived in
+/// contact_stress.cpp §1b).
 struct StressHistory {
   std::vector<double> time, multiplier, recovered_time, recovered, exact, exact_at_levels;
   double h = 0, spacing = 0;
