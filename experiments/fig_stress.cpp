@@ -265,6 +265,14 @@ int main(int argc, char** argv) {
         }
       if (b + 1 < benchmarks.size()) table.add_rule();
     }
+    // The keys of mesh l: ":N<n>", and ":first", ":mid" (the middle mesh), ":last" where it is one of those.
+    auto position_keys = [&](std::size_t l) {
+      std::vector<std::string> keys{":N" + std::to_string(at(0, 0, l).elements)};
+      if (l == 0) keys.push_back(":first");
+      if (l == middle) keys.push_back(":mid");
+      if (l + 1 == static_cast<std::size_t>(refinements)) keys.push_back(":last");
+      return keys;
+    };
     // The level of the B-spline window's ratio with the matched mass (contact_stress.cpp §2b): the wake
     // left after the window has TV ∝ J (μ(μ + 1))^{1/2}/(p − (μ + 1)/2), whatever C, t and h, so the
     // excess of the ratio over 1 with μ = 4 is predicted at (√20/1.5)/(√6/2.5) = 3.04 times CN's (μ = 2),
@@ -278,9 +286,11 @@ int main(int argc, char** argv) {
       for (std::size_t l = 0; l < static_cast<std::size_t>(refinements); ++l) {
         const double cn = at(0, 0, l).measures[static_cast<std::size_t>(mrm::ContactStress::window)].tv_ratio;
         const double pm = at(0, 2, l).measures[static_cast<std::size_t>(mrm::ContactStress::window)].tv_ratio;
-        const std::string n = ":N" + std::to_string(at(0, 0, l).elements);
-        mrm::tex_define(defs, "st:wake:predicted" + n, mrm::tex_number(1 + factor * (cn - 1), 3));
-        mrm::tex_define(defs, "st:wake:measured-factor" + n, mrm::tex_number((pm - 1) / (cn - 1), 3));
+        for (const std::string& n : position_keys(l)) {
+          mrm::tex_define(defs, "st:wake:predicted" + n, mrm::tex_number(1 + factor * (cn - 1), 3));
+          mrm::tex_define(defs, "st:wake:measured" + n, mrm::tex_number(pm, 3));
+          mrm::tex_define(defs, "st:wake:measured-factor" + n, mrm::tex_number((pm - 1) / (cn - 1), 3));
+        }
         summary << " N = " << at(0, 0, l).elements << ": " << 1 + factor * (cn - 1) << " (measured " << pm
                 << ", excess ratio " << (pm - 1) / (cn - 1) << ")";
       }
@@ -290,9 +300,10 @@ int main(int argc, char** argv) {
     summary << "paper:be:c12:window at CN's width: TV ratio";
     for (std::size_t l = 0; l < static_cast<std::size_t>(refinements); ++l) {
       const mrm::repro::StressMeasures& m = at(0, be_variant, l).window_at_cn_width;
-      const std::string n = ":N" + std::to_string(at(0, be_variant, l).elements);
-      mrm::tex_define(defs, "st:tv:paper:be:c12:window-cn" + n, mrm::tex_number(m.tv_ratio, 3));
-      mrm::tex_define(defs, "st:l2:paper:be:c12:window-cn" + n, mrm::tex_number(m.l2_error, 2));
+      for (const std::string& n : position_keys(l)) {
+        mrm::tex_define(defs, "st:tv:paper:be:c12:window-cn" + n, mrm::tex_number(m.tv_ratio, 3));
+        mrm::tex_define(defs, "st:l2:paper:be:c12:window-cn" + n, mrm::tex_number(m.l2_error, 2));
+      }
       summary << ' ' << m.tv_ratio;
     }
     summary << ", L2";
