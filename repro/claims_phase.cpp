@@ -108,10 +108,10 @@ std::vector<ClaimResult> check_phase_matched(const PhaseMatchedSettings& setting
           "7/phase-matched/" + settings.field_benchmarks[b] + "-" + name,
           "The phase-matched mass (A = 1/4) lowers the " + std::string(ErrorAccumulator::names[k]) + " error of CN + " +
               "Mod 3 on the field's benchmark " + settings.field_benchmarks[b] + " (its fronts' phase error; issue 26)",
-          "error(A = 0)/error(A = 1/4) at N = " + std::to_string(settings.field_elements) + ", dt = h/2, T = " +
-              significant(c.final_time) + " (" + decimals(transits, 1) + " transits): " + significant(a0) + "/" +
-              significant(a14) + " = " + significant(ratio) + "; the smearing argument's size (a conjecture) " +
-              significant(guess),
+          "error(A = 0)/error(A = 1/4) at N = " + std::to_string(settings.field_elements) +
+              ", dt = h/2, T = " + significant(c.final_time) + " (" + decimals(transits, 1) +
+              " transits): " + significant(a0) + "/" + significant(a14) + " = " + significant(ratio) +
+              "; the smearing argument's size (a conjecture) " + significant(guess),
           "at least 1 (the derivation gives the sign: the matched mass has the smaller phase error at every "
           "kh below the grid scale; the size is a conjecture and is not judged)",
           at_least("ratio", ratio, 1.0)));
