@@ -230,8 +230,8 @@ int main(int argc, char** argv) {
                           "; the paper's is consistent",
                       &interior_mass);
     parser.add_flag("--phase-matched", "",
-                    "interior mass blend:A with A = 1/2 - (dt/h)^2, which cancels Crank-Nicolson's leading phase "
-                    "error (needs dt/h <= 1/sqrt(2))",
+                    "interior mass blend:A with A = 1/2 - (c dt/h)^2 (c the wave speed at the contact end, 1 on "
+                    "the paper's bar), which cancels Crank-Nicolson's leading phase error (needs c dt/h <= 1/sqrt(2))",
                     &phase_matched);
     {
       std::vector<std::string> stresses;
@@ -382,7 +382,7 @@ int main(int argc, char** argv) {
     // that is not positive definite) once the mesh is known to fit in memory, before the run: a bad
     // value exits 2 and leaves no output behind.
     if (phase_matched) try {
-        blend = mrm::phase_matched_blend(step / mesh.h());
+        blend = mrm::phase_matched_blend(step / transit);  // the Courant number c Δt/h (c = 1 on the paper's bar)
       } catch (const std::invalid_argument& e) {
         throw cli::UsageError(std::string("--phase-matched: ") + e.what());
       }

@@ -2,8 +2,9 @@
 //
 // What it computes. For each benchmark (the paper's, S1 = smooth-impact, bouncing), each variant of the
 // scheme (CN + Mod 3 at Δt/h = ½ and 1 with the consistent interior mass, CN + Mod 3 with the
-// phase-matched A = ¼ at Δt/h = ½, CN-switch (θ = 1 at status changes) with A = ¼ at ½ and A = 0 at 1)
-// (the last three on the paper's benchmark only) and each mesh N = N₀ 4^l, one run over ten periods (T = 30 on the unit bar; ten bounces, 10 · 8L/(3c),
+// phase-matched A = ¼ at Δt/h = ½, CN-switch (θ = 1 at status changes) with A = ¼ at ½ and A = 0 at 1,
+// backward Euler at ½, whose windows are also measured at CN's width, the width before each scheme had
+// its own: contact_stress.cpp §1b) (the last four on the paper's benchmark only) and each mesh N = N₀ 4^l, one run over ten periods (T = 30 on the unit bar; ten bounces, 10 · 8L/(3c),
 // for bouncing), and from that one run the four stresses of lib/contact_stress.hpp (multiplier, box,
 // window, recovered): TV(stress)/TV(λ_exact), the relative L² error, and the largest error away from
 // the exact status changes (repro::stress_measures), with the slope of each against N (least squares
@@ -61,7 +62,11 @@ const std::vector<Variant> variants{
     {"pm:c12", "CN, $c = 1/2$, $A = 1/4$", mrm::Scheme::crank_nicolson, 0.5, 0.25},
     {"sw:c12", "CN-switch, $c = 1/2$, $A = 1/4$", mrm::Scheme::switching, 0.5, 0.25},
     {"sw:c1", "CN-switch, $c = 1$", mrm::Scheme::switching, 1.0, 0.0},
+    {"be:c12", "BE, $c = 1/2$", mrm::Scheme::backward_euler, 0.5, 0.0},
 };
+// The variant whose windows are also measured at CN's width (the width every scheme used before
+// contact_stress.cpp §1b): backward Euler, the one scheme whose own W differs in kind (a damping).
+constexpr std::size_t be_variant = 5;
 
 struct Benchmark {
   const char* name;  // Configuration::benchmark
@@ -81,6 +86,7 @@ struct Run {
   std::size_t benchmark, variant, level;
   mrm::Index elements;
   std::array<mrm::repro::StressMeasures, 4> measures;
+  mrm::repro::StressMeasures window_at_cn_width;  // backward Euler only
   std::vector<double> time, exact;
   std::array<std::vector<double>, 4> values;  // kept for the figure's history only
 };
@@ -119,28 +125,28 @@ int main(int argc, char** argv) {
       for (std::size_t v = 0; v < variants_of(b); ++v)
         for (long l = 0; l < refinements; ++l)
           runs.push_back(
-              {b, v, static_cast<std::size_t>(l), static_cast<mrm::Index>(coarsest) << (2 * l), {}, {}, {}, {}});
-    auto cost = [&](std::size_t k) {
-      const double n = static_cast<double>(runs[k].elements);
-      return n * n / variants[runs[k].variant].courant;
+              {b, v, static_cast<std::size_t>(l), static_cast<mrm::Index>(coarsest) << (2 * l), {}, {}, {}, {}, {}});
+    auto configuration = [&](const Run& r) {
+      const Variant& variant = variants[r.variant];
+      return mrm::repro::study_configuration(benchmarks[r.benchmark].name, variant.scheme, mrm::mod3(variant.blend),
+                                             r.elements, variant.courant, benchmarks[r.benchmark].final_time);
     };
+    auto cost = [&](std::size_t k) { return mrm::repro::run_cost(configuration(runs[k])); };
     const auto start = std::chrono::steady_clock::now();
     mrm::repro::run_in_parallel(mrm::repro::costliest_first(runs.size(), cost), threads, [&](std::size_t k) {
       Run& r = runs[k];
-      const Variant& variant = variants[r.variant];
-      mrm::repro::Configuration c;
-      c.scheme.scheme = variant.scheme;
-      c.mass = mrm::mod3(variant.blend);
-      c.elements = r.elements;
-      c.courant = variant.courant;
-      c.final_time = benchmarks[r.benchmark].final_time;
-      c.benchmark = benchmarks[r.benchmark].name;
+      mrm::repro::Configuration c = configuration(r);
       c.keep_stress_history = true;
       c.measure_errors = false;  // the stresses only
       const mrm::repro::Measures m = mrm::repro::run_configuration(c);
       const mrm::repro::StressHistory& h = *m.stress_history;
       for (const mrm::ContactStressEntry& e : mrm::contact_stress_registry())
         r.measures[static_cast<std::size_t>(e.stress)] = mrm::repro::stress_measures(h, e.stress);
+      if (r.variant == be_variant) {  // the same history, the window at CN's width
+        mrm::repro::StressHistory at_cn = h;
+        at_cn.order = mrm::crank_nicolson_phase_order(variants[r.variant].courant, variants[r.variant].blend);
+        r.window_at_cn_width = mrm::repro::stress_measures(at_cn, mrm::ContactStress::window);
+      }
       if (r.benchmark == 0 && r.variant == 0 && r.level == middle) {  // the figure's history, last period
         for (const mrm::ContactStressEntry& e : mrm::contact_stress_registry()) {
           const std::vector<double> values = h.values(e.stress);
@@ -259,6 +265,51 @@ int main(int argc, char** argv) {
         }
       if (b + 1 < benchmarks.size()) table.add_rule();
     }
+    // The keys of mesh l: ":N<n>", and ":first", ":mid" (the middle mesh), ":last" where it is one of those.
+    auto position_keys = [&](std::size_t l) {
+      std::vector<std::string> keys{":N" + std::to_string(at(0, 0, l).elements)};
+      if (l == 0) keys.push_back(":first");
+      if (l == middle) keys.push_back(":mid");
+      if (l + 1 == static_cast<std::size_t>(refinements)) keys.push_back(":last");
+      return keys;
+    };
+    // The level of the B-spline window's ratio with the matched mass (contact_stress.cpp §2b): the wake
+    // left after the window has TV ∝ J (μ(μ + 1))^{1/2}/(p − (μ + 1)/2), whatever C, t and h, so the
+    // excess of the ratio over 1 with μ = 4 is predicted at (√20/1.5)/(√6/2.5) = 3.04 times CN's (μ = 2),
+    // each at its own width 8W; a prediction from CN's measured excess, not a fit.
+    {
+      const double p = 4;
+      auto wake = [&](double mu) { return std::sqrt(mu * (mu + 1)) / (p - (mu + 1) / 2); };
+      const double factor = wake(4) / wake(2);
+      mrm::tex_define(defs, "st:wake:factor", mrm::tex_number(factor, 3));
+      summary << "window level with the matched mass: predicted 1 + " << factor << " (CN's ratio - 1):";
+      for (std::size_t l = 0; l < static_cast<std::size_t>(refinements); ++l) {
+        const double cn = at(0, 0, l).measures[static_cast<std::size_t>(mrm::ContactStress::window)].tv_ratio;
+        const double pm = at(0, 2, l).measures[static_cast<std::size_t>(mrm::ContactStress::window)].tv_ratio;
+        for (const std::string& n : position_keys(l)) {
+          mrm::tex_define(defs, "st:wake:predicted" + n, mrm::tex_number(1 + factor * (cn - 1), 3));
+          mrm::tex_define(defs, "st:wake:measured" + n, mrm::tex_number(pm, 3));
+          mrm::tex_define(defs, "st:wake:measured-factor" + n, mrm::tex_number((pm - 1) / (cn - 1), 3));
+        }
+        summary << " N = " << at(0, 0, l).elements << ": " << 1 + factor * (cn - 1) << " (measured " << pm
+                << ", excess ratio " << (pm - 1) / (cn - 1) << ")";
+      }
+      summary << '\n';
+    }
+    // Backward Euler's window at CN's width (the width before §1b), beside its own.
+    summary << "paper:be:c12:window at CN's width: TV ratio";
+    for (std::size_t l = 0; l < static_cast<std::size_t>(refinements); ++l) {
+      const mrm::repro::StressMeasures& m = at(0, be_variant, l).window_at_cn_width;
+      for (const std::string& n : position_keys(l)) {
+        mrm::tex_define(defs, "st:tv:paper:be:c12:window-cn" + n, mrm::tex_number(m.tv_ratio, 3));
+        mrm::tex_define(defs, "st:l2:paper:be:c12:window-cn" + n, mrm::tex_number(m.l2_error, 2));
+      }
+      summary << ' ' << m.tv_ratio;
+    }
+    summary << ", L2";
+    for (std::size_t l = 0; l < static_cast<std::size_t>(refinements); ++l)
+      summary << ' ' << at(0, be_variant, l).window_at_cn_width.l2_error;
+    summary << '\n';
     // In two halves at the text size: the ratios with their slope and the verdict, then the errors.
     const std::size_t k = static_cast<std::size_t>(refinements);
     std::vector<std::size_t> first{0, 1, 2}, second{0, 1, 2};

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "p1.hpp"
+#include "schemes.hpp"
 
 namespace mrm {
 
@@ -42,6 +43,12 @@ struct PhaseOrder {
 };
 /// The phase order of CN with the blend A at the Courant number c = Δt/h (the rule above).
 PhaseOrder crank_nicolson_phase_order(double courant, double blend);
+/// The smearing order of a scheme's interior step (contact_stress.cpp §1b), W = (C h^μ t)^{1/(μ+1)}:
+/// CN, EC and CN-switch: crank_nicolson_phase_order; Paoli–Schatzman (β): μ = 2,
+/// C = |(1 − 2A) − (12β − 1)c²|/24 (β = ¼ is CN's), or CN's μ = 4 rule where that vanishes at β = ¼;
+/// backward Euler: μ = 1, C = c/2 (a damping, not a dispersion); Newmark(β, ½) of the classes as
+/// Paoli–Schatzman with Newmark's β; every other scheme: CN's (not derived for it).
+PhaseOrder interior_phase_order(const SchemeParameters& scheme, double courant, double blend);
 
 /// The smearing width of a jump carried for a time t by a scheme of phase error C ξ^μ on a mesh of size
 /// h (contact_stress.cpp, §1): W = (C h^μ t)^{1/(μ+1)}. Throws std::invalid_argument unless h > 0,

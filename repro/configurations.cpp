@@ -541,6 +541,36 @@ Configuration paper_configuration(const std::string& scheme, const std::string& 
   return paper_configuration(scheme_by_name(scheme), ps_form, mass, elements, courant, final_time);
 }
 
+Configuration study_configuration(const std::string& benchmark, Scheme scheme, const MassRedistribution& mass,
+                                  Index elements, double courant, double final_time) {
+  Configuration c;
+  c.scheme.scheme = scheme;
+  c.mass = mass;
+  c.elements = elements;
+  c.courant = courant;
+  c.final_time = final_time;
+  c.benchmark = benchmark;
+  return c;
+}
+
+double run_cost(const Configuration& c) {
+  const double steps = static_cast<double>(c.steps >= 0 ? c.steps : steps_to_reach(c.final_time, c.step()));
+  return static_cast<double>(c.elements) * steps;
+}
+
+TEST_CASE("study_configuration and run_cost: the fields given, the defaults kept, elements x steps") {
+  const Configuration c = study_configuration("bouncing", Scheme::switching, mod3(0.25), 40, 0.5, 8.0);
+  CHECK(c.benchmark == "bouncing");
+  CHECK(c.scheme.scheme == Scheme::switching);
+  CHECK(c.mass.interior_blend == 0.25);
+  CHECK(c.elements == 40);
+  CHECK(c.stress == Configuration().stress);
+  // bouncing: L = 10, c = 30, so h = 1/4, dt = 1/240 and T = 8 takes 1920 steps.
+  CHECK(run_cost(c) == doctest::Approx(40.0 * 1920));
+  CHECK(run_cost(study_configuration("paper", Scheme::crank_nicolson, mod3(), 100, 0.5, 3.0)) ==
+        doctest::Approx(100.0 * 600));
+}
+
 MassRedistribution mass_from_option(const std::string& option, const std::string& spec, const UniformMesh& mesh,
                                     bool massless, double blend) {
   try {
@@ -770,7 +800,7 @@ ConfigurationRun::ConfigurationRun(const Configuration& configuration, std::func
   if (keep_) {
     history_.h = mesh_.h(0);  // the contact element (the recovered fit assumes uniform elements near x = 0)
     history_.spacing = dt_;
-    history_.order = crank_nicolson_phase_order(dt_ / history_.h, unit_.mass.interior_blend);
+    history_.order = interior_phase_order(unit_.scheme, dt_ / history_.h, unit_.mass.interior_blend);
   }
   // A given reference is the caller's, at the configuration's scale (not owned: an aliasing pointer
   // with no owner), brought to the unit scale; otherwise the unit configuration's own, kept for the run.

@@ -206,12 +206,22 @@ Configuration paper_configuration(Scheme scheme, const std::string& ps_form, con
 Configuration paper_configuration(const std::string& scheme, const std::string& ps_form, const std::string& mass,
                                   Index elements, double courant, double final_time);
 
+/// One run of a study over benchmarks and variants (fig_stress, fig_phase_matched; fig_classes may use
+/// it too): `scheme` with its registry defaults, the contact mass `mass`, N elements, Δt = C h (c the
+/// wave speed at the contact end on a field benchmark), to T on `benchmark` (one of benchmark_names()).
+/// Every other field keeps Configuration's default.
+Configuration study_configuration(const std::string& benchmark, Scheme scheme, const MassRedistribution& mass,
+                                  Index elements, double courant, double final_time);
+/// The work of a run, elements × steps (the cost a study's costliest_first schedules by); throws
+/// std::invalid_argument where Configuration::step() or mrm::steps_to_reach does.
+double run_cost(const Configuration& c);
+
 /// The histories of one run that every contact stress of lib/contact_stress.hpp is computed from, at the
 /// unit scale of the run (unit_configuration: a ratio or a relative error does not depend on it): the
 /// multiplier λ_h at its instants, the recovered strain at the levels (k = recovered_elements(W(t), h)),
-/// the exact λ at the multiplier's instants, h, the spacing Δt, the phase order of the run's interior
-/// step (crank_nicolson_phase_order of Δt/h and the blend: every scheme whose interior step is the
-/// trapezoidal rule; for another one the width is a conjecture).
+/// the exact λ at the multiplier's instants, h, the spacing Δt, the smearing order of the run's interior
+/// step (interior_phase_order of the scheme, Δt/h and the blend: each scheme's own symbol, derived in
+/// contact_stress.cpp §1b).
 struct StressHistory {
   std::vector<double> time, multiplier, recovered_time, recovered, exact, exact_at_levels;
   double h = 0, spacing = 0;
