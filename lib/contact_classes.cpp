@@ -132,6 +132,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "contact.hpp"
+#include "two_bodies.hpp"
 
 namespace mrm {
 
@@ -1250,6 +1251,47 @@ TEST_CASE("central differences with a penalty: E_h changes only at switches, by 
   CHECK(penalty_switch_jump(1.0, 0.5, -0.1, -0.2) == doctest::Approx(-0.5 * 0.1 * 0.5));  // entering: a loss
   CHECK(penalty_switch_jump(1.0, -0.2, -0.1, 0.5) == doctest::Approx(0.5 * 0.1 * 0.5));   // leaving: a gain
   CHECK(penalty_switch_jump(1.0, -0.2, -0.1, -0.3) == 0.0);                               // no switch
+}
+
+
+TEST_CASE("two-bars by symmetry: each body of the two-body Crank-Nicolson run is the one-bar run against a wall") {
+  // field.md's two-bars (identical free bars, L = 10, E = ρ = 1, touching, ±0.1 toward each other): the
+  // two-body run (two_bodies.hpp, CN, massless contact nodes) keeps wᴬ = wᴮ, and each equals the one-bar
+  // CN run of a free bar at −0.1 against a wall at g₀/2 = 0 with the same mass (fig_classes.cpp,
+  // configuration_of's comment), at every level to round-off, with the same λ; through the contact
+  // [0, 20] and the release.
+  for (const MassRedistribution& mass : {mod1(), mod2(), mod3()}) {
+    const UniformMesh mesh = with_far_end(UniformMesh(10.0, 40), FarEnd::free);
+    const double dt = 0.5 * mesh.h();
+    const Index n = mesh.unknowns();
+    TwoBodyPart part{mesh, mass, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Constant(n, -0.1)};
+    TwoBodySimulation pair({part, part}, 0.0, dt);
+    Problem one;
+    one.length = 10.0;
+    one.initial_displacement = [](double) { return 0.0; };
+    one.initial_velocity = [](double) { return -0.1; };
+    BarSimulation bar(one, mesh, mass, class_parameters(Scheme::crank_nicolson), dt);
+    double worst = 0, worst_pair = 0, worst_lambda = 0;
+    int contact_levels = 0;
+    for (Index k = 0; k < steps_to_reach(30.0, dt); ++k) {
+      pair.step();
+      bar.step();
+      const Eigen::VectorXd& w = *bar.sample().displacement;
+      worst = std::max({worst, (pair.displacement(0) - w).cwiseAbs().maxCoeff(),
+                        (pair.displacement(1) - w).cwiseAbs().maxCoeff()});
+      worst_pair = std::max(worst_pair, (pair.displacement(0) - pair.displacement(1)).cwiseAbs().maxCoeff());
+      worst_lambda = std::max(worst_lambda, std::abs(pair.multiplier() - bar.sample().multiplier));
+      contact_levels += pair.multiplier() < 0;
+    }
+    CAPTURE(mass.name);
+    CAPTURE(worst);
+    CAPTURE(worst_lambda);
+    CHECK(worst_pair <= 1e-15);         // the exchange symmetry (|w| ≤ 1)
+    CHECK(worst <= 1e-13);              // the reduction, to round-off of O(1) displacements
+    CHECK(worst_lambda <= 1e-13);       // |λ| = 0.1 during contact
+    CHECK(contact_levels > 100);        // the contact phase [0, 20] is in the run
+    CHECK(std::abs(bar.sample().multiplier) == 0.0);  // released by t = 30
+  }
 }
 
 }  // namespace mrm
