@@ -498,7 +498,9 @@ int main(int argc, char** argv) {
     // 4. The run (repro/configurations: the errors and the energy range), writing the series if asked;
     // with a peer, its own measures beside (repro/peers.hpp).
     std::unique_ptr<mrm::repro::PeerMeasures> peer_measures;
-    if (use_peer) peer_measures = std::make_unique<mrm::repro::PeerMeasures>(mesh, *reference);
+    if (use_peer)
+      peer_measures = std::make_unique<mrm::repro::PeerMeasures>(
+          mesh, *reference, mrm::contact_node_is_massless(mrm::modified_mass(mesh, configuration.mass)));
     const auto start = std::chrono::steady_clock::now();
     const mrm::repro::Measures measures =
         two_bodies ? mrm::repro::run_configuration(configuration)

@@ -425,12 +425,11 @@ int main(int argc, char** argv) {
           hs.push_back(1.0 / static_cast<double>(meshes[a])),
               gs.push_back(geometric_mean(cell(b, c, a, half).errors, common[b]));
         (void)g_by_mesh;
-        table.add_row({benchmarks[b] == "two-bars" ? "two-bars (by symmetry)" : benchmarks[b],
-                       mrm::to_string(cases[c].scheme), cases[c].mass,
-                       mrm::tex_number(geometric_mean(x.errors, common[b]), 3), mrm::tex_number(x.errors[1], 3),
-                       mrm::tex_number(x.tv_ratio, 3), mrm::tex_number(x.penetration, 2),
-                       mrm::tex_number(x.energy_per_impact, 2), mrm::tex_number(slope(hs, gs), 2),
-                       b == 0 ? mrm::tex_number(long_run(c, half).energy_ratio, 3) : "--"});
+        table.add_row(
+            {benchmarks[b] == "two-bars" ? "two-bars (by symmetry)" : benchmarks[b], mrm::to_string(cases[c].scheme),
+             cases[c].mass, mrm::tex_number(geometric_mean(x.errors, common[b]), 3), mrm::tex_number(x.errors[1], 3),
+             mrm::tex_number(x.tv_ratio, 3), mrm::tex_number(x.penetration, 2), mrm::tex_number(x.energy_per_impact, 2),
+             mrm::tex_number(slope(hs, gs), 2), b == 0 ? mrm::tex_number(long_run(c, half).energy_ratio, 3) : "--"});
       }
       table.add_rule();
     }
@@ -522,8 +521,8 @@ int main(int argc, char** argv) {
         p.newmark_gamma = 0.5;
         p.penalty = x.gamma0;
         const mrm::MassRedistribution mass = mrm::mass_redistribution_by_name("consistent");
-        const double limit = mrm::newmark_stability_limit(mrm::modified_mass(mesh, mass), mrm::p1_stiffness(mesh), p,
-                                                          mesh.h());
+        const double limit =
+            mrm::newmark_stability_limit(mrm::modified_mass(mesh, mass), mrm::p1_stiffness(mesh), p, mesh.h());
         mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mass, p, x.fraction * limit);
         const double e0 = simulation.sample().energy;
         double largest = 1;
@@ -558,7 +557,8 @@ int main(int argc, char** argv) {
           throw std::runtime_error("block 5: the measured edge of explicit penalty's region up to " +
                                    cli::format_real(horizons[h]) + " periods is " + cli::format_real(edge) +
                                    ", but lib/contact_classes.cpp's penalty_measured_safe_fraction says " +
-                                   cli::format_real(library) + " (bar1d's warning uses it): update the one or the other");
+                                   cli::format_real(library) +
+                                   " (bar1d's warning uses it): update the one or the other");
         mrm::tex_define(defs, "classes:penalty-region:edge:" + cli::format_real(horizons[h]), cli::format_real(edge));
         std::cout << "explicit penalty: E_max <= 2 E0 up to " << horizons[h] << " periods for dt <= " << edge
                   << " dt_max (measured)\n";

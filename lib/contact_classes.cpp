@@ -355,8 +355,8 @@ void check_newmark_step(const Tridiagonal& mass, const Tridiagonal& stiffness, c
 // periods for r = Δt/Δt_max and γ₀ = 1, 10, 100; penalty_measured_safe_fraction below is the edge of the
 // measured region where E_max ≤ 2E₀ (a measured region, not a derived bound; fig_classes checks it
 // against its own measurement and fails when they differ). The doctest checks (J), (B), (C) and (G).
-double penalty_modified_energy(const Tridiagonal& mass, const Tridiagonal& stiffness, double k, double gap,
-                               double dt, const Eigen::VectorXd& u_now, const Eigen::VectorXd& u_next) {
+double penalty_modified_energy(const Tridiagonal& mass, const Tridiagonal& stiffness, double k, double gap, double dt,
+                               const Eigen::VectorXd& u_now, const Eigen::VectorXd& u_next) {
   const Eigen::VectorXd v = (u_next - u_now) / dt;
   return 0.5 * v.dot(mass * v) + 0.5 * u_now.dot(stiffness * u_next) +
          0.5 * k * std::min(0.0, u_now[0] + gap) * std::min(0.0, u_next[0] + gap);
@@ -1191,7 +1191,6 @@ TEST_CASE(
                                 class_parameters(Scheme::penalty, 0.25, 0.5), h) == HUGE_VAL);
 }
 
-
 TEST_CASE("central differences with a penalty: E_h changes only at switches, by (J), within (B); (C) and (G) hold") {
   // The run of the measured gains (N = 16, γ₀ = 100 and 10, the consistent mass, 0.9 Δt_max, ten periods):
   // (J) to round-off at every step (so the whole growth of E_h is the sum of the switch jumps), jumps of
@@ -1224,8 +1223,8 @@ TEST_CASE("central differences with a penalty: E_h changes only at switches, by 
       const double jump = penalty_switch_jump(k, before[0], now[0], after[0]);
       worst_identity = std::max(worst_identity, std::abs(eh - previous - jump) / std::max(eh, first));
       const double v_before = (now[0] - before[0]) / dt, v_after = (after[0] - now[0]) / dt;
-      worst_bound = std::max(worst_bound, std::abs(jump) / (0.125 * k * dt * dt *
-                                                            std::max(v_before * v_before, v_after * v_after)));
+      worst_bound = std::max(worst_bound,
+                             std::abs(jump) / (0.125 * k * dt * dt * std::max(v_before * v_before, v_after * v_after)));
       const Eigen::VectorXd v = (after - now) / dt, mean = 0.5 * (now + after);
       const double q_mean = 0.5 * (std::min(0.0, now[0]) + std::min(0.0, after[0]));
       const double floor = (1 - r * r) * 0.5 * v.dot(m * v) + 0.5 * mean.dot(s * mean) + 0.5 * k * q_mean * q_mean;
@@ -1237,12 +1236,13 @@ TEST_CASE("central differences with a penalty: E_h changes only at switches, by 
       before = now;
       now = after;
     }
-    MESSAGE("gamma0 " << gamma0 << ", r " << r << ": E_h " << first << " -> " << previous << ", " << switches << " switching steps ("
-                      << gains << " gains, " << losses << " losses), rho " << rho << ", (J) residual "
-                      << worst_identity << ", |J|/(B) <= " << worst_bound << ", E_h/(G) <= " << worst_gronwall);
-    CHECK(worst_identity <= 1e-12);    // (J): round-off on O(1) energies
-    CHECK(worst_bound <= 1 + 1e-12);   // (B)
-    CHECK(worst_coercive <= 1e-12);    // (C)
+    MESSAGE("gamma0 " << gamma0 << ", r " << r << ": E_h " << first << " -> " << previous << ", " << switches
+                      << " switching steps (" << gains << " gains, " << losses << " losses), rho " << rho
+                      << ", (J) residual " << worst_identity << ", |J|/(B) <= " << worst_bound
+                      << ", E_h/(G) <= " << worst_gronwall);
+    CHECK(worst_identity <= 1e-12);      // (J): round-off on O(1) energies
+    CHECK(worst_bound <= 1 + 1e-12);     // (B)
+    CHECK(worst_coercive <= 1e-12);      // (C)
     CHECK(worst_gronwall <= 1 + 1e-12);  // (G)
     CHECK(gains > 0);
     CHECK(losses > 0);
@@ -1252,7 +1252,6 @@ TEST_CASE("central differences with a penalty: E_h changes only at switches, by 
   CHECK(penalty_switch_jump(1.0, -0.2, -0.1, 0.5) == doctest::Approx(0.5 * 0.1 * 0.5));   // leaving: a gain
   CHECK(penalty_switch_jump(1.0, -0.2, -0.1, -0.3) == 0.0);                               // no switch
 }
-
 
 TEST_CASE("two-bars by symmetry: each body of the two-body Crank-Nicolson run is the one-bar run against a wall") {
   // field.md's two-bars (identical free bars, L = 10, E = ρ = 1, touching, ±0.1 toward each other): the
@@ -1277,8 +1276,8 @@ TEST_CASE("two-bars by symmetry: each body of the two-body Crank-Nicolson run is
       pair.step();
       bar.step();
       const Eigen::VectorXd& w = *bar.sample().displacement;
-      worst = std::max({worst, (pair.displacement(0) - w).cwiseAbs().maxCoeff(),
-                        (pair.displacement(1) - w).cwiseAbs().maxCoeff()});
+      worst = std::max(
+          {worst, (pair.displacement(0) - w).cwiseAbs().maxCoeff(), (pair.displacement(1) - w).cwiseAbs().maxCoeff()});
       worst_pair = std::max(worst_pair, (pair.displacement(0) - pair.displacement(1)).cwiseAbs().maxCoeff());
       worst_lambda = std::max(worst_lambda, std::abs(pair.multiplier() - bar.sample().multiplier));
       contact_levels += pair.multiplier() < 0;
@@ -1286,10 +1285,10 @@ TEST_CASE("two-bars by symmetry: each body of the two-body Crank-Nicolson run is
     CAPTURE(mass.name);
     CAPTURE(worst);
     CAPTURE(worst_lambda);
-    CHECK(worst_pair <= 1e-15);         // the exchange symmetry (|w| ≤ 1)
-    CHECK(worst <= 1e-13);              // the reduction, to round-off of O(1) displacements
-    CHECK(worst_lambda <= 1e-13);       // |λ| = 0.1 during contact
-    CHECK(contact_levels > 100);        // the contact phase [0, 20] is in the run
+    CHECK(worst_pair <= 1e-15);                       // the exchange symmetry (|w| ≤ 1)
+    CHECK(worst <= 1e-13);                            // the reduction, to round-off of O(1) displacements
+    CHECK(worst_lambda <= 1e-13);                     // |λ| = 0.1 during contact
+    CHECK(contact_levels > 100);                      // the contact phase [0, 20] is in the run
     CHECK(std::abs(bar.sample().multiplier) == 0.0);  // released by t = 30
   }
 }

@@ -42,8 +42,8 @@ void check_newmark_step(const Tridiagonal& mass, const Tridiagonal& stiffness, c
 /// inertia (contact_classes.cpp, "Central differences with a penalty"): the modified energy (Eh) of the
 /// half level n+½, ½vᵀMv + ½UⁿᵀSUⁿ⁺¹ + ½k q₋ⁿq₋ⁿ⁺¹, v = (Uⁿ⁺¹ − Uⁿ)/Δt; conserved by every step without a
 /// change of the contact status.
-double penalty_modified_energy(const Tridiagonal& mass, const Tridiagonal& stiffness, double k, double gap,
-                               double dt, const Eigen::VectorXd& u_now, const Eigen::VectorXd& u_next);
+double penalty_modified_energy(const Tridiagonal& mass, const Tridiagonal& stiffness, double k, double gap, double dt,
+                               const Eigen::VectorXd& u_now, const Eigen::VectorXd& u_next);
 /// The change (J) of that energy over step n, from the gap function q at the levels n−1, n, n+1:
 /// −½k min(0, qⁿ)(max(0, qⁿ⁺¹) − max(0, qⁿ⁻¹)), nonzero only at a switch.
 double penalty_switch_jump(double k, double q_previous, double q_now, double q_next);
