@@ -455,6 +455,24 @@ int main(int argc, char** argv) {
                                                     configuration.mass, configuration.scheme, step,
                                                     configuration.initial);
                                });
+    // Explicit penalty (Newmark beta < gamma/2): the linear step limit checked above is necessary, not
+    // sufficient (lib/contact_classes.cpp, "Central differences with a penalty"); a run outside the measured
+    // region where the energy stayed below 2 E0 (fig_classes block 5, per horizon) gets one warning line.
+    if (!two_bodies && scheme_id == mrm::Scheme::penalty && newmark_beta < 0.5 * newmark_gamma) {
+      const mrm::BarSimulation probe(mrm::repro::configuration_problem(configuration), mesh, configuration.mass,
+                                     configuration.scheme, step, configuration.initial);
+      const double fraction = step / mrm::newmark_stability_limit(probe.mass(), probe.stiffness(), configuration.scheme,
+                                                                  mesh.contact_compliance());
+      const double periods = final_time / (3 * mesh.length);
+      const double safe = mrm::penalty_measured_safe_fraction(periods);
+      if (fraction > safe)
+        std::cerr << "bar1d: warning: dt = " << cli::format_real(std::round(fraction * 1000) / 1000)
+                  << " dt_max of explicit penalty lies outside the measured region where E_max <= 2 E0 over "
+                  << cli::format_real(periods) << " periods of 3L ("
+                  << (safe > 0 ? "dt <= " + cli::format_real(safe) + " dt_max" : std::string("none measured"))
+                  << "; fig_classes block 5, consistent mass, paper's benchmark): the linear limit is necessary, "
+                     "not sufficient\n";
+    }
     std::shared_ptr<const mrm::ReferenceSolution> reference;
     mrm::repro::as_usage_error({{"final_time", "--final-time"}, {"configuration", "--final-time"}}, [&] {
       if (two_bodies) {  // the chain's exact solution, built by the run (its horizon checked here)
@@ -487,7 +505,9 @@ int main(int argc, char** argv) {
     // 4. The run (repro/configurations: the errors and the energy range), writing the series if asked;
     // with a peer, its own measures beside (repro/peers.hpp).
     std::unique_ptr<mrm::repro::PeerMeasures> peer_measures;
-    if (use_peer) peer_measures = std::make_unique<mrm::repro::PeerMeasures>(mesh, *reference);
+    if (use_peer)
+      peer_measures = std::make_unique<mrm::repro::PeerMeasures>(
+          mesh, *reference, mrm::contact_node_is_massless(mrm::modified_mass(mesh, configuration.mass)));
     const auto start = std::chrono::steady_clock::now();
     const mrm::repro::Measures measures =
         two_bodies ? mrm::repro::run_configuration(configuration)

@@ -32,7 +32,8 @@
 // tv_ratio max_penetration energy_change_per_impact impacts node_steps); block 1 the observed orders
 // (benchmark scheme mass courant, the eight orders); block 2 the long runs (scheme mass courant impacts
 // energy_ratio); block 3 the long runs' energy every 10 periods (scheme mass courant periods energy_ratio);
-// block 4 the largest nodal error at dt = h (scheme mass elements T max_nodal_error).
+// block 4 the largest nodal error at dt = h (scheme mass elements T max_nodal_error); block 5 explicit penalty's
+// measured region (elements gamma0 fraction periods energy_max_ratio stopped).
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -52,7 +53,9 @@
 
 #include "errors.hpp"
 #include "exact_solution.hpp"
+#include "impact_solution.hpp"
 #include "mass_redistribution.hpp"
+#include "contact_classes.hpp"
 #include "schemes.hpp"
 
 namespace cli = mrm::cli;
@@ -83,11 +86,50 @@ struct Long {
   std::vector<double> every_ten;  // E/E(0) every 10 periods
 };
 
+// two-bars by symmetry (field.md §1: two identical free bars, L = 10, E = ρ = 1, touching, at ±0.1 toward
+// each other). Each body in its own frame (ξ from its contact end, w positive away from the other body:
+// lib/two_bodies.hpp) is a free bar with contact node 0 and ẇ⁰ = −0.1, the gap function between them
+// z = w₀ᴬ + w₀ᴮ + g₀ ≥ 0, the same contact stress λ on both. The two bodies have the same mesh and mass, so
+// every class's discrete step commutes with the exchange of the bodies: from symmetric data wᴬ = wᴮ = w at
+// every level (in exact arithmetic), and each class reduces to a one-bar problem on w:
+// - exact enforcement (cn, ps, ec, cn-switch, newmark, explicit) and the impact laws (moreau-jean,
+//   taylor-flanagan: the relative velocity ż = 2ẇ₀, v⁺ = −ev⁻ on it is the same law on ẇ₀; equal masses
+//   share the correction equally): z ≥ 0 ⇔ w₀ + g₀/2 ≥ 0, a rigid wall at g₀/2;
+// - the penalty: the force (γ₀/h) min(0, z) on each body is (γ₀/h) min(0, 2(w₀ + g₀/2)) =
+//   (2γ₀/h) min(0, w₀ + g₀/2): the one-bar penalty with γ₀' = 2γ₀ and the wall at g₀/2;
+// - Nitsche with the averaged stress {σ} = ½(σᴬ + σᴮ) = σ (Chouly–Hild–Renard's two-body form; a
+//   reconstruction: the project's two-body path has no Nitsche): P = γz + {σ} = 2γ(w₀ + g₀/2) + d·w is
+//   the one-bar P' with γ' = 2γ; the force on body A, −(1/γ)[P]₋(γe₀ + (θ/2)d) (∂z/∂wᴬ = e₀, ∂{σ}/∂wᴬ =
+//   d/2), equals −(1/γ')[P']₋(γ'e₀ + θd); the symmetric term (θ/γ){σ}∂{σ} = (θ/2γ)(d·w)d = (θ/γ')(d·w)d:
+//   the one-bar Nitsche with γ₀' = 2γ₀ and the same θ.
+// So two-bars runs here as that one-bar problem (free bar L = 10, ẇ⁰ = −0.1, wall at g₀/2 = 0, the chain's
+// exact solution seen from one body as the reference), labelled "by symmetry"; the doctest of
+// lib/contact_classes.cpp checks the reduction against the true two-body run (two_bodies.hpp: CN + Mod 1/2/3).
+std::shared_ptr<const mrm::ImpactBenchmark> two_bars_by_symmetry() {
+  static const std::shared_ptr<const mrm::ImpactBenchmark> reduced = [] {
+    mrm::ImpactBenchmark b = mrm::impact_benchmark("two-bars");
+    const mrm::BarSegment one = b.configuration.segments.front();
+    const double gap = b.configuration.junctions.front().gap;
+    b.configuration.segments = {one};
+    b.configuration.junctions.clear();
+    b.configuration.obstacle = true;
+    b.configuration.obstacle_gap = 0.5 * gap;
+    b.data.pieces = {{0.0, one.length, {0.0}, {-b.data.pieces.front().velocity.front()}}};
+    return std::make_shared<const mrm::ImpactBenchmark>(b);
+  }();
+  return reduced;
+}
+
 repro::Configuration configuration_of(const Case& c, const std::string& benchmark, mrm::Index elements, double courant,
                                       double final_time) {
   repro::Configuration configuration = repro::paper_configuration(
       c.scheme, c.mass == "consistent" ? "literal" : "algebraic", c.mass, elements, courant, final_time);
   configuration.benchmark = benchmark;
+  if (benchmark == "two-bars") {  // by symmetry (above): the one-bar problem, γ₀' = 2γ₀
+    configuration.field = two_bars_by_symmetry();
+    if (c.scheme == mrm::Scheme::penalty) configuration.scheme.penalty *= 2;
+    if (c.scheme == mrm::Scheme::nitsche) configuration.scheme.nitsche_gamma *= 2;
+  }
   return configuration;
 }
 
@@ -204,6 +246,10 @@ int main(int argc, char** argv) {
     std::ostream& out = program.header("the contact classes side by side (issue 23)");
     for (const auto& [id, why] : refused) out << "# refused: " << id << ": " << why << '\n';
     for (const auto& [b, why] : skipped) out << "# benchmark not run: " << b << ": " << why << '\n';
+    if (std::find(benchmarks.begin(), benchmarks.end(), "two-bars") != benchmarks.end())
+      out << "# two-bars by symmetry: each body as one free bar (L = 10, velocity -0.1) against a wall at g0/2 = 0, "
+             "penalty and Nitsche with gamma0' = 2 gamma0 (configuration_of's comment), the chain's exact solution "
+             "seen from one body as the reference\n";
     // One colour per class (its position in the registry); the mass is the line's dash (figures/fig_classes_*.gp).
     static const char* const palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
                                           "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
@@ -262,7 +308,9 @@ int main(int argc, char** argv) {
       cell.errors = mrm::ErrorAccumulator::values(m.errors);
       cell.tv_ratio = *m.lambda_tv_ratio;  // repro::Measures (configurations.hpp)
       cell.penetration = m.max_penetration;
-      cell.impacts = m.impacts.size();
+      // two-bars' one contact starts at t = 0 (the bars touch), which the impact list (instants t > 0 where
+      // a contact begins) leaves out: the run's contact windows (same chatter rule) count it.
+      cell.impacts = benchmark == "two-bars" ? m.contact_windows.size() : m.impacts.size();
       // Under a load (bouncing, gravity-paper) the mechanical energy is not conserved by the exact flow (it
       // changes by the load's work; the bouncing bar starts with E = 0): no energy change per impact, NaN
       // (the word "loaded" in the data, n/a in the table).
@@ -377,11 +425,11 @@ int main(int argc, char** argv) {
           hs.push_back(1.0 / static_cast<double>(meshes[a])),
               gs.push_back(geometric_mean(cell(b, c, a, half).errors, common[b]));
         (void)g_by_mesh;
-        table.add_row({benchmarks[b], mrm::to_string(cases[c].scheme), cases[c].mass,
-                       mrm::tex_number(geometric_mean(x.errors, common[b]), 3), mrm::tex_number(x.errors[1], 3),
-                       mrm::tex_number(x.tv_ratio, 3), mrm::tex_number(x.penetration, 2),
-                       mrm::tex_number(x.energy_per_impact, 2), mrm::tex_number(slope(hs, gs), 2),
-                       b == 0 ? mrm::tex_number(long_run(c, half).energy_ratio, 3) : "--"});
+        table.add_row(
+            {benchmarks[b] == "two-bars" ? "two-bars (by symmetry)" : benchmarks[b], mrm::to_string(cases[c].scheme),
+             cases[c].mass, mrm::tex_number(geometric_mean(x.errors, common[b]), 3), mrm::tex_number(x.errors[1], 3),
+             mrm::tex_number(x.tv_ratio, 3), mrm::tex_number(x.penetration, 2), mrm::tex_number(x.energy_per_impact, 2),
+             mrm::tex_number(slope(hs, gs), 2), b == 0 ? mrm::tex_number(long_run(c, half).energy_ratio, 3) : "--"});
       }
       table.add_rule();
     }
@@ -436,6 +484,106 @@ int main(int argc, char** argv) {
         mrm::tex_define(defs, "classes:dth:tf:" + N,
                         mrm::tex_number(nodal(mrm::Scheme::taylor_flanagan, "consistent", n, 3.0), 2));
       }
+    }
+    // Block 5: the measured region of explicit penalty (contact_classes.cpp, "Central differences with a
+    // penalty": the linear limit is necessary, not sufficient, and no sufficient limit is derived). Newmark
+    // (0, ½) with the penalty and the consistent mass on the paper's benchmark, Δt = r Δt_max (the linear
+    // limit), r on a grid fixed before the runs, γ₀ = 1, 10, 100; N = 16 up to 10³ periods, N = 64 up to 10²
+    // (cost); the largest E/E₀ up to 10, 10², 10³ periods. A run stops once E > 10³ E₀ (the problem is
+    // positively homogeneous: a gain that large goes on growing; the later horizons then read "> 1e3").
+    // The region's edge per horizon (the largest r below which every run kept E_max ≤ 2E₀) must equal
+    // the library's penalty_measured_safe_fraction, which bar1d's warning uses: checked here.
+    out << "\n\n# block 5: explicit penalty (Newmark beta = 0, gamma = 1/2, consistent mass, paper's benchmark): "
+           "E_max/E0 up to a horizon at dt = fraction * dt_max (the linear limit); 1e3 with stopped = 1: the run "
+           "passed 1e3 E0 and was stopped\n# columns: elements gamma0 fraction periods energy_max_ratio stopped\n";
+    {
+      const std::vector<double> fractions{0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.99};
+      const std::vector<double> gammas{1.0, 10.0, 100.0};
+      const std::vector<double> horizons{10.0, 100.0, 1000.0};
+      struct RegionRun {
+        mrm::Index elements;
+        double gamma0, fraction;
+        std::vector<double> ratio;  // per horizon; 1e3 when stopped
+        std::vector<bool> stopped;
+      };
+      std::vector<RegionRun> region;
+      for (const mrm::Index n : {16, 64})
+        for (const double g : gammas)
+          for (const double r : fractions) region.push_back({n, g, r, {}, {}});
+      std::vector<std::size_t> order(region.size());
+      for (std::size_t k = 0; k < order.size(); ++k) order[k] = order.size() - 1 - k;  // N = 64 first
+      repro::run_in_parallel(order, threads, [&](std::size_t k) {
+        RegionRun& x = region[k];
+        const mrm::UniformMesh mesh(1.0, x.elements);
+        mrm::SchemeParameters p;
+        p.scheme = mrm::Scheme::penalty;
+        p.newmark_beta = 0.0;
+        p.newmark_gamma = 0.5;
+        p.penalty = x.gamma0;
+        const mrm::MassRedistribution mass = mrm::mass_redistribution_by_name("consistent");
+        const double limit =
+            mrm::newmark_stability_limit(mrm::modified_mass(mesh, mass), mrm::p1_stiffness(mesh), p, mesh.h());
+        mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mass, p, x.fraction * limit);
+        const double e0 = simulation.sample().energy;
+        double largest = 1;
+        bool stopped = false;
+        for (const double periods : horizons) {
+          if (x.elements > 16 && periods > 100) break;
+          const mrm::Index steps = mrm::steps_to_reach(3.0 * periods, simulation.dt());
+          while (!stopped && simulation.level() < steps) {
+            simulation.step();
+            largest = std::max(largest, simulation.sample().energy / e0);
+            stopped = !(largest <= 1e3);
+          }
+          x.ratio.push_back(stopped ? 1e3 : largest);
+          x.stopped.push_back(stopped);
+        }
+      });
+      std::vector<std::string> head{"$N$", "$\\gamma_0$", "periods"};
+      for (const double r : fractions) head.push_back(cli::format_real(r));
+      repro::Table region_table(head);
+      for (std::size_t h = 0; h < horizons.size(); ++h) {
+        // The edge: the largest grid fraction r such that every run at every r' <= r kept E_max <= 2 E0.
+        double edge = 0;
+        for (const double r : fractions) {
+          bool safe = true;
+          for (const RegionRun& x : region)
+            if (x.fraction <= r && h < x.ratio.size()) safe = safe && !x.stopped[h] && x.ratio[h] <= 2.0;
+          if (!safe) break;
+          edge = r;
+        }
+        const double library = mrm::penalty_measured_safe_fraction(horizons[h]);
+        if (edge != library)
+          throw std::runtime_error("block 5: the measured edge of explicit penalty's region up to " +
+                                   cli::format_real(horizons[h]) + " periods is " + cli::format_real(edge) +
+                                   ", but lib/contact_classes.cpp's penalty_measured_safe_fraction says " +
+                                   cli::format_real(library) +
+                                   " (bar1d's warning uses it): update the one or the other");
+        mrm::tex_define(defs, "classes:penalty-region:edge:" + cli::format_real(horizons[h]), cli::format_real(edge));
+        std::cout << "explicit penalty: E_max <= 2 E0 up to " << horizons[h] << " periods for dt <= " << edge
+                  << " dt_max (measured)\n";
+        for (const RegionRun& x : region) {
+          if (h >= x.ratio.size() || x.fraction != fractions.front()) continue;
+          std::vector<std::string> row{std::to_string(x.elements), cli::format_real(x.gamma0),
+                                       cli::format_real(horizons[h])};
+          for (const RegionRun& y : region)
+            if (y.elements == x.elements && y.gamma0 == x.gamma0)
+              row.push_back(y.stopped[h] ? "$>10^3$" : mrm::tex_number(y.ratio[h], 3));
+          region_table.add_row(row);
+        }
+        region_table.add_rule();
+      }
+      for (const RegionRun& x : region)
+        for (std::size_t h = 0; h < x.ratio.size(); ++h)
+          out << x.elements << ' ' << cli::format_real(x.gamma0) << ' ' << cli::format_real(x.fraction) << ' '
+              << cli::format_real(horizons[h]) << ' ' << cli::format_real(x.ratio[h]) << ' ' << x.stopped[h] << '\n';
+      std::ostringstream tex;
+      repro::LatexLayout layout;
+      layout.columns = "rrr" + std::string(fractions.size(), 'r');
+      region_table.write_latex(tex, layout);
+      mrm::tex_define(defs, "classes:penalty-region", tex.str());
+      std::cout << "explicit penalty, E_max/E0 (rows N, gamma0, periods; columns dt/dt_max):\n";
+      region_table.write_markdown(std::cout);
     }
     // Values of the summary the report's sentences quote: per benchmark and pair at N = 200, Δt = h/2.
     for (std::size_t b = 0; b < benchmarks.size(); ++b)

@@ -38,6 +38,20 @@ double newmark_stability_limit(const Tridiagonal& mass, const Tridiagonal& stiff
 void check_newmark_step(const Tridiagonal& mass, const Tridiagonal& stiffness, const SchemeParameters& parameters,
                         double dt, double contact_compliance, double mesh_size);
 
+/// Central differences (Newmark β = 0, γ = ½) with the penalty k min(0, q), q = u₀ + gap, contact node with
+/// inertia (contact_classes.cpp, "Central differences with a penalty"): the modified energy (Eh) of the
+/// half level n+½, ½vᵀMv + ½UⁿᵀSUⁿ⁺¹ + ½k q₋ⁿq₋ⁿ⁺¹, v = (Uⁿ⁺¹ − Uⁿ)/Δt; conserved by every step without a
+/// change of the contact status.
+double penalty_modified_energy(const Tridiagonal& mass, const Tridiagonal& stiffness, double k, double gap, double dt,
+                               const Eigen::VectorXd& u_now, const Eigen::VectorXd& u_next);
+/// The change (J) of that energy over step n, from the gap function q at the levels n−1, n, n+1:
+/// −½k min(0, qⁿ)(max(0, qⁿ⁺¹) − max(0, qⁿ⁻¹)), nonzero only at a switch.
+double penalty_switch_jump(double k, double q_previous, double q_now, double q_next);
+/// The largest Δt/Δt_max at which explicit penalty runs kept E_max ≤ 2E₀ up to `periods` periods of the
+/// paper's benchmark: a measured region (fig_classes, block 5, which checks it), not a derived bound;
+/// 0 beyond the measured horizons. No step limit sufficient over all times is derived (the comment).
+double penalty_measured_safe_fraction(double periods);
+
 /// One run's step of a contact class, on the unknowns 0..N−1 with mass M and stiffness S. It reads the
 /// initial level from the StepState (U⁰ in u, V⁰ in w, the massless node's λ⁰ in lambda) and writes
 /// every level there: u, w (the velocity), lambda (the contact stress λ ≤ 0 at the new level; Moreau–Jean:

@@ -40,23 +40,39 @@ const PeerPreset& peer_preset(const std::string& id);
 /// seminorm alone); L∞ in time: the largest over the levels, relative to the largest of the same norm of
 /// the exact nodal values; L² in time: the plain sum over the levels (dt Σ, the demo's rule, where this
 /// project integrates by the trapezoidal rule), relative to the same sum for the exact nodal values.
+///
+/// Issue 23 adds its velocity and stress measures with its definitions: LinfL2v and L2L2v the same norms
+/// (L², max and plain sum over the levels) of the P1 function with nodal values Vⁿ − v(x_i, t_n), Vⁿ the
+/// scheme's velocity at level n (the sample's; with a massless contact node the demo replaces node 0's by
+/// the backward difference (u₀ⁿ − u₀ⁿ⁻¹)/Δt, 0 at n = 0, and so does this accumulator); L2sn the plain sum
+/// over the levels of (sⁿ − u_x(0, t_n))², sⁿ the scheme's contact stress at level n (the sample's
+/// multiplier, 0 where the level has none), relative to the same sum of the exact u_x(0, t_n). Whether a
+/// scheme's velocity and stress are the demo's is a property of the formulation (bar1d's peer_formulation
+/// and tools/getfem_peer.sh say per version which match).
 class PeerMeasures {
  public:
-  /// On `mesh` (the paper's: uniform, E = 1) against `exact`, which must outlive the accumulator.
-  PeerMeasures(const UniformMesh& mesh, const ReferenceSolution& exact);
+  /// On `mesh` (the paper's: uniform, E = 1) against `exact`, which must outlive the accumulator;
+  /// `massless_contact_node`: node 0's velocity is the backward difference, as in the demo.
+  PeerMeasures(const UniformMesh& mesh, const ReferenceSolution& exact, bool massless_contact_node = false);
   /// Adds one level of a run.
   void add(const Sample& sample);
-  /// The names the demo prints them under: LinfL2u, LinfH1u, L2L2u, L2H1u.
-  static const std::array<const char*, 4> names;
-  /// The four relative measures, in the order of `names`.
-  std::array<double, 4> values() const;
+  /// The names the demo prints them under, in its order: LinfL2u, LinfH1u, LinfL2v, L2L2u, L2H1u, L2L2v, L2sn.
+  static const std::array<const char*, 7> names;
+  /// The seven relative measures, in the order of `names`.
+  std::array<double, 7> values() const;
 
  private:
   const ReferenceSolution& exact_;
   Tridiagonal mass_, h1_;
   std::vector<double> x_;
+  Tridiagonal all_mass_;  // the consistent mass on the nodes 0..N, the clamped one included
+  double length_ = 1;
+  bool massless_ = false, first_ = true;
+  double previous_u0_ = 0, previous_time_ = 0;
   double error_l2_max_ = 0, exact_l2_max_ = 0, error_h1_max_ = 0, exact_h1_max_ = 0;
   double error_l2_sum_ = 0, exact_l2_sum_ = 0, error_h1_sum_ = 0, exact_h1_sum_ = 0;
+  double error_v_max_ = 0, exact_v_max_ = 0, error_v_sum_ = 0, exact_v_sum_ = 0;
+  double error_s_sum_ = 0, exact_s_sum_ = 0;
 };
 
 }  // namespace mrm::repro
