@@ -121,6 +121,8 @@ void ErrorAccumulator::add(const Sample& sample, const LaneVectors& lanes) {
   add_vectors(sample, lanes.displacement, lanes.velocity, static_cast<long>(lanes.stride));
 }
 
+namespace {
+
 // The two sums of one run of nodes first … end−1 (entries w[i·stride]) in a fixed order: two partial
 // sums, one over the even offsets from `first` and one over the odd ones, each in increasing i, added at
 // the end (even + odd). The order is written out so that it is the source's and not a compiler's, and
@@ -145,6 +147,8 @@ inline void pair_sums(const double* w, long first, long end, Stride stride, cons
   }
   differences = d0 + d1, squares = s0 + s1;
 }
+
+}  // namespace
 
 template <typename Stride>
 void ErrorAccumulator::add_vectors(const Sample& sample, const double* u, const double* v, Stride stride) {

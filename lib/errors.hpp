@@ -46,20 +46,20 @@ struct ErrorNorms {
 ErrorNorms relative_norms(const TimeHistory& u0, const TimeHistory& lambda, const TimeHistory& u_l2,
                           const TimeHistory& u_h1, const TimeHistory& v_l2);
 
+/// A sample's vectors where a batch of runs keeps them (lib/batched_step.hpp's lane layout): entry i of
+/// the run's displacement at displacement[i·stride], of its velocity at velocity[i·stride].
+struct LaneVectors {
+  const double* displacement;  ///< Uⁿ, entry i at displacement[i·stride]
+  const double* velocity;      ///< the sample's velocity, entry i at velocity[i·stride]
+  std::size_t stride;          ///< the distance between two entries (the batch's lanes; 1: a vector of its own)
+};
+
 /// Accumulates the errors of a run against an exact solution, one sample at a time, in O(N) memory.
 /// The reference is the closed form of the benchmark (mathematics.md §2) or any other ReferenceSolution,
 /// such as the characteristic solution for any data (mathematics.md §10). The squared norms are taken
 /// as they are: the runs are those of the dimensionless problem (L = 1, data of order one), to which
 /// the harness maps every run (repro/configurations.cpp); the relative measures do not change under
 /// that scaling.
-/// A sample's vectors where a batch of runs keeps them (lib/batched_step.hpp's lane layout): entry i of
-/// the run's displacement at displacement[i·stride], of its velocity at velocity[i·stride].
-struct LaneVectors {
-  const double* displacement;
-  const double* velocity;
-  std::size_t stride;
-};
-
 class ErrorAccumulator {
  public:
   /// Against the closed form (copied). Throws std::invalid_argument unless the exact solution and the
