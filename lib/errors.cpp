@@ -548,8 +548,8 @@ TEST_CASE("the error measures read from a lane layout are those of the run's own
   for (const double courant : {0.5, 0.37}) {
     const double dt = courant * mesh.h();
     const Index steps = steps_to_reach(3.0, dt);
-    const auto characteristic = std::make_shared<const CharacteristicSolution>(
-        benchmark_initial_data(1.0, 0.5), static_cast<double>(steps + 1) * dt);
+    const auto characteristic = std::make_shared<const CharacteristicSolution>(benchmark_initial_data(1.0, 0.5),
+                                                                               static_cast<double>(steps + 1) * dt);
     for (const bool closed : {true, false}) {
       const auto reference = closed ? std::shared_ptr<const ReferenceSolution>(std::make_shared<const ExactSolution>())
                                     : std::shared_ptr<const ReferenceSolution>(characteristic);
@@ -560,7 +560,8 @@ TEST_CASE("the error measures read from a lane layout are those of the run's own
       for (const MassRedistribution& mass : {mod1(), mod3()})
         runs.emplace_back(benchmark_problem(), mesh, mass, SchemeParameters{}, dt);
       runs.emplace_back(benchmark_problem(), mesh, mod2(), ps, dt);
-      for (std::size_t j = 0; j < runs.size(); ++j) own.emplace_back(mesh, reference), strided.emplace_back(mesh, reference);
+      for (std::size_t j = 0; j < runs.size(); ++j)
+        own.emplace_back(mesh, reference), strided.emplace_back(mesh, reference);
       const std::size_t W = runs.size();
       std::vector<double> u(static_cast<std::size_t>(n) * W), v(u.size());
       for (Index level = 0; level <= steps; ++level) {

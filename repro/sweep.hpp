@@ -102,7 +102,8 @@ using BatchObserve = std::function<bool(std::size_t k, const Sample& sample)>;
 /// keeps them (`lanes`: BatchedSimulation::sample, nothing copied; the sample's own vectors hold only
 /// the displacement's first entry for certain). Returns whether the run wants the next level, or
 /// nothing if it needs the sample's vectors: then the level is copied out and given to BatchObserve.
-using BatchLaneObserve = std::function<std::optional<bool>(std::size_t k, const Sample& sample, const LaneVectors& lanes)>;
+using BatchLaneObserve =
+    std::function<std::optional<bool>(std::size_t k, const Sample& sample, const LaneVectors& lanes)>;
 /// The sweep layer's engine: independent simulations, run k started by `start`, observed by `observe`
 /// at each of its levels 0 … steps, then `finish(k)`. Runs of the same key are grouped, costliest first
 /// (`costs`), into batches of the vector width (lib/batched_step.hpp: each lane is bitwise its run
