@@ -435,6 +435,22 @@ const BarSimulation& BatchedSimulation::run(std::size_t k) {
   return runs_[k];
 }
 
+Sample BatchedSimulation::sample(std::size_t k, LaneVectors& lanes) const {
+  if (k >= runs_.size()) throw std::out_of_range("BatchedSimulation::sample: no run " + std::to_string(k));
+  const BarSimulation& r = runs_[k];
+  const Sample s = r.sample();
+  if (!stale_[k]) {
+    lanes = {s.displacement->data(), s.velocity->data(), 1};
+  } else {
+    // The lanes hold what store_lane would copy: U in u, and the sample's velocity (X for the three-level
+    // schemes, W for the two-level ones) in x or w.
+    const Group& g = *groups_[group_of_[k]];
+    const std::size_t W = g.runs.size(), j = lane_of_[k];
+    lanes = {&g.u[j], r.three_level_ ? &g.x[j] : &g.w[j], W};
+  }
+  return s;
+}
+
 std::size_t BatchedSimulation::batched_runs() const {
   std::size_t count = 0;
   for (const auto& g : groups_) count += g->used;

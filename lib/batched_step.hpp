@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "errors.hpp"
 #include "schemes.hpp"
 
 namespace mrm {
@@ -54,6 +55,11 @@ class BatchedSimulation {
   std::size_t size() const { return runs_.size(); }
   /// Run k with its current state (copied out of the vector lanes when needed).
   const BarSimulation& run(std::size_t k);
+  /// Run k's sample without copying its vectors out of the lanes: the sample of its simulation (its
+  /// instants, λ, energy and the displacement's first entry are current; the rest of its vectors may be
+  /// older) and where its displacement and velocity are now, in the interleaved lanes of its group
+  /// (stride: the lanes) or in its own vectors (stride 1). The same entries as run(k).sample()'s.
+  Sample sample(std::size_t k, LaneVectors& lanes) const;
   /// The number of runs advanced in vector lanes (the others are stepped alone).
   std::size_t batched_runs() const;
   /// The lanes per group (the target's width in doubles).

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <memory>
 
 #include "exact_solution.hpp"
@@ -45,6 +46,14 @@ struct ErrorNorms {
 ErrorNorms relative_norms(const TimeHistory& u0, const TimeHistory& lambda, const TimeHistory& u_l2,
                           const TimeHistory& u_h1, const TimeHistory& v_l2);
 
+/// A sample's vectors where a batch of runs keeps them (lib/batched_step.hpp's lane layout): entry i of
+/// the run's displacement at displacement[i·stride], of its velocity at velocity[i·stride].
+struct LaneVectors {
+  const double* displacement;  ///< Uⁿ, entry i at displacement[i·stride]
+  const double* velocity;      ///< the sample's velocity, entry i at velocity[i·stride]
+  std::size_t stride;          ///< the distance between two entries (the batch's lanes; 1: a vector of its own)
+};
+
 /// Accumulates the errors of a run against an exact solution, one sample at a time, in O(N) memory.
 /// The reference is the closed form of the benchmark (mathematics.md §2) or any other ReferenceSolution,
 /// such as the characteristic solution for any data (mathematics.md §10). The squared norms are taken
@@ -62,6 +71,10 @@ class ErrorAccumulator {
   ErrorAccumulator(const UniformMesh& mesh, std::shared_ptr<const ReferenceSolution> reference);
   /// Adds one time level of a run (its displacement, velocity and multiplier at their own instants).
   void add(const Sample& sample);
+  /// The same, with the sample's displacement and velocity read from `lanes` instead of its vectors
+  /// (which are not read: in a batch they may be older than the lanes); the same bits as add(sample)
+  /// on a sample whose vectors hold those entries (the same sums in the same order).
+  void add(const Sample& sample, const LaneVectors& lanes);
   /// The relative errors of the samples added so far.
   ErrorNorms relative() const;
   /// The names of the measures in the order of `values(ErrorNorms)`: err_u0_L2, err_lambda_L2, …
@@ -70,6 +83,8 @@ class ErrorAccumulator {
   static std::array<double, 8> values(const ErrorNorms& e);
 
  private:
+  template <typename Stride>
+  void add_vectors(const Sample& sample, const double* u, const double* v, Stride stride);
   UniformMesh mesh_;
   std::shared_ptr<const ReferenceSolution> exact_;
   const ExactSolution* closed_form_ = nullptr;                  // exact_ when it is the paper's closed form (its runs)

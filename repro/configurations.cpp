@@ -811,7 +811,18 @@ ConfigurationRun::ConfigurationRun(const Configuration& configuration, std::func
   errors_.emplace(mesh_, exact_);
 }
 
-void ConfigurationRun::add(const Sample& s) {
+void ConfigurationRun::add(const Sample& s) { add_sample(s, nullptr); }
+
+bool ConfigurationRun::takes_lanes(Index level) const {
+  return !observe_ && !keep_recovered_ && !(unit_.measure_errors && difference_ && level >= 1);
+}
+
+void ConfigurationRun::add(const Sample& s, const LaneVectors& lanes) {
+  if (!takes_lanes(s.level)) throw std::logic_error("ConfigurationRun: this level needs the sample's vectors");
+  add_sample(s, &lanes);
+}
+
+void ConfigurationRun::add_sample(const Sample& s, const LaneVectors* lanes) {
   Measures& m = measures_;
   // TV(λ_h) and TV(λ_exact) summed over the successive multiplier samples; the penetration against the
   // problem's gap (unit scale).
@@ -843,6 +854,8 @@ void ConfigurationRun::add(const Sample& s) {
     Sample differenced = s;
     differenced.velocity = &velocity_;
     errors_->add(differenced);
+  } else if (lanes) {
+    errors_->add(s, *lanes);
   } else {
     errors_->add(s);
   }

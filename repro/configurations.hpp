@@ -325,6 +325,13 @@ class ConfigurationRun {
   /// Adds the sample of the next level (levels 0 … steps(), in order). Throws std::runtime_error for a
   /// non-finite energy.
   void add(const Sample& sample);
+  /// Whether the sample of `level` may come from a batch's lanes (add(sample, lanes)): nothing but the
+  /// error measures reads more of its vectors than the displacement's first entry (no observer, no
+  /// recovered strain, no differenced velocity at that level).
+  bool takes_lanes(Index level) const;
+  /// The same as add(sample), the error measures reading the displacement and velocity from `lanes`
+  /// (the same bits); of the sample's own vectors only the displacement's first entry is read.
+  void add(const Sample& sample, const LaneVectors& lanes);
   /// The measures of the levels added, at the configuration's scale.
   Measures measures();
 
@@ -352,6 +359,7 @@ class ConfigurationRun {
   bool keep_ = false, keep_recovered_ = false;
   StressHistory history_;
   std::function<void(const Sample&)> observe_;
+  void add_sample(const Sample& sample, const LaneVectors* lanes);
 };
 
 /// The instant up to which a reference must be known for a run of `steps` steps of size dt: the last

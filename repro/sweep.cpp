@@ -268,7 +268,7 @@ void apply_sweep_options(const SweepOptions& options) {
 // cost).
 void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double>& costs, const BatchStart& start,
                      const BatchObserve& observe, const std::function<void(std::size_t k)>& finish,
-                     const SweepSettings& settings) {
+                     const SweepSettings& settings, const BatchLaneObserve& lane_observe) {
   const std::size_t count = keys.size();
   if (costs.size() != count) throw std::invalid_argument("step_in_batches: one cost per run");
   std::map<BatchKey, std::vector<std::size_t>> groups;
@@ -305,15 +305,23 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                       }
                     } else {
                       BatchedSimulation lanes(std::move(simulations));
-                      for (std::size_t j = 0; j < batch.size(); ++j)
-                        watching[j] = observe(batch[j], lanes.run(j).sample());
+                      // Level n of lane j: from the lanes when the observer takes them, else copied out.
+                      const auto look = [&](std::size_t j) {
+                        if (lane_observe) {
+                          LaneVectors where{};
+                          const Sample s = lanes.sample(j, where);
+                          if (const std::optional<bool> more = lane_observe(batch[j], s, where)) return *more;
+                        }
+                        return observe(batch[j], lanes.run(j).sample());
+                      };
+                      for (std::size_t j = 0; j < batch.size(); ++j) watching[j] = look(j);
                       for (Index n = 1; n <= most; ++n) {
                         bool any = false;
                         for (std::size_t j = 0; j < batch.size(); ++j) any = any || (watching[j] && n <= steps[j]);
                         if (!any) break;
                         lanes.step();
                         for (std::size_t j = 0; j < batch.size(); ++j)
-                          if (watching[j] && n <= steps[j]) watching[j] = observe(batch[j], lanes.run(j).sample());
+                          if (watching[j] && n <= steps[j]) watching[j] = look(j);
                       }
                     }
                     for (std::size_t k : batch) finish(k);
@@ -353,7 +361,12 @@ std::vector<Measures> run_batched(const std::vector<Configuration>& configuratio
         results[k] = runs[k]->measures();
         runs[k].reset();
       },
-      settings);
+      settings,
+      [&](std::size_t k, const Sample& s, const LaneVectors& lanes) -> std::optional<bool> {
+        if (!runs[k]->takes_lanes(s.level)) return std::nullopt;
+        runs[k]->add(s, lanes);
+        return true;
+      });
   return results;
 }
 

@@ -10,6 +10,7 @@
 #include <functional>
 #include <utility>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -97,6 +98,12 @@ using BatchStart = std::function<BarSimulation(std::size_t k, Index& steps)>;
 /// Observes level n of run k (levels 0, 1, … in order, on the worker of its batch); returns whether
 /// the run wants the next level (false: it is no longer observed, e.g. after a non-finite value).
 using BatchObserve = std::function<bool(std::size_t k, const Sample& sample)>;
+/// Observes level n of run k as BatchObserve does, with its displacement and velocity where the batch
+/// keeps them (`lanes`: BatchedSimulation::sample, nothing copied; the sample's own vectors hold only
+/// the displacement's first entry for certain). Returns whether the run wants the next level, or
+/// nothing if it needs the sample's vectors: then the level is copied out and given to BatchObserve.
+using BatchLaneObserve =
+    std::function<std::optional<bool>(std::size_t k, const Sample& sample, const LaneVectors& lanes)>;
 /// The sweep layer's engine: independent simulations, run k started by `start`, observed by `observe`
 /// at each of its levels 0 … steps, then `finish(k)`. Runs of the same key are grouped, costliest first
 /// (`costs`), into batches of the vector width (lib/batched_step.hpp: each lane is bitwise its run
@@ -104,9 +111,11 @@ using BatchObserve = std::function<bool(std::size_t k, const Sample& sample)>;
 /// Each run sees the samples it would see stepped alone, so whatever a caller writes from them, in its
 /// own order, has the same bytes for any thread count and any vector width. The first exception stops
 /// the sweep and is rethrown.
+/// With `lane_observe`, the runs stepped in vector lanes are observed through it first (no copy of their
+/// vectors out of the lanes per level).
 void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double>& costs, const BatchStart& start,
                      const BatchObserve& observe, const std::function<void(std::size_t k)>& finish,
-                     const SweepSettings& settings = sweep_settings());
+                     const SweepSettings& settings = sweep_settings(), const BatchLaneObserve& lane_observe = {});
 
 /// Independent configurations, each measured as run_configuration measures it, through the sweep layer:
 /// the runs of the same number of elements and scheme are grouped, costliest first, into batches of the
