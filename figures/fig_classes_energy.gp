@@ -6,7 +6,7 @@ if (!exists("data")) data = 'output/data/fig_classes.dat'
 if (!exists("output")) output = 'output/figures/fig_classes_energy.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
-set terminal pdfcairo size 16cm,7cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,7cm
 set output output
 pairs = system(sprintf("awk '!/^#/ && NF == 20 {print $2\"/\"$3}' '%s' | awk '!seen[$0]++'", data))
 courants = system(sprintf("awk '!/^#/ && NF == 5 && $4 == 10 {print $3}' '%s' | awk '!seen[$0]++'", data))
