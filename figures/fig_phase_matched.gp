@@ -16,7 +16,7 @@ set multiplot layout 2,1 margins 0.11,0.97,0.07,0.95 spacing 0.0,0.1
 dt_h = Delta_t."/".italic("h")
 # (a function, not a word list: math()'s font name is quoted)
 title_of(k) = k == 1 ? dt_h." = 1/2, ".italic("A")." = 0" : k == 2 ? dt_h." = 1/2, ".italic("A")." = 1/4 (matched)" : \
-  dt_h." = 1/".math("√")."2, ".italic("A")." = 0 (matched)"
+  dt_h." = 2^{−1/2}, ".italic("A")." = 0 (matched)"
 colour(k) = curve_colour(k)
 set logscale xy
 set format y "10^{%T}"
