@@ -40,7 +40,7 @@ do for [i=1:5] {
     e0 = STATS_max / 2.0
     if (i == 5) { set xlabel italic("h") } else { unset xlabel }
     if (i == 1 && k == 1) {
-      set key at screen 0.5,0.955 center top horizontal samplen 3 width 1
+      set key at screen 0.5,0.955 center top vertical maxrows 1 samplen 3 width 1
     } else {
       unset key
     }
