@@ -74,7 +74,8 @@ const std::vector<Label>& benchmark_labels() {
       {"grazing", "S2, a grazing contact", "S2 (grazing contact)"},
       // The field's benchmarks (lib/impact_solution.hpp impact_benchmarks(), field.md sec. 1): each with
       // its load, gap, material, far end and units, and the chain's exact solution as the reference.
-      {"bouncing", "Doyen-Ern-Piperno's bouncing bar (a free bar falling under its weight)", "the bouncing bar (Doyen--Ern--Piperno)"},
+      {"bouncing", "Doyen-Ern-Piperno's bouncing bar (falling under gravity)",
+       "the bouncing bar (Doyen--Ern--Piperno)"},
       {"impacting", "Code_Aster SDNV100's impacting bar, SI units", "the impacting bar (SDNV100)"},
       {"gravity-paper", "the paper's bar pressed by f = -1", "the paper's bar under a load"},
       {"two-bars", "two free bars colliding, N elements each (cn only)", "two bars"},
