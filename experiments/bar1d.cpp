@@ -116,8 +116,9 @@ int main(int argc, char** argv) {
     };
     cli::Parser parser(
         "bar1d",
-        "Runs one scheme with one mass matrix on the bar hitting an obstacle (the paper's benchmark "
-        "with a closed-form solution, a smooth benchmark, or initial data from a file) and prints the "
+        "Runs one scheme with one mass matrix on a bar hitting an obstacle (the paper's benchmark "
+        "with a closed-form solution, a smooth benchmark, one of the field's benchmarks, or initial data "
+        "from a file) or on two bars hitting each other (two-bars), and prints the "
         "relative errors against the exact solution, the energy range, the number of steps and the "
         "run time, one `name = value` line each.",
         {"bar1d --scheme cn --mass mod3 --elements 50 --courant 0.5 --final-time 12",
@@ -130,15 +131,18 @@ int main(int argc, char** argv) {
                     courant_range);
     parser.add_real("--dt", "", "X", "time step (0 < dt <= 1e6 h); excludes --courant", &dt, cli::positive());
     parser.add_real("--final-time", "-T", "T",
-                    "final time (> 0); the period of the paper's benchmark is 3L; default 6, or 2 for the smooth "
-                    "benchmarks",
+                    "final time (> 0); the period of the paper's benchmark is 3L; default 6 on the paper's "
+                    "benchmark and --initial-data, 2 on the smooth benchmarks, the benchmark's own horizon (in "
+                    "its time unit) on the field's",
                     &final_time, cli::positive());
     parser.add_real("--grading", "", "R",
                     "grade the mesh toward the contact: element sizes h_k = h0 R^k, R in [1, 1.1] (1: uniform; "
                     "dt = C h0); the paper's benchmark, smooth-impact, grazing and --initial-data only",
                     &grading, cli::in_closed_range(1, largest_grading));
     parser.add_choice("--benchmark", "", "B",
-                      mrm::repro::benchmark_help("initial data (S1, S2: mathematics.md sec. 11, L = 1)"),
+                      mrm::repro::benchmark_help("the benchmark, each with its exact solution (S1, S2: mathematics.md "
+                                                 "sec. 11, L = 1; the field's ones with their own load, gap, "
+                                                 "material and units: field.md sec. 1)"),
                       mrm::repro::benchmark_names(), &benchmark);
     parser.add_input("--initial-data", "",
                      "read the initial data from FILE (columns x u0 v0, linearly interpolated, on [0, L] with L the "

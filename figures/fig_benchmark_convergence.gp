@@ -8,7 +8,7 @@ if (!exists("output")) output = 'output/figures/fig_benchmark_convergence.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,25cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,25cm
 set output output
 
 benchmarks = "bouncing impacting gravity-paper layered two-bars"
@@ -40,14 +40,14 @@ do for [i=1:5] {
     e0 = STATS_max / 2.0
     if (i == 5) { set xlabel italic("h") } else { unset xlabel }
     if (i == 1 && k == 1) {
-      set key at screen 0.5,0.955 center top horizontal samplen 3 width 1
+      set key at screen 0.5,0.955 center top vertical maxrows 1 samplen 3 width 1
     } else {
       unset key
     }
     plot for [m in masses] data index block_of(b, m) using 2:(column(c) > 0 ? column(c) : 1/0) \
-           with linespoints lc rgb mass_colour(mass_index(m)) lw 1.2 pt 7 ps 0.5 title mass_name(m), \
-         e0*(x/h0)**0.5 with lines lc rgb "#777777" dt 3 lw 1 title "slope 1/2", \
-         e0*(x/h0) with lines lc rgb "#777777" dt 4 lw 1 title "slope 1"
+           with linespoints lc rgb mass_colour(mass_index(m)) @measured_style title mass_name(m), \
+         e0*(x/h0)**0.5 with lines @reference_style dt 3 title "slope 1/2", \
+         e0*(x/h0) with lines @reference_style dt 4 title "slope 1"
   }
 }
 unset multiplot

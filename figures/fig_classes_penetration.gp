@@ -10,7 +10,7 @@ benchmarks = system(sprintf("awk '!/^#/ && NF == 20 {print $1}' '%s' | awk '!see
 # One row of panels for up to four benchmarks, two rows beyond (the field's benchmarks, issue 23).
 rows = words(benchmarks) > 4 ? 2 : 1
 cols = (words(benchmarks) + rows - 1) / rows
-eval sprintf("set terminal pdfcairo size 16cm,%dcm font font(9) linewidth 1.5 enhanced", rows == 2 ? 12 : 7)
+eval sprintf("set terminal %s size 16cm,%dcm", figure_terminal, rows == 2 ? 12 : 7)
 set output output
 pairs = system(sprintf("awk '!/^#/ && NF == 20 {print $2\"/\"$3}' '%s' | awk '!seen[$0]++'", data))
 scheme_of(p) = p[1:strstrt(p, "/") - 1]

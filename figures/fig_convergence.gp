@@ -49,8 +49,8 @@ do for [s=0:2] {
     # Entries ordered Mod 1 (first ratio, second), Mod 2 (...), Mod 3 (...): the key's columns are the masses.
     plot for [j=0:5] data index 2*(3*s+j/2)+j%2 using 2:(column(3+k)) with linespoints lc rgb mass_colour(j/2+1) lw 1.2 \
            dt dash(j%2) pt marker(j%2) ps 0.55 title sprintf("%s, %s = %s", mass_name(mass_id(j/2+1)), Delta_t, ratio_label(j%2)), \
-         e0*(x/h0)**0.5 with lines lc rgb "#777777" dt 3 lw 1 title "slope 1/2", \
-         e0*(x/h0) with lines lc rgb "#777777" dt 4 lw 1 title "slope 1"
+         e0*(x/h0)**0.5 with lines @reference_style dt 3 title "slope 1/2", \
+         e0*(x/h0) with lines @reference_style dt 4 title "slope 1"
   }
   unset multiplot
 }

@@ -32,7 +32,7 @@ set ylabel "measured drift − Mod 3's drift (per period, / h)"
 set xrange [-2.2:1.5]
 set yrange [-2.2:1.5]
 set size ratio -1
-plot x with lines lc rgb "#777777" dt 2 lw 1 title "the law", \
+plot x with lines @reference_style dt 2 title "the law", \
      for [b in "1 3 5 7"] data index (b+0) using 8:12:(colour(strcol(3))) with points pt point(b+0) ps 0.6 \
        lc rgb variable notitle, \
      for [b in "1 3 5 7"] keyentry with points pt point(b+0) ps 0.6 lc rgb "#555555" title label(b+0)

@@ -9,21 +9,24 @@ if (!exists("output")) output = 'output/figures/fig_phase_matched.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,17cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,17cm
 set output output
 set multiplot layout 2,1 margins 0.11,0.97,0.07,0.95 spacing 0.0,0.1
 
-titles = "'Δ{/:Italic t}/{/:Italic h} = 1/2, {/:Italic A} = 0' 'Δ{/:Italic t}/{/:Italic h} = 1/2, {/:Italic A} = 1/4 (matched)' 'Δ{/:Italic t}/{/:Italic h} = 1/√2, {/:Italic A} = 0 (matched)'"
-colour(k) = k == 1 ? "#d62728" : k == 2 ? "#2ca02c" : "#1f77b4"
+dt_h = Delta_t."/".italic("h")
+# (a function, not a word list: math()'s font name is quoted)
+title_of(k) = k == 1 ? dt_h." = 1/2, ".italic("A")." = 0" : k == 2 ? dt_h." = 1/2, ".italic("A")." = 1/4 (matched)" : \
+  dt_h." = 2^{−1/2}, ".italic("A")." = 0 (matched)"
+colour(k) = curve_colour(k)
 set logscale xy
 set format y "10^{%T}"
 set key top left
 set title "relative phase-speed error of Crank–Nicolson with the blended mass"
-set xlabel italic("kh")
-set ylabel "|".italic("ω̃")."/".italic("k")." − 1|"
-plot for [k=1:3] data index 0 using 1:(column(k+1)) with lines lc rgb colour(k) title word(titles, k), \
-  x**2/48 with lines dt 2 lc rgb "#777777" title "ξ^2/48 (slope 2)", \
-  x**4/512 with lines dt 3 lc rgb "#777777" title "ξ^4/512 (slope 4)"
+set xlabel xi_." = ".italic("kh")
+set ylabel "|".math("𝜔̃")."/".italic("k")." − 1|"
+plot for [k=1:3] data index 0 using 1:(column(k+1)) with lines lc rgb colour(k) lw 1.2 title title_of(k), \
+  x**2/48 with lines @reference_style dt 3 title xi_."^2/48 (slope 2)", \
+  x**4/512 with lines @reference_style dt 4 title xi_."^4/512 (slope 4)"
 
 # The blocks of the three variants, paper's benchmark, T = 30.
 block(pattern) = int(system(sprintf("sed -n 's/^# block \\([0-9]*\\): benchmark = paper, scheme = cn, mass = mod3, interior_mass = %s, dt\\/h = %s, T = 30$/\\1/p' '%s'", pattern[1:strstrt(pattern, "|")-1], pattern[strstrt(pattern, "|")+1:], data)))
@@ -33,7 +36,7 @@ b3 = block("consistent|0.7071067811865475")
 set title "error of ".italic("u")." in ".italic("L")."^2(0,".italic("T").";".italic("L")."^2), CN + Mod 3, paper's benchmark, ".italic("T")." = 30"
 set xlabel italic("N")
 set ylabel "relative error"
-plot data index b1 using 1:9 with linespoints pt 7 lc rgb colour(1) title word(titles, 1), \
-  data index b2 using 1:9 with linespoints pt 7 lc rgb colour(2) title word(titles, 2), \
-  data index b3 using 1:9 with linespoints pt 7 lc rgb colour(3) title word(titles, 3)
+plot data index b1 using 1:9 with linespoints lc rgb colour(1) @measured_style title title_of(1), \
+  data index b2 using 1:9 with linespoints lc rgb colour(2) @measured_style title title_of(2), \
+  data index b3 using 1:9 with linespoints lc rgb colour(3) @measured_style title title_of(3)
 unset multiplot

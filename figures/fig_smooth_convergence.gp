@@ -57,8 +57,8 @@ do for [b in benchmarks] {
       plot for [m in masses] for [j=1:words(ratios)] data index block_of(b, s, m, word(ratios, j)) using 2:(column(3 + k)) \
              with linespoints lc rgb mass_colour(mass_index(m)) lw 1.2 dashtype dash(j) pt marker(j) ps 0.55 \
              title sprintf("%s, %s = %s", mass_name(m), Delta_t, step(word(ratios, j))), \
-           e0*(x/h0) with lines lc rgb "#777777" dt 3 lw 1 title "slope 1", \
-           e0*(x/h0)**2 with lines lc rgb "#777777" dt 4 lw 1 title "slope 2"
+           e0*(x/h0) with lines @reference_style dt 3 title "slope 1", \
+           e0*(x/h0)**2 with lines @reference_style dt 4 title "slope 2"
     }
     unset multiplot
   }

@@ -10,14 +10,14 @@ if (!exists("output")) output = 'output/figures/fig_stress.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal pdfcairo size 16cm,17cm font font(9) linewidth 1.5 enhanced
+set terminal @figure_terminal size 16cm,17cm
 set output output
 set multiplot
 
 block(key) = int(header("block ".key))
 keys = "paper:cn:c12:multiplier paper:cn:c12:box paper:cn:c12:window paper:cn:c12:recovered paper:pm:c12:window paper:sw:c12:multiplier"
 titles = "'multiplier' 'box window 8W' 'B-spline window 8W' 'recovered, k = 4W/h' 'B-spline window, A = 1/4' 'CN-switch multiplier, A = 1/4'"
-colour(k) = k == 1 ? "#d62728" : k == 2 ? "#ff7f0e" : k == 3 ? "#2ca02c" : k == 4 ? "#1f77b4" : k == 5 ? "#9467bd" : "#7f7f7f"
+colour(k) = curve_colour(k)
 tv0 = real(header("tv_multiplier_N0"))
 n0 = real(header("st_N0"))
 
@@ -30,26 +30,27 @@ set key top left samplen 2 spacing 0.9
 set title "TV(stress)/TV(".lambda_.")"
 set xlabel italic("N")
 set ylabel "ratio"
-plot for [k=1:6] data index block(word(keys, k)) using 1:2 with linespoints pt 7 lc rgb colour(k) title word(titles, k), \
-  tv0 * (x / n0)**0.5 with lines dt 2 lc rgb "#777777" title italic("N")."^{1/2}"
+plot for [k=1:6] data index block(word(keys, k)) using 1:2 with linespoints lc rgb colour(k) @measured_style title word(titles, k), \
+  tv0 * (x / n0)**0.5 with lines @reference_style dt 3 title italic("N")."^{1/2}"
 
 set origin 0.5, 0.5
 set title "relative error of ".lambda_." in ".italic("L")."^2(0,".italic("T").")"
 set ylabel "error"
 set yrange [*:*]
-plot for [k=1:6] data index block(word(keys, k)) using 1:3 with linespoints pt 7 lc rgb colour(k) notitle
+plot for [k=1:6] data index block(word(keys, k)) using 1:3 with linespoints lc rgb colour(k) @measured_style notitle
 
 unset logscale
 set autoscale
 set size 1, 0.5
 set origin 0, 0
 set key bottom right
-set title "the stresses over the last period, CN + Mod 3, Δ".italic("t")."/".italic("h")." = 1/2, ".italic("N")." = ".header("history_N")
+set title "the stresses over the last period, CN + Mod 3, ".Delta_t."/".italic("h")." = 1/2, ".italic("N")." = ".header("history_N")
 set xlabel italic("t")
 set ylabel lambda_
-plot data index block("history") using 1:3 with lines lc rgb colour(1) title "multiplier", \
-  data index block("history") using 1:4 with lines lc rgb colour(2) title "box window", \
-  data index block("history") using 1:6 with lines lc rgb colour(4) title "recovered", \
-  data index block("history") using 1:5 with lines lw 1.5 lc rgb colour(3) title "B-spline window", \
-  data index block("history") using 1:2 with lines lw 1 lc rgb "black" title "exact"
+# The exact stress first, under the others (the B-spline window lies on it).
+plot data index block("history") using 1:2 with lines @exact_style title "exact", \
+  data index block("history") using 1:3 with lines lc rgb colour(1) lw 1.2 title "multiplier", \
+  data index block("history") using 1:4 with lines lc rgb colour(2) lw 1.2 title "box window", \
+  data index block("history") using 1:6 with lines lc rgb colour(4) lw 1.2 title "recovered", \
+  data index block("history") using 1:5 with lines lw 1.5 lc rgb colour(3) title "B-spline window"
 unset multiplot

@@ -14,7 +14,7 @@ load dir.'style.gp'
 set terminal @figure_terminal size 16cm,16cm
 set output output
 
-colour(k) = word("#1f77b4 #ff7f0e #2ca02c #d62728 #9467bd #8c564b #e377c2 #17becf", k)
+colour(k) = curve_colour(k)
 # The value of `key = ` in the header line of block b ("# block b: scheme = cn, elements = 256, ...").
 block_value(b, key) = system(sprintf("sed -n 's/^# block %d: .*%s = \\([a-z0-9]*\\).*$/\\1/p' '%s' | head -n 1", \
   b, key, data))
@@ -42,8 +42,8 @@ do for [b=0:blocks-1] {
     block_value(b, "elements"), Delta_t."_{ref}", italic("h"), block_value(b, "reference_ratio"))
   plot for [k=1:8] data index b using 2:(column(2+k)) with linespoints lc rgb colour(k) pt (k+3) ps 0.6 lw 1.2 \
          title measure_name(word(columns, 2+k)), \
-       e0*(x/x0)**1 with lines lc rgb "#777777" dt 4 lw 1 title "slope 1", \
-       e0*(x/x0)**2 with lines lc rgb "#777777" dt 3 lw 1 title "slope 2"
+       e0*(x/x0)**1 with lines @reference_style dt 3 title "slope 1", \
+       e0*(x/x0)**2 with lines @reference_style dt 4 title "slope 2"
   unset key
 }
 unset multiplot

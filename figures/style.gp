@@ -41,6 +41,17 @@ xi_ = math("𝜉")
 omega_ = math("𝜔")
 Delta_t = "Δ".italic("t")
 mass_colour(m) = m == 1 ? "#d62728" : m == 2 ? "#1f77b4" : m == 3 ? "#2ca02c" : "#9467bd"
+# The colour of curve k where the curves are variants of one run (stresses, steps, blends), neither masses
+# nor schemes: one palette for every such figure.
+curve_colour(k) = word("#1f77b4 #ff7f0e #2ca02c #d62728 #9467bd #8c564b #e377c2 #17becf", (k - 1) % 8 + 1)
+# The line styles every figure shares, as macros (`with linespoints lc rgb c @measured_style`):
+#   measured_style  a measured curve: lines 1.2, filled circles;
+#   reference_style a reference slope (grey, thin; dashed with dt 3 for the lower order, dt 4 for the
+#                   higher one);
+#   exact_style     the exact solution (black, thick).
+measured_style = "lw 1.2 pt 7 ps 0.5"
+reference_style = "lc rgb '#777777' lw 1"
+exact_style = "lc rgb 'black' lw 2"
 # The names of schemes and masses: the `# label <id> = <name>` lines the program wrote into the data
 # file (repro/labels.cpp, the one table of labels); an id without a line is its own name.
 label(id) = comment(comments, "# label ".id." = ")

@@ -72,13 +72,14 @@ const std::vector<Label>& benchmark_labels() {
       {"paper", "the paper's benchmark (closed-form solution)", "the paper's benchmark"},
       {"smooth-impact", "S1, a smooth impact", "S1 (smooth impact)"},
       {"grazing", "S2, a grazing contact", "S2 (grazing contact)"},
-      // The field's benchmarks (lib/impact_solution.hpp impact_benchmarks(), field.md sec. 1): exact
-      // solution only (bar1d --exact) until the finite element side has their loads, ends, gaps and bodies.
-      {"bouncing", "Doyen-Ern-Piperno's bouncing bar (exact only)", "the bouncing bar (Doyen--Ern--Piperno)"},
-      {"impacting", "Code_Aster SDNV100's impacting bar, SI units (exact only)", "the impacting bar (SDNV100)"},
-      {"gravity-paper", "the paper's bar pressed by f = -1 (exact only)", "the paper's bar under a load"},
-      {"two-bars", "two free bars colliding (exact only)", "two bars"},
-      {"layered", "a two-layer bar hitting a wall (exact only)", "a layered bar"}};
+      // The field's benchmarks (lib/impact_solution.hpp impact_benchmarks(), field.md sec. 1): each with
+      // its load, gap, material, far end and units, and the chain's exact solution as the reference.
+      {"bouncing", "Doyen-Ern-Piperno's bouncing bar (falling under gravity)",
+       "the bouncing bar (Doyen--Ern--Piperno)"},
+      {"impacting", "Code_Aster SDNV100's impacting bar, SI units", "the impacting bar (SDNV100)"},
+      {"gravity-paper", "the paper's bar pressed by f = -1", "the paper's bar under a load"},
+      {"two-bars", "two free bars colliding, N elements each (cn only)", "two bars"},
+      {"layered", "a two-layer bar hitting a wall", "a layered bar"}};
   return labels;
 }
 
