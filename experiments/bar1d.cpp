@@ -329,6 +329,16 @@ int main(int argc, char** argv) {
                             " is more than 1e6 (allowed: R^(N - 1) <= 1e6, the coarsest element at most 1e6 h0)");
     if (grading != 1.0 && phase_matched)
       throw cli::UsageError("--phase-matched: its blend is derived on the uniform mesh (allowed: --grading 1)");
+    // One blend matches one Courant number c Δt/h: a bar whose layers have different wave speeds (layered)
+    // has one per layer, and no A cancels the phase error in both.
+    if (phase_matched && field_benchmark) {
+      const auto& segments = mrm::impact_benchmark(benchmark).configuration.segments;
+      for (const auto& segment : segments)
+        if (segment.modulus * segments.front().density != segments.front().modulus * segment.density)
+          throw cli::UsageError("--phase-matched: --benchmark " + benchmark +
+                                " has layers of different wave speeds, and one blend matches one Courant number "
+                                "(allowed: --interior-mass blend:A)");
+    }
     mrm::repro::refuse_untaken(parser, scheme_id,
                                {{"--beta", mrm::SchemeParameter::beta},
                                 {"--restitution", mrm::SchemeParameter::restitution},

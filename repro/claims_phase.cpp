@@ -165,7 +165,7 @@ ClaimResult check_bounded_stress(const StressSettings& settings, Judge& judge) {
                                 at_most("largest L2 error ratio stress/multiplier", worst_l2, 1.0));
   return judge("7/stress/bounded",
                "The " + settings.stress +
-                   " contact stress keeps TV(stress)/TV(lambda) bounded as the mesh is refined, with an L2 error no "
+                   " contact stress keeps TV(stress) / TV(lambda) bounded as the mesh is refined, with an L2 error no "
                    "larger than the multiplier's (CN + Mod 3, paper's benchmark, dt = h/2, T = " +
                    decimals(settings.final_time, 0) + "; issue 26)",
                measured,
