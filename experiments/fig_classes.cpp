@@ -426,7 +426,7 @@ int main(int argc, char** argv) {
               gs.push_back(geometric_mean(cell(b, c, a, half).errors, common[b]));
         (void)g_by_mesh;
         table.add_row(
-            {benchmarks[b] == "two-bars" ? "two-bars (by symmetry)" : benchmarks[b], mrm::to_string(cases[c].scheme),
+            {benchmarks[b] == "two-bars" ? "two-bars (sym.)" : benchmarks[b], mrm::to_string(cases[c].scheme),
              cases[c].mass, mrm::tex_number(geometric_mean(x.errors, common[b]), 3), mrm::tex_number(x.errors[1], 3),
              mrm::tex_number(x.tv_ratio, 3), mrm::tex_number(x.penetration, 2), mrm::tex_number(x.energy_per_impact, 2),
              mrm::tex_number(slope(hs, gs), 2), b == 0 ? mrm::tex_number(long_run(c, half).energy_ratio, 3) : "--"});
