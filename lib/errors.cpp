@@ -216,9 +216,11 @@ void ErrorAccumulator::add_vectors(const Sample& sample, const double* u, const 
     return r;
   };
   if (general_) {
-    // The quadratic forms of the mesh's own matrices, on contiguous copies of the sample's vectors.
-    Eigen::VectorXd uc(n), vc(n);
-    for (Index i = 0; i < n; ++i) uc[i] = u[i * stride], vc[i] = v[i * stride];
+    // The quadratic forms of the mesh's own matrices, on the sample's vectors seen with their stride (no
+    // copy: the differences below are formed entry by entry, as from contiguous vectors).
+    using Strided = Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<>>;
+    const Strided uc(u, n, Eigen::InnerStride<>(static_cast<long>(stride)));
+    const Strided vc(v, n, Eigen::InnerStride<>(static_cast<long>(stride)));
     exact_->displacement_at_points(sample.time, x, static_cast<long>(n), interpolant_.data());
     exact_->velocity_at_points(sample.velocity_time, x, static_cast<long>(n), velocity_interpolant_.data());
     error_ = uc - interpolant_;
@@ -533,10 +535,6 @@ TEST_CASE("the closed form's runs give the same measures as its values at the no
     }
   }
 }
-
-}  // namespace mrm
-
-namespace mrm {
 
 TEST_CASE("the error measures read from a lane layout are those of the run's own vectors, bit for bit") {
   // Prediction: add(sample, lanes) sums the same terms in the same order as add(sample) (pair_sums and

@@ -22,7 +22,8 @@
 // are the dearest per step, its exact solution having many wave pieces); the margin says by how much.
 // Where it might not hold: a benchmark whose error is not the fronts' (a smooth one, S2: the argument
 // does not apply), and meshes where the A = 0 errors are still pre-asymptotic (measured by
-// fig_phase_matched: on bouncing they do not decrease over N = 50 ... 400 at A = 0, which inflates the ratio).
+// fig_phase_matched: on bouncing they do not decrease over its field meshes, N = 50 ... 200, at A = 0,
+// which inflates the ratio).
 #include "claims_phase.hpp"
 
 #include <algorithm>
