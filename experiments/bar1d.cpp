@@ -488,7 +488,7 @@ int main(int argc, char** argv) {
                   << " dt_max of explicit " << mrm::to_string(scheme_id)
                   << " lies outside the measured region where E_max <= 2 E0 over " << cli::format_real(periods)
                   << " periods of 3L ("
-                  << (safe > 0        ? "dt <= " + cli::format_real(safe) + " dt_max"
+                  << (safe > 0          ? "dt <= " + cli::format_real(safe) + " dt_max"
                       : periods <= 1000 ? std::string("not even at 0.3 dt_max, the grid's smallest")
                                         : std::string("none measured beyond 1000 periods"))
                   << "; fig_classes block " << (penalty ? "5" : "6")

@@ -138,7 +138,7 @@ namespace mrm {
 
 bool is_contact_class(Scheme scheme) {
   return scheme == Scheme::newmark || scheme == Scheme::penalty || scheme == Scheme::nitsche ||
-         scheme == Scheme::moreau_jean;
+         scheme == Scheme::moreau_jean || scheme == Scheme::dke;
 }
 
 void validate_contact_class(const SchemeParameters& p, bool massless) {
@@ -626,6 +626,124 @@ class MoreauJeanStep final : public ContactClassStep {
   ContactSolver solver_;
 };
 
+// ---------------------------------------------------------------------------------------------------
+// ## Deuflhard–Krause–Ertel's contact-stabilised Newmark (`dke`, issue 23)
+//
+// Source: P. Deuflhard, R. Krause, S. Ertel, "A contact-stabilized Newmark method for dynamical contact
+// problems", Int. J. Numer. Meth. Engng 73 (2008) 1274–1290 (the brief cites it as SIAM J. Numer. Anal.;
+// the ZIB publication list gives IJNME). What is taken from the description of the method (field.md §2, 7):
+// Newmark(¼, ½) in which the contact force of the old level is dropped and replaced by a predictor, the
+// old level's free-flight prediction Uⁿ + ΔtVⁿ projected onto the admissible set K = {U : u₀ + g₀ ≥ 0} in
+// the mass norm; the new level is then a Newmark step with the contact force at the new level only. What
+// is reconstructed here (the paper is not in the library; every formula below is derived, not copied): the
+// velocity update as a Newmark step from the projected (stabilised) velocity Ṽ (below), which makes the
+// dissipation identity (DKE) exact; the stress the scheme reports; the massless contact node's case.
+//
+// The step, in the notation of (N) (M, S, F the load vector, τ = Δt, gⁿ = u₀ⁿ + g₀ ≥ 0):
+//
+//     W = Uⁿ + τVⁿ,     P = argmin_{Z ∈ K} ‖Z − W‖_M,     Ṽ = (P − Uⁿ)/τ,
+//     M(Uⁿ⁺¹ − P) = −(τ²/4) S(Uⁿ + Uⁿ⁺¹) + (τ²/4)(Fⁿ + Fⁿ⁺¹) − (τ²/4) μ e₀,   0 ≤ u₀ⁿ⁺¹ + g₀ ⊥ μ ≤ 0,   (DKE-1)
+//     Vⁿ⁺¹ = Ṽ + (2/τ)(Uⁿ⁺¹ − P).
+//
+// In 1D the projection is one scalar: K is a half-space in the coordinate u₀, so its M-projection is
+// P = W + α M⁻¹e₀ with α = max(0, −(w₀ + g₀))/(M⁻¹)₀₀ (the optimality condition M(P − W) = α e₀, α ≥ 0,
+// α(p₀ + g₀) = 0): with a consistent mass it moves every node along M⁻¹e₀ (mostly the contact node and its
+// neighbour's row), with a lumped one the contact node only. Ṽ = Vⁿ + (α/τ)M⁻¹e₀ is the M-projection of
+// Vⁿ onto {V : u₀ⁿ + τv₀ + g₀ ≥ 0}. The second line is Newmark(¼, ½) started from (Uⁿ, Ṽ) with Rⁿ =
+// −SUⁿ + Fⁿ (no contact force at level n): the right-hand side MP − (τ²/4)SUⁿ + (τ²/4)(Fⁿ + Fⁿ⁺¹) is (N)'s
+// with Vⁿ → Ṽ, λⁿ → 0; one solve with the closed-form contact step, κ = τ²/4. The step is two-level.
+//
+// Energy, E = ½VᵀMV + ½UᵀSU. The projection: 0 ∈ {V : …} (gⁿ ≥ 0), so ½‖Vⁿ‖²_M − ½‖Ṽ‖²_M =
+// ½‖Vⁿ − Ṽ‖²_M + (Vⁿ − Ṽ, Ṽ)_M = (α²/2τ²)(M⁻¹)₀₀ + (α/τ²)gⁿ (using ṽ₀ = −(u₀ⁿ + g₀)/τ where α > 0). The
+// Newmark step from (Uⁿ, Ṽ): Uⁿ⁺¹ − Uⁿ = (τ/2)(Ṽ + Vⁿ⁺¹), and pairing (DKE-1)·(2/τ²)·(τ/2)(Ṽ + Vⁿ⁺¹) as in (E)
+// leaves the load's work and the contact's, −(μ/2)(u₀ⁿ⁺¹ − u₀ⁿ) = −(μ/2)(gⁿ⁺¹ − gⁿ) = (μ/2)gⁿ (μgⁿ⁺¹ = 0). So
+//
+//     Eⁿ⁺¹ − Eⁿ = W_F − (α²/2τ²)(M⁻¹)₀₀ − (α/τ²) gⁿ − (|μ|/2) gⁿ,      W_F = ½(Fⁿ + Fⁿ⁺¹)·(Uⁿ⁺¹ − Uⁿ),   (DKE)
+//
+// every term after W_F ≤ 0: without a load the energy never grows, at an impact or anywhere else. The
+// projection loses at least (α²/2τ²)(M⁻¹)₀₀ = ½ m_eff (Δv₀)² with Δv₀ = α(M⁻¹)₀₀/τ the jump of the contact
+// node's velocity and m_eff = 1/(M⁻¹)₀₀ its effective mass: the kinetic energy of the normal velocity the
+// projection removes, an inelastic impact of the contact node (restitution 0) at every step where the
+// predictor penetrates. That is the price of the stabilisation: O(h) per impact with the consistent mass
+// (m_eff = O(h)), the contact node's energy. (Derived; the doctest checks (DKE) to round-off.)
+//
+// The stress. The contact acts through two impulses per step: the projection's M(Ṽ − Vⁿ) = (α/τ)e₀ and the
+// step's M(Vⁿ⁺¹ − Ṽ) ∋ −(τ/2)μe₀. The stress reported is the step's mean contact force,
+// λⁿ⁺¹ = μ/2 − α/τ² ≤ 0 (a persistent contact has α → 0 and μ ≈ 2λ: the step weights it by τ²/4 where
+// Crank–Nicolson weights λⁿ + λⁿ⁺¹ by τ²/4): a choice of this project, as Moreau–Jean's −p/Δt.
+//
+// Limit cases. No contact (P = W, μ = 0): Newmark(¼, ½) = Crank–Nicolson with no contact force, the
+// `newmark` step (doctest). A massless contact node: the M-norm does not see u₀, the projection moves no
+// node with mass (Ṽ = Vⁿ on them), and row 0 is the algebraic contact row S₀·Uⁿ⁺¹ = F₀ⁿ⁺¹ − μ as in (N)
+// (where Rⁿ₀ = 0 already drops λⁿ): the step is Crank–Nicolson's with the same mass, λ = μ (doctest, Mod 3:
+// the same run to round-off), so DKE is a treatment for the standard mass, and mass redistribution is
+// another cure of the same ill-posedness (field.md §2, 2).
+class DkeStep final : public ContactClassStep {
+ public:
+  DkeStep(const Tridiagonal& mass, const Tridiagonal& stiffness, double dt, bool has_load, double gap, StepState& state)
+      : mass_(mass),
+        stiffness_(stiffness),
+        dt_(dt),
+        massless_(contact_node_is_massless(mass)),
+        has_load_(has_load),
+        gap_(gap) {
+    const double q = 0.25 * dt * dt;
+    Tridiagonal a = mass.plus(q, stiffness);
+    weight0_ = q;
+    if (massless_) {  // the algebraic contact row
+      a.diag[0] = stiffness.diag[0];
+      a.upper[0] = stiffness.upper[0];
+      weight0_ = 1.0;
+    } else {  // M⁻¹e₀ for the projection
+      inverse_column_.setZero(mass.size());
+      inverse_column_[0] = 1.0;
+      solve_free(ContactSolver(mass), inverse_column_);
+    }
+    solver_ = ContactSolver(a);
+    state.lambda = 0.0;  // no contact force at the initial level (the scheme has none at level n)
+    state.active = false;
+    state.energy = energy(state);
+    rhs_.resize(mass.size());
+  }
+
+  void step(StepState& state, Index level) override {
+    const double dt = dt_, q = 0.25 * dt * dt;
+    // The predictor W = Uⁿ + τVⁿ and its M-projection P = W + αM⁻¹e₀; Ṽ = (P − Uⁿ)/τ.
+    predicted_ = state.u + dt * state.w;
+    double alpha = 0;
+    if (!massless_ && predicted_[0] + gap_ < 0) {
+      alpha = -(predicted_[0] + gap_) / inverse_column_[0];
+      predicted_ += alpha * inverse_column_;
+      predicted_[0] = -gap_;  // exactly on the obstacle (the formula gives it up to round-off)
+    }
+    // (DKE-1): (M + τ²/4 S)Uⁿ⁺¹ = MP − τ²/4 SUⁿ + τ²/4(Fⁿ + Fⁿ⁺¹) − τ²/4 μe₀; massless: row 0 S₀·U = F₀ⁿ⁺¹ − μ.
+    rhs_ = mass_ * predicted_ - q * (stiffness_ * state.u);
+    if (has_load_) rhs_ += q * (state.f_now + state.f_next);
+    if (massless_) rhs_[0] = has_load_ ? state.f_next[0] : 0.0;
+    Eigen::VectorXd& u = state.u_new;
+    const ContactStep contact = solver_.solve(rhs_.data(), u.data(), weight0_, gap_ != 0.0 ? -gap_ : 0.0);
+    // Vⁿ⁺¹ = Ṽ + (2/τ)(Uⁿ⁺¹ − P), Ṽ = (P − Uⁿ)/τ.
+    state.w = (predicted_ - state.u) / dt + (2 / dt) * (u - predicted_);
+    state.u.swap(state.u_new);
+    state.lambda = massless_ ? contact.multiplier : 0.5 * contact.multiplier - alpha / (dt * dt);
+    state.active = state.lambda < 0;
+    state.energy = energy(state);
+    if (has_load_) state.f_now.swap(state.f_next);
+    require_finite(state.energy, Scheme::dke, level + 1);
+  }
+
+ private:
+  double energy(const StepState& s) const {
+    return 0.5 * mass_.bilinear(s.w, s.w) + 0.5 * stiffness_.bilinear(s.u, s.u);
+  }
+  Tridiagonal mass_, stiffness_;
+  double dt_;
+  bool massless_, has_load_;
+  double gap_, weight0_ = 0;
+  ContactSolver solver_;
+  Eigen::VectorXd inverse_column_, predicted_, rhs_;
+};
+
 }  // namespace
 
 std::unique_ptr<ContactClassStep> make_contact_class_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
@@ -633,6 +751,7 @@ std::unique_ptr<ContactClassStep> make_contact_class_step(const Tridiagonal& mas
                                                           double gap, StepState& state) {
   if (p.scheme == Scheme::moreau_jean)
     return std::make_unique<MoreauJeanStep>(mass, stiffness, p, dt, has_load, gap, state);
+  if (p.scheme == Scheme::dke) return std::make_unique<DkeStep>(mass, stiffness, dt, has_load, gap, state);
   if (is_contact_class(p.scheme))
     return std::make_unique<NewmarkContactStep>(mass, stiffness, p, dt, h, has_load, gap, state);
   throw std::logic_error("make_contact_class_step: " + to_string(p.scheme) + " is not a contact class");
@@ -1300,8 +1419,9 @@ TEST_CASE("central differences with a penalty: E_h changes only at switches, by 
   CHECK(penalty_switch_jump(1.0, -0.2, -0.1, -0.3) == 0.0);                               // no switch
 }
 
-TEST_CASE("central differences with Nitsche: E_N changes by (JN); theta = 1 only at switches within (B), theta = 0 "
-          "also between") {
+TEST_CASE(
+    "central differences with Nitsche: E_N changes by (JN); theta = 1 only at switches within (B), theta = 0 "
+    "also between") {
   // The runs of block 6's grid (N = 16, γ₀ = 5, the consistent mass, 0.9 Δt_max, ten periods, θ = 1 and 0):
   // (JN) to round-off at every step; θ = 1: E_N changes only at switching steps (a status change of P on a
   // neighbouring level), by at most (1/8γ)Δt² max(ℓ·v)² ((B) with q → P, k → 1/γ), with gains and losses,
@@ -1341,8 +1461,8 @@ TEST_CASE("central differences with Nitsche: E_N changes by (JN); theta = 1 only
       worst_identity = std::max(worst_identity, std::abs(e - previous - jump - remainder) / std::max(e, first));
       if (jump != 0.0) {
         const double lv_before = P(now) - P(before), lv_after = P(after) - P(now);  // Δt ℓ·v
-        worst_bound = std::max(worst_bound, std::abs(jump) / (std::max(lv_before * lv_before, lv_after * lv_after) /
-                                                              (8 * gamma)));
+        worst_bound = std::max(worst_bound,
+                               std::abs(jump) / (std::max(lv_before * lv_before, lv_after * lv_after) / (8 * gamma)));
         gains += jump > 0, losses += jump < 0;
       } else if (remainder != 0.0) {
         ++between;
@@ -1354,9 +1474,9 @@ TEST_CASE("central differences with Nitsche: E_N changes by (JN); theta = 1 only
       before = now;
       now = after;
     }
-    MESSAGE("Nitsche theta " << theta << ", gamma0 5, 0.9 dt_max: E_N " << first << " -> " << previous << ", "
-                             << gains << " gains, " << losses << " losses at switches, (JN) residual "
-                             << worst_identity << ", |J|/(B) <= " << worst_bound << "; " << between
+    MESSAGE("Nitsche theta " << theta << ", gamma0 5, 0.9 dt_max: E_N " << first << " -> " << previous << ", " << gains
+                             << " gains, " << losses << " losses at switches, (JN) residual " << worst_identity
+                             << ", |J|/(B) <= " << worst_bound << "; " << between
                              << " contact steps without a switch, their remainder summed " << remainder_between
                              << " (largest " << largest_remainder << " E_N)");
     CHECK(worst_identity <= 1e-12);   // (JN): round-off on O(1) energies
@@ -1364,13 +1484,126 @@ TEST_CASE("central differences with Nitsche: E_N changes by (JN); theta = 1 only
     CHECK(gains > 0);
     CHECK(losses > 0);
     if (theta == 1.0) {
-      CHECK(between == 0);             // symmetric Nitsche: nothing between switches
-      CHECK(previous > 2 * first);     // the gain the linear limit does not prevent
+      CHECK(between == 0);          // symmetric Nitsche: nothing between switches
+      CHECK(previous > 2 * first);  // the gain the linear limit does not prevent
     } else {
-      CHECK(between > 10);                             // the circulatory force works in every contact step
+      CHECK(between > 10);                                // the circulatory force works in every contact step
       CHECK(std::abs(remainder_between) > 1e-3 * first);  // and its work does not cancel
     }
   }
+}
+
+TEST_CASE("dke: (DKE) at every step, the energy never grows, no penetration at the levels; its limit cases") {
+  // The paper's benchmark with the consistent mass (the standard mass: the class's case), N = 40, Δt = h/2,
+  // over three periods (impacts, contact phases, releases), without and with a gap g₀ = 0.2. At every step,
+  // from the sample: α = max(0, −(w₀ + g₀))/(M⁻¹)₀₀ with W = Uⁿ + ΔtVⁿ (recomputed here from the definition,
+  // M⁻¹e₀ by a dense solve), μ = 2(λⁿ⁺¹ + α/Δt²) (the reported stress, inverted), and then: μ ≤ 0,
+  // μ(u₀ⁿ⁺¹ + g₀) = 0, u₀ⁿ⁺¹ + g₀ ≥ 0 (penetration zero at the levels, to round-off of O(1) values), and
+  // Eⁿ⁺¹ − Eⁿ equal to (DKE)'s −(α²/2Δt²)(M⁻¹)₀₀ − (α/Δt²)gⁿ + (μ/2)gⁿ to round-off, each term ≤ 0, so
+  // Eⁿ⁺¹ ≤ Eⁿ; at least one step with a projection (α > 0: an impact) and one with μ < 0.
+  const UniformMesh mesh(1.0, 40);
+  const double dt = 0.5 * mesh.h();
+  const Tridiagonal m = modified_mass(mesh, consistent_mass());
+  const Eigen::MatrixXd md = m.to_sparse().toDense();
+  const Eigen::VectorXd column = md.llt().solve(Eigen::VectorXd::Unit(mesh.unknowns(), 0));  // M⁻¹e₀
+  for (const double gap : {0.0, 0.2}) {
+    Problem problem = benchmark_problem();
+    problem.gap = gap;
+    BarSimulation run(problem, mesh, consistent_mass(), class_parameters(Scheme::dke), dt);
+    double worst_identity = 0, worst_penetration = 0, worst_complementarity = 0, largest_gain = -HUGE_VAL;
+    double projection_loss = 0;
+    int projections = 0, multipliers = 0;
+    for (Index n = 0; n < steps_to_reach(9.0, dt); ++n) {
+      const Eigen::VectorXd u = *run.sample().displacement, v = *run.sample().velocity;
+      const double e = run.sample().energy, g_now = u[0] + gap, w0 = u[0] + dt * v[0];
+      run.step();
+      const double g_next = (*run.sample().displacement)[0] + gap;
+      const double alpha = std::max(0.0, -(w0 + gap)) / column[0];
+      const double mu = 2 * (run.sample().multiplier + alpha / (dt * dt));
+      const double lost = alpha * alpha / (2 * dt * dt) * column[0] + alpha / (dt * dt) * g_now - 0.5 * mu * g_now;
+      worst_identity = std::max(worst_identity, std::abs(run.sample().energy - e + lost));
+      worst_penetration = std::max(worst_penetration, -g_next);
+      worst_complementarity = std::max({worst_complementarity, mu, std::abs(mu * g_next)});
+      largest_gain = std::max(largest_gain, run.sample().energy - e);
+      projections += alpha > 0, multipliers += mu < 0;
+      projection_loss += alpha * alpha / (2 * dt * dt) * column[0] + alpha / (dt * dt) * g_now;
+    }
+    MESSAGE("dke, consistent mass, N = 40, dt = h/2, gap "
+            << gap << ": (DKE) residual " << worst_identity << ", largest step change of E " << largest_gain << ", "
+            << projections << " projections (losing " << projection_loss << " in all), " << multipliers
+            << " steps with mu < 0, E " << run.sample().energy << " of 0.125");
+    CAPTURE(gap);
+    CHECK(worst_identity <= 1e-14);         // (DKE): round-off on E = 1/8
+    CHECK(largest_gain <= 1e-14);           // the energy never grows (round-off: a few ε E per step)
+    CHECK(worst_penetration <= 1e-15);      // u₀ + g₀ ≥ 0 at every level
+    CHECK(worst_complementarity <= 1e-12);  // μ ≤ 0 and μg = 0 (μ ~ 1/Δt² scale)
+    CHECK(projections > 0);
+    CHECK(multipliers > 0);
+  }
+  // No contact: a gap that the run never closes (g₀ = 10 over two periods): the `newmark` (¼, ½) run, to
+  // round-off, at every level (a few ε|U| per step, |U| ≤ 3, K = 480 steps: 1e-12).
+  {
+    Problem far = benchmark_problem();
+    far.gap = 10.0;
+    BarSimulation dke(far, mesh, consistent_mass(), class_parameters(Scheme::dke), dt);
+    BarSimulation newmark(far, mesh, consistent_mass(), class_parameters(Scheme::newmark), dt);
+    const double difference = largest_difference(dke, newmark, steps_to_reach(6.0, dt));
+    CAPTURE(difference);
+    CHECK(difference <= 1e-12);
+    CHECK(std::abs(dke.sample().energy - newmark.sample().energy) <= 1e-13);
+  }
+  // A massless contact node (Mod 3): Crank–Nicolson's run with the same mass (the projection moves no node
+  // with mass, row 0 is the algebraic row), λ included, over three periods.
+  {
+    BarSimulation dke(benchmark_problem(), mesh, mod3(), class_parameters(Scheme::dke), dt);
+    BarSimulation cn(benchmark_problem(), mesh, mod3(), SchemeParameters(), dt);
+    double difference = 0, lambda_difference = 0;
+    for (Index k = 0; k < steps_to_reach(9.0, dt); ++k) {
+      dke.step();
+      cn.step();
+      difference = std::max(difference, (*dke.sample().displacement - *cn.sample().displacement).cwiseAbs().maxCoeff());
+      lambda_difference = std::max(lambda_difference, std::abs(dke.sample().multiplier - cn.sample().multiplier));
+    }
+    CAPTURE(difference);
+    CAPTURE(lambda_difference);
+    CHECK(difference <= 1e-12);
+    CHECK(lambda_difference <= 1e-10);
+    CHECK(std::abs(dke.sample().energy - cn.sample().energy) <= 1e-12);
+  }
+}
+
+TEST_CASE("dke with a load: (DKE) with the load's work") {
+  // The pressed bar of the (EF) doctest (f = −1, g₀ = 0.05: impacts, a persistent contact phase, releases),
+  // the consistent mass: Eⁿ⁺¹ − Eⁿ = W_F − (the losses of (DKE)), W_F = F·ΔU for the constant load.
+  const UniformMesh mesh(1.0, 30);
+  const double dt = 0.5 * mesh.h(), gap = 0.05;
+  Problem pressed = benchmark_problem();
+  pressed.load = [](double, double) { return -1.0; };
+  pressed.gap = gap;
+  Eigen::VectorXd f;
+  p1_load(
+      mesh, [](double) { return -1.0; }, f);
+  const Eigen::MatrixXd md = modified_mass(mesh, consistent_mass()).to_sparse().toDense();
+  const Eigen::VectorXd column = md.llt().solve(Eigen::VectorXd::Unit(mesh.unknowns(), 0));
+  BarSimulation run(pressed, mesh, consistent_mass(), class_parameters(Scheme::dke), dt);
+  double worst = 0, worst_penetration = 0;
+  int contact_levels = 0;
+  for (Index n = 0; n < steps_to_reach(9.0, dt); ++n) {
+    const Eigen::VectorXd u = *run.sample().displacement, v = *run.sample().velocity;
+    const double e = run.sample().energy, g_now = u[0] + gap, w0 = u[0] + dt * v[0];
+    run.step();
+    const Eigen::VectorXd& u_next = *run.sample().displacement;
+    const double alpha = std::max(0.0, -(w0 + gap)) / column[0];
+    const double mu = 2 * (run.sample().multiplier + alpha / (dt * dt));
+    const double lost = alpha * alpha / (2 * dt * dt) * column[0] + alpha / (dt * dt) * g_now - 0.5 * mu * g_now;
+    worst = std::max(worst, std::abs(run.sample().energy - e - f.dot(u_next - u) + lost));
+    worst_penetration = std::max(worst_penetration, -(u_next[0] + gap));
+    contact_levels += run.sample().multiplier < 0;
+  }
+  CAPTURE(worst);
+  CHECK(worst <= 1e-14);
+  CHECK(worst_penetration <= 1e-15);
+  CHECK(contact_levels > 100);
 }
 
 TEST_CASE("two-bars by symmetry: each body of the two-body Crank-Nicolson run is the one-bar run against a wall") {
