@@ -1,7 +1,8 @@
 /// @file contact_classes.cpp
 /// @brief The field's contact treatments in time (field.md §2, Doyen–Ern–Piperno's classes) as schemes of
-/// the registry: `newmark`, `penalty`, `nitsche` (one Newmark(β, γ) step with three contact laws) and
-/// `moreau-jean` (the θ-method with a velocity-level impact law).
+/// the registry: `newmark`, `penalty`, `nitsche` (one Newmark(β, γ) step with three contact laws),
+/// `moreau-jean` (the θ-method with a velocity-level impact law) and `dke` (Deuflhard–Krause–Ertel's
+/// contact-stabilised Newmark, an energy-consistent treatment from the literature).
 ///
 /// Notation of problem.md and schemes.cpp: M the mass on the unknowns 0..N−1 (consistent, or
 /// redistributed with a massless contact node), S the P1 stiffness, u₀ the contact node's value, λ ≤ 0
@@ -630,8 +631,8 @@ class MoreauJeanStep final : public ContactClassStep {
 // ## Deuflhard–Krause–Ertel's contact-stabilised Newmark (`dke`, issue 23)
 //
 // Source: P. Deuflhard, R. Krause, S. Ertel, "A contact-stabilized Newmark method for dynamical contact
-// problems", Int. J. Numer. Meth. Engng 73 (2008) 1274–1290 (the brief cites it as SIAM J. Numer. Anal.;
-// the ZIB publication list gives IJNME). What is taken from the description of the method (field.md §2, 7):
+// problems", Int. J. Numer. Meth. Engng 73 (2008) 1274–1290 (the project's notes cite it as SIAM J. Numer.
+// Anal.; the ZIB publication list gives IJNME). What is taken from the description of the method (field.md §2, 7):
 // Newmark(¼, ½) in which the contact force of the old level is dropped and replaced by a predictor, the
 // old level's free-flight prediction Uⁿ + ΔtVⁿ projected onto the admissible set K = {U : u₀ + g₀ ≥ 0} in
 // the mass norm; the new level is then a Newmark step with the contact force at the new level only. What

@@ -1,7 +1,8 @@
 /// @file contact_classes.hpp
 /// @brief The field's contact treatments in time (Doyen–Ern–Piperno's classes, field.md §2) as schemes
 /// of the registry: Newmark(β, γ) with exact enforcement (`newmark`), with a penalty (`penalty`), with
-/// Nitsche's terms (`nitsche`), and Moreau–Jean's velocity-level impact law (`moreau-jean`). Derived in
+/// Nitsche's terms (`nitsche`), Moreau–Jean's velocity-level impact law (`moreau-jean`) and
+/// Deuflhard–Krause–Ertel's contact-stabilised Newmark (`dke`). Derived in
 /// contact_classes.cpp; BarSimulation (schemes.hpp) runs them through ContactClassStep.
 #pragma once
 
