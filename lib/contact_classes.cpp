@@ -1423,20 +1423,23 @@ TEST_CASE("central differences with a penalty: E_h changes only at switches, by 
 TEST_CASE(
     "central differences with Nitsche: E_N changes by (JN); theta = 1 only at switches within (B), theta = 0 "
     "also between") {
-  // The runs of block 6's grid (N = 16, γ₀ = 5, the consistent mass, 0.9 Δt_max, ten periods, θ = 1 and 0):
+  // Runs of block 6's grid (N = 16, γ₀ = 5, the consistent mass, ten periods; θ = 1 at 0.9 and 0.5 Δt_max, θ = 0
+  // at 0.9):
   // (JN) to round-off at every step; θ = 1: E_N changes only at switching steps (a status change of P on a
   // neighbouring level), by at most (1/8γ)Δt² max(ℓ·v)² ((B) with q → P, k → 1/γ), with gains and losses,
-  // and grows by more than 2 (the gain the linear limit does not prevent); θ = 0: the remainder
+  // and grows by more than 2 (the gain the linear limit does not prevent); for θ = 1 also the penalty's (C)
+  // (E_N ≥ (1 − r²)½‖v‖²_M + ½ŪᵀS_θŪ + (1/2γ)P̄₋², r = 0.9, the limit's active pencil S_θ + (1/γ)ℓℓᵀ) and (G)
+  // (ρ = (1/4γ)Δt² ℓᵀA⁻¹ℓ, A = M − ¼Δt²(S_θ + (1/γ)ℓℓᵀ)) at every level; θ = 0: the remainder
   // ((1 − θ)/2γ)P₋ⁿ(σⁿ⁺¹ − σⁿ⁻¹) is nonzero on steps without a switch, and its sum over them is not small
   // (no modified energy is conserved between switches).
   const UniformMesh mesh(1.0, 16);
   const double h = mesh.h();
   const Tridiagonal m = modified_mass(mesh, consistent_mass()), s = p1_stiffness(mesh);
-  for (const double theta : {1.0, 0.0}) {
+  for (const auto& [theta, r] : {std::pair{1.0, 0.9}, std::pair{1.0, 0.5}, std::pair{0.0, 0.9}}) {
     SchemeParameters p = class_parameters(Scheme::nitsche, 0.0);
     p.nitsche_gamma = 5.0;
     p.nitsche_theta = theta;
-    const double gamma = p.nitsche_gamma / h, dt = 0.9 * newmark_stability_limit(m, s, p, h);
+    const double gamma = p.nitsche_gamma / h, dt = r * newmark_stability_limit(m, s, p, h);
     Tridiagonal s_theta = s;  // S_θ = S − (θ/γ)ddᵀ
     const double c = theta / (gamma * h * h);
     s_theta.diag[0] -= c, s_theta.diag[1] -= c, s_theta.upper[0] += c, s_theta.lower[1] += c;
@@ -1446,13 +1449,19 @@ TEST_CASE(
       const Eigen::VectorXd v = (b - a) / dt;
       return 0.5 * v.dot(m * v) + 0.5 * a.dot(s_theta * b) + std::min(0.0, P(a)) * std::min(0.0, P(b)) / (2 * gamma);
     };
+    Eigen::VectorXd ell = Eigen::VectorXd::Zero(mesh.unknowns());
+    ell[0] = gamma - 1 / h, ell[1] = 1 / h;
+    const Eigen::MatrixXd a =
+        m.to_sparse().toDense() - 0.25 * dt * dt * (s_theta.to_sparse().toDense() + ell * ell.transpose() / gamma);
+    const double rho = 0.25 * dt * dt / gamma * ell.dot(a.inverse() * ell);
     BarSimulation run(benchmark_problem(), mesh, consistent_mass(), p, dt);
     Eigen::VectorXd before = *run.sample().displacement;
     run.step();
     Eigen::VectorXd now = *run.sample().displacement;
     const double first = e_n(before, now);
     double previous = first, worst_identity = 0, worst_bound = 0, remainder_between = 0, largest_remainder = 0;
-    int gains = 0, losses = 0, between = 0;
+    double worst_coercive = 0, worst_gronwall = 0;
+    int gains = 0, losses = 0, between = 0, switches = 0;
     for (Index n = 1; n < steps_to_reach(30.0, dt); ++n) {
       run.step();
       const Eigen::VectorXd& after = *run.sample().displacement;
@@ -1471,12 +1480,21 @@ TEST_CASE(
         largest_remainder = std::max(largest_remainder, std::abs(remainder) / first);
       }
       if (theta == 1.0 && jump == 0.0) CHECK(std::abs(e - previous) <= 1e-12 * std::max(e, first));
+      switches += jump != 0.0;
+      if (theta == 1.0) {
+        const Eigen::VectorXd v = (after - now) / dt, mean = 0.5 * (now + after);
+        const double p_mean = 0.5 * (std::min(0.0, P(now)) + std::min(0.0, P(after)));
+        const double floor =
+            (1 - r * r) * 0.5 * v.dot(m * v) + 0.5 * mean.dot(s_theta * mean) + p_mean * p_mean / (2 * gamma);
+        worst_coercive = std::max(worst_coercive, (floor - e) / e);
+        if (rho < 1) worst_gronwall = std::max(worst_gronwall, e / (first * std::pow(1 - rho, -switches)));
+      }
       previous = e;
       before = now;
       now = after;
     }
-    MESSAGE("Nitsche theta " << theta << ", gamma0 5, 0.9 dt_max: E_N " << first << " -> " << previous << ", " << gains
-                             << " gains, " << losses << " losses at switches, (JN) residual " << worst_identity
+    MESSAGE("Nitsche theta " << theta << ", gamma0 5, " << r << " dt_max: E_N " << first << " -> " << previous << ", "
+                             << gains << " gains, " << losses << " losses at switches, (JN) residual " << worst_identity
                              << ", |J|/(B) <= " << worst_bound << "; " << between
                              << " contact steps without a switch, their remainder summed " << remainder_between
                              << " (largest " << largest_remainder << " E_N)");
@@ -1485,8 +1503,13 @@ TEST_CASE(
     CHECK(gains > 0);
     CHECK(losses > 0);
     if (theta == 1.0) {
-      CHECK(between == 0);          // symmetric Nitsche: nothing between switches
-      CHECK(previous > 2 * first);  // the gain the linear limit does not prevent
+      CHECK(between == 0);                        // symmetric Nitsche: nothing between switches
+      if (r == 0.9) CHECK(previous > 2 * first);  // the gain the linear limit does not prevent
+      MESSAGE("theta 1, r " << r << ": rho " << rho << ", (C) defect " << worst_coercive
+                            << ", E_N/(G) <= " << worst_gronwall);
+      CHECK(worst_coercive <= 1e-12);      // (C)
+      if (r == 0.5) CHECK(rho < 1);        // (G) is not void at 0.5 (2.4 at 0.9)
+      CHECK(worst_gronwall <= 1 + 1e-12);  // (G)
     } else {
       CHECK(between > 10);                                // the circulatory force works in every contact step
       CHECK(std::abs(remainder_between) > 1e-3 * first);  // and its work does not cancel
