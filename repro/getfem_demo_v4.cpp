@@ -22,11 +22,9 @@ Configuration getfem_demo_v4_configuration() {
   return c;
 }
 
-namespace {
-
 // The demo's uExact(x, t, d): d = 0 the displacement, 1 the x derivative, 2 the time derivative, with
 // its zones and its one-sided values on the characteristics (reconstructed line by line from the demo).
-double demo_exact(double x, double t, int d) {
+double getfem_demo_exact(double x, double t, int d) {
   const double tp = std::fmod(t, 3.0), tf = std::fmod(tp, 1.0), nf = std::floor(tp);
   int zone;
   if (tf < x)
@@ -57,7 +55,7 @@ double demo_exact(double x, double t, int d) {
   return d == 0 ? u : (d == 1 ? dxu : dtu);
 }
 
-}  // namespace
+namespace {}  // namespace
 
 GetfemDemoMeasures getfem_demo_measures(const Configuration& configuration) {
   if (configuration.benchmark != "paper" || configuration.data || configuration.length != 1.0 ||
@@ -78,8 +76,8 @@ GetfemDemoMeasures getfem_demo_measures(const Configuration& configuration) {
     const double t = static_cast<double>(s.level) * dt;  // np.arange's t_k = k dt
     for (Index i = 0; i <= n; ++i) {
       const double u = i < n ? (*s.displacement)[i] : 0.0, v = i < n ? (*s.velocity)[i] : 0.0;
-      ex_u[i] = demo_exact(x[i], t, 0);
-      ex_v[i] = demo_exact(x[i], t, 2);
+      ex_u[i] = getfem_demo_exact(x[i], t, 0);
+      ex_v[i] = getfem_demo_exact(x[i], t, 2);
       e_u[i] = u - ex_u[i];
       e_v[i] = v - ex_v[i];
     }
@@ -90,7 +88,7 @@ GetfemDemoMeasures getfem_demo_measures(const Configuration& configuration) {
     max_uh1 = std::max(max_uh1, uh1), max_uh1_ex = std::max(max_uh1_ex, uh1_ex);
     max_vl2 = std::max(max_vl2, vl2), max_vl2_ex = std::max(max_vl2_ex, vl2_ex);
     sum_ul2 += ul2, sum_ul2_ex += ul2_ex, sum_uh1 += uh1, sum_uh1_ex += uh1_ex, sum_vl2 += vl2, sum_vl2_ex += vl2_ex;
-    const double lambda = s.level == 0 ? 0.0 : s.multiplier, lambda_exact = demo_exact(0.0, t, 1);
+    const double lambda = s.level == 0 ? 0.0 : s.multiplier, lambda_exact = getfem_demo_exact(0.0, t, 1);
     sum_s += (lambda - lambda_exact) * (lambda - lambda_exact), sum_s_ex += lambda_exact * lambda_exact;
   });
   GetfemDemoMeasures m;
@@ -101,10 +99,10 @@ GetfemDemoMeasures getfem_demo_measures(const Configuration& configuration) {
 }
 
 TEST_CASE("the demo's uExact: its zones and one-sided values on the characteristics") {
-  CHECK(demo_exact(0.3, 0.1, 0) == doctest::Approx(0.35));  // zone I, phase 0: u = 1/2 − x/2
-  CHECK(demo_exact(0.0, 1.5, 0) == 0.0);                    // in contact
-  CHECK(demo_exact(1.0, 1.0, 2) == -0.5);                   // at the clamp at t = 1: the zone-I value
-  CHECK(demo_exact(0.0, 1.5, 1) == -0.5);                   // the contact stress
+  CHECK(getfem_demo_exact(0.3, 0.1, 0) == doctest::Approx(0.35));  // zone I, phase 0: u = 1/2 − x/2
+  CHECK(getfem_demo_exact(0.0, 1.5, 0) == 0.0);                    // in contact
+  CHECK(getfem_demo_exact(1.0, 1.0, 2) == -0.5);                   // at the clamp at t = 1: the zone-I value
+  CHECK(getfem_demo_exact(0.0, 1.5, 1) == -0.5);                   // the contact stress
 }
 
 }  // namespace mrm::repro

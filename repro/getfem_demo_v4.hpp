@@ -20,6 +20,14 @@ namespace mrm::repro {
 /// nothing else: the scheme's (E1) is the demo's step (explicit_schemes.cpp).
 Configuration getfem_demo_v4_configuration();
 
+/// The demo's exact solution uExact(x, t, d) (demo_dynamic_contact_1D.py) on the paper's benchmark
+/// (L = 1, a = ½, period 3), transcribed with its floating-point operations and its zones (tf < x,
+/// tf ≤ 1 − x): d = 0 the displacement, 1 u_x, 2 u_t, with the demo's one-sided values where a front
+/// crosses a point exactly: there this project's ReferenceSolution may take the other side (a difference
+/// of ½ in u_t or u_x at that node and level), and the demo compares with its own side. The displacement
+/// is continuous. Used by the demo's measures here and by the peer measures (peers.hpp).
+double getfem_demo_exact(double x, double t, int d);
+
 /// The seven relative errors the demo prints, in its order and under its names (below), computed as
 /// the demo computes them: at every level t_k = k dt, k = 0..K (K = ⌈T/dt⌉), the P1 norms over all
 /// nodes 0..N (the clamped node included) of the difference between the scheme's nodal values and the

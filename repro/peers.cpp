@@ -22,6 +22,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "getfem_demo_v4.hpp"
 #include "mass_redistribution.hpp"
 
 namespace mrm::repro {
@@ -94,43 +95,6 @@ const PeerPreset& peer_preset(const std::string& id) {
   throw std::invalid_argument("unknown peer \"" + id + "\" (allowed: " + allowed + ")");
 }
 
-namespace {
-
-// The demo's exact solution uExact(x, t, d) (demo_dynamic_contact_1D.py), transcribed with its floating
-// operations and its zone inequalities: the paper's benchmark (L = 1, a = ½, period 3), d = 0 u, 1 u_x,
-// 2 u_t. Used for the velocity and the stress, which jump across the characteristics x = t mod 1: where a
-// front crosses a node exactly at a level, the side the demo's `tf < x` and `tf <= 1 - x` pick is the
-// value it compares with (this project's ReferenceSolution may pick the other side, a difference of ½ at
-// that node and level; the displacement is continuous and needs no transcription).
-double demo_exact(double x, double t, int d) {
-  const double tp = std::fmod(t, 3.0), tf = std::fmod(tp, 1.0), nf = std::floor(tp);
-  const int zone = tf < x ? (tf <= 1 - x ? 1 : 3) : (tf <= 1 - x ? 2 : 4);
-  double u = 0, dxu = 0, dtu = 0;
-  if (nf == 0) {
-    if (zone == 1 || zone == 3)
-      u = 0.5 - x / 2, dxu = -0.5, dtu = 0;
-    else
-      u = 0.5 - tf / 2, dxu = 0, dtu = -0.5;
-  } else if (nf == 1) {
-    if (zone == 1)
-      u = -tf / 2, dxu = 0, dtu = -0.5;
-    else if (zone == 2)
-      u = -x / 2, dxu = -0.5, dtu = 0;
-    else if (zone == 3)
-      u = -0.5 + x / 2, dxu = 0.5, dtu = 0;
-    else
-      u = -0.5 + tf / 2, dxu = 0, dtu = 0.5;
-  } else {
-    if (zone == 1 || zone == 2)
-      u = tf / 2, dxu = 0, dtu = 0.5;
-    else
-      u = 0.5 - x / 2, dxu = -0.5, dtu = 0;
-  }
-  return d == 0 ? u : d == 1 ? dxu : dtu;
-}
-
-}  // namespace
-
 const std::array<const char*, 7> PeerMeasures::names = {"LinfL2u", "LinfH1u", "LinfL2v", "L2L2u",
                                                         "L2H1u",   "L2L2v",   "L2sn"};
 
@@ -151,7 +115,7 @@ void PeerMeasures::add(const Sample& sample) {
     exact[i] = exact_.displacement(x_[static_cast<std::size_t>(i)], sample.time);
     // The demo's nodes are np.arange(0, 1 + 1/NX, 1/NX), i.e. i·(1/NX) in floating point, which differs from
     // i/NX in the last bit for some i: a front crossing such a node at a level picks its side by that bit.
-    exact_v[i] = demo_exact(static_cast<double>(i) * (length_ / static_cast<double>(x_.size())), sample.time, 2);
+    exact_v[i] = getfem_demo_exact(static_cast<double>(i) * (length_ / static_cast<double>(x_.size())), sample.time, 2);
   }
   const Eigen::VectorXd error = u - exact;
   const double e_l2 = mass_.bilinear(error, error), x_l2 = mass_.bilinear(exact, exact);
@@ -172,7 +136,7 @@ void PeerMeasures::add(const Sample& sample) {
   v.head(n) = *sample.velocity;
   v[n] = 0.0;
   exact_all.head(n) = exact_v;
-  exact_all[n] = demo_exact(length_, sample.time, 2);
+  exact_all[n] = getfem_demo_exact(length_, sample.time, 2);
   if (massless_) v[0] = first_ ? 0.0 : (u[0] - previous_u0_) / (sample.time - previous_time_);
   const Eigen::VectorXd error_v = v - exact_all;
   const double e_v = all_mass_.bilinear(error_v, error_v), x_v = all_mass_.bilinear(exact_all, exact_all);
@@ -181,7 +145,7 @@ void PeerMeasures::add(const Sample& sample) {
   error_v_sum_ += e_v;
   exact_v_sum_ += x_v;
   // The contact stress against the exact u_x(0, t_n).
-  const double s = sample.has_multiplier ? sample.multiplier : 0.0, s_exact = demo_exact(0.0, sample.time, 1);
+  const double s = sample.has_multiplier ? sample.multiplier : 0.0, s_exact = getfem_demo_exact(0.0, sample.time, 1);
   error_s_sum_ += (s - s_exact) * (s - s_exact);
   exact_s_sum_ += s_exact * s_exact;
   first_ = false;
