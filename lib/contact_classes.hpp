@@ -1,7 +1,8 @@
 /// @file contact_classes.hpp
 /// @brief The field's contact treatments in time (Doyen–Ern–Piperno's classes, field.md §2) as schemes
 /// of the registry: Newmark(β, γ) with exact enforcement (`newmark`), with a penalty (`penalty`), with
-/// Nitsche's terms (`nitsche`), and Moreau–Jean's velocity-level impact law (`moreau-jean`). Derived in
+/// Nitsche's terms (`nitsche`), Moreau–Jean's velocity-level impact law (`moreau-jean`) and
+/// Deuflhard–Krause–Ertel's contact-stabilised Newmark (`dke`). Derived in
 /// contact_classes.cpp; BarSimulation (schemes.hpp) runs them through ContactClassStep.
 #pragma once
 
@@ -51,6 +52,10 @@ double penalty_switch_jump(double k, double q_previous, double q_now, double q_n
 /// paper's benchmark: a measured region (fig_classes, block 5, which checks it), not a derived bound;
 /// 0 beyond the measured horizons. No step limit sufficient over all times is derived (the comment).
 double penalty_measured_safe_fraction(double periods);
+/// The same for explicit Nitsche (Newmark β = 0, γ = ½; fig_classes block 6: θ = 0, 1, γ₀ = 5, 50): a measured
+/// region, not a derived bound (contact_classes.cpp, "Central differences with Nitsche's terms": for θ ≠ 1 no
+/// modified energy is conserved even between switches); 0 beyond the measured horizons.
+double nitsche_measured_safe_fraction(double periods);
 
 /// One run's step of a contact class, on the unknowns 0..N−1 with mass M and stiffness S. It reads the
 /// initial level from the StepState (U⁰ in u, V⁰ in w, the massless node's λ⁰ in lambda) and writes

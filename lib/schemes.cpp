@@ -104,6 +104,12 @@ const std::vector<SchemeInfo>& scheme_registry() {
        "explicit",
        "central differences, lumped mass, massless contact node on its algebraic row (no impact law)",
        {}},
+      // An energy-consistent treatment from the literature (lib/contact_classes.cpp).
+      {Scheme::dke,
+       "dke",
+       "Deuflhard–Krause–Ertel's contact-stabilised Newmark (¼, ½): the predictor projected onto the admissible "
+       "set in the mass norm, the contact force at the new level only",
+       {}},
   };
   return registry;
 }
@@ -139,7 +145,7 @@ Scheme scheme_by_name(const std::string& name) {
 }
 
 TEST_CASE("the registry names every scheme once, and its ids read back") {
-  CHECK(scheme_registry().size() == 11);
+  CHECK(scheme_registry().size() == 12);
   for (const SchemeInfo& info : scheme_registry()) {
     CAPTURE(info.id);
     CHECK(scheme_by_name(info.id) == info.scheme);
@@ -162,7 +168,7 @@ TEST_CASE("the registry names every scheme once, and its ids read back") {
   CHECK_THROWS_WITH_AS(
       scheme_by_name("rk4"),
       "unknown scheme \"rk4\" (allowed: cn, be, ps, ec, cn-switch, newmark, penalty, nitsche, moreau-jean, "
-      "taylor-flanagan, explicit)",
+      "taylor-flanagan, explicit, dke)",
       std::invalid_argument);
 }
 
@@ -318,7 +324,8 @@ StepMatrices step_matrices(const Tridiagonal& mass, const Tridiagonal& stiffness
     case Scheme::newmark:
     case Scheme::penalty:
     case Scheme::nitsche:
-    case Scheme::moreau_jean:  // their steps are not (★): lib/contact_classes.cpp
+    case Scheme::moreau_jean:
+    case Scheme::dke:  // their steps are not (★): lib/contact_classes.cpp
       throw std::invalid_argument("step_matrices: the scheme " + to_string(p.scheme) +
                                   " has no step of the form (★) (lib/contact_classes.cpp)");
     case Scheme::taylor_flanagan:  // explicit: no (★) (explicit_schemes.cpp); never asked by BarSimulation

@@ -23,12 +23,13 @@ enum class Scheme {
   energy_conserving,  ///< EC: Crank–Nicolson with the discrete gradient of the contact energy (mathematics.md §12)
   switching,          ///< CN-switch: Crank–Nicolson, a θ-step where the contact status changes (mathematics.md §12)
   // The field's contact treatments (Doyen–Ern–Piperno's classes, field.md §2; lib/contact_classes.cpp):
-  newmark,          ///< Newmark(β, γ) with exact (Signorini) enforcement by a multiplier at the new level
-  penalty,          ///< Newmark(β, γ) with the penalty force (γ₀/h) min(0, u₀)
-  nitsche,          ///< Newmark(β, γ) with Nitsche's boundary terms (θ, γ₀), GetFEM's formulation
-  moreau_jean,      ///< Moreau–Jean (θ, e): the θ-method with a velocity-level impact law (inertial contact node)
-  taylor_flanagan,  ///< central differences, contact by Taylor–Flanagan's velocity correction (explicit_schemes.cpp)
-  explicit_central  ///< central differences with a massless contact node on its algebraic row (explicit_schemes.cpp)
+  newmark,           ///< Newmark(β, γ) with exact (Signorini) enforcement by a multiplier at the new level
+  penalty,           ///< Newmark(β, γ) with the penalty force (γ₀/h) min(0, u₀)
+  nitsche,           ///< Newmark(β, γ) with Nitsche's boundary terms (θ, γ₀), GetFEM's formulation
+  moreau_jean,       ///< Moreau–Jean (θ, e): the θ-method with a velocity-level impact law (inertial contact node)
+  taylor_flanagan,   ///< central differences, contact by Taylor–Flanagan's velocity correction (explicit_schemes.cpp)
+  explicit_central,  ///< central differences with a massless contact node on its algebraic row (explicit_schemes.cpp)
+  dke  ///< Deuflhard–Krause–Ertel's contact-stabilised Newmark (¼, ½): the predictor projected in the mass norm
 };
 
 /// The mass an explicit scheme uses (explicit_schemes.cpp): `row_sum` lumps the run's mass by row sums

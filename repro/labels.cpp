@@ -14,7 +14,7 @@ namespace mrm::repro {
 
 const Label& scheme_label(Scheme scheme) {
   // One entry per scheme of mrm::scheme_registry(), in its order (the test below checks both).
-  static const std::array<Label, 11> labels{{
+  static const std::array<Label, 12> labels{{
       {to_string(Scheme::crank_nicolson), "Crank–Nicolson", "Crank--Nicolson", "CN"},
       {to_string(Scheme::backward_euler), "backward Euler", "backward Euler", "BE"},
       {to_string(Scheme::paoli_schatzman), "Paoli–Schatzman (¼, 0)", "Paoli--Schatzman $(\\frac14, 0)$", "PS"},
@@ -29,6 +29,8 @@ const Label& scheme_label(Scheme scheme) {
       {to_string(Scheme::taylor_flanagan), "Taylor–Flanagan", "Taylor--Flanagan (central differences)", "TF"},
       {to_string(Scheme::explicit_central), "explicit, massless contact node",
        "central differences with a massless contact node", "CD"},
+      {to_string(Scheme::dke), "DKE (contact-stabilised Newmark)",
+       "Deuflhard--Krause--Ertel's contact-stabilised Newmark", "DKE"},
   }};
   const auto& registry = scheme_registry();
   for (std::size_t k = 0; k < registry.size(); ++k)
