@@ -31,7 +31,7 @@ set offsets graph 0.03, graph 0.03, 0, 0
 # The anchor of the reference slopes: u in L^inf(0,T;L^2).
 anchor = 0
 do for [k=1:8] { if (word(columns, 2 + k) eq "err_u_LinfL2") { anchor = k } }
-set multiplot layout blocks/2,2 margins 0.09,0.98,0.07,0.86 spacing 0.08,0.09
+set multiplot layout blocks/2,2 margins 0.09,0.98,0.07,0.86 spacing 0.08,0.14
 set key at screen 0.5,0.995 center top vertical maxrows 2 samplen 2 width 1
 do for [b=0:blocks-1] {
   stats data index b using 2 nooutput
