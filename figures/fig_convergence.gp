@@ -32,7 +32,7 @@ set xtics 2
 set autoscale xfix
 set offsets graph 0.03, graph 0.03, 0, 0
 do for [s=0:2] {
-  set multiplot layout 4,2 title title(s) font font(11) margins 0.09,0.98,0.05,0.86 spacing 0.09,0.05
+  set multiplot layout 4,2 title title(s) font font(11) margins 0.09,0.98,0.05,0.86 spacing 0.09,0.075
   do for [k=1:8] {
     set title measure_name(word(columns, 3 + k))
     # Reference slopes through the Mod 3 error of the first ratio on the coarsest mesh, shifted down by 2.
