@@ -24,13 +24,14 @@ width_of(id) = id eq conserving ? 2.0 : 1.2
 dash_of(id) = id eq conserving ? 2 : 1
 
 set multiplot layout nr,1 margins 0.10,0.97,0.06,0.93 spacing 0.0,0.08
-set xlabel italic("t")
+# The time axis is labelled under the last panel only (under the others the label met the next title).
 set xrange [0:final_time]
 set xtics 3
 set offsets 0, 0, graph 0.05, graph 0.05
 set ylabel E_h."(".italic("t").") / ".E_h."(0)"
 set key at screen 0.5,0.995 center top vertical maxrows 1 samplen 3 width 1
 do for [c=0:nr-1] {
+  if (c == nr - 1) { set xlabel italic("t") } else { unset xlabel }
   set title sprintf("%s = %s, %s = %s, %s", Delta_t, step(word(blocks, 2 * ns * c + 2)), italic("N"), header("N"), \
     mass_name(header("mass")))
   plot for [s=1:ns] data index ns*c+s-1 using 1:2 with lines lc rgb scheme_colour(word(schemes, s)) \
