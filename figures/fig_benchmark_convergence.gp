@@ -26,7 +26,7 @@ set format y "10^{%L}"
 set autoscale xfix
 set offsets graph 0.05, graph 0.05, 0, 0
 set multiplot layout 5,4 title "Convergence on the field's benchmarks (Crank–Nicolson, ".Delta_t." = ".italic("h")."/2".italic("c").")" \
-  font font(11) margins 0.08,0.98,0.04,0.92 spacing 0.06,0.045
+  font font(11) margins 0.08,0.98,0.04,0.905 spacing 0.06,0.06
 do for [i=1:5] {
   b = word(benchmarks, i)
   do for [k=1:4] {
