@@ -19,6 +19,9 @@ mass_of(p) = p[strstrt(p, "/") + 1:]
 dash(p) = mass_of(p) eq "mod3" ? 1 : 2
 g(c) = exp((log(column(c)) + log(column(c+1)) + log(column(c+2)) + log(column(c+3)) + log(column(c+4)) + log(column(c+5)) + log(column(c+6)) + log(column(c+7))) / 8)
 set logscale xy
+# Powers of ten on both axes (gnuplot's default wrote 1.000000 and 1×10^6).
+set format x "10^{%L}"
+set format y "10^{%L}"
 set xlabel "work: ".italic("N")." × steps"
 set ylabel "geometric mean of the 8 relative errors"
 # Panels placed by hand (a layout would also place the key's plot): cols a row, the key above them.
