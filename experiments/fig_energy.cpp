@@ -1,7 +1,7 @@
 // fig_energy: the discrete energy of every scheme and mass choice against the exact energy 1/8.
 //
-// What it computes. On the benchmark of mathematics.md §2 and the mesh of the paper's Figure 1
-// (fig_contact_history), the discrete energy E_hⁿ of each scheme (Crank–Nicolson, backward Euler,
+// What it computes. On the benchmark of mathematics.md §2 and the mesh of the report's Figure 1
+// (fig_contact_history; the paper gives no mesh for its own Figure 1), the discrete energy E_hⁿ of each scheme (Crank–Nicolson, backward Euler,
 // Paoli–Schatzman (¼, 0)) with each mass choice (Mod 1, 2, 3) over several periods. The exact energy is
 // E = 1/8 at all times. Crank–Nicolson conserves E_h exactly while the contact status does not change
 // and jumps at impact and release; backward Euler dissipates; Paoli–Schatzman conserves its own

@@ -4,7 +4,7 @@
 // flight towards the obstacle (t < 1), of the contact (1 < t < 2) and of the release (2 < t < 3): the
 // exact solution (a broken line: the rigid motion behind an unloading wave, the tent of the contact
 // phase) and the nodal values of one scheme with Mod 1, Mod 2 and Mod 3 on the coarse mesh of the
-// paper's Figure 1. The mass choices differ near the contact node; the profiles show where along the
+// report's Figure 1 (the paper gives no mesh). The mass choices differ near the contact node; the profiles show where along the
 // bar the differences are and how the wave fronts are smeared.
 //
 // Sample runs:
