@@ -21,7 +21,7 @@ mass_index(id) = id eq "mod1" ? 1 : id eq "mod2" ? 2 : id eq "mod3" ? 3 : 4
 u0 = italic("u")."(0,".italic("t").")"
 quantity(q) = q == 0 ? u0 : q == 1 ? italic("u_h")."(0,".italic("t").") − ".u0 : lambda_."(".italic("t").")"
 
-set multiplot layout 3,words(benchmarks) margins 0.1,0.98,0.06,0.9 spacing 0.09,0.07
+set multiplot layout 3,words(benchmarks) margins 0.1,0.98,0.06,0.9 spacing 0.09,0.09
 set autoscale xfix
 set offsets 0, 0, graph 0.05, graph 0.05
 do for [q=0:2] {
