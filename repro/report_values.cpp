@@ -75,7 +75,7 @@ std::string tex_magnitude(double x) {
     throw std::invalid_argument("tex_magnitude: " + std::to_string(x) + " is not a finite positive number");
   if (x < 1000) return significant(x, 3);
   const int e = static_cast<int>(std::log(x) / std::log(10.0));
-  return decimals(x / std::pow(10.0, e), 2) + "\\times10^{" + std::to_string(e) + "}";
+  return decimals(x / std::pow(10.0, e), 2) + "\\cdot 10^{" + std::to_string(e) + "}";
 }
 
 TEST_CASE("a magnitude has three digits below 1000 and a power of ten above") {
@@ -83,8 +83,8 @@ TEST_CASE("a magnitude has three digits below 1000 and a power of ten above") {
   CHECK(tex_magnitude(1.0841) == "1.08");
   CHECK(tex_magnitude(287.46) == "287");
   CHECK(tex_magnitude(999.4) == "999");
-  CHECK(tex_magnitude(1234.5) == "1.23\\times10^{3}");
-  CHECK(tex_magnitude(3.5678e5) == "3.57\\times10^{5}");
+  CHECK(tex_magnitude(1234.5) == "1.23\\cdot 10^{3}");
+  CHECK(tex_magnitude(3.5678e5) == "3.57\\cdot 10^{5}");
   CHECK_THROWS_AS(tex_magnitude(0.0), std::invalid_argument);
   CHECK_THROWS_AS(tex_magnitude(std::nan("")), std::invalid_argument);
 }

@@ -21,8 +21,8 @@ std::string tex_number(double value, int significant = 3);
 
 /// A positive magnitude for math mode, as the report's large-step sentence prints it: three significant
 /// digits ("%.3g": "1", "1.08", "287") below 1000, otherwise two decimals and a power of ten
-/// ("3.57\times10^{5}", the exponent ⌊log x / log 10⌋). Throws std::invalid_argument unless x is finite
-/// and positive.
+/// ("3.57\cdot 10^{5}", written as tex_number writes one; the exponent ⌊log x / log 10⌋). Throws
+/// std::invalid_argument unless x is finite and positive.
 std::string tex_magnitude(double x);
 
 /// One definition line `\mrmdef{key}{value}`; the report defines `\mrmdef` to store the value under the
