@@ -34,16 +34,30 @@ class ReferenceComparison {
  public:
   /// Compares runs on `mesh` (both the run and the reference use it).
   explicit ReferenceComparison(const UniformMesh& mesh);
-  /// Adds one common instant. Throws std::invalid_argument unless both samples are at the same
-  /// instant (displacement, velocity and multiplier times agree to 1e-9 Δt-independent absolute
-  /// tolerance), which holds for the two-level schemes (Crank–Nicolson, backward Euler).
-  void add(const Sample& run, const Sample& reference);
+  /// One common instant measured: its instants and, per history, the squared norm of the difference
+  /// and of the reference (first and second of each pair).
+  struct Level {
+    double time = 0, velocity_time = 0, multiplier_time = 0;
+    bool has_multiplier = false;
+    std::array<double, 2> u_l2{}, u_h1{}, u0{}, v_l2{}, lambda{};
+  };
+  /// Measures one common instant without adding it (so that one measurement can go to several
+  /// comparisons of the same mesh: repro/time_family.cpp's all-levels and matched-levels ones). Throws
+  /// std::invalid_argument unless both samples are at the same instant (displacement, velocity and
+  /// multiplier times agree to 1e-9 Δt-independent absolute tolerance), which holds for the two-level
+  /// schemes (Crank–Nicolson, backward Euler).
+  Level measure(const Sample& run, const Sample& reference);
+  /// Adds a measured instant.
+  void add(const Level& level);
+  /// Adds one common instant: add(measure(run, reference)).
+  void add(const Sample& run, const Sample& reference) { add(measure(run, reference)); }
   /// The eight relative differences, in the order of ErrorAccumulator::names.
   std::array<double, 8> relative() const;
 
  private:
   Tridiagonal mass_, stiffness_;
-  Eigen::VectorXd difference_;
+  Eigen::VectorXd difference_, product_;  // work vectors (no allocation per instant)
+  double form(const Tridiagonal& a, const Eigen::VectorXd& x);  // xᵀAx, as Tridiagonal::bilinear(x, x)
   TimeHistory u_l2_, u_h1_, v_l2_, u0_, lambda_;
 };
 

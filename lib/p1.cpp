@@ -101,16 +101,22 @@ double Tridiagonal::operator()(Index i, Index j) const {
 }
 
 Eigen::VectorXd Tridiagonal::operator*(const Eigen::VectorXd& x) const {
+  Eigen::VectorXd y;
+  multiply(x, y);
+  return y;
+}
+
+void Tridiagonal::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   require_size("operator*", x.size(), size());
+  if (&x == &y) throw std::invalid_argument("Tridiagonal::multiply: the result cannot overwrite the operand");
   const Index n = size();
-  Eigen::VectorXd y(n);
+  y.resize(n);
   for (Index i = 0; i < n; ++i) {
     double s = diag[i] * x[i];
     if (i > 0) s += lower[i] * x[i - 1];
     if (i + 1 < n) s += upper[i] * x[i + 1];
     y[i] = s;
   }
-  return y;
 }
 
 double Tridiagonal::bilinear(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const {
