@@ -37,9 +37,15 @@ class ReferenceComparison {
   /// One common instant measured: its instants and, per history, the squared norm of the difference
   /// and of the reference (first and second of each pair).
   struct Level {
-    double time = 0, velocity_time = 0, multiplier_time = 0;
-    bool has_multiplier = false;
-    std::array<double, 2> u_l2{}, u_h1{}, u0{}, v_l2{}, lambda{};
+    double time = 0;                 ///< the displacement's instant
+    double velocity_time = 0;        ///< the velocity's instant
+    double multiplier_time = 0;      ///< the multiplier's instant
+    bool has_multiplier = false;     ///< whether both runs have a multiplier at this level
+    std::array<double, 2> u_l2{};    ///< ‖U − U_ref‖², ‖U_ref‖² in L² (the P1 mass)
+    std::array<double, 2> u_h1{};    ///< |U − U_ref|², |U_ref|² in H¹ (the P1 stiffness)
+    std::array<double, 2> u0{};      ///< (U₀ − U_ref,₀)², U_ref,₀²
+    std::array<double, 2> v_l2{};    ///< ‖V − V_ref‖², ‖V_ref‖² in L²
+    std::array<double, 2> lambda{};  ///< (λ − λ_ref)², λ_ref² (if has_multiplier)
   };
   /// Measures one common instant without adding it (so that one measurement can go to several
   /// comparisons of the same mesh: repro/time_family.cpp's all-levels and matched-levels ones). Throws
