@@ -34,16 +34,36 @@ class ReferenceComparison {
  public:
   /// Compares runs on `mesh` (both the run and the reference use it).
   explicit ReferenceComparison(const UniformMesh& mesh);
-  /// Adds one common instant. Throws std::invalid_argument unless both samples are at the same
-  /// instant (displacement, velocity and multiplier times agree to 1e-9 Δt-independent absolute
-  /// tolerance), which holds for the two-level schemes (Crank–Nicolson, backward Euler).
-  void add(const Sample& run, const Sample& reference);
+  /// One common instant measured: its instants and, per history, the squared norm of the difference
+  /// and of the reference (first and second of each pair).
+  struct Level {
+    double time = 0;                 ///< the displacement's instant
+    double velocity_time = 0;        ///< the velocity's instant
+    double multiplier_time = 0;      ///< the multiplier's instant
+    bool has_multiplier = false;     ///< whether both runs have a multiplier at this level
+    std::array<double, 2> u_l2{};    ///< ‖U − U_ref‖², ‖U_ref‖² in L² (the P1 mass)
+    std::array<double, 2> u_h1{};    ///< |U − U_ref|², |U_ref|² in H¹ (the P1 stiffness)
+    std::array<double, 2> u0{};      ///< (U₀ − U_ref,₀)², U_ref,₀²
+    std::array<double, 2> v_l2{};    ///< ‖V − V_ref‖², ‖V_ref‖² in L²
+    std::array<double, 2> lambda{};  ///< (λ − λ_ref)², λ_ref² (if has_multiplier)
+  };
+  /// Measures one common instant without adding it (so that one measurement can go to several
+  /// comparisons of the same mesh: repro/time_family.cpp's all-levels and matched-levels ones). Throws
+  /// std::invalid_argument unless both samples are at the same instant (displacement, velocity and
+  /// multiplier times agree to 1e-9 Δt-independent absolute tolerance), which holds for the two-level
+  /// schemes (Crank–Nicolson, backward Euler).
+  Level measure(const Sample& run, const Sample& reference);
+  /// Adds a measured instant.
+  void add(const Level& level);
+  /// Adds one common instant: add(measure(run, reference)).
+  void add(const Sample& run, const Sample& reference) { add(measure(run, reference)); }
   /// The eight relative differences, in the order of ErrorAccumulator::names.
   std::array<double, 8> relative() const;
 
  private:
   Tridiagonal mass_, stiffness_;
-  Eigen::VectorXd difference_;
+  Eigen::VectorXd difference_, product_;                        // work vectors (no allocation per instant)
+  double form(const Tridiagonal& a, const Eigen::VectorXd& x);  // xᵀAx, as Tridiagonal::bilinear(x, x)
   TimeHistory u_l2_, u_h1_, v_l2_, u0_, lambda_;
 };
 

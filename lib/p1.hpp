@@ -105,6 +105,9 @@ struct Tridiagonal {
   double operator()(Index i, Index j) const;
   /// y = A x.
   Eigen::VectorXd operator*(const Eigen::VectorXd& x) const;
+  /// y = A x into a vector the caller keeps (resized if needed; no allocation when it has size()
+  /// entries already), the same arithmetic as operator*, bit for bit; `y` must not be `x`.
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   /// xᵀ A y.
   double bilinear(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const;
   /// 1ᵀ A 1, the sum of all entries.

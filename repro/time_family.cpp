@@ -92,8 +92,9 @@ TimeFamilyMesh time_family_mesh(long elements, const MassRedistribution& mass, c
     all.emplace_back(mesh);
     matched.emplace_back(mesh);
     const Sample s = j + 1 < ratio.size() ? runs[j]->sample() : reference.sample();
-    all.back().add(s, finer.sample());
-    matched.back().add(s, finer.sample());
+    const ReferenceComparison::Level level = all.back().measure(s, finer.sample());
+    all.back().add(level);
+    matched.back().add(level);
   }
   // The runs compare with the finer reference's samples only through the reference: run j against
   // the reference (h/R) at its levels, the reference against the finer one.
@@ -103,18 +104,21 @@ TimeFamilyMesh time_family_mesh(long elements, const MassRedistribution& mass, c
     reference.step();
     const Sample ref = reference.sample(), fine = finer.sample();
     const std::size_t last = ratio.size() - 1;
-    all[last].add(ref, fine);
+    // One measurement per level for both comparisons (the same numbers, measured once).
+    const ReferenceComparison::Level reference_level = all[last].measure(ref, fine);
+    all[last].add(reference_level);
     if (in_contact(ref) == in_contact(fine))
-      matched[last].add(ref, fine);
+      matched[last].add(reference_level);
     else
       ++out.mismatched[last];
     for (std::size_t j = 0; j < last; ++j) {
       if (k % ratio[j] != 0) continue;
       runs[j]->step();
       const Sample run = runs[j]->sample();
-      all[j].add(run, ref);
+      const ReferenceComparison::Level level = all[j].measure(run, ref);
+      all[j].add(level);
       if (in_contact(run) == in_contact(ref))
-        matched[j].add(run, ref);
+        matched[j].add(level);
       else
         ++out.mismatched[j];
     }
