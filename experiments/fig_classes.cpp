@@ -218,7 +218,8 @@ int main(int argc, char** argv) {
     for (const auto& [b, why] : skipped) out << "# benchmark not run: " << b << ": " << why << '\n';
     if (std::find(benchmarks.begin(), benchmarks.end(), "two-bars") != benchmarks.end())
       out << "# two-bars by symmetry: each body as one free bar (L = 10, velocity -0.1) against a wall at g0/2 = 0, "
-             "penalty and Nitsche with gamma0' = 2 gamma0 (repro::reduce_two_bars_by_symmetry), the chain's exact solution "
+             "penalty and Nitsche with gamma0' = 2 gamma0 (repro::reduce_two_bars_by_symmetry), the chain's exact "
+             "solution "
              "seen from one body as the reference\n";
     // One colour per class (its position in the registry); the mass is the line's dash (figures/fig_classes_*.gp).
     static const char* const palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",

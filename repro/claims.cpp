@@ -169,7 +169,8 @@ const Expectations& paper_expectations() {
       // TV ratio 0.944 against ec + mod3's 1.248; at Δt = h/2 0.993 (N = 50) and 2.009 (N = 200).
       {"classes/oscillation/smooth-impact/penalty",
        "on the smooth impact the penalty with the standard mass oscillates less than Mod 3 on the coarse meshes (TV "
-       "ratio 0.94 against 1.25 at N = 50, dt = h/sqrt(3), below the exact variation): (P)'s ringing grows with N (0.99 "
+       "ratio 0.94 against 1.25 at N = 50, dt = h/sqrt(3), below the exact variation): (P)'s ringing grows with N "
+       "(0.99 "
        "at N = 50, 2.01 at N = 200) but the spring also spreads the exact stress jump of the impact, which (P) did "
        "not count (not derived)"},
       // Issue 23 (claims_classes.cpp (T)): two-bars, cn + mod3 on the two bodies against each class by symmetry;
