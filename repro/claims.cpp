@@ -170,9 +170,8 @@ const Expectations& paper_expectations() {
       {"classes/oscillation/smooth-impact/penalty",
        "on the smooth impact the penalty with the standard mass oscillates less than Mod 3 on the coarse meshes (TV "
        "ratio 0.94 against 1.25 at N = 50, dt = h/sqrt(3), below the exact variation): (P)'s ringing grows with N "
-       "(0.99 "
-       "at N = 50, 2.01 at N = 200) but the spring also spreads the exact stress jump of the impact, which (P) did "
-       "not count (not derived)"},
+       "(0.99 at N = 50, 2.01 at N = 200) but the spring also spreads the exact stress jump of the impact, which (P) "
+       "did not count (not derived)"},
       // Issue 23 (claims_classes.cpp (T)): two-bars, cn + mod3 on the two bodies against each class by symmetry;
       // ps 6.655 against 6.428 (N = 200, Δt = h/√3), taylor-flanagan 3.543 against 8.194 (N = 200, Δt = h/2).
       {"classes/oscillation/two-bars/ps",
