@@ -87,51 +87,14 @@ struct Long {
   std::vector<double> every_ten;  // E/E(0) every 10 periods
 };
 
-// two-bars by symmetry (field.md §1: two identical free bars, L = 10, E = ρ = 1, touching, at ±0.1 toward
-// each other). Each body in its own frame (ξ from its contact end, w positive away from the other body:
-// lib/two_bodies.hpp) is a free bar with contact node 0 and ẇ⁰ = −0.1, the gap function between them
-// z = w₀ᴬ + w₀ᴮ + g₀ ≥ 0, the same contact stress λ on both. The two bodies have the same mesh and mass, so
-// every class's discrete step commutes with the exchange of the bodies: from symmetric data wᴬ = wᴮ = w at
-// every level (in exact arithmetic), and each class reduces to a one-bar problem on w:
-// - exact enforcement (cn, ps, ec, cn-switch, newmark, explicit, dke: its M-projection of the symmetric
-//   two-body state onto z ≥ 0 splits equally) and the impact laws (moreau-jean,
-//   taylor-flanagan: the relative velocity ż = 2ẇ₀, v⁺ = −ev⁻ on it is the same law on ẇ₀; equal masses
-//   share the correction equally): z ≥ 0 ⇔ w₀ + g₀/2 ≥ 0, a rigid wall at g₀/2;
-// - the penalty: the force (γ₀/h) min(0, z) on each body is (γ₀/h) min(0, 2(w₀ + g₀/2)) =
-//   (2γ₀/h) min(0, w₀ + g₀/2): the one-bar penalty with γ₀' = 2γ₀ and the wall at g₀/2;
-// - Nitsche with the averaged stress {σ} = ½(σᴬ + σᴮ) = σ (Chouly–Hild–Renard's two-body form; a
-//   reconstruction: the project's two-body path has no Nitsche): P = γz + {σ} = 2γ(w₀ + g₀/2) + d·w is
-//   the one-bar P' with γ' = 2γ; the force on body A, −(1/γ)[P]₋(γe₀ + (θ/2)d) (∂z/∂wᴬ = e₀, ∂{σ}/∂wᴬ =
-//   d/2), equals −(1/γ')[P']₋(γ'e₀ + θd); the symmetric term (θ/γ){σ}∂{σ} = (θ/2γ)(d·w)d = (θ/γ')(d·w)d:
-//   the one-bar Nitsche with γ₀' = 2γ₀ and the same θ.
-// So two-bars runs here as that one-bar problem (free bar L = 10, ẇ⁰ = −0.1, wall at g₀/2 = 0, the chain's
-// exact solution seen from one body as the reference), labelled "by symmetry"; the doctest of
-// lib/contact_classes.cpp checks the reduction against the true two-body run (two_bodies.hpp: CN + Mod 1/2/3).
-std::shared_ptr<const mrm::ImpactBenchmark> two_bars_by_symmetry() {
-  static const std::shared_ptr<const mrm::ImpactBenchmark> reduced = [] {
-    mrm::ImpactBenchmark b = mrm::impact_benchmark("two-bars");
-    const mrm::BarSegment one = b.configuration.segments.front();
-    const double gap = b.configuration.junctions.front().gap;
-    b.configuration.segments = {one};
-    b.configuration.junctions.clear();
-    b.configuration.obstacle = true;
-    b.configuration.obstacle_gap = 0.5 * gap;
-    b.data.pieces = {{0.0, one.length, {0.0}, {-b.data.pieces.front().velocity.front()}}};
-    return std::make_shared<const mrm::ImpactBenchmark>(b);
-  }();
-  return reduced;
-}
-
 repro::Configuration configuration_of(const Case& c, const std::string& benchmark, mrm::Index elements, double courant,
                                       double final_time) {
   repro::Configuration configuration = repro::paper_configuration(
       c.scheme, c.mass == "consistent" ? "literal" : "algebraic", c.mass, elements, courant, final_time);
   configuration.benchmark = benchmark;
-  if (benchmark == "two-bars") {  // by symmetry (above): the one-bar problem, γ₀' = 2γ₀
-    configuration.field = two_bars_by_symmetry();
-    if (c.scheme == mrm::Scheme::penalty) configuration.scheme.penalty *= 2;
-    if (c.scheme == mrm::Scheme::nitsche) configuration.scheme.nitsche_gamma *= 2;
-  }
+  // two-bars by symmetry (repro::reduce_two_bars_by_symmetry: each body as one free bar against a wall at
+  // g₀/2, γ₀' = 2γ₀ for penalty and Nitsche): every class runs it, where the two-body run takes cn only.
+  if (benchmark == "two-bars") repro::reduce_two_bars_by_symmetry(configuration);
   return configuration;
 }
 
@@ -255,7 +218,8 @@ int main(int argc, char** argv) {
     for (const auto& [b, why] : skipped) out << "# benchmark not run: " << b << ": " << why << '\n';
     if (std::find(benchmarks.begin(), benchmarks.end(), "two-bars") != benchmarks.end())
       out << "# two-bars by symmetry: each body as one free bar (L = 10, velocity -0.1) against a wall at g0/2 = 0, "
-             "penalty and Nitsche with gamma0' = 2 gamma0 (configuration_of's comment), the chain's exact solution "
+             "penalty and Nitsche with gamma0' = 2 gamma0 (repro::reduce_two_bars_by_symmetry), the chain's exact "
+             "solution "
              "seen from one body as the reference\n";
     // One colour per class (its position in the registry); the mass is the line's dash (figures/fig_classes_*.gp).
     static const char* const palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",

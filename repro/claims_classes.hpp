@@ -20,9 +20,12 @@ struct ClassesSettings {
 };
 
 /// Rows "classes/oscillation/<benchmark>/<class>" on paper, smooth-impact and the field's impacting,
-/// layered and bouncing (TV(λ)/TV(λ_exact) of every redistributed pair below
-/// the class's by more than the band, in every cell of the region) and "classes/energy/<class>" (after
-/// 10³ impacts, EC + Mod 3 keeps E(0) to 1e-6 while the class loses or gains more than the band).
+/// layered, bouncing and two-bars (TV(λ)/TV(λ_exact) of every redistributed pair below the class's by
+/// more than the band, in every cell of the region; on two-bars cn + Mod 3 on the two bodies against each
+/// class on the one-bar problem of the symmetry) and "classes/energy/<class>" (after 10³ impacts, EC + Mod 3
+/// keeps E(0) to 1e-6 while the class loses or gains more than the band; dke's energy also never grows).
+/// The classes: cn, ps, cn-switch, taylor-flanagan and dke with the standard mass, and (oscillation only)
+/// the penalty with the standard mass (γ₀ = 1).
 std::vector<ClaimResult> check_classes(const ClassesSettings& settings, Judge& judge);
 
 }  // namespace mrm::claims

@@ -677,6 +677,48 @@ std::shared_ptr<const ReferenceSolution> unit_configuration_reference(const Conf
 // the exact impacts are measured by phase_against. With
 // ContactVelocity::backward_difference the errors see a copy of the velocity whose contact entry is
 // (u₀ⁿ − u₀ⁿ⁻¹)/Δt from level 1 on; the impacts and the energy are the scheme's either way.
+// two-bars by symmetry (field.md §1: two identical free bars, L = 10, E = ρ = 1, touching, at ±0.1 toward
+// each other). Each body in its own frame (ξ from its contact end, w positive away from the other body:
+// lib/two_bodies.hpp) is a free bar with contact node 0 and ẇ⁰ = −0.1, the gap function between them
+// z = w₀ᴬ + w₀ᴮ + g₀ ≥ 0, the same contact stress λ on both. The two bodies have the same mesh and mass, so
+// every class's discrete step commutes with the exchange of the bodies: from symmetric data wᴬ = wᴮ = w at
+// every level (in exact arithmetic), and each class reduces to a one-bar problem on w:
+// - exact enforcement (cn, ps, ec, cn-switch, newmark, explicit, dke: its M-projection of the symmetric
+//   two-body state onto z ≥ 0 splits equally) and the impact laws (moreau-jean,
+//   taylor-flanagan: the relative velocity ż = 2ẇ₀, v⁺ = −ev⁻ on it is the same law on ẇ₀; equal masses
+//   share the correction equally): z ≥ 0 ⇔ w₀ + g₀/2 ≥ 0, a rigid wall at g₀/2;
+// - the penalty: the force (γ₀/h) min(0, z) on each body is (γ₀/h) min(0, 2(w₀ + g₀/2)) =
+//   (2γ₀/h) min(0, w₀ + g₀/2): the one-bar penalty with γ₀' = 2γ₀ and the wall at g₀/2;
+// - Nitsche with the averaged stress {σ} = ½(σᴬ + σᴮ) = σ (Chouly–Hild–Renard's two-body form; a
+//   reconstruction: the project's two-body path has no Nitsche): P = γz + {σ} = 2γ(w₀ + g₀/2) + d·w is
+//   the one-bar P' with γ' = 2γ; the force on body A, −(1/γ)[P]₋(γe₀ + (θ/2)d) (∂z/∂wᴬ = e₀, ∂{σ}/∂wᴬ =
+//   d/2), equals −(1/γ')[P']₋(γ'e₀ + θd); the symmetric term (θ/γ){σ}∂{σ} = (θ/2γ)(d·w)d = (θ/γ')(d·w)d:
+//   the one-bar Nitsche with γ₀' = 2γ₀ and the same θ.
+// So two-bars runs as that one-bar problem (free bar L = 10, ẇ⁰ = −0.1, wall at g₀/2 = 0, the chain's
+// exact solution seen from one body as the reference), labelled "by symmetry" where it is reported
+// (fig_classes, claims_classes); the doctest of lib/contact_classes.cpp checks the reduction against the
+// true two-body run (two_bodies.hpp: CN + Mod 1/2/3).
+std::shared_ptr<const ImpactBenchmark> two_bars_by_symmetry() {
+  static const std::shared_ptr<const ImpactBenchmark> reduced = [] {
+    ImpactBenchmark b = impact_benchmark("two-bars");
+    const BarSegment one = b.configuration.segments.front();
+    const double gap = b.configuration.junctions.front().gap;
+    b.configuration.segments = {one};
+    b.configuration.junctions.clear();
+    b.configuration.obstacle = true;
+    b.configuration.obstacle_gap = 0.5 * gap;
+    b.data.pieces = {{0.0, one.length, {0.0}, {-b.data.pieces.front().velocity.front()}}};
+    return std::make_shared<const ImpactBenchmark>(b);
+  }();
+  return reduced;
+}
+
+void reduce_two_bars_by_symmetry(Configuration& configuration) {
+  configuration.field = two_bars_by_symmetry();
+  if (configuration.scheme.scheme == Scheme::penalty) configuration.scheme.penalty *= 2;
+  if (configuration.scheme.scheme == Scheme::nitsche) configuration.scheme.nitsche_gamma *= 2;
+}
+
 // Two bodies (two-bars; lib/two_bodies.hpp). The unit configuration's chain (the scaling of the field
 // benchmarks above), each body in its own frame with its data read off the chain's exact solution at
 // t = 0 (its own side of the junction), Crank–Nicolson, and the measures of run_configuration: each

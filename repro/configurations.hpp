@@ -173,6 +173,14 @@ UniformMesh configuration_mesh(const Configuration& configuration, int body = 0)
 /// run_configuration runs with lib/two_bodies.hpp (Crank–Nicolson only).
 bool is_two_body_configuration(const Configuration& configuration);
 
+/// two-bars by symmetry (repro/configurations.cpp, derived there): the one-bar problem each of the two
+/// identical bodies solves, a free bar (L = 10, velocity −0.1) against a rigid wall at g₀/2.
+std::shared_ptr<const ImpactBenchmark> two_bars_by_symmetry();
+/// Makes a two-bars configuration run as two_bars_by_symmetry's one-bar problem, with every class of the
+/// registry (the two-body run takes cn with a massless contact node only): its field, and γ₀' = 2γ₀ for
+/// penalty and Nitsche.
+void reduce_two_bars_by_symmetry(Configuration& configuration);
+
 /// The initial data of a configuration as piecewise polynomials (the paper's, a smooth benchmark's or
 /// the file's).
 InitialData configuration_data(const Configuration& configuration);
