@@ -302,6 +302,8 @@ int main(int argc, char** argv) {
       set_taken("--penalty", mrm::SchemeParameter::penalty, penalty, preset.scheme.penalty);
       set_taken("--nitsche-theta", mrm::SchemeParameter::nitsche_theta, nitsche_theta, preset.scheme.nitsche_theta);
       set_taken("--nitsche-gamma", mrm::SchemeParameter::nitsche_gamma, nitsche_gamma, preset.scheme.nitsche_gamma);
+      if (mrm::takes(s, mrm::SchemeParameter::mass_lumping) && !parser.given("--lumping"))
+        lumping = mrm::to_string(preset.scheme.lumping);
     }
     const mrm::Scheme scheme_id = mrm::scheme_by_name(scheme);
     // Two bodies (two-bars, lib/two_bodies.hpp): Crank-Nicolson with a massless contact node on each bar,

@@ -16,6 +16,9 @@
 ///       Crank–Nicolson start differs by 5e-5 relative at T = 0.1, 8e-6 at T = 12). Its β is --beta.
 ///   v2, penalty: `penalty` with Newmark (0, ½) and γ₀ = γ₀_P.
 ///   v3, Nitsche: `nitsche` with Newmark (0, ½), γ₀ = γ₀_N, θ = θ_N.
+///   v4, Taylor–Flanagan: `taylor-flanagan` with the consistent mass solved at every step (--lumping none:
+///       the demo's lump_mass_matrix = 0) and the interpolant as the contact node's initial value; what
+///       the match required is getfem_demo_v4.hpp's (the scheme's (E1) is the demo's step).
 #include "peers.hpp"
 
 #include <algorithm>
@@ -67,6 +70,16 @@ PeerPreset demo_version(int version) {
       p.formulation =
           "nitsche: Newmark (beta, gamma) with lambda = min(0, gamma u0 + u_x(0)), active set on the predictor";
       break;
+    case 4: {
+      const Configuration demo = getfem_demo_v4_configuration();
+      p.summary = "Taylor-Flanagan, the standard mass solved at every step (taylor-flanagan, lumping none)";
+      p.scheme.scheme = demo.scheme.scheme;
+      p.scheme.lumping = demo.scheme.lumping;
+      p.formulation =
+          "taylor-flanagan: central differences with the consistent mass (no lumping), the contact node's "
+          "velocity corrected by Taylor-Flanagan's impulse spread through M^-1";
+      break;
+    }
     default:
       throw std::logic_error("demo_version: no such version");
   }
@@ -76,7 +89,8 @@ PeerPreset demo_version(int version) {
 }  // namespace
 
 const std::vector<PeerPreset>& peer_presets() {
-  static const std::vector<PeerPreset> presets = {demo_version(0), demo_version(1), demo_version(2), demo_version(3)};
+  static const std::vector<PeerPreset> presets = {demo_version(0), demo_version(1), demo_version(2), demo_version(3),
+                                                  demo_version(4)};
   return presets;
 }
 

@@ -26,7 +26,7 @@ struct PeerPreset {
   std::string contact_velocity = "backward-difference";  ///< V₀ as the demo (a massless node only)
 };
 
-/// The presets, GetFEM's demo versions 0–3 (4, Taylor–Flanagan, is added with its scheme).
+/// The presets, GetFEM's demo versions 0–4.
 const std::vector<PeerPreset>& peer_presets();
 /// The ids of peer_presets(), in order.
 std::vector<std::string> peer_names();
