@@ -431,6 +431,11 @@ void solve_free(const ContactSolver& solver, Eigen::VectorXd& x) {
   solver.sweep_up(x[0] * solver.inverse_pivot()[0], x.data());
 }
 
+// The discrete energy ½ VᵀMV + ½ UᵀSU of a level (each class adds its contact law's own part, if any).
+double kinetic_and_strain(const Tridiagonal& mass, const Tridiagonal& stiffness, const StepState& s) {
+  return 0.5 * mass.bilinear(s.w, s.w) + 0.5 * stiffness.bilinear(s.u, s.u);
+}
+
 void require_finite(double energy, Scheme scheme, Index level) {
   if (!std::isfinite(energy))
     throw std::runtime_error("scheme " + to_string(scheme) + ": the run lost finiteness at level " +
@@ -555,7 +560,7 @@ class NewmarkContactStep final : public ContactClassStep {
   }
   // E = ½VᵀMV + ½UᵀSU + Φ: penalty λ²/(2k); Nitsche θ/(2γ)(λ² − (d·U)²) (the demo's energy).
   double energy(const StepState& s) const {
-    double e = 0.5 * mass_.bilinear(s.w, s.w) + 0.5 * stiffness_.bilinear(s.u, s.u);
+    double e = kinetic_and_strain(mass_, stiffness_, s);
     if (scheme_ == Scheme::penalty) e += s.lambda * s.lambda / (2 * k_);
     if (scheme_ == Scheme::nitsche) {
       const double ux = d_[0] * s.u[0] + d_[1] * s.u[1];
@@ -617,9 +622,7 @@ class MoreauJeanStep final : public ContactClassStep {
   }
 
  private:
-  double energy(const StepState& s) const {
-    return 0.5 * mass_.bilinear(s.w, s.w) + 0.5 * stiffness_.bilinear(s.u, s.u);
-  }
+  double energy(const StepState& s) const { return kinetic_and_strain(mass_, stiffness_, s); }
   Tridiagonal mass_, stiffness_, explicit_part_;
   double dt_, theta_, restitution_;
   bool has_load_;
@@ -734,9 +737,7 @@ class DkeStep final : public ContactClassStep {
   }
 
  private:
-  double energy(const StepState& s) const {
-    return 0.5 * mass_.bilinear(s.w, s.w) + 0.5 * stiffness_.bilinear(s.u, s.u);
-  }
+  double energy(const StepState& s) const { return kinetic_and_strain(mass_, stiffness_, s); }
   Tridiagonal mass_, stiffness_;
   double dt_;
   bool massless_, has_load_;
