@@ -24,8 +24,8 @@ struct ClassesSettings {
 /// more than the band, in every cell of the region; on two-bars cn + Mod 3 on the two bodies against each
 /// class on the one-bar problem of the symmetry) and "classes/energy/<class>" (after 10³ impacts, EC + Mod 3
 /// keeps E(0) to 1e-6 while the class loses or gains more than the band; dke's energy also never grows).
-/// The classes: cn, ps, cn-switch, taylor-flanagan and dke with the standard mass, and (oscillation only)
-/// the penalty with the standard mass (γ₀ = 1).
+/// The classes: cn, ps, cn-switch, taylor-flanagan, dke and moreau-jean (θ = ½, e = 0) with the standard
+/// mass, and (oscillation only) the penalty (γ₀ = 1) and Nitsche (θ = 0, γ₀ = 5) with the standard mass.
 std::vector<ClaimResult> check_classes(const ClassesSettings& settings, Judge& judge);
 
 }  // namespace mrm::claims
