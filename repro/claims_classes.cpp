@@ -97,8 +97,8 @@
 //     2m_eff v/Δt to TV(λ) against the exact 2v of a contact phase, (m_eff/Ch) = 0.76 (C = ½), 0.71
 //     (C = 1/√3), above the band wherever Mod 3's ratio is below about 7; the rest of the comparison (that
 //     λ between impacts varies as much as Mod 3's) is a conjecture, as for dke. Energy ((MJ), θ = ½):
-//     Eⁿ⁺¹ − Eⁿ = ½p(v₀ⁿ⁺¹ + v₀ⁿ), so an impact at speed v loses ½m_eff v² exactly, a fraction 4m_eff ≈ 0.38h
-//     of E = 1/8 at v = ½ (C = ½), 1.5 % per impact on N = 25, more than (E)'s h/24 per impact; the only gain
+//     Eⁿ⁺¹ − Eⁿ = ½p(v₀ⁿ⁺¹ + v₀ⁿ), so an impact at speed v loses ½m_eff v² exactly: at v = ½ (C = ½) 0.048h,
+//     more than (E)'s h/24, a fraction 0.38h of E = 1/8, 1.5 % per impact on N = 25; the only gain
 //     is a step with p > 0 and v₀ⁿ > 0 (a node moving up inside the index set), ½p v₀ⁿ, not bounded here.
 //     Prediction: moreau-jean is an inertial class in (O)'s and (E)'s sense and joins the `inertial` rows
 //     ((O), (O'), (T), (E)) with their criterion, band and region unchanged; (O) for it a conjecture as for
