@@ -250,7 +250,8 @@ std::vector<ClaimResult> check_classes(const ClassesSettings& settings, Judge& j
       if (x == Scheme::penalty)
         basis += ", (P): gamma0 = 1, a mode above the mesh's band that rings through the contact";
       if (x == Scheme::nitsche)
-        basis += ", (N'): theta = 0, gamma0 = 5, a mode above the mesh's band (omega h = 4.43) that rings";
+        basis += two ? ", (N'): theta = 0, gamma0' = 10, a mode above the mesh's band (omega h = 6.04) that rings"
+                     : ", (N'): theta = 0, gamma0 = 5, a mode above the mesh's band (omega h = 4.43) that rings";
       rows.push_back(
           judge("classes/oscillation/" + b + "/" + to_string(x),
                 std::string(two ? "Mod 3 (cn, on the two bodies)" : "Mod 3 (cn, ec, cn-switch)") +
