@@ -126,16 +126,25 @@
 //     impacts the two part: bar1d -n 25, dt = h/2, E(T) equal to 4e-13 up to T = 1000, 0.11826 against
 //     0.11531 at T = 3000; a round-off-sized difference that flips an active-set decision, conjecture.)
 //     (Derived before nitsche's cells were run.)
+// The constants (P), (N') and (M) quote (ωh = 3.60, 3.89, 4.43, 6.04; m_eff = 0.382h, 0.408h) are computed
+// from their matrices by the doctest at the end of this file.
 #include "claims_classes.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
+
+#include <Eigen/Dense>
+#include <doctest/doctest.h>
 
 #include "configurations.hpp"
 #include "impact_solution.hpp"
 #include "options.hpp"
+#include "contact_classes.hpp"
+#include "mass_redistribution.hpp"
+#include "p1.hpp"
 
 namespace mrm::claims {
 
@@ -304,6 +313,50 @@ std::vector<ClaimResult> check_classes(const ClassesSettings& settings, Judge& j
               tighter(conserved, away)));
   }
   return rows;
+}
+
+// The constants the derivations (P), (N') and (M) quote, computed here from the matrices they name (the
+// consistent mass on a uniform mesh of N = 120, far from the localised modes' decay lengths): a typed
+// digit that does not follow from its derivation fails this test.
+TEST_CASE("the classes' derivations: the localised modes' frequencies (P), (N') and Moreau-Jean's m_eff (M)") {
+  const UniformMesh mesh(1.0, 120);
+  const double h = mesh.h();
+  const Tridiagonal m = modified_mass(mesh, consistent_mass()), s = p1_stiffness(mesh);
+  // (P): K = S + (γ₀/h)e₀e₀ᵀ, symmetric: its largest pencil frequency, the localised mode above the band √12.
+  for (const auto& [gamma0, omega_h] : {std::pair{1.0, 3.60}, std::pair{2.0, 3.89}}) {
+    Tridiagonal k = s;
+    k.diag[0] += gamma0 / h;
+    const double measured = std::sqrt(largest_pencil_eigenvalue(k, m)) * h;
+    MESSAGE("(P) gamma0 " << gamma0 << ": omega h " << measured);
+    CAPTURE(gamma0);
+    CHECK(measured == doctest::Approx(omega_h).epsilon(0.005 / omega_h));  // the typed value's last digit
+    CHECK(measured > std::sqrt(12.0));
+  }
+  // (N'), θ = 0: K is S with row 0 replaced by (γ₀/h)e₀ᵀ (not symmetric): the eigenvalue of M⁻¹K with the
+  // largest real part is real and is the localised mode.
+  const Eigen::MatrixXd md = m.to_sparse().toDense();
+  for (const auto& [gamma0, omega_h] : {std::pair{5.0, 4.43}, std::pair{10.0, 6.04}}) {
+    Eigen::MatrixXd k = s.to_sparse().toDense();
+    k.row(0).setZero();
+    k(0, 0) = gamma0 / h;
+    const Eigen::VectorXcd eigenvalues = Eigen::EigenSolver<Eigen::MatrixXd>(md.lu().solve(k)).eigenvalues();
+    Index top = 0;
+    for (Index i = 1; i < eigenvalues.size(); ++i)
+      if (eigenvalues[i].real() > eigenvalues[top].real()) top = i;
+    MESSAGE("(N') gamma0 " << gamma0 << ": omega h " << std::sqrt(eigenvalues[top].real()) * h);
+    CAPTURE(gamma0);
+    CHECK(std::abs(eigenvalues[top].imag()) <= 1e-9 * eigenvalues[top].real());
+    CHECK(std::sqrt(eigenvalues[top].real()) * h == doctest::Approx(omega_h).epsilon(0.005 / omega_h));
+  }
+  // (M): m_eff = 1/((M + θ²Δt²S)⁻¹)₀₀, θ = ½, Δt = Ch.
+  for (const auto& [courant, m_eff_over_h] : {std::pair{0.5, 0.382}, std::pair{1 / std::sqrt(3.0), 0.408}}) {
+    const double dt = courant * h;
+    const Eigen::MatrixXd a = md + 0.25 * dt * dt * s.to_sparse().toDense();
+    const double m_eff = 1 / a.llt().solve(Eigen::VectorXd::Unit(mesh.unknowns(), 0))[0];
+    MESSAGE("(M) C " << courant << ": m_eff/h " << m_eff / h);
+    CAPTURE(courant);
+    CHECK(m_eff / h == doctest::Approx(m_eff_over_h).epsilon(0.0005 / m_eff_over_h));
+  }
 }
 
 }  // namespace mrm::claims
