@@ -290,10 +290,11 @@ void check_newmark_step(const Tridiagonal& mass, const Tridiagonal& stiffness, c
   const double limit = newmark_stability_limit(mass, stiffness, p, contact_compliance);
   if (dt <= limit * (1 + 1e-12)) return;
   char text[320];
-  std::snprintf(text, sizeof text,
-                "%.6g is above the stability limit of %s with Newmark beta = %g < gamma/2 = %g (the largest frequency "
-                "of M^-1 K with the contact law's stiffness) (allowed: 0 < dt <= %.6g",
-                dt, to_string(p.scheme).c_str(), p.newmark_beta, 0.5 * p.newmark_gamma, limit);
+  std::snprintf(
+      text, sizeof text,
+      "dt = %.6g is above the stability limit of %s with Newmark beta = %g < gamma/2 = %g (the largest frequency "
+      "of M^-1 K with the contact law's stiffness) (allowed: 0 < dt <= %.6g",
+      dt, to_string(p.scheme).c_str(), p.newmark_beta, 0.5 * p.newmark_gamma, limit);
   std::string message = text;
   if (mesh_size > 0) {
     std::snprintf(text, sizeof text, ", i.e. Courant number <= %.6g", limit / mesh_size);

@@ -219,8 +219,8 @@ ExplicitStep::ExplicitStep(const UniformMesh& mesh, const MassRedistribution& ma
   if (!(dt <= limit_ * (1 + 1e-12))) {
     const double courant = mesh.uniform() && mesh.homogeneous() ? limit_ / mesh.h() : 0.0;
     char text[160];
-    std::snprintf(text, sizeof text, "%.6g is above the stability limit of %s (allowed: 0 < dt <= %.6g", dt, id.c_str(),
-                  limit_);
+    std::snprintf(text, sizeof text, "dt = %.6g is above the stability limit of %s (allowed: 0 < dt <= %.6g", dt,
+                  id.c_str(), limit_);
     std::string message = text;
     if (courant > 0) {
       std::snprintf(text, sizeof text, ", i.e. Courant number <= %.6g", courant);
@@ -449,7 +449,8 @@ TEST_CASE("explicit schemes refuse a step above their limit, a wrong mass and an
   const SchemeParameters ex = explicit_parameters(Scheme::explicit_central);
   CHECK(refused(tf, consistent_mass(), mesh.h()) == "accepted");
   CHECK(refused(ex, mod3(), mesh.h()) == "accepted");
-  CHECK(refused(tf, consistent_mass(), 1.01 * mesh.h()).rfind("dt | dt: 0.0505 is above the stability limit", 0) == 0);
+  CHECK(refused(tf, consistent_mass(), 1.01 * mesh.h()).rfind("dt | dt: dt = 0.0505 is above the stability limit", 0) ==
+        0);
   CHECK(refused(ex, mod3(), 1.01 * mesh.h()).find("allowed: 0 < dt <= 0.05, i.e. Courant number <= 1)") !=
         std::string::npos);
   CHECK(refused(tf, mod3(), 0.5 * mesh.h()).rfind("mass | ", 0) == 0);

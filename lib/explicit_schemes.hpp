@@ -39,7 +39,7 @@ double explicit_stability_limit(const UniformMesh& mesh, const Eigen::VectorXd* 
 /// node's algebraic row. The constructor checks, before any work, what only these schemes need, and
 /// throws InvalidParameter naming the parameter: `mass` (taylor-flanagan needs a contact node with
 /// inertia, explicit a massless one; `lumping none` the consistent mass), `mass_lumping` (explicit
-/// takes row-sum only), `dt` (above the stability limit: "dt: … (allowed: 0 < dt <= Δt_max, i.e. C <= …)").
+/// takes row-sum only), `dt` (above the stability limit: "dt: dt = … is above … (allowed: 0 < dt <= Δt_max, i.e. C <= …)").
 class ExplicitStep {
  public:
   /// `mass` the redistribution of the run, `stiffness` S on the unknowns, `gap` the initial gap.
