@@ -71,10 +71,16 @@ PeerPreset demo_version(int version) {
           "nitsche: Newmark (beta, gamma) with lambda = min(0, gamma u0 + u_x(0)), active set on the predictor";
       break;
     case 4: {
+      // One source: the configuration getfem_demo_v4 runs (its mesh, step, horizon, mass and initial node).
       const Configuration demo = getfem_demo_v4_configuration();
       p.summary = "Taylor-Flanagan, the standard mass solved at every step (taylor-flanagan, lumping none)";
       p.scheme.scheme = demo.scheme.scheme;
       p.scheme.lumping = demo.scheme.lumping;
+      p.elements = demo.elements;
+      p.dt = demo.dt;
+      p.final_time = demo.final_time;
+      p.mass = demo.mass.name;
+      p.initial = to_string(demo.initial);
       p.formulation =
           "taylor-flanagan: central differences with the consistent mass (no lumping), the contact node's "
           "velocity corrected by Taylor-Flanagan's impulse spread through M^-1";
