@@ -14,9 +14,12 @@ set output output
 benchmarks = "bouncing impacting gravity-paper layered two-bars"
 masses = "mod1 mod2 mod3"
 measures = "err_u_L2L2 err_lambda_L2 err_u_L2H1 err_v_L2L2"
-block_of(b, m) = system(sprintf("awk '/^# block [0-9]+: benchmark = %s, mass = %s,/{sub(/:/, \"\", $3); print $3; exit}' '%s'", \
-  b, m, data)) + 0
-column_of(id) = system(sprintf("awk '/^# columns: N h dt/{for (i = 3; i <= NF; ++i) if ($i == \"%s\") {print i - 2; exit}}' '%s'", id, data)) + 0
+# The block of (benchmark, mass): the number after "# block " on its header line, read from the data
+# file's comment lines (style.gp's `comments`) without starting a process; -1 if it has none.
+block_key(b, m) = ": benchmark = ".b.", mass = ".m.","
+block_at(s) = (s > 6 ? word(comments[s-6:s-1], words(comments[s-6:s-1])) + 0 : -1)
+block_of(b, m) = block_at(strstrt(comments, block_key(b, m)))
+column_of(name) = sum [k=1:words(columns)] (word(columns, k) eq name ? k : 0)
 mass_index(id) = id eq "mod1" ? 1 : id eq "mod2" ? 2 : 3
 
 set logscale x 2

@@ -14,9 +14,11 @@ load dir.'style.gp'
 set terminal @figure_terminal size 16cm,12cm
 set output output
 
-# The index of the first block with this scheme, mass and ratio (-1 if none).
-block(s, m) = system(sprintf("sed -n 's/^# block \\([0-9]*\\): scheme = %s, mass = %s, dt\\/h = %s$/\\1/p' '%s' | head -n 1", \
-  s, m, ratio, data)) + 0
+# The index of the first block with this scheme, mass and ratio (-1 if none): the number after "# block "
+# on its header line, read from the data file's comment lines (style.gp's `comments`) without starting a
+# process.
+block_at(p) = (p > 6 ? word(comments[p-6:p-1], words(comments[p-6:p-1])) + 0 : -1)
+block(s, m) = block_at(strstrt(comments, ": scheme = ".s.", mass = ".m.", dt/h = ".ratio."\n"))
 column_of(name) = sum [k=1:words(columns)] (word(columns, k) eq name ? k : 0)
 mass_index(id) = id eq "mod1" ? 1 : id eq "mod2" ? 2 : id eq "mod3" ? 3 : 4
 masses = "mod1 mod2 mod3"
