@@ -442,10 +442,23 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
            r.lanes.stride % vector_lanes == 0;
   };
   std::vector<Runs> runs(count);
-  std::vector<char> done(count, 0);
+  std::vector<char> done(count, 0), found(count, 0);
   std::vector<std::size_t> set;
   std::vector<double> sums;
   std::size_t together = 0;
+  // Run k's affine runs, computed once per level.
+  const auto runs_of = [&](std::size_t k) -> const Runs& {
+    Runs& r = runs[k];
+    if (!found[k]) {
+      const ErrorAccumulator& e = *level[k].errors;
+      const double* x = e.nodes_.data();
+      const long n = static_cast<long>(e.mesh_.unknowns());
+      r.u_count = e.closed_form_->displacement_runs(level[k].sample->time, x, n, r.u, 32);
+      r.v_count = e.closed_form_->velocity_runs(level[k].sample->velocity_time, x, n, r.v, 32);
+      found[k] = 1;
+    }
+    return r;
+  };
   for (std::size_t a = 0; a < count; ++a) {
     if (done[a]) continue;
     const Lane& first = level[a];
@@ -459,44 +472,45 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
     const std::size_t W = first.lanes.stride;
     const double* u_base = first.lanes.displacement - first.lanes.lane;
     const double* v_base = first.lanes.velocity - first.lanes.lane;
-    const auto runs_of = [&](std::size_t k) {
-      Runs& r = runs[k];
-      const ErrorAccumulator& e = *level[k].errors;
-      r.u_count = e.closed_form_->displacement_runs(level[k].sample->time, x, static_cast<long>(n), r.u, 32);
-      r.v_count = e.closed_form_->velocity_runs(level[k].sample->velocity_time, x, static_cast<long>(n), r.v, 32);
-    };
-    runs_of(a);
+    const Runs& mine = runs_of(a);
     set.assign(1, a);
     for (std::size_t b = a + 1; b < count; ++b) {
       const Lane& other = level[b];
       const ErrorAccumulator& e = *other.errors;
-      if (done[b] || !takes(other) || other.lanes.stride != W || other.lanes.displacement - other.lanes.lane != u_base ||
-          other.lanes.velocity - other.lanes.lane != v_base || e.mesh_.unknowns() != n ||
-          e.mesh_.length != lead.mesh_.length || e.mesh_.h() != lead.mesh_.h())
+      if (done[b] || !takes(other) || other.lanes.stride != W ||
+          other.lanes.displacement - other.lanes.lane != u_base || other.lanes.velocity - other.lanes.lane != v_base ||
+          e.mesh_.unknowns() != n || e.mesh_.length != lead.mesh_.length || e.mesh_.h() != lead.mesh_.h())
         continue;
-      runs_of(b);
-      if (same(runs[a].u, runs[a].u_count, runs[b].u, runs[b].u_count) &&
-          same(runs[a].v, runs[a].v_count, runs[b].v, runs[b].v_count))
+      const Runs& theirs = runs_of(b);
+      if (same(mine.u, mine.u_count, theirs.u, theirs.u_count) && same(mine.v, mine.v_count, theirs.v, theirs.v_count))
         set.push_back(b);
     }
-    if (set.size() == 1) {
-      lead.add(*first.sample, first.lanes);
+    if (set.size() == 1) {  // alone: add's sums (add_vectors), from the runs found above
+      const ErrorRunSums eu = error_run_sums(first.lanes.displacement, static_cast<long>(W), x, mine.u, mine.u_count);
+      const ErrorRunSums ev = error_run_sums(first.lanes.velocity, static_cast<long>(W), x, mine.v, mine.v_count);
+      const double h = lead.mesh_.h();
+      const InterpolantSums zu = interpolant_run_sums(x, h, mine.u, mine.u_count);
+      const InterpolantSums zv = interpolant_run_sums(x, h, mine.v, mine.v_count);
+      lead.add_sums(*first.sample, first.lanes.displacement[0],
+                    {eu.e0, eu.e_last, eu.differences, eu.squares, zu.z0, zu.z_last, zu.differences, zu.squares},
+                    {ev.e0, ev.e_last, ev.differences, ev.squares, zv.z0, zv.z_last, zv.differences, zv.squares});
       continue;
     }
     // Eight arrays of W: e₀, e_{n−1}, D, Q of u, then of v.
     sums.assign(8 * W, 0.0);
     double* s = sums.data();
     HWY_DYNAMIC_DISPATCH(error_lanes::LaneRunSums)
-    (u_base, W, x, runs[a].u, runs[a].u_count, s, s + W, s + 2 * W, s + 3 * W);
+    (u_base, W, x, mine.u, mine.u_count, s, s + W, s + 2 * W, s + 3 * W);
     HWY_DYNAMIC_DISPATCH(error_lanes::LaneRunSums)
-    (v_base, W, x, runs[a].v, runs[a].v_count, s + 4 * W, s + 5 * W, s + 6 * W, s + 7 * W);
+    (v_base, W, x, mine.v, mine.v_count, s + 4 * W, s + 5 * W, s + 6 * W, s + 7 * W);
     const double h = lead.mesh_.h();
-    const InterpolantSums zu = interpolant_run_sums(x, h, runs[a].u, runs[a].u_count);
-    const InterpolantSums zv = interpolant_run_sums(x, h, runs[a].v, runs[a].v_count);
+    const InterpolantSums zu = interpolant_run_sums(x, h, mine.u, mine.u_count);
+    const InterpolantSums zv = interpolant_run_sums(x, h, mine.v, mine.v_count);
     for (std::size_t k : set) {
       const std::size_t j = level[k].lanes.lane;
       const Sums su{s[j], s[W + j], s[2 * W + j], s[3 * W + j], zu.z0, zu.z_last, zu.differences, zu.squares};
-      const Sums sv{s[4 * W + j], s[5 * W + j], s[6 * W + j], s[7 * W + j], zv.z0, zv.z_last, zv.differences, zv.squares};
+      const Sums sv{s[4 * W + j], s[5 * W + j], s[6 * W + j],   s[7 * W + j],
+                    zv.z0,        zv.z_last,    zv.differences, zv.squares};
       level[k].errors->add_sums(*level[k].sample, level[k].lanes.displacement[0], su, sv);
       done[k] = 1;
     }
@@ -866,8 +880,8 @@ TEST_CASE("the error sums of a batch's lanes in one pass are each lane's own, bi
               u[static_cast<std::size_t>(i) * W + j] = own_u[j][i];
               v[static_cast<std::size_t>(i) * W + j] = own_v[j][i];
             }
-            samples[j] = {level, t, &own_u[j], tv, &own_v[j], true, t, exact.contact_multiplier(t) + wiggle(random),
-                          t, 0.0};
+            samples[j] = {level, t,  &own_u[j], tv, &own_v[j], true, t, exact.contact_multiplier(t) + wiggle(random),
+                          t,     0.0};
             alone[j].add(samples[j]);
           }
           for (std::size_t j = runs; j < W; ++j)
@@ -888,7 +902,8 @@ TEST_CASE("the error sums of a batch's lanes in one pass are each lane's own, bi
         }
         if (runs > 2 && W % current_batch_target().lanes == 0) CHECK(apart > 20);
         for (std::size_t j = 0; j < runs; ++j) {
-          const auto a = ErrorAccumulator::values(alone[j].relative()), b = ErrorAccumulator::values(together[j].relative());
+          const auto a = ErrorAccumulator::values(alone[j].relative()),
+                     b = ErrorAccumulator::values(together[j].relative());
           for (std::size_t k = 0; k < a.size(); ++k) {
             CAPTURE(current_batch_target().name);
             CAPTURE(elements);
