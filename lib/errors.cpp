@@ -240,6 +240,7 @@ InterpolantSums interpolant_run_sums(const double* x, double h, const ExactSolut
 // are formed once, as scalars, as there. One pass over the nodes instead of one per lane, each node's
 // lanes one aligned load (Google Highway: the widest target of the processor, chosen at run time, as
 // for the batched step).
+/// @cond MRM_INTERNAL (the kernel: not part of the library's interface)
 HWY_BEFORE_NAMESPACE();
 namespace mrm::error_lanes {
 namespace HWY_NAMESPACE {
@@ -315,13 +316,16 @@ void LaneRunSums(const double* w, std::size_t W, const double* x, const ExactSol
 }  // namespace HWY_NAMESPACE
 }  // namespace mrm::error_lanes
 HWY_AFTER_NAMESPACE();
+/// @endcond
 
 #if HWY_ONCE
 namespace mrm {
+/// @cond MRM_INTERNAL
 namespace error_lanes {
 HWY_EXPORT(LaneCount);
 HWY_EXPORT(LaneRunSums);
 }  // namespace error_lanes
+/// @endcond
 
 template <typename Stride>
 void ErrorAccumulator::add_vectors(const Sample& sample, const double* u, const double* v, Stride stride) {

@@ -78,9 +78,9 @@ class ErrorAccumulator {
   void add(const Sample& sample, const LaneVectors& lanes);
   /// One level of one run of a batch, for add_lanes: its accumulator, its sample and where its vectors are.
   struct Lane {
-    ErrorAccumulator* errors;
-    const Sample* sample;
-    LaneVectors lanes;
+    ErrorAccumulator* errors;  ///< the run's accumulator
+    const Sample* sample;      ///< the run's sample (its vectors are not read)
+    LaneVectors lanes;         ///< where the run's displacement and velocity are
   };
   /// Adds one level of each of `count` runs, each as `errors->add(*sample, lanes)` would: the same bits.
   /// Runs that lie in the lanes of one batch (the same vectors, stride and mesh) and whose interpolants
