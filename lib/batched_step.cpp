@@ -446,7 +446,7 @@ Sample BatchedSimulation::sample(std::size_t k, LaneVectors& lanes) const {
     // schemes, W for the two-level ones) in x or w.
     const Group& g = *groups_[group_of_[k]];
     const std::size_t W = g.runs.size(), j = lane_of_[k];
-    lanes = {&g.u[j], r.three_level_ ? &g.x[j] : &g.w[j], W};
+    lanes = {&g.u[j], r.three_level_ ? &g.x[j] : &g.w[j], W, j};
   }
   return s;
 }

@@ -18,6 +18,16 @@
 #include "errors.hpp"
 
 #include <algorithm>
+#include <cstddef>
+
+/// @cond MRM_INTERNAL (the Highway plumbing of the one-pass sums of a batch's lanes, add_lanes)
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "errors.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+/// @endcond
+
+#if HWY_ONCE
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -25,9 +35,11 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include <doctest/doctest.h>
 
+#include "batched_step.hpp"
 #include "characteristics.hpp"
 
 namespace mrm {
@@ -148,7 +160,172 @@ inline void pair_sums(const double* w, long first, long end, Stride stride, cons
   differences = d0 + d1, squares = s0 + s1;
 }
 
+// The error's sums over the closed form's runs (see above): e₀, e_{n−1}, D and Q of e = W − w_I, the
+// interpolant w_I = a + b x_i on each run. Per run: its first node against the last of the previous
+// run, then pair_sums over the rest, added to the totals. The interpolant's own sums do not depend on
+// W (interpolant_run_sums).
+struct ErrorRunSums {
+  double e0, e_last, differences, squares;
+};
+template <typename Stride>
+ErrorRunSums error_run_sums(const double* w, Stride stride, const double* x, const ExactSolution::AffineRun* runs,
+                            int count) {
+  const double z0 = runs[0].intercept + runs[0].slope * x[0];
+  const double e0 = w[0] - z0;
+  double ed = 0, es = 0, e_prev = e0;
+  for (int k = 0; k < count; ++k) {
+    const double a = runs[k].intercept, b = runs[k].slope;
+    const long first = std::max(runs[k].first, 1L), end = runs[k].end;
+    if (first >= end) continue;
+    {  // the first node of the run, against the last of the previous one
+      const double wf = w[first * stride];
+      const double z = a + b * x[first], e = wf - z, de = e - e_prev;
+      ed += de * de, es += e * e;
+    }
+    double red = 0, res = 0;
+    if (b == 0)  // a constant interpolant (every run of u_t, some of u): no node positions needed
+      pair_sums(
+          w, first + 1, end, stride,
+          [a](long, double wi, double wp) { return std::pair<double, double>(wi - wp, wi - a); }, red, res);
+    else
+      pair_sums(
+          w, first + 1, end, stride,
+          [a, b, x](long i, double wi, double wp) {
+            return std::pair<double, double>((wi - wp) - b * (x[i] - x[i - 1]), wi - (a + b * x[i]));
+          },
+          red, res);
+    ed += red, es += res;
+    e_prev = w[(end - 1) * stride] - (a + b * x[end - 1]);
+  }
+  return {e0, e_prev, ed, es};
+}
+
+// The interpolant's sums over the runs: z₀, z_{n−1}, D and Q, the first node of each run term by term
+// and the rest in closed form (see above).
+struct InterpolantSums {
+  double z0, z_last, differences, squares;
+};
+InterpolantSums interpolant_run_sums(const double* x, double h, const ExactSolution::AffineRun* runs, int count) {
+  const double z0 = runs[0].intercept + runs[0].slope * x[0];
+  double id = 0, is = 0, z_prev = z0;
+  for (int k = 0; k < count; ++k) {
+    const double a = runs[k].intercept, b = runs[k].slope;
+    const long first = std::max(runs[k].first, 1L), end = runs[k].end;
+    if (first >= end) continue;
+    {
+      const double z = a + b * x[first], dz = z - z_prev;
+      id += dz * dz, is += z * z;
+    }
+    const double m = static_cast<double>(end - first - 1);  // the nodes first+1 … end−1
+    if (m > 0) {
+      const double mean = a + b * 0.5 * (x[first + 1] + x[end - 1]), bh = b * h;
+      is += m * mean * mean + bh * bh * m * (m * m - 1) / 12;
+      id += m * bh * bh;
+    }
+    z_prev = a + b * x[end - 1];
+  }
+  return {z0, z_prev, id, is};
+}
+
 }  // namespace
+
+}  // namespace mrm
+#endif  // HWY_ONCE
+
+// The error's sums of W runs at once (add_lanes): runs of one batch, their entries interleaved (node i of
+// lane j at w[i·W + j], lib/batched_step.hpp), against the same closed-form runs. error_run_sums' arithmetic,
+// operation for operation, on vectors of lanes (every operation lane-wise, IEEE-754 rounding as the scalar
+// one, no contraction into fused multiply-adds: -ffp-contract=off and no MulAdd here), so lane j gets
+// the bits error_run_sums gives for the run alone; the lane-independent values (a + b x_i, b (x_i − x_{i−1}))
+// are formed once, as scalars, as there. One pass over the nodes instead of one per lane, each node's
+// lanes one aligned load (Google Highway: the widest target of the processor, chosen at run time, as
+// for the batched step).
+/// @cond MRM_INTERNAL (the kernel: not part of the library's interface)
+HWY_BEFORE_NAMESPACE();
+namespace mrm::error_lanes {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+std::size_t LaneCount() { return hn::Lanes(hn::ScalableTag<double>()); }
+
+// Lanes 0 … W−1 (W a multiple of LaneCount()): their e₀, e_{n−1}, D and Q in e0[j], last[j], ...
+void LaneRunSums(const double* w, std::size_t W, const double* x, const ExactSolution::AffineRun* runs, int count,
+                 double* e0_out, double* last_out, double* differences_out, double* squares_out) {
+  const hn::ScalableTag<double> d;
+  using V = hn::Vec<decltype(d)>;
+  for (std::size_t c = 0; c < W; c += hn::Lanes(d)) {
+    const double* wc = w + c;
+    const auto at = [&](long i) { return hn::LoadU(d, wc + static_cast<std::size_t>(i) * W); };
+    const V e0 = at(0) - hn::Set(d, runs[0].intercept + runs[0].slope * x[0]);
+    V ed = hn::Zero(d), es = hn::Zero(d), e_prev = e0;
+    for (int k = 0; k < count; ++k) {
+      const double a = runs[k].intercept, b = runs[k].slope;
+      const long first = std::max(runs[k].first, 1L), end = runs[k].end;
+      if (first >= end) continue;
+      {
+        const V e = at(first) - hn::Set(d, a + b * x[first]), de = e - e_prev;
+        ed = ed + de * de, es = es + e * e;
+      }
+      V d0 = hn::Zero(d), d1 = d0, s0 = d0, s1 = d0;
+      long i = first + 1;
+      if (b == 0) {
+        const V av = hn::Set(d, a);
+        V wp = at(i - 1);
+        for (; i + 1 < end; i += 2) {
+          const V wi = at(i), wn = at(i + 1);
+          const V de0 = wi - wp, e0i = wi - av, de1 = wn - wi, e1i = wn - av;
+          d0 = d0 + de0 * de0, s0 = s0 + e0i * e0i;
+          d1 = d1 + de1 * de1, s1 = s1 + e1i * e1i;
+          wp = wn;
+        }
+        if (i < end) {
+          const V wi = at(i), de = wi - wp, e = wi - av;
+          d0 = d0 + de * de, s0 = s0 + e * e;
+        }
+      } else {
+        const auto term = [&](long j, V wi, V wp, V& de, V& e) {
+          de = (wi - wp) - hn::Set(d, b * (x[j] - x[j - 1]));
+          e = wi - hn::Set(d, a + b * x[j]);
+        };
+        V wp = at(i - 1);
+        for (; i + 1 < end; i += 2) {
+          const V wi = at(i), wn = at(i + 1);
+          V de0, e0i, de1, e1i;
+          term(i, wi, wp, de0, e0i);
+          term(i + 1, wn, wi, de1, e1i);
+          d0 = d0 + de0 * de0, s0 = s0 + e0i * e0i;
+          d1 = d1 + de1 * de1, s1 = s1 + e1i * e1i;
+          wp = wn;
+        }
+        if (i < end) {
+          V de, e;
+          term(i, at(i), wp, de, e);
+          d0 = d0 + de * de, s0 = s0 + e * e;
+        }
+      }
+      ed = ed + (d0 + d1), es = es + (s0 + s1);
+      e_prev = at(end - 1) - hn::Set(d, a + b * x[end - 1]);
+    }
+    hn::StoreU(e0, d, e0_out + c);
+    hn::StoreU(e_prev, d, last_out + c);
+    hn::StoreU(ed, d, differences_out + c);
+    hn::StoreU(es, d, squares_out + c);
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace mrm::error_lanes
+HWY_AFTER_NAMESPACE();
+/// @endcond
+
+#if HWY_ONCE
+namespace mrm {
+/// @cond MRM_INTERNAL
+namespace error_lanes {
+HWY_EXPORT(LaneCount);
+HWY_EXPORT(LaneRunSums);
+}  // namespace error_lanes
+/// @endcond
 
 template <typename Stride>
 void ErrorAccumulator::add_vectors(const Sample& sample, const double* u, const double* v, Stride stride) {
@@ -157,9 +334,6 @@ void ErrorAccumulator::add_vectors(const Sample& sample, const double* u, const 
 
   // D and Q for the vectors e = W − w_I and w_I, W = U or V: four independent sums, each a short chain
   // of additions (one loop per W keeps them all in registers).
-  struct Sums {
-    double e0, e_last, e_differences, e_squares, i0, i_last, i_differences, i_squares;
-  };
   const auto sums = [n, stride](const double* w, const double* wi) {
     Sums r{w[0] - wi[0], 0, 0, 0, wi[0], 0, 0, 0};
     double e_prev = r.e0, i_prev = r.i0;
@@ -177,43 +351,9 @@ void ErrorAccumulator::add_vectors(const Sample& sample, const double* u, const 
   // The same sums from the closed form's runs (see above).
   const double h = general_ ? 0.0 : mesh_.h();  // the closed form's runs (uniform mesh only)
   const auto run_sums = [x, h, stride](const double* w, const ExactSolution::AffineRun* runs, int count) {
-    const double z0 = runs[0].intercept + runs[0].slope * x[0];
-    Sums r{w[0] - z0, 0, 0, 0, z0, 0, 0, 0};
-    double ed = 0, es = 0, id = 0, is = 0, z_prev = z0, e_prev = r.e0;
-    for (int k = 0; k < count; ++k) {
-      const double a = runs[k].intercept, b = runs[k].slope;
-      const long first = std::max(runs[k].first, 1L), end = runs[k].end;
-      if (first >= end) continue;
-      {  // the first node of the run, against the last of the previous one
-        const double wf = w[first * stride];
-        const double z = a + b * x[first], e = wf - z, dz = z - z_prev, de = e - e_prev;
-        ed += de * de, es += e * e, id += dz * dz, is += z * z;
-      }
-      double red = 0, res = 0;
-      if (b == 0)  // a constant interpolant (every run of u_t, some of u): no node positions needed
-        pair_sums(
-            w, first + 1, end, stride,
-            [a](long, double wi, double wp) { return std::pair<double, double>(wi - wp, wi - a); }, red, res);
-      else
-        pair_sums(
-            w, first + 1, end, stride,
-            [a, b, x](long i, double wi, double wp) {
-              return std::pair<double, double>((wi - wp) - b * (x[i] - x[i - 1]), wi - (a + b * x[i]));
-            },
-            red, res);
-      ed += red, es += res;
-      const double m = static_cast<double>(end - first - 1);  // the nodes first+1 … end−1
-      if (m > 0) {
-        const double mean = a + b * 0.5 * (x[first + 1] + x[end - 1]), bh = b * h;
-        is += m * mean * mean + bh * bh * m * (m * m - 1) / 12;
-        id += m * bh * bh;
-      }
-      z_prev = a + b * x[end - 1];
-      e_prev = w[(end - 1) * stride] - z_prev;
-    }
-    r.e_differences = ed, r.e_squares = es, r.i_differences = id, r.i_squares = is;
-    r.e_last = e_prev, r.i_last = z_prev;
-    return r;
+    const ErrorRunSums e = error_run_sums(w, stride, x, runs, count);
+    const InterpolantSums z = interpolant_run_sums(x, h, runs, count);
+    return Sums{e.e0, e.e_last, e.differences, e.squares, z.z0, z.z_last, z.differences, z.squares};
   };
   if (general_) {
     // The quadratic forms of the mesh's own matrices, on the sample's vectors seen with their stride (no
@@ -253,6 +393,11 @@ void ErrorAccumulator::add_vectors(const Sample& sample, const double* u, const 
     su = sums(u, ui);
     sv = sums(v, vi);
   }
+  add_sums(sample, u[0], su, sv);
+}
+
+void ErrorAccumulator::add_sums(const Sample& sample, double u_first, const Sums& su, const Sums& sv) {
+  const Index n = mesh_.unknowns();
   const auto error_form = [](const Sums& r, double a00, double d, double l) {
     return form(r.e0, r.e_last, r.e_differences, r.e_squares, a00, d, l);
   };
@@ -265,13 +410,117 @@ void ErrorAccumulator::add_vectors(const Sample& sample, const double* u, const 
   u_l2_.add(t, error_form(su, m00, m, ml), exact_form(su, m00, m, ml));
   u_h1_.add(t, error_form(su, s00, s, sl), exact_form(su, s00, s, sl));
   const double u0 = exact_->contact_displacement(sample.time);
-  u0_.add(t, std::pow(u[0] - u0, 2), u0 * u0);
+  u0_.add(t, std::pow(u_first - u0, 2), u0 * u0);
   v_l2_.add(sample.velocity_time, error_form(sv, m00, m, ml), exact_form(sv, m00, m, ml));
 
   if (sample.has_multiplier) {
     const double lambda = exact_->contact_multiplier(sample.multiplier_time);
     lambda_.add(sample.multiplier_time, std::pow(sample.multiplier - lambda, 2), lambda * lambda);
   }
+}
+
+// One level of a batch's runs. Runs on the same mesh whose sample instants give the same affine runs of
+// the closed form (checked run by run, not assumed: the runs may differ in Δt) and that lie in the lanes
+// of the same vectors form a set; the error's sums of every lane of those vectors are formed in one
+// pass (LaneRunSums: each lane error_run_sums' bits), the interpolant's once, and each run of the set
+// takes its lane's. Every other run is added alone (add).
+std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
+  using Run = ExactSolution::AffineRun;
+  struct Runs {
+    Run u[32], v[32];
+    int u_count = 0, v_count = 0;
+  };
+  const auto same = [](const Run* a, int na, const Run* b, int nb) {
+    if (na != nb) return false;
+    for (int k = 0; k < na; ++k)
+      if (a[k].first != b[k].first || a[k].end != b[k].end ||
+          std::memcmp(&a[k].intercept, &b[k].intercept, sizeof(double)) != 0 ||
+          std::memcmp(&a[k].slope, &b[k].slope, sizeof(double)) != 0)
+        return false;
+    return true;
+  };
+  const std::size_t vector_lanes = HWY_DYNAMIC_DISPATCH(error_lanes::LaneCount)();
+  // A run the one pass can take: the closed form on a uniform mesh, in lanes of a width the vectors divide.
+  const auto takes = [&](const Lane& r) {
+    return r.errors->closed_form_ && !r.errors->general_ && r.lanes.stride >= 2 && r.lanes.lane < r.lanes.stride &&
+           r.lanes.stride % vector_lanes == 0;
+  };
+  std::vector<Runs> runs(count);
+  std::vector<char> done(count, 0), found(count, 0);
+  std::vector<std::size_t> set;
+  std::vector<double> sums;
+  std::size_t together = 0;
+  // Run k's affine runs, computed once per level.
+  const auto runs_of = [&](std::size_t k) -> const Runs& {
+    Runs& r = runs[k];
+    if (!found[k]) {
+      const ErrorAccumulator& e = *level[k].errors;
+      const double* x = e.nodes_.data();
+      const long n = static_cast<long>(e.mesh_.unknowns());
+      r.u_count = e.closed_form_->displacement_runs(level[k].sample->time, x, n, r.u, 32);
+      r.v_count = e.closed_form_->velocity_runs(level[k].sample->velocity_time, x, n, r.v, 32);
+      found[k] = 1;
+    }
+    return r;
+  };
+  for (std::size_t a = 0; a < count; ++a) {
+    if (done[a]) continue;
+    const Lane& first = level[a];
+    ErrorAccumulator& lead = *first.errors;
+    if (!takes(first)) {
+      lead.add(*first.sample, first.lanes);
+      continue;
+    }
+    const Index n = lead.mesh_.unknowns();
+    const double* x = lead.nodes_.data();
+    const std::size_t W = first.lanes.stride;
+    const double* u_base = first.lanes.displacement - first.lanes.lane;
+    const double* v_base = first.lanes.velocity - first.lanes.lane;
+    const Runs& mine = runs_of(a);
+    set.assign(1, a);
+    for (std::size_t b = a + 1; b < count; ++b) {
+      const Lane& other = level[b];
+      const ErrorAccumulator& e = *other.errors;
+      if (done[b] || !takes(other) || other.lanes.stride != W ||
+          other.lanes.displacement - other.lanes.lane != u_base || other.lanes.velocity - other.lanes.lane != v_base ||
+          e.mesh_.unknowns() != n || e.mesh_.length != lead.mesh_.length || e.mesh_.h() != lead.mesh_.h())
+        continue;
+      const Runs& theirs = runs_of(b);
+      if (same(mine.u, mine.u_count, theirs.u, theirs.u_count) && same(mine.v, mine.v_count, theirs.v, theirs.v_count))
+        set.push_back(b);
+    }
+    if (set.size() == 1) {  // alone: add's sums (add_vectors), from the runs found above
+      const ErrorRunSums eu = error_run_sums(first.lanes.displacement, static_cast<long>(W), x, mine.u, mine.u_count);
+      const ErrorRunSums ev = error_run_sums(first.lanes.velocity, static_cast<long>(W), x, mine.v, mine.v_count);
+      const double h = lead.mesh_.h();
+      const InterpolantSums zu = interpolant_run_sums(x, h, mine.u, mine.u_count);
+      const InterpolantSums zv = interpolant_run_sums(x, h, mine.v, mine.v_count);
+      lead.add_sums(*first.sample, first.lanes.displacement[0],
+                    {eu.e0, eu.e_last, eu.differences, eu.squares, zu.z0, zu.z_last, zu.differences, zu.squares},
+                    {ev.e0, ev.e_last, ev.differences, ev.squares, zv.z0, zv.z_last, zv.differences, zv.squares});
+      continue;
+    }
+    // Eight arrays of W: e₀, e_{n−1}, D, Q of u, then of v.
+    sums.assign(8 * W, 0.0);
+    double* s = sums.data();
+    HWY_DYNAMIC_DISPATCH(error_lanes::LaneRunSums)
+    (u_base, W, x, mine.u, mine.u_count, s, s + W, s + 2 * W, s + 3 * W);
+    HWY_DYNAMIC_DISPATCH(error_lanes::LaneRunSums)
+    (v_base, W, x, mine.v, mine.v_count, s + 4 * W, s + 5 * W, s + 6 * W, s + 7 * W);
+    const double h = lead.mesh_.h();
+    const InterpolantSums zu = interpolant_run_sums(x, h, mine.u, mine.u_count);
+    const InterpolantSums zv = interpolant_run_sums(x, h, mine.v, mine.v_count);
+    for (std::size_t k : set) {
+      const std::size_t j = level[k].lanes.lane;
+      const Sums su{s[j], s[W + j], s[2 * W + j], s[3 * W + j], zu.z0, zu.z_last, zu.differences, zu.squares};
+      const Sums sv{s[4 * W + j], s[5 * W + j], s[6 * W + j],   s[7 * W + j],
+                    zv.z0,        zv.z_last,    zv.differences, zv.squares};
+      level[k].errors->add_sums(*level[k].sample, level[k].lanes.displacement[0], su, sv);
+      done[k] = 1;
+    }
+    together += set.size();
+  }
+  return together;
 }
 
 // Each measure relative to the same norm of the exact solution (the absolute value where that norm
@@ -594,3 +843,86 @@ TEST_CASE("the error measures read from a lane layout are those of the run's own
 }
 
 }  // namespace mrm
+#endif  // HWY_ONCE
+
+#if HWY_ONCE
+namespace mrm {
+
+TEST_CASE("the error sums of a batch's lanes in one pass are each lane's own, bit for bit, on every vector target") {
+  // Prediction: add_lanes forms each lane's sums with error_run_sums' operations in its order, lane-wise
+  // (LaneRunSums), and the interpolant's with the same function as add: so every measure of every lane
+  // has the bits of add(sample) on that lane's own contiguous vectors. W lanes (2 to 16: one or several
+  // vectors of each target), on a mesh of an odd and an even number of nodes, at instants where u's runs
+  // are affine (b ≠ 0) and constant (b = 0, and every run of u_t), on the kinks (t a multiple of h) and off
+  // them; most lanes share their instants, one lane has instants of its own (it is added alone), and one
+  // lane of the vectors is no run at all (padding).
+  std::vector<std::int64_t> targets{0};
+  for (const BatchTarget& t : batch_targets()) targets.push_back(t.bit);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> wiggle(-0.01, 0.01);
+  for (const std::int64_t bit : targets) {
+    use_batch_target(bit);
+    for (const Index elements : {36, 37}) {
+      const UniformMesh mesh(1.0, elements);
+      const Index n = mesh.unknowns();
+      const ExactSolution exact;
+      for (const std::size_t W : {2, 4, 8, 16}) {
+        const std::size_t runs = W == 2 ? 2 : W - 1;  // from W = 4, lane W − 1 is padding
+        std::vector<ErrorAccumulator> together, alone;
+        for (std::size_t j = 0; j < runs; ++j) together.emplace_back(mesh, exact), alone.emplace_back(mesh, exact);
+        std::vector<double> u(static_cast<std::size_t>(n) * W), v(u.size());
+        std::vector<Eigen::VectorXd> own_u(runs, Eigen::VectorXd(n)), own_v(runs, Eigen::VectorXd(n));
+        int apart = 0;  // the levels at which lane 1 was added alone
+        for (int level = 0; level <= 40; ++level) {
+          std::vector<Sample> samples(runs);
+          for (std::size_t j = 0; j < runs; ++j) {
+            // The instants: a step of h/2 (every other level on a kink), lane 1's 0.37 h (its own).
+            const double dt = (j == 1 && runs > 2 ? 0.37 : 0.5) * mesh.h(), t = level * dt, tv = t - 0.5 * dt;
+            for (Index i = 0; i < n; ++i) {
+              own_u[j][i] = exact.displacement(mesh.x(i), t) + wiggle(random);
+              own_v[j][i] = exact.velocity(mesh.x(i), tv) + wiggle(random);
+              u[static_cast<std::size_t>(i) * W + j] = own_u[j][i];
+              v[static_cast<std::size_t>(i) * W + j] = own_v[j][i];
+            }
+            samples[j] = {level, t,  &own_u[j], tv, &own_v[j], true, t, exact.contact_multiplier(t) + wiggle(random),
+                          t,     0.0};
+            alone[j].add(samples[j]);
+          }
+          for (std::size_t j = runs; j < W; ++j)
+            for (Index i = 0; i < n; ++i)
+              u[static_cast<std::size_t>(i) * W + j] = v[static_cast<std::size_t>(i) * W + j] = 1e300;
+          std::vector<ErrorAccumulator::Lane> lanes;
+          for (std::size_t j = 0; j < runs; ++j)
+            lanes.push_back({&together[j], &samples[j], LaneVectors{&u[j], &v[j], W, j}});
+          // The runs of one pass, if the vectors divide W: all, but lane 1 from W = 4 at the levels where
+          // its instants give other runs of the closed form.
+          const std::size_t got = ErrorAccumulator::add_lanes(lanes.data(), lanes.size());
+          if (W % current_batch_target().lanes != 0) {
+            CHECK(got == 0);
+          } else {
+            CHECK((got == runs || (runs > 2 && got == runs - 1)));
+            apart += got < runs;
+          }
+        }
+        if (runs > 2 && W % current_batch_target().lanes == 0) CHECK(apart > 20);
+        for (std::size_t j = 0; j < runs; ++j) {
+          const auto a = ErrorAccumulator::values(alone[j].relative()),
+                     b = ErrorAccumulator::values(together[j].relative());
+          for (std::size_t k = 0; k < a.size(); ++k) {
+            CAPTURE(current_batch_target().name);
+            CAPTURE(elements);
+            CAPTURE(W);
+            CAPTURE(j);
+            CAPTURE(ErrorAccumulator::names[k]);
+            CHECK(a[k] > 0);
+            CHECK(std::memcmp(&a[k], &b[k], sizeof(double)) == 0);
+          }
+        }
+      }
+    }
+  }
+  use_batch_target(0);
+}
+
+}  // namespace mrm
+#endif  // HWY_ONCE

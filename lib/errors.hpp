@@ -52,6 +52,7 @@ struct LaneVectors {
   const double* displacement;  ///< Uⁿ, entry i at displacement[i·stride]
   const double* velocity;      ///< the sample's velocity, entry i at velocity[i·stride]
   std::size_t stride;          ///< the distance between two entries (the batch's lanes; 1: a vector of its own)
+  std::size_t lane = 0;        ///< the run's lane: node i of lane 0 is at displacement[i·stride − lane]
 };
 
 /// Accumulates the errors of a run against an exact solution, one sample at a time, in O(N) memory.
@@ -75,6 +76,18 @@ class ErrorAccumulator {
   /// (which are not read: in a batch they may be older than the lanes); the same bits as add(sample)
   /// on a sample whose vectors hold those entries (the same sums in the same order).
   void add(const Sample& sample, const LaneVectors& lanes);
+  /// One level of one run of a batch, for add_lanes: its accumulator, its sample and where its vectors are.
+  struct Lane {
+    ErrorAccumulator* errors;  ///< the run's accumulator
+    const Sample* sample;      ///< the run's sample (its vectors are not read)
+    LaneVectors lanes;         ///< where the run's displacement and velocity are
+  };
+  /// Adds one level of each of `count` runs, each as `errors->add(*sample, lanes)` would: the same bits.
+  /// Runs that lie in the lanes of one batch (the same vectors, stride and mesh) and whose interpolants
+  /// are the same affine runs of the closed form (the same instants) are summed together, in one pass
+  /// over the nodes with their lanes side by side in vector registers (errors.cpp); any other run
+  /// alone. The runs must be distinct (one lane each). Returns the number of runs summed together.
+  static std::size_t add_lanes(const Lane* level, std::size_t count);
   /// The relative errors of the samples added so far.
   ErrorNorms relative() const;
   /// The names of the measures in the order of `values(ErrorNorms)`: err_u0_L2, err_lambda_L2, …
@@ -83,8 +96,15 @@ class ErrorAccumulator {
   static std::array<double, 8> values(const ErrorNorms& e);
 
  private:
+  // The sums of the quadratic forms of one level (errors.cpp): D, Q, the first and last entries, for
+  // the error e = W − w_I and for the interpolant w_I.
+  struct Sums {
+    double e0, e_last, e_differences, e_squares, i0, i_last, i_differences, i_squares;
+  };
   template <typename Stride>
   void add_vectors(const Sample& sample, const double* u, const double* v, Stride stride);
+  // The level from its sums (u0: the displacement's first entry): the forms and the histories.
+  void add_sums(const Sample& sample, double u0, const Sums& su, const Sums& sv);
   UniformMesh mesh_;
   std::shared_ptr<const ReferenceSolution> exact_;
   const ExactSolution* closed_form_ = nullptr;                  // exact_ when it is the paper's closed form (its runs)

@@ -859,12 +859,19 @@ bool ConfigurationRun::takes_lanes(Index level) const {
   return !observe_ && !keep_recovered_ && !(unit_.measure_errors && difference_ && level >= 1);
 }
 
-void ConfigurationRun::add(const Sample& s, const LaneVectors& lanes) {
-  if (!takes_lanes(s.level)) throw std::logic_error("ConfigurationRun: this level needs the sample's vectors");
-  add_sample(s, &lanes);
+void ConfigurationRun::add(const Sample& s, const LaneVectors& lanes) { add(s, lanes, false); }
+
+ErrorAccumulator* ConfigurationRun::lane_errors(Index level) {
+  return takes_lanes(level) && unit_.measure_errors ? &*errors_ : nullptr;
 }
 
-void ConfigurationRun::add_sample(const Sample& s, const LaneVectors* lanes) {
+void ConfigurationRun::add(const Sample& s, const LaneVectors& lanes, bool errors_added) {
+  if (!takes_lanes(s.level)) throw std::logic_error("ConfigurationRun: this level needs the sample's vectors");
+  if (errors_added && !unit_.measure_errors) throw std::logic_error("ConfigurationRun: this run measures no errors");
+  add_sample(s, &lanes, errors_added);
+}
+
+void ConfigurationRun::add_sample(const Sample& s, const LaneVectors* lanes, bool errors_added) {
   Measures& m = measures_;
   // TV(λ_h) and TV(λ_exact) summed over the successive multiplier samples; the penetration against the
   // problem's gap (unit scale).
@@ -897,7 +904,7 @@ void ConfigurationRun::add_sample(const Sample& s, const LaneVectors* lanes) {
     differenced.velocity = &velocity_;
     errors_->add(differenced);
   } else if (lanes) {
-    errors_->add(s, *lanes);
+    if (!errors_added) errors_->add(s, *lanes);
   } else {
     errors_->add(s);
   }

@@ -340,6 +340,12 @@ class ConfigurationRun {
   /// The same as add(sample), the error measures reading the displacement and velocity from `lanes`
   /// (the same bits); of the sample's own vectors only the displacement's first entry is read.
   void add(const Sample& sample, const LaneVectors& lanes);
+  /// The accumulator of the error measures if the sample of `level` may come from lanes and its errors
+  /// are measured (a batched driver adds that level's errors of several runs in one pass,
+  /// ErrorAccumulator::add_lanes, then calls add(sample, lanes, true)); null otherwise.
+  ErrorAccumulator* lane_errors(Index level);
+  /// add(sample, lanes), with this level's errors already added to lane_errors(level) when `errors_added`.
+  void add(const Sample& sample, const LaneVectors& lanes, bool errors_added);
   /// The measures of the levels added, at the configuration's scale.
   Measures measures();
 
@@ -367,7 +373,7 @@ class ConfigurationRun {
   bool keep_ = false, keep_recovered_ = false;
   StressHistory history_;
   std::function<void(const Sample&)> observe_;
-  void add_sample(const Sample& sample, const LaneVectors* lanes);
+  void add_sample(const Sample& sample, const LaneVectors* lanes, bool errors_added = false);
 };
 
 /// The instant up to which a reference must be known for a run of `steps` steps of size dt: the last

@@ -268,7 +268,8 @@ void apply_sweep_options(const SweepOptions& options) {
 // cost).
 void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double>& costs, const BatchStart& start,
                      const BatchObserve& observe, const std::function<void(std::size_t k)>& finish,
-                     const SweepSettings& settings, const BatchLaneObserve& lane_observe) {
+                     const SweepSettings& settings, const BatchLaneObserve& lane_observe,
+                     const BatchLevelPrepare& prepare) {
   const std::size_t count = keys.size();
   if (costs.size() != count) throw std::invalid_argument("step_in_batches: one cost per run");
   std::map<BatchKey, std::vector<std::size_t>> groups;
@@ -314,14 +315,40 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                         }
                         return observe(batch[j], lanes.run(j).sample());
                       };
-                      for (std::size_t j = 0; j < batch.size(); ++j) watching[j] = look(j);
+                      // Level n of the lanes still observed (every lane at level 0): with `prepare`, their
+                      // samples in place are gathered and prepared first, then observed one by one.
+                      std::vector<std::size_t> ks, js;
+                      std::vector<Sample> samples;
+                      std::vector<LaneVectors> wheres;
+                      const auto look_all = [&](Index n) {
+                        const auto active = [&](std::size_t j) { return n == 0 || (watching[j] && n <= steps[j]); };
+                        if (!(lane_observe && prepare)) {
+                          for (std::size_t j = 0; j < batch.size(); ++j)
+                            if (active(j)) watching[j] = look(j);
+                          return;
+                        }
+                        ks.clear(), js.clear(), samples.clear(), wheres.clear();
+                        for (std::size_t j = 0; j < batch.size(); ++j)
+                          if (active(j)) {
+                            LaneVectors where{};
+                            samples.push_back(lanes.sample(j, where));
+                            wheres.push_back(where);
+                            ks.push_back(batch[j]);
+                            js.push_back(j);
+                          }
+                        prepare(ks, samples, wheres);
+                        for (std::size_t m = 0; m < js.size(); ++m) {
+                          const std::optional<bool> more = lane_observe(ks[m], samples[m], wheres[m]);
+                          watching[js[m]] = more ? *more : observe(ks[m], lanes.run(js[m]).sample());
+                        }
+                      };
+                      look_all(0);
                       for (Index n = 1; n <= most; ++n) {
                         bool any = false;
                         for (std::size_t j = 0; j < batch.size(); ++j) any = any || (watching[j] && n <= steps[j]);
                         if (!any) break;
                         lanes.step();
-                        for (std::size_t j = 0; j < batch.size(); ++j)
-                          if (watching[j] && n <= steps[j]) watching[j] = look(j);
+                        look_all(n);
                       }
                     }
                     for (std::size_t k : batch) finish(k);
@@ -344,6 +371,7 @@ std::vector<Measures> run_batched(const std::vector<Configuration>& configuratio
   // Each slot is written by the worker of its batch only.
   std::vector<std::unique_ptr<ConfigurationRun>> runs(count);
   std::vector<Measures> results(count);
+  std::vector<char> errors_added(count, 0);  // run k's errors of the level being observed are added
   step_in_batches(
       keys, costs,
       [&](std::size_t k, Index& steps) {
@@ -364,8 +392,20 @@ std::vector<Measures> run_batched(const std::vector<Configuration>& configuratio
       settings,
       [&](std::size_t k, const Sample& s, const LaneVectors& lanes) -> std::optional<bool> {
         if (!runs[k]->takes_lanes(s.level)) return std::nullopt;
-        runs[k]->add(s, lanes);
+        runs[k]->add(s, lanes, errors_added[k] != 0);
+        errors_added[k] = 0;
         return true;
+      },
+      // The errors of a level of a batch's runs in one pass over the nodes (ErrorAccumulator::add_lanes).
+      [&](const std::vector<std::size_t>& ks, const std::vector<Sample>& samples,
+          const std::vector<LaneVectors>& lanes) {
+        std::vector<ErrorAccumulator::Lane> level;
+        for (std::size_t m = 0; m < ks.size(); ++m)
+          if (ErrorAccumulator* errors = runs[ks[m]]->lane_errors(samples[m].level)) {
+            level.push_back({errors, &samples[m], lanes[m]});
+            errors_added[ks[m]] = 1;
+          }
+        ErrorAccumulator::add_lanes(level.data(), level.size());
       });
   return results;
 }

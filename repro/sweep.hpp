@@ -104,6 +104,11 @@ using BatchObserve = std::function<bool(std::size_t k, const Sample& sample)>;
 /// nothing if it needs the sample's vectors: then the level is copied out and given to BatchObserve.
 using BatchLaneObserve =
     std::function<std::optional<bool>(std::size_t k, const Sample& sample, const LaneVectors& lanes)>;
+/// Sees one level of the runs of a batch that are read in place, before `lane_observe` sees them one by
+/// one: the runs, their samples and their lanes (the same as lane_observe's), so that work over every
+/// lane can be done in one pass (run_batched: the error sums, ErrorAccumulator::add_lanes).
+using BatchLevelPrepare = std::function<void(const std::vector<std::size_t>& runs, const std::vector<Sample>& samples,
+                                             const std::vector<LaneVectors>& lanes)>;
 /// The sweep layer's engine: independent simulations, run k started by `start`, observed by `observe`
 /// at each of its levels 0 … steps, then `finish(k)`. Runs of the same key are grouped, costliest first
 /// (`costs`), into batches of the vector width (lib/batched_step.hpp: each lane is bitwise its run
@@ -112,10 +117,11 @@ using BatchLaneObserve =
 /// own order, has the same bytes for any thread count and any vector width. The first exception stops
 /// the sweep and is rethrown.
 /// With `lane_observe`, the runs stepped in vector lanes are observed through it first (no copy of their
-/// vectors out of the lanes per level).
+/// vectors out of the lanes per level), each level of a batch's lanes first by `prepare` if given.
 void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double>& costs, const BatchStart& start,
                      const BatchObserve& observe, const std::function<void(std::size_t k)>& finish,
-                     const SweepSettings& settings = sweep_settings(), const BatchLaneObserve& lane_observe = {});
+                     const SweepSettings& settings = sweep_settings(), const BatchLaneObserve& lane_observe = {},
+                     const BatchLevelPrepare& prepare = {});
 
 /// Independent configurations, each measured as run_configuration measures it, through the sweep layer:
 /// the runs of the same number of elements and scheme are grouped, costliest first, into batches of the
