@@ -240,7 +240,7 @@ $(REPORT): $(CLASSES) $(CLASSES_PDFS)
 .SECONDARY: $(BUILD)/bin/fig_classes
 $(CLASSES) &: $(BUILD)/bin/fig_classes | $(DATA)
 	$< --output $(DATA)/fig_classes.dat --tex $(DATA)/fig_classes.tex
-$(FIGURES)/fig_classes_%.pdf: figures/fig_classes_%.gp figures/style.gp $(DATA)/fig_classes.dat | $(FIGURES)
+$(FIGURES)/fig_classes_%.pdf: figures/fig_classes_%.gp figures/style.gp figures/fig_classes_blocks.awk $(DATA)/fig_classes.dat | $(FIGURES)
 	$(REPRODUCIBLE) gnuplot -e "data='$(DATA)/fig_classes.dat'; output='$@.tmp'" $<
 	LC_ALL=C sed -i 's|/CreationDate (D:[0-9]\{14\}Z)|/CreationDate (D:19700101000000Z)|' $@.tmp
 	mv $@.tmp $@

@@ -7,13 +7,14 @@ if (!exists("data")) data = 'output/data/fig_classes.dat'
 if (!exists("output")) output = 'output/figures/fig_classes_accuracy.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
-benchmarks = system(sprintf("awk '!/^#/ && NF == 20 {print $1}' '%s' | awk '!seen[$0]++'", data))
+# The benchmarks, the pairs and their runs at dt = h/2, one block a benchmark and pair, read in one pass
+# (figures/fig_classes_blocks.awk).
+load sprintf("< awk -f '%sfig_classes_blocks.awk' '%s'", dir, data)
 # One row of panels for up to four benchmarks, two rows beyond (the field's benchmarks, issue 23).
 rows = words(benchmarks) > 4 ? 2 : 1
 cols = (words(benchmarks) + rows - 1) / rows
 eval sprintf("set terminal %s size 16cm,%dcm", figure_terminal, rows == 2 ? 12 : 7)
 set output output
-pairs = system(sprintf("awk '!/^#/ && NF == 20 {print $2\"/\"$3}' '%s' | awk '!seen[$0]++'", data))
 scheme_of(p) = p[1:strstrt(p, "/") - 1]
 mass_of(p) = p[strstrt(p, "/") + 1:]
 dash(p) = mass_of(p) eq "mod3" ? 1 : 2
@@ -32,7 +33,7 @@ do for [b=1:words(benchmarks)] {
   set origin 0.01 + ((b - 1) % cols) * 0.98 / cols, (rows - 1 - (b - 1) / cols) * panel_height
   set size 0.98 / cols, panel_height
   set title word(benchmarks, b)
-  plot for [p=1:words(pairs)] data index 0 \
+  plot for [p=1:words(pairs)] $runs index (b - 1) * words(pairs) + p - 1 \
        using (strcol(1) eq word(benchmarks, b) && strcol(2) eq scheme_of(word(pairs, p)) && strcol(3) eq mass_of(word(pairs, p)) && $4 == 0.5 ? $20 : NaN):(g(8)) \
        with linespoints lc rgb scheme_colour(scheme_of(word(pairs, p))) dt dash(word(pairs, p)) pt 7 ps 0.4 \
        notitle

@@ -8,8 +8,9 @@ dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".
 load dir.'style.gp'
 set terminal @figure_terminal size 16cm,8.5cm
 set output output
-pairs = system(sprintf("awk '!/^#/ && NF == 20 {print $2\"/\"$3}' '%s' | awk '!seen[$0]++'", data))
-courants = system(sprintf("awk '!/^#/ && NF == 5 && $4 == 10 {print $3}' '%s' | awk '!seen[$0]++'", data))
+# The pairs, the long runs' dt/h and their energy, one block a dt/h and pair, read in one pass
+# (figures/fig_classes_blocks.awk).
+load sprintf("< awk -f '%sfig_classes_blocks.awk' '%s'", dir, data)
 scheme_of(p) = p[1:strstrt(p, "/") - 1]
 mass_of(p) = p[strstrt(p, "/") + 1:]
 dash(p) = mass_of(p) eq "mod3" ? 1 : 2
@@ -32,7 +33,7 @@ do for [k=1:n] {
   set bmargin at screen 0.14
   set title sprintf("%s = %.3g %s, %s = %s", Delta_t, word(courants, k) + 0, italic("h"), italic("N"), header("long_mesh"))
   plot 1 with lines lc rgb "#000000" dt 3 notitle, \
-       for [p=1:words(pairs)] data index 3 \
+       for [p=1:words(pairs)] $energy index (k - 1) * words(pairs) + p - 1 \
        using (strcol(1) eq scheme_of(word(pairs, p)) && strcol(2) eq mass_of(word(pairs, p)) && strcol(3) eq word(courants, k) ? $4 : NaN):5 \
        with lines lc rgb scheme_colour(scheme_of(word(pairs, p))) dt dash(word(pairs, p)) notitle
 }
