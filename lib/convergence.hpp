@@ -62,7 +62,7 @@ class ReferenceComparison {
 
  private:
   Tridiagonal mass_, stiffness_;
-  Eigen::VectorXd difference_, product_;                        // work vectors (no allocation per instant)
+  Eigen::VectorXd difference_;                                  // work vector (no allocation per instant)
   double form(const Tridiagonal& a, const Eigen::VectorXd& x);  // xᵀAx, as Tridiagonal::bilinear(x, x)
   TimeHistory u_l2_, u_h1_, v_l2_, u0_, lambda_;
 };

@@ -110,6 +110,8 @@ struct Tridiagonal {
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   /// xᵀ A y.
   double bilinear(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const;
+  /// xᵀ A x in one pass, without the product vector: the same bits as bilinear(x, x).
+  double form(const Eigen::VectorXd& x) const;
   /// 1ᵀ A 1, the sum of all entries.
   double sum() const;
   /// The leading n×n block (used to drop the clamped node N).
