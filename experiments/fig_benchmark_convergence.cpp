@@ -65,7 +65,6 @@
 #include "parallel.hpp"
 #include "period_law.hpp"
 #include "report_values.hpp"
-#include "sweep.hpp"
 #include "table.hpp"
 #include "two_bodies.hpp"
 
@@ -174,33 +173,16 @@ int main(int argc, char** argv) {
     for (const double r : ratios)
       for (const std::string m : {"mod3", "mod1", "mod2", "spread:199"}) graded.push_back({r, m});
     std::vector<mrm::repro::Measures> measures(configurations.size());
-    const auto start = std::chrono::steady_clock::now();
-    // The one-body runs through the sweep layer (repro/sweep.hpp: runs of one mesh size and scheme in
-    // vector lanes, each reference once); the two-body runs (lib/two_bodies.hpp) and the graded meshes'
-    // phase runs, which it does not take, one by one on the same threads. Each run's measures are its
-    // own, bit for bit, whichever way it ran.
-    std::vector<std::size_t> one_body, alone;
-    for (std::size_t k = 0; k < configurations.size(); ++k)
-      (mrm::repro::is_two_body_configuration(configurations[k]) ? alone : one_body).push_back(k);
-    for (std::size_t g = 0; g < graded.size(); ++g) alone.push_back(configurations.size() + g);
-    {
-      std::vector<mrm::repro::Configuration> batched;
-      for (std::size_t k : one_body) batched.push_back(configurations[k]);
-      mrm::repro::SweepSettings settings = mrm::repro::sweep_settings();
-      settings.threads = static_cast<unsigned>(threads);
-      std::vector<mrm::repro::Measures> m = mrm::repro::run_batched(batched, settings);
-      for (std::size_t j = 0; j < one_body.size(); ++j) measures[one_body[j]] = std::move(m[j]);
-    }
-    const auto cost = [&](std::size_t j) {
-      const std::size_t k = alone[j];
+    const std::size_t total = configurations.size() + graded.size();
+    const auto cost = [&](std::size_t k) {
       if (k < configurations.size())
         return static_cast<double>(configurations[k].elements) * configurations[k].final_time /
                configurations[k].step();
       const mrm::UniformMesh mesh = mrm::graded_mesh(1.0, graded_elements, graded[k - configurations.size()].ratio);
       return graded_elements * 3 * graded_periods / (0.5 * mesh.h(0));
     };
-    mrm::repro::run_in_parallel(mrm::repro::costliest_first(alone.size(), cost), threads, [&](std::size_t j) {
-      const std::size_t k = alone[j];
+    const auto start = std::chrono::steady_clock::now();
+    mrm::repro::run_in_parallel(mrm::repro::costliest_first(total, cost), threads, [&](std::size_t k) {
       if (k < configurations.size()) {
         measures[k] = mrm::repro::run_configuration(configurations[k]);
         return;
@@ -210,7 +192,6 @@ int main(int argc, char** argv) {
       g.phase = mrm::measure_benchmark_phase(mesh, mrm::repro::mass_redistribution_from_spec(g.mass, mesh), 0.5,
                                              graded_periods);
     });
-    const std::size_t total = configurations.size() + graded.size();
     std::cerr << "fig_benchmark_convergence: " << total << " runs in "
               << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
 
