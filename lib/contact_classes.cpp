@@ -1067,6 +1067,26 @@ namespace mrm {
 // ---------------------------------------------------------------------------------------------------
 // Doctests of "The load and the gap".
 
+namespace {
+
+// The doctests' pressed bar: the paper's bar pressed toward the obstacle by f = −1 (gravity-paper's kind)
+// across a gap g₀ = 0.05, N = 30, Δt = h/2 (impacts, a persistent contact phase and releases), with the
+// P1 load vector F of f (constant in time: Fⁿ = Fⁿ⁺¹ = F).
+struct PressedBar {
+  UniformMesh mesh{1.0, 30};
+  double dt = 0.5 * mesh.h(), gap = 0.05;
+  Problem problem = benchmark_problem();
+  Eigen::VectorXd f;
+  PressedBar() {
+    problem.load = [](double, double) { return -1.0; };
+    problem.gap = gap;
+    p1_load(
+        mesh, [](double) { return -1.0; }, f);
+  }
+};
+
+}  // namespace
+
 TEST_CASE(
     "a constant load without contact: the contact classes' free fall (exact for Newmark, (theta - 1/2) g dt t off for "
     "Moreau-Jean)") {
@@ -1123,19 +1143,15 @@ TEST_CASE(
 
 TEST_CASE(
     "the energy identity with the load's work: (EF) for the penalty and Nitsche, (MJ) + F_theta.dU for Moreau-Jean") {
-  // The paper's bar pressed toward the obstacle by f = −1 (gravity-paper's kind) across a gap g₀ = 0.05:
-  // impacts, a persistent contact phase and releases. At every step, E + Φ changes by the load's work
-  // W = ½(Fⁿ + Fⁿ⁺¹)·ΔU plus the kink's defect ∓½(γ₀/h)|ab| (penalty, a = u₀ⁿ + g₀, b = u₀ⁿ⁺¹ + g₀ of
-  // opposite signs); Nitsche θ = 1 on steps without a status change by W alone; Moreau–Jean by (MJ) plus
-  // F_θ·ΔU. The load is constant in time: Fⁿ = Fⁿ⁺¹ = F. Round-off: a few ε E per step.
-  const UniformMesh mesh(1.0, 30);
-  const double dt = 0.5 * mesh.h(), gap = 0.05, k = 1.0 / mesh.h();
-  Problem pressed = benchmark_problem();
-  pressed.load = [](double, double) { return -1.0; };
-  pressed.gap = gap;
-  Eigen::VectorXd f;
-  p1_load(
-      mesh, [](double) { return -1.0; }, f);
+  // The pressed bar (PressedBar). At every step, E + Φ changes by the load's work W = ½(Fⁿ + Fⁿ⁺¹)·ΔU
+  // plus the kink's defect ∓½(γ₀/h)|ab| (penalty, a = u₀ⁿ + g₀, b = u₀ⁿ⁺¹ + g₀ of opposite signs);
+  // Nitsche θ = 1 on steps without a status change by W alone; Moreau–Jean by (MJ) plus F_θ·ΔU.
+  // Round-off: a few ε E per step.
+  const PressedBar bar;
+  const UniformMesh& mesh = bar.mesh;
+  const Problem& pressed = bar.problem;
+  const Eigen::VectorXd& f = bar.f;
+  const double dt = bar.dt, gap = bar.gap, k = 1.0 / mesh.h();
   for (const MassRedistribution& mass : {consistent_mass(), mod3()}) {
     BarSimulation run(pressed, mesh, mass, class_parameters(Scheme::penalty), dt);
     double worst = 0;
@@ -1599,19 +1615,15 @@ TEST_CASE("dke: (DKE) at every step, the energy never grows, no penetration at t
 }
 
 TEST_CASE("dke with a load: (DKE) with the load's work") {
-  // The pressed bar of the (EF) doctest (f = −1, g₀ = 0.05: impacts, a persistent contact phase, releases),
-  // the consistent mass: Eⁿ⁺¹ − Eⁿ = W_F − (the losses of (DKE)), W_F = F·ΔU for the constant load.
-  const UniformMesh mesh(1.0, 30);
-  const double dt = 0.5 * mesh.h(), gap = 0.05;
-  Problem pressed = benchmark_problem();
-  pressed.load = [](double, double) { return -1.0; };
-  pressed.gap = gap;
-  Eigen::VectorXd f;
-  p1_load(
-      mesh, [](double) { return -1.0; }, f);
+  // The pressed bar (PressedBar: impacts, a persistent contact phase, releases), the consistent mass:
+  // Eⁿ⁺¹ − Eⁿ = W_F − (the losses of (DKE)), W_F = F·ΔU for the constant load.
+  const PressedBar bar;
+  const UniformMesh& mesh = bar.mesh;
+  const Eigen::VectorXd& f = bar.f;
+  const double dt = bar.dt, gap = bar.gap;
   const Eigen::MatrixXd md = modified_mass(mesh, consistent_mass()).to_sparse().toDense();
   const Eigen::VectorXd column = md.llt().solve(Eigen::VectorXd::Unit(mesh.unknowns(), 0));
-  BarSimulation run(pressed, mesh, consistent_mass(), class_parameters(Scheme::dke), dt);
+  BarSimulation run(bar.problem, mesh, consistent_mass(), class_parameters(Scheme::dke), dt);
   double worst = 0, worst_penetration = 0;
   int contact_levels = 0;
   for (Index n = 0; n < steps_to_reach(9.0, dt); ++n) {

@@ -398,21 +398,33 @@ TEST_CASE("tridiagonal operations refuse operands of the wrong size and entries 
   CHECK_THROWS_AS(a(-1, 0), std::invalid_argument);
 }
 
+namespace {
+
+// A tridiagonal matrix and a vector of size n whose entries all differ (so that a sum taken in another
+// order, or a term taken twice, changes the bits).
+void distinct_entries(Index n, Tridiagonal& a, Eigen::VectorXd& x) {
+  a = Tridiagonal(n);
+  x.resize(n);
+  for (Index i = 0; i < n; ++i) {
+    const double k = static_cast<double>(i + 1);
+    a.diag[i] = 1.0 / (3 * k) + 0.7;
+    if (i > 0) a.lower[i] = -1.0 / (7 * k) + 0.1;
+    if (i + 1 < n) a.upper[i] = 1.0 / (11 * k) - 0.3;
+    x[i] = std::sin(1.3 * k) + 0.01 / k;
+  }
+}
+
+}  // namespace
+
 // The product row by row: (A_ii x_i + A_{i,i−1} x_{i−1}) + A_{i,i+1} x_{i+1}, the terms that exist, in
 // this order (the order the measures' bits depend on: convergence.cpp's ReferenceComparison), bit for
 // bit, on matrices whose every entry differs, for sizes 1 to 9 (ends, and interiors of odd and even
 // length); multiply into a kept vector gives the same bits as operator*, and refuses to overwrite x.
 TEST_CASE("the tridiagonal product sums each row in the written order, bit for bit") {
   for (Index n = 1; n <= 9; ++n) {
-    Tridiagonal a(n);
-    Eigen::VectorXd x(n);
-    for (Index i = 0; i < n; ++i) {
-      const double k = static_cast<double>(i + 1);
-      a.diag[i] = 1.0 / (3 * k) + 0.7;
-      if (i > 0) a.lower[i] = -1.0 / (7 * k) + 0.1;
-      if (i + 1 < n) a.upper[i] = 1.0 / (11 * k) - 0.3;
-      x[i] = std::sin(1.3 * k) + 0.01 / k;
-    }
+    Tridiagonal a;
+    Eigen::VectorXd x;
+    distinct_entries(n, a, x);
     const Eigen::VectorXd y = a * x;
     Eigen::VectorXd kept = Eigen::VectorXd::Constant(n, 5.0);
     a.multiply(x, kept);
@@ -433,15 +445,9 @@ TEST_CASE("the tridiagonal product sums each row in the written order, bit for b
 // partial sums, the n < 4 cases and the rows at both ends), entries that all differ.
 TEST_CASE("the one-pass quadratic form has the bits of bilinear(x, x)") {
   for (Index n = 1; n <= 40; ++n) {
-    Tridiagonal a(n);
-    Eigen::VectorXd x(n);
-    for (Index i = 0; i < n; ++i) {
-      const double k = static_cast<double>(i + 1);
-      a.diag[i] = 1.0 / (3 * k) + 0.7;
-      if (i > 0) a.lower[i] = -1.0 / (7 * k) + 0.1;
-      if (i + 1 < n) a.upper[i] = 1.0 / (11 * k) - 0.3;
-      x[i] = std::sin(1.3 * k) + 0.01 / k;
-    }
+    Tridiagonal a;
+    Eigen::VectorXd x;
+    distinct_entries(n, a, x);
     const double expected = a.bilinear(x, x), got = a.form(x);
     CAPTURE(n);
     CHECK(std::memcmp(&expected, &got, sizeof got) == 0);
