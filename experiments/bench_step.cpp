@@ -25,7 +25,7 @@
 // configuration advanced together in the W lanes of each vector target the machine has (lib/batched_step.cpp:
 // AVX-512, AVX2, SSE4, ..., chosen at run time), beside the scalar step, the bare solve (plain, two-chain,
 // and two right-hand sides at a time, "bare_x2"), the bandwidth measured over the batched step's working
-// set and the limit its memory traffic sets (104 bytes per node and run; flops are not counted); its
+// set and the limit its memory traffic sets (64 to 104 bytes per node and run, below; flops are not counted); its
 // last lines give the widest target and batched_speedup, scalar over batched at the largest N.
 // Then the ratio of each scheme (fast and reference steps) and of a run with its error measures (cn+errors:
 // the budget of issue 11 is 1.5) to the bare solve, the log-log slope of the cost per step against N
@@ -388,13 +388,17 @@ struct BatchedTimings {
   Timing bare_x2;                  // ns per node per solve
   double bandwidth = 0;            // bytes per ns streamed over the batched step's working set
   double limit = 0;                // ns per node per step per run that its memory traffic needs
+  double plateau = 0;              // the fraction of the rows whose factors stay in registers
+  double bytes = 0;                // bytes per node, step and run of the batched step's traffic
 };
 
 // The batched step's memory traffic per node, step and run (lib/batched_step.cpp): the sweep down reads
-// U, W', ε, εε and writes y; the sweep up reads y, 1/d, c, cc, U, W' and writes Uⁿ⁺¹ and W': 13 doubles,
-// 104 bytes. Its arithmetic, about 30 flops per node and run, is not the limit of a memory-resident
-// sweep (not measured here: the limit below counts the bytes only).
-constexpr double batched_bytes_per_node = 13 * 8;
+// U, W' and writes y; the sweep up reads y, U, W' and writes Uⁿ⁺¹ and W': 8 doubles, 64 bytes. Off the
+// plateau of the factors (BatchedSimulation::plateau_rows: the interior rows whose LU factors repeat, held
+// in registers) the sweeps also read ε, εε (down) and 1/d, c, cc (up): 40 bytes more. Its arithmetic,
+// about 30 flops per node and run, is not the limit of a memory-resident sweep (not measured here: the
+// limit below counts the bytes only).
+constexpr double batched_state_bytes = 8 * 8, batched_factor_bytes = 5 * 8;
 
 BatchedTimings time_batched(Index elements, int repetitions, double target) {
   BatchedTimings result;
@@ -408,6 +412,7 @@ BatchedTimings time_batched(Index elements, int repetitions, double target) {
       runs.emplace_back(mrm::benchmark_problem(), mesh, mrm::mod3(), parameters_of(mrm::Scheme::crank_nicolson), dt);
     mrm::BatchedSimulation batch(std::move(runs));
     if (batch.batched_runs() != t.lanes) throw std::runtime_error("the batched step did not batch its runs");
+    if (result.per_target.empty()) result.plateau = static_cast<double>(batch.plateau_rows()) / static_cast<double>(n);
     Timing timing = measure(
         [&](long s) {
           for (long i = 0; i < s; ++i) batch.step();
@@ -428,7 +433,7 @@ BatchedTimings time_batched(Index elements, int repetitions, double target) {
         2 * n, repetitions, target);
   }
   {
-    // The bandwidth over a working set the size of a group's (9 interleaved arrays of n·W doubles, W = 8
+    // The bandwidth over a working set the size of a group's (up to 9 interleaved arrays of n·W doubles, W = 8
     // for the widest case): c = a + s b over three arrays of a third of it each, 24 bytes per element.
     const std::size_t count = std::max<std::size_t>(3 * static_cast<std::size_t>(n) * 8 / 3, 64);
     std::vector<double> a(count, 1.0), b(count, 0.5), c(count, 0.0);
@@ -442,7 +447,8 @@ BatchedTimings time_batched(Index elements, int repetitions, double target) {
         },
         static_cast<Index>(count), repetitions, target);
     result.bandwidth = 24 / stream.median;  // bytes per ns
-    result.limit = batched_bytes_per_node / result.bandwidth;
+    result.bytes = batched_state_bytes + (1 - result.plateau) * batched_factor_bytes;
+    result.limit = result.bytes / result.bandwidth;
   }
   return result;
 }
@@ -701,7 +707,8 @@ int main(int argc, char** argv) {
       std::cout << "# batched: ns per node per step per run (median of " << repetitions << " batches)\n";
       std::vector<std::string> headers{"N", "scalar"};
       for (const mrm::BatchTarget& t : targets) headers.push_back(t.name + "x" + std::to_string(t.lanes));
-      for (const char* h : {"bare", "bare2", "bare_x2", "GB/s", "limit", "scalar/widest", "widest/limit"})
+      for (const char* h : {"bare", "bare2", "bare_x2", "plateau", "B/node", "GB/s", "limit", "scalar/widest",
+                            "widest/limit"})
         headers.push_back(h);
       mrm::repro::Table screen(headers);
       for (std::size_t k = 0; k < sizes.size(); ++k) {
@@ -712,6 +719,8 @@ int main(int argc, char** argv) {
         cells.push_back(fixed(t[v_bare].median, 2));
         cells.push_back(fixed(t[v_bare2].median, 2));
         cells.push_back(fixed(b.bare_x2.median, 2));
+        cells.push_back(fixed(b.plateau, 4));
+        cells.push_back(fixed(b.bytes, 1));
         cells.push_back(fixed(b.bandwidth, 1));
         cells.push_back(fixed(b.limit, 3));
         cells.push_back(fixed(t[v_cn].median / b.per_target.front().median, 2));
@@ -722,7 +731,7 @@ int main(int argc, char** argv) {
     }
     // The last lines: the widest target, the bytes of the limit, and the speedup at the largest N.
     std::cout << "batched_target = " << targets.front().name << " (" << targets.front().lanes << " lanes)\n"
-              << "batched_bytes_per_node = " << fixed(batched_bytes_per_node, 0) << "\n"
+              << "batched_bytes_per_node = " << fixed(batched.back().bytes, 1) << "\n"
               << "batched_speedup = "
               << fixed(timings.back()[v_cn].median / batched.back().per_target.front().median, 2) << '\n';
 
@@ -896,6 +905,8 @@ int main(int argc, char** argv) {
         mrm::tex_define(out, "bench:batched:ns", fixed(b.per_target.front().median, 3));
         mrm::tex_define(out, "bench:batched:speedup", fixed((*t)[v_cn].median / b.per_target.front().median, 2));
         mrm::tex_define(out, "bench:batched:limit", fixed(b.limit, 3));
+        mrm::tex_define(out, "bench:batched:bytes", fixed(b.bytes, 1));
+        mrm::tex_define(out, "bench:batched:plateau-percent", fixed(100 * b.plateau, 2));
         mrm::tex_define(out, "bench:batched:bandwidth", fixed(b.bandwidth, 1));
         mrm::tex_define(out, "bench:bare-x2:ns", fixed(b.bare_x2.median, 2));
       }

@@ -62,6 +62,9 @@ class BatchedSimulation {
   Sample sample(std::size_t k, LaneVectors& lanes) const;
   /// The number of runs advanced in vector lanes (the others are stepped alone).
   std::size_t batched_runs() const;
+  /// The interior rows whose factors the sweeps hold in registers (the plateau, batched_step.cpp), summed
+  /// over the groups.
+  std::size_t plateau_rows() const;
   /// The lanes per group (the target's width in doubles).
   std::size_t lanes() const { return lanes_; }
 
@@ -69,6 +72,7 @@ class BatchedSimulation {
   struct Group;
   static void load_lane(Group& g, std::size_t j, const BarSimulation& run);   // run's vectors → lane j
   static void store_lane(const Group& g, std::size_t j, BarSimulation& run);  // lane j → run's vectors
+  static void find_plateau(Group& g);  // the interior rows whose factors repeat (batched_step.cpp)
   std::vector<BarSimulation> runs_;
   std::vector<std::unique_ptr<Group>> groups_;
   std::vector<std::size_t> alone_;  // the runs stepped alone
