@@ -707,8 +707,8 @@ int main(int argc, char** argv) {
       std::cout << "# batched: ns per node per step per run (median of " << repetitions << " batches)\n";
       std::vector<std::string> headers{"N", "scalar"};
       for (const mrm::BatchTarget& t : targets) headers.push_back(t.name + "x" + std::to_string(t.lanes));
-      for (const char* h : {"bare", "bare2", "bare_x2", "plateau", "B/node", "GB/s", "limit", "scalar/widest",
-                            "widest/limit"})
+      for (const char* h :
+           {"bare", "bare2", "bare_x2", "plateau", "B/node", "GB/s", "limit", "scalar/widest", "widest/limit"})
         headers.push_back(h);
       mrm::repro::Table screen(headers);
       for (std::size_t k = 0; k < sizes.size(); ++k) {

@@ -36,7 +36,7 @@ namespace mrm::batched {
 struct Kernel {
   std::size_t n = 0, lanes = 0, head = 0;
   std::size_t flat_begin = 0, flat_end = 0;  // rows [flat_begin, flat_end) of the interior: constant factors
-  bool three_level = false, keeps = false;  // keeps: a lane may be left untouched (CN-switch)
+  bool three_level = false, keeps = false;   // keeps: a lane may be left untouched (CN-switch)
   double *u = nullptr, *y = nullptr, *w = nullptr, *x = nullptr;
   const double *elimination = nullptr, *elimination_pair = nullptr, *inverse_pivot = nullptr, *upward = nullptr,
                *upward_pair = nullptr;
