@@ -80,9 +80,12 @@ deps:
 	tools/deps.sh
 
 # Configure (always: it is cheap and applies WERROR/SANITIZE) and build every program into
-# $(BUILD)/bin. MAKEFLAGS is dropped so that our command line does not leak into CMake's makefiles.
+# $(BUILD)/bin. MAKEFLAGS is dropped so that our command line does not leak into CMake's makefiles. A new
+# build directory uses Ninja (tools/deps.sh installs it), whose check of a build with nothing to do takes
+# a tenth of a second where CMake's makefiles take seconds; one made before keeps its generator (CMake
+# cannot change it in place).
 build: deps
-	cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
+	cmake -S . -B $(BUILD) $$(test -f $(BUILD)/CMakeCache.txt || echo -G Ninja) $(CMAKE_FLAGS)
 	env -u MAKEFLAGS -u MFLAGS cmake --build $(BUILD) -j$(JOBS)
 
 # The programs come from `build`; results depending on one are remade only if it was relinked.

@@ -15,7 +15,7 @@ set -euo pipefail
 
 # The packages, with what needs them.
 packages=(
-  g++ make cmake                   # the build
+  g++ make cmake ninja-build       # the build (Ninja: a build with nothing to do takes no time)
   libeigen3-dev libgsl-dev         # the library
   doctest-dev                      # the embedded unit tests
   libcli11-dev                     # the command-line options (CLI11)
