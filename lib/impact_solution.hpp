@@ -63,7 +63,11 @@ class ImpactSolution {
   const ImpactConfiguration& configuration() const { return config_; }  ///< the chain
   double displacement(double x, double t) const;                        ///< u(x, t) (the left segment's at a junction)
   double velocity(double x, double t) const;                            ///< u_t(x, t)
-  double stress(double x, double t) const;                              ///< E u_x(x, t)
+  /// u(x_k, t) and u_t(x_k, t) at `count` points (u or v may be null): the numbers of displacement and
+  /// velocity, point by point, with the search of each wave's piece started from the previous point's
+  /// (the same piece, found in a step or two for sorted points instead of a bisection).
+  void at_points(double t, const double* x, long count, double* u, double* v) const;
+  double stress(double x, double t) const;  ///< E u_x(x, t)
 
   /// The contacts: index 0 is the obstacle (if any), then the contact junctions from left to right.
   std::size_t contact_count() const { return contacts_.size(); }
