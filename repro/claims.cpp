@@ -406,7 +406,7 @@ struct StabilityObserver {
     }
     const bool finite = std::isfinite(s.energy) && std::isfinite(s.multiplier) && s.displacement->allFinite() &&
                         s.velocity->allFinite();
-    const double strain = finite ? 0.5 * stiffness.bilinear(*s.displacement, *s.displacement) : 0.0;
+    const double strain = finite ? 0.5 * stiffness.form(*s.displacement) : 0.0;  // bilinear(U, U)'s bits
     if (finite) {
       r.e_max = std::max(r.e_max, s.energy);
       r.e_min = std::min(r.e_min, s.energy);
