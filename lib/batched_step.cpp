@@ -197,18 +197,29 @@ void SweepUpT(const Kernel& k) {
   if (head < n - 1) {
     const RowV r = LoadRow(k.interior, W);
     const V ka = v_prev, pa = three_level ? p_prev : un_prev, qa = q_prev;
-    // The interior rows, top down, the plateau's factors in registers (as in SweepDown).
+    // The interior rows, top down, with the plateau [a, b) as in SweepDown. Two levels: its factors held
+    // in registers. Three levels keep three more forms' sums live, and three copies of the emission
+    // would not all be inlined (measured: twice the time): one loop, the plateau's factors read from
+    // row a (L1-resident) rather than streamed.
     const std::ptrdiff_t a = static_cast<std::ptrdiff_t>(k.flat_begin), b = static_cast<std::ptrdiff_t>(k.flat_end);
-    std::ptrdiff_t i = head;
-    for (; i < std::min(a, n - 1); ++i) emit_up(r, i, toeplitz_row);
-    if (a < b) {
-      const V inverse_pivot = at(k.inverse_pivot, a), upward = at(k.upward, a), upward_pair = at(k.upward_pair, a);
-      for (; i < b; ++i) {
-        const V dd = solve_up_by(i, inverse_pivot, upward, upward_pair);
+    if constexpr (three_level) {
+      for (std::ptrdiff_t i = head; i < n - 1; ++i) {
+        const std::ptrdiff_t f = i >= a && i < b ? a : i;
+        const V dd = solve_up_by(i, at(k.inverse_pivot, f), at(k.upward, f), at(k.upward_pair, f));
         emit(r, i, dd, at(u, i) + dd, toeplitz_row);
       }
+    } else {
+      std::ptrdiff_t i = head;
+      for (; i < std::min(a, n - 1); ++i) emit_up(r, i, toeplitz_row);
+      if (a < b) {
+        const V inverse_pivot = at(k.inverse_pivot, a), upward = at(k.upward, a), upward_pair = at(k.upward_pair, a);
+        for (; i < b; ++i) {
+          const V dd = solve_up_by(i, inverse_pivot, upward, upward_pair);
+          emit(r, i, dd, at(u, i) + dd, toeplitz_row);
+        }
+      }
+      for (; i < n - 1; ++i) emit_up(r, i, toeplitz_row);
     }
-    for (; i < n - 1; ++i) emit_up(r, i, toeplitz_row);
     const V kb = v_prev, pb = three_level ? p_prev : un_prev, qb = q_prev;
     const V half = hn::Set(d, 0.5);
     const auto form = [&](V dg, V l2, V sum_d, V sum_q, V za, V zb) {
