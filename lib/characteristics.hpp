@@ -131,12 +131,20 @@ class TabulatedSolution : public ReferenceSolution {
   void displacement_at_points(double t, const double* x, long count, double* u) const override;
   void velocity_at_points(double t, const double* x, long count, double* v) const override;
   const CharacteristicSolution& solution() const { return solution_; }  ///< the solution tabulated
+  /// Whether *_at_points(t, x, count, ·) take the straight loop of table look-ups (points of a uniform
+  /// mesh on the lattice at a level on it, characteristics.cpp) rather than the per-point path; both
+  /// give the same bits.
+  bool takes_lattice_run(double t, const double* x, long count) const;
 
  private:
   // The lattice index of a point (−1 if it is not on the lattice to 1e-9 δ).
   bool on_lattice(double x, long& index) const;
   template <bool derivative>
   void at_points(double t, const double* x, long count, double* out) const;
+  // The straight loop for the points x_i on the lattice at j₀ + i s at level n; false (out unspecified)
+  // if a point is not where that predicts.
+  template <bool derivative>
+  bool lattice_run(long n, const double* x, long count, double* out) const;
 
   CharacteristicSolution solution_;
   double spacing_, inverse_spacing_;
