@@ -64,6 +64,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <mutex>
 #include <tuple>
 
 #include <doctest/doctest.h>
@@ -439,8 +440,26 @@ void CharacteristicSolution::velocity_at_points(double t, const double* x, long 
 // lattice x = jδ, t = nδ the arguments x ∓ t are lattice points (j ∓ n)δ, so four tables over [−T, L] and
 // [0, L + T], filled once, give every value by two look-ups.
 
+// The sets of points whose lattice indices were checked: each set's bits, and j₀ and s if they lie on the
+// lattice at j₀ + i s (a set that does not is remembered too). A run asks at the same nodes at every level,
+// so the check is made once per mesh, and a later set is compared with the remembered ones by memcmp. At
+// most 16 sets are remembered (a reference serves the runs of one mesh); beyond, a set is checked at
+// every call.
+struct TabulatedSolution::PointSets {
+  struct Set {
+    std::vector<double> points;
+    bool on_lattice;
+    long first, step;
+  };
+  std::mutex mutex;
+  std::vector<Set> sets;
+};
+
 TabulatedSolution::TabulatedSolution(CharacteristicSolution solution, double spacing)
-    : solution_(std::move(solution)), spacing_(spacing), inverse_spacing_(1.0 / spacing) {
+    : solution_(std::move(solution)),
+      spacing_(spacing),
+      inverse_spacing_(1.0 / spacing),
+      point_sets_(std::make_shared<PointSets>()) {
   if (!(std::isfinite(spacing) && spacing > 0))
     throw std::invalid_argument("tabulated solution: the spacing must be positive and finite");
   const double length = solution_.length(), horizon = solution_.horizon();
@@ -476,33 +495,54 @@ bool TabulatedSolution::on_lattice(double x, long& index) const {
 // predicted from the first two points and checked as on_lattice checks them, point by point, with the
 // same operations and no conversion to an integer: on_lattice takes the index j = ⌊x/δ + ½⌋ (a
 // truncation of a positive double) and accepts |x − jδ| ≤ 10⁻⁹ δ; ⌊z⌋ = j for the integer j (exact in
-// a double below 2⁵³) iff j ≤ z < j + 1, so the test below accepts exactly the points on_lattice maps
-// to the predicted j, and the per-point path's conditions x ∈ [0, L] and the table bounds hold at both
-// ends of the affine j, hence everywhere. Every table entry is read, the check folded into one flag;
-// if any point fails, nothing is kept and the per-point path below evaluates all of them. The corner
-// x = 0, t = 0 is taken from the solution as there. So both paths give the same bits at every point
-// (the doctest below compares them), the straight loop without a branch or a conversion per point.
-template <bool derivative>
-bool TabulatedSolution::lattice_run(long n, const double* x, long count, double* out) const {
+// a double below 2⁵³) iff j ≤ z < j + 1, so the check accepts exactly the points that on_lattice maps to
+// the predicted j and that lie in [0, L], as the per-point path requires. The check does not depend on
+// the level: it is made once per set of points (lattice_points). The table bounds hold at both ends of
+// the affine j at level n, hence everywhere. If the points are not on the lattice so, the per-point path
+// below evaluates all of them. The corner x = 0, t = 0 is taken from the solution as there. So both
+// paths give the same bits at every point (the doctest below compares them).
+bool TabulatedSolution::lattice_points(const double* x, long count, long& first, long& step) const {
+  const std::size_t size = static_cast<std::size_t>(count);
+  PointSets& known = *point_sets_;
+  {
+    std::lock_guard<std::mutex> lock(known.mutex);
+    for (const PointSets::Set& set : known.sets)
+      if (set.points.size() == size && std::memcmp(set.points.data(), x, size * sizeof(double)) == 0) {
+        first = set.first, step = set.step;
+        return set.on_lattice;
+      }
+  }
   const double length = solution_.length();
   long j0 = 0, j1 = 0;
-  if (count < 2 || !(x[0] >= 0.0 && x[0] <= length && x[1] >= 0.0 && x[1] <= length) || !on_lattice(x[0], j0) ||
-      !on_lattice(x[1], j1))
-    return false;
-  const long s = j1 - j0, j_last = j0 + (count - 1) * s;
+  bool lattice = count >= 2 && x[0] >= 0.0 && x[0] <= length && x[1] >= 0.0 && x[1] <= length &&
+                 on_lattice(x[0], j0) && on_lattice(x[1], j1);
+  if (lattice) {
+    const double j_first = static_cast<double>(j0), j_step = static_cast<double>(j1 - j0), tolerance = 1e-9 * spacing_;
+    for (long i = 0; i < count && lattice; ++i) {
+      const double xi = x[i], j = j_first + static_cast<double>(i) * j_step, z = xi * inverse_spacing_ + 0.5;
+      lattice = xi >= 0.0 && xi <= length && z >= j && z < j + 1.0 && std::abs(xi - j * spacing_) <= tolerance;
+    }
+  }
+  first = j0, step = j1 - j0;
+  std::lock_guard<std::mutex> lock(known.mutex);
+  if (known.sets.size() < 16) known.sets.push_back({std::vector<double>(x, x + count), lattice, first, step});
+  return lattice;
+}
+
+template <bool derivative>
+bool TabulatedSolution::lattice_run(long n, const double* x, long count, double* out) const {
+  long j0 = 0, s = 0;
+  if (count < 2 || !lattice_points(x, count, j0, s)) return false;
+  const long j_last = j0 + (count - 1) * s;
   const long right_size = static_cast<long>(right_value_.size()), left_size = static_cast<long>(left_value_.size());
   for (const long j : {j0, j_last})
     if (j < 0 || j - n - right_first_ < 0 || j - n - right_first_ >= right_size || j + n >= left_size) return false;
   const double* right = (derivative ? right_slope_.data() : right_value_.data()) + (j0 - n - right_first_);
   const double* left = (derivative ? left_slope_.data() : left_value_.data()) + (j0 + n);
-  const double first = static_cast<double>(j0), step = static_cast<double>(s), tolerance = 1e-9 * spacing_;
-  bool off = false;
-  for (long i = 0; i < count; ++i) {
-    const double xi = x[i], j = first + static_cast<double>(i) * step, z = xi * inverse_spacing_ + 0.5;
-    off |= !((xi >= 0.0) & (xi <= length) & (z >= j) & (z < j + 1.0) & (std::abs(xi - j * spacing_) <= tolerance));
-    out[i] = derivative ? -right[i * s] + left[i * s] : right[i * s] + left[i * s];
-  }
-  if (off) return false;
+  if (s == 1)  // δ = h: contiguous entries
+    for (long i = 0; i < count; ++i) out[i] = derivative ? -right[i] + left[i] : right[i] + left[i];
+  else
+    for (long i = 0; i < count; ++i) out[i] = derivative ? -right[i * s] + left[i * s] : right[i * s] + left[i * s];
   if (n == 0)  // the corner x = 0, t = 0: j = 0
     for (long i = 0; i < count; ++i)
       if (j0 + i * s == 0) out[i] = derivative ? solution_.velocity(x[i], 0.0) : solution_.displacement(x[i], 0.0);
