@@ -446,13 +446,15 @@ void CharacteristicSolution::velocity_at_points(double t, const double* x, long 
 // most 16 sets are remembered (a reference serves the runs of one mesh); beyond, a set is checked at
 // every call.
 struct TabulatedSolution::PointSets {
+  /// One set of points checked.
   struct Set {
-    std::vector<double> points;
-    bool on_lattice;
-    long first, step;
+    std::vector<double> points;  ///< the points x_0 … x_{count−1}, as asked
+    bool on_lattice;             ///< whether x_i lies on the lattice at j₀ + i s for every i
+    long first;                  ///< j₀
+    long step;                   ///< s
   };
-  std::mutex mutex;
-  std::vector<Set> sets;
+  std::mutex mutex;       ///< guards `sets` (a reference is shared by the runs on several threads)
+  std::vector<Set> sets;  ///< the sets checked so far, at most 16
 };
 
 TabulatedSolution::TabulatedSolution(CharacteristicSolution solution, double spacing)
@@ -514,8 +516,8 @@ bool TabulatedSolution::lattice_points(const double* x, long count, long& first,
   }
   const double length = solution_.length();
   long j0 = 0, j1 = 0;
-  bool lattice = count >= 2 && x[0] >= 0.0 && x[0] <= length && x[1] >= 0.0 && x[1] <= length &&
-                 on_lattice(x[0], j0) && on_lattice(x[1], j1);
+  bool lattice = count >= 2 && x[0] >= 0.0 && x[0] <= length && x[1] >= 0.0 && x[1] <= length && on_lattice(x[0], j0) &&
+                 on_lattice(x[1], j1);
   if (lattice) {
     const double j_first = static_cast<double>(j0), j_step = static_cast<double>(j1 - j0), tolerance = 1e-9 * spacing_;
     for (long i = 0; i < count && lattice; ++i) {

@@ -456,7 +456,8 @@ void ErrorAccumulator::add_sums(const Sample& sample, double u_first, const Sums
   u_h1_.add(t, error_form(su, s00, s, sl), exact_form(su, s00, s, sl));
   u0_.add(t, std::pow(u_first - u0, 2), u0 * u0);
   v_l2_.add(sample.velocity_time, error_form(sv, m00, m, ml), exact_form(sv, m00, m, ml));
-  if (sample.has_multiplier) lambda_.add(sample.multiplier_time, std::pow(sample.multiplier - lambda, 2), lambda * lambda);
+  if (sample.has_multiplier)
+    lambda_.add(sample.multiplier_time, std::pow(sample.multiplier - lambda, 2), lambda * lambda);
 }
 
 // One level of a batch's runs. Runs on the same mesh whose sample instants give the same affine runs of
@@ -529,9 +530,9 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
         const Lane& other = level[b];
         const ErrorAccumulator& e = *other.errors;
         if (!done[b] && evaluates(other) && e.exact_ == lead.exact_ && other.lanes.stride == W &&
-            other.lanes.displacement - other.lanes.lane == u_base && other.lanes.velocity - other.lanes.lane == v_base &&
-            same_bits(other.sample->time, at.time) && same_bits(other.sample->velocity_time, at.velocity_time) &&
-            e.mesh_.unknowns() == n &&
+            other.lanes.displacement - other.lanes.lane == u_base &&
+            other.lanes.velocity - other.lanes.lane == v_base && same_bits(other.sample->time, at.time) &&
+            same_bits(other.sample->velocity_time, at.velocity_time) && e.mesh_.unknowns() == n &&
             std::memcmp(e.nodes_.data(), lead.nodes_.data(), static_cast<std::size_t>(n) * sizeof(double)) == 0)
           set.push_back(b);
       }
@@ -1081,8 +1082,9 @@ TEST_CASE("runs against one reference object at the same instants share its eval
                 u[static_cast<std::size_t>(i) * W + j] = own_u[j][i];
                 v[static_cast<std::size_t>(i) * W + j] = own_v[j][i];
               }
-              samples[j] = {level, t,   &own_u[j], t, &own_v[j], level > 0, t, solution.contact_multiplier(t) + wiggle(random),
-                            t,     0.0};
+              samples[j] = {level,     t,         &own_u[j], t,
+                            &own_v[j], level > 0, t,         solution.contact_multiplier(t) + wiggle(random),
+                            t,         0.0};
               alone[j].add(samples[j]);
             }
             for (std::size_t j = runs; j < W; ++j)
