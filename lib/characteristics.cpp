@@ -440,11 +440,11 @@ void CharacteristicSolution::velocity_at_points(double t, const double* x, long 
 // lattice x = jδ, t = nδ the arguments x ∓ t are lattice points (j ∓ n)δ, so four tables over [−T, L] and
 // [0, L + T], filled once, give every value by two look-ups.
 
-// The sets of points whose lattice indices were checked: each set's bits, and j₀ and s if they lie on the
-// lattice at j₀ + i s (a set that does not is remembered too). A run asks at the same nodes at every level,
-// so the check is made once per mesh, and a later set is compared with the remembered ones by memcmp. At
-// most 16 sets are remembered (a reference serves the runs of one mesh); beyond, a set is checked at
-// every call.
+/// The sets of points whose lattice indices were checked: each set's bits, and j₀ and s if they lie on the
+/// lattice at j₀ + i s (a set that does not is remembered too). A run asks at the same nodes at every level,
+/// so the check is made once per mesh, and a later set is compared with the remembered ones by memcmp. At
+/// most 16 sets are remembered (a reference serves the runs of one mesh); beyond, a set is checked at
+/// every call.
 struct TabulatedSolution::PointSets {
   /// One set of points checked.
   struct Set {
