@@ -62,7 +62,9 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <mutex>
 #include <tuple>
 
 #include <doctest/doctest.h>
@@ -438,8 +440,28 @@ void CharacteristicSolution::velocity_at_points(double t, const double* x, long 
 // lattice x = jδ, t = nδ the arguments x ∓ t are lattice points (j ∓ n)δ, so four tables over [−T, L] and
 // [0, L + T], filled once, give every value by two look-ups.
 
+/// The sets of points whose lattice indices were checked: each set's bits, and j₀ and s if they lie on the
+/// lattice at j₀ + i s (a set that does not is remembered too). A run asks at the same nodes at every level,
+/// so the check is made once per mesh, and a later set is compared with the remembered ones by memcmp. At
+/// most 16 sets are remembered (a reference serves the runs of one mesh); beyond, a set is checked at
+/// every call.
+struct TabulatedSolution::PointSets {
+  /// One set of points checked.
+  struct Set {
+    std::vector<double> points;  ///< the points x_0 … x_{count−1}, as asked
+    bool on_lattice;             ///< whether x_i lies on the lattice at j₀ + i s for every i
+    long first;                  ///< j₀
+    long step;                   ///< s
+  };
+  std::mutex mutex;       ///< guards `sets` (a reference is shared by the runs on several threads)
+  std::vector<Set> sets;  ///< the sets checked so far, at most 16
+};
+
 TabulatedSolution::TabulatedSolution(CharacteristicSolution solution, double spacing)
-    : solution_(std::move(solution)), spacing_(spacing), inverse_spacing_(1.0 / spacing) {
+    : solution_(std::move(solution)),
+      spacing_(spacing),
+      inverse_spacing_(1.0 / spacing),
+      point_sets_(std::make_shared<PointSets>()) {
   if (!(std::isfinite(spacing) && spacing > 0))
     throw std::invalid_argument("tabulated solution: the spacing must be positive and finite");
   const double length = solution_.length(), horizon = solution_.horizon();
@@ -469,10 +491,77 @@ bool TabulatedSolution::on_lattice(double x, long& index) const {
   return std::abs(x - static_cast<double>(index) * spacing_) <= 1e-9 * spacing_;
 }
 
+// The points of a uniform mesh whose h is a multiple of δ, at a level n on the lattice (the error
+// measures' every call): x_i = iL/N lies on the lattice at j_i = j₀ + i s, s = h/δ, and the look-ups of
+// entry i are r₀ + i s and l₀ + i s, r₀ = j₀ − n − k₀ (k₀ = right_first_) and l₀ = j₀ + n. The indices are
+// predicted from the first two points and checked as on_lattice checks them, point by point, with the
+// same operations and no conversion to an integer: on_lattice takes the index j = ⌊x/δ + ½⌋ (a
+// truncation of a positive double) and accepts |x − jδ| ≤ 10⁻⁹ δ; ⌊z⌋ = j for the integer j (exact in
+// a double below 2⁵³) iff j ≤ z < j + 1, so the check accepts exactly the points that on_lattice maps to
+// the predicted j and that lie in [0, L], as the per-point path requires. The check does not depend on
+// the level: it is made once per set of points (lattice_points). The table bounds hold at both ends of
+// the affine j at level n, hence everywhere. If the points are not on the lattice so, the per-point path
+// below evaluates all of them. The corner x = 0, t = 0 is taken from the solution as there. So both
+// paths give the same bits at every point (the doctest below compares them).
+bool TabulatedSolution::lattice_points(const double* x, long count, long& first, long& step) const {
+  const std::size_t size = static_cast<std::size_t>(count);
+  PointSets& known = *point_sets_;
+  {
+    std::lock_guard<std::mutex> lock(known.mutex);
+    for (const PointSets::Set& set : known.sets)
+      if (set.points.size() == size && std::memcmp(set.points.data(), x, size * sizeof(double)) == 0) {
+        first = set.first, step = set.step;
+        return set.on_lattice;
+      }
+  }
+  const double length = solution_.length();
+  long j0 = 0, j1 = 0;
+  bool lattice = count >= 2 && x[0] >= 0.0 && x[0] <= length && x[1] >= 0.0 && x[1] <= length && on_lattice(x[0], j0) &&
+                 on_lattice(x[1], j1);
+  if (lattice) {
+    const double j_first = static_cast<double>(j0), j_step = static_cast<double>(j1 - j0), tolerance = 1e-9 * spacing_;
+    for (long i = 0; i < count && lattice; ++i) {
+      const double xi = x[i], j = j_first + static_cast<double>(i) * j_step, z = xi * inverse_spacing_ + 0.5;
+      lattice = xi >= 0.0 && xi <= length && z >= j && z < j + 1.0 && std::abs(xi - j * spacing_) <= tolerance;
+    }
+  }
+  first = j0, step = j1 - j0;
+  std::lock_guard<std::mutex> lock(known.mutex);
+  if (known.sets.size() < 16) known.sets.push_back({std::vector<double>(x, x + count), lattice, first, step});
+  return lattice;
+}
+
+template <bool derivative>
+bool TabulatedSolution::lattice_run(long n, const double* x, long count, double* out) const {
+  long j0 = 0, s = 0;
+  if (count < 2 || !lattice_points(x, count, j0, s)) return false;
+  const long j_last = j0 + (count - 1) * s;
+  const long right_size = static_cast<long>(right_value_.size()), left_size = static_cast<long>(left_value_.size());
+  for (const long j : {j0, j_last})
+    if (j < 0 || j - n - right_first_ < 0 || j - n - right_first_ >= right_size || j + n >= left_size) return false;
+  const double* right = (derivative ? right_slope_.data() : right_value_.data()) + (j0 - n - right_first_);
+  const double* left = (derivative ? left_slope_.data() : left_value_.data()) + (j0 + n);
+  if (s == 1)  // δ = h: contiguous entries
+    for (long i = 0; i < count; ++i) out[i] = derivative ? -right[i] + left[i] : right[i] + left[i];
+  else
+    for (long i = 0; i < count; ++i) out[i] = derivative ? -right[i * s] + left[i * s] : right[i * s] + left[i * s];
+  if (n == 0)  // the corner x = 0, t = 0: j = 0
+    for (long i = 0; i < count; ++i)
+      if (j0 + i * s == 0) out[i] = derivative ? solution_.velocity(x[i], 0.0) : solution_.displacement(x[i], 0.0);
+  return true;
+}
+
+bool TabulatedSolution::takes_lattice_run(double t, const double* x, long count) const {
+  long n = 0;
+  std::vector<double> scratch(static_cast<std::size_t>(std::max(count, 0L)));
+  return t >= 0.0 && t <= solution_.horizon() && on_lattice(t, n) && lattice_run<false>(n, x, count, scratch.data());
+}
+
 template <bool derivative>
 void TabulatedSolution::at_points(double t, const double* x, long count, double* out) const {
   long n = 0;
   const bool level_on_lattice = t >= 0.0 && t <= solution_.horizon() && on_lattice(t, n);
+  if (level_on_lattice && lattice_run<derivative>(n, x, count, out)) return;
   const long right_size = static_cast<long>(right_value_.size()), left_size = static_cast<long>(left_value_.size());
   for (long i = 0; i < count; ++i) {
     long j = 0;
@@ -855,6 +944,102 @@ TEST_CASE("the tabulated solution gives the solver's values on the lattice and e
   }
   CHECK_THROWS_AS(TabulatedSolution(solution, 0.0), std::invalid_argument);
   CHECK_THROWS_AS(TabulatedSolution(solution, 1e-12), std::invalid_argument);
+}
+
+TEST_CASE("the tabulated solution's straight loop over a mesh on the lattice gives the per-point path's bits") {
+  // Prediction: lattice_run reads the entries the per-point path reads, at the points on_lattice maps
+  // to the predicted indices, and leaves every other set of points to that path: the same bits at every
+  // point, on and off the lattice. A call with one point always takes the per-point path, so it is the
+  // reference; takes_lattice_run says which path the call took, so the comparison cannot pass by
+  // falling back.
+  const InitialData data = wavy_samples(1.0, 0.2, 0.3, -0.1);
+  const CharacteristicSolution solution(data, 1.5);
+  const auto bits = [](const std::vector<double>& a, const std::vector<double>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+  };
+  long fast = 0, per_point = 0;
+  const auto compare = [&](const TabulatedSolution& tabulated, double t, const std::vector<double>& x, bool lattice) {
+    const long count = static_cast<long>(x.size());
+    std::vector<double> u(x.size()), v(x.size()), u1(x.size()), v1(x.size());
+    tabulated.displacement_at_points(t, x.data(), count, u.data());
+    tabulated.velocity_at_points(t, x.data(), count, v.data());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      tabulated.displacement_at_points(t, &x[i], 1, &u1[i]);
+      tabulated.velocity_at_points(t, &x[i], 1, &v1[i]);
+    }
+    CAPTURE(t);
+    CAPTURE(count);
+    CHECK(bits(u, u1));
+    CHECK(bits(v, v1));
+    const bool took = tabulated.takes_lattice_run(t, x.data(), count);
+    CHECK(took == lattice);
+    (took ? fast : per_point) += 1;
+  };
+  for (const long elements : {8L, 25L, 64L}) {
+    const double h = 1.0 / static_cast<double>(elements);
+    CAPTURE(elements);
+    for (const long ratio : {1L, 2L, 3L}) {  // δ = h/ratio: the nodes at j = ratio·i
+      const TabulatedSolution tabulated(solution, h / static_cast<double>(ratio));
+      const double delta = h / static_cast<double>(ratio);
+      CAPTURE(ratio);
+      std::vector<double> nodes(static_cast<std::size_t>(elements));  // x_i = iL/N, node N clamped
+      for (std::size_t i = 0; i < nodes.size(); ++i) nodes[i] = static_cast<double>(i) / static_cast<double>(elements);
+      std::vector<double> closed = nodes;  // with x = L, the last entry of the tables at t = T
+      closed.push_back(1.0);
+      const long last_level = static_cast<long>(std::floor(solution.horizon() / delta + 1e-9));
+      // Levels on the lattice: t = 0 (the corner x = 0), the first ones, the middle, the last one (t = T).
+      for (const long n : {0L, 1L, 2L, last_level / 2, last_level - 1, last_level}) {
+        const double t = static_cast<double>(n) * delta;
+        compare(tabulated, t, nodes, true);
+        compare(tabulated, t, closed, true);
+        // Without the first node (no corner), every other node, the nodes backwards (s < 0): still affine.
+        compare(tabulated, t, std::vector<double>(nodes.begin() + 1, nodes.end()), true);
+        std::vector<double> every_other;
+        for (std::size_t i = 0; i < nodes.size(); i += 2) every_other.push_back(nodes[i]);
+        compare(tabulated, t, every_other, true);
+        compare(tabulated, t, std::vector<double>(closed.rbegin(), closed.rend()), true);
+        // A node moved within on_lattice's tolerance (10⁻⁹ δ): the same index, the fast path.
+        std::vector<double> near = nodes;
+        near[nodes.size() / 2] += 1e-11 * delta;
+        compare(tabulated, t, near, true);
+        // A node moved off the lattice (in the middle, at the ends), a node skipped (not affine), a
+        // node beyond the bar: the per-point path, for all of them.
+        for (const std::size_t at : {std::size_t{0}, nodes.size() / 2, nodes.size() - 1}) {
+          std::vector<double> moved = nodes;
+          moved[at] += 1e-6 * delta;
+          compare(tabulated, t, moved, false);
+          moved[at] = nodes[at] + 0.5 * delta;  // half-way between two lattice points
+          compare(tabulated, t, moved, false);
+        }
+        std::vector<double> skipped = nodes;
+        skipped.erase(skipped.begin() + static_cast<std::ptrdiff_t>(nodes.size() / 2));
+        compare(tabulated, t, skipped, false);
+      }
+      // Instants off the lattice: the per-point path (direct evaluation), the same bits as one point.
+      for (const double t : {0.37 * delta, (static_cast<double>(last_level / 2) + 0.37) * delta})
+        compare(tabulated, t, nodes, false);
+      // Beyond the bar or the horizon: neither path evaluates, both refuse.
+      std::vector<double> beyond = closed;
+      beyond.back() = 1.0 + delta;
+      std::vector<double> u(beyond.size());
+      CHECK(!tabulated.takes_lattice_run(0.5, beyond.data(), static_cast<long>(beyond.size())));
+      CHECK_THROWS_AS(tabulated.displacement_at_points(0.5, beyond.data(), static_cast<long>(beyond.size()), u.data()),
+                      std::out_of_range);
+      CHECK_THROWS_AS(tabulated.velocity_at_points(solution.horizon() + delta, nodes.data(),
+                                                   static_cast<long>(nodes.size()), u.data()),
+                      std::out_of_range);
+    }
+  }
+  // A mesh whose h is not a multiple of δ (δ = 2h/3): every third point is on the lattice, the rest not.
+  {
+    const TabulatedSolution tabulated(solution, 2.0 / 30.0);
+    std::vector<double> x(20);
+    for (std::size_t i = 0; i < x.size(); ++i) x[i] = static_cast<double>(i) / 20.0;
+    compare(tabulated, 0.0, x, false);
+    compare(tabulated, 10 * 2.0 / 30.0, x, false);
+  }
+  CHECK(fast > 0);
+  CHECK(per_point > 0);
 }
 
 TEST_CASE("the characteristic solution refuses bad data and points outside its domain") {

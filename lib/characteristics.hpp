@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -131,17 +132,30 @@ class TabulatedSolution : public ReferenceSolution {
   void displacement_at_points(double t, const double* x, long count, double* u) const override;
   void velocity_at_points(double t, const double* x, long count, double* v) const override;
   const CharacteristicSolution& solution() const { return solution_; }  ///< the solution tabulated
+  /// Whether *_at_points(t, x, count, ·) take the straight loop of table look-ups (points of a uniform
+  /// mesh on the lattice at a level on it, characteristics.cpp) rather than the per-point path; both
+  /// give the same bits.
+  bool takes_lattice_run(double t, const double* x, long count) const;
 
  private:
   // The lattice index of a point (−1 if it is not on the lattice to 1e-9 δ).
   bool on_lattice(double x, long& index) const;
   template <bool derivative>
   void at_points(double t, const double* x, long count, double* out) const;
+  // The straight loop for the points x_i on the lattice at j₀ + i s at level n; false (out unspecified)
+  // if a point is not where that predicts.
+  template <bool derivative>
+  bool lattice_run(long n, const double* x, long count, double* out) const;
+  // Whether x_0 … x_{count−1} lie on the lattice at j₀ + i s (j₀, s set): checked point by point once per
+  // set of points (by their bits) and remembered (characteristics.cpp).
+  bool lattice_points(const double* x, long count, long& first, long& step) const;
+  struct PointSets;  // the sets of points checked so far (shared by copies: the same δ and L)
 
   CharacteristicSolution solution_;
   double spacing_, inverse_spacing_;
   long right_first_;  // ξ = (right_first_ + k) δ is entry k of the tables of F
   std::vector<double> right_value_, right_slope_, left_value_, left_slope_;
+  std::shared_ptr<PointSets> point_sets_;
 };
 
 /// The largest differences between the characteristic solution of the benchmark's data

@@ -227,6 +227,20 @@ InterpolantSums interpolant_run_sums(const double* x, double h, const ExactSolut
   return {z0, z_prev, id, is};
 }
 
+// The interpolant's sums from its values at the nodes (a reference other than the closed form): add_vectors'
+// sums of w_I, in their order. Not inlined: inside add_lanes GCC 12 kept the two sums on the stack, a
+// store and a load in each chain (34 % of fig_smooth_convergence's time against about 8 % for the lanes'
+// sums).
+[[gnu::noinline]] InterpolantSums interpolant_sums(const double* z, long n) {
+  double id = 0, is = 0, z_prev = z[0];
+  for (long i = 1; i < n; ++i) {
+    const double dz = z[i] - z_prev;
+    id += dz * dz, is += z[i] * z[i];
+    z_prev = z[i];
+  }
+  return {z[0], z_prev, id, is};
+}
+
 }  // namespace
 
 }  // namespace mrm
@@ -313,6 +327,30 @@ void LaneRunSums(const double* w, std::size_t W, const double* x, const ExactSol
   }
 }
 
+// Lanes 0 … W−1 (W a multiple of LaneCount()) against one interpolant w_I (wi, n entries: a reference
+// other than the closed form, evaluated once for the lanes at the same instant): add_vectors' sums of
+// the error e = W − w_I, lane-wise in its order, e₀, e_{n−1}, D and Q in e0[j], last[j], ...
+void LaneInterpolantSums(const double* w, std::size_t W, const double* wi, long n, double* e0_out, double* last_out,
+                         double* differences_out, double* squares_out) {
+  const hn::ScalableTag<double> d;
+  using V = hn::Vec<decltype(d)>;
+  for (std::size_t c = 0; c < W; c += hn::Lanes(d)) {
+    const double* wc = w + c;
+    const auto at = [&](long i) { return hn::LoadU(d, wc + static_cast<std::size_t>(i) * W); };
+    const V e0 = at(0) - hn::Set(d, wi[0]);
+    V ed = hn::Zero(d), es = hn::Zero(d), e_prev = e0;
+    for (long i = 1; i < n; ++i) {
+      const V e = at(i) - hn::Set(d, wi[i]), de = e - e_prev;
+      ed = ed + de * de, es = es + e * e;
+      e_prev = e;
+    }
+    hn::StoreU(e0, d, e0_out + c);
+    hn::StoreU(e_prev, d, last_out + c);
+    hn::StoreU(ed, d, differences_out + c);
+    hn::StoreU(es, d, squares_out + c);
+  }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace mrm::error_lanes
 HWY_AFTER_NAMESPACE();
@@ -324,6 +362,7 @@ namespace mrm {
 namespace error_lanes {
 HWY_EXPORT(LaneCount);
 HWY_EXPORT(LaneRunSums);
+HWY_EXPORT(LaneInterpolantSums);
 }  // namespace error_lanes
 /// @endcond
 
@@ -397,6 +436,12 @@ void ErrorAccumulator::add_vectors(const Sample& sample, const double* u, const 
 }
 
 void ErrorAccumulator::add_sums(const Sample& sample, double u_first, const Sums& su, const Sums& sv) {
+  add_sums(sample, u_first, su, sv, exact_->contact_displacement(sample.time),
+           sample.has_multiplier ? exact_->contact_multiplier(sample.multiplier_time) : 0.0);
+}
+
+void ErrorAccumulator::add_sums(const Sample& sample, double u_first, const Sums& su, const Sums& sv, double u0,
+                                double lambda) {
   const Index n = mesh_.unknowns();
   const auto error_form = [](const Sums& r, double a00, double d, double l) {
     return form(r.e0, r.e_last, r.e_differences, r.e_squares, a00, d, l);
@@ -409,14 +454,10 @@ void ErrorAccumulator::add_sums(const Sample& sample, double u_first, const Sums
   const double t = sample.time;
   u_l2_.add(t, error_form(su, m00, m, ml), exact_form(su, m00, m, ml));
   u_h1_.add(t, error_form(su, s00, s, sl), exact_form(su, s00, s, sl));
-  const double u0 = exact_->contact_displacement(sample.time);
   u0_.add(t, std::pow(u_first - u0, 2), u0 * u0);
   v_l2_.add(sample.velocity_time, error_form(sv, m00, m, ml), exact_form(sv, m00, m, ml));
-
-  if (sample.has_multiplier) {
-    const double lambda = exact_->contact_multiplier(sample.multiplier_time);
+  if (sample.has_multiplier)
     lambda_.add(sample.multiplier_time, std::pow(sample.multiplier - lambda, 2), lambda * lambda);
-  }
 }
 
 // One level of a batch's runs. Runs on the same mesh whose sample instants give the same affine runs of
@@ -445,6 +486,14 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
     return r.errors->closed_form_ && !r.errors->general_ && r.lanes.stride >= 2 && r.lanes.lane < r.lanes.stride &&
            r.lanes.stride % vector_lanes == 0;
   };
+  // A run against another reference (the characteristic solution, tabulated or not, ...) on a uniform
+  // mesh, in lanes as above: its interpolants are evaluated once for the runs of the same reference,
+  // nodes and instants.
+  const auto evaluates = [&](const Lane& r) {
+    return !r.errors->closed_form_ && !r.errors->general_ && r.lanes.stride >= 2 && r.lanes.lane < r.lanes.stride &&
+           r.lanes.stride % vector_lanes == 0;
+  };
+  const auto same_bits = [](double p, double q) { return std::memcmp(&p, &q, sizeof p) == 0; };
   std::vector<Runs> runs(count);
   std::vector<char> done(count, 0), found(count, 0);
   std::vector<std::size_t> set;
@@ -467,6 +516,63 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
     if (done[a]) continue;
     const Lane& first = level[a];
     ErrorAccumulator& lead = *first.errors;
+    if (!takes(first) && evaluates(first)) {
+      // The runs of the same reference, nodes and instants in the lanes of the same vectors: u_I and
+      // (u_t)_I evaluated once (the lead's buffers), the interpolant's sums and the contact values once,
+      // the error's sums of every lane in one pass (LaneInterpolantSums: each lane add_vectors' bits).
+      const Sample& at = *first.sample;
+      const Index n = lead.mesh_.unknowns();
+      const std::size_t W = first.lanes.stride;
+      const double* u_base = first.lanes.displacement - first.lanes.lane;
+      const double* v_base = first.lanes.velocity - first.lanes.lane;
+      set.assign(1, a);
+      for (std::size_t b = a + 1; b < count; ++b) {
+        const Lane& other = level[b];
+        const ErrorAccumulator& e = *other.errors;
+        if (!done[b] && evaluates(other) && e.exact_ == lead.exact_ && other.lanes.stride == W &&
+            other.lanes.displacement - other.lanes.lane == u_base &&
+            other.lanes.velocity - other.lanes.lane == v_base && same_bits(other.sample->time, at.time) &&
+            same_bits(other.sample->velocity_time, at.velocity_time) && e.mesh_.unknowns() == n &&
+            std::memcmp(e.nodes_.data(), lead.nodes_.data(), static_cast<std::size_t>(n) * sizeof(double)) == 0)
+          set.push_back(b);
+      }
+      if (set.size() == 1) {
+        lead.add(at, first.lanes);
+        continue;
+      }
+      const double* x = lead.nodes_.data();
+      double* ui = lead.interpolant_.data();
+      double* vi = lead.velocity_interpolant_.data();
+      lead.exact_->displacement_at_points(at.time, x, static_cast<long>(n), ui);
+      lead.exact_->velocity_at_points(at.velocity_time, x, static_cast<long>(n), vi);
+      sums.assign(8 * W, 0.0);
+      double* s = sums.data();
+      HWY_DYNAMIC_DISPATCH(error_lanes::LaneInterpolantSums)
+      (u_base, W, ui, static_cast<long>(n), s, s + W, s + 2 * W, s + 3 * W);
+      HWY_DYNAMIC_DISPATCH(error_lanes::LaneInterpolantSums)
+      (v_base, W, vi, static_cast<long>(n), s + 4 * W, s + 5 * W, s + 6 * W, s + 7 * W);
+      const InterpolantSums zu = interpolant_sums(ui, static_cast<long>(n));
+      const InterpolantSums zv = interpolant_sums(vi, static_cast<long>(n));
+      const double u0 = lead.exact_->contact_displacement(at.time);
+      bool has_lambda = false;  // λ at the last multiplier instant asked (the lanes' are usually the same)
+      double lambda = 0, lambda_time = 0;
+      for (std::size_t k : set) {
+        const Sample& sample = *level[k].sample;
+        const std::size_t j = level[k].lanes.lane;
+        const Sums su{s[j], s[W + j], s[2 * W + j], s[3 * W + j], zu.z0, zu.z_last, zu.differences, zu.squares};
+        const Sums sv{s[4 * W + j], s[5 * W + j], s[6 * W + j],   s[7 * W + j],
+                      zv.z0,        zv.z_last,    zv.differences, zv.squares};
+        if (sample.has_multiplier && !(has_lambda && same_bits(sample.multiplier_time, lambda_time))) {
+          lambda = lead.exact_->contact_multiplier(sample.multiplier_time);
+          lambda_time = sample.multiplier_time, has_lambda = true;
+        }
+        level[k].errors->add_sums(sample, level[k].lanes.displacement[0], su, sv, u0,
+                                  sample.has_multiplier ? lambda : 0.0);
+        done[k] = 1;
+      }
+      together += set.size();
+      continue;
+    }
     if (!takes(first)) {
       lead.add(*first.sample, first.lanes);
       continue;
@@ -916,6 +1022,95 @@ TEST_CASE("the error sums of a batch's lanes in one pass are each lane's own, bi
             CAPTURE(ErrorAccumulator::names[k]);
             CHECK(a[k] > 0);
             CHECK(std::memcmp(&a[k], &b[k], sizeof(double)) == 0);
+          }
+        }
+      }
+    }
+  }
+  use_batch_target(0);
+}
+
+TEST_CASE("runs against one reference object at the same instants share its evaluation, each lane's bits its own") {
+  // Prediction: add_lanes evaluates a reference other than the closed form once for the lanes that ask
+  // the same object at the same instants on the same nodes, forms the interpolant's sums once and each
+  // lane's error sums lane-wise in add_vectors' order (LaneInterpolantSums): every measure of every lane
+  // has the bits of add(sample) on its own vectors. The references: the characteristic solution of the
+  // benchmark's data, tabulated on the lattice δ = h/2 (the straight loop) and not tabulated (evaluated
+  // at each point). The lanes: most at Δt = h/2 against reference A; lane 1 at Δt = 0.37 h (instants of
+  // its own, off the lattice: alone); from W = 8, lanes 2 and 3 against B, another object of the same
+  // solution (a set of their own); from W = 4, lane W − 1 padding. `got` counts the runs of the shared
+  // passes, so the comparison cannot pass by adding every run alone.
+  std::vector<std::int64_t> targets{0};
+  for (const BatchTarget& t : batch_targets()) targets.push_back(t.bit);
+  std::mt19937 random(12);
+  std::uniform_real_distribution<double> wiggle(-0.01, 0.01);
+  const CharacteristicSolution solution(benchmark_initial_data(1.0, 0.5), 2.0);
+  for (const bool tabulate : {true, false}) {
+    for (const std::int64_t bit : targets) {
+      use_batch_target(bit);
+      for (const Index elements : {36, 37}) {
+        const UniformMesh mesh(1.0, elements);
+        const Index n = mesh.unknowns();
+        const auto make = [&]() -> std::shared_ptr<const ReferenceSolution> {
+          if (tabulate) return std::make_shared<const TabulatedSolution>(solution, 0.5 * mesh.h());
+          return std::make_shared<const CharacteristicSolution>(solution);
+        };
+        const std::shared_ptr<const ReferenceSolution> a_ref = make(), b_ref = make();
+        for (const std::size_t W : {2, 4, 8, 16}) {
+          const std::size_t runs = W == 2 ? 2 : W - 1;
+          const auto reference_of = [&](std::size_t j) { return W >= 8 && (j == 2 || j == 3) ? b_ref : a_ref; };
+          const auto own_instants = [&](std::size_t j) { return j == 1 && runs > 2; };
+          // The runs of the shared passes at a level (at level 0, t = 0, lane 1 asks A at the same instant).
+          const auto shared = [&](int level) {
+            std::size_t in_a = 0, in_b = 0;
+            for (std::size_t j = 0; j < runs; ++j)
+              if (level == 0 || !own_instants(j)) (reference_of(j) == a_ref ? in_a : in_b) += 1;
+            return (in_a >= 2 ? in_a : 0) + (in_b >= 2 ? in_b : 0);
+          };
+          std::vector<ErrorAccumulator> together, alone;
+          for (std::size_t j = 0; j < runs; ++j)
+            together.emplace_back(mesh, reference_of(j)), alone.emplace_back(mesh, reference_of(j));
+          std::vector<double> u(static_cast<std::size_t>(n) * W), v(u.size());
+          std::vector<Eigen::VectorXd> own_u(runs, Eigen::VectorXd(n)), own_v(runs, Eigen::VectorXd(n));
+          for (int level = 0; level <= 40; ++level) {
+            std::vector<Sample> samples(runs);
+            for (std::size_t j = 0; j < runs; ++j) {
+              const double dt = (own_instants(j) ? 0.37 : 0.5) * mesh.h(), t = level * dt;
+              for (Index i = 0; i < n; ++i) {
+                own_u[j][i] = solution.displacement(mesh.x(i), t) + wiggle(random);
+                own_v[j][i] = solution.velocity(mesh.x(i), t) + wiggle(random);
+                u[static_cast<std::size_t>(i) * W + j] = own_u[j][i];
+                v[static_cast<std::size_t>(i) * W + j] = own_v[j][i];
+              }
+              samples[j] = {level,     t,         &own_u[j], t,
+                            &own_v[j], level > 0, t,         solution.contact_multiplier(t) + wiggle(random),
+                            t,         0.0};
+              alone[j].add(samples[j]);
+            }
+            for (std::size_t j = runs; j < W; ++j)
+              for (Index i = 0; i < n; ++i)
+                u[static_cast<std::size_t>(i) * W + j] = v[static_cast<std::size_t>(i) * W + j] = 1e300;
+            std::vector<ErrorAccumulator::Lane> lanes;
+            for (std::size_t j = 0; j < runs; ++j)
+              lanes.push_back({&together[j], &samples[j], LaneVectors{&u[j], &v[j], W, j}});
+            const std::size_t got = ErrorAccumulator::add_lanes(lanes.data(), lanes.size());
+            CAPTURE(current_batch_target().name);
+            CAPTURE(W);
+            CHECK(got == (W % current_batch_target().lanes == 0 ? shared(level) : 0));
+          }
+          for (std::size_t j = 0; j < runs; ++j) {
+            const auto a = ErrorAccumulator::values(alone[j].relative()),
+                       b = ErrorAccumulator::values(together[j].relative());
+            for (std::size_t k = 0; k < a.size(); ++k) {
+              CAPTURE(tabulate);
+              CAPTURE(current_batch_target().name);
+              CAPTURE(elements);
+              CAPTURE(W);
+              CAPTURE(j);
+              CAPTURE(ErrorAccumulator::names[k]);
+              CHECK(a[k] > 0);
+              CHECK(std::memcmp(&a[k], &b[k], sizeof(double)) == 0);
+            }
           }
         }
       }

@@ -85,8 +85,11 @@ class ErrorAccumulator {
   /// Adds one level of each of `count` runs, each as `errors->add(*sample, lanes)` would: the same bits.
   /// Runs that lie in the lanes of one batch (the same vectors, stride and mesh) and whose interpolants
   /// are the same affine runs of the closed form (the same instants) are summed together, in one pass
-  /// over the nodes with their lanes side by side in vector registers (errors.cpp); any other run
-  /// alone. The runs must be distinct (one lane each). Returns the number of runs summed together.
+  /// over the nodes with their lanes side by side in vector registers (errors.cpp); so are runs against
+  /// the same other reference object (ReferenceCache shares one: the characteristic solution) at the
+  /// same instants on the same nodes, its values at the nodes and contact point evaluated once for all
+  /// of them; any other run alone. The runs must be distinct (one lane each). Returns the number of runs
+  /// summed together.
   static std::size_t add_lanes(const Lane* level, std::size_t count);
   /// The relative errors of the samples added so far.
   ErrorNorms relative() const;
@@ -103,8 +106,11 @@ class ErrorAccumulator {
   };
   template <typename Stride>
   void add_vectors(const Sample& sample, const double* u, const double* v, Stride stride);
-  // The level from its sums (u0: the displacement's first entry): the forms and the histories.
-  void add_sums(const Sample& sample, double u0, const Sums& su, const Sums& sv);
+  // The level from its sums (u_first: the displacement's first entry): the forms and the histories,
+  // with the reference's u(0, t) and λ at the sample's instants (λ: 0 if the sample has no multiplier)
+  // given, or evaluated.
+  void add_sums(const Sample& sample, double u_first, const Sums& su, const Sums& sv, double u0, double lambda);
+  void add_sums(const Sample& sample, double u_first, const Sums& su, const Sums& sv);
   UniformMesh mesh_;
   std::shared_ptr<const ReferenceSolution> exact_;
   const ExactSolution* closed_form_ = nullptr;                  // exact_ when it is the paper's closed form (its runs)
