@@ -553,7 +553,8 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
                            "consistent mass)");
 
   // A contact class (lib/contact_classes.cpp) checks its own parameters and has its own step, set up
-  // at the end from the initial level; it has no fused kernel: StepKernel::fast runs its readable step.
+  // at the end from the initial level; StepKernel::fast runs its fused step, StepKernel::reference its
+  // readable one (the same bits: contact_classes.cpp).
   const bool contact_class = is_contact_class(parameters.scheme);
   validate_contact_class(parameters, massless_);
   // Newmark with β < γ/2 is explicit-like: its step limit, checked before any work (contact_classes.cpp).
@@ -1203,7 +1204,7 @@ void BarSimulation::step() {
     class_step_->step(state_, level_);
   else if (explicit_) {
     explicit_->step(state_, has_load);
-    state_.energy = 0.5 * mass_.bilinear(state_.w, state_.w) + 0.5 * stiffness_form(state_.u, state_.u, mesh_);
+    state_.energy = 0.5 * mass_.form(state_.w) + 0.5 * stiffness_form(state_.u, state_.u, mesh_);
   } else if (!fast_)
     reference_step(has_load);
   else if (!fast_->step(state_, solver_, has_load))

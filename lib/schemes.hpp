@@ -52,7 +52,9 @@ enum class InitialContactNode { consistent, interpolant };
 /// `reference` is the step written as its derivation (schemes.cpp: the assembled matrices A, B₁, B₂,
 /// one tridiagonal solve with the closed-form contact step, the velocity and the energy from their
 /// definitions); `fast` is the fused two-chain kernel of fast_step.cpp, the default, used by every
-/// program of this project (bench_step times both).
+/// program of this project (bench_step times both). The contact classes (contact_classes.hpp) read it
+/// too: `reference` their step written as its derivation, `fast` the same operations fused node by node,
+/// the same bits.
 enum class StepKernel { reference, fast };
 
 /// A parameter of SchemeParameters that only some schemes take (the registry says which).
