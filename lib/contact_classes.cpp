@@ -596,7 +596,8 @@ class NewmarkContactStep final : public ContactClassStep {
       yi = b(i, interior_row(md, ml, mu, u, i), interior_row(md, ml, mu, w, i)) - eps[i] * yi;
       y[i] = yi;
     }
-    const double b0 = massless_ ? (has_load_ ? f[0] : 0.0) : b(0, row_product(mass_, u, 0, n), row_product(mass_, w, 0, n));
+    const double b0 =
+        massless_ ? (has_load_ ? f[0] : 0.0) : b(0, row_product(mass_, u, 0, n), row_product(mass_, w, 0, n));
     y[0] = b0 - eps[0] * yi;
     // 2. The contact decision, the sweep up of A and Rⁿ⁺¹ one row behind.
     const double *ip = solver_.inverse_pivot().data(), *cu = solver_.upward().data();
@@ -962,8 +963,8 @@ class DkeStep final : public ContactClassStep {
       yi = b(i, interior_row(md, ml, mu, p, i), interior_row(sd, sl, su, u, i)) - eps[i] * yi;
       y[i] = yi;
     }
-    const double b0 = massless_ ? (has_load_ ? f_next[0] : 0.0)
-                                : b(0, row_product(mass_, p, 0, n), row_product(stiffness_, u, 0, n));
+    const double b0 =
+        massless_ ? (has_load_ ? f_next[0] : 0.0) : b(0, row_product(mass_, p, 0, n), row_product(stiffness_, u, 0, n));
     y[0] = b0 - eps[0] * yi;
     // 3. The contact step, the sweep up and Vⁿ⁺¹.
     const ContactStep contact = solver_.resolve_contact(y[0], weight0_, gap_ != 0.0 ? -gap_ : 0.0);
@@ -1010,7 +1011,8 @@ std::unique_ptr<ContactClassStep> make_contact_class_step(const Tridiagonal& mas
                                                           double gap, StepState& state) {
   if (p.scheme == Scheme::moreau_jean)
     return std::make_unique<MoreauJeanStep>(mass, stiffness, p, dt, has_load, gap, state);
-  if (p.scheme == Scheme::dke) return std::make_unique<DkeStep>(mass, stiffness, dt, has_load, gap, p.kernel == StepKernel::fast, state);
+  if (p.scheme == Scheme::dke)
+    return std::make_unique<DkeStep>(mass, stiffness, dt, has_load, gap, p.kernel == StepKernel::fast, state);
   if (is_contact_class(p.scheme))
     return std::make_unique<NewmarkContactStep>(mass, stiffness, p, dt, h, has_load, gap, state);
   throw std::logic_error("make_contact_class_step: " + to_string(p.scheme) + " is not a contact class");

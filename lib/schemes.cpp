@@ -843,7 +843,8 @@ TEST_CASE("a steady load is formed once, with the bits of the load formed at eve
   const UniformMesh mesh(1.0, 20);
   const double dt = 0.5 * mesh.h();
   const auto bits = [](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-    return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+    return a.size() == b.size() &&
+           std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
   };
   int runs = 0, contact_runs = 0;
   for (const SchemeInfo& info : scheme_registry()) {
