@@ -246,7 +246,8 @@ ExplicitStep::ExplicitStep(const UniformMesh& mesh, const MassRedistribution& ma
 // explicit scheme's contact force is carried by u₀ through S (its algebraic row), Taylor–Flanagan's by
 // its impulse.
 void ExplicitStep::accelerate(const Eigen::VectorXd& u, const Eigen::VectorXd* load, double, Eigen::VectorXd& a) const {
-  a = -(stiffness_ * u);
+  stiffness_.multiply(u, a);  // −SU formed in `a` (the same bits as −(S * U), without a temporary)
+  a = -a;
   if (load) a += *load;
   if (lumped_) {
     a = a.cwiseProduct(inverse_mass_);

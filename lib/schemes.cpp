@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <type_traits>
 #include <stdexcept>
@@ -552,7 +553,8 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
                            "consistent mass)");
 
   // A contact class (lib/contact_classes.cpp) checks its own parameters and has its own step, set up
-  // at the end from the initial level; it has no fused kernel: StepKernel::fast runs its readable step.
+  // at the end from the initial level; StepKernel::fast runs its fused step, StepKernel::reference its
+  // readable one (the same bits: contact_classes.cpp).
   const bool contact_class = is_contact_class(parameters.scheme);
   validate_contact_class(parameters, massless_);
   // Newmark with β < γ/2 is explicit-like: its step limit, checked before any work (contact_classes.cpp).
@@ -627,6 +629,17 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
     throw std::invalid_argument(
         "problem: the initial data u0, v0 are not finite at every node (allowed: finite values)");
   load_at(0.0, state_.f_now);
+  if (problem.load && problem.steady_load) {
+    // A steady load (Problem::steady_load): F and F₀ are formed here once, and load_at is not called
+    // again. Checked on one more instant: a load that changes with t fails here, not silently later.
+    load_at(dt, state_.f_next);
+    if (std::memcmp(state_.f_next.data(), state_.f_now.data(), sizeof(double) * static_cast<std::size_t>(n)) != 0)
+      throw std::invalid_argument(
+          "problem: steady_load is set but the load vector at t = dt differs from the one at t = 0 (allowed: "
+          "steady_load only for a load f(x) that does not depend on t)");
+    steady_contact_load_ = contact_load(0.0);
+    steady_load_ = true;
+  }
   if (massless_) {
     const double compliance = mesh.contact_compliance();
     const CondensedContact c =
@@ -804,6 +817,7 @@ void BarSimulation::load_at(double t, Eigen::VectorXd& f) const {
 
 // F₀(t) = ∫₀ʰ f(x, t) φ₀(x) dx by the two-point Gauss rule of p1_load (the same number as its entry 0).
 double BarSimulation::contact_load(double t) const {
+  if (steady_load_) return steady_contact_load_;
   const double h = mesh_.h(0), g = 0.5 / 1.7320508075688772935;
   double f0 = 0;
   for (double xi : {0.5 - g, 0.5 + g}) f0 += problem_.load(xi * h, t) * 0.5 * h * (1.0 - xi);
@@ -820,6 +834,67 @@ double BarSimulation::contact_load_rate(double t) const {
   const double d = 0.5 * dt_;
   if (t < 2 * d) return (-3 * contact_load(t) + 4 * contact_load(t + d) - contact_load(t + 2 * d)) / (2 * d);
   return (3 * contact_load(t) - 4 * contact_load(t - d) + contact_load(t - 2 * d)) / (2 * d);
+}
+
+// A steady load (Problem::steady_load) is the same run as the same load formed at every step, bit for
+// bit, for every scheme of the registry, both masses, both kernels of (★) and the contact classes; a load
+// that depends on t is refused as steady.
+TEST_CASE("a steady load is formed once, with the bits of the load formed at every step") {
+  const UniformMesh mesh(1.0, 20);
+  const double dt = 0.5 * mesh.h();
+  const auto bits = [](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    return a.size() == b.size() &&
+           std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+  };
+  int runs = 0, contact_runs = 0;
+  for (const SchemeInfo& info : scheme_registry()) {
+    for (const MassRedistribution& mass : {consistent_mass(), mod3()}) {
+      for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
+        Problem every_step = benchmark_problem();
+        every_step.load = [](double x, double) { return -1.0 + 0.7 * std::sin(3 * x); };
+        Problem steady = every_step;
+        steady.steady_load = true;
+        SchemeParameters p;
+        p.scheme = info.scheme;
+        p.kernel = kernel;
+        if (info.scheme == Scheme::paoli_schatzman && mass.name == "consistent") p.contact_row = ContactRow::literal;
+        if (takes(info.scheme, SchemeParameter::newmark_beta)) p.newmark_beta = 0.25;
+        std::unique_ptr<BarSimulation> a, b;
+        try {
+          a = std::make_unique<BarSimulation>(every_step, mesh, mass, p, dt);
+        } catch (const InvalidParameter& e) {
+          CHECK(e.parameter == "mass");  // a scheme that needs the other kind of contact node
+          continue;
+        }
+        b = std::make_unique<BarSimulation>(steady, mesh, mass, p, dt);
+        CAPTURE(info.id);
+        CAPTURE(mass.name);
+        CAPTURE(to_string(kernel));
+        bool same = true, contact = false;
+        for (Index k = 0; k <= 300 && same; ++k) {
+          if (k > 0) {
+            a->step();
+            b->step();
+          }
+          const Sample x = a->sample(), y = b->sample();
+          same = bits(*x.displacement, *y.displacement) && bits(*x.velocity, *y.velocity) &&
+                 std::memcmp(&x.multiplier, &y.multiplier, sizeof(double)) == 0 &&
+                 std::memcmp(&x.energy, &y.energy, sizeof(double)) == 0 && x.has_multiplier == y.has_multiplier;
+          contact = contact || x.multiplier < 0;
+        }
+        CHECK(same);
+        ++runs;
+        contact_runs += contact;
+      }
+    }
+  }
+  CHECK(runs >= 30);  // 12 schemes, two masses, two kernels, less the refused pairs
+  CHECK(contact_runs == runs);
+  Problem moving = benchmark_problem();
+  moving.load = [](double x, double t) { return -1.0 + 0.7 * std::sin(3 * x + 5 * t); };
+  moving.steady_load = true;
+  CHECK_THROWS_WITH_AS(BarSimulation(moving, mesh, mod3(), with(Scheme::crank_nicolson), dt),
+                       doctest::Contains("steady_load"), std::invalid_argument);
 }
 
 double BarSimulation::massless_node_velocity(double t) const {
@@ -1094,7 +1169,7 @@ void BarSimulation::explicit_first_step() {
       0.5 * (beta * stiffness_.bilinear(u_next, u_next) + (1 - 2 * beta) * stiffness_.bilinear(u_next, state_.u) +
              beta * stiffness_.bilinear(state_.u, state_.u));
   state_.u = u_next;
-  if (problem_.load) load_at(dt_, state_.f_now);
+  if (problem_.load && !steady_load_) load_at(dt_, state_.f_now);
   state_.lambda = 0.0;
   has_lambda_ = false;
   lambda_time_ = 0.0;
@@ -1125,12 +1200,12 @@ void BarSimulation::step() {
     return;
   }
   const bool has_load = static_cast<bool>(problem_.load);
-  if (has_load) load_at(static_cast<double>(level_ + 1) * dt_, state_.f_next);
+  if (has_load && !steady_load_) load_at(static_cast<double>(level_ + 1) * dt_, state_.f_next);
   if (class_step_)
     class_step_->step(state_, level_);
   else if (explicit_) {
     explicit_->step(state_, has_load);
-    state_.energy = 0.5 * mass_.bilinear(state_.w, state_.w) + 0.5 * stiffness_form(state_.u, state_.u, mesh_);
+    state_.energy = 0.5 * mass_.form(state_.w) + 0.5 * stiffness_form(state_.u, state_.u, mesh_);
   } else if (!fast_)
     reference_step(has_load);
   else if (!fast_->step(state_, solver_, has_load))

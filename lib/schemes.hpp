@@ -52,7 +52,9 @@ enum class InitialContactNode { consistent, interpolant };
 /// `reference` is the step written as its derivation (schemes.cpp: the assembled matrices A, B₁, B₂,
 /// one tridiagonal solve with the closed-form contact step, the velocity and the energy from their
 /// definitions); `fast` is the fused two-chain kernel of fast_step.cpp, the default, used by every
-/// program of this project (bench_step times both).
+/// program of this project (bench_step times both). The contact classes (contact_classes.hpp) read it
+/// too: `reference` their step written as its derivation, `fast` the same operations fused node by node,
+/// the same bits.
 enum class StepKernel { reference, fast };
 
 /// A parameter of SchemeParameters that only some schemes take (the registry says which).
@@ -186,6 +188,11 @@ struct Problem {
   std::function<double(double x)> initial_displacement;  ///< u⁰(x)
   std::function<double(double x)> initial_velocity;      ///< v⁰(x)
   std::function<double(double x, double t)> load;        ///< f(x, t); empty for f = 0
+  /// Whether f does not depend on t: f(x, t) = f(x, 0). BarSimulation then forms the load vector F and
+  /// its contact entry F₀ once, at t = 0, and reads them at every level, where a load that depends on t
+  /// is formed again by quadrature at every step: the same bits, since the quadrature sees the same
+  /// values. The constructor checks F(Δt) = F(0) bit for bit and refuses the problem otherwise.
+  bool steady_load = false;
   /// The initial gap between the contact end and the obstacle: the constraint is u(0, t) + gap ≥ 0
   /// (finite, ≥ 0; 0 is the paper's u(0, t) ≥ 0). Not with EC (refused).
   double gap = 0.0;
@@ -305,6 +312,9 @@ class BarSimulation {
   // The step of a contact class (newmark, penalty, nitsche, moreau-jean: lib/contact_classes.cpp),
   // which replaces (★) and its kernels; null for the schemes of this file.
   std::unique_ptr<ContactClassStep> class_step_;
+  // Problem::steady_load: Fⁿ = F⁰ in state_.f_now and state_.f_next at every level, F₀ kept here.
+  bool steady_load_ = false;
+  double steady_contact_load_ = 0.0;
 };
 
 /// The θ of CN-switch's step for which the θ-step's energy identity proves that no step gains energy

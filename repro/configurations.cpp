@@ -123,7 +123,9 @@ Problem configuration_problem(const Configuration& c) {
   bool loaded = false;
   for (const BarSegment& segment : chain.segments)
     for (const double v : segment.load) loaded = loaded || v != 0.0;
-  if (loaded)
+  if (loaded) {
+    // f(x) only: the run forms its load vector once (Problem::steady_load).
+    problem.steady_load = true;
     problem.load = [segments = chain.segments](double x, double) {
       double origin = 0;
       std::size_t j = 0;
@@ -131,6 +133,7 @@ Problem configuration_problem(const Configuration& c) {
       const BarSegment& s = segments[j];
       return s.load.empty() ? 0.0 : poly::evaluate(s.load, (x - origin) / (0.5 * s.length) - 1);
     };
+  }
   return problem;
 }
 
