@@ -456,6 +456,24 @@ inline double interior_row(const double* d, const double* lo, const double* up, 
   return s;
 }
 
+// The sweep down of the solver's A (contact.cpp: y_{n−1} = b_{n−1}, y_i = b_i − ε_i y_{i+1}) with b formed
+// row by row: b_row(i, P_i, Q_i) from the two matrix–vector rows (P x)_i and (Q y)_i, row_product at the
+// last row and interior_row on rows n − 2 … 1; b0, row 0's, is the caller's (a massless node's differs).
+template <class Row>
+void sweep_down_forming(const ContactSolver& solver, Index n, double* y, const Tridiagonal& p_matrix, const double* x,
+                        const Tridiagonal& q_matrix, const double* z, const Row& b_row, double b0) {
+  const double* eps = solver.elimination().data();
+  const double *pd = p_matrix.diag.data(), *pl = p_matrix.lower.data(), *pu = p_matrix.upper.data();
+  const double *qd = q_matrix.diag.data(), *ql = q_matrix.lower.data(), *qu = q_matrix.upper.data();
+  double yi = b_row(n - 1, row_product(p_matrix, x, n - 1, n), row_product(q_matrix, z, n - 1, n));
+  y[n - 1] = yi;
+  for (Index i = n - 2; i > 0; --i) {
+    yi = b_row(i, interior_row(pd, pl, pu, x, i), interior_row(qd, ql, qu, z, i)) - eps[i] * yi;
+    y[i] = yi;
+  }
+  y[0] = b0 - eps[0] * yi;
+}
+
 void require_finite(double energy, Scheme scheme, Index level) {
   if (!std::isfinite(energy))
     throw std::runtime_error("scheme " + to_string(scheme) + ": the run lost finiteness at level " +
@@ -580,7 +598,6 @@ class NewmarkContactStep final : public ContactClassStep {
     const double dt = dt_, c_r = dt * dt * (0.5 - beta_), c_f = beta_ * dt * dt;
     const double *u = state.u.data(), *w = state.w.data(), *r = r_.data();
     const double* f = has_load_ ? state.f_next.data() : nullptr;
-    const double *md = mass_.diag.data(), *ml = mass_.lower.data(), *mu = mass_.upper.data();
     double* y = state.u_new.data();
     // 1. b inside the sweep down of A.
     const auto b = [&](Index i, double mass_u, double mass_w) {
@@ -589,16 +606,9 @@ class NewmarkContactStep final : public ContactClassStep {
       if (has_load_) bi = bi + c_f * f[i];
       return bi;
     };
-    const double* eps = solver_.elimination().data();
-    double yi = b(n - 1, row_product(mass_, u, n - 1, n), row_product(mass_, w, n - 1, n));
-    y[n - 1] = yi;
-    for (Index i = n - 2; i > 0; --i) {
-      yi = b(i, interior_row(md, ml, mu, u, i), interior_row(md, ml, mu, w, i)) - eps[i] * yi;
-      y[i] = yi;
-    }
     const double b0 =
         massless_ ? (has_load_ ? f[0] : 0.0) : b(0, row_product(mass_, u, 0, n), row_product(mass_, w, 0, n));
-    y[0] = b0 - eps[0] * yi;
+    sweep_down_forming(solver_, n, y, mass_, u, mass_, w, b, b0);
     // 2. The contact decision, the sweep up of A and Rⁿ⁺¹ one row behind.
     const double *ip = solver_.inverse_pivot().data(), *cu = solver_.upward().data();
     double lambda = 0, u0 = 0;
@@ -758,8 +768,6 @@ class MoreauJeanStep final : public ContactClassStep {
     const double dt = dt_, c_next = dt * theta_, c_now = dt * (1 - theta_);
     const double *u = state.u.data(), *w = state.w.data();
     const double *f_next = has_load_ ? state.f_next.data() : nullptr, *f_now = has_load_ ? state.f_now.data() : nullptr;
-    const double *ed = explicit_part_.diag.data(), *el = explicit_part_.lower.data(), *eu = explicit_part_.upper.data();
-    const double *sd = stiffness_.diag.data(), *sl = stiffness_.lower.data(), *su = stiffness_.upper.data();
     double* y = state.u_new.data();
     const auto b = [&](Index i, double explicit_w, double stiffness_u) {
       double bi = explicit_w - dt * stiffness_u;
@@ -767,14 +775,8 @@ class MoreauJeanStep final : public ContactClassStep {
       return bi;
     };
     // 1. b inside the sweep down.
-    const double* eps = solver_.elimination().data();
-    double yi = b(n - 1, row_product(explicit_part_, w, n - 1, n), row_product(stiffness_, u, n - 1, n));
-    y[n - 1] = yi;
-    for (Index i = n - 2; i > 0; --i) {
-      yi = b(i, interior_row(ed, el, eu, w, i), interior_row(sd, sl, su, u, i)) - eps[i] * yi;
-      y[i] = yi;
-    }
-    y[0] = b(0, row_product(explicit_part_, w, 0, n), row_product(stiffness_, u, 0, n)) - eps[0] * yi;
+    sweep_down_forming(solver_, n, y, explicit_part_, w, stiffness_, u, b,
+                       b(0, row_product(explicit_part_, w, 0, n), row_product(stiffness_, u, 0, n)));
     // 2. The impact law, the sweep up and Uⁿ⁺¹.
     const double v0 = w[0];
     double impulse = 0, vi = 0;
@@ -948,24 +950,15 @@ class DkeStep final : public ContactClassStep {
     }
     // 2. b inside the sweep down.
     const double *f_now = has_load_ ? state.f_now.data() : nullptr, *f_next = has_load_ ? state.f_next.data() : nullptr;
-    const double *md = mass_.diag.data(), *ml = mass_.lower.data(), *mu = mass_.upper.data();
-    const double *sd = stiffness_.diag.data(), *sl = stiffness_.lower.data(), *su = stiffness_.upper.data();
     const auto b = [&](Index i, double mass_p, double stiffness_u) {
       double bi = mass_p - q * stiffness_u;
       if (has_load_) bi += q * (f_now[i] + f_next[i]);
       return bi;
     };
     double* y = state.u_new.data();
-    const double* eps = solver_.elimination().data();
-    double yi = b(n - 1, row_product(mass_, p, n - 1, n), row_product(stiffness_, u, n - 1, n));
-    y[n - 1] = yi;
-    for (Index i = n - 2; i > 0; --i) {
-      yi = b(i, interior_row(md, ml, mu, p, i), interior_row(sd, sl, su, u, i)) - eps[i] * yi;
-      y[i] = yi;
-    }
     const double b0 =
         massless_ ? (has_load_ ? f_next[0] : 0.0) : b(0, row_product(mass_, p, 0, n), row_product(stiffness_, u, 0, n));
-    y[0] = b0 - eps[0] * yi;
+    sweep_down_forming(solver_, n, y, mass_, p, stiffness_, u, b, b0);
     // 3. The contact step, the sweep up and Vⁿ⁺¹.
     const ContactStep contact = solver_.resolve_contact(y[0], weight0_, gap_ != 0.0 ? -gap_ : 0.0);
     const double *ip = solver_.inverse_pivot().data(), *cu = solver_.upward().data();
