@@ -24,8 +24,9 @@
 // A second table, "batched", gives for the same N the cost per node, step and run of W runs of the cn
 // configuration advanced together in the W lanes of each vector target the machine has (lib/batched_step.cpp:
 // AVX-512, AVX2, SSE4, ..., chosen at run time), beside the scalar step, the bare solve (plain, two-chain,
-// and two right-hand sides at a time, "bare_x2"), the bandwidth measured over the batched step's working
-// set and the limit its memory traffic sets (64 to 104 bytes per node and run, below; flops are not counted); its
+// and two right-hand sides at a time, "bare_x2"), and the limit of the widest target: the larger of the time
+// of the step's memory traffic alone (64 to 104 bytes per node and run, timed as a skeleton of its sweeps,
+// repro/step_limits.hpp) and of its 32 operations per node and run at the peak rate measured for them; its
 // last lines give the widest target and batched_speedup, scalar over batched at the largest N.
 // Then the ratio of each scheme (fast and reference steps) and of a run with its error measures (cn+errors:
 // the budget of issue 11 is 1.5) to the bare solve, the log-log slope of the cost per step against N
@@ -74,6 +75,7 @@
 #include "options.hpp"
 #include "output_file.hpp"
 #include "run_limits.hpp"
+#include "step_limits.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
 #include "batched_step.hpp"
@@ -386,19 +388,31 @@ void two_at_a_time_solve(const mrm::ContactSolver& solver, const double* b, cons
 struct BatchedTimings {
   std::vector<Timing> per_target;  // ns per node per step per run, one per batch_targets()
   Timing bare_x2;                  // ns per node per solve
-  double bandwidth = 0;            // bytes per ns streamed over the batched step's working set
-  double limit = 0;                // ns per node per step per run that its memory traffic needs
   double plateau = 0;              // the fraction of the rows whose factors stay in registers
   double bytes = 0;                // bytes per node, step and run of the batched step's traffic
+  double traffic = 0;              // ns per node per step per run of that traffic alone (the skeleton)
+  double bandwidth = 0;            // bytes per ns of the skeleton: bytes / traffic
+  double operation = 0;            // ns per lane operation at the peak rate (arithmetic_rounds)
+  double arithmetic = 0;           // ns per node per step per run of the step's operations at that rate
+  double limit = 0;                // the larger of traffic and arithmetic
 };
 
 // The batched step's memory traffic per node, step and run (lib/batched_step.cpp): the sweep down reads
 // U, W' and writes y; the sweep up reads y, U, W' and writes Uⁿ⁺¹ and W': 8 doubles, 64 bytes. Off the
 // plateau of the factors (BatchedSimulation::plateau_rows: the interior rows whose LU factors repeat, held
-// in registers) the sweeps also read ε, εε (down) and 1/d, c, cc (up): 40 bytes more. Its arithmetic,
-// about 30 flops per node and run, is not the limit of a memory-resident sweep (not measured here: the
-// limit below counts the bytes only).
+// in registers) the sweeps also read ε, εε (down) and 1/d, c, cc (up): 40 bytes more. Which level of
+// the memory serves those bytes depends on the order of the accesses (the sweep up starts on the rows
+// the sweep down has just written), so their time is measured, not modelled: the skeleton of the two
+// sweeps (repro/step_limits.hpp) makes the same loads and stores in the same order with no arithmetic
+// worth the name.
 constexpr double batched_state_bytes = 8 * 8, batched_factor_bytes = 5 * 8;
+// Its arithmetic per node, step and run on an interior row of Crank–Nicolson (SweepDown, SweepUpT<false,
+// false>): the right-hand side r.c1l(uᵢ₋₁ + uᵢ₊₁) + r.c1d uᵢ + r.c2l(wᵢ₋₁ + wᵢ₊₁) + r.c2d wᵢ, 4
+// multiplies and 5 adds, and the elimination (bᵢ − εᵢ bᵢ₊₁) + εεᵢ yᵢ₊₂, 2 and 2 (13 down); the back
+// substitution z = yᵢ/pᵢ, (z − cᵢ z₋) + ccᵢ d₋₂, 3 and 2, the new state u + d, 1, the velocity
+// rate·d − memory·w, 2 and 1, and the energy's four sums of squares with their two differences, 4 and
+// 6 (19 up): 32 operations, each a multiply or an add (none fused), as arithmetic_rounds performs them.
+constexpr double batched_operations = 32;
 
 BatchedTimings time_batched(Index elements, int repetitions, double target) {
   BatchedTimings result;
@@ -433,22 +447,30 @@ BatchedTimings time_batched(Index elements, int repetitions, double target) {
         2 * n, repetitions, target);
   }
   {
-    // The bandwidth over a working set the size of a group's (up to 9 interleaved arrays of n·W doubles, W = 8
-    // for the widest case): c = a + s b over three arrays of a third of it each, 24 bytes per element.
-    const std::size_t count = std::max<std::size_t>(3 * static_cast<std::size_t>(n) * 8 / 3, 64);
-    std::vector<double> a(count, 1.0), b(count, 0.5), c(count, 0.0);
-    double scale = 0.999;
-    const Timing stream = measure(
-        [&](long k) {
-          for (long s = 0; s < k; ++s) {
-            for (std::size_t i = 0; i < count; ++i) c[i] = a[i] + scale * b[i];
-            std::swap(a, c);
-          }
+    // The skeleton of the step's traffic at the widest target (the arrays of a group of N + 1 rows and W
+    // lanes, its plateau as long as the batch's), then the step's 32 operations at the rate measured for
+    // them.
+    mrm::repro::TrafficSkeleton skeleton(static_cast<std::size_t>(n),
+                                         static_cast<std::size_t>(std::llround(result.plateau * n)));
+    const std::size_t W = skeleton.lanes();
+    const Timing traffic = measure(
+        [&](long s) {
+          for (long i = 0; i < s; ++i) skeleton.step();
         },
-        static_cast<Index>(count), repetitions, target);
-    result.bandwidth = 24 / stream.median;  // bytes per ns
+        n * static_cast<Index>(W), repetitions, target);
     result.bytes = batched_state_bytes + (1 - result.plateau) * batched_factor_bytes;
-    result.limit = result.bytes / result.bandwidth;
+    result.traffic = traffic.median;
+    result.bandwidth = result.bytes / result.traffic;
+    constexpr long rounds = 1000;
+    double sink = 0;
+    const Timing operation =
+        measure([&](long s) { sink += mrm::repro::arithmetic_rounds(s * rounds, 0.5, 1.0); },
+                static_cast<Index>(rounds * mrm::repro::arithmetic_operations_per_round) * static_cast<Index>(W),
+                repetitions, target);
+    if (!std::isfinite(sink)) throw std::runtime_error("the arithmetic rounds gave a wrong value");
+    result.operation = operation.median;
+    result.arithmetic = batched_operations * result.operation;
+    result.limit = std::max(result.traffic, result.arithmetic);
   }
   return result;
 }
@@ -700,15 +722,15 @@ int main(int argc, char** argv) {
 
     // The batched step (lib/batched_step.cpp): W runs of Crank–Nicolson (the same configuration as the
     // cn column) in the W lanes of each vector target the machine has, ns per node per step per run,
-    // against the scalar step, the bare solve (one and two at a time) and the limit of its memory
-    // traffic at the bandwidth measured over its working set.
+    // against the scalar step, the bare solve (one and two at a time) and the limit of the widest target:
+    // the larger of its memory traffic alone and of its operations at their peak rate.
     const std::vector<mrm::BatchTarget> targets = mrm::batch_targets();
     {
       std::cout << "# batched: ns per node per step per run (median of " << repetitions << " batches)\n";
       std::vector<std::string> headers{"N", "scalar"};
       for (const mrm::BatchTarget& t : targets) headers.push_back(t.name + "x" + std::to_string(t.lanes));
-      for (const char* h :
-           {"bare", "bare2", "bare_x2", "plateau", "B/node", "GB/s", "limit", "scalar/widest", "widest/limit"})
+      for (const char* h : {"bare", "bare2", "bare_x2", "plateau", "B/node", "traffic", "GB/s", "Gop/s", "arith",
+                            "limit", "scalar/widest", "widest/limit"})
         headers.push_back(h);
       mrm::repro::Table screen(headers);
       for (std::size_t k = 0; k < sizes.size(); ++k) {
@@ -721,7 +743,10 @@ int main(int argc, char** argv) {
         cells.push_back(fixed(b.bare_x2.median, 2));
         cells.push_back(fixed(b.plateau, 4));
         cells.push_back(fixed(b.bytes, 1));
+        cells.push_back(fixed(b.traffic, 3));
         cells.push_back(fixed(b.bandwidth, 1));
+        cells.push_back(fixed(1 / b.operation, 1));
+        cells.push_back(fixed(b.arithmetic, 3));
         cells.push_back(fixed(b.limit, 3));
         cells.push_back(fixed(t[v_cn].median / b.per_target.front().median, 2));
         cells.push_back(fixed(b.per_target.front().median / b.limit, 2));
@@ -908,6 +933,13 @@ int main(int argc, char** argv) {
         mrm::tex_define(out, "bench:batched:bytes", fixed(b.bytes, 1));
         mrm::tex_define(out, "bench:batched:plateau-percent", fixed(100 * b.plateau, 2));
         mrm::tex_define(out, "bench:batched:bandwidth", fixed(b.bandwidth, 1));
+        mrm::tex_define(out, "bench:batched:traffic", fixed(b.traffic, 3));
+        mrm::tex_define(out, "bench:batched:operations", fixed(batched_operations, 0));
+        mrm::tex_define(out, "bench:batched:peak", fixed(1 / b.operation, 1));
+        mrm::tex_define(out, "bench:batched:arithmetic", fixed(b.arithmetic, 3));
+        mrm::tex_define(out, "bench:batched:to-limit", fixed(b.per_target.front().median / b.limit, 2));
+        mrm::tex_define(out, "bench:batched:bound", b.traffic >= b.arithmetic ? "memory traffic" : "arithmetic");
+        mrm::tex_define(out, "bench:batched:speedup-bound", fixed((*t)[v_cn].median / b.limit, 2));
         mrm::tex_define(out, "bench:bare-x2:ns", fixed(b.bare_x2.median, 2));
       }
       mrm::tex_define(out, "bench:cn:slope", fixed(slope[v_cn], 3));
