@@ -313,6 +313,7 @@ struct BatchedSimulation::Group {
   bool three_level = false, switching = false;
   hwy::AlignedFreeUniquePtr<double[]> u, y, w, x, elimination, elimination_pair, inverse_pivot, upward, upward_pair,
       head_rows, interior, last, rate, memory, ps_q_weight, u0_next, recurrence_d0, keep, energy;
+  std::vector<FastStep::ContactDecision> decisions;  // the lanes' contact decisions of the current step
 };
 
 namespace {
@@ -397,6 +398,7 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
       g->last = hwy::AllocateAligned<double>(10 * lanes_);
       for (auto* a : {&g->rate, &g->memory, &g->ps_q_weight, &g->u0_next, &g->recurrence_d0, &g->keep, &g->energy})
         *a = hwy::AllocateAligned<double>(lanes_);
+      g->decisions.resize(lanes_);
       for (std::size_t j = 0; j < lanes_; ++j) {
         const BarSimulation& r = runs_[g->runs[j]];
         const FastStep& f = *r.fast_;
@@ -561,7 +563,7 @@ void BatchedSimulation::step() {
     k.energy = g.energy.get();
     HWY_DYNAMIC_DISPATCH(batched::SweepDown)(k);
     // Between the sweeps, each lane's contact decision: FastStep::contact_decision, the scalar code.
-    std::vector<FastStep::ContactDecision> decisions(W);
+    std::vector<FastStep::ContactDecision>& decisions = g.decisions;
     for (std::size_t j = 0; j < W; ++j) {
       const BarSimulation& run = runs_[g.runs[j]];
       const FastStep::ContactDecision c =
