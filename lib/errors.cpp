@@ -968,6 +968,25 @@ void check_lanes_match(const std::vector<ErrorAccumulator>& alone, const std::ve
     }
   }
 }
+
+// The lanes of add_lanes for runs 0 … runs−1 of a batch of W lanes: run j's displacement and velocity
+// (own_u[j], own_v[j]) put in lane j of the interleaved vectors u and v, the lanes past the runs filled
+// with 1e300 (padding, which no run's sums may read).
+std::vector<ErrorAccumulator::Lane> interleaved_lanes(const std::vector<Eigen::VectorXd>& own_u,
+                                                      const std::vector<Eigen::VectorXd>& own_v, std::size_t W,
+                                                      std::vector<double>& u, std::vector<double>& v,
+                                                      std::vector<ErrorAccumulator>& together,
+                                                      std::vector<Sample>& samples) {
+  const std::size_t runs = own_u.size(), n = static_cast<std::size_t>(own_u.front().size());
+  for (std::size_t j = 0; j < W; ++j)
+    for (std::size_t i = 0; i < n; ++i) {
+      u[i * W + j] = j < runs ? own_u[j][static_cast<Index>(i)] : 1e300;
+      v[i * W + j] = j < runs ? own_v[j][static_cast<Index>(i)] : 1e300;
+    }
+  std::vector<ErrorAccumulator::Lane> lanes;
+  for (std::size_t j = 0; j < runs; ++j) lanes.push_back({&together[j], &samples[j], LaneVectors{&u[j], &v[j], W, j}});
+  return lanes;
+}
 }  // namespace
 
 TEST_CASE("the error sums of a batch's lanes in one pass are each lane's own, bit for bit, on every vector target") {
@@ -1003,19 +1022,12 @@ TEST_CASE("the error sums of a batch's lanes in one pass are each lane's own, bi
             for (Index i = 0; i < n; ++i) {
               own_u[j][i] = exact.displacement(mesh.x(i), t) + wiggle(random);
               own_v[j][i] = exact.velocity(mesh.x(i), tv) + wiggle(random);
-              u[static_cast<std::size_t>(i) * W + j] = own_u[j][i];
-              v[static_cast<std::size_t>(i) * W + j] = own_v[j][i];
             }
             samples[j] = {level, t,  &own_u[j], tv, &own_v[j], true, t, exact.contact_multiplier(t) + wiggle(random),
                           t,     0.0};
             alone[j].add(samples[j]);
           }
-          for (std::size_t j = runs; j < W; ++j)
-            for (Index i = 0; i < n; ++i)
-              u[static_cast<std::size_t>(i) * W + j] = v[static_cast<std::size_t>(i) * W + j] = 1e300;
-          std::vector<ErrorAccumulator::Lane> lanes;
-          for (std::size_t j = 0; j < runs; ++j)
-            lanes.push_back({&together[j], &samples[j], LaneVectors{&u[j], &v[j], W, j}});
+          std::vector<ErrorAccumulator::Lane> lanes = interleaved_lanes(own_u, own_v, W, u, v, together, samples);
           // The runs of one pass, if the vectors divide W: all, but lane 1 from W = 4 at the levels where
           // its instants give other runs of the closed form.
           const std::size_t got = ErrorAccumulator::add_lanes(lanes.data(), lanes.size());
@@ -1086,20 +1098,13 @@ TEST_CASE("runs against one reference object at the same instants share its eval
               for (Index i = 0; i < n; ++i) {
                 own_u[j][i] = solution.displacement(mesh.x(i), t) + wiggle(random);
                 own_v[j][i] = solution.velocity(mesh.x(i), t) + wiggle(random);
-                u[static_cast<std::size_t>(i) * W + j] = own_u[j][i];
-                v[static_cast<std::size_t>(i) * W + j] = own_v[j][i];
               }
               samples[j] = {level,     t,         &own_u[j], t,
                             &own_v[j], level > 0, t,         solution.contact_multiplier(t) + wiggle(random),
                             t,         0.0};
               alone[j].add(samples[j]);
             }
-            for (std::size_t j = runs; j < W; ++j)
-              for (Index i = 0; i < n; ++i)
-                u[static_cast<std::size_t>(i) * W + j] = v[static_cast<std::size_t>(i) * W + j] = 1e300;
-            std::vector<ErrorAccumulator::Lane> lanes;
-            for (std::size_t j = 0; j < runs; ++j)
-              lanes.push_back({&together[j], &samples[j], LaneVectors{&u[j], &v[j], W, j}});
+            std::vector<ErrorAccumulator::Lane> lanes = interleaved_lanes(own_u, own_v, W, u, v, together, samples);
             const std::size_t got = ErrorAccumulator::add_lanes(lanes.data(), lanes.size());
             CAPTURE(current_batch_target().name);
             CAPTURE(W);
