@@ -38,7 +38,6 @@
 #include "figure_program.hpp"
 #include "parallel.hpp"
 #include "sweep.hpp"
-#include "sweep.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
 #include "schemes.hpp"

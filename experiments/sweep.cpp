@@ -2,7 +2,8 @@
 //
 // What it computes. Every run of schemes × masses × N × Δt/h to T (repro/sweep.hpp), each one line of
 // measures (steps, energy range, the eight errors of mathematics.md §5). Three ways, the same bytes:
-//   in this process   --output FILE, the runs on --threads workers, the lines in grid order;
+//   in this process   --output FILE, the runs through the sweep layer (repro/sweep.hpp: in the lanes of
+//                     --vector, on --threads workers), the lines in grid order;
 //   as a job list     --job-list FILE --results DIR: one self-contained command per line, each this
 //                     program with the options of one run and --result DIR/run-NNNNNN.dat; run it with
 //                     GNU parallel (`parallel --jobs 2 < jobs.txt`, across hosts with --sshloginfile) or
@@ -10,7 +11,9 @@
 //   merged            --merge DIR --output FILE, with the grid options: the header and the result files in
 //                     grid order (a missing or incomplete file is an error naming it).
 // A run alone (a grid of one with --result FILE) writes its line only. The ctest entry sweep_job_list
-// runs a small sweep both ways through GNU parallel and compares the bytes.
+// runs a small sweep both ways through GNU parallel and compares the bytes (the jobs are runs alone, the
+// in-process runs share vector lanes); tests/sweep_widths.sh runs it in-process on every --vector and
+// --threads and compares the bytes.
 //
 // Sample runs:
 //   sweep --schemes cn,be --masses mod1,mod3 --elements 16,32 --courants 0.5,1 --final-time 3 --output s.dat
@@ -70,7 +73,7 @@ int main(int argc, char** argv) {
     std::string schemes = "cn", masses = "mod3", elements = "16", courants = "0.5";
     std::string output, job_list, results, merge, result;
     double final_time = 3;
-    long threads = 2;
+    repro::SweepOptions sweep_options;
     cli::Parser parser(
         "sweep",
         "Runs every scheme x mass x N x dt/h of the paper's benchmark to T and writes one line of measures per run: "
@@ -89,10 +92,7 @@ int main(int argc, char** argv) {
     parser.add_string("--courants", "", "LIST", "ratios dt/h, comma-separated, each in (0, 100]", &courants);
     parser.add_real("--final-time", "-T", "T", "final time, in (0, 1000]", &final_time,
                     cli::in_closed_range(1e-300, 1000));
-    parser.add_integer("--threads", "-j", "J",
-                       "worker threads of --output, in [1, 256]; the output does not depend "
-                       "on it",
-                       &threads, cli::in_closed_range(1, cli::max_threads));
+    repro::add_sweep_options(parser, sweep_options);
     parser.add_output("--output", "-o", "write the sweep (or, with --merge, the merged results) to FILE", &output);
     parser.add_output("--job-list", "", "write the job list (one command per run) to FILE instead of running",
                       &job_list);
@@ -168,7 +168,8 @@ int main(int argc, char** argv) {
       one->commit();
     } else {
       repro::write_sweep_header(out->stream(), grid);
-      for (const std::string& line : repro::run_sweep(grid, static_cast<unsigned>(threads))) out->stream() << line;
+      repro::apply_sweep_options(sweep_options);
+      for (const std::string& line : repro::run_sweep(grid, repro::sweep_settings().threads)) out->stream() << line;
       out->commit();
     }
     return 0;

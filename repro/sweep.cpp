@@ -101,7 +101,9 @@ std::string sweep_line(const JobGrid& grid, std::size_t k, const Measures& m) {
 std::vector<std::string> run_sweep(const JobGrid& grid, unsigned threads) {
   std::vector<Configuration> configurations;
   for (std::size_t k = 0; k < grid.size(); ++k) configurations.push_back(grid.configuration(k));
-  const std::vector<Measures> measures = run_configurations(configurations, threads);
+  SweepSettings settings = sweep_settings();  // batched or not: the program's --vector
+  settings.threads = threads;
+  const std::vector<Measures> measures = run_batched(configurations, settings);
   std::vector<std::string> lines;
   for (std::size_t k = 0; k < grid.size(); ++k) lines.push_back(sweep_line(grid, k, measures[k]));
   return lines;

@@ -40,7 +40,9 @@ void write_sweep_header(std::ostream& out, const JobGrid& grid);
 /// The result line of run k: scheme, mass, N, C, the steps, the energy range and the eight errors
 /// (numbers as cli::format_real writes them: the shortest text that reads back to the same double).
 std::string sweep_line(const JobGrid& grid, std::size_t k, const Measures& measures);
-/// Every run of the grid, in this process on `threads` threads: the result lines in grid order.
+/// Every run of the grid, in this process through the sweep layer (run_batched: in vector lanes unless
+/// sweep_settings() says otherwise, on `threads` threads, 0: one per hardware thread): the result lines in
+/// grid order.
 std::vector<std::string> run_sweep(const JobGrid& grid, unsigned threads);
 /// The name of run k's result file in `directory`: run-000042.dat.
 std::string result_file(const std::string& directory, std::size_t k);
@@ -76,13 +78,13 @@ struct SweepSettings {
   bool batched = true;
 };
 /// The settings of this process's sweeps (default: every hardware thread, batched); a program's
-/// --threads and --no-batch set them (add_sweep_options), before any sweep runs.
+/// --threads and --vector set them (add_sweep_options), before any sweep runs.
 SweepSettings& sweep_settings();
 
 /// The options of a program whose runs go through the sweep layer: --threads J (default: one per
 /// hardware thread) and --vector W (widest: the widest vector target of this processor; one of
 /// batch_targets()' names; none: every run stepped alone). Neither changes an output byte: they exist
-/// to show it (tests/sweep_widths.sh) and to run on fewer cores.
+/// to show it (tests/sweep_widths.sh, with the program sweep) and to run on fewer cores.
 struct SweepOptions {
   long threads = 0;
   std::string vector = "widest";
