@@ -579,8 +579,10 @@ int main(int argc, char** argv) {
                        "step every program uses and the reference step written as the derivation), a bare "
                        "pre-factored tridiagonal solve and Eigen's SimplicialLDLT solve of the same matrix, for "
                        "N = 2^6 .. 2^20 elements; prints the ratios to the bare solve, the log-log slope of the "
-                       "cost per step against N and the peak memory. Timings go to output/bench/, not to the "
-                       "deterministic data.",
+                       "cost per step against N and the peak memory; then the batched step (runs in vector lanes) "
+                       "per vector target against the scalar step and against its limit, the larger of the time "
+                       "of its memory traffic alone and of its operations at the peak rate, both measured. Timings "
+                       "go to output/bench/, not to the deterministic data.",
                        {"bench_step", "bench_step --quick",
                         "bench_step --output output/bench/bench_step.dat --tex output/bench/bench_step.tex "
                         "--markdown output/bench/bench_step.md"});
