@@ -494,10 +494,13 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
            r.lanes.stride % vector_lanes == 0;
   };
   const auto same_bits = [](double p, double q) { return std::memcmp(&p, &q, sizeof p) == 0; };
-  std::vector<Runs> runs(count);
-  std::vector<char> done(count, 0), found(count, 0);
-  std::vector<std::size_t> set;
-  std::vector<double> sums;
+  // The scratch of a level, this thread's, kept from call to call (a sweep calls once per level and batch).
+  thread_local std::vector<Runs> runs;
+  thread_local std::vector<char> done, found;
+  thread_local std::vector<std::size_t> set;
+  thread_local std::vector<double> sums;
+  runs.resize(count);
+  done.assign(count, 0), found.assign(count, 0);
   std::size_t together = 0;
   // Run k's affine runs, computed once per level.
   const auto runs_of = [&](std::size_t k) -> const Runs& {

@@ -401,7 +401,8 @@ std::vector<Measures> run_batched(const std::vector<Configuration>& configuratio
       // The errors of a level of a batch's runs in one pass over the nodes (ErrorAccumulator::add_lanes).
       [&](const std::vector<std::size_t>& ks, const std::vector<Sample>& samples,
           const std::vector<LaneVectors>& lanes) {
-        std::vector<ErrorAccumulator::Lane> level;
+        thread_local std::vector<ErrorAccumulator::Lane> level;  // this worker's, kept from level to level
+        level.clear();
         for (std::size_t m = 0; m < ks.size(); ++m)
           if (ErrorAccumulator* errors = runs[ks[m]]->lane_errors(samples[m].level)) {
             level.push_back({errors, &samples[m], lanes[m]});
