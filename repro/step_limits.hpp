@@ -32,11 +32,12 @@ struct TrafficArrays {
 /// The lanes of the vector target now chosen (lib/batched_step.hpp, use_batch_target).
 std::size_t limit_lanes();
 
-/// One step's memory traffic of the two-level batched step (Crank–Nicolson), on the target now chosen:
-/// the sweep down from row n−1 to 1 reads uᵢ₋₁, uᵢ, uᵢ₊₁, wᵢ₋₁, wᵢ, wᵢ₊₁ (and off the plateau εᵢ, its
-/// pair product) and writes yᵢ; the sweep up from row 0 to n−1 reads yᵢ, uᵢ, wᵢ (and off the plateau
-/// 1/pᵢ, ℓᵢ/pᵢ, its pair product) and writes yᵢ and wᵢ. The caller swaps u and y after it, as the step
-/// does. Every stored value is the maximum of the values the row loaded.
+/// One step's memory traffic of the two-level batched step (Crank–Nicolson) on its interior rows, on the
+/// target now chosen: the sweep down from row n−2 to 1 reads uᵢ₋₁, uᵢ, uᵢ₊₁, wᵢ₋₁, wᵢ, wᵢ₊₁ (and off the
+/// plateau εᵢ, its pair product) and writes yᵢ; the sweep up from row 1 to n−2 reads yᵢ, uᵢ, wᵢ (and off
+/// the plateau 1/pᵢ, ℓᵢ/pᵢ, its pair product) and writes yᵢ and wᵢ. Rows 0 and n−1 (the contact row and
+/// the last one, two of n) are left out. The caller swaps u and y after it, as the step does. Every
+/// stored value is the maximum of the values the row loaded.
 void traffic_step(const TrafficArrays& arrays);
 
 /// The arrays of one group for traffic_step, owned: `n` rows of limit_lanes() lanes (every value ½),
