@@ -158,7 +158,7 @@ int main(int argc, char** argv) {
       return mrm::repro::study_configuration(benchmarks[r.benchmark].name, variant.scheme, mrm::mod3(variant.blend),
                                              r.elements, variant.courant, r.horizons.back());
     };
-    // Through the sweep layer (repro/sweep.hpp): the runs of one mesh size and scheme batched in vector
+    // Through the sweep layer (repro/sweep.hpp): the runs of one mesh size and scheme family batched in vector
     // lanes on `threads` workers, the reference of each benchmark, mesh, Δt and horizon computed once;
     // each run's measures are its own, bit for bit, in the order of `runs`.
     const auto start = std::chrono::steady_clock::now();

@@ -299,6 +299,22 @@ std::vector<BatchTarget> batch_targets() {
   return targets;
 }
 
+int batch_family(Scheme scheme) {
+  switch (scheme) {
+    case Scheme::crank_nicolson:
+    case Scheme::backward_euler:
+      return 0;
+    case Scheme::paoli_schatzman:
+      return 1;
+    case Scheme::energy_conserving:
+      return 2;
+    case Scheme::switching:
+      return 3;
+    default:  // the field's classes: no batched kernel, each scheme a family of its own
+      return -1 - static_cast<int>(scheme);
+  }
+}
+
 BatchTarget current_batch_target() {
   const std::int64_t bit = hwy::SupportedAndGeneratedTargets().front();  // the best the dispatch chooses
   return {hwy::TargetName(bit), HWY_DYNAMIC_DISPATCH(batched::LaneCount)(), bit};
@@ -371,6 +387,7 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
       alone_.push_back(k);
       continue;
     }
+    // batch_family's numbers (its doctest checks that they agree)
     const int family = fast->three_level_ ? 1 : fast->energy_conserving_ ? 2 : fast->switching_ ? 3 : 0;
     families[Key{n, family, fast->head_.size()}].push_back(k);
   }
@@ -702,6 +719,69 @@ TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for
   // Not vacuous: every case went through the vector lanes on every target, CN-switch changed status.
   CHECK(batched_cases == static_cast<int>(targets.size() * cases.size()));
   CHECK(status_changes > 0);
+}
+
+/// @file batched_step.cpp
+/// ## One family, one group
+///
+/// Crank–Nicolson and backward Euler differ only in the values of their step's matrices and rates, which
+/// each lane holds for itself: a group can mix them (batch_family 0), and the sweep layer batches them
+/// together, so that the lanes of a batch share their Δt more often. Checked: such a mixed group is one
+/// group (every run in the lanes), each lane bitwise its run alone past the first impact, on every
+/// target; and two runs of two schemes share a group exactly when batch_family says so.
+TEST_CASE("Crank-Nicolson and backward Euler share the lanes of a group, each lane bitwise its run alone") {
+  const UniformMesh mesh(1.0, 40);
+  const std::vector<double> ratios = {0.5, 0.5, 1.0, 0.25};
+  for (const BatchTarget& target : batch_targets()) {
+    use_batch_target(target.bit);
+    CAPTURE(target.name);
+    std::vector<BarSimulation> batch, alone;
+    Index steps = 0;
+    for (std::size_t k = 0; k < target.lanes; ++k) {
+      SchemeParameters p;
+      p.scheme = k % 2 == 0 ? Scheme::crank_nicolson : Scheme::backward_euler;
+      const double dt = ratios[k % ratios.size()] * mesh.h();
+      const MassRedistribution mass = k % 3 == 0 ? mod1() : k % 3 == 1 ? mod2() : mod3();
+      batch.emplace_back(benchmark_problem(), mesh, mass, p, dt);
+      alone.emplace_back(benchmark_problem(), mesh, mass, p, dt);
+      steps = std::max(steps, static_cast<Index>(1.5 / dt));  // past t = 1, the first impact, for every lane
+    }
+    BatchedSimulation batched(std::move(batch));
+    REQUIRE(batched.batched_runs() == target.lanes);
+    for (Index n = 1; n <= steps; ++n) {
+      batched.step();
+      for (std::size_t k = 0; k < target.lanes; ++k) alone[k].step();
+    }
+    bool identical = true;
+    for (std::size_t k = 0; k < target.lanes; ++k) {
+      const Sample a = batched.run(k).sample(), b = alone[k].sample();
+      identical = identical && same_bits(*a.displacement, *b.displacement) && same_bits(*a.velocity, *b.velocity) &&
+                  same_bits(a.multiplier, b.multiplier) && same_bits(a.energy, b.energy) && a.level == b.level;
+      CHECK(b.time > 1.0);
+    }
+    CHECK(identical);
+  }
+  use_batch_target(0);
+  // Two runs of two schemes (mod1: allowed for every scheme with a batched kernel) are one group iff
+  // their families are the same.
+  const std::vector<Scheme> schemes = {Scheme::crank_nicolson, Scheme::backward_euler, Scheme::paoli_schatzman,
+                                       Scheme::energy_conserving, Scheme::switching};
+  int shared = 0;
+  for (Scheme a : schemes)
+    for (Scheme b : schemes) {
+      CAPTURE(to_string(a));
+      CAPTURE(to_string(b));
+      SchemeParameters pa, pb;
+      pa.scheme = a, pb.scheme = b;
+      std::vector<BarSimulation> two;
+      two.emplace_back(benchmark_problem(), mesh, mod1(), pa, 0.5 * mesh.h());
+      two.emplace_back(benchmark_problem(), mesh, mod1(), pb, 0.25 * mesh.h());
+      const BatchedSimulation batched(std::move(two));
+      const bool together = batched.batched_runs() == 2;
+      CHECK(together == (batch_family(a) == batch_family(b)));
+      shared += together && a != b;
+    }
+  CHECK(shared == 2);  // (CN, BE) and (BE, CN)
 }
 
 /// @file batched_step.cpp

@@ -1,5 +1,5 @@
 /// @file batched_step.hpp
-/// @brief Many runs of the same mesh size and scheme advanced together, one run per lane of the
+/// @brief Many runs of the same mesh size and scheme family advanced together, one run per lane of the
 /// machine's vector registers (Google Highway, the vector width chosen at run time), each lane
 /// bitwise identical to its run stepped alone (batched_step.cpp).
 #pragma once
@@ -32,6 +32,15 @@ std::vector<BatchTarget> batch_targets();
 void use_batch_target(std::int64_t bit);
 /// The target the batched step uses now.
 BatchTarget current_batch_target();
+
+/// The family of a scheme's batched kernel: 0 for the two-level steps (Crank–Nicolson and backward
+/// Euler: the same sweeps, the scheme only in each lane's factors and rates), 1 Paoli–Schatzman (three
+/// levels), 2 EC, 3 CN-switch. Runs of the same number of unknowns and family, on the fast kernel and
+/// without a load, share the lanes of a group whatever their scheme, mass, Δt or data; runs of
+/// different families never do. A scheme without a batched kernel (the field's classes) is a family of
+/// its own, −1 − its index (its runs are stepped alone). The sweep layer batches runs by it
+/// (repro/sweep.hpp).
+int batch_family(Scheme scheme);
 
 /// A batch of runs (BarSimulation's at level 0, moved in) advanced one step at a time. Runs whose
 /// steps can share vector registers (the fast kernel, no load, and the same number of unknowns, scheme

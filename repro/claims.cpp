@@ -55,6 +55,7 @@
 
 #include <doctest/doctest.h>
 
+#include "batched_step.hpp"
 #include "configurations.hpp"
 #include "contact.hpp"
 #include "convergence.hpp"
@@ -438,7 +439,7 @@ std::vector<StabilityRun> stability_runs(const std::vector<StabilityJob>& jobs) 
   std::vector<repro::BatchKey> keys;
   std::vector<double> costs;
   for (const StabilityJob& j : jobs) {
-    keys.push_back({j.elements, to_string(j.scheme.parameters.scheme)});
+    keys.push_back({j.elements, batch_family(j.scheme.parameters.scheme)});
     costs.push_back(static_cast<double>(j.elements) * j.final_time / (j.courant / static_cast<double>(j.elements)));
   }
   std::vector<StabilityObserver> observers(jobs.size());

@@ -262,8 +262,8 @@ void apply_sweep_options(const SweepOptions& options) {
     if (t.name == options.vector) use_batch_target(t.bit);
 }
 
-// The batches. Runs of the same N and scheme have the same sequence of operations node by node (the
-// batched step groups them further by family and layout, and steps the others alone); within a key
+// The batches. Runs of the same N and scheme family have the same sequence of operations node by node
+// (the batched step groups them further by layout, and steps the others alone); within a key
 // the costliest runs (the most steps) go first, so that the runs of a batch have nearly the same number
 // of steps: a lane whose run has ended, or whose observer wants no more, is stepped on with the others
 // but no longer observed. Each batch is one task of run_in_parallel, costliest first (its first run's
@@ -366,7 +366,7 @@ std::vector<Measures> run_batched(const std::vector<Configuration>& configuratio
     const Configuration& c = configurations[k];
     const double steps = c.steps >= 0 ? static_cast<double>(c.steps) : c.final_time / c.step();
     costs[k] = static_cast<double>(c.elements) * steps;
-    keys[k] = {c.elements, to_string(c.scheme.scheme)};
+    keys[k] = {c.elements, batch_family(c.scheme.scheme)};
   }
   ReferenceCache cache;
   const ReferenceSource source = [&cache](const Configuration& unit, double horizon) { return cache(unit, horizon); };

@@ -93,8 +93,9 @@ void add_sweep_options(cli::Parser& parser, SweepOptions& options);
 /// Sets sweep_settings() and the batched step's target (use_batch_target) from the parsed options.
 void apply_sweep_options(const SweepOptions& options);
 
-/// What groups runs into batches: their number of elements and their scheme's id.
-using BatchKey = std::pair<Index, std::string>;
+/// What groups runs into batches: their number of elements and their scheme's batch_family
+/// (lib/batched_step.hpp: Crank–Nicolson and backward Euler share one).
+using BatchKey = std::pair<Index, int>;
 /// Starts run k on a worker: returns its simulation at level 0 and sets `steps`, its number of steps.
 using BatchStart = std::function<BarSimulation(std::size_t k, Index& steps)>;
 /// Observes level n of run k (levels 0, 1, … in order, on the worker of its batch); returns whether
@@ -126,7 +127,8 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                      const BatchLevelPrepare& prepare = {});
 
 /// Independent configurations, each measured as run_configuration measures it, through the sweep layer:
-/// the runs of the same number of elements and scheme are grouped, costliest first, into batches of the
+/// the runs of the same number of elements and scheme family (batch_family: Crank–Nicolson and backward
+/// Euler together) are grouped, costliest first, into batches of the
 /// vector width (lib/batched_step.hpp: each lane is bitwise its run stepped alone), the batches spread
 /// over the threads (repro/parallel.hpp), and the reference of each data, mesh, Δt and horizon is
 /// computed once (ReferenceCache). The measures come back in the order given, the same bytes as
