@@ -28,49 +28,50 @@ MemoizedReference::MemoizedReference(std::shared_ptr<const ReferenceSolution> in
 }
 
 // A vector of the record is written once, when it is inserted, and never moved afterwards (the nodes of
-// an unordered_map stay where they are when it grows): it is copied out without the lock. A question
-// not in the record is evaluated without the lock, so that the other runs go on reading meanwhile.
+// an unordered_map stay where they are when it grows): it is copied out without the lock. The recorded
+// points are set once (the first call) and compared without the lock; a lookup takes the lock shared,
+// so that the runs of the threads read at once, and only an insertion takes it alone. A question not in
+// the record is evaluated without the lock, so that the other runs go on reading meanwhile.
 void MemoizedReference::at_points(Vectors& record, bool velocity, double t, const double* x, long count,
                                   double* out) const {
   const std::uint64_t key = bits_of(t);
-  const std::vector<double>* found = nullptr;
-  bool recorded_points;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++questions_;
-    if (!has_points_) points_.assign(x, x + count), has_points_ = true;
-    recorded_points = static_cast<long>(points_.size()) == count &&
-                      std::equal(points_.begin(), points_.end(), x);  // == on every point: the same doubles
-    if (recorded_points) {
+  questions_.fetch_add(1, std::memory_order_relaxed);
+  std::call_once(points_once_, [&] { points_.assign(x, x + count); });
+  const bool recorded_points = static_cast<long>(points_.size()) == count &&
+                               std::equal(points_.begin(), points_.end(), x);  // == on every point: the same doubles
+  if (recorded_points) {
+    const std::vector<double>* found = nullptr;
+    {
+      std::shared_lock<std::shared_mutex> lock(mutex_);
       const auto it = record.find(key);
       if (it != record.end()) found = &it->second;
     }
-    if (!found) ++evaluations_;
+    if (found) {
+      std::copy(found->begin(), found->end(), out);
+      return;
+    }
   }
-  if (found) {
-    std::copy(found->begin(), found->end(), out);
-    return;
-  }
+  evaluations_.fetch_add(1, std::memory_order_relaxed);
   if (velocity)
     inner_->velocity_at_points(t, x, count, out);
   else
     inner_->displacement_at_points(t, x, count, out);
   if (!recorded_points) return;
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::shared_mutex> lock(mutex_);
   record.emplace(key, std::vector<double>(out, out + count));  // a value already there has the same bits
 }
 
 double MemoizedReference::scalar(Scalars& record, bool multiplier, double t) const {
   const std::uint64_t key = bits_of(t);
+  questions_.fetch_add(1, std::memory_order_relaxed);
   {
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++questions_;
+    std::shared_lock<std::shared_mutex> lock(mutex_);
     const auto it = record.find(key);
     if (it != record.end()) return it->second;
-    ++evaluations_;
   }
+  evaluations_.fetch_add(1, std::memory_order_relaxed);
   const double value = multiplier ? inner_->contact_multiplier(t) : inner_->contact_displacement(t);
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::shared_mutex> lock(mutex_);
   record.emplace(key, value);
   return value;
 }
@@ -84,14 +85,8 @@ void MemoizedReference::velocity_at_points(double t, const double* x, long count
   at_points(velocities_, true, t, x, count, v);
 }
 
-std::size_t MemoizedReference::questions() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return questions_;
-}
-std::size_t MemoizedReference::evaluations() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return evaluations_;
-}
+std::size_t MemoizedReference::questions() const { return questions_.load(); }
+std::size_t MemoizedReference::evaluations() const { return evaluations_.load(); }
 
 namespace {
 // A reference that counts the questions it is asked (its values: any smooth functions of x and t).

@@ -5,10 +5,12 @@
 /// solution) costs more than the run's step. Issue 24, item 2.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <shared_mutex>
 #include <unordered_map>
 #include <vector>
 
@@ -53,12 +55,14 @@ class MemoizedReference final : public ReferenceSolution {
   double scalar(Scalars& record, bool multiplier, double t) const;
 
   std::shared_ptr<const ReferenceSolution> inner_;
-  mutable std::mutex mutex_;
-  mutable std::vector<double> points_;  // the points of the first *_at_points call
-  mutable bool has_points_ = false;
+  // The records: read under a shared lock (the runs of the threads at once), inserted into under an
+  // exclusive one.
+  mutable std::shared_mutex mutex_;
+  mutable std::once_flag points_once_;
+  mutable std::vector<double> points_;  // the points of the first *_at_points call, never changed after it
   mutable Vectors displacements_, velocities_;
   mutable Scalars contact_displacements_, contact_multipliers_;
-  mutable std::size_t questions_ = 0, evaluations_ = 0;
+  mutable std::atomic<std::size_t> questions_{0}, evaluations_{0};
 };
 
 }  // namespace mrm::repro
