@@ -496,24 +496,40 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
   const auto same_bits = [](double p, double q) { return std::memcmp(&p, &q, sizeof p) == 0; };
   // The scratch of a level, this thread's, kept from call to call (a sweep calls once per level and batch).
   thread_local std::vector<Runs> runs;
-  thread_local std::vector<char> done, found;
-  thread_local std::vector<std::size_t> set;
+  thread_local std::vector<char> done;
+  thread_local std::vector<std::size_t> set, source, evaluated;
   thread_local std::vector<double> sums;
   runs.resize(count);
-  done.assign(count, 0), found.assign(count, 0);
+  done.assign(count, 0), source.assign(count, count);
+  evaluated.clear();
   std::size_t together = 0;
-  // Run k's affine runs, computed once per level.
+  // Run k's affine runs, computed once per level: the runs of an earlier lane of the level whose closed
+  // form is the same object, asked at the same instants (their bits) on the same uniform mesh (so the
+  // same nodes, as for the sets below), are the same function of the same arguments, so they are taken
+  // from it (the lanes of one Δt in a batch).
   const auto runs_of = [&](std::size_t k) -> const Runs& {
-    Runs& r = runs[k];
-    if (!found[k]) {
+    if (source[k] == count) {
       const ErrorAccumulator& e = *level[k].errors;
+      const Sample& s = *level[k].sample;
       const double* x = e.nodes_.data();
       const long n = static_cast<long>(e.mesh_.unknowns());
-      r.u_count = e.closed_form_->displacement_runs(level[k].sample->time, x, n, r.u, 32);
-      r.v_count = e.closed_form_->velocity_runs(level[k].sample->velocity_time, x, n, r.v, 32);
-      found[k] = 1;
+      for (std::size_t m : evaluated) {
+        const ErrorAccumulator& f = *level[m].errors;
+        const Sample& t = *level[m].sample;
+        if (f.closed_form_ == e.closed_form_ && same_bits(t.time, s.time) &&
+            same_bits(t.velocity_time, s.velocity_time) && f.mesh_.unknowns() == e.mesh_.unknowns() &&
+            f.mesh_.length == e.mesh_.length && f.mesh_.h() == e.mesh_.h()) {
+          source[k] = m;
+          return runs[m];
+        }
+      }
+      Runs& r = runs[k];
+      r.u_count = e.closed_form_->displacement_runs(s.time, x, n, r.u, 32);
+      r.v_count = e.closed_form_->velocity_runs(s.velocity_time, x, n, r.v, 32);
+      source[k] = k;
+      evaluated.push_back(k);
     }
-    return r;
+    return runs[source[k]];
   };
   for (std::size_t a = 0; a < count; ++a) {
     if (done[a]) continue;
@@ -595,7 +611,8 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
           e.mesh_.unknowns() != n || e.mesh_.length != lead.mesh_.length || e.mesh_.h() != lead.mesh_.h())
         continue;
       const Runs& theirs = runs_of(b);
-      if (same(mine.u, mine.u_count, theirs.u, theirs.u_count) && same(mine.v, mine.v_count, theirs.v, theirs.v_count))
+      if (&theirs == &mine || (same(mine.u, mine.u_count, theirs.u, theirs.u_count) &&
+                               same(mine.v, mine.v_count, theirs.v, theirs.v_count)))
         set.push_back(b);
     }
     if (set.size() == 1) {  // alone: add's sums (add_vectors), from the runs found above
@@ -619,12 +636,27 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
     const double h = lead.mesh_.h();
     const InterpolantSums zu = interpolant_run_sums(x, h, mine.u, mine.u_count);
     const InterpolantSums zv = interpolant_run_sums(x, h, mine.v, mine.v_count);
+    // The contact values u₀(t) and λ(t) once per closed form and instant (the lanes of one Δt share both).
+    const ExactSolution* u0_of = nullptr;
+    const ExactSolution* lambda_of = nullptr;
+    double u0 = 0, u0_time = 0, lambda = 0, lambda_time = 0;
     for (std::size_t k : set) {
       const std::size_t j = level[k].lanes.lane;
       const Sums su{s[j], s[W + j], s[2 * W + j], s[3 * W + j], zu.z0, zu.z_last, zu.differences, zu.squares};
       const Sums sv{s[4 * W + j], s[5 * W + j], s[6 * W + j],   s[7 * W + j],
                     zv.z0,        zv.z_last,    zv.differences, zv.squares};
-      level[k].errors->add_sums(*level[k].sample, level[k].lanes.displacement[0], su, sv);
+      const Sample& sample = *level[k].sample;
+      const ErrorAccumulator& e = *level[k].errors;
+      if (!(u0_of == e.closed_form_ && same_bits(sample.time, u0_time))) {
+        u0 = e.exact_->contact_displacement(sample.time);
+        u0_of = e.closed_form_, u0_time = sample.time;
+      }
+      if (sample.has_multiplier && !(lambda_of == e.closed_form_ && same_bits(sample.multiplier_time, lambda_time))) {
+        lambda = e.exact_->contact_multiplier(sample.multiplier_time);
+        lambda_of = e.closed_form_, lambda_time = sample.multiplier_time;
+      }
+      level[k].errors->add_sums(sample, level[k].lanes.displacement[0], su, sv, u0,
+                                sample.has_multiplier ? lambda : 0.0);
       done[k] = 1;
     }
     together += set.size();
