@@ -141,20 +141,25 @@ namespace {
 // so that a run read from the lane layout of a batch (LaneVectors) sums in the same order as a run
 // alone: it is the order of the loop this replaces (an `omp simd` reduction that GCC 12 vectorised with
 // two lanes of SSE2, unaligned, and the odd element last into the even lane), so the measures keep
-// their bits. `term(i, w_i, w_{i−1})` gives (de, e) at node i.
+// their bits. `term(x_i, x_{i−1}, w_i, w_{i−1})` gives (de, e) at node i, on doubles or, for the nodes
+// i and i + 1 at once, on pairs of them: the even offset in lane 0, the odd one in lane 1 (GCC's vector
+// extension: each lane's operations are the scalar ones, in the same order, as in Tridiagonal::form), so
+// that the two partial sums are the two lanes of one pair.
+typedef double Pair __attribute__((vector_size(16)));
 template <typename Stride, typename Term>
-inline void pair_sums(const double* w, long first, long end, Stride stride, const Term& term, double& differences,
-                      double& squares) {
-  double d0 = 0, d1 = 0, s0 = 0, s1 = 0;
+inline void pair_sums(const double* w, const double* x, long first, long end, Stride stride, const Term& term,
+                      double& differences, double& squares) {
+  Pair d{0, 0}, s{0, 0};
   long i = first;
   for (; i + 1 < end; i += 2) {
-    const auto [de0, e0] = term(i, w[i * stride], w[(i - 1) * stride]);
-    const auto [de1, e1] = term(i + 1, w[(i + 1) * stride], w[i * stride]);
-    d0 += de0 * de0, s0 += e0 * e0;
-    d1 += de1 * de1, s1 += e1 * e1;
+    const Pair wi{w[i * stride], w[(i + 1) * stride]}, wp{w[(i - 1) * stride], w[i * stride]};
+    const Pair xi{x[i], x[i + 1]}, xp{x[i - 1], x[i]};
+    const auto [de, e] = term(xi, xp, wi, wp);
+    d += de * de, s += e * e;
   }
+  double d0 = d[0], d1 = d[1], s0 = s[0], s1 = s[1];
   if (i < end) {
-    const auto [de, e] = term(i, w[i * stride], w[(i - 1) * stride]);
+    const auto [de, e] = term(x[i], x[i - 1], w[i * stride], w[(i - 1) * stride]);
     d0 += de * de, s0 += e * e;
   }
   differences = d0 + d1, squares = s0 + s1;
@@ -185,13 +190,13 @@ ErrorRunSums error_run_sums(const double* w, Stride stride, const double* x, con
     double red = 0, res = 0;
     if (b == 0)  // a constant interpolant (every run of u_t, some of u): no node positions needed
       pair_sums(
-          w, first + 1, end, stride,
-          [a](long, double wi, double wp) { return std::pair<double, double>(wi - wp, wi - a); }, red, res);
+          w, x, first + 1, end, stride, [a](auto, auto, auto wi, auto wp) { return std::pair(wi - wp, wi - a); }, red,
+          res);
     else
       pair_sums(
-          w, first + 1, end, stride,
-          [a, b, x](long i, double wi, double wp) {
-            return std::pair<double, double>((wi - wp) - b * (x[i] - x[i - 1]), wi - (a + b * x[i]));
+          w, x, first + 1, end, stride,
+          [a, b](auto xi, auto xp, auto wi, auto wp) {
+            return std::pair((wi - wp) - b * (xi - xp), wi - (a + b * xi));
           },
           red, res);
     ed += red, es += res;
