@@ -107,6 +107,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include <doctest/doctest.h>
@@ -252,13 +253,17 @@ std::vector<double> window_average(const std::vector<double>& values, double spa
 // y = x/h − k/2 (centred, so that the normal equations are well conditioned): q'(0) = (b_y − k c_y)/h
 // with q = a_y + b_y y + c_y y². In y the odd moments vanish, so b_y = Σ y u / Σ y² and (a_y, c_y) solve
 // the 2 × 2 system [n, S2; S2, S4] [a; c] = [Σ u; Σ y² u].
-double recovered_strain(const double* u, Index k, double h) {
+double recovered_strain(const double* u, Index k, double h) { return recovered_strain(u, 1, k, h); }
+
+double recovered_strain(const double* u, std::size_t stride, Index k, double h) {
   if (k < 2 || !(h > 0)) throw std::invalid_argument("recovered_strain: needs k >= 2 and h > 0");
+  if (stride == 0) throw std::invalid_argument("recovered_strain: needs stride >= 1");
   double n = 0, s2 = 0, s4 = 0, su = 0, syu = 0, sy2u = 0;
   for (Index i = 0; i <= k; ++i) {
     const double y = static_cast<double>(i) - 0.5 * static_cast<double>(k);
+    const double ui = u[static_cast<std::size_t>(i) * stride];
     n += 1, s2 += y * y, s4 += y * y * y * y;
-    su += u[i], syu += y * u[i], sy2u += y * y * u[i];
+    su += ui, syu += y * ui, sy2u += y * y * ui;
   }
   const double b = syu / s2;
   const double c = (n * sy2u - s2 * su) / (n * s4 - s2 * s2);
@@ -351,6 +356,28 @@ TEST_CASE("the recovered strain is exact for a linear strain (section 4)") {
   CHECK_THROWS_AS(recovered_strain(u.data(), 1, h), std::invalid_argument);
   CHECK(recovered_elements(0.01, 0.001) == 40);
   CHECK(recovered_elements(1e-5, 0.001) == 2);
+}
+
+TEST_CASE("the recovered strain read with a stride (a run in the lanes of a batch) has the contiguous bits") {
+  // Four interleaved runs of 41 nodes, lane j's node i at lanes[i·4 + j]; values with no short binary form.
+  const std::size_t width = 4, nodes = 41;
+  std::vector<double> lanes(width * nodes);
+  for (std::size_t i = 0; i < nodes; ++i)
+    for (std::size_t j = 0; j < width; ++j)
+      lanes[i * width + j] = std::sin(0.37 * static_cast<double>(i) + 1.3 * static_cast<double>(j)) / 3 +
+                             1e-3 * static_cast<double>(i * i) / 7;
+  const double h = 1.0 / 37;
+  for (std::size_t j = 0; j < width; ++j) {
+    std::vector<double> own(nodes);
+    for (std::size_t i = 0; i < nodes; ++i) own[i] = lanes[i * width + j];
+    for (Index k : {2, 3, 7, 16, 40}) {
+      const double contiguous = recovered_strain(own.data(), k, h), strided = recovered_strain(&lanes[j], width, k, h);
+      CHECK(std::memcmp(&contiguous, &strided, sizeof(double)) == 0);
+      const double unit = recovered_strain(own.data(), 1, k, h);
+      CHECK(std::memcmp(&contiguous, &unit, sizeof(double)) == 0);
+    }
+  }
+  CHECK_THROWS_AS(recovered_strain(lanes.data(), 0, 2, h), std::invalid_argument);
 }
 
 }  // namespace mrm

@@ -4,6 +4,7 @@
 /// the smearing width they are matched to, and the measures of a stress history.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,10 @@ std::vector<double> window_average(const std::vector<double>& values, double spa
 /// quadratic u (a linear strain). u holds at least k + 1 values. Throws std::invalid_argument for k < 2
 /// or h ≤ 0.
 double recovered_strain(const double* u, Index k, double h);
+/// The same with u_i at u[i·stride] (stride ≥ 1: a run's displacement in the interleaved vector lanes of
+/// a batch, LaneVectors): the same operations in the same order, so the same bits as the contiguous
+/// values. Throws std::invalid_argument for k < 2, h ≤ 0 or stride 0.
+double recovered_strain(const double* u, std::size_t stride, Index k, double h);
 
 /// The number of elements of the recovered stress: k = max(2, round(4W/h)), so that the spatial fit
 /// spans the time window 2kh ≈ 8W of the window stress (contact_stress.cpp, §4).

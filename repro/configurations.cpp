@@ -859,7 +859,7 @@ ConfigurationRun::ConfigurationRun(const Configuration& configuration, std::func
 void ConfigurationRun::add(const Sample& s) { add_sample(s, nullptr); }
 
 bool ConfigurationRun::takes_lanes(Index level) const {
-  return !observe_ && !keep_recovered_ && !(unit_.measure_errors && difference_ && level >= 1);
+  return !observe_ && !(unit_.measure_errors && difference_ && level >= 1);
 }
 
 void ConfigurationRun::add(const Sample& s, const LaneVectors& lanes) { add(s, lanes, false); }
@@ -895,7 +895,10 @@ void ConfigurationRun::add_sample(const Sample& s, const LaneVectors* lanes, boo
     const Index k = std::min<Index>(recovered_elements(smearing_width(history_.h, s.time, history_.order), history_.h),
                                     static_cast<Index>(s.displacement->size()) - 1);
     history_.recovered_time.push_back(s.time);
-    history_.recovered.push_back(std::min(0.0, recovered_strain(s.displacement->data(), k, history_.h)));
+    // From the lanes of a batch the sample's own displacement is current at entry 0 only: read it there.
+    const double strain = lanes ? recovered_strain(lanes->displacement, lanes->stride, k, history_.h)
+                                : recovered_strain(s.displacement->data(), k, history_.h);
+    history_.recovered.push_back(std::min(0.0, strain));
     history_.exact_at_levels.push_back(exact_->contact_multiplier(s.time));
   }
   if (!unit_.measure_errors) {

@@ -334,11 +334,12 @@ class ConfigurationRun {
   /// non-finite energy.
   void add(const Sample& sample);
   /// Whether the sample of `level` may come from a batch's lanes (add(sample, lanes)): nothing but the
-  /// error measures reads more of its vectors than the displacement's first entry (no observer, no
-  /// recovered strain, no differenced velocity at that level).
+  /// error measures and the recovered strain reads more of its vectors than the displacement's first
+  /// entry (no observer, no differenced velocity at that level).
   bool takes_lanes(Index level) const;
-  /// The same as add(sample), the error measures reading the displacement and velocity from `lanes`
-  /// (the same bits); of the sample's own vectors only the displacement's first entry is read.
+  /// The same as add(sample), the error measures and the recovered strain reading the displacement and
+  /// velocity from `lanes` (the same bits); of the sample's own vectors only the displacement's first
+  /// entry is read (and their size).
   void add(const Sample& sample, const LaneVectors& lanes);
   /// The accumulator of the error measures if the sample of `level` may come from lanes and its errors
   /// are measured (a batched driver adds that level's errors of several runs in one pass,

@@ -436,6 +436,15 @@ std::string measure_bytes(const Measures& m) {
   for (const ContactInterval& w : m.contact_windows) out << "\nwindow " << w.start << ' ' << w.end << ' ' << w.open;
   if (m.lambda_tv_ratio) out << "\ntv " << *m.lambda_tv_ratio;
   out << "\npenetration " << m.max_penetration << '\n';
+  if (m.stress_history) {  // kept: the multiplier's and the recovered strain's histories
+    const StressHistory& h = *m.stress_history;
+    for (const std::vector<double>* v :
+         {&h.time, &h.multiplier, &h.exact, &h.recovered_time, &h.recovered, &h.exact_at_levels}) {
+      for (double x : *v) out << x << ' ';
+      out << '\n';
+    }
+    out << h.h << ' ' << h.spacing << ' ' << h.order.mu << ' ' << h.order.coefficient << '\n';
+  }
   return out.str();
 }
 
@@ -448,7 +457,8 @@ TEST_CASE("the batched sweep gives each run's measures bit for bit, for any thre
   // the vector target (each one this machine has) or batching at all. The runs: the five schemes of
   // the batched step, two masses, two meshes, two steps (runs of one batch end at different levels),
   // with horizons; and two runs of each smooth benchmark on the same mesh and Δt, which share one reference
-  // per benchmark (and must not get the other's).
+  // per benchmark (and must not get the other's); and runs that keep the stress histories (the recovered
+  // strain read from the lanes), with and without the error measures.
   std::vector<Configuration> configurations;
   for (const char* scheme : {"cn", "be", "ps", "ec", "cn-switch"})
     for (const char* mass : {"mod1", "mod3"})
@@ -461,6 +471,13 @@ TEST_CASE("the batched sweep gives each run's measures bit for bit, for any thre
     for (const char* mass : {"mod1", "mod3"}) {
       Configuration c = paper_configuration("cn", "algebraic", mass, 16, 0.5, 2.0);
       c.benchmark = benchmark;
+      configurations.push_back(c);
+    }
+  for (const char* scheme : {"cn", "be", "cn-switch"})
+    for (bool errors : {true, false}) {
+      Configuration c = paper_configuration(scheme, "algebraic", "mod3", 13, 0.5, 3.5);
+      c.keep_stress_history = true;
+      c.measure_errors = errors;
       configurations.push_back(c);
     }
   std::vector<std::string> expected;
