@@ -17,8 +17,11 @@
 // slope −1/3 (μ = 2), −2/5 (μ = 4). The target of the issue: a ratio at most 2 at every N with an L²
 // error no larger than CN + Mod 3's multiplier at the same N, Δt/h and benchmark.
 //
-// Cost: one run per (benchmark, variant, mesh); the stresses are post-processing. The finest mesh
-// dominates (steps ∝ N², T/Δt); the wall time goes to standard error.
+// Cost: one run per (benchmark, variant, mesh), all through the sweep layer (repro::run_batched: the
+// runs of the same mesh and scheme family stepped together in the vector lanes of one register, each
+// lane bitwise its run stepped alone, so the output does not depend on the batching or the threads);
+// the stresses are post-processing of the returned histories. The finest mesh dominates (steps ∝ N²,
+// T/Δt); the wall time goes to standard error.
 //
 // Sample runs:
 //   fig_stress --output output/data/fig_stress.dat --tex output/data/fig_stress.tex
@@ -42,8 +45,8 @@
 #include "figure_program.hpp"
 #include "interior_mass.hpp"
 #include "options.hpp"
-#include "parallel.hpp"
 #include "report_values.hpp"
+#include "sweep.hpp"
 #include "table.hpp"
 
 namespace cli = mrm::cli;
@@ -131,15 +134,21 @@ int main(int argc, char** argv) {
       return mrm::repro::study_configuration(benchmarks[r.benchmark].name, variant.scheme, mrm::mod3(variant.blend),
                                              r.elements, variant.courant, benchmarks[r.benchmark].final_time);
     };
-    auto cost = [&](std::size_t k) { return mrm::repro::run_cost(configuration(runs[k])); };
-    const auto start = std::chrono::steady_clock::now();
-    mrm::repro::run_in_parallel(mrm::repro::costliest_first(runs.size(), cost), threads, [&](std::size_t k) {
-      Run& r = runs[k];
+    std::vector<mrm::repro::Configuration> configurations;
+    for (const Run& r : runs) {
       mrm::repro::Configuration c = configuration(r);
       c.keep_stress_history = true;
       c.measure_errors = false;  // the stresses only
-      const mrm::repro::Measures m = mrm::repro::run_configuration(c);
-      const mrm::repro::StressHistory& h = *m.stress_history;
+      configurations.push_back(c);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    mrm::repro::SweepSettings settings;
+    settings.threads = static_cast<unsigned>(threads);
+    const std::vector<mrm::repro::Measures> measures = mrm::repro::run_batched(configurations, settings);
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      Run& r = runs[k];
+      const mrm::repro::Configuration& c = configurations[k];
+      const mrm::repro::StressHistory& h = *measures[k].stress_history;
       for (const mrm::ContactStressEntry& e : mrm::contact_stress_registry())
         r.measures[static_cast<std::size_t>(e.stress)] = mrm::repro::stress_measures(h, e.stress);
       if (r.variant == be_variant) {  // the same history, the window at CN's width
@@ -157,7 +166,7 @@ int main(int argc, char** argv) {
         for (std::size_t i = 0; i < h.time.size(); ++i)
           if (h.time[i] >= c.final_time - 3.0) r.time.push_back(h.time[i]), r.exact.push_back(h.exact[i]);
       }
-    });
+    }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cerr << "fig_stress: " << runs.size() << " runs in " << wall << " s\n";
     auto at = [&](std::size_t b, std::size_t v, std::size_t l) -> const Run& {
