@@ -144,16 +144,18 @@ double Tridiagonal::bilinear(const Eigen::VectorXd& x, const Eigen::VectorXd& y)
 // up to the last multiple of 4, the first pair added to the second, then the next pair if one is left,
 // the two halves added, then the last p_i if n is odd; for n < 4 the same with one pair). The doctest
 // below compares the bits with bilinear's for n = 1 to 40.
-double Tridiagonal::form(const Eigen::VectorXd& x) const {
-  require_size("form", x.size(), size());
-  const Index n = size();
+namespace {
+
+// form's algorithm for x_i at xs[i·stride]; `contiguous` (stride 1) loads a pair of x with one copy.
+template <bool contiguous>
+double form_of(const double* d, const double* lo, const double* up, Index n, const double* xs, std::size_t stride) {
   if (n == 0) return 0.0;
-  const double *d = diag.data(), *lo = lower.data(), *up = upper.data(), *xs = x.data();
+  const auto at = [&](Index i) { return contiguous ? xs[i] : xs[static_cast<std::size_t>(i) * stride]; };
   const auto row = [&](Index i) {  // x_i (A x)_i, the terms that exist
-    double s = d[i] * xs[i];
-    if (i > 0) s += lo[i] * xs[i - 1];
-    if (i + 1 < n) s += up[i] * xs[i + 1];
-    return xs[i] * s;
+    double s = d[i] * at(i);
+    if (i > 0) s += lo[i] * at(i - 1);
+    if (i + 1 < n) s += up[i] * at(i + 1);
+    return at(i) * s;
   };
   if (n < 4) {
     if (n == 1) return row(0);
@@ -173,11 +175,18 @@ double Tridiagonal::form(const Eigen::VectorXd& x) const {
       std::memcpy(&v, p, sizeof v);
       return v;
     };
+    const auto load_x = [&](Index k) {  // x_k and x_{k+1}
+      if constexpr (contiguous) {
+        return load(xs + k);
+      } else {
+        return Pair{at(k), at(k + 1)};
+      }
+    };
     const auto products = [&](Index k) {  // x_k (A x)_k and x_{k+1} (A x)_{k+1}, 0 < k, k + 2 < n
-      const Pair xk = load(xs + k);
+      const Pair xk = load_x(k);
       Pair s = load(d + k) * xk;
-      s += load(lo + k) * load(xs + k - 1);
-      s += load(up + k) * load(xs + k + 1);
+      s += load(lo + k) * load_x(k - 1);
+      s += load(up + k) * load_x(k + 1);
       return xk * s;
     };
     Pair a{a0, a1}, b{b0, b1};
@@ -196,6 +205,18 @@ double Tridiagonal::form(const Eigen::VectorXd& x) const {
   double r = a0 + a1;
   if (n > end2) r += row(n - 1);
   return r;
+}
+
+}  // namespace
+
+double Tridiagonal::form(const Eigen::VectorXd& x) const {
+  require_size("form", x.size(), size());
+  return form_of<true>(diag.data(), lower.data(), upper.data(), size(), x.data(), 1);
+}
+
+double Tridiagonal::form(const double* x, std::size_t stride) const {
+  if (stride == 1) return form_of<true>(diag.data(), lower.data(), upper.data(), size(), x, 1);
+  return form_of<false>(diag.data(), lower.data(), upper.data(), size(), x, stride);
 }
 
 double Tridiagonal::sum() const { return lower.sum() + diag.sum() + upper.sum(); }
@@ -453,6 +474,23 @@ TEST_CASE("the one-pass quadratic form has the bits of bilinear(x, x)") {
     CHECK(std::memcmp(&expected, &got, sizeof got) == 0);
   }
   CHECK_THROWS_AS(Tridiagonal(3).form(Eigen::VectorXd::Zero(2)), std::invalid_argument);
+}
+
+// form(x, stride) against form(x), bit for bit: the same sizes, x's entries spread at several strides
+// (as in a batch's lanes, with other values between them).
+TEST_CASE("the strided quadratic form has the bits of form(x)") {
+  for (Index n = 1; n <= 40; ++n)
+    for (const std::size_t stride : {std::size_t{1}, std::size_t{2}, std::size_t{3}, std::size_t{4}, std::size_t{8}}) {
+      Tridiagonal a;
+      Eigen::VectorXd x;
+      distinct_entries(n, a, x);
+      std::vector<double> spread(static_cast<std::size_t>(n) * stride, -7.25);
+      for (Index i = 0; i < n; ++i) spread[static_cast<std::size_t>(i) * stride] = x[i];
+      const double expected = a.form(x), got = a.form(spread.data(), stride);
+      CAPTURE(n);
+      CAPTURE(stride);
+      CHECK(std::memcmp(&expected, &got, sizeof got) == 0);
+    }
 }
 
 TEST_CASE("the P1 load vector integrates f φ_i exactly for a quadratic f") {

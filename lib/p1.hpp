@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -112,6 +113,9 @@ struct Tridiagonal {
   double bilinear(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const;
   /// xᵀ A x in one pass, without the product vector: the same bits as bilinear(x, x).
   double form(const Eigen::VectorXd& x) const;
+  /// The same for the vector x_i = x[i·stride], i < size() (e.g. a run's lane in a batch): the same
+  /// operations in the same order, so the same bits as form of that vector. Sizes are not checked.
+  double form(const double* x, std::size_t stride) const;
   /// 1ᵀ A 1, the sum of all entries.
   double sum() const;
   /// The leading n×n block (used to drop the clamped node N).

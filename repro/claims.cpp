@@ -45,10 +45,12 @@
 #include <array>
 #include <cctype>
 #include <chrono>
+#include <cstddef>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
@@ -394,20 +396,32 @@ struct StabilityRun {
   Index steps = 0;
 };
 
+// Whether the n entries x[i·stride] are all finite (allFinite's answer, read in place).
+bool all_finite(const double* x, Index n, std::size_t stride) {
+  for (Index i = 0; i < n; ++i)
+    if (!std::isfinite(x[static_cast<std::size_t>(i) * stride])) return false;
+  return true;
+}
+
 // One stability run observed at every level: the energy and the strain energy ½UⁿᵀSUⁿ against the
 // bound, until a value is not finite (nothing more to measure) or the run ends.
 struct StabilityObserver {
   Tridiagonal stiffness;
   double bound;
   StabilityRun r;
-  bool add(const Sample& s) {
+  bool add(const Sample& s) { return add(s, {s.displacement->data(), s.velocity->data(), 1}); }
+  // The same with Uⁿ and the velocity read from `lanes` (a batch's lanes, in place; the sample's own
+  // vectors give only their sizes).
+  bool add(const Sample& s, const LaneVectors& lanes) {
     if (s.level == 0) {
       r.e0 = r.e_max = r.e_min = s.energy;
       return true;
     }
-    const bool finite = std::isfinite(s.energy) && std::isfinite(s.multiplier) && s.displacement->allFinite() &&
-                        s.velocity->allFinite();
-    const double strain = finite ? 0.5 * stiffness.form(*s.displacement) : 0.0;  // bilinear(U, U)'s bits
+    const bool finite = std::isfinite(s.energy) && std::isfinite(s.multiplier) &&
+                        all_finite(lanes.displacement, s.displacement->size(), lanes.stride) &&
+                        all_finite(lanes.velocity, s.velocity->size(), lanes.stride);
+    const double strain =
+        finite ? 0.5 * stiffness.form(lanes.displacement, lanes.stride) : 0.0;  // bilinear(U, U)'s bits
     if (finite) {
       r.e_max = std::max(r.e_max, s.energy);
       r.e_min = std::min(r.e_min, s.energy);
@@ -455,7 +469,10 @@ std::vector<StabilityRun> stability_runs(const std::vector<StabilityJob>& jobs) 
         observers[k].r.steps = steps = steps_to_reach(j.final_time, dt);
         return simulation;
       },
-      [&](std::size_t k, const Sample& s) { return observers[k].add(s); }, [](std::size_t) {});
+      [&](std::size_t k, const Sample& s) { return observers[k].add(s); }, [](std::size_t) {}, repro::sweep_settings(),
+      [&](std::size_t k, const Sample& s, const LaneVectors& lanes) -> std::optional<bool> {
+        return observers[k].add(s, lanes);
+      });
   std::vector<StabilityRun> runs;
   for (const StabilityObserver& o : observers) runs.push_back(o.r);
   return runs;
