@@ -39,13 +39,9 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <future>
 #include <iostream>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include "configurations.hpp"
@@ -139,84 +135,6 @@ std::string benchmark_refusal(const std::string& benchmark, const std::vector<Ca
   }
   return "";
 }
-
-// The exact solution of one group of the matrix: the runs of every class-mass pair on one benchmark,
-// mesh and Δt (issue 24, item 2). They ask it the same questions: u and u_t at the nodes, u(0, ·) and
-// λ at the instants of their samples (kΔt, and (k ± ½)Δt where a class samples its velocity or its
-// multiplier between levels), so it is built once for the group and seen through a record
-// (repro::MemoizedReference), which evaluates each question once: the same doubles as each run's own
-// reference (the doctests of repro/memoized_reference.cpp), so the same bytes. The paper's closed form
-// is shared as it is (its error sums take a path of their own, cheaper than a record). A group's
-// reference and record are dropped when its last run ends (a group holds up to ~10 MB: the runs of a
-// group come one after the other in the order of the runs, costliest_first, so few are alive at once).
-class GroupReferences {
- public:
-  using Key = std::tuple<std::size_t, std::size_t, std::size_t>;  // benchmark, mesh, Δt
-  explicit GroupReferences(std::size_t runs_per_group) : runs_per_group_(runs_per_group) {}
-
-  // The reference of `group` for a run's unit configuration up to `horizon` (ConfigurationRun's source):
-  // made by the first run that asks (the others wait for it), checked to be the same question after.
-  std::shared_ptr<const mrm::ReferenceSolution> operator()(const Key& group, const repro::Configuration& unit,
-                                                           double horizon) {
-    std::shared_future<std::shared_ptr<const mrm::ReferenceSolution>> future;
-    std::promise<std::shared_ptr<const mrm::ReferenceSolution>> promise;
-    bool make = false;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      Group& g = groups_[group];
-      if (!g.made) {
-        g.made = true, g.horizon = horizon, g.dt = unit.step(), g.elements = unit.elements;
-        g.reference = promise.get_future().share();
-        make = true;
-      } else if (g.horizon != horizon || g.dt != unit.step() || g.elements != unit.elements) {
-        throw std::logic_error("fig_classes: two runs of one group ask for different exact solutions");
-      }
-      future = g.reference;
-    }
-    if (make) {
-      try {
-        std::shared_ptr<const mrm::ReferenceSolution> reference = repro::unit_configuration_reference(unit, horizon);
-        if (!dynamic_cast<const mrm::ExactSolution*>(reference.get()))
-          reference = std::make_shared<const repro::MemoizedReference>(std::move(reference));
-        promise.set_value(std::move(reference));
-      } catch (...) {
-        promise.set_exception(std::current_exception());
-      }
-    }
-    return future.get();
-  }
-  // A run of `group` has ended: the last one drops the group's reference (the runs still hold it while
-  // they measure), after adding its record's counts to the totals.
-  void done(const Key& group) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    const auto it = groups_.find(group);
-    if (it == groups_.end() || ++it->second.ended < runs_per_group_) return;
-    if (it->second.reference.valid() &&
-        it->second.reference.wait_for(std::chrono::seconds(0)) == std::future_status::ready)
-      try {
-        if (const auto* memo = dynamic_cast<const repro::MemoizedReference*>(it->second.reference.get().get()))
-          questions_ += memo->questions(), evaluations_ += memo->evaluations();
-      } catch (...) {  // the group's reference could not be made: its runs threw; nothing to count
-      }
-    groups_.erase(it);
-  }
-  // The questions the records answered and how many of them were evaluated (the runs' instants shared).
-  std::size_t questions() const { return questions_; }
-  std::size_t evaluations() const { return evaluations_; }
-
- private:
-  struct Group {
-    bool made = false;
-    double horizon = 0, dt = 0;
-    mrm::Index elements = 0;
-    std::size_t ended = 0;
-    std::shared_future<std::shared_ptr<const mrm::ReferenceSolution>> reference;
-  };
-  std::size_t runs_per_group_;
-  std::mutex mutex_;
-  std::map<Key, Group> groups_;
-  std::size_t questions_ = 0, evaluations_ = 0;
-};
 
 double slope(const std::vector<double>& h, const std::vector<double>& e) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
@@ -331,7 +249,13 @@ int main(int argc, char** argv) {
       const double t = is_long(k) ? 3 * long_periods : final_time(benchmarks[jobs[k].benchmark]);
       return n * n * t / courants[jobs[k].courant];
     });
-    GroupReferences references(cases.size());
+    // The exact solution of one group of the matrix: the runs of every class-mass pair on one benchmark,
+    // mesh and Δt (issue 24, item 2) ask it the same questions (u and u_t at the nodes, u(0, ·) and λ at
+    // the instants of their samples: kΔt, and (k ± ½)Δt where a class samples its velocity or its
+    // multiplier between levels), so it is made once for the group and seen through a record
+    // (repro::GroupReferences; the same doubles, so the same bytes). A group holds up to ~10 MB: its runs
+    // come one after the other in the order of the runs (costliest_first), so few are alive at once.
+    repro::GroupReferences references(cases.size());
     repro::run_in_parallel(order, threads, [&](std::size_t k) {
       const Job& job = jobs[k];
       const auto start = std::chrono::steady_clock::now();
@@ -359,10 +283,8 @@ int main(int argc, char** argv) {
           configuration_of(cases[job.c], benchmark, meshes[job.mesh], courants[job.courant], final_time(benchmark));
       // run_configuration(configuration) with the group's reference (its measures but the phase, which a
       // record does not give and this program does not use: repro::MemoizedReference).
-      const GroupReferences::Key group{job.benchmark, job.mesh, job.courant};
-      repro::ConfigurationRun run(configuration, {}, nullptr, [&](const repro::Configuration& unit, double horizon) {
-        return references(group, unit, horizon);
-      });
+      const repro::GroupReferences::Key group{job.benchmark, job.mesh, job.courant};
+      repro::ConfigurationRun run(configuration, {}, nullptr, references.source(group));
       mrm::run(run.simulation(), run.steps(), [&](const mrm::Sample& s) { run.add(s); });
       const repro::Measures m = run.measures();
       references.done(group);

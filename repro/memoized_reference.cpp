@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 
 #include <doctest/doctest.h>
 
+#include "exact_solution.hpp"
 #include "impact_solution.hpp"
 
 namespace mrm::repro {
@@ -87,6 +89,73 @@ void MemoizedReference::velocity_at_points(double t, const double* x, long count
 
 std::size_t MemoizedReference::questions() const { return questions_.load(); }
 std::size_t MemoizedReference::evaluations() const { return evaluations_.load(); }
+
+GroupReferences::GroupReferences(std::size_t runs_per_group) : runs_per_group_(runs_per_group) {
+  if (runs_per_group_ == 0) throw std::invalid_argument("GroupReferences: a group has no runs");
+}
+
+// The first run that asks makes the reference outside the lock (the other groups' runs go on), and the
+// group's other runs wait for it on the shared future.
+std::shared_ptr<const ReferenceSolution> GroupReferences::operator()(const Key& group, const Configuration& unit,
+                                                                     double horizon) {
+  std::shared_future<std::shared_ptr<const ReferenceSolution>> future;
+  std::promise<std::shared_ptr<const ReferenceSolution>> promise;
+  bool make = false;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    Group& g = groups_[group];
+    if (!g.made) {
+      g.made = true, g.horizon = horizon, g.dt = unit.step(), g.elements = unit.elements;
+      g.reference = promise.get_future().share();
+      make = true;
+    } else if (g.horizon != horizon || g.dt != unit.step() || g.elements != unit.elements) {
+      throw std::logic_error("GroupReferences: two runs of one group ask for different exact solutions");
+    }
+    future = g.reference;
+  }
+  if (make) {
+    try {
+      std::shared_ptr<const ReferenceSolution> reference = unit_configuration_reference(unit, horizon);
+      if (!dynamic_cast<const ExactSolution*>(reference.get()))
+        reference = std::make_shared<const MemoizedReference>(std::move(reference));
+      promise.set_value(std::move(reference));
+    } catch (...) {
+      promise.set_exception(std::current_exception());
+    }
+  }
+  return future.get();
+}
+
+ReferenceSource GroupReferences::source(const Key& group) {
+  return [this, group](const Configuration& unit, double horizon) { return (*this)(group, unit, horizon); };
+}
+
+void GroupReferences::done(const Key& group) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = groups_.find(group);
+  if (it == groups_.end() || ++it->second.ended < runs_per_group_) return;
+  if (it->second.reference.valid() &&
+      it->second.reference.wait_for(std::chrono::seconds(0)) == std::future_status::ready)
+    try {
+      if (const auto* memo = dynamic_cast<const MemoizedReference*>(it->second.reference.get().get()))
+        questions_ += memo->questions(), evaluations_ += memo->evaluations();
+    } catch (...) {  // the group's reference could not be made: its runs threw; nothing to count
+    }
+  groups_.erase(it);
+}
+
+std::size_t GroupReferences::questions() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return questions_;
+}
+std::size_t GroupReferences::evaluations() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return evaluations_;
+}
+std::size_t GroupReferences::alive() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return groups_.size();
+}
 
 namespace {
 // A reference that counts the questions it is asked (its values: any smooth functions of x and t).
@@ -190,6 +259,67 @@ TEST_CASE("MemoizedReference: two threads asking the same instants read the same
   CHECK(memo.questions() == 2000);
   CHECK(memo.evaluations() >= 1000);
   CHECK(memo.evaluations() <= 2000);
+}
+
+TEST_CASE("GroupReferences: one record per group, shared by its runs, dropped after its last run") {
+  // Prediction: the runs of one group (three masses on impacting, one mesh and Δt) get the same record,
+  // and their measures have the bits of run_configuration's own (the record answers with the chain's
+  // doubles); the three runs ask the same questions (their instants are the same), so the record
+  // evaluates nothing after the first run: the totals are three times the first run's questions and its
+  // evaluations; after the third run the group is dropped and the next question makes a new reference. The paper's closed form is shared as it is; another group gets its
+  // own; a group asked about another Δt throws.
+  GroupReferences references(3);
+  const GroupReferences::Key group{1, 0, 0};
+  std::vector<std::shared_ptr<const ReferenceSolution>> seen;
+  std::size_t first_questions = 0, first_evaluations = 0;  // the record's counts after the first run
+  for (const char* mass : {"mod1", "mod2", "mod3"}) {
+    Configuration c = paper_configuration(Scheme::crank_nicolson, "algebraic", mass, 10, 0.5, 1.0);
+    c.benchmark = "impacting";
+    c.final_time = impact_benchmark("impacting").final_time;
+    const ReferenceSource source = references.source(group);
+    ConfigurationRun run(c, {}, nullptr, [&](const Configuration& unit, double horizon) {
+      seen.push_back(source(unit, horizon));
+      return seen.back();
+    });
+    mrm::run(run.simulation(), run.steps(), [&](const Sample& s) { run.add(s); });
+    const Measures shared = run.measures();
+    const auto* memo = dynamic_cast<const MemoizedReference*>(seen.back().get());
+    REQUIRE(memo != nullptr);
+    if (seen.size() == 1) first_questions = memo->questions(), first_evaluations = memo->evaluations();
+    CHECK(references.alive() == 1);  // the group, held while its runs measure
+    references.done(group);
+    const Measures own = run_configuration(c);
+    const auto a = ErrorAccumulator::values(shared.errors), b = ErrorAccumulator::values(own.errors);
+    CHECK(std::memcmp(a.data(), b.data(), sizeof(double) * a.size()) == 0);
+    REQUIRE(shared.lambda_tv_ratio.has_value());
+    REQUIRE(own.lambda_tv_ratio.has_value());
+    CHECK(bits_of(*shared.lambda_tv_ratio) == bits_of(*own.lambda_tv_ratio));
+  }
+  REQUIRE(seen.size() == 3);
+  CHECK(seen[0] == seen[1]);
+  CHECK(seen[1] == seen[2]);
+  CHECK(references.alive() == 0);
+  CHECK(first_evaluations > 0);
+  CHECK(references.questions() == 3 * first_questions);
+  CHECK(references.evaluations() == first_evaluations);
+
+  Configuration c = paper_configuration(Scheme::crank_nicolson, "algebraic", "mod3", 10, 0.5, 1.0);
+  c.benchmark = "impacting";
+  c.final_time = impact_benchmark("impacting").final_time;
+  const Configuration unit = unit_configuration(c, configuration_scaling(c));
+  const auto again = references(group, unit, 1.0);  // dropped: made anew (seen[0] is still held)
+  CHECK(again != seen[0]);
+  CHECK(references(GroupReferences::Key{1, 0, 1}, unit, 1.0) != again);
+  CHECK(references.alive() == 2);
+  Configuration finer = unit;
+  finer.dt = unit.step() / 2;
+  CHECK(finer.step() != unit.step());
+  CHECK_THROWS_AS(references(group, finer, 1.0), std::logic_error);
+
+  const Configuration paper = paper_configuration(Scheme::crank_nicolson, "algebraic", "mod3", 10, 0.5, 1.0);
+  const GroupReferences::Key closed{0, 0, 0};
+  CHECK(dynamic_cast<const ExactSolution*>(references(closed, paper, 1.0).get()) != nullptr);
+  CHECK_THROWS_AS(GroupReferences(0), std::invalid_argument);
 }
 
 }  // namespace mrm::repro

@@ -8,12 +8,16 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <future>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <shared_mutex>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
+#include "configurations.hpp"
 #include "reference_solution.hpp"
 
 namespace mrm::repro {
@@ -63,6 +67,53 @@ class MemoizedReference final : public ReferenceSolution {
   mutable Vectors displacements_, velocities_;
   mutable Scalars contact_displacements_, contact_multipliers_;
   mutable std::atomic<std::size_t> questions_{0}, evaluations_{0};
+};
+
+/// The exact solutions of a program's run groups: the runs of one group (one benchmark, mesh and Δt,
+/// and as many masses or contact classes as the group has runs) ask the same questions at the same
+/// instants, so the group's reference (unit_configuration_reference) is made once, by the first run
+/// that asks, seen through a record (MemoizedReference: the same doubles as each run's own reference,
+/// so the same bytes), shared by the group's runs, and dropped when the last of its `runs_per_group`
+/// runs ends (done). A closed form (ExactSolution, the paper's benchmark) is shared as it is, not
+/// wrapped: its error sums take a path of their own, cheaper than a record. A record holds the nodal
+/// values of every instant asked, about 2 (N + 1) doubles per level of the runs: the caller schedules a
+/// group's runs one after the other so that few groups are alive at once. Safe on several threads.
+/// (fig_classes, issue 24 item 2; fig_benchmark_convergence.)
+class GroupReferences {
+ public:
+  /// A group: three indices of the caller's (fig_classes: benchmark, mesh, Δt).
+  using Key = std::tuple<std::size_t, std::size_t, std::size_t>;
+  /// Throws std::invalid_argument for runs_per_group = 0.
+  explicit GroupReferences(std::size_t runs_per_group);
+
+  /// The reference of `group` for a run's unit configuration up to `horizon` (a ReferenceSource's
+  /// arguments): made by the first run that asks (the others wait for it; its exception, if any, is
+  /// rethrown to each); std::logic_error if a later run of the group asks about another mesh, Δt or
+  /// horizon.
+  std::shared_ptr<const ReferenceSolution> operator()(const Key& group, const Configuration& unit, double horizon);
+  /// The source of a run of `group` (ConfigurationRun's `source`); `*this` must outlive it.
+  ReferenceSource source(const Key& group);
+  /// A run of `group` has ended: the last one drops the group's reference (its runs still hold it while
+  /// they measure), after adding its record's counts to the totals.
+  void done(const Key& group);
+  /// The questions the dropped groups' records answered and how many of them were evaluated.
+  std::size_t questions() const;
+  std::size_t evaluations() const;
+  /// The groups whose reference is held (asked for and not yet dropped).
+  std::size_t alive() const;
+
+ private:
+  struct Group {
+    bool made = false;
+    double horizon = 0, dt = 0;
+    Index elements = 0;
+    std::size_t ended = 0;
+    std::shared_future<std::shared_ptr<const ReferenceSolution>> reference;
+  };
+  std::size_t runs_per_group_;
+  mutable std::mutex mutex_;
+  std::map<Key, Group> groups_;
+  std::size_t questions_ = 0, evaluations_ = 0;
 };
 
 }  // namespace mrm::repro
