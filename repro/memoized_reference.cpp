@@ -266,8 +266,9 @@ TEST_CASE("GroupReferences: one record per group, shared by its runs, dropped af
   // and their measures have the bits of run_configuration's own (the record answers with the chain's
   // doubles); the three runs ask the same questions (their instants are the same), so the record
   // evaluates nothing after the first run: the totals are three times the first run's questions and its
-  // evaluations; after the third run the group is dropped and the next question makes a new reference. The paper's closed form is shared as it is; another group gets its
-  // own; a group asked about another Δt throws.
+  // evaluations; after the third run the group is dropped and the next question makes a new reference.
+  // The paper's closed form is shared as it is; another group gets its own; a group asked about another
+  // Δt throws.
   GroupReferences references(3);
   const GroupReferences::Key group{1, 0, 0};
   std::vector<std::shared_ptr<const ReferenceSolution>> seen;
