@@ -22,8 +22,9 @@
 //
 // Description. Steps: (1) options; (2) outputs; (3) one run per (scheme, N, Δt/h) to the longest horizon
 // of its mesh, measuring at every shorter one (the errors from run_configuration's horizons, the rest
-// from the samples), costliest first, on --threads workers; (4) the data (one line per cell and scheme),
-// the tables and the conclusion for the report; (5) commit.
+// from the samples), through the sweep layer (repro/sweep.hpp: the four schemes of one mesh and ratio in
+// one batch, which shares the closed form's evaluation), costliest first, on --threads workers; (4) the
+// data (one line per cell and scheme), the tables and the conclusion for the report; (5) commit.
 //
 // Data file: columns elements courant periods scheme, the eight error ratios to cn + mod3 (in
 // ErrorAccumulator::names order), their geometric mean, the geometric mean of the scheme's own relative
@@ -41,6 +42,7 @@
 #include "labels.hpp"
 #include "options.hpp"
 #include "parallel.hpp"
+#include "sweep.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
 
@@ -114,7 +116,10 @@ int main(int argc, char** argv) {
     out << "# region: every run to the longest horizon its mesh allows (cost, baseline_regions.cpp): N = 25, 100: "
            "1000 periods; N = 400: 30; N = 1600: 1\n";
 
-    // 3. The runs: one per (scheme, mesh, ratio), costliest first.
+    // 3. The runs: one per (scheme, mesh, ratio), through the sweep layer. The four schemes of one mesh and
+    // ratio make one batch: they run to the same horizon with the same Δt, so their samples share every
+    // instant and their error measures evaluate the closed form once per level for the four
+    // (ErrorAccumulator::add_lanes); each is stepped alone (four families), the batches costliest first.
     struct Job {
       std::size_t scheme, mesh, courant;
     };
@@ -123,47 +128,61 @@ int main(int argc, char** argv) {
       for (std::size_t a = 0; a < meshes.size(); ++a)
         for (std::size_t b = 0; b < courants.size(); ++b) jobs.push_back({s, a, b});
     std::vector<std::vector<Cell>> results(jobs.size(), std::vector<Cell>(horizons.size()));
-    const std::vector<std::size_t> order = repro::costliest_first(jobs.size(), [&](std::size_t k) {
-      const double n = static_cast<double>(meshes[jobs[k].mesh]);
-      return n * n * reach[jobs[k].mesh] / courants[jobs[k].courant];
-    });
-    repro::run_in_parallel(order, threads, [&](std::size_t k) {
-      const Job& job = jobs[k];
-      const Case& c = cases()[job.scheme];
-      repro::Configuration configuration = repro::paper_configuration(
-          c.scheme, c.ps_form, c.mass, meshes[job.mesh], courants[job.courant], exact.period() * reach[job.mesh]);
-      std::vector<mrm::Index> levels;  // the level at which each horizon is reached (run_configuration's rule)
-      for (double periods : horizons)
-        if (periods <= reach[job.mesh]) {
-          levels.push_back(mrm::steps_to_reach(exact.period() * periods, configuration.step()));
-          if (periods < reach[job.mesh]) configuration.horizons.push_back(exact.period() * periods);
-        }
-      // TV(λ), TV(λ_exact) and the smallest values, sample by sample, read off at each horizon's level.
-      std::vector<Cell>& cells = results[k];
+    // What each run follows sample by sample: TV(λ), TV(λ_exact) and the smallest values, read off at the
+    // level at which each horizon is reached (run_configuration's rule).
+    struct Follow {
+      std::vector<mrm::Index> levels;
       double tv = 0, tv_exact = 0, lambda = 0, lambda_exact = 0, min_lambda = 0, min_exact = 0, e0 = 0;
       bool first = true;
       std::size_t next = 0;
-      const repro::Measures measures = repro::run_configuration(configuration, [&](const mrm::Sample& s) {
-        if (s.level == 0) e0 = s.energy;
-        if (s.has_multiplier) {
-          const double exact_lambda = exact.contact_multiplier(s.multiplier_time);
-          if (!first) tv += std::abs(s.multiplier - lambda), tv_exact += std::abs(exact_lambda - lambda_exact);
-          min_lambda = first ? s.multiplier : std::min(min_lambda, s.multiplier);
-          min_exact = first ? exact_lambda : std::min(min_exact, exact_lambda);
-          lambda = s.multiplier, lambda_exact = exact_lambda, first = false;
+    };
+    std::vector<Follow> follow(jobs.size());
+    std::vector<repro::Configuration> configurations;
+    std::vector<repro::BatchKey> keys;
+    for (std::size_t k = 0; k < jobs.size(); ++k) {
+      const Job& job = jobs[k];
+      const Case& c = cases()[job.scheme];
+      configurations.push_back(repro::paper_configuration(c.scheme, c.ps_form, c.mass, meshes[job.mesh],
+                                                          courants[job.courant], exact.period() * reach[job.mesh]));
+      repro::Configuration& configuration = configurations.back();
+      for (double periods : horizons)
+        if (periods <= reach[job.mesh]) {
+          follow[k].levels.push_back(mrm::steps_to_reach(exact.period() * periods, configuration.step()));
+          if (periods < reach[job.mesh]) configuration.horizons.push_back(exact.period() * periods);
         }
-        if (next < levels.size() && s.level == levels[next]) {
-          Cell& cell = cells[next++];
-          cell.computed = true;
-          cell.tv = tv, cell.tv_exact = tv_exact, cell.min_lambda = min_lambda, cell.min_lambda_exact = min_exact;
-          cell.energy_ratio = s.energy / e0;
-        }
-      });
-      if (next != levels.size()) throw std::logic_error("baseline_regions: a horizon was not reached");
+      keys.push_back({meshes[job.mesh], static_cast<int>(job.courant)});
+    }
+    repro::SweepSettings settings;
+    settings.threads = static_cast<unsigned>(threads);
+    const std::vector<repro::Measures> measures = repro::run_batched(
+        configurations, settings,
+        [&](std::size_t k, const mrm::Sample& s) {
+          Follow& f = follow[k];
+          if (s.level == 0) f.e0 = s.energy;
+          if (s.has_multiplier) {
+            const double exact_lambda = exact.contact_multiplier(s.multiplier_time);
+            if (!f.first)
+              f.tv += std::abs(s.multiplier - f.lambda), f.tv_exact += std::abs(exact_lambda - f.lambda_exact);
+            f.min_lambda = f.first ? s.multiplier : std::min(f.min_lambda, s.multiplier);
+            f.min_exact = f.first ? exact_lambda : std::min(f.min_exact, exact_lambda);
+            f.lambda = s.multiplier, f.lambda_exact = exact_lambda, f.first = false;
+          }
+          if (f.next < f.levels.size() && s.level == f.levels[f.next]) {
+            Cell& cell = results[k][f.next++];
+            cell.computed = true;
+            cell.tv = f.tv, cell.tv_exact = f.tv_exact, cell.min_lambda = f.min_lambda;
+            cell.min_lambda_exact = f.min_exact;
+            cell.energy_ratio = s.energy / f.e0;
+          }
+        },
+        keys);
+    for (std::size_t k = 0; k < jobs.size(); ++k) {
+      const std::vector<mrm::Index>& levels = follow[k].levels;
+      if (follow[k].next != levels.size()) throw std::logic_error("baseline_regions: a horizon was not reached");
       for (std::size_t h = 0; h < levels.size(); ++h)
-        cells[h].errors =
-            mrm::ErrorAccumulator::values(h + 1 < levels.size() ? measures.horizon_errors[h] : measures.errors);
-    });
+        results[k][h].errors =
+            mrm::ErrorAccumulator::values(h + 1 < levels.size() ? measures[k].horizon_errors[h] : measures[k].errors);
+    }
     const auto cell = [&](std::size_t s, std::size_t a, std::size_t b, std::size_t h) -> const Cell& {
       return results[(s * meshes.size() + a) * courants.size() + b][h];
     };

@@ -475,6 +475,8 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
   struct Runs {
     Run u[32], v[32];
     int u_count = 0, v_count = 0;
+    bool has_interpolant = false;  // zu and zv formed (interpolant_of)
+    InterpolantSums zu{}, zv{};
   };
   const auto same = [](const Run* a, int na, const Run* b, int nb) {
     if (na != nb) return false;
@@ -486,11 +488,13 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
     return true;
   };
   const std::size_t vector_lanes = HWY_DYNAMIC_DISPATCH(error_lanes::LaneCount)();
-  // A run the one pass can take: the closed form on a uniform mesh, in lanes of a width the vectors divide.
+  // A run of the closed form on a uniform mesh: its affine runs and contact values are taken from a run
+  // at the same instants (runs_of, contact_values), whatever its layout; summed in one pass with others
+  // if it lies in lanes of a width the vectors divide (in_vectors).
   const auto takes = [&](const Lane& r) {
-    return r.errors->closed_form_ && !r.errors->general_ && r.lanes.stride >= 2 && r.lanes.lane < r.lanes.stride &&
-           r.lanes.stride % vector_lanes == 0;
+    return r.errors->closed_form_ && !r.errors->general_ && r.lanes.stride >= 1 && r.lanes.lane < r.lanes.stride;
   };
+  const auto in_vectors = [&](const Lane& r) { return r.lanes.stride >= 2 && r.lanes.stride % vector_lanes == 0; };
   // A run against another reference (the characteristic solution, tabulated or not, ...) on a uniform
   // mesh, in lanes as above: its interpolants are evaluated once for the runs of the same reference,
   // nodes and instants.
@@ -529,12 +533,41 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
         }
       }
       Runs& r = runs[k];
+      r.has_interpolant = false;
       r.u_count = e.closed_form_->displacement_runs(s.time, x, n, r.u, 32);
       r.v_count = e.closed_form_->velocity_runs(s.velocity_time, x, n, r.v, 32);
       source[k] = k;
       evaluated.push_back(k);
     }
     return runs[source[k]];
+  };
+  // The interpolant's sums of run k's affine runs: formed once for the runs that share them.
+  const auto interpolant_of = [&](std::size_t k) -> const Runs& {
+    Runs& r = runs[source[k]];
+    if (!r.has_interpolant) {
+      const ErrorAccumulator& e = *level[k].errors;
+      const double h = e.mesh_.h();
+      r.zu = interpolant_run_sums(e.nodes_.data(), h, r.u, r.u_count);
+      r.zv = interpolant_run_sums(e.nodes_.data(), h, r.v, r.v_count);
+      r.has_interpolant = true;
+    }
+    return r;
+  };
+  // u₀(t) and λ(t) once per closed form and instant (the runs of one Δt share both).
+  const ExactSolution* u0_of = nullptr;
+  const ExactSolution* lambda_of = nullptr;
+  double u0 = 0, u0_time = 0, lambda = 0, lambda_time = 0;
+  const auto contact_values = [&](std::size_t k) {
+    const Sample& sample = *level[k].sample;
+    const ErrorAccumulator& e = *level[k].errors;
+    if (!(u0_of == e.closed_form_ && same_bits(sample.time, u0_time))) {
+      u0 = e.exact_->contact_displacement(sample.time);
+      u0_of = e.closed_form_, u0_time = sample.time;
+    }
+    if (sample.has_multiplier && !(lambda_of == e.closed_form_ && same_bits(sample.multiplier_time, lambda_time))) {
+      lambda = e.exact_->contact_multiplier(sample.multiplier_time);
+      lambda_of = e.closed_form_, lambda_time = sample.multiplier_time;
+    }
   };
   for (std::size_t a = 0; a < count; ++a) {
     if (done[a]) continue;
@@ -608,7 +641,7 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
     const double* v_base = first.lanes.velocity - first.lanes.lane;
     const Runs& mine = runs_of(a);
     set.assign(1, a);
-    for (std::size_t b = a + 1; b < count; ++b) {
+    for (std::size_t b = a + 1; in_vectors(first) && b < count; ++b) {
       const Lane& other = level[b];
       const ErrorAccumulator& e = *other.errors;
       if (done[b] || !takes(other) || other.lanes.stride != W ||
@@ -620,15 +653,20 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
                                same(mine.v, mine.v_count, theirs.v, theirs.v_count)))
         set.push_back(b);
     }
-    if (set.size() == 1) {  // alone: add's sums (add_vectors), from the runs found above
-      const ErrorRunSums eu = error_run_sums(first.lanes.displacement, static_cast<long>(W), x, mine.u, mine.u_count);
-      const ErrorRunSums ev = error_run_sums(first.lanes.velocity, static_cast<long>(W), x, mine.v, mine.v_count);
-      const double h = lead.mesh_.h();
-      const InterpolantSums zu = interpolant_run_sums(x, h, mine.u, mine.u_count);
-      const InterpolantSums zv = interpolant_run_sums(x, h, mine.v, mine.v_count);
+    if (set.size() == 1) {  // alone: add's sums (add_vectors), from the runs and contact values found above
+      const auto sums_of = [&](const double* w, const Run* r, int c) {
+        return W == 1 ? error_run_sums(w, std::integral_constant<long, 1>(), x, r, c)
+                      : error_run_sums(w, static_cast<long>(W), x, r, c);
+      };
+      const ErrorRunSums eu = sums_of(first.lanes.displacement, mine.u, mine.u_count);
+      const ErrorRunSums ev = sums_of(first.lanes.velocity, mine.v, mine.v_count);
+      const Runs& z = interpolant_of(a);
+      const InterpolantSums &zu = z.zu, &zv = z.zv;
+      contact_values(a);
       lead.add_sums(*first.sample, first.lanes.displacement[0],
                     {eu.e0, eu.e_last, eu.differences, eu.squares, zu.z0, zu.z_last, zu.differences, zu.squares},
-                    {ev.e0, ev.e_last, ev.differences, ev.squares, zv.z0, zv.z_last, zv.differences, zv.squares});
+                    {ev.e0, ev.e_last, ev.differences, ev.squares, zv.z0, zv.z_last, zv.differences, zv.squares}, u0,
+                    first.sample->has_multiplier ? lambda : 0.0);
       continue;
     }
     // Eight arrays of W: e₀, e_{n−1}, D, Q of u, then of v.
@@ -638,28 +676,15 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
     (u_base, W, x, mine.u, mine.u_count, s, s + W, s + 2 * W, s + 3 * W);
     HWY_DYNAMIC_DISPATCH(error_lanes::LaneRunSums)
     (v_base, W, x, mine.v, mine.v_count, s + 4 * W, s + 5 * W, s + 6 * W, s + 7 * W);
-    const double h = lead.mesh_.h();
-    const InterpolantSums zu = interpolant_run_sums(x, h, mine.u, mine.u_count);
-    const InterpolantSums zv = interpolant_run_sums(x, h, mine.v, mine.v_count);
-    // The contact values u₀(t) and λ(t) once per closed form and instant (the lanes of one Δt share both).
-    const ExactSolution* u0_of = nullptr;
-    const ExactSolution* lambda_of = nullptr;
-    double u0 = 0, u0_time = 0, lambda = 0, lambda_time = 0;
+    const Runs& z = interpolant_of(a);
+    const InterpolantSums &zu = z.zu, &zv = z.zv;
     for (std::size_t k : set) {
       const std::size_t j = level[k].lanes.lane;
       const Sums su{s[j], s[W + j], s[2 * W + j], s[3 * W + j], zu.z0, zu.z_last, zu.differences, zu.squares};
       const Sums sv{s[4 * W + j], s[5 * W + j], s[6 * W + j],   s[7 * W + j],
                     zv.z0,        zv.z_last,    zv.differences, zv.squares};
       const Sample& sample = *level[k].sample;
-      const ErrorAccumulator& e = *level[k].errors;
-      if (!(u0_of == e.closed_form_ && same_bits(sample.time, u0_time))) {
-        u0 = e.exact_->contact_displacement(sample.time);
-        u0_of = e.closed_form_, u0_time = sample.time;
-      }
-      if (sample.has_multiplier && !(lambda_of == e.closed_form_ && same_bits(sample.multiplier_time, lambda_time))) {
-        lambda = e.exact_->contact_multiplier(sample.multiplier_time);
-        lambda_of = e.closed_form_, lambda_time = sample.multiplier_time;
-      }
+      contact_values(k);
       level[k].errors->add_sums(sample, level[k].lanes.displacement[0], su, sv, u0,
                                 sample.has_multiplier ? lambda : 0.0);
       done[k] = 1;
@@ -1087,6 +1112,38 @@ TEST_CASE("the error sums of a batch's lanes in one pass are each lane's own, bi
     }
   }
   use_batch_target(0);
+}
+
+TEST_CASE("runs on their own vectors at the same instants share the closed form's runs, each its own bits") {
+  // Prediction: add_lanes takes the closed form's affine runs, the interpolant's sums and u₀, λ of a run
+  // stepped alone (its own vectors, stride 1) from an earlier run at the same instants (runs of different
+  // schemes with one Δt, repro/sweep.hpp's caller keys), and forms its error sums with error_run_sums
+  // alone: every measure has the bits of add(sample). Three runs, two at the instants of a step h/2
+  // and one at 0.37 h; none is summed with another (no lanes of one vector).
+  const UniformMesh mesh(1.0, 37);
+  const Index n = mesh.unknowns();
+  const ExactSolution exact;
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> wiggle(-0.01, 0.01);
+  std::vector<ErrorAccumulator> together, alone;
+  for (int j = 0; j < 3; ++j) together.emplace_back(mesh, exact), alone.emplace_back(mesh, exact);
+  std::vector<Eigen::VectorXd> u(3, Eigen::VectorXd(n)), v(3, Eigen::VectorXd(n));
+  for (int level = 0; level <= 40; ++level) {
+    std::vector<Sample> samples(3);
+    std::vector<ErrorAccumulator::Lane> lanes;
+    for (std::size_t j = 0; j < 3; ++j) {
+      const double dt = (j == 2 ? 0.37 : 0.5) * mesh.h(), t = level * dt, tv = t - 0.5 * dt;
+      for (Index i = 0; i < n; ++i) {
+        u[j][i] = exact.displacement(mesh.x(i), t) + wiggle(random);
+        v[j][i] = exact.velocity(mesh.x(i), tv) + wiggle(random);
+      }
+      samples[j] = {level, t, &u[j], tv, &v[j], true, t, exact.contact_multiplier(t) + wiggle(random), t, 0.0};
+      alone[j].add(samples[j]);
+      lanes.push_back({&together[j], &samples[j], LaneVectors{u[j].data(), v[j].data(), 1, 0}});
+    }
+    CHECK(ErrorAccumulator::add_lanes(lanes.data(), lanes.size()) == 0);
+  }
+  check_lanes_match(alone, together);
 }
 
 TEST_CASE("runs against one reference object at the same instants share its evaluation, each lane's bits its own") {

@@ -858,18 +858,20 @@ ConfigurationRun::ConfigurationRun(const Configuration& configuration, std::func
 
 void ConfigurationRun::add(const Sample& s) { add_sample(s, nullptr); }
 
-bool ConfigurationRun::takes_lanes(Index level) const {
-  return !observe_ && !(unit_.measure_errors && difference_ && level >= 1);
+bool ConfigurationRun::takes_lanes(const Sample& s, const LaneVectors& lanes) const {
+  const bool own_vectors =
+      lanes.stride == 1 && lanes.displacement == s.displacement->data() && lanes.velocity == s.velocity->data();
+  return (!observe_ || own_vectors) && !(unit_.measure_errors && difference_ && s.level >= 1);
 }
 
 void ConfigurationRun::add(const Sample& s, const LaneVectors& lanes) { add(s, lanes, false); }
 
-ErrorAccumulator* ConfigurationRun::lane_errors(Index level) {
-  return takes_lanes(level) && unit_.measure_errors ? &*errors_ : nullptr;
+ErrorAccumulator* ConfigurationRun::lane_errors(const Sample& s, const LaneVectors& lanes) {
+  return takes_lanes(s, lanes) && unit_.measure_errors ? &*errors_ : nullptr;
 }
 
 void ConfigurationRun::add(const Sample& s, const LaneVectors& lanes, bool errors_added) {
-  if (!takes_lanes(s.level)) throw std::logic_error("ConfigurationRun: this level needs the sample's vectors");
+  if (!takes_lanes(s, lanes)) throw std::logic_error("ConfigurationRun: this level needs the sample's vectors");
   if (errors_added && !unit_.measure_errors) throw std::logic_error("ConfigurationRun: this run measures no errors");
   add_sample(s, &lanes, errors_added);
 }

@@ -333,19 +333,21 @@ class ConfigurationRun {
   /// Adds the sample of the next level (levels 0 … steps(), in order). Throws std::runtime_error for a
   /// non-finite energy.
   void add(const Sample& sample);
-  /// Whether the sample of `level` may come from a batch's lanes (add(sample, lanes)): nothing but the
-  /// error measures and the recovered strain reads more of its vectors than the displacement's first
-  /// entry (no observer, no differenced velocity at that level).
-  bool takes_lanes(Index level) const;
+  /// Whether `sample` may come with `lanes` (add(sample, lanes)): nothing but the error measures and the
+  /// recovered strain reads more of its vectors than the displacement's first entry (no observer, no
+  /// differenced velocity at that level), or the lanes are the sample's own vectors (a run of a batch
+  /// stepped alone), which an observer may read.
+  bool takes_lanes(const Sample& sample, const LaneVectors& lanes) const;
   /// The same as add(sample), the error measures and the recovered strain reading the displacement and
   /// velocity from `lanes` (the same bits); of the sample's own vectors only the displacement's first
   /// entry is read (and their size).
   void add(const Sample& sample, const LaneVectors& lanes);
-  /// The accumulator of the error measures if the sample of `level` may come from lanes and its errors
-  /// are measured (a batched driver adds that level's errors of several runs in one pass,
-  /// ErrorAccumulator::add_lanes, then calls add(sample, lanes, true)); null otherwise.
-  ErrorAccumulator* lane_errors(Index level);
-  /// add(sample, lanes), with this level's errors already added to lane_errors(level) when `errors_added`.
+  /// The accumulator of the error measures if `sample` may come with `lanes` and its errors are measured
+  /// (a batched driver adds that level's errors of several runs in one pass, ErrorAccumulator::add_lanes,
+  /// then calls add(sample, lanes, true)); null otherwise.
+  ErrorAccumulator* lane_errors(const Sample& sample, const LaneVectors& lanes);
+  /// add(sample, lanes), with this level's errors already added to lane_errors(sample, lanes) when
+  /// `errors_added`.
   void add(const Sample& sample, const LaneVectors& lanes, bool errors_added);
   /// The measures of the levels added, at the configuration's scale.
   Measures measures();

@@ -271,12 +271,14 @@ void apply_sweep_options(const SweepOptions& options) {
 void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double>& costs, const BatchStart& start,
                      const BatchObserve& observe, const std::function<void(std::size_t k)>& finish,
                      const SweepSettings& settings, const BatchLaneObserve& lane_observe,
-                     const BatchLevelPrepare& prepare) {
+                     const BatchLevelPrepare& prepare, std::size_t most) {
   const std::size_t count = keys.size();
   if (costs.size() != count) throw std::invalid_argument("step_in_batches: one cost per run");
   std::map<BatchKey, std::vector<std::size_t>> groups;
   for (std::size_t k = 0; k < count; ++k) groups[keys[k]].push_back(k);
-  const std::size_t width = settings.batched ? std::max<std::size_t>(1, current_batch_target().lanes) : 1;
+  const std::size_t width = most > 0           ? most
+                            : settings.batched ? std::max<std::size_t>(1, current_batch_target().lanes)
+                                               : 1;
   std::vector<std::vector<std::size_t>> batches;
   std::vector<double> batch_cost;
   for (auto& [key, members] : groups) {
@@ -358,15 +360,18 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
 }
 
 std::vector<Measures> run_batched(const std::vector<Configuration>& configurations, const SweepSettings& settings,
-                                  const std::function<void(std::size_t k, const Sample& sample)>& observe) {
+                                  const std::function<void(std::size_t k, const Sample& sample)>& observe,
+                                  const std::vector<BatchKey>& given_keys) {
   const std::size_t count = configurations.size();
+  if (!given_keys.empty() && given_keys.size() != count)
+    throw std::invalid_argument("run_batched: one key per configuration");
   std::vector<BatchKey> keys(count);
   std::vector<double> costs(count);
   for (std::size_t k = 0; k < count; ++k) {
     const Configuration& c = configurations[k];
     const double steps = c.steps >= 0 ? static_cast<double>(c.steps) : c.final_time / c.step();
     costs[k] = static_cast<double>(c.elements) * steps;
-    keys[k] = {c.elements, batch_family(c.scheme.scheme)};
+    keys[k] = given_keys.empty() ? BatchKey{c.elements, batch_family(c.scheme.scheme)} : given_keys[k];
   }
   ReferenceCache cache;
   const ReferenceSource source = [&cache](const Configuration& unit, double horizon) { return cache(unit, horizon); };
@@ -393,7 +398,7 @@ std::vector<Measures> run_batched(const std::vector<Configuration>& configuratio
       },
       settings,
       [&](std::size_t k, const Sample& s, const LaneVectors& lanes) -> std::optional<bool> {
-        if (!runs[k]->takes_lanes(s.level)) return std::nullopt;
+        if (!runs[k]->takes_lanes(s, lanes)) return std::nullopt;
         runs[k]->add(s, lanes, errors_added[k] != 0);
         errors_added[k] = 0;
         return true;
@@ -404,12 +409,13 @@ std::vector<Measures> run_batched(const std::vector<Configuration>& configuratio
         thread_local std::vector<ErrorAccumulator::Lane> level;  // this worker's, kept from level to level
         level.clear();
         for (std::size_t m = 0; m < ks.size(); ++m)
-          if (ErrorAccumulator* errors = runs[ks[m]]->lane_errors(samples[m].level)) {
+          if (ErrorAccumulator* errors = runs[ks[m]]->lane_errors(samples[m], lanes[m])) {
             level.push_back({errors, &samples[m], lanes[m]});
             errors_added[ks[m]] = 1;
           }
         ErrorAccumulator::add_lanes(level.data(), level.size());
-      });
+      },
+      given_keys.empty() || !settings.batched ? 0 : count);
   return results;
 }
 
@@ -500,6 +506,50 @@ TEST_CASE("the batched sweep gives each run's measures bit for bit, for any thre
       }
   }
   use_batch_target(0);
+}
+
+TEST_CASE("runs keyed together by the caller share a batch, each with its measures and observed samples bit for bit") {
+  // Prediction: with the caller's keys the runs of one key are one batch: the runs of one family among
+  // them share vector lanes (their samples copied out for the observer), the others are stepped alone
+  // and read on their own vectors (which the observer may read too), and their error measures take the
+  // closed form's runs from one another at the same instants (add_lanes). Each run sees the samples it
+  // sees alone: its measures and every observed sample (instants, λ, energy, U and V, in hexadecimal)
+  // are run_configuration's, for 1 and 2 threads. Keys: (N, Δt), so two schemes of one family (cn, be)
+  // share lanes, three (ps, ec, cn-switch) are alone.
+  std::vector<Configuration> configurations;
+  std::vector<BatchKey> keys;
+  for (const char* scheme : {"cn", "be", "ps", "ec", "cn-switch"})
+    for (Index n : {10, 13})
+      for (int c = 0; c < 2; ++c) {
+        configurations.push_back(paper_configuration(scheme, "algebraic", "mod3", n, c == 0 ? 0.5 : 1.0, 3.5));
+        configurations.back().horizons = {1.0};
+        keys.push_back({n, c});
+      }
+  const auto text = [](const Sample& s) {
+    std::ostringstream out;
+    out << std::hexfloat << s.level << ' ' << s.time << ' ' << s.velocity_time << ' ' << s.multiplier << ' '
+        << s.energy;
+    for (double x : *s.displacement) out << ' ' << x;
+    for (double x : *s.velocity) out << ' ' << x;
+    return out.str() + '\n';
+  };
+  std::vector<std::string> expected, expected_seen(configurations.size());
+  for (std::size_t k = 0; k < configurations.size(); ++k)
+    expected.push_back(
+        measure_bytes(run_configuration(configurations[k], [&](const Sample& s) { expected_seen[k] += text(s); })));
+  for (unsigned threads : {1u, 2u}) {
+    CAPTURE(threads);
+    std::vector<std::string> seen(configurations.size());
+    const std::vector<Measures> got = run_batched(
+        configurations, {threads, true}, [&](std::size_t k, const Sample& s) { seen[k] += text(s); }, keys);
+    REQUIRE(got.size() == configurations.size());
+    for (std::size_t k = 0; k < got.size(); ++k) {
+      CAPTURE(k);
+      CHECK(measure_bytes(got[k]) == expected[k]);
+      CHECK(seen[k] == expected_seen[k]);
+    }
+  }
+  CHECK_THROWS_AS(run_batched(configurations, {1, true}, {}, {keys.front()}), std::invalid_argument);
 }
 
 TEST_CASE("a cached reference gives the same bytes as one computed directly, and is computed once") {

@@ -121,10 +121,12 @@ using BatchLevelPrepare = std::function<void(const std::vector<std::size_t>& run
 /// the sweep and is rethrown.
 /// With `lane_observe`, the runs stepped in vector lanes are observed through it first (no copy of their
 /// vectors out of the lanes per level), each level of a batch's lanes first by `prepare` if given.
+/// `most`: the most runs per batch (0: the vector width; the batched step groups a batch's runs by family
+/// and width itself, and steps the others alone).
 void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double>& costs, const BatchStart& start,
                      const BatchObserve& observe, const std::function<void(std::size_t k)>& finish,
                      const SweepSettings& settings = sweep_settings(), const BatchLaneObserve& lane_observe = {},
-                     const BatchLevelPrepare& prepare = {});
+                     const BatchLevelPrepare& prepare = {}, std::size_t most = 0);
 
 /// Independent configurations, each measured as run_configuration measures it, through the sweep layer:
 /// the runs of the same number of elements and scheme family (batch_family: Crank–Nicolson and backward
@@ -137,8 +139,13 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
 /// `observe` (if given) sees every sample of run k as run_configuration's observer would, called as
 /// observe(k, sample) on the worker of k's batch (the samples of one run in order; those of different
 /// runs interleaved: an observer writes only run k's own state).
+/// `keys` (if given, one per configuration) replaces that grouping: the runs of one key make one batch,
+/// whatever their number and families; for runs of different schemes on the same mesh, Δt and horizon,
+/// whose error measures then evaluate the closed form once per instant for all of them
+/// (ErrorAccumulator::add_lanes); the batched step still groups only runs of one family.
 std::vector<Measures> run_batched(const std::vector<Configuration>& configurations,
                                   const SweepSettings& settings = sweep_settings(),
-                                  const std::function<void(std::size_t k, const Sample& sample)>& observe = {});
+                                  const std::function<void(std::size_t k, const Sample& sample)>& observe = {},
+                                  const std::vector<BatchKey>& keys = {});
 
 }  // namespace mrm::repro
