@@ -54,34 +54,43 @@ namespace mrm::batched {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-using D = hn::ScalableTag<double>;
-using V = hn::Vec<D>;
+// The kernels are templates over the vector tag D: the full width of the target (ScalableTag) and the
+// capped widths of 4 and 2 doubles, for a group narrower than the target (the remainder of a batch, see
+// BatchedSimulation's constructor). The same operations in the same order at every width: the width only
+// says how many lanes one instruction holds.
+using Full = hn::ScalableTag<double>;
+using Four = hn::CappedTag<double, 4>;
+using Two = hn::CappedTag<double, 2>;
 
-std::size_t LaneCount() { return hn::Lanes(D()); }
+std::size_t LaneCount() { return hn::Lanes(Full()); }
+std::size_t LaneCount4() { return hn::Lanes(Four()); }
+std::size_t LaneCount2() { return hn::Lanes(Two()); }
 
 // The row coefficients in the order of FastStep::Row: c1l, c1d, c1u, c2l, c2d, c2u, md, ml2, sd, sl2.
+template <class D>
 struct RowV {
-  V c1l, c1d, c1u, c2l, c2d, c2u, md, ml2, sd, sl2;
+  hn::Vec<D> c1l, c1d, c1u, c2l, c2d, c2u, md, ml2, sd, sl2;
 };
-inline RowV LoadRow(const double* row, std::size_t lanes) {
-  const D d;
+template <class D>
+inline RowV<D> LoadRow(D d, const double* row, std::size_t lanes) {
   const auto at = [&](std::size_t k) { return hn::Load(d, row + k * lanes); };
   return {at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7), at(8), at(9)};
 }
 
 // The sweep down of FastStep::fused_step (no load), on W lanes.
-void SweepDown(const Kernel& k) {
-  const D d;
+template <class D>
+void SweepDownT(D d, const Kernel& k) {
+  using V = hn::Vec<D>;
   const std::size_t W = k.lanes;
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(k.n), head = static_cast<std::ptrdiff_t>(k.head);
   const auto at = [&](const double* a, std::ptrdiff_t i) { return hn::Load(d, a + static_cast<std::size_t>(i) * W); };
   const double* u = k.u;
   const double* w = k.w;
-  const auto rhs = [&](const RowV& r, std::ptrdiff_t i, V u_up, V w_up) {
+  const auto rhs = [&](const RowV<D>& r, std::ptrdiff_t i, V u_up, V w_up) {
     return r.c1l * at(u, i - 1) + r.c1d * at(u, i) + r.c1u * u_up + r.c2l * at(w, i - 1) + r.c2d * at(w, i) +
            r.c2u * w_up;
   };
-  const auto rhs_interior = [&](const RowV& r, std::ptrdiff_t i) {
+  const auto rhs_interior = [&](const RowV<D>& r, std::ptrdiff_t i) {
     return r.c1l * (at(u, i - 1) + at(u, i + 1)) + r.c1d * at(u, i) + r.c2l * (at(w, i - 1) + at(w, i + 1)) +
            r.c2d * at(w, i);
   };
@@ -94,11 +103,11 @@ void SweepDown(const Kernel& k) {
   const auto eliminate = [&](std::ptrdiff_t i, V b) {
     eliminate_by(i, b, at(k.elimination, i), at(k.elimination_pair, i));
   };
-  eliminate(n - 1, rhs(LoadRow(k.last, W), n - 1, hn::Zero(d), hn::Zero(d)));
+  eliminate(n - 1, rhs(LoadRow(d, k.last, W), n - 1, hn::Zero(d), hn::Zero(d)));
   {
     // The interior rows, bottom up; on the plateau [a, b) the factors are the same numbers row after row
     // (Kernel::flat_begin), held in registers instead of loaded.
-    const RowV r = LoadRow(k.interior, W);
+    const RowV<D> r = LoadRow(d, k.interior, W);
     const std::ptrdiff_t a = static_cast<std::ptrdiff_t>(k.flat_begin), b = static_cast<std::ptrdiff_t>(k.flat_end);
     std::ptrdiff_t i = n - 2;
     for (; i >= std::max(b, head); --i) eliminate(i, rhs_interior(r, i));
@@ -109,14 +118,14 @@ void SweepDown(const Kernel& k) {
     for (; i >= head; --i) eliminate(i, rhs_interior(r, i));
   }
   for (std::ptrdiff_t i = std::min(head, n - 1) - 1; i >= 1; --i)
-    eliminate(i, rhs(LoadRow(k.head_rows + static_cast<std::size_t>(i) * 10 * W, W), i, at(u, i + 1), at(w, i + 1)));
+    eliminate(i, rhs(LoadRow(d, k.head_rows + static_cast<std::size_t>(i) * 10 * W, W), i, at(u, i + 1), at(w, i + 1)));
 }
 
 // The sweep up of FastStep::fused_step, from the lanes' contact decisions; a lane with keep ≠ 0 is
 // written back unchanged (CN-switch takes its θ-step there, alone).
-template <bool three_level, bool keeps>
-void SweepUpT(const Kernel& k) {
-  const D d;
+template <bool three_level, bool keeps, class D>
+void SweepUpT(D d, const Kernel& k) {
+  using V = hn::Vec<D>;
   const std::size_t W = k.lanes;
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(k.n), head = static_cast<std::ptrdiff_t>(k.head);
   const auto at = [&](const double* a, std::ptrdiff_t i) { return hn::Load(d, a + static_cast<std::size_t>(i) * W); };
@@ -131,7 +140,7 @@ void SweepUpT(const Kernel& k) {
   V kinetic = zero, potential = zero, potential_q = zero;
   V un_prev = zero, d_prev = zero, d_prev2 = zero, z_prev = zero, v_prev = zero, p_prev = zero, q_prev = zero;
   V k_d = zero, k_q = zero, p_d = zero, p_q = zero, q_d = zero, q_q = zero;
-  const auto emit = [&](const RowV& r, std::ptrdiff_t i, V dd, V un, auto toeplitz) {
+  const auto emit = [&](const RowV<D>& r, std::ptrdiff_t i, V dd, V un, auto toeplitz) {
     constexpr bool sums = decltype(toeplitz)::value;
     const V uo = at(u, i);
     if constexpr (keeps) {
@@ -183,19 +192,19 @@ void SweepUpT(const Kernel& k) {
     z_prev = z;
     return dd;
   };
-  const auto emit_up = [&](const RowV& r, std::ptrdiff_t i, auto toeplitz) {
+  const auto emit_up = [&](const RowV<D>& r, std::ptrdiff_t i, auto toeplitz) {
     const V dd = solve_up_by(i, at(k.inverse_pivot, i), at(k.upward, i), at(k.upward_pair, i));
     emit(r, i, dd, at(u, i) + dd, toeplitz);
   };
   const V u0_next = hn::Load(d, k.u0_next), recurrence_d0 = hn::Load(d, k.recurrence_d0);
-  emit(LoadRow(k.head_rows, W), 0, u0_next - at(u, 0), u0_next, explicit_row);
+  emit(LoadRow(d, k.head_rows, W), 0, u0_next - at(u, 0), u0_next, explicit_row);
   z_prev = recurrence_d0;
   for (std::ptrdiff_t i = 1; i < std::min(head, n - 1); ++i) {
-    emit_up(LoadRow(k.head_rows + static_cast<std::size_t>(i) * 10 * W, W), i, explicit_row);
+    emit_up(LoadRow(d, k.head_rows + static_cast<std::size_t>(i) * 10 * W, W), i, explicit_row);
     if (i == 1) d_prev2 = recurrence_d0;
   }
   if (head < n - 1) {
-    const RowV r = LoadRow(k.interior, W);
+    const RowV<D> r = LoadRow(d, k.interior, W);
     const V ka = v_prev, pa = three_level ? p_prev : un_prev, qa = q_prev;
     // The interior rows, top down, with the plateau [a, b) as in SweepDown. Two levels: its factors held
     // in registers. Three levels keep three more forms' sums live, and three copies of the emission
@@ -230,7 +239,7 @@ void SweepUpT(const Kernel& k) {
     potential = potential + form(r.sd, r.sl2, p_d, p_q, pa, pb);
     if constexpr (three_level) potential_q = potential_q + form(r.sd, r.sl2, q_d, q_q, qa, qb);
   }
-  emit_up(LoadRow(k.last, W), n - 1, explicit_row);
+  emit_up(LoadRow(d, k.last, W), n - 1, explicit_row);
   V energy;
   if constexpr (three_level) {
     energy = hn::Set(d, 0.5) * kinetic + hn::Set(d, 0.125) * (potential - hn::Load(d, k.ps_q_weight) * potential_q);
@@ -240,11 +249,20 @@ void SweepUpT(const Kernel& k) {
   hn::Store(energy, d, k.energy);
 }
 
-void SweepUp(const Kernel& k) {
-  if (k.three_level) return SweepUpT<true, false>(k);
-  if (k.keeps) return SweepUpT<false, true>(k);
-  SweepUpT<false, false>(k);
+template <class D>
+void SweepUpD(D d, const Kernel& k) {
+  if (k.three_level) return SweepUpT<true, false>(d, k);
+  if (k.keeps) return SweepUpT<false, true>(d, k);
+  SweepUpT<false, false>(d, k);
 }
+
+// The entry points, one per width (where a capped width is the full one, the same code twice).
+void SweepDown(const Kernel& k) { SweepDownT(Full(), k); }
+void SweepDown4(const Kernel& k) { SweepDownT(Four(), k); }
+void SweepDown2(const Kernel& k) { SweepDownT(Two(), k); }
+void SweepUp(const Kernel& k) { SweepUpD(Full(), k); }
+void SweepUp4(const Kernel& k) { SweepUpD(Four(), k); }
+void SweepUp2(const Kernel& k) { SweepUpD(Two(), k); }
 
 }  // namespace HWY_NAMESPACE
 }  // namespace mrm::batched
@@ -262,6 +280,7 @@ HWY_AFTER_NAMESPACE();
 #include <string>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 #include <doctest/doctest.h>
 #include <hwy/aligned_allocator.h>
@@ -274,8 +293,14 @@ namespace mrm {
 /// @cond MRM_INTERNAL
 namespace batched {
 HWY_EXPORT(LaneCount);
+HWY_EXPORT(LaneCount4);
+HWY_EXPORT(LaneCount2);
 HWY_EXPORT(SweepDown);
+HWY_EXPORT(SweepDown4);
+HWY_EXPORT(SweepDown2);
 HWY_EXPORT(SweepUp);
+HWY_EXPORT(SweepUp4);
+HWY_EXPORT(SweepUp2);
 }  // namespace batched
 /// @endcond
 
@@ -320,10 +345,12 @@ BatchTarget current_batch_target() {
   return {hwy::TargetName(bit), HWY_DYNAMIC_DISPATCH(batched::LaneCount)(), bit};
 }
 
-// One group: W lanes (a run each, or a copy of lane 0's run for the lanes left over), interleaved.
+// One group: W lanes (a run each, or a copy of lane 0's run for the lanes left over), interleaved. W is
+// the target's full width, or 4 or 2 for the remainder of a family (the constructor).
 struct BatchedSimulation::Group {
-  std::vector<std::size_t> runs;  // the run of each lane; padding lanes repeat lane 0's and are ignored
+  std::vector<std::size_t> runs;  // the run of each lane (W of them); padding lanes repeat lane 0's, ignored
   std::size_t used = 0;           // lanes 0 … used−1 are runs of their own
+  int width = 0;                  // the kernel of W lanes: 0 the full width, 1 CappedTag 4, 2 CappedTag 2
   std::size_t n = 0, head = 0;
   std::size_t flat_begin = 0, flat_end = 0;  // the plateau of the factors (find_plateau)
   bool three_level = false, switching = false;
@@ -371,6 +398,11 @@ void BatchedSimulation::find_plateau(Group& g) {
 
 BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(std::move(runs)) {
   lanes_ = HWY_DYNAMIC_DISPATCH(batched::LaneCount)();
+  // The widths a group can have, narrowest first: 2, 4 (each at most the full width; equal to it on a
+  // target of 2 or 4 lanes) and the full width, with their kernels (Group::width).
+  const std::array<std::pair<std::size_t, int>, 3> widths = {{{HWY_DYNAMIC_DISPATCH(batched::LaneCount2)(), 2},
+                                                              {HWY_DYNAMIC_DISPATCH(batched::LaneCount4)(), 1},
+                                                              {lanes_, 0}}};
   const std::size_t count = runs_.size();
   stale_.assign(count, 0);
   group_of_.assign(count, 0);
@@ -391,6 +423,10 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
     const int family = fast->three_level_ ? 1 : fast->energy_conserving_ ? 2 : fast->switching_ ? 3 : 0;
     families[Key{n, family, fast->head_.size()}].push_back(k);
   }
+  // Each family: groups of the full width, then the remainder q < W in one group of the narrowest width
+  // that holds it (2 runs in 2 lanes, 3 or 4 in 4, more in the full width: a step of an 8-lane group
+  // costs about 1.7 times a 2-lane one, bench_step), or alone if q = 1. The width changes no bit of a
+  // lane (every operation is lane-wise), only the cost of the padding lanes.
   for (const auto& [key, members] : families) {
     for (std::size_t first = 0; first < members.size(); first += lanes_) {
       const std::size_t used = std::min(lanes_, members.size() - first);
@@ -400,42 +436,48 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
       }
       auto g = std::make_unique<Group>();
       g->used = used;
-      for (std::size_t j = 0; j < lanes_; ++j) g->runs.push_back(members[first + (j < used ? j : 0)]);
+      std::size_t width = lanes_;
+      for (const auto& [w, kernel] : widths)
+        if (w >= used) {
+          width = w, g->width = kernel;
+          break;
+        }
+      for (std::size_t j = 0; j < width; ++j) g->runs.push_back(members[first + (j < used ? j : 0)]);
       const BarSimulation& r0 = runs_[g->runs[0]];
       g->n = std::get<0>(key);
       g->head = std::get<2>(key);
       g->three_level = r0.fast_->three_level_;
       g->switching = r0.fast_->switching_;
-      const std::size_t nw = g->n * lanes_;
+      const std::size_t nw = g->n * width;
       for (auto* a : {&g->u, &g->y, &g->w, &g->x, &g->elimination, &g->elimination_pair, &g->inverse_pivot, &g->upward,
                       &g->upward_pair})
         *a = hwy::AllocateAligned<double>(nw);
-      g->head_rows = hwy::AllocateAligned<double>(g->head * 10 * lanes_);
-      g->interior = hwy::AllocateAligned<double>(10 * lanes_);
-      g->last = hwy::AllocateAligned<double>(10 * lanes_);
+      g->head_rows = hwy::AllocateAligned<double>(g->head * 10 * width);
+      g->interior = hwy::AllocateAligned<double>(10 * width);
+      g->last = hwy::AllocateAligned<double>(10 * width);
       for (auto* a : {&g->rate, &g->memory, &g->ps_q_weight, &g->u0_next, &g->recurrence_d0, &g->keep, &g->energy})
-        *a = hwy::AllocateAligned<double>(lanes_);
-      g->decisions.resize(lanes_);
-      for (std::size_t j = 0; j < lanes_; ++j) {
+        *a = hwy::AllocateAligned<double>(width);
+      g->decisions.resize(width);
+      for (std::size_t j = 0; j < width; ++j) {
         const BarSimulation& r = runs_[g->runs[j]];
         const FastStep& f = *r.fast_;
         const ContactSolver& s = r.solver_;
         for (std::size_t i = 0; i < g->n; ++i) {
           const auto e = static_cast<Index>(i);
-          g->elimination[i * lanes_ + j] = s.elimination()[e];
-          g->elimination_pair[i * lanes_ + j] = s.elimination_pair()[e];
-          g->inverse_pivot[i * lanes_ + j] = s.inverse_pivot()[e];
-          g->upward[i * lanes_ + j] = s.upward()[e];
-          g->upward_pair[i * lanes_ + j] = s.upward_pair()[e];
+          g->elimination[i * width + j] = s.elimination()[e];
+          g->elimination_pair[i * width + j] = s.elimination_pair()[e];
+          g->inverse_pivot[i * width + j] = s.inverse_pivot()[e];
+          g->upward[i * width + j] = s.upward()[e];
+          g->upward_pair[i * width + j] = s.upward_pair()[e];
         }
         for (std::size_t h = 0; h < g->head; ++h) {
           const auto c = coefficients(f.head_[h]);
-          for (std::size_t m = 0; m < 10; ++m) g->head_rows[(h * 10 + m) * lanes_ + j] = c[m];
+          for (std::size_t m = 0; m < 10; ++m) g->head_rows[(h * 10 + m) * width + j] = c[m];
         }
         const auto ci = coefficients(f.interior_), cl = coefficients(f.last_);
         for (std::size_t m = 0; m < 10; ++m) {
-          g->interior[m * lanes_ + j] = ci[m];
-          g->last[m * lanes_ + j] = cl[m];
+          g->interior[m * width + j] = ci[m];
+          g->last[m * width + j] = cl[m];
         }
         g->rate[j] = f.coefficients_.velocity_rate;
         g->memory[j] = f.coefficients_.velocity_memory;
@@ -446,7 +488,7 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
         group_of_[g->runs[j]] = groups_.size();
         lane_of_[g->runs[j]] = j;
       }
-      for (std::size_t j = 0; j < lanes_; ++j) load_lane(*g, j, runs_[g->runs[j]]);
+      for (std::size_t j = 0; j < width; ++j) load_lane(*g, j, runs_[g->runs[j]]);
       find_plateau(*g);
       groups_.push_back(std::move(g));
     }
@@ -540,6 +582,12 @@ std::size_t BatchedSimulation::plateau_rows() const {
   return rows;
 }
 
+std::vector<std::size_t> BatchedSimulation::group_widths() const {
+  std::vector<std::size_t> widths;
+  for (const auto& g : groups_) widths.push_back(g->runs.size());
+  return widths;
+}
+
 std::size_t BatchedSimulation::batched_runs() const {
   std::size_t count = 0;
   for (const auto& g : groups_) count += g->used;
@@ -552,7 +600,7 @@ void BatchedSimulation::step() {
   for (const std::size_t k : alone_) runs_[k].step();
   for (const auto& group : groups_) {
     Group& g = *group;
-    const std::size_t W = lanes_;
+    const std::size_t W = g.runs.size();
     // Paoli–Schatzman's first step is Crank–Nicolson's (BarSimulation::step's starter): each run alone.
     bool starting = false;
     for (std::size_t j = 0; j < g.used; ++j) starting = starting || runs_[g.runs[j]].start_ != nullptr;
@@ -578,7 +626,16 @@ void BatchedSimulation::step() {
     k.rate = g.rate.get(), k.memory = g.memory.get(), k.ps_q_weight = g.ps_q_weight.get();
     k.u0_next = g.u0_next.get(), k.recurrence_d0 = g.recurrence_d0.get(), k.keep = g.keep.get();
     k.energy = g.energy.get();
-    HWY_DYNAMIC_DISPATCH(batched::SweepDown)(k);
+    switch (g.width) {
+      case 0:
+        HWY_DYNAMIC_DISPATCH(batched::SweepDown)(k);
+        break;
+      case 1:
+        HWY_DYNAMIC_DISPATCH(batched::SweepDown4)(k);
+        break;
+      default:
+        HWY_DYNAMIC_DISPATCH(batched::SweepDown2)(k);
+    }
     // Between the sweeps, each lane's contact decision: FastStep::contact_decision, the scalar code.
     std::vector<FastStep::ContactDecision>& decisions = g.decisions;
     for (std::size_t j = 0; j < W; ++j) {
@@ -591,7 +648,16 @@ void BatchedSimulation::step() {
       g.u0_next[j] = c.status_change ? g.u[j] : c.u0_next;  // (a kept lane's values are not written)
       g.recurrence_d0[j] = c.status_change ? 0.0 : c.recurrence_d0;
     }
-    HWY_DYNAMIC_DISPATCH(batched::SweepUp)(k);
+    switch (g.width) {
+      case 0:
+        HWY_DYNAMIC_DISPATCH(batched::SweepUp)(k);
+        break;
+      case 1:
+        HWY_DYNAMIC_DISPATCH(batched::SweepUp4)(k);
+        break;
+      default:
+        HWY_DYNAMIC_DISPATCH(batched::SweepUp2)(k);
+    }
     std::swap(g.u, g.y);  // U = Uⁿ⁺¹, as fused_step swaps u and u_new
     for (std::size_t j = 0; j < g.used; ++j) {
       const std::size_t r = g.runs[j];
@@ -827,6 +893,71 @@ TEST_CASE("the factors repeat on a plateau of the interior rows, which the sweep
       CHECK(alone[k].sample().time > 1.0);
     }
     CHECK(identical);
+  }
+  use_batch_target(0);
+}
+
+/// @file batched_step.cpp
+/// ## A remainder in a narrow group
+///
+/// A family of W + 2 or W + 3 runs (W the target's lanes) leaves, after one full group, a remainder of 2
+/// or 3 runs; the constructor puts it in one group of the narrowest width that holds it (2 lanes for 2
+/// runs, 4 for 3; on a target of 4 lanes, 3 runs fill a full group; on one of 2 lanes there is no
+/// remainder of two, and one of one is stepped alone). Prediction: those widths, every run of a group
+/// counted by batched_runs, a lane's sample read with the stride of its group's width, and every lane
+/// bitwise its run stepped alone past the first impact, for each kernel family (two-level, Paoli–Schatzman,
+/// EC, CN-switch) on every target: the narrow kernels are the full one's operations on fewer lanes.
+TEST_CASE("a batch's remainder is a group of the narrowest width that holds it, each lane bitwise its run alone") {
+  const UniformMesh mesh(1.0, 20);
+  const std::vector<Scheme> schemes = {Scheme::crank_nicolson, Scheme::paoli_schatzman, Scheme::energy_conserving,
+                                       Scheme::switching};
+  for (const BatchTarget& target : batch_targets()) {
+    use_batch_target(target.bit);
+    CAPTURE(target.name);
+    const std::size_t W = target.lanes;
+    for (const std::size_t extra : {std::size_t{2}, std::size_t{3}})
+      for (const Scheme scheme : schemes) {
+        CAPTURE(extra);
+        CAPTURE(to_string(scheme));
+        const std::size_t count = W + extra;
+        std::vector<BarSimulation> batch, alone;
+        Index steps = 0;
+        for (std::size_t k = 0; k < count; ++k) {
+          SchemeParameters p;
+          p.scheme = scheme;
+          const double dt = (0.5 + 0.1 * static_cast<double>(k % 11)) * mesh.h();
+          const MassRedistribution mass = k % 2 == 0 ? mod1() : mod3();
+          batch.emplace_back(benchmark_problem(), mesh, mass, p, dt);
+          alone.emplace_back(benchmark_problem(), mesh, mass, p, dt);
+          steps = std::max(steps, static_cast<Index>(1.5 / dt));  // past t = 1, the first impact, for every lane
+        }
+        BatchedSimulation batched(std::move(batch));
+        CHECK(batched.lanes() == W);
+        std::vector<std::size_t> expected(count / W, W);
+        const std::size_t q = count % W;
+        if (q >= 2) expected.push_back(q <= 2 ? 2 : q <= 4 ? 4 : W);
+        CHECK(batched.group_widths() == expected);
+        CHECK(batched.batched_runs() == count - (q == 1 ? 1 : 0));
+        bool identical = true;
+        for (Index n = 1; n <= steps; ++n) {
+          batched.step();
+          for (std::size_t k = 0; k < count; ++k) alone[k].step();
+        }
+        // The last run lies in the remainder's group: its lane's stride is the group's width (or 1 if a
+        // CN-switch status change has just stepped it alone, its vectors its own).
+        LaneVectors lanes{nullptr, nullptr, 0};
+        batched.sample(count - 1, lanes);
+        const std::size_t stride = q >= 2 ? expected.back() : q == 1 ? 1 : W;
+        CHECK((lanes.stride == stride || (scheme == Scheme::switching && lanes.stride == 1)));
+        for (std::size_t k = 0; k < count; ++k) {
+          const Sample a = batched.run(k).sample(), b = alone[k].sample();
+          identical = identical && same_bits(*a.displacement, *b.displacement) && same_bits(*a.velocity, *b.velocity) &&
+                      same_bits(a.multiplier, b.multiplier) && same_bits(a.energy, b.energy) && a.level == b.level &&
+                      same_bits(a.time, b.time);
+          CHECK(b.time > 1.0);
+        }
+        CHECK(identical);
+      }
   }
   use_batch_target(0);
 }

@@ -45,8 +45,10 @@ int batch_family(Scheme scheme);
 /// A batch of runs (BarSimulation's at level 0, moved in) advanced one step at a time. Runs whose
 /// steps can share vector registers (the fast kernel, no load, and the same number of unknowns, scheme
 /// family — two-level, Paoli–Schatzman, EC, CN-switch — and fast-step layout, FastStep's explicit head
-/// rows) are grouped by lanes of the current target; every other run (the reference kernel, a load, a
-/// group of one) is stepped alone. Paoli–Schatzman's Crank–Nicolson first step and CN-switch's θ-step
+/// rows) are grouped by lanes of the current target: groups of the target's full width, and the remainder
+/// of a family in one group of the narrowest width that holds it (2, 4 or the full width: padding lanes
+/// cost as much as runs); every other run (the reference kernel, a load, a remainder of one) is stepped
+/// alone. Paoli–Schatzman's Crank–Nicolson first step and CN-switch's θ-step
 /// at a status change are each lane's own scalar step. Every run ends in the same state, bit for bit,
 /// as if stepped alone by BarSimulation::step (the doctest of batched_step.cpp).
 class BatchedSimulation {
@@ -67,15 +69,18 @@ class BatchedSimulation {
   /// Run k's sample without copying its vectors out of the lanes: the sample of its simulation (its
   /// instants, λ, energy and the displacement's first entry are current; the rest of its vectors may be
   /// older) and where its displacement and velocity are now, in the interleaved lanes of its group
-  /// (stride: the lanes) or in its own vectors (stride 1). The same entries as run(k).sample()'s.
+  /// (stride: the group's width, 2, 4 or lanes()) or in its own vectors (stride 1). The same entries as run(k).sample()'s.
   Sample sample(std::size_t k, LaneVectors& lanes) const;
   /// The number of runs advanced in vector lanes (the others are stepped alone).
   std::size_t batched_runs() const;
   /// The interior rows whose factors the sweeps hold in registers (the plateau, batched_step.cpp), summed
   /// over the groups.
   std::size_t plateau_rows() const;
-  /// The lanes per group (the target's width in doubles).
+  /// The target's full width in doubles: the lanes of a full group (a remainder's group may be
+  /// narrower, group_widths()).
   std::size_t lanes() const { return lanes_; }
+  /// The lanes of each group, in the order the groups are stepped (for tests and diagnostics).
+  std::vector<std::size_t> group_widths() const;
 
  private:
   struct Group;
