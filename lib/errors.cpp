@@ -265,13 +265,22 @@ namespace mrm::error_lanes {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-std::size_t LaneCount() { return hn::Lanes(hn::ScalableTag<double>()); }
+// Templates over the vector tag D: the full width of the target and the capped widths of 4 and 2
+// doubles, for the lanes of a batch's narrower groups (strides 4 and 2, lib/batched_step.cpp). The same
+// operations in the same order at every width.
+using Full = hn::ScalableTag<double>;
+using Four = hn::CappedTag<double, 4>;
+using Two = hn::CappedTag<double, 2>;
 
-// Lanes 0 … W−1 (W a multiple of LaneCount()): their e₀, e_{n−1}, D and Q in e0[j], last[j], ...
-void LaneRunSums(const double* w, std::size_t W, const double* x, const ExactSolution::AffineRun* runs, int count,
-                 double* e0_out, double* last_out, double* differences_out, double* squares_out) {
-  const hn::ScalableTag<double> d;
-  using V = hn::Vec<decltype(d)>;
+std::size_t LaneCount() { return hn::Lanes(Full()); }
+std::size_t LaneCount4() { return hn::Lanes(Four()); }
+std::size_t LaneCount2() { return hn::Lanes(Two()); }
+
+// Lanes 0 … W−1 (W a multiple of Lanes(d)): their e₀, e_{n−1}, D and Q in e0[j], last[j], ...
+template <class D>
+void LaneRunSumsT(D d, const double* w, std::size_t W, const double* x, const ExactSolution::AffineRun* runs, int count,
+                  double* e0_out, double* last_out, double* differences_out, double* squares_out) {
+  using V = hn::Vec<D>;
   for (std::size_t c = 0; c < W; c += hn::Lanes(d)) {
     const double* wc = w + c;
     const auto at = [&](long i) { return hn::LoadU(d, wc + static_cast<std::size_t>(i) * W); };
@@ -332,13 +341,13 @@ void LaneRunSums(const double* w, std::size_t W, const double* x, const ExactSol
   }
 }
 
-// Lanes 0 … W−1 (W a multiple of LaneCount()) against one interpolant w_I (wi, n entries: a reference
+// Lanes 0 … W−1 (W a multiple of Lanes(d)) against one interpolant w_I (wi, n entries: a reference
 // other than the closed form, evaluated once for the lanes at the same instant): add_vectors' sums of
 // the error e = W − w_I, lane-wise in its order, e₀, e_{n−1}, D and Q in e0[j], last[j], ...
-void LaneInterpolantSums(const double* w, std::size_t W, const double* wi, long n, double* e0_out, double* last_out,
-                         double* differences_out, double* squares_out) {
-  const hn::ScalableTag<double> d;
-  using V = hn::Vec<decltype(d)>;
+template <class D>
+void LaneInterpolantSumsT(D d, const double* w, std::size_t W, const double* wi, long n, double* e0_out,
+                          double* last_out, double* differences_out, double* squares_out) {
+  using V = hn::Vec<D>;
   for (std::size_t c = 0; c < W; c += hn::Lanes(d)) {
     const double* wc = w + c;
     const auto at = [&](long i) { return hn::LoadU(d, wc + static_cast<std::size_t>(i) * W); };
@@ -356,6 +365,21 @@ void LaneInterpolantSums(const double* w, std::size_t W, const double* wi, long 
   }
 }
 
+// The entry points, one per width (where a capped width is the full one, the same code twice).
+#define MRM_LANE_SUMS(suffix, Tag)                                                                                     \
+  void LaneRunSums##suffix(const double* w, std::size_t W, const double* x, const ExactSolution::AffineRun* runs,      \
+                           int count, double* e0, double* last, double* differences, double* squares) {                \
+    LaneRunSumsT(Tag(), w, W, x, runs, count, e0, last, differences, squares);                                         \
+  }                                                                                                                    \
+  void LaneInterpolantSums##suffix(const double* w, std::size_t W, const double* wi, long n, double* e0, double* last, \
+                                   double* differences, double* squares) {                                             \
+    LaneInterpolantSumsT(Tag(), w, W, wi, n, e0, last, differences, squares);                                          \
+  }
+MRM_LANE_SUMS(, Full)
+MRM_LANE_SUMS(4, Four)
+MRM_LANE_SUMS(2, Two)
+#undef MRM_LANE_SUMS
+
 }  // namespace HWY_NAMESPACE
 }  // namespace mrm::error_lanes
 HWY_AFTER_NAMESPACE();
@@ -366,8 +390,14 @@ namespace mrm {
 /// @cond MRM_INTERNAL
 namespace error_lanes {
 HWY_EXPORT(LaneCount);
+HWY_EXPORT(LaneCount4);
+HWY_EXPORT(LaneCount2);
 HWY_EXPORT(LaneRunSums);
+HWY_EXPORT(LaneRunSums4);
+HWY_EXPORT(LaneRunSums2);
 HWY_EXPORT(LaneInterpolantSums);
+HWY_EXPORT(LaneInterpolantSums4);
+HWY_EXPORT(LaneInterpolantSums2);
 }  // namespace error_lanes
 /// @endcond
 
@@ -487,20 +517,53 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
         return false;
     return true;
   };
-  const std::size_t vector_lanes = HWY_DYNAMIC_DISPATCH(error_lanes::LaneCount)();
+  // The kernel for a stride: the widest of the target's full width, 4 and 2 lanes that divides it (a
+  // batch's groups have the full width or, a remainder, 4 or 2 lanes: lib/batched_step.cpp); 0: none.
+  const std::size_t full = HWY_DYNAMIC_DISPATCH(error_lanes::LaneCount)(),
+                    four = HWY_DYNAMIC_DISPATCH(error_lanes::LaneCount4)(),
+                    two = HWY_DYNAMIC_DISPATCH(error_lanes::LaneCount2)();
+  const auto kernel_of = [&](std::size_t stride) {
+    return stride % full == 0 ? 1 : stride % four == 0 ? 2 : stride % two == 0 ? 3 : 0;
+  };
   // A run of the closed form on a uniform mesh: its affine runs and contact values are taken from a run
   // at the same instants (runs_of, contact_values), whatever its layout; summed in one pass with others
   // if it lies in lanes of a width the vectors divide (in_vectors).
   const auto takes = [&](const Lane& r) {
     return r.errors->closed_form_ && !r.errors->general_ && r.lanes.stride >= 1 && r.lanes.lane < r.lanes.stride;
   };
-  const auto in_vectors = [&](const Lane& r) { return r.lanes.stride >= 2 && r.lanes.stride % vector_lanes == 0; };
+  const auto in_vectors = [&](const Lane& r) { return r.lanes.stride >= 2 && kernel_of(r.lanes.stride) != 0; };
   // A run against another reference (the characteristic solution, tabulated or not, ...) on a uniform
   // mesh, in lanes as above: its interpolants are evaluated once for the runs of the same reference,
   // nodes and instants.
   const auto evaluates = [&](const Lane& r) {
     return !r.errors->closed_form_ && !r.errors->general_ && r.lanes.stride >= 2 && r.lanes.lane < r.lanes.stride &&
-           r.lanes.stride % vector_lanes == 0;
+           kernel_of(r.lanes.stride) != 0;
+  };
+  const auto interpolant_sums_of = [&](const double* w, std::size_t W, const double* wi, long n, double* out) {
+    switch (kernel_of(W)) {
+      case 1:
+        return HWY_DYNAMIC_DISPATCH(error_lanes::LaneInterpolantSums)(w, W, wi, n, out, out + W, out + 2 * W,
+                                                                      out + 3 * W);
+      case 2:
+        return HWY_DYNAMIC_DISPATCH(error_lanes::LaneInterpolantSums4)(w, W, wi, n, out, out + W, out + 2 * W,
+                                                                       out + 3 * W);
+      default:
+        return HWY_DYNAMIC_DISPATCH(error_lanes::LaneInterpolantSums2)(w, W, wi, n, out, out + W, out + 2 * W,
+                                                                       out + 3 * W);
+    }
+  };
+  const auto run_sums_of = [&](const double* w, std::size_t W, const double* x, const Run* r, int count, double* out) {
+    switch (kernel_of(W)) {
+      case 1:
+        return HWY_DYNAMIC_DISPATCH(error_lanes::LaneRunSums)(w, W, x, r, count, out, out + W, out + 2 * W,
+                                                              out + 3 * W);
+      case 2:
+        return HWY_DYNAMIC_DISPATCH(error_lanes::LaneRunSums4)(w, W, x, r, count, out, out + W, out + 2 * W,
+                                                               out + 3 * W);
+      default:
+        return HWY_DYNAMIC_DISPATCH(error_lanes::LaneRunSums2)(w, W, x, r, count, out, out + W, out + 2 * W,
+                                                               out + 3 * W);
+    }
   };
   const auto same_bits = [](double p, double q) { return std::memcmp(&p, &q, sizeof p) == 0; };
   // The scratch of a level, this thread's, kept from call to call (a sweep calls once per level and batch).
@@ -604,10 +667,8 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
       lead.exact_->velocity_at_points(at.velocity_time, x, static_cast<long>(n), vi);
       sums.assign(8 * W, 0.0);
       double* s = sums.data();
-      HWY_DYNAMIC_DISPATCH(error_lanes::LaneInterpolantSums)
-      (u_base, W, ui, static_cast<long>(n), s, s + W, s + 2 * W, s + 3 * W);
-      HWY_DYNAMIC_DISPATCH(error_lanes::LaneInterpolantSums)
-      (v_base, W, vi, static_cast<long>(n), s + 4 * W, s + 5 * W, s + 6 * W, s + 7 * W);
+      interpolant_sums_of(u_base, W, ui, static_cast<long>(n), s);
+      interpolant_sums_of(v_base, W, vi, static_cast<long>(n), s + 4 * W);
       const InterpolantSums zu = interpolant_sums(ui, static_cast<long>(n));
       const InterpolantSums zv = interpolant_sums(vi, static_cast<long>(n));
       const double u0 = lead.exact_->contact_displacement(at.time);
@@ -672,10 +733,8 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
     // Eight arrays of W: e₀, e_{n−1}, D, Q of u, then of v.
     sums.assign(8 * W, 0.0);
     double* s = sums.data();
-    HWY_DYNAMIC_DISPATCH(error_lanes::LaneRunSums)
-    (u_base, W, x, mine.u, mine.u_count, s, s + W, s + 2 * W, s + 3 * W);
-    HWY_DYNAMIC_DISPATCH(error_lanes::LaneRunSums)
-    (v_base, W, x, mine.v, mine.v_count, s + 4 * W, s + 5 * W, s + 6 * W, s + 7 * W);
+    run_sums_of(u_base, W, x, mine.u, mine.u_count, s);
+    run_sums_of(v_base, W, x, mine.v, mine.v_count, s + 4 * W);
     const Runs& z = interpolant_of(a);
     const InterpolantSums &zu = z.zu, &zv = z.zv;
     for (std::size_t k : set) {
@@ -1052,16 +1111,25 @@ std::vector<ErrorAccumulator::Lane> interleaved_lanes(const std::vector<Eigen::V
   for (std::size_t j = 0; j < runs; ++j) lanes.push_back({&together[j], &samples[j], LaneVectors{&u[j], &v[j], W, j}});
   return lanes;
 }
+
+// Whether add_lanes' one pass takes lanes of stride W on the current target: one of its widths (its
+// lanes, 4 and 2, each at most its lanes) divides W.
+bool one_pass_takes(std::size_t W) {
+  const std::size_t full = current_batch_target().lanes;
+  return W % full == 0 || W % std::min<std::size_t>(4, full) == 0 || W % std::min<std::size_t>(2, full) == 0;
+}
 }  // namespace
 
 TEST_CASE("the error sums of a batch's lanes in one pass are each lane's own, bit for bit, on every vector target") {
   // Prediction: add_lanes forms each lane's sums with error_run_sums' operations in its order, lane-wise
   // (LaneRunSums), and the interpolant's with the same function as add: so every measure of every lane
-  // has the bits of add(sample) on that lane's own contiguous vectors. W lanes (2 to 16: one or several
-  // vectors of each target), on a mesh of an odd and an even number of nodes, at instants where u's runs
-  // are affine (b ≠ 0) and constant (b = 0, and every run of u_t), on the kinks (t a multiple of h) and off
-  // them; most lanes share their instants, one lane has instants of its own (it is added alone), and one
-  // lane of the vectors is no run at all (padding).
+  // has the bits of add(sample) on that lane's own contiguous vectors. W lanes (2, 4, 8, 16: one or
+  // several vectors of each target, at its full width or a capped one of 4 or 2 lanes, as a batch's
+  // narrow groups; 6: vectors of 2 lanes on a wider target; 3: no width divides it, each run alone), on a
+  // mesh of an odd and an even number of nodes, at instants where u's runs are affine (b ≠ 0) and
+  // constant (b = 0, and every run of u_t), on the kinks (t a multiple of h) and off them; most lanes
+  // share their instants, one lane has instants of its own (it is added alone), and one lane of the
+  // vectors is no run at all (padding).
   std::vector<std::int64_t> targets{0};
   for (const BatchTarget& t : batch_targets()) targets.push_back(t.bit);
   std::mt19937 random(11);
@@ -1072,7 +1140,7 @@ TEST_CASE("the error sums of a batch's lanes in one pass are each lane's own, bi
       const UniformMesh mesh(1.0, elements);
       const Index n = mesh.unknowns();
       const ExactSolution exact;
-      for (const std::size_t W : {2, 4, 8, 16}) {
+      for (const std::size_t W : {2, 3, 4, 6, 8, 16}) {
         const std::size_t runs = W == 2 ? 2 : W - 1;  // from W = 4, lane W − 1 is padding
         std::vector<ErrorAccumulator> together, alone;
         for (std::size_t j = 0; j < runs; ++j) together.emplace_back(mesh, exact), alone.emplace_back(mesh, exact);
@@ -1096,14 +1164,14 @@ TEST_CASE("the error sums of a batch's lanes in one pass are each lane's own, bi
           // The runs of one pass, if the vectors divide W: all, but lane 1 from W = 4 at the levels where
           // its instants give other runs of the closed form.
           const std::size_t got = ErrorAccumulator::add_lanes(lanes.data(), lanes.size());
-          if (W % current_batch_target().lanes != 0) {
+          if (!one_pass_takes(W)) {
             CHECK(got == 0);
           } else {
             CHECK((got == runs || (runs > 2 && got == runs - 1)));
             apart += got < runs;
           }
         }
-        if (runs > 2 && W % current_batch_target().lanes == 0) CHECK(apart > 20);
+        if (runs > 2 && one_pass_takes(W)) CHECK(apart > 20);
         CAPTURE(current_batch_target().name);
         CAPTURE(elements);
         CAPTURE(W);
@@ -1172,7 +1240,7 @@ TEST_CASE("runs against one reference object at the same instants share its eval
           return std::make_shared<const CharacteristicSolution>(solution);
         };
         const std::shared_ptr<const ReferenceSolution> a_ref = make(), b_ref = make();
-        for (const std::size_t W : {2, 4, 8, 16}) {
+        for (const std::size_t W : {2, 3, 4, 6, 8, 16}) {
           const std::size_t runs = W == 2 ? 2 : W - 1;
           const auto reference_of = [&](std::size_t j) { return W >= 8 && (j == 2 || j == 3) ? b_ref : a_ref; };
           const auto own_instants = [&](std::size_t j) { return j == 1 && runs > 2; };
@@ -1205,7 +1273,7 @@ TEST_CASE("runs against one reference object at the same instants share its eval
             const std::size_t got = ErrorAccumulator::add_lanes(lanes.data(), lanes.size());
             CAPTURE(current_batch_target().name);
             CAPTURE(W);
-            CHECK(got == (W % current_batch_target().lanes == 0 ? shared(level) : 0));
+            CHECK(got == (one_pass_takes(W) ? shared(level) : 0));
           }
           CAPTURE(tabulate);
           CAPTURE(current_batch_target().name);
