@@ -22,9 +22,9 @@
 ///
 /// Width: a group has the target's full width W, except the remainder of a family (q < W runs left after
 /// its full groups), which gets the narrowest width that holds it: 2 lanes for 2 runs, 4 for 3 or 4, W
-/// for more (a run left alone is stepped alone). A padding lane costs as much as a run: on AVX-512 an
-/// 8-lane step costs ~8.2 ns per node against ~4.9 ns for a 2-lane one (bench_step, N = 256), so 2 runs
-/// padded to 8 lanes were slower than the same runs stepped alone. The kernels are templates over
+/// for more (a run left alone is stepped alone). A padding lane costs as much as a run (bench_step times
+/// the step at each width): on an AVX-512 machine, 2 runs padded to 8 lanes were slower than the same runs
+/// stepped alone. The kernels are templates over
 /// Highway's tag, instantiated for the full width and the capped widths of 4 and 2 doubles; the width
 /// changes no bit of a lane, since no operation mixes lanes.
 #include "batched_step.hpp"
@@ -432,9 +432,8 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
     families[Key{n, family, fast->head_.size()}].push_back(k);
   }
   // Each family: groups of the full width, then the remainder q < W in one group of the narrowest width
-  // that holds it (2 runs in 2 lanes, 3 or 4 in 4, more in the full width: a step of an 8-lane group
-  // costs about 1.7 times a 2-lane one, bench_step), or alone if q = 1. The width changes no bit of a
-  // lane (every operation is lane-wise), only the cost of the padding lanes.
+  // that holds it (2 runs in 2 lanes, 3 or 4 in 4, more in the full width), or alone if q = 1. The width
+  // changes no bit of a lane (every operation is lane-wise), only the cost of the padding lanes.
   for (const auto& [key, members] : families) {
     for (std::size_t first = 0; first < members.size(); first += lanes_) {
       const std::size_t used = std::min(lanes_, members.size() - first);

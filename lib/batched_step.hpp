@@ -69,7 +69,8 @@ class BatchedSimulation {
   /// Run k's sample without copying its vectors out of the lanes: the sample of its simulation (its
   /// instants, λ, energy and the displacement's first entry are current; the rest of its vectors may be
   /// older) and where its displacement and velocity are now, in the interleaved lanes of its group
-  /// (stride: the group's width, 2, 4 or lanes()) or in its own vectors (stride 1). The same entries as run(k).sample()'s.
+  /// (stride: the group's width, 2, 4 or lanes()) or in its own vectors (stride 1). The same entries as
+  /// run(k).sample()'s.
   Sample sample(std::size_t k, LaneVectors& lanes) const;
   /// The number of runs advanced in vector lanes (the others are stepped alone).
   std::size_t batched_runs() const;

@@ -616,20 +616,20 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
     }
     return r;
   };
-  // u₀(t) and λ(t) once per closed form and instant (the runs of one Δt share both).
-  const ExactSolution* u0_of = nullptr;
-  const ExactSolution* lambda_of = nullptr;
+  // u₀(t) and λ(t) once per reference object and instant (the runs of one Δt share both).
+  const ReferenceSolution* u0_of = nullptr;
+  const ReferenceSolution* lambda_of = nullptr;
   double u0 = 0, u0_time = 0, lambda = 0, lambda_time = 0;
   const auto contact_values = [&](std::size_t k) {
     const Sample& sample = *level[k].sample;
-    const ErrorAccumulator& e = *level[k].errors;
-    if (!(u0_of == e.closed_form_ && same_bits(sample.time, u0_time))) {
-      u0 = e.exact_->contact_displacement(sample.time);
-      u0_of = e.closed_form_, u0_time = sample.time;
+    const ReferenceSolution* exact = level[k].errors->exact_.get();
+    if (!(u0_of == exact && same_bits(sample.time, u0_time))) {
+      u0 = exact->contact_displacement(sample.time);
+      u0_of = exact, u0_time = sample.time;
     }
-    if (sample.has_multiplier && !(lambda_of == e.closed_form_ && same_bits(sample.multiplier_time, lambda_time))) {
-      lambda = e.exact_->contact_multiplier(sample.multiplier_time);
-      lambda_of = e.closed_form_, lambda_time = sample.multiplier_time;
+    if (sample.has_multiplier && !(lambda_of == exact && same_bits(sample.multiplier_time, lambda_time))) {
+      lambda = exact->contact_multiplier(sample.multiplier_time);
+      lambda_of = exact, lambda_time = sample.multiplier_time;
     }
   };
   for (std::size_t a = 0; a < count; ++a) {
@@ -671,19 +671,13 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
       interpolant_sums_of(v_base, W, vi, static_cast<long>(n), s + 4 * W);
       const InterpolantSums zu = interpolant_sums(ui, static_cast<long>(n));
       const InterpolantSums zv = interpolant_sums(vi, static_cast<long>(n));
-      const double u0 = lead.exact_->contact_displacement(at.time);
-      bool has_lambda = false;  // λ at the last multiplier instant asked (the lanes' are usually the same)
-      double lambda = 0, lambda_time = 0;
       for (std::size_t k : set) {
         const Sample& sample = *level[k].sample;
         const std::size_t j = level[k].lanes.lane;
         const Sums su{s[j], s[W + j], s[2 * W + j], s[3 * W + j], zu.z0, zu.z_last, zu.differences, zu.squares};
         const Sums sv{s[4 * W + j], s[5 * W + j], s[6 * W + j],   s[7 * W + j],
                       zv.z0,        zv.z_last,    zv.differences, zv.squares};
-        if (sample.has_multiplier && !(has_lambda && same_bits(sample.multiplier_time, lambda_time))) {
-          lambda = lead.exact_->contact_multiplier(sample.multiplier_time);
-          lambda_time = sample.multiplier_time, has_lambda = true;
-        }
+        contact_values(k);
         level[k].errors->add_sums(sample, level[k].lanes.displacement[0], su, sv, u0,
                                   sample.has_multiplier ? lambda : 0.0);
         done[k] = 1;
