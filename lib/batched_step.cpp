@@ -44,7 +44,7 @@ namespace mrm::batched {
 struct Kernel {
   std::size_t n = 0, lanes = 0, head = 0;
   std::size_t flat_begin = 0, flat_end = 0;  // rows [flat_begin, flat_end) of the interior: constant factors
-  bool three_level = false, keeps = false;   // keeps: a lane may be left untouched (CN-switch)
+  bool three_level = false, keeps = false;   // keeps: a lane may be left untouched (CN-switch, step(advance))
   double *u = nullptr, *y = nullptr, *w = nullptr, *x = nullptr;
   const double *elimination = nullptr, *elimination_pair = nullptr, *inverse_pivot = nullptr, *upward = nullptr,
                *upward_pair = nullptr;
@@ -130,7 +130,8 @@ void SweepDownT(D d, const Kernel& k) {
 }
 
 // The sweep up of FastStep::fused_step, from the lanes' contact decisions; a lane with keep ≠ 0 is
-// written back unchanged (CN-switch takes its θ-step there, alone).
+// written back unchanged (CN-switch takes its θ-step there, alone; a lane that does not advance in a
+// partial step, BatchedSimulation::step(advance), keeps its level).
 template <bool three_level, bool keeps, class D>
 void SweepUpT(D d, const Kernel& k) {
   using V = hn::Vec<D>;
@@ -158,8 +159,13 @@ void SweepUpT(D d, const Kernel& k) {
     }
     if constexpr (three_level) {
       const V xx = rate * dd, p = un + uo, q = dd;
-      put(xx, x_out, i);
-      put(dd, w_out, i);
+      if constexpr (keeps) {
+        put(hn::IfThenElse(keep, at(x_out, i), xx), x_out, i);
+        put(hn::IfThenElse(keep, at(w_out, i), dd), w_out, i);
+      } else {
+        put(xx, x_out, i);
+        put(dd, w_out, i);
+      }
       if constexpr (sums) {
         const V dx = xx - v_prev, dp = p - p_prev, dq = q - q_prev;
         k_d = k_d + dx * dx, k_q = k_q + xx * xx;
@@ -259,7 +265,7 @@ void SweepUpT(D d, const Kernel& k) {
 
 template <class D>
 void SweepUpD(D d, const Kernel& k) {
-  if (k.three_level) return SweepUpT<true, false>(d, k);
+  if (k.three_level) return k.keeps ? SweepUpT<true, true>(d, k) : SweepUpT<true, false>(d, k);
   if (k.keeps) return SweepUpT<false, true>(d, k);
   SweepUpT<false, false>(d, k);
 }
@@ -601,18 +607,33 @@ std::size_t BatchedSimulation::batched_runs() const {
   return count;
 }
 
-void BatchedSimulation::step() {
+void BatchedSimulation::step() { step(std::vector<char>(runs_.size(), 1)); }
+
+// A partial step: the runs with advance[k] = 0 are left as they are. In a group they are kept lanes (the
+// sweep up writes their U, W' and X back unchanged, as for CN-switch's status changes; the state they
+// were computed from is not used), and their bookkeeping is not touched; a group none of whose runs
+// advances is not stepped. A padding lane follows lane 0, whose run it repeats.
+void BatchedSimulation::step(const std::vector<char>& advance) {
+  if (advance.size() != runs_.size())
+    throw std::invalid_argument("BatchedSimulation::step: " + std::to_string(advance.size()) + " flags for " +
+                                std::to_string(runs_.size()) + " runs (allowed: one per run)");
   if (HWY_DYNAMIC_DISPATCH(batched::LaneCount)() != lanes_)
     throw std::logic_error("BatchedSimulation::step: the vector target changed since the batch was made");
-  for (const std::size_t k : alone_) runs_[k].step();
+  for (const std::size_t k : alone_)
+    if (advance[k]) runs_[k].step();
   for (const auto& group : groups_) {
     Group& g = *group;
     const std::size_t W = g.runs.size();
+    const auto moves = [&](std::size_t j) { return advance[g.runs[j < g.used ? j : 0]] != 0; };
+    bool any = false, all = true;
+    for (std::size_t j = 0; j < g.used; ++j) any = any || moves(j), all = all && moves(j);
+    if (!any) continue;
     // Paoli–Schatzman's first step is Crank–Nicolson's (BarSimulation::step's starter): each run alone.
     bool starting = false;
-    for (std::size_t j = 0; j < g.used; ++j) starting = starting || runs_[g.runs[j]].start_ != nullptr;
+    for (std::size_t j = 0; j < g.used; ++j) starting = starting || (moves(j) && runs_[g.runs[j]].start_ != nullptr);
     if (starting) {
       for (std::size_t j = 0; j < W; ++j) {
+        if (!moves(j)) continue;  // a run that stays: its lane stays too (it may be newer than its vectors)
         BarSimulation& run = runs_[g.runs[j]];
         if (j < g.used) {
           if (stale_[g.runs[j]]) store_lane(g, j, run);
@@ -625,7 +646,7 @@ void BatchedSimulation::step() {
     }
     batched::Kernel k;
     k.n = g.n, k.lanes = W, k.head = g.head, k.flat_begin = g.flat_begin, k.flat_end = g.flat_end;
-    k.three_level = g.three_level, k.keeps = g.switching;
+    k.three_level = g.three_level, k.keeps = g.switching || !all;
     k.u = g.u.get(), k.y = g.y.get(), k.w = g.w.get(), k.x = g.x.get();
     k.elimination = g.elimination.get(), k.elimination_pair = g.elimination_pair.get();
     k.inverse_pivot = g.inverse_pivot.get(), k.upward = g.upward.get(), k.upward_pair = g.upward_pair.get();
@@ -646,6 +667,13 @@ void BatchedSimulation::step() {
     // Between the sweeps, each lane's contact decision: FastStep::contact_decision, the scalar code.
     std::vector<FastStep::ContactDecision>& decisions = g.decisions;
     for (std::size_t j = 0; j < W; ++j) {
+      if (!moves(j)) {  // kept: its values are not written (the sweep up reads but discards them)
+        decisions[j] = {};
+        g.keep[j] = 1.0;
+        g.u0_next[j] = g.u[j];
+        g.recurrence_d0[j] = 0.0;
+        continue;
+      }
       const BarSimulation& run = runs_[g.runs[j]];
       const FastStep::ContactDecision c =
           run.fast_->contact_decision(g.u[j], g.u[W + j], g.w[j], g.w[W + j], g.y[W + j], run.state_.lambda,
@@ -667,6 +695,7 @@ void BatchedSimulation::step() {
     }
     std::swap(g.u, g.y);  // U = Uⁿ⁺¹, as fused_step swaps u and u_new
     for (std::size_t j = 0; j < g.used; ++j) {
+      if (!moves(j)) continue;
       const std::size_t r = g.runs[j];
       BarSimulation& run = runs_[r];
       if (decisions[j].status_change) {  // CN-switch's θ-step, alone, from the untouched state
@@ -792,6 +821,89 @@ TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for
   // Not vacuous: every case went through the vector lanes on every target, CN-switch changed status.
   CHECK(batched_cases == static_cast<int>(targets.size() * cases.size()));
   CHECK(status_changes > 0);
+}
+
+/// @file batched_step.cpp
+/// ## Runs at their own rates: the partial step
+///
+/// step(advance) steps the runs with advance[k] ≠ 0 and keeps the others: a kept lane is written back
+/// unchanged by the sweep up (the mask CN-switch uses for its status changes), and its run's bookkeeping
+/// is not touched. So runs of Δt, 2Δt, … step together, each only at the multiples of its rate. The
+/// prediction is the identity again: at every batch step, every run, advanced or kept, is bitwise its run
+/// stepped alone as many times. Checked for every scheme and target with the rates 1, 2, 3, 5 (run k's
+/// Δt is its rate times a common step), read without copying the lanes out (sample(k, lanes)), so that a
+/// kept lane newer than its run's vectors meets another lane's Paoli–Schatzman first step (at n = 5:
+/// the rate-2 lane stepped in the lanes at n = 4 and stays); a wrong flag count throws.
+TEST_CASE("a partial step keeps the runs that stay, and runs at their own rates are each bitwise the run alone") {
+  struct Case {
+    Scheme scheme;
+    ContactRow row;
+  };
+  const std::vector<Case> cases = {
+      {Scheme::crank_nicolson, ContactRow::algebraic},    {Scheme::backward_euler, ContactRow::algebraic},
+      {Scheme::paoli_schatzman, ContactRow::algebraic},   {Scheme::paoli_schatzman, ContactRow::literal},
+      {Scheme::energy_conserving, ContactRow::algebraic}, {Scheme::switching, ContactRow::algebraic}};
+  const UniformMesh mesh(1.0, 24);
+  const std::vector<Index> rates = {1, 2, 3, 5};
+  const Index batch_steps = 300;  // the rate-5 runs reach t = 300 · 0.25h · 5 / 5 > 1, the first impact
+  int kept_lanes = 0;
+  for (const BatchTarget& target : batch_targets()) {
+    use_batch_target(target.bit);
+    CAPTURE(target.name);
+    for (const Case& c : cases) {
+      CAPTURE(to_string(c.scheme));
+      CAPTURE(to_string(c.row));
+      std::vector<BarSimulation> batch, alone;
+      const std::size_t count = 2 * target.lanes + 1;
+      for (std::size_t k = 0; k < count; ++k) {
+        SchemeParameters p;
+        p.scheme = c.scheme;
+        p.contact_row = c.row;
+        if (c.scheme == Scheme::paoli_schatzman && k % 2 == 1) p.beta = 0.3;
+        const double dt = 0.25 * static_cast<double>(rates[k % rates.size()]) * mesh.h();
+        const MassRedistribution mass = k % 2 == 0 ? mod1() : mod3();
+        batch.emplace_back(benchmark_problem(), mesh, mass, p, dt);
+        alone.emplace_back(benchmark_problem(), mesh, mass, p, dt);
+      }
+      BatchedSimulation batched(std::move(batch));
+      REQUIRE(batched.batched_runs() > 0);
+      bool identical = true;
+      for (Index n = 1; n <= batch_steps && identical; ++n) {
+        std::vector<char> advance(count);
+        for (std::size_t k = 0; k < count; ++k) {
+          advance[k] = n % rates[k % rates.size()] == 0;
+          if (advance[k]) alone[k].step();
+          kept_lanes += !advance[k];
+        }
+        batched.step(advance);
+        for (std::size_t k = 0; k < count; ++k) {
+          LaneVectors where{};
+          const Sample a = batched.sample(k, where), b = alone[k].sample();
+          bool same = a.level == b.level && same_bits(a.time, b.time) && same_bits(a.multiplier, b.multiplier) &&
+                      same_bits(a.energy, b.energy);
+          for (Index i = 0; i < mesh.elements; ++i) {
+            const std::size_t at = static_cast<std::size_t>(i) * where.stride;
+            same = same && same_bits(where.displacement[at], (*b.displacement)[i]) &&
+                   same_bits(where.velocity[at], (*b.velocity)[i]);
+          }
+          if (!same) {
+            CAPTURE(k);
+            CAPTURE(n);
+            CHECK(same);
+            identical = false;
+          }
+        }
+      }
+      CHECK(identical);
+    }
+  }
+  use_batch_target(0);
+  CHECK(kept_lanes > 0);
+  std::vector<BarSimulation> two;
+  two.emplace_back(benchmark_problem(), mesh, mod1(), SchemeParameters{}, 0.5 * mesh.h());
+  two.emplace_back(benchmark_problem(), mesh, mod1(), SchemeParameters{}, 0.5 * mesh.h());
+  BatchedSimulation batched(std::move(two));
+  CHECK_THROWS_AS(batched.step(std::vector<char>(3, 1)), std::invalid_argument);
 }
 
 /// @file batched_step.cpp

@@ -62,6 +62,10 @@ class BatchedSimulation {
 
   /// Advances every run by one step.
   void step();
+  /// Advances the runs k with advance[k] ≠ 0 by one step and leaves the others as they are, bit for bit
+  /// (a run's lane is kept, not stepped): runs of different Δt share a batch, each stepped at its own rate
+  /// (the sweep layer, repro/sweep.cpp). Throws std::invalid_argument unless there is one flag per run.
+  void step(const std::vector<char>& advance);
   /// The number of runs.
   std::size_t size() const { return runs_.size(); }
   /// Run k with its current state (copied out of the vector lanes when needed).
