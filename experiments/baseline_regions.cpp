@@ -22,8 +22,9 @@
 //
 // Description. Steps: (1) options; (2) outputs; (3) one run per (scheme, N, Δt/h) to the longest horizon
 // of its mesh, measuring at every shorter one (the errors from run_configuration's horizons, the rest
-// from the samples), through the sweep layer (repro/sweep.hpp: the four schemes of one mesh and ratio in
-// one batch, which shares the closed form's evaluation), costliest first, on --threads workers; (4) the
+// from the samples), through the sweep layer (repro/sweep.hpp: the twelve runs of one mesh in one batch,
+// each Δt at its own rate, which share the closed form's evaluation), costliest first, on --threads
+// workers; (4) the
 // data (one line per cell and scheme), the tables and the conclusion for the report; (5) commit.
 //
 // Data file: columns elements courant periods scheme, the eight error ratios to cn + mod3 (in
@@ -116,10 +117,11 @@ int main(int argc, char** argv) {
     out << "# region: every run to the longest horizon its mesh allows (cost, baseline_regions.cpp): N = 25, 100: "
            "1000 periods; N = 400: 30; N = 1600: 1\n";
 
-    // 3. The runs: one per (scheme, mesh, ratio), through the sweep layer. The four schemes of one mesh and
-    // ratio make one batch: they run to the same horizon with the same Δt, so their samples share every
-    // instant and their error measures evaluate the closed form once per level for the four
-    // (ErrorAccumulator::add_lanes); each is stepped alone (four families), the batches costliest first.
+    // 3. The runs: one per (scheme, mesh, ratio), through the sweep layer. The twelve runs of one mesh make
+    // one batch: the three Δt of a scheme (Δt/h = ¼, ½, 1) share vector lanes, each stepping at its own
+    // rate (1, 2, 4 steps of the smallest), so that all twelve reach the same instants at the same batch
+    // step and their error measures evaluate the closed form once per instant (ErrorAccumulator::add_lanes);
+    // the observer reads only λ and the energy, so the lanes are read in place. Batches costliest first.
     struct Job {
       std::size_t scheme, mesh, courant;
     };
@@ -150,7 +152,7 @@ int main(int argc, char** argv) {
           follow[k].levels.push_back(mrm::steps_to_reach(exact.period() * periods, configuration.step()));
           if (periods < reach[job.mesh]) configuration.horizons.push_back(exact.period() * periods);
         }
-      keys.push_back({meshes[job.mesh], static_cast<int>(job.courant)});
+      keys.push_back({meshes[job.mesh], 0});
     }
     repro::SweepSettings settings;
     settings.threads = static_cast<unsigned>(threads);
@@ -175,7 +177,7 @@ int main(int argc, char** argv) {
             cell.energy_ratio = s.energy / f.e0;
           }
         },
-        keys);
+        keys, /*observer_reads_vectors=*/false);
     for (std::size_t k = 0; k < jobs.size(); ++k) {
       const std::vector<mrm::Index>& levels = follow[k].levels;
       if (follow[k].next != levels.size()) throw std::logic_error("baseline_regions: a horizon was not reached");

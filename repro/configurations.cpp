@@ -861,7 +861,8 @@ void ConfigurationRun::add(const Sample& s) { add_sample(s, nullptr); }
 bool ConfigurationRun::takes_lanes(const Sample& s, const LaneVectors& lanes) const {
   const bool own_vectors =
       lanes.stride == 1 && lanes.displacement == s.displacement->data() && lanes.velocity == s.velocity->data();
-  return (!observe_ || own_vectors) && !(unit_.measure_errors && difference_ && s.level >= 1);
+  return (!observe_ || !observer_reads_vectors_ || own_vectors) &&
+         !(unit_.measure_errors && difference_ && s.level >= 1);
 }
 
 void ConfigurationRun::add(const Sample& s, const LaneVectors& lanes) { add(s, lanes, false); }
@@ -928,6 +929,19 @@ void ConfigurationRun::add_sample(const Sample& s, const LaneVectors* lanes, boo
   energy_max_ = std::max(energy_max_, s.energy);
   if (!std::isfinite(s.energy)) throw std::runtime_error("the run produced a non-finite energy");
   if (!observe_) return;
+  if (!observer_reads_vectors_) {  // its scalars only, at the configuration's scale
+    Sample scalars = s;
+    scalars.displacement = scalars.velocity = nullptr;
+    if (!scaling_.identity()) {
+      scalars.time = scaling_.time(s.time);
+      scalars.velocity_time = scaling_.time(s.velocity_time);
+      scalars.multiplier_time = scaling_.time(s.multiplier_time);
+      scalars.multiplier = scaling_.stress(s.multiplier);
+      scalars.energy_time = scaling_.time(s.energy_time);
+      scalars.energy = scaling_.energy(s.energy);
+    }
+    return observe_(scalars);
+  }
   if (scaling_.identity()) return observe_(s);
   // The sample at the configuration's scale.
   scaled_displacement_ = scaling_.displacement(1.0) * *s.displacement;

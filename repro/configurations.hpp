@@ -338,6 +338,10 @@ class ConfigurationRun {
   /// differenced velocity at that level), or the lanes are the sample's own vectors (a run of a batch
   /// stepped alone), which an observer may read.
   bool takes_lanes(const Sample& sample, const LaneVectors& lanes) const;
+  /// Says that the observer reads none of a sample's vectors, only its level, instants, λ and energy
+  /// (false), so that a batched driver may observe the run with its vectors in the lanes; the observer
+  /// is then given samples whose displacement and velocity are null. Default: true.
+  void set_observer_reads_vectors(bool reads) { observer_reads_vectors_ = reads; }
   /// The same as add(sample), the error measures and the recovered strain reading the displacement and
   /// velocity from `lanes` (the same bits); of the sample's own vectors only the displacement's first
   /// entry is read (and their size).
@@ -376,6 +380,7 @@ class ConfigurationRun {
   bool keep_ = false, keep_recovered_ = false;
   StressHistory history_;
   std::function<void(const Sample&)> observe_;
+  bool observer_reads_vectors_ = true;
   void add_sample(const Sample& sample, const LaneVectors* lanes, bool errors_added = false);
 };
 

@@ -2,6 +2,7 @@
 #include "sweep.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <future>
@@ -265,9 +266,10 @@ void apply_sweep_options(const SweepOptions& options) {
 // The batches. Runs of the same N and scheme family have the same sequence of operations node by node
 // (the batched step groups them further by layout, and steps the others alone); within a key
 // the costliest runs (the most steps) go first, so that the runs of a batch have nearly the same number
-// of steps: a lane whose run has ended, or whose observer wants no more, is stepped on with the others
-// but no longer observed. Each batch is one task of run_in_parallel, costliest first (its first run's
-// cost).
+// of steps. A batch steps its runs together, each at its own rate when their Δt are whole multiples of
+// the smallest (BatchedSimulation::step(advance)); a lane whose run has ended, or whose observer wants
+// no more, is kept as it is and no longer observed. Each batch is one task of run_in_parallel,
+// costliest first (its first run's cost).
 void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double>& costs, const BatchStart& start,
                      const BatchObserve& observe, const std::function<void(std::size_t k)>& finish,
                      const SweepSettings& settings, const BatchLaneObserve& lane_observe,
@@ -309,6 +311,26 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                         more = observe(batch[0], alone.sample());
                       }
                     } else {
+                      // Each run at its own rate: run j steps at the batch steps n that are multiples of
+                      // rate[j] = Δt_j/Δt_min when that ratio is a whole number, so that runs of Δt, 2Δt, 4Δt
+                      // to the same horizon reach their common instants at the same batch step (and share
+                      // the exact solution's evaluation there, add_lanes). Used when it does not lengthen
+                      // the batch (a run of 2Δt to a later horizon would): else every run at every step.
+                      std::vector<Index> rate(batch.size(), 1);
+                      {
+                        double dt_min = simulations.front().dt();
+                        for (const BarSimulation& s : simulations) dt_min = std::min(dt_min, s.dt());
+                        std::vector<Index> r(batch.size(), 1);
+                        Index span = 0, widest = 1;
+                        for (std::size_t j = 0; j < batch.size(); ++j) {
+                          const double q = simulations[j].dt() / dt_min;
+                          const double whole = std::round(q);
+                          if (whole >= 1 && std::abs(q - whole) <= 1e-9 * q) r[j] = static_cast<Index>(whole);
+                          span = std::max(span, steps[j] * r[j]);
+                          widest = std::max(widest, r[j]);
+                        }
+                        if (span <= most + widest) rate = r;
+                      }
                       BatchedSimulation lanes(std::move(simulations));
                       // Level n of lane j: from the lanes when the observer takes them, else copied out.
                       const auto look = [&](std::size_t j) {
@@ -319,21 +341,21 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                         }
                         return observe(batch[j], lanes.run(j).sample());
                       };
-                      // Level n of the lanes still observed (every lane at level 0): with `prepare`, their
-                      // samples in place are gathered and prepared first, then observed one by one.
+                      // The new levels of the lanes that stepped (every lane at level 0): with `prepare`,
+                      // their samples in place are gathered and prepared first, then observed one by one.
                       std::vector<std::size_t> ks, js;
                       std::vector<Sample> samples;
                       std::vector<LaneVectors> wheres;
-                      const auto look_all = [&](Index n) {
-                        const auto active = [&](std::size_t j) { return n == 0 || (watching[j] && n <= steps[j]); };
+                      std::vector<char> advance(batch.size(), 1);
+                      const auto look_all = [&]() {
                         if (!(lane_observe && prepare)) {
                           for (std::size_t j = 0; j < batch.size(); ++j)
-                            if (active(j)) watching[j] = look(j);
+                            if (advance[j]) watching[j] = look(j);
                           return;
                         }
                         ks.clear(), js.clear(), samples.clear(), wheres.clear();
                         for (std::size_t j = 0; j < batch.size(); ++j)
-                          if (active(j)) {
+                          if (advance[j]) {
                             LaneVectors where{};
                             samples.push_back(lanes.sample(j, where));
                             wheres.push_back(where);
@@ -346,13 +368,22 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                           watching[js[m]] = more ? *more : observe(ks[m], lanes.run(js[m]).sample());
                         }
                       };
-                      look_all(0);
-                      for (Index n = 1; n <= most; ++n) {
-                        bool any = false;
-                        for (std::size_t j = 0; j < batch.size(); ++j) any = any || (watching[j] && n <= steps[j]);
+                      look_all();
+                      // A run that has ended, or whose observer wants no more, stays where it is.
+                      std::vector<Index> level(batch.size(), 0);
+                      for (Index n = 1;; ++n) {
+                        bool any = false, moves = false;
+                        for (std::size_t j = 0; j < batch.size(); ++j) {
+                          const bool on = watching[j] && level[j] < steps[j];
+                          any = any || on;
+                          advance[j] = on && n % rate[j] == 0;
+                          moves = moves || advance[j];
+                          level[j] += advance[j];
+                        }
                         if (!any) break;
-                        lanes.step();
-                        look_all(n);
+                        if (!moves) continue;
+                        lanes.step(advance);
+                        look_all();
                       }
                     }
                     for (std::size_t k : batch) finish(k);
@@ -361,7 +392,7 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
 
 std::vector<Measures> run_batched(const std::vector<Configuration>& configurations, const SweepSettings& settings,
                                   const std::function<void(std::size_t k, const Sample& sample)>& observe,
-                                  const std::vector<BatchKey>& given_keys) {
+                                  const std::vector<BatchKey>& given_keys, bool observer_reads_vectors) {
   const std::size_t count = configurations.size();
   if (!given_keys.empty() && given_keys.size() != count)
     throw std::invalid_argument("run_batched: one key per configuration");
@@ -385,6 +416,7 @@ std::vector<Measures> run_batched(const std::vector<Configuration>& configuratio
         std::function<void(const Sample&)> of_k;
         if (observe) of_k = [&observe, k](const Sample& s) { observe(k, s); };
         runs[k] = std::make_unique<ConfigurationRun>(configurations[k], std::move(of_k), nullptr, source);
+        runs[k]->set_observer_reads_vectors(observer_reads_vectors);
         steps = runs[k]->steps();
         return std::move(runs[k]->simulation());
       },
@@ -550,6 +582,65 @@ TEST_CASE("runs keyed together by the caller share a batch, each with its measur
     }
   }
   CHECK_THROWS_AS(run_batched(configurations, {1, true}, {}, {keys.front()}), std::invalid_argument);
+}
+
+TEST_CASE("runs of dt, 2dt and 4dt in one batch step at their own rates, each bit for bit, observed in time order") {
+  // Prediction: in a batch whose Δt are whole multiples of the smallest and whose runs reach the same
+  // horizon, run j steps only at the batch steps that are multiples of its rate Δt_j/Δt_min
+  // (BatchedSimulation::step(advance), each lane bitwise its run alone), so its measures and observed
+  // samples are run_configuration's, and every run is observed at the batch step that reaches its instant:
+  // the instants seen, in the order they are seen, never decrease (stepped in lockstep, the 4Δt run would
+  // be seen at 4t when the Δt run is at t). Runs to different horizons (key 1: 2Δt to twice the horizon)
+  // would take a longer batch at their rates: they step in lockstep, bit for bit as well. The observer
+  // reads the scalars only (observer_reads_vectors false): its samples' vectors are null.
+  std::vector<Configuration> configurations;
+  std::vector<BatchKey> keys;
+  for (const char* scheme : {"cn", "ps", "ec", "cn-switch"})
+    for (double courant : {0.25, 0.5, 1.0}) {
+      configurations.push_back(paper_configuration(scheme, "algebraic", "mod3", 12, courant, 2.5));
+      configurations.back().horizons = {1.0};
+      keys.push_back({12, 0});
+    }
+  for (double courant : {0.5, 1.0}) {
+    configurations.push_back(paper_configuration("cn", "algebraic", "mod1", 12, courant, courant * 5.0));
+    keys.push_back({12, 1});
+  }
+  const auto text = [](const Sample& s) {
+    std::ostringstream out;
+    out << std::hexfloat << s.level << ' ' << s.time << ' ' << s.velocity_time << ' ' << s.multiplier << ' '
+        << s.multiplier_time << ' ' << s.energy << '\n';
+    return out.str();
+  };
+  std::vector<std::string> expected, expected_seen(configurations.size());
+  for (std::size_t k = 0; k < configurations.size(); ++k)
+    expected.push_back(
+        measure_bytes(run_configuration(configurations[k], [&](const Sample& s) { expected_seen[k] += text(s); })));
+  for (unsigned threads : {1u, 2u}) {
+    CAPTURE(threads);
+    std::vector<std::string> seen(configurations.size());
+    std::vector<double> instants, lockstep;  // key 0's and key 1's, in the order seen (one thread)
+    bool vectors = false;
+    const std::vector<Measures> got = run_batched(
+        configurations, {threads, true},
+        [&](std::size_t k, const Sample& s) {
+          seen[k] += text(s);
+          vectors = vectors || s.displacement || s.velocity;
+          if (threads == 1) (keys[k].second == 0 ? instants : lockstep).push_back(s.time);
+        },
+        keys, false);
+    REQUIRE(got.size() == configurations.size());
+    for (std::size_t k = 0; k < got.size(); ++k) {
+      CAPTURE(k);
+      CHECK(measure_bytes(got[k]) == expected[k]);
+      CHECK(seen[k] == expected_seen[k]);
+    }
+    CHECK(!vectors);
+    if (threads == 1) {
+      REQUIRE(instants.size() > 100);
+      CHECK(std::is_sorted(instants.begin(), instants.end()));
+      CHECK(!std::is_sorted(lockstep.begin(), lockstep.end()));
+    }
+  }
 }
 
 TEST_CASE("a cached reference gives the same bytes as one computed directly, and is computed once") {

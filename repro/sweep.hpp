@@ -116,6 +116,9 @@ using BatchLevelPrepare = std::function<void(const std::vector<std::size_t>& run
 /// at each of its levels 0 … steps, then `finish(k)`. Runs of the same key are grouped, costliest first
 /// (`costs`), into batches of the vector width (lib/batched_step.hpp: each lane is bitwise its run
 /// stepped alone), and the batches are spread over the threads (repro/parallel.hpp), costliest first.
+/// In a batch whose Δt are whole multiples of the smallest and whose runs reach the same horizon, each
+/// run steps at its own rate (BatchedSimulation::step(advance)): the runs reach their common instants at
+/// the same batch step. A run that has ended, or whose observer wants no more, stays as it is.
 /// Each run sees the samples it would see stepped alone, so whatever a caller writes from them, in its
 /// own order, has the same bytes for any thread count and any vector width. The first exception stops
 /// the sweep and is rethrown.
@@ -143,9 +146,12 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
 /// whatever their number and families; for runs of different schemes on the same mesh, Δt and horizon,
 /// whose error measures then evaluate the closed form once per instant for all of them
 /// (ErrorAccumulator::add_lanes); the batched step still groups only runs of one family.
+/// `observer_reads_vectors` false: `observe` reads only a sample's level, instants, λ and energy
+/// (ConfigurationRun::set_observer_reads_vectors), so the runs in lanes are observed in place; its samples'
+/// displacement and velocity are null.
 std::vector<Measures> run_batched(const std::vector<Configuration>& configurations,
                                   const SweepSettings& settings = sweep_settings(),
                                   const std::function<void(std::size_t k, const Sample& sample)>& observe = {},
-                                  const std::vector<BatchKey>& keys = {});
+                                  const std::vector<BatchKey>& keys = {}, bool observer_reads_vectors = true);
 
 }  // namespace mrm::repro
