@@ -12,6 +12,7 @@
 #include "convergence.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -19,6 +20,8 @@
 #include <gsl/gsl_fit.h>
 
 #include <doctest/doctest.h>
+
+#include "batched_step.hpp"
 
 namespace mrm {
 
@@ -106,9 +109,13 @@ ReferenceComparison::ReferenceComparison(const UniformMesh& mesh)
 
 // xᵀAx as Tridiagonal::bilinear computes it (the product A x, then Eigen's dot with x), in one pass
 // (Tridiagonal::form): the same arithmetic, bit for bit, without an allocation or a product vector.
-double ReferenceComparison::form(const Tridiagonal& a, const Eigen::VectorXd& x) { return a.form(x); }
-
 ReferenceComparison::Level ReferenceComparison::measure(const Sample& run, const Sample& reference) {
+  return measure(run, {run.displacement->data(), run.velocity->data(), 1}, reference,
+                 {reference.displacement->data(), reference.velocity->data(), 1});
+}
+
+ReferenceComparison::Level ReferenceComparison::measure(const Sample& run, const LaneVectors& run_lanes,
+                                                        const Sample& reference, const LaneVectors& reference_lanes) {
   constexpr double tolerance = 1e-9;
   if (std::abs(run.time - reference.time) > tolerance ||
       std::abs(run.velocity_time - reference.velocity_time) > tolerance ||
@@ -123,14 +130,22 @@ ReferenceComparison::Level ReferenceComparison::measure(const Sample& run, const
   level.velocity_time = run.velocity_time;
   level.multiplier_time = run.multiplier_time;
   level.has_multiplier = run.has_multiplier && reference.has_multiplier;
-  const Eigen::VectorXd& u_ref = *reference.displacement;
-  difference_ = *run.displacement - u_ref;
-  level.u_l2 = {form(mass_, difference_), form(mass_, u_ref)};
-  level.u_h1 = {form(stiffness_, difference_), form(stiffness_, u_ref)};
+  // xᵀAx by Tridiagonal::form (the bits of bilinear(x, x)) on the difference, formed entry by entry, and
+  // on the reference where it is (with its stride: the same bits).
+  const Index n = mass_.size();
+  const std::size_t rs = run_lanes.stride, fs = reference_lanes.stride;
+  const auto difference = [&](const double* a, const double* b) {
+    for (Index i = 0; i < n; ++i)
+      difference_[i] = a[static_cast<std::size_t>(i) * rs] - b[static_cast<std::size_t>(i) * fs];
+  };
+  const double* u_ref = reference_lanes.displacement;
+  difference(run_lanes.displacement, u_ref);
+  level.u_l2 = {mass_.form(difference_.data(), 1), mass_.form(u_ref, fs)};
+  level.u_h1 = {stiffness_.form(difference_.data(), 1), stiffness_.form(u_ref, fs)};
   level.u0 = {std::pow(difference_[0], 2), u_ref[0] * u_ref[0]};
-  const Eigen::VectorXd& v_ref = *reference.velocity;
-  difference_ = *run.velocity - v_ref;
-  level.v_l2 = {form(mass_, difference_), form(mass_, v_ref)};
+  const double* v_ref = reference_lanes.velocity;
+  difference(run_lanes.velocity, v_ref);
+  level.v_l2 = {mass_.form(difference_.data(), 1), mass_.form(v_ref, fs)};
   if (level.has_multiplier)
     level.lambda = {std::pow(run.multiplier - reference.multiplier, 2), reference.multiplier * reference.multiplier};
   return level;
@@ -218,6 +233,55 @@ TEST_CASE("Crank-Nicolson's velocity converges at order 2 in dt at fixed h") {
     CHECK(std::abs(std::log2(coarse[k] / fine[k]) - 2) < 0.25);
     CHECK(fine[k] < 1e-3);
   }
+}
+
+/// @file convergence.cpp
+/// ## A comparison read in the lanes
+///
+/// measure(run, run_lanes, reference, reference_lanes) forms the same differences entry by entry and the
+/// same quadratic forms (Tridiagonal::form with a stride: the same bits), so it gives the bits of
+/// measure(run, reference) on the vectors copied out. Checked on two runs of a batch (Δt and Δt/2, the
+/// coarser at every other batch step, as repro/time_family.cpp steps them), past the first impact, on
+/// every vector target, and on a run stepped alone (stride 1) against the finer lane: every field of every
+/// level the same bits; and the lanes are really strided.
+TEST_CASE("a comparison read in a batch's lanes is bitwise the comparison of the copied-out vectors") {
+  const UniformMesh mesh(1.0, 20);
+  SchemeParameters p;
+  const auto bits = [](const ReferenceComparison::Level& a, const ReferenceComparison::Level& b) {
+    return std::memcmp(&a.u_l2, &b.u_l2, sizeof a.u_l2) == 0 && std::memcmp(&a.u_h1, &b.u_h1, sizeof a.u_h1) == 0 &&
+           std::memcmp(&a.u0, &b.u0, sizeof a.u0) == 0 && std::memcmp(&a.v_l2, &b.v_l2, sizeof a.v_l2) == 0 &&
+           std::memcmp(&a.lambda, &b.lambda, sizeof a.lambda) == 0 && a.has_multiplier == b.has_multiplier;
+  };
+  for (const BatchTarget& target : batch_targets()) {
+    use_batch_target(target.bit);
+    CAPTURE(target.name);
+    std::vector<BarSimulation> two;
+    const double dt = 0.25 * mesh.h();
+    two.emplace_back(benchmark_problem(), mesh, mod3(), p, dt);
+    two.emplace_back(benchmark_problem(), mesh, mod3(), p, 2 * dt);
+    BatchedSimulation pair(std::move(two));
+    REQUIRE(pair.batched_runs() == 2);
+    // And a run on its own vectors (stride 1) against the lane of the finer one.
+    BarSimulation alone(benchmark_problem(), mesh, mod1(), p, 2 * dt);
+    ReferenceComparison lanes_way(mesh), copy_way(mesh), alone_lanes(mesh), alone_copy(mesh);
+    bool same = true, strided = false;
+    for (Index k = 1; k <= 240; ++k) {  // to t = 1.2, past the first impact
+      pair.step(k % 2 != 0 ? std::vector<char>{1, 0} : std::vector<char>{1, 1});
+      if (k % 2 != 0) continue;
+      alone.step();
+      LaneVectors fine{}, coarse{};
+      const Sample a = pair.sample(0, fine), b = pair.sample(1, coarse), c = alone.sample();
+      strided = strided || (fine.stride > 1 && coarse.stride > 1);
+      const ReferenceComparison::Level in_lanes = lanes_way.measure(b, coarse, a, fine);
+      const ReferenceComparison::Level own =
+          alone_lanes.measure(c, {c.displacement->data(), c.velocity->data(), 1}, a, fine);
+      const Sample ca = pair.run(0).sample(), cb = pair.run(1).sample();
+      same = same && bits(in_lanes, copy_way.measure(cb, ca)) && bits(own, alone_copy.measure(c, ca));
+    }
+    CHECK(strided);
+    CHECK(same);
+  }
+  use_batch_target(0);
 }
 
 }  // namespace mrm

@@ -53,6 +53,11 @@ class ReferenceComparison {
   /// multiplier times agree to 1e-9 Δt-independent absolute tolerance), which holds for the two-level
   /// schemes (Crank–Nicolson, backward Euler).
   Level measure(const Sample& run, const Sample& reference);
+  /// The same measurement, the two runs' displacement and velocity read where `run_lanes` and
+  /// `reference_lanes` say (BatchedSimulation::sample: in a batch's vector lanes, nothing copied out; the
+  /// samples give the instants, λ and the sizes): the same bits as measure(run, reference) on the same values.
+  Level measure(const Sample& run, const LaneVectors& run_lanes, const Sample& reference,
+                const LaneVectors& reference_lanes);
   /// Adds a measured instant.
   void add(const Level& level);
   /// Adds one common instant: add(measure(run, reference)).
@@ -62,8 +67,7 @@ class ReferenceComparison {
 
  private:
   Tridiagonal mass_, stiffness_;
-  Eigen::VectorXd difference_;                                  // work vector (no allocation per instant)
-  double form(const Tridiagonal& a, const Eigen::VectorXd& x);  // xᵀAx, as Tridiagonal::bilinear(x, x)
+  Eigen::VectorXd difference_;  // work vector (no allocation per instant)
   TimeHistory u_l2_, u_h1_, v_l2_, u0_, lambda_;
 };
 
