@@ -736,17 +736,21 @@ bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   return a.size() == b.size() && (a.size() == 0 || std::memcmp(a.data(), b.data(), sizeof(double) * a.size()) == 0);
 }
 
+// Every scheme with a batched kernel, Paoli–Schatzman with both contact rows.
+struct BatchedCase {
+  Scheme scheme;
+  ContactRow row;
+};
+std::vector<BatchedCase> batched_cases() {
+  return {{Scheme::crank_nicolson, ContactRow::algebraic},    {Scheme::backward_euler, ContactRow::algebraic},
+          {Scheme::paoli_schatzman, ContactRow::algebraic},   {Scheme::paoli_schatzman, ContactRow::literal},
+          {Scheme::energy_conserving, ContactRow::algebraic}, {Scheme::switching, ContactRow::algebraic}};
+}
+
 }  // namespace
 
 TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for every scheme and target") {
-  struct Case {
-    Scheme scheme;
-    ContactRow row;
-  };
-  const std::vector<Case> cases = {
-      {Scheme::crank_nicolson, ContactRow::algebraic},    {Scheme::backward_euler, ContactRow::algebraic},
-      {Scheme::paoli_schatzman, ContactRow::algebraic},   {Scheme::paoli_schatzman, ContactRow::literal},
-      {Scheme::energy_conserving, ContactRow::algebraic}, {Scheme::switching, ContactRow::algebraic}};
+  const std::vector<BatchedCase> cases = batched_cases();
   const UniformMesh mesh(1.0, 24);
   const Index steps = 150;  // past the first impact (t = 1) at every Δt below
   const std::vector<BatchTarget> targets = batch_targets();
@@ -755,7 +759,7 @@ TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for
   for (const BatchTarget& target : targets) {
     use_batch_target(target.bit);
     CAPTURE(target.name);
-    for (const Case& c : cases) {
+    for (const BatchedCase& c : cases) {
       CAPTURE(to_string(c.scheme));
       CAPTURE(to_string(c.row));
       std::vector<BarSimulation> batch, alone;
@@ -835,22 +839,15 @@ TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for
 /// kept lane newer than its run's vectors meets another lane's Paoli–Schatzman first step (at n = 5:
 /// the rate-2 lane stepped in the lanes at n = 4 and stays); a wrong flag count throws.
 TEST_CASE("a partial step keeps the runs that stay, and runs at their own rates are each bitwise the run alone") {
-  struct Case {
-    Scheme scheme;
-    ContactRow row;
-  };
-  const std::vector<Case> cases = {
-      {Scheme::crank_nicolson, ContactRow::algebraic},    {Scheme::backward_euler, ContactRow::algebraic},
-      {Scheme::paoli_schatzman, ContactRow::algebraic},   {Scheme::paoli_schatzman, ContactRow::literal},
-      {Scheme::energy_conserving, ContactRow::algebraic}, {Scheme::switching, ContactRow::algebraic}};
+  const std::vector<BatchedCase> cases = batched_cases();
   const UniformMesh mesh(1.0, 24);
   const std::vector<Index> rates = {1, 2, 3, 5};
-  const Index batch_steps = 300;  // the rate-5 runs reach t = 300 · 0.25h · 5 / 5 > 1, the first impact
+  const Index batch_steps = 300;  // every run reaches t = 300 · 0.25h ≈ 3.1, past the first impact (t = 1)
   int kept_lanes = 0;
   for (const BatchTarget& target : batch_targets()) {
     use_batch_target(target.bit);
     CAPTURE(target.name);
-    for (const Case& c : cases) {
+    for (const BatchedCase& c : cases) {
       CAPTURE(to_string(c.scheme));
       CAPTURE(to_string(c.row));
       std::vector<BarSimulation> batch, alone;

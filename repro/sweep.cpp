@@ -486,6 +486,17 @@ std::string measure_bytes(const Measures& m) {
   return out.str();
 }
 
+// Each configuration run alone (run_configuration): its measures (measure_bytes) and its observed samples,
+// each as `text` writes it.
+[[maybe_unused]] std::pair<std::vector<std::string>, std::vector<std::string>> alone_bytes(
+    const std::vector<Configuration>& configurations, const std::function<std::string(const Sample&)>& text) {
+  std::vector<std::string> measures, seen(configurations.size());
+  for (std::size_t k = 0; k < configurations.size(); ++k)
+    measures.push_back(
+        measure_bytes(run_configuration(configurations[k], [&](const Sample& s) { seen[k] += text(s); })));
+  return {measures, seen};
+}
+
 }  // namespace
 
 TEST_CASE("the batched sweep gives each run's measures bit for bit, for any thread count and vector width") {
@@ -565,10 +576,7 @@ TEST_CASE("runs keyed together by the caller share a batch, each with its measur
     for (double x : *s.velocity) out << ' ' << x;
     return out.str() + '\n';
   };
-  std::vector<std::string> expected, expected_seen(configurations.size());
-  for (std::size_t k = 0; k < configurations.size(); ++k)
-    expected.push_back(
-        measure_bytes(run_configuration(configurations[k], [&](const Sample& s) { expected_seen[k] += text(s); })));
+  const auto [expected, expected_seen] = alone_bytes(configurations, text);
   for (unsigned threads : {1u, 2u}) {
     CAPTURE(threads);
     std::vector<std::string> seen(configurations.size());
@@ -611,10 +619,7 @@ TEST_CASE("runs of dt, 2dt and 4dt in one batch step at their own rates, each bi
         << s.multiplier_time << ' ' << s.energy << '\n';
     return out.str();
   };
-  std::vector<std::string> expected, expected_seen(configurations.size());
-  for (std::size_t k = 0; k < configurations.size(); ++k)
-    expected.push_back(
-        measure_bytes(run_configuration(configurations[k], [&](const Sample& s) { expected_seen[k] += text(s); })));
+  const auto [expected, expected_seen] = alone_bytes(configurations, text);
   for (unsigned threads : {1u, 2u}) {
     CAPTURE(threads);
     std::vector<std::string> seen(configurations.size());
