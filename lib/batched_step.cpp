@@ -607,24 +607,28 @@ std::size_t BatchedSimulation::batched_runs() const {
   return count;
 }
 
-void BatchedSimulation::step() { step(std::vector<char>(runs_.size(), 1)); }
+void BatchedSimulation::step() { advance(nullptr); }
 
 // A partial step: the runs with advance[k] = 0 are left as they are. In a group they are kept lanes (the
 // sweep up writes their U, W' and X back unchanged, as for CN-switch's status changes; the state they
 // were computed from is not used), and their bookkeeping is not touched; a group none of whose runs
 // advances is not stepped. A padding lane follows lane 0, whose run it repeats.
-void BatchedSimulation::step(const std::vector<char>& advance) {
-  if (advance.size() != runs_.size())
-    throw std::invalid_argument("BatchedSimulation::step: " + std::to_string(advance.size()) + " flags for " +
+void BatchedSimulation::step(const std::vector<char>& flags) {
+  if (flags.size() != runs_.size())
+    throw std::invalid_argument("BatchedSimulation::step: " + std::to_string(flags.size()) + " flags for " +
                                 std::to_string(runs_.size()) + " runs (allowed: one per run)");
+  advance(flags.data());
+}
+
+void BatchedSimulation::advance(const char* flags) {  // null: every run
   if (HWY_DYNAMIC_DISPATCH(batched::LaneCount)() != lanes_)
     throw std::logic_error("BatchedSimulation::step: the vector target changed since the batch was made");
   for (const std::size_t k : alone_)
-    if (advance[k]) runs_[k].step();
+    if (!flags || flags[k]) runs_[k].step();
   for (const auto& group : groups_) {
     Group& g = *group;
     const std::size_t W = g.runs.size();
-    const auto moves = [&](std::size_t j) { return advance[g.runs[j < g.used ? j : 0]] != 0; };
+    const auto moves = [&](std::size_t j) { return !flags || flags[g.runs[j < g.used ? j : 0]] != 0; };
     bool any = false, all = true;
     for (std::size_t j = 0; j < g.used; ++j) any = any || moves(j), all = all && moves(j);
     if (!any) continue;

@@ -92,6 +92,7 @@ class BatchedSimulation {
   static void load_lane(Group& g, std::size_t j, const BarSimulation& run);   // run's vectors → lane j
   static void store_lane(const Group& g, std::size_t j, BarSimulation& run);  // lane j → run's vectors
   static void find_plateau(Group& g);  // the interior rows whose factors repeat (batched_step.cpp)
+  void advance(const char* flags);     // step(flags) without the check; null: every run
   std::vector<BarSimulation> runs_;
   std::vector<std::unique_ptr<Group>> groups_;
   std::vector<std::size_t> alone_;  // the runs stepped alone

@@ -36,6 +36,7 @@
 #include "convergence.hpp"
 #include "errors.hpp"
 #include "report_values.hpp"
+#include "sweep.hpp"
 
 namespace mrm::claims {
 
@@ -53,7 +54,7 @@ std::vector<ClaimResult> check_phase_matched(const PhaseMatchedSettings& setting
       runs.push_back(c);
       if (blend == 0.0) steps.push_back(1.0 / static_cast<double>(n));
     }
-  const std::vector<repro::Measures> measures = repro::run_configurations(runs);
+  const std::vector<repro::Measures> measures = repro::run_batched(runs);
   const std::size_t levels = steps.size();
   auto error = [&](std::size_t blend, std::size_t level, int k) {
     return ErrorAccumulator::values(measures[blend * levels + level].errors)[static_cast<std::size_t>(k)];
@@ -93,7 +94,7 @@ std::vector<ClaimResult> check_phase_matched(const PhaseMatchedSettings& setting
     for (const double blend : {0.0, 0.25})
       field.push_back(repro::study_configuration(b, Scheme::crank_nicolson, mod3(blend), settings.field_elements, 0.5,
                                                  impact_benchmark(b).final_time));
-  const std::vector<repro::Measures> field_measures = repro::run_configurations(field);
+  const std::vector<repro::Measures> field_measures = repro::run_batched(field);
   for (std::size_t b = 0; b < settings.field_benchmarks.size(); ++b) {
     const repro::Configuration& c = field[2 * b];
     const double transits = c.final_time * c.courant / (c.step() * static_cast<double>(c.elements));
@@ -145,7 +146,7 @@ ClaimResult check_bounded_stress(const StressSettings& settings, Judge& judge) {
     runs.push_back(c);
     steps.push_back(1.0 / static_cast<double>(n));
   }
-  const std::vector<repro::Measures> measures = repro::run_configurations(runs);
+  const std::vector<repro::Measures> measures = repro::run_batched(runs);
   for (std::size_t l = 0; l < measures.size(); ++l) {
     const repro::StressMeasures s = repro::stress_measures(*measures[l].stress_history, stress);
     const repro::StressMeasures raw = repro::stress_measures(*measures[l].stress_history, ContactStress::multiplier);
