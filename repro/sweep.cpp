@@ -266,14 +266,14 @@ void apply_sweep_options(const SweepOptions& options) {
 // The batches. Runs of the same N and scheme family have the same sequence of operations node by node
 // (the batched step groups them further by layout, and steps the others alone); within a key
 // the costliest runs (the most steps) go first, so that the runs of a batch have nearly the same number
-// of steps. A batch steps its runs together, each at its own rate when their Δt are whole multiples of
-// the smallest (BatchedSimulation::step(advance)); a lane whose run has ended, or whose observer wants
-// no more, is kept as it is and no longer observed. Each batch is one task of run_in_parallel,
+// of steps. A batch steps its runs together (with own_rates, each at its own rate when their Δt are whole
+// multiples of the smallest, BatchedSimulation::step(advance), and a lane whose run has ended, or whose
+// observer wants no more, is kept as it is; otherwise such a lane is stepped on, no longer observed). Each batch is one task of run_in_parallel,
 // costliest first (its first run's cost).
 void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double>& costs, const BatchStart& start,
                      const BatchObserve& observe, const std::function<void(std::size_t k)>& finish,
                      const SweepSettings& settings, const BatchLaneObserve& lane_observe,
-                     const BatchLevelPrepare& prepare, std::size_t most) {
+                     const BatchLevelPrepare& prepare, std::size_t most, bool own_rates) {
   const std::size_t count = keys.size();
   if (costs.size() != count) throw std::invalid_argument("step_in_batches: one cost per run");
   std::map<BatchKey, std::vector<std::size_t>> groups;
@@ -311,11 +311,14 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                         more = observe(batch[0], alone.sample());
                       }
                     } else {
-                      // Each run at its own rate: run j steps at the batch steps n that are multiples of
-                      // rate[j] = Δt_j/Δt_min when that ratio is a whole number, so that runs of Δt, 2Δt, 4Δt
-                      // to the same horizon reach their common instants at the same batch step (and share
-                      // the exact solution's evaluation there, add_lanes). Used when it does not lengthen
-                      // the batch (a run of 2Δt to a later horizon would): else every run at every step.
+                      // With own_rates, each run at its own rate: run j steps at the batch steps n that are
+                      // multiples of rate[j] = Δt_j/Δt_min when that ratio is a whole number, so that runs of
+                      // Δt, 2Δt, 4Δt to the same horizon reach their common instants at the same batch step
+                      // (and share the exact solution's evaluation there, add_lanes). Used when it does not
+                      // lengthen the batch (a run of 2Δt to a later horizon would): else every run at every
+                      // step. Only for the caller's keys: in the batches of the default keys (N, family),
+                      // whose runs are put together by cost, check_claims took 1.05–1.08 of the CPU time with
+                      // rates (farm-bench, medians of 3 sets), though a profile of one pair said less.
                       std::vector<Index> rate(batch.size(), 1);
                       {
                         double dt_min = simulations.front().dt();
@@ -329,7 +332,7 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                           span = std::max(span, steps[j] * r[j]);
                           widest = std::max(widest, r[j]);
                         }
-                        if (span <= most + widest) rate = r;
+                        if (own_rates && span <= most + widest) rate = r;
                       }
                       BatchedSimulation lanes(std::move(simulations));
                       // Level n of lane j: from the lanes when the observer takes them, else copied out.
@@ -382,7 +385,10 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                         }
                         if (!any) break;
                         if (!moves) continue;
-                        lanes.step(advance);
+                        if (own_rates)
+                          lanes.step(advance);  // the others stay
+                        else
+                          lanes.step();  // every run, observed or not (the lockstep)
                         look_all();
                       }
                     }
@@ -447,7 +453,7 @@ std::vector<Measures> run_batched(const std::vector<Configuration>& configuratio
           }
         ErrorAccumulator::add_lanes(level.data(), level.size());
       },
-      given_keys.empty() || !settings.batched ? 0 : count);
+      given_keys.empty() || !settings.batched ? 0 : count, !given_keys.empty());
   return results;
 }
 

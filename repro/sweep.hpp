@@ -116,9 +116,11 @@ using BatchLevelPrepare = std::function<void(const std::vector<std::size_t>& run
 /// at each of its levels 0 … steps, then `finish(k)`. Runs of the same key are grouped, costliest first
 /// (`costs`), into batches of the vector width (lib/batched_step.hpp: each lane is bitwise its run
 /// stepped alone), and the batches are spread over the threads (repro/parallel.hpp), costliest first.
-/// In a batch whose Δt are whole multiples of the smallest and whose runs reach the same horizon, each
-/// run steps at its own rate (BatchedSimulation::step(advance)): the runs reach their common instants at
-/// the same batch step. A run that has ended, or whose observer wants no more, stays as it is.
+/// `own_rates`: in a batch whose Δt are whole multiples of the smallest and whose runs reach the same
+/// horizon, each run steps at its own rate (BatchedSimulation::step(advance)), so the runs reach their
+/// common instants at the same batch step, and a run that has ended, or whose observer wants no more,
+/// stays as it is (run_batched with the caller's keys). Otherwise every run of the batch steps at every
+/// batch step, observed up to its own last level.
 /// Each run sees the samples it would see stepped alone, so whatever a caller writes from them, in its
 /// own order, has the same bytes for any thread count and any vector width. The first exception stops
 /// the sweep and is rethrown.
@@ -129,7 +131,7 @@ using BatchLevelPrepare = std::function<void(const std::vector<std::size_t>& run
 void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double>& costs, const BatchStart& start,
                      const BatchObserve& observe, const std::function<void(std::size_t k)>& finish,
                      const SweepSettings& settings = sweep_settings(), const BatchLaneObserve& lane_observe = {},
-                     const BatchLevelPrepare& prepare = {}, std::size_t most = 0);
+                     const BatchLevelPrepare& prepare = {}, std::size_t most = 0, bool own_rates = false);
 
 /// Independent configurations, each measured as run_configuration measures it, through the sweep layer:
 /// the runs of the same number of elements and scheme family (batch_family: Crank–Nicolson and backward
