@@ -24,8 +24,8 @@
 // of its mesh, measuring at every shorter one (the errors from run_configuration's horizons, the rest
 // from the samples), through the sweep layer (repro/sweep.hpp: the twelve runs of one mesh in one batch,
 // each Δt at its own rate, which share the closed form's evaluation), costliest first, on --threads
-// workers; (4) the
-// data (one line per cell and scheme), the tables and the conclusion for the report; (5) commit.
+// workers; (4) the data (one line per cell and scheme), the tables and the conclusion for the report;
+// (5) commit.
 //
 // Data file: columns elements courant periods scheme, the eight error ratios to cn + mod3 (in
 // ErrorAccumulator::names order), their geometric mean, the geometric mean of the scheme's own relative

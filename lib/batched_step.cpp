@@ -578,7 +578,7 @@ Sample BatchedSimulation::sample(std::size_t k, LaneVectors& lanes) const {
   const BarSimulation& r = runs_[k];
   const Sample s = r.sample();
   if (!stale_[k]) {
-    lanes = {s.displacement->data(), s.velocity->data(), 1};
+    lanes = own_lanes(s);
   } else {
     // The lanes hold what store_lane would copy: U in u, and the sample's velocity (X for the three-level
     // schemes, W for the two-level ones) in x or w.

@@ -107,11 +107,8 @@ TEST_CASE("the order fit rejects data it cannot fit") {
 ReferenceComparison::ReferenceComparison(const UniformMesh& mesh)
     : mass_(p1_mass(mesh)), stiffness_(p1_stiffness(mesh)), difference_(mesh.unknowns()) {}
 
-// xᵀAx as Tridiagonal::bilinear computes it (the product A x, then Eigen's dot with x), in one pass
-// (Tridiagonal::form): the same arithmetic, bit for bit, without an allocation or a product vector.
 ReferenceComparison::Level ReferenceComparison::measure(const Sample& run, const Sample& reference) {
-  return measure(run, {run.displacement->data(), run.velocity->data(), 1}, reference,
-                 {reference.displacement->data(), reference.velocity->data(), 1});
+  return measure(run, own_lanes(run), reference, own_lanes(reference));
 }
 
 ReferenceComparison::Level ReferenceComparison::measure(const Sample& run, const LaneVectors& run_lanes,
@@ -130,8 +127,9 @@ ReferenceComparison::Level ReferenceComparison::measure(const Sample& run, const
   level.velocity_time = run.velocity_time;
   level.multiplier_time = run.multiplier_time;
   level.has_multiplier = run.has_multiplier && reference.has_multiplier;
-  // xᵀAx by Tridiagonal::form (the bits of bilinear(x, x)) on the difference, formed entry by entry, and
-  // on the reference where it is (with its stride: the same bits).
+  // xᵀAx by Tridiagonal::form (Tridiagonal::bilinear(x, x)'s arithmetic, bit for bit, in one pass without
+  // a product vector) on the difference, formed entry by entry, and on the reference where it is (with
+  // its stride: the same bits).
   const Index n = mass_.size();
   const std::size_t rs = run_lanes.stride, fs = reference_lanes.stride;
   const auto difference = [&](const double* a, const double* b) {
@@ -273,8 +271,7 @@ TEST_CASE("a comparison read in a batch's lanes is bitwise the comparison of the
       const Sample a = pair.sample(0, fine), b = pair.sample(1, coarse), c = alone.sample();
       strided = strided || (fine.stride > 1 && coarse.stride > 1);
       const ReferenceComparison::Level in_lanes = lanes_way.measure(b, coarse, a, fine);
-      const ReferenceComparison::Level own =
-          alone_lanes.measure(c, {c.displacement->data(), c.velocity->data(), 1}, a, fine);
+      const ReferenceComparison::Level own = alone_lanes.measure(c, own_lanes(c), a, fine);
       const Sample ca = pair.run(0).sample(), cb = pair.run(1).sample();
       same = same && bits(in_lanes, copy_way.measure(cb, ca)) && bits(own, alone_copy.measure(c, ca));
     }

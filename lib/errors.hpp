@@ -55,6 +55,9 @@ struct LaneVectors {
   std::size_t lane = 0;        ///< the run's lane: node i of lane 0 is at displacement[i·stride − lane]
 };
 
+/// A sample's own vectors seen as lanes of stride 1 (a run stepped alone, or copied out of its batch).
+inline LaneVectors own_lanes(const Sample& sample) { return {sample.displacement->data(), sample.velocity->data(), 1}; }
+
 /// Accumulates the errors of a run against an exact solution, one sample at a time, in O(N) memory.
 /// The reference is the closed form of the benchmark (mathematics.md §2) or any other ReferenceSolution,
 /// such as the characteristic solution for any data (mathematics.md §10). The squared norms are taken

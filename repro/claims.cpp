@@ -408,7 +408,7 @@ struct StabilityObserver {
   Tridiagonal stiffness;
   double bound;
   StabilityRun r;
-  bool add(const Sample& s) { return add(s, {s.displacement->data(), s.velocity->data(), 1}); }
+  bool add(const Sample& s) { return add(s, own_lanes(s)); }
   // The same with Uⁿ and the velocity read from `lanes` (a batch's lanes, in place; the sample's own
   // vectors give only their sizes).
   bool add(const Sample& s, const LaneVectors& lanes) {

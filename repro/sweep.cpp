@@ -268,8 +268,8 @@ void apply_sweep_options(const SweepOptions& options) {
 // the costliest runs (the most steps) go first, so that the runs of a batch have nearly the same number
 // of steps. A batch steps its runs together (with own_rates, each at its own rate when their Δt are whole
 // multiples of the smallest, BatchedSimulation::step(advance), and a lane whose run has ended, or whose
-// observer wants no more, is kept as it is; otherwise such a lane is stepped on, no longer observed). Each batch is one task of run_in_parallel,
-// costliest first (its first run's cost).
+// observer wants no more, is kept as it is; otherwise such a lane is stepped on, no longer observed).
+// Each batch is one task of run_in_parallel, costliest first (its first run's cost).
 void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double>& costs, const BatchStart& start,
                      const BatchObserve& observe, const std::function<void(std::size_t k)>& finish,
                      const SweepSettings& settings, const BatchLaneObserve& lane_observe,
@@ -320,7 +320,7 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                       // whose runs are put together by cost, check_claims took 1.05–1.08 of the CPU time with
                       // rates (farm-bench, medians of 3 sets), though a profile of one pair said less.
                       std::vector<Index> rate(batch.size(), 1);
-                      {
+                      if (own_rates) {
                         double dt_min = simulations.front().dt();
                         for (const BarSimulation& s : simulations) dt_min = std::min(dt_min, s.dt());
                         std::vector<Index> r(batch.size(), 1);
@@ -332,7 +332,7 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                           span = std::max(span, steps[j] * r[j]);
                           widest = std::max(widest, r[j]);
                         }
-                        if (own_rates && span <= most + widest) rate = r;
+                        if (span <= most + widest) rate = r;
                       }
                       BatchedSimulation lanes(std::move(simulations));
                       // Level n of lane j: from the lanes when the observer takes them, else copied out.

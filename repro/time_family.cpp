@@ -82,8 +82,8 @@ TimeFamilyMesh time_family_mesh(long elements, const MassRedistribution& mass, c
   // reference stepping at every other step (BatchedSimulation::step(advance): each lane bitwise its run
   // stepped alone), compared where they are (ReferenceComparison::measure on the lanes, nothing copied
   // out). On smaller meshes the batch's bookkeeping per step costs more than the lanes save (measured with
-  // T = 1, CPU time of time_family_mesh against the two chains stepped alone: 1.1–1.4 at N = 24, 40, 64,
-  // equal at 96 and 128, 0.73–0.92 at 256; a noisy host, so the crossover is only located, not fitted):
+  // T = 1, CPU time of time_family_mesh against the two chains stepped alone: 1.05–1.4 at N = 24, 40, 64,
+  // 0.9–1.2 at 96 and 128, 0.59–0.94 at 256; a noisy host, so the crossover is only located, not fitted):
   // there each chain is a batch of its own, stepped alone. Either way, the same bits.
   const bool in_lanes = elements >= 100;
   std::vector<BatchedSimulation> chains;  // one batch of both chains, or one batch each
@@ -111,7 +111,6 @@ TimeFamilyMesh time_family_mesh(long elements, const MassRedistribution& mass, c
     return in_lanes ? chains[0].sample(j, lanes) : chains[j].sample(0, lanes);
   };
   LaneVectors fine_lanes{}, reference_lanes{};
-  const auto own = [](const Sample& s) { return LaneVectors{s.displacement->data(), s.velocity->data(), 1}; };
   std::vector<std::unique_ptr<BarSimulation>> runs;
   std::vector<ReferenceComparison> all, matched;
   for (long m : ratio) {
@@ -127,7 +126,7 @@ TimeFamilyMesh time_family_mesh(long elements, const MassRedistribution& mass, c
     const Sample fine = chain_sample(0, fine_lanes);
     LaneVectors lanes{};
     const Sample s = j + 1 < ratio.size() ? runs[j]->sample() : chain_sample(1, lanes);
-    if (j + 1 < ratio.size()) lanes = own(s);
+    if (j + 1 < ratio.size()) lanes = own_lanes(s);
     const ReferenceComparison::Level level = all.back().measure(s, lanes, fine, fine_lanes);
     all.back().add(level);
     matched.back().add(level);
@@ -150,7 +149,7 @@ TimeFamilyMesh time_family_mesh(long elements, const MassRedistribution& mass, c
       if (k % ratio[j] != 0) continue;
       runs[j]->step();
       const Sample run = runs[j]->sample();
-      const ReferenceComparison::Level level = all[j].measure(run, own(run), ref, reference_lanes);
+      const ReferenceComparison::Level level = all[j].measure(run, own_lanes(run), ref, reference_lanes);
       all[j].add(level);
       if (in_contact(run) == in_contact(ref))
         matched[j].add(level);
