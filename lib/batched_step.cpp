@@ -1,6 +1,9 @@
 /// @file batched_step.cpp
 /// @brief The fused step of fast_step.cpp, one run per vector lane (Google Highway, the widest target
-/// of the processor chosen at run time: AVX-512, AVX2, SSE4, NEON, ... or a portable 128-bit emulation).
+/// of the processor chosen at run time: AVX-512, AVX2, SSE4, NEON, ... or a portable 128-bit emulation);
+/// and the fused step of the Newmark-type contact classes (contact_classes.cpp: newmark, penalty,
+/// nitsche) the same way, its four passes and the energy's two forms in vectors, its contact decision and
+/// end of step each lane's own (NewmarkTypeStep).
 ///
 /// A step of one run is two long chains of dependent operations (the sweeps of the tridiagonal solve,
 /// fast_step.cpp), so a run fills one lane of a vector unit. W runs with the same number of unknowns and
@@ -52,6 +55,23 @@ struct Kernel {
   const double *rate = nullptr, *memory = nullptr, *ps_q_weight = nullptr;  // per lane; 1 − 4β for PS
   const double *u0_next = nullptr, *recurrence_d0 = nullptr, *keep = nullptr;
   double* energy = nullptr;  // per lane, written by the sweep up
+};
+
+// The same for the Newmark-type steps (contact_classes.cpp, NewmarkTypeStep): the interleaved state (U, Y =
+// Uⁿ⁺¹, V, Rⁿ, Rⁿ⁺¹, T the mass solve's right-hand side), the rows of M, S and S_ℓ, the factors of A and M̃,
+// z, and per lane Δt, Δt²(½ − β), 1 − γ, γ, g₀, g₁, the massless flag, the decision (u₀, λ, shift), the keep
+// flag and the two forms of the energy.
+struct NewmarkKernel {
+  std::size_t n = 0, lanes = 0;
+  bool keeps = false;
+  double *u = nullptr, *y = nullptr, *w = nullptr, *r = nullptr, *r_next = nullptr, *t = nullptr;
+  const double *m_diag = nullptr, *m_lower = nullptr, *m_upper = nullptr, *s_diag = nullptr, *s_lower = nullptr,
+               *s_upper = nullptr, *l_diag = nullptr, *l_lower = nullptr, *l_upper = nullptr;
+  const double *elimination = nullptr, *inverse_pivot = nullptr, *upward = nullptr, *mass_elimination = nullptr,
+               *mass_inverse_pivot = nullptr, *mass_upward = nullptr, *z = nullptr;
+  const double *dt = nullptr, *force_weight = nullptr, *one_minus_gamma = nullptr, *gamma = nullptr, *g0 = nullptr,
+               *g1 = nullptr, *massless = nullptr, *u0 = nullptr, *lambda = nullptr, *shift = nullptr, *keep = nullptr;
+  double* kinetic_strain = nullptr;  // per lane: ½VᵀMV + ½UᵀSU of the new level
 };
 
 }  // namespace mrm::batched
@@ -270,7 +290,177 @@ void SweepUpD(D d, const Kernel& k) {
   SweepUpT<false, false>(d, k);
 }
 
+// ---- The Newmark-type step (contact_classes.cpp, NewmarkContactStep::fused_advance), on W lanes ----
+// Each function is a pass of the fused step, with its operations in its order, operand for operand:
+// (A x)_i as Tridiagonal::multiply sums it, (d_i x_i + l_i x_{i−1}) + u_i x_{i+1}, the terms that exist.
+
+// 1. b_i = ((MUⁿ)_i + Δt(MVⁿ)_i) + Δt²(½ − β)Rⁿ_i inside the sweep down of A, y_i = b_i − ε_i y_{i+1}; row 0's
+// b is 0 for a massless contact node.
+template <class D>
+void NewmarkDownT(D d, const NewmarkKernel& k) {
+  using V = hn::Vec<D>;
+  const std::size_t W = k.lanes;
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(k.n);
+  const auto at = [&](const double* a, std::ptrdiff_t i) { return hn::Load(d, a + static_cast<std::size_t>(i) * W); };
+  const V dt = hn::Load(d, k.dt), c_r = hn::Load(d, k.force_weight);
+  const auto row = [&](const double* dg, const double* lo, const double* up, const double* x, std::ptrdiff_t i) {
+    V s = at(dg, i) * at(x, i);
+    if (i > 0) s = s + at(lo, i) * at(x, i - 1);
+    if (i + 1 < n) s = s + at(up, i) * at(x, i + 1);
+    return s;
+  };
+  const auto b = [&](std::ptrdiff_t i) {
+    V bi = row(k.m_diag, k.m_lower, k.m_upper, k.u, i) + dt * row(k.m_diag, k.m_lower, k.m_upper, k.w, i);
+    bi = bi + c_r * at(k.r, i);
+    return bi;
+  };
+  V yi = b(n - 1);
+  hn::Store(yi, d, k.y + static_cast<std::size_t>(n - 1) * W);
+  for (std::ptrdiff_t i = n - 2; i > 0; --i) {
+    yi = b(i) - at(k.elimination, i) * yi;
+    hn::Store(yi, d, k.y + static_cast<std::size_t>(i) * W);
+  }
+  const V b0 = hn::IfThenElse(hn::Ne(hn::Load(d, k.massless), hn::Zero(d)), hn::Zero(d), b(0));
+  hn::Store(b0 - at(k.elimination, 0) * yi, d, k.y);
+}
+
+// 2. From each lane's decision: the sweep up of A (penalty, Nitsche: of U_f, then U = U_f − λz where the lane
+// shifts), and Rⁿ⁺¹_{i−1} = −(S_ℓUⁿ⁺¹)_{i−1} one row behind; rows 0 and 1 then take −λg, and row 0 of a massless
+// node is 0. A kept lane's U and R are written back unchanged.
+template <bool keeps, class D>
+void NewmarkUpT(D d, const NewmarkKernel& k) {
+  using V = hn::Vec<D>;
+  const std::size_t W = k.lanes;
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(k.n);
+  const auto at = [&](const double* a, std::ptrdiff_t i) { return hn::Load(d, a + static_cast<std::size_t>(i) * W); };
+  const auto keep = hn::Ne(hn::Load(d, k.keep), hn::Zero(d));
+  const auto shift = hn::Ne(hn::Load(d, k.shift), hn::Zero(d));
+  const V lambda = hn::Load(d, k.lambda);
+  const auto put = [&](V v, double* a, const double* old, std::ptrdiff_t i) {
+    if constexpr (keeps) v = hn::IfThenElse(keep, at(old, i), v);
+    hn::Store(v, d, a + static_cast<std::size_t>(i) * W);
+  };
+  const auto shifted = [&](V free, std::ptrdiff_t i) {
+    return hn::IfThenElse(shift, free - lambda * at(k.z, i), free);
+  };
+  V free = hn::Load(d, k.u0);
+  const V y0 = shifted(free, 0);
+  free = at(k.inverse_pivot, 1) * at(k.y, 1) - at(k.upward, 1) * free;
+  const V y1 = shifted(free, 1);
+  put(y0, k.y, k.u, 0);
+  put(y1, k.y, k.u, 1);
+  V r0 = at(k.l_diag, 0) * y0;
+  r0 = hn::Neg(r0 + at(k.l_upper, 0) * y1);
+  V before = y0, last = y1, r1 = r0;
+  for (std::ptrdiff_t i = 2; i < n; ++i) {
+    free = at(k.inverse_pivot, i) * at(k.y, i) - at(k.upward, i) * free;
+    const V yi = shifted(free, i);
+    put(yi, k.y, k.u, i);
+    V s = at(k.l_diag, i - 1) * last;
+    s = s + at(k.l_lower, i - 1) * before;
+    s = hn::Neg(s + at(k.l_upper, i - 1) * yi);
+    if (i == 2)
+      r1 = s;
+    else
+      put(s, k.r_next, k.r, i - 1);
+    before = last, last = yi;
+  }
+  V rl = at(k.l_diag, n - 1) * last;
+  put(hn::Neg(rl + at(k.l_lower, n - 1) * before), k.r_next, k.r, n - 1);
+  r0 = r0 - lambda * hn::Load(d, k.g0);
+  r1 = r1 - lambda * hn::Load(d, k.g1);
+  r0 = hn::IfThenElse(hn::Ne(hn::Load(d, k.massless), hn::Zero(d)), hn::Zero(d), r0);
+  put(r0, k.r_next, k.r, 0);
+  put(r1, k.r_next, k.r, 1);
+}
+
+// 3. Δt((1 − γ)Rⁿ_i + γRⁿ⁺¹_i) inside the sweep down of M̃; 4. its sweep up, each entry added to Vⁿ as it
+// comes (a kept lane's V stays).
+template <bool keeps, class D>
+void NewmarkVelocityT(D d, const NewmarkKernel& k) {
+  using V = hn::Vec<D>;
+  const std::size_t W = k.lanes;
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(k.n);
+  const auto at = [&](const double* a, std::ptrdiff_t i) { return hn::Load(d, a + static_cast<std::size_t>(i) * W); };
+  const auto keep = hn::Ne(hn::Load(d, k.keep), hn::Zero(d));
+  const V dt = hn::Load(d, k.dt), a = hn::Load(d, k.one_minus_gamma), g = hn::Load(d, k.gamma);
+  V ti = dt * (a * at(k.r, n - 1) + g * at(k.r_next, n - 1));
+  hn::Store(ti, d, k.t + static_cast<std::size_t>(n - 1) * W);
+  for (std::ptrdiff_t i = n - 2; i >= 0; --i) {
+    ti = dt * (a * at(k.r, i) + g * at(k.r_next, i)) - at(k.mass_elimination, i) * ti;
+    hn::Store(ti, d, k.t + static_cast<std::size_t>(i) * W);
+  }
+  V vi = at(k.t, 0) * at(k.mass_inverse_pivot, 0);
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    if (i > 0) vi = at(k.mass_inverse_pivot, i) * at(k.t, i) - at(k.mass_upward, i) * vi;
+    V wi = at(k.w, i) + vi;
+    if constexpr (keeps) wi = hn::IfThenElse(keep, at(k.w, i), wi);
+    hn::Store(wi, d, k.w + static_cast<std::size_t>(i) * W);
+  }
+}
+
+// xᵀAx as Tridiagonal::form sums it (p1.cpp, form_of), lane by lane: the rows' terms x_i (A x)_i in four
+// partial sums by i mod 4, then (s₀ + s₂) and (s₁ + s₃), the rows of a last pair, their sum, and a last odd
+// row; n ≥ 4.
+template <class D>
+hn::Vec<D> FormT(D d, std::size_t W, std::ptrdiff_t n, const double* dg, const double* lo, const double* up,
+                 const double* x) {
+  using V = hn::Vec<D>;
+  const auto at = [&](const double* a, std::ptrdiff_t i) { return hn::Load(d, a + static_cast<std::size_t>(i) * W); };
+  const auto row = [&](std::ptrdiff_t i) {
+    const V xi = at(x, i);
+    V s = at(dg, i) * xi;
+    if (i > 0) s = s + at(lo, i) * at(x, i - 1);
+    if (i + 1 < n) s = s + at(up, i) * at(x, i + 1);
+    return xi * s;
+  };
+  const std::ptrdiff_t end4 = n / 4 * 4, end2 = n / 2 * 2;
+  V a0 = row(0), a1 = row(1), b0 = row(2), b1 = row(3);
+  std::ptrdiff_t i = 4;
+  for (; i + 4 < n; i += 4) {
+    a0 = a0 + row(i), a1 = a1 + row(i + 1);
+    b0 = b0 + row(i + 2), b1 = b1 + row(i + 3);
+  }
+  if (i < end4) {
+    a0 = a0 + row(i), a1 = a1 + row(i + 1);
+    b0 = b0 + row(i + 2), b1 = b1 + row(i + 3);
+  }
+  a0 = a0 + b0, a1 = a1 + b1;
+  if (end2 > end4) a0 = a0 + row(end4), a1 = a1 + row(end4 + 1);
+  V sum = a0 + a1;
+  if (n > end2) sum = sum + row(n - 1);
+  return sum;
+}
+
+// The energy's ½VᵀMV + ½UᵀSU of the new level (kinetic_and_strain, contact_classes.cpp), U in y.
+template <class D>
+void NewmarkEnergyT(D d, const NewmarkKernel& k) {
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(k.n);
+  const auto half = hn::Set(d, 0.5);
+  const auto kinetic = FormT(d, k.lanes, n, k.m_diag, k.m_lower, k.m_upper, k.w);
+  const auto strain = FormT(d, k.lanes, n, k.s_diag, k.s_lower, k.s_upper, k.y);
+  hn::Store(half * kinetic + half * strain, d, k.kinetic_strain);
+}
+
+template <class D>
+void NewmarkStepD(D d, const NewmarkKernel& k) {
+  if (k.keeps) {
+    NewmarkUpT<true>(d, k);
+    NewmarkVelocityT<true>(d, k);
+  } else {
+    NewmarkUpT<false>(d, k);
+    NewmarkVelocityT<false>(d, k);
+  }
+  NewmarkEnergyT(d, k);
+}
+
 // The entry points, one per width (where a capped width is the full one, the same code twice).
+void NewmarkDown(const NewmarkKernel& k) { NewmarkDownT(Full(), k); }
+void NewmarkDown4(const NewmarkKernel& k) { NewmarkDownT(Four(), k); }
+void NewmarkDown2(const NewmarkKernel& k) { NewmarkDownT(Two(), k); }
+void NewmarkUp(const NewmarkKernel& k) { NewmarkStepD(Full(), k); }
+void NewmarkUp4(const NewmarkKernel& k) { NewmarkStepD(Four(), k); }
+void NewmarkUp2(const NewmarkKernel& k) { NewmarkStepD(Two(), k); }
 void SweepDown(const Kernel& k) { SweepDownT(Full(), k); }
 void SweepDown4(const Kernel& k) { SweepDownT(Four(), k); }
 void SweepDown2(const Kernel& k) { SweepDownT(Two(), k); }
@@ -300,6 +490,7 @@ HWY_AFTER_NAMESPACE();
 #include <hwy/aligned_allocator.h>
 
 #include "contact.hpp"
+#include "contact_classes.hpp"
 #include "fast_step.hpp"
 #include "mass_redistribution.hpp"
 
@@ -315,6 +506,12 @@ HWY_EXPORT(SweepDown2);
 HWY_EXPORT(SweepUp);
 HWY_EXPORT(SweepUp4);
 HWY_EXPORT(SweepUp2);
+HWY_EXPORT(NewmarkDown);
+HWY_EXPORT(NewmarkDown4);
+HWY_EXPORT(NewmarkDown2);
+HWY_EXPORT(NewmarkUp);
+HWY_EXPORT(NewmarkUp4);
+HWY_EXPORT(NewmarkUp2);
 }  // namespace batched
 /// @endcond
 
@@ -340,6 +537,10 @@ std::vector<BatchTarget> batch_targets() {
 
 int batch_family(Scheme scheme) {
   switch (scheme) {
+    case Scheme::newmark:
+    case Scheme::penalty:
+    case Scheme::nitsche:
+      return 4;
     case Scheme::crank_nicolson:
     case Scheme::backward_euler:
       return 0;
@@ -349,7 +550,7 @@ int batch_family(Scheme scheme) {
       return 2;
     case Scheme::switching:
       return 3;
-    default:  // the field's classes: no batched kernel, each scheme a family of its own
+    default:  // the other classes: no batched kernel, each scheme a family of its own
       return -1 - static_cast<int>(scheme);
   }
 }
@@ -371,6 +572,13 @@ struct BatchedSimulation::Group {
   hwy::AlignedFreeUniquePtr<double[]> u, y, w, x, elimination, elimination_pair, inverse_pivot, upward, upward_pair,
       head_rows, interior, last, rate, memory, ps_q_weight, u0_next, recurrence_d0, keep, energy;
   std::vector<FastStep::ContactDecision> decisions;  // the lanes' contact decisions of the current step
+  // A group of Newmark-type steps (batch_family 4, batched::NewmarkKernel): u, y, w, the factors of A
+  // (elimination, inverse_pivot, upward), u0_next (the decision's u₀) and keep above, and these.
+  bool newmark = false;
+  hwy::AlignedFreeUniquePtr<double[]> r, r_next, t, m_diag, m_lower, m_upper, s_diag, s_lower, s_upper, l_diag, l_lower,
+      l_upper, mass_elimination, mass_inverse_pivot, mass_upward, z, dt, force_weight, one_minus_gamma, gamma, g0, g1,
+      massless, lambda, shift, kinetic_strain;
+  std::vector<NewmarkTypeStep*> steps;  // each lane's step (its decision and end of step)
 };
 
 namespace {
@@ -429,6 +637,14 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
     const BarSimulation& r = runs_[k];
     const FastStep* fast = r.fast_.get();
     const std::size_t n = static_cast<std::size_t>(r.state_.u.size());
+    if (!fast && r.problem_.load == nullptr && lanes_ >= 2 && r.level_ == 0 && n >= 4) {
+      // A Newmark-type step (newmark, penalty, nitsche) on the fused kernel without a load: family 4.
+      const auto* step = dynamic_cast<const NewmarkTypeStep*>(r.class_step_.get());
+      if (step && step->batchable()) {
+        families[Key{n, 4, 0}].push_back(k);
+        continue;
+      }
+    }
     if (!fast || r.problem_.load || n < 2 || lanes_ < 2 || r.level_ != 0) {
       alone_.push_back(k);
       continue;
@@ -456,6 +672,16 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
           break;
         }
       for (std::size_t j = 0; j < width; ++j) g->runs.push_back(members[first + (j < used ? j : 0)]);
+      for (std::size_t j = 0; j < used; ++j) {
+        group_of_[g->runs[j]] = groups_.size();
+        lane_of_[g->runs[j]] = j;
+      }
+      if (std::get<1>(key) == 4) {
+        g->n = std::get<0>(key);
+        fill_newmark(*g, runs_);
+        groups_.push_back(std::move(g));
+        continue;
+      }
       const BarSimulation& r0 = runs_[g->runs[0]];
       g->n = std::get<0>(key);
       g->head = std::get<2>(key);
@@ -497,10 +723,6 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
         g->ps_q_weight[j] = 1 - 4 * f.beta_;  // as fused_step writes it: (1 − 4β)
         g->keep[j] = 0;
       }
-      for (std::size_t j = 0; j < used; ++j) {
-        group_of_[g->runs[j]] = groups_.size();
-        lane_of_[g->runs[j]] = j;
-      }
       for (std::size_t j = 0; j < width; ++j) load_lane(*g, j, runs_[g->runs[j]]);
       find_plateau(*g);
       groups_.push_back(std::move(g));
@@ -512,8 +734,88 @@ BatchedSimulation::~BatchedSimulation() = default;
 BatchedSimulation::BatchedSimulation(BatchedSimulation&&) noexcept = default;
 BatchedSimulation& BatchedSimulation::operator=(BatchedSimulation&&) noexcept = default;
 
+// A Newmark-type run's step (its lanes' rows, factors and Rⁿ).
+NewmarkTypeStep& BatchedSimulation::newmark_step(const BarSimulation& run) {
+  return dynamic_cast<NewmarkTypeStep&>(*run.class_step_);
+}
+
+void BatchedSimulation::fill_newmark(Group& g, const std::vector<BarSimulation>& runs) {
+  const std::size_t W = g.runs.size(), nw = g.n * W;
+  g.newmark = true;
+  for (auto* a : {&g.u,
+                  &g.y,
+                  &g.w,
+                  &g.elimination,
+                  &g.inverse_pivot,
+                  &g.upward,
+                  &g.r,
+                  &g.r_next,
+                  &g.t,
+                  &g.m_diag,
+                  &g.m_lower,
+                  &g.m_upper,
+                  &g.s_diag,
+                  &g.s_lower,
+                  &g.s_upper,
+                  &g.l_diag,
+                  &g.l_lower,
+                  &g.l_upper,
+                  &g.mass_elimination,
+                  &g.mass_inverse_pivot,
+                  &g.mass_upward,
+                  &g.z})
+    *a = hwy::AllocateAligned<double>(nw);
+  for (auto* a : {&g.dt, &g.force_weight, &g.one_minus_gamma, &g.gamma, &g.g0, &g.g1, &g.massless, &g.lambda, &g.shift,
+                  &g.kinetic_strain, &g.u0_next, &g.keep})
+    *a = hwy::AllocateAligned<double>(W);
+  for (std::size_t j = 0; j < W; ++j) {
+    NewmarkTypeStep& step = newmark_step(runs[g.runs[j]]);
+    g.steps.push_back(&step);
+    const NewmarkTypeStep::Lanes l = step.lanes();
+    const auto interleave = [&](double* to, const Eigen::VectorXd& from) {
+      for (std::size_t i = 0; i < g.n; ++i) to[i * W + j] = from[static_cast<Index>(i)];
+    };
+    interleave(g.m_diag.get(), l.mass->diag), interleave(g.m_lower.get(), l.mass->lower);
+    interleave(g.m_upper.get(), l.mass->upper);
+    interleave(g.s_diag.get(), l.stiffness->diag), interleave(g.s_lower.get(), l.stiffness->lower);
+    interleave(g.s_upper.get(), l.stiffness->upper);
+    interleave(g.l_diag.get(), l.linear->diag), interleave(g.l_lower.get(), l.linear->lower);
+    interleave(g.l_upper.get(), l.linear->upper);
+    interleave(g.elimination.get(), l.solver->elimination());
+    interleave(g.inverse_pivot.get(), l.solver->inverse_pivot());
+    interleave(g.upward.get(), l.solver->upward());
+    interleave(g.mass_elimination.get(), l.mass_solver->elimination());
+    interleave(g.mass_inverse_pivot.get(), l.mass_solver->inverse_pivot());
+    interleave(g.mass_upward.get(), l.mass_solver->upward());
+    if (l.z->size() == static_cast<Index>(g.n))
+      interleave(g.z.get(), *l.z);
+    else
+      for (std::size_t i = 0; i < g.n; ++i) g.z[i * W + j] = 0.0;  // newmark: no z (never shifted)
+    // As the fused step computes them: Δt²(½ − β) and 1 − γ.
+    g.dt[j] = l.dt;
+    g.force_weight[j] = l.dt * l.dt * (0.5 - l.beta);
+    g.one_minus_gamma[j] = 1 - l.gamma;
+    g.gamma[j] = l.gamma;
+    g.g0[j] = l.g[0];
+    g.g1[j] = l.g[1];
+    g.massless[j] = l.massless ? 1.0 : 0.0;
+    g.keep[j] = 0.0;
+    load_lane(g, j, runs[g.runs[j]]);
+  }
+}
+
 void BatchedSimulation::load_lane(Group& g, std::size_t j, const BarSimulation& run) {
   const std::size_t W = g.runs.size();
+  if (g.newmark) {
+    const Eigen::VectorXd& r = *newmark_step(run).lanes().force;
+    for (std::size_t i = 0; i < g.n; ++i) {
+      const auto e = static_cast<Index>(i);
+      g.u[i * W + j] = run.state_.u[e];
+      g.w[i * W + j] = run.state_.w[e];
+      g.r[i * W + j] = r[e];
+    }
+    return;
+  }
   const bool has_x = static_cast<std::size_t>(run.state_.x.size()) == g.n;
   for (std::size_t i = 0; i < g.n; ++i) {
     const auto e = static_cast<Index>(i);
@@ -525,6 +827,16 @@ void BatchedSimulation::load_lane(Group& g, std::size_t j, const BarSimulation& 
 
 void BatchedSimulation::store_lane(const Group& g, std::size_t j, BarSimulation& run) {
   const std::size_t W = g.runs.size();
+  if (g.newmark) {
+    Eigen::VectorXd& r = *newmark_step(run).lanes().force;
+    for (std::size_t i = 0; i < g.n; ++i) {
+      const auto e = static_cast<Index>(i);
+      run.state_.u[e] = g.u[i * W + j];
+      run.state_.w[e] = g.w[i * W + j];
+      r[e] = g.r[i * W + j];
+    }
+    return;
+  }
   const bool has_x = static_cast<std::size_t>(run.state_.x.size()) == g.n;
   for (std::size_t i = 0; i < g.n; ++i) {
     const auto e = static_cast<Index>(i);
@@ -545,6 +857,13 @@ const BarSimulation& BatchedSimulation::run(std::size_t k) {
   std::vector<std::size_t> lanes;
   for (std::size_t j = 0; j < g.used; ++j)
     if (stale_[g.runs[j]]) lanes.push_back(j);
+  if (lanes.size() == 1 || g.newmark) {  // (a Newmark-type group: lane by lane, with its Rⁿ)
+    for (std::size_t j : lanes) {
+      store_lane(g, j, runs_[g.runs[j]]);
+      stale_[g.runs[j]] = 0;
+    }
+    return runs_[k];
+  }
   if (lanes.size() == 1) {
     store_lane(g, lane_of_[k], runs_[k]);
     stale_[k] = 0;
@@ -632,6 +951,10 @@ void BatchedSimulation::advance(const char* flags) {  // null: every run
     bool any = false, all = true;
     for (std::size_t j = 0; j < g.used; ++j) any = any || moves(j), all = all && moves(j);
     if (!any) continue;
+    if (g.newmark) {
+      advance_newmark(g, flags);
+      continue;
+    }
     // Paoli–Schatzman's first step is Crank–Nicolson's (BarSimulation::step's starter): each run alone.
     bool starting = false;
     for (std::size_t j = 0; j < g.used; ++j) starting = starting || (moves(j) && runs_[g.runs[j]].start_ != nullptr);
@@ -723,16 +1046,89 @@ void BatchedSimulation::advance(const char* flags) {  // null: every run
   }
 }
 
+// The Newmark-type group's step: the sweep down of A, each lane's decision (the run's own decide()), the
+// sweep up with Rⁿ⁺¹, V and the energy's forms in vectors, then each run's end of step (its finish(): λ,
+// status, energy, the finiteness check) and BarSimulation's bookkeeping. A kept lane (flags) is written back
+// unchanged and its run is not touched.
+void BatchedSimulation::advance_newmark(Group& g, const char* flags) {
+  const std::size_t W = g.runs.size();
+  const auto moves = [&](std::size_t j) { return !flags || flags[g.runs[j < g.used ? j : 0]] != 0; };
+  bool all = true;
+  for (std::size_t j = 0; j < g.used; ++j) all = all && moves(j);
+  batched::NewmarkKernel k;
+  k.n = g.n, k.lanes = W, k.keeps = !all;
+  k.u = g.u.get(), k.y = g.y.get(), k.w = g.w.get(), k.r = g.r.get(), k.r_next = g.r_next.get(), k.t = g.t.get();
+  k.m_diag = g.m_diag.get(), k.m_lower = g.m_lower.get(), k.m_upper = g.m_upper.get();
+  k.s_diag = g.s_diag.get(), k.s_lower = g.s_lower.get(), k.s_upper = g.s_upper.get();
+  k.l_diag = g.l_diag.get(), k.l_lower = g.l_lower.get(), k.l_upper = g.l_upper.get();
+  k.elimination = g.elimination.get(), k.inverse_pivot = g.inverse_pivot.get(), k.upward = g.upward.get();
+  k.mass_elimination = g.mass_elimination.get(), k.mass_inverse_pivot = g.mass_inverse_pivot.get();
+  k.mass_upward = g.mass_upward.get(), k.z = g.z.get();
+  k.dt = g.dt.get(), k.force_weight = g.force_weight.get(), k.one_minus_gamma = g.one_minus_gamma.get();
+  k.gamma = g.gamma.get(), k.g0 = g.g0.get(), k.g1 = g.g1.get(), k.massless = g.massless.get();
+  k.u0 = g.u0_next.get(), k.lambda = g.lambda.get(), k.shift = g.shift.get(), k.keep = g.keep.get();
+  k.kinetic_strain = g.kinetic_strain.get();
+  switch (g.width) {
+    case 0:
+      HWY_DYNAMIC_DISPATCH(batched::NewmarkDown)(k);
+      break;
+    case 1:
+      HWY_DYNAMIC_DISPATCH(batched::NewmarkDown4)(k);
+      break;
+    default:
+      HWY_DYNAMIC_DISPATCH(batched::NewmarkDown2)(k);
+  }
+  for (std::size_t j = 0; j < W; ++j) {
+    if (!moves(j)) {  // kept: its values are not written
+      g.keep[j] = 1.0, g.lambda[j] = 0.0, g.shift[j] = 0.0, g.u0_next[j] = g.u[j];
+      continue;
+    }
+    const NewmarkTypeStep::Decision c = g.steps[j]->decide(g.y[j], g.y[W + j]);
+    g.keep[j] = 0.0, g.lambda[j] = c.lambda, g.shift[j] = c.shift ? 1.0 : 0.0, g.u0_next[j] = c.u0;
+  }
+  switch (g.width) {
+    case 0:
+      HWY_DYNAMIC_DISPATCH(batched::NewmarkUp)(k);
+      break;
+    case 1:
+      HWY_DYNAMIC_DISPATCH(batched::NewmarkUp4)(k);
+      break;
+    default:
+      HWY_DYNAMIC_DISPATCH(batched::NewmarkUp2)(k);
+  }
+  std::swap(g.u, g.y);  // U = Uⁿ⁺¹ and Rⁿ = Rⁿ⁺¹, as the step swaps them
+  std::swap(g.r, g.r_next);
+  for (std::size_t j = 0; j < g.used; ++j) {
+    if (!moves(j)) continue;
+    const std::size_t r = g.runs[j];
+    BarSimulation& run = runs_[r];
+    // finish() reads u₀, u₁ (Nitsche's energy) and finish_step V₁ (the massless node's velocity): those are
+    // copied out now, the rest of the vectors when run(k) is asked for.
+    run.state_.u[0] = g.u[j];
+    run.state_.u[1] = g.u[W + j];
+    run.state_.w[1] = g.w[W + j];
+    stale_[r] = 1;
+    g.steps[j]->finish(run.state_, g.lambda[j], g.kinetic_strain[j], run.level_);
+    run.finish_step();
+    if (run.algebraic_row_ && !run.three_level_) g.w[j] = run.state_.w[0];  // its massless node's velocity
+  }
+}
+
 /// @file batched_step.cpp
 /// ## The batched step against the runs stepped alone
 ///
 /// Prediction: bit for bit the same states (U, W', X, λ, the energy, the status, the instants) at every
-/// step, lane by lane, for every scheme (cn, be, ps with both contact rows, ec, cn-switch) and every
-/// vector target this machine has: the batched step performs each lane's operations in the scalar
-/// order, and CN-switch's status changes and Paoli–Schatzman's first step are the lane's own scalar
-/// step. The runs of a batch differ in Δt (Courant numbers 0.5 … 1.7), mass (Mod 1, Mod 3, the
-/// consistent mass where the scheme allows it) and, for Paoli–Schatzman, β and e; their number
-/// 2W + 1 leaves a group with padding lanes or a run alone. A difference of one ulp anywhere fails.
+/// step, lane by lane, for every scheme with a batched kernel (cn, be, ps with both contact rows, ec,
+/// cn-switch, and the Newmark-type classes newmark, penalty, nitsche) and every vector target this machine
+/// has: the batched step performs each lane's operations in the scalar order, and CN-switch's status
+/// changes and Paoli–Schatzman's first step are the lane's own scalar step, as are the classes' contact
+/// decisions and ends of step (NewmarkTypeStep::decide, finish). The runs of a batch differ in Δt (Courant
+/// numbers 0.5 … 1.7), mass (Mod 1, Mod 3, the consistent mass where the scheme allows it), for
+/// Paoli–Schatzman in β and e, for the classes in β (0 at 0.9 of the stability limit, or (γ + ½)²/4), γ,
+/// the penalty and Nitsche's θ and γ₀; their number 2W + 1 leaves a group with padding lanes or a run
+/// alone. A difference of one ulp anywhere fails; so do four mutations of the classes' kernel (tried): the
+/// form's partial sums paired otherwise, the law's force on row 0 dropped, the shift's select inverted, a
+/// kept lane's velocity not kept.
 namespace {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
@@ -746,9 +1142,34 @@ struct BatchedCase {
   ContactRow row;
 };
 std::vector<BatchedCase> batched_cases() {
-  return {{Scheme::crank_nicolson, ContactRow::algebraic},    {Scheme::backward_euler, ContactRow::algebraic},
-          {Scheme::paoli_schatzman, ContactRow::algebraic},   {Scheme::paoli_schatzman, ContactRow::literal},
-          {Scheme::energy_conserving, ContactRow::algebraic}, {Scheme::switching, ContactRow::algebraic}};
+  return {{Scheme::crank_nicolson, ContactRow::algebraic},
+          {Scheme::backward_euler, ContactRow::algebraic},
+          {Scheme::paoli_schatzman, ContactRow::algebraic},
+          {Scheme::paoli_schatzman, ContactRow::literal},
+          {Scheme::energy_conserving, ContactRow::algebraic},
+          {Scheme::switching, ContactRow::algebraic},
+          {Scheme::newmark, ContactRow::algebraic},
+          {Scheme::penalty, ContactRow::algebraic},
+          {Scheme::nitsche, ContactRow::algebraic}};
+}
+
+// Run k's parameters of a Newmark-type class: γ = ½ or 0.6; β = (γ + ½)²/4 (stable at any Δt) or, where
+// `explicit_step` allows and the class does (exact enforcement needs a massless node for β = 0), β = 0 at 0.9
+// of its stability limit, which then replaces `dt`; penalty γ₀ = 1 or 100; Nitsche θ = 0, 1 or −1, γ₀ = 5
+// or 50.
+void class_parameters(SchemeParameters& p, std::size_t k, const UniformMesh& mesh, const MassRedistribution& mass,
+                      bool explicit_step, double& dt) {
+  p.newmark_gamma = k % 4 == 3 ? 0.6 : 0.5;
+  if (p.scheme == Scheme::penalty) p.penalty = k % 3 == 1 ? 100.0 : 1.0;
+  if (p.scheme == Scheme::nitsche) {
+    p.nitsche_theta = k % 3 == 0 ? 0.0 : k % 3 == 1 ? 1.0 : -1.0;
+    p.nitsche_gamma = k % 4 < 2 ? 5.0 : 50.0;
+  }
+  const bool massless = contact_node_is_massless(modified_mass(mesh, mass));
+  const double implicit = 0.25 * (p.newmark_gamma + 0.5) * (p.newmark_gamma + 0.5);  // β ≥ γ/2: any Δt
+  p.newmark_beta = explicit_step && k % 2 == 1 && (p.scheme != Scheme::newmark || massless) ? 0.0 : implicit;
+  if (p.newmark_beta == 0.0)
+    dt = 0.9 * newmark_stability_limit(modified_mass(mesh, mass), p1_stiffness(mesh), p, mesh.contact_compliance());
 }
 
 }  // namespace
@@ -783,7 +1204,8 @@ TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for
         const bool massless = !(k % 3 == 2 && inertia_allowed);
         if (c.scheme == Scheme::paoli_schatzman && k % 2 == 1)
           p.beta = 0.3, p.restitution = c.row == ContactRow::literal && massless ? 0.0 : 0.5;
-        const double dt = (0.5 + 0.1 * static_cast<double>(k % 13)) * mesh.h();
+        double dt = (0.5 + 0.1 * static_cast<double>(k % 13)) * mesh.h();
+        if (is_contact_class(c.scheme)) class_parameters(p, k, mesh, mass, true, dt);
         batch.emplace_back(benchmark_problem(), mesh, mass, p, dt);
         alone.emplace_back(benchmark_problem(), mesh, mass, p, dt);
       }
@@ -861,8 +1283,9 @@ TEST_CASE("a partial step keeps the runs that stay, and runs at their own rates 
         p.scheme = c.scheme;
         p.contact_row = c.row;
         if (c.scheme == Scheme::paoli_schatzman && k % 2 == 1) p.beta = 0.3;
-        const double dt = 0.25 * static_cast<double>(rates[k % rates.size()]) * mesh.h();
+        double dt = 0.25 * static_cast<double>(rates[k % rates.size()]) * mesh.h();
         const MassRedistribution mass = k % 2 == 0 ? mod1() : mod3();
+        if (is_contact_class(c.scheme)) class_parameters(p, k, mesh, mass, false, dt);  // implicit: any rate
         batch.emplace_back(benchmark_problem(), mesh, mass, p, dt);
         alone.emplace_back(benchmark_problem(), mesh, mass, p, dt);
       }

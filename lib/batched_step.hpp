@@ -15,6 +15,8 @@
 
 namespace mrm {
 
+class NewmarkTypeStep;  // contact_classes.hpp
+
 /// A vector target the batched step can run on: its name (Highway's: "AVX3", "AVX2", "SSE4", "EMU128",
 /// "NEON", ...), its number of double lanes, and its Highway target bit.
 struct BatchTarget {
@@ -35,17 +37,18 @@ BatchTarget current_batch_target();
 
 /// The family of a scheme's batched kernel: 0 for the two-level steps (Crank–Nicolson and backward
 /// Euler: the same sweeps, the scheme only in each lane's factors and rates), 1 Paoli–Schatzman (three
-/// levels), 2 EC, 3 CN-switch. Runs of the same number of unknowns and family, on the fast kernel and
+/// levels), 2 EC, 3 CN-switch, 4 the Newmark-type classes (newmark, penalty, nitsche: contact_classes.hpp,
+/// NewmarkTypeStep). Runs of the same number of unknowns and family, on the fast kernel and
 /// without a load, share the lanes of a group whatever their scheme, mass, Δt or data; runs of
-/// different families never do. A scheme without a batched kernel (the field's classes) is a family of
-/// its own, −1 − its index (its runs are stepped alone). The sweep layer batches runs by it
+/// different families never do. A scheme without a batched kernel (the other field classes: Moreau–Jean,
+/// DKE, Taylor–Flanagan, explicit) is a family of its own, −1 − its index (its runs are stepped alone). The sweep layer batches runs by it
 /// (repro/sweep.hpp).
 int batch_family(Scheme scheme);
 
 /// A batch of runs (BarSimulation's at level 0, moved in) advanced one step at a time. Runs whose
 /// steps can share vector registers (the fast kernel, no load, and the same number of unknowns, scheme
-/// family — two-level, Paoli–Schatzman, EC, CN-switch — and fast-step layout, FastStep's explicit head
-/// rows) are grouped by lanes of the current target: groups of the target's full width, and the remainder
+/// family — two-level, Paoli–Schatzman, EC, CN-switch, Newmark-type (at least 4 unknowns) — and fast-step
+/// layout, FastStep's explicit head rows) are grouped by lanes of the current target: groups of the target's full width, and the remainder
 /// of a family in one group of the narrowest width that holds it (2, 4 or the full width: padding lanes
 /// cost as much as runs); every other run (the reference kernel, a load, a remainder of one) is stepped
 /// alone. Paoli–Schatzman's Crank–Nicolson first step and CN-switch's θ-step
@@ -92,7 +95,10 @@ class BatchedSimulation {
   static void load_lane(Group& g, std::size_t j, const BarSimulation& run);   // run's vectors → lane j
   static void store_lane(const Group& g, std::size_t j, BarSimulation& run);  // lane j → run's vectors
   static void find_plateau(Group& g);  // the interior rows whose factors repeat (batched_step.cpp)
-  void advance(const char* flags);     // step(flags) without the check; null: every run
+  static void fill_newmark(Group& g, const std::vector<BarSimulation>& runs);  // a Newmark-type group's lanes
+  void advance_newmark(Group& g, const char* flags);                           // its step
+  static NewmarkTypeStep& newmark_step(const BarSimulation& run);              // a Newmark-type run's step
+  void advance(const char* flags);  // step(flags) without the check; null: every run
   std::vector<BarSimulation> runs_;
   std::vector<std::unique_ptr<Group>> groups_;
   std::vector<std::size_t> alone_;  // the runs stepped alone

@@ -481,7 +481,7 @@ void require_finite(double energy, Scheme scheme, Index level) {
 }
 
 // Newmark(β, γ) with exact enforcement, a penalty or Nitsche's terms (file comment, (N)).
-class NewmarkContactStep final : public ContactClassStep {
+class NewmarkContactStep final : public NewmarkTypeStep {
  public:
   NewmarkContactStep(const Tridiagonal& mass, const Tridiagonal& stiffness, const SchemeParameters& p, double dt,
                      double h, bool has_load, double gap, StepState& state)
@@ -611,21 +611,7 @@ class NewmarkContactStep final : public ContactClassStep {
     sweep_down_forming(solver_, n, y, mass_, u, mass_, w, b, b0);
     // 2. The contact decision, the sweep up of A and Rⁿ⁺¹ one row behind.
     const double *ip = solver_.inverse_pivot().data(), *cu = solver_.upward().data();
-    double lambda = 0, u0 = 0;
-    bool shift = false;  // U = U_f − λz
-    if (scheme_ == Scheme::newmark) {
-      const ContactStep contact = solver_.resolve_contact(y[0], weight0_, gap_ != 0.0 ? -gap_ : 0.0);
-      lambda = contact.multiplier;
-      u0 = contact.u0;
-    } else {
-      u0 = y[0] * ip[0];
-      const double u1 = ip[1] * y[1] - cu[1] * u0;
-      const double p_free = ell_[0] * u0 + ell_[1] * u1 + offset_;
-      if (p_free < 0) {
-        lambda = k_ * p_free / (1 + k_ * ell_z_);
-        shift = true;
-      }
-    }
+    const auto [lambda, u0, shift] = decide(y[0], n > 1 ? y[1] : 0.0);  // shift: U = U_f − λz
     const double *ld = linear_.diag.data(), *ll = linear_.lower.data(), *lu = linear_.upper.data();
     const double* z = z_.data();
     double* rn = r_next_.data();
@@ -677,9 +663,32 @@ class NewmarkContactStep final : public ContactClassStep {
     const double lambda = fused_ ? fused_advance(state) : readable_advance(state);
     state.u.swap(state.u_new);
     r_.swap(r_next_);
+    finish(state, lambda, kinetic_and_strain(mass_, stiffness_, state), level);
+  }
+
+  // The pieces of the step the batched step calls (NewmarkTypeStep; batched_step.cpp).
+  bool batchable() const override { return fused_ && !has_load_; }
+  Lanes lanes() override {
+    return {&mass_, &stiffness_, &linear_, &solver_, &mass_solver_, &z_, &r_, dt_, beta_, gamma_, massless_, g_};
+  }
+  // The contact decision on row 0 (the fused step's 2.): exact enforcement resolves it on A's last pivot;
+  // penalty and Nitsche take λ = k P_f/(1 + kℓ·z) when the free step's P_f = ℓ·U_f + offset is negative.
+  Decision decide(double y0, double y1) const override {
+    if (scheme_ == Scheme::newmark) {
+      const ContactStep contact = solver_.resolve_contact(y0, weight0_, gap_ != 0.0 ? -gap_ : 0.0);
+      return {contact.multiplier, contact.u0, false};
+    }
+    const double *ip = solver_.inverse_pivot().data(), *cu = solver_.upward().data();
+    const double u0 = y0 * ip[0];
+    const double u1 = ip[1] * y1 - cu[1] * u0;
+    const double p_free = ell_[0] * u0 + ell_[1] * u1 + offset_;
+    if (p_free < 0) return {k_ * p_free / (1 + k_ * ell_z_), u0, true};
+    return {0.0, u0, false};
+  }
+  void finish(StepState& state, double lambda, double kinetic_strain, Index level) override {
     state.lambda = lambda;
     state.active = lambda < 0;
-    state.energy = energy(state);
+    state.energy = energy_from(kinetic_strain, state);
     if (has_load_) state.f_now.swap(state.f_next);
     require_finite(state.energy, scheme_, level + 1);
   }
@@ -696,8 +705,10 @@ class NewmarkContactStep final : public ContactClassStep {
     if (massless_) r[0] = 0.0;
   }
   // E = ½VᵀMV + ½UᵀSU + Φ: penalty λ²/(2k); Nitsche θ/(2γ)(λ² − (d·U)²) (the demo's energy).
-  double energy(const StepState& s) const {
-    double e = kinetic_and_strain(mass_, stiffness_, s);
+  double energy(const StepState& s) const { return energy_from(kinetic_and_strain(mass_, stiffness_, s), s); }
+  // The same from ½VᵀMV + ½UᵀSU, reading λ, u₀ and u₁ of `s`.
+  double energy_from(double kinetic_strain, const StepState& s) const {
+    double e = kinetic_strain;
     if (scheme_ == Scheme::penalty) e += s.lambda * s.lambda / (2 * k_);
     if (scheme_ == Scheme::nitsche) {
       const double ux = d_[0] * s.u[0] + d_[1] * s.u[1];

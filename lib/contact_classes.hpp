@@ -6,8 +6,10 @@
 /// contact_classes.cpp; BarSimulation (schemes.hpp) runs them through ContactClassStep.
 #pragma once
 
+#include <array>
 #include <memory>
 
+#include "contact.hpp"
 #include "schemes.hpp"
 
 namespace mrm {
@@ -67,6 +69,38 @@ class ContactClassStep {
   virtual ~ContactClassStep() = default;
   /// Advances `state` from level n to n+1 (n the argument, for the error message).
   virtual void step(StepState& state, Index level) = 0;
+};
+
+/// The step of the Newmark type (newmark, penalty, nitsche: contact_classes.cpp, (N)) as the batched step
+/// (batched_step.cpp) takes it apart: its factors and rows, the contact decision between the two sweeps of
+/// the step matrix A, and the end of a step. BatchedSimulation advances runs of this type in vector lanes
+/// with the operations of the fused step, in its order, and calls decide() and finish() of each run, so that
+/// the scalar pieces are this class's own.
+class NewmarkTypeStep : public ContactClassStep {
+ public:
+  /// What the lanes copy of a run (pointers into the step, valid while it lives).
+  struct Lanes {
+    const Tridiagonal *mass, *stiffness, *linear;  ///< M, S (for the energy), S_ℓ (the force)
+    const ContactSolver *solver, *mass_solver;     ///< A = M + βΔt²S_ℓ and M̃ (row 0 e₀ᵀ if massless)
+    const Eigen::VectorXd* z;                      ///< A⁻¹ of the law's weights (zero for newmark)
+    Eigen::VectorXd* force;                        ///< Rⁿ: the step's own state beside the StepState
+    double dt, beta, gamma;
+    bool massless;
+    std::array<double, 2> g;  ///< the law's force −λg on rows 0 and 1
+  };
+  /// The contact decision on the sweep down's y₀ and y₁: λⁿ⁺¹, u₀ (of U_f for penalty and Nitsche, of
+  /// Uⁿ⁺¹ for newmark) and whether U = U_f − λz.
+  struct Decision {
+    double lambda = 0, u0 = 0;
+    bool shift = false;
+  };
+  /// Whether the step is the fused one without a load (the batched step's only form).
+  virtual bool batchable() const = 0;
+  virtual Lanes lanes() = 0;
+  virtual Decision decide(double y0, double y1) const = 0;
+  /// The end of step `level` → level + 1, with Uⁿ⁺¹ (its entries 0 and 1 at least) and Vⁿ⁺¹ in `state`:
+  /// λ, the status, the energy from ½VᵀMV + ½UᵀSU (`kinetic_and_strain`); throws if it is not finite.
+  virtual void finish(StepState& state, double lambda, double kinetic_and_strain, Index level) = 0;
 };
 
 /// The step of `parameters.scheme` (a contact class), set up on `state`'s initial level (which it
