@@ -41,6 +41,7 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,7 @@
 #include "options.hpp"
 #include "parallel.hpp"
 #include "report_values.hpp"
+#include "sweep.hpp"
 #include "table.hpp"
 
 #include "errors.hpp"
@@ -501,40 +503,83 @@ int main(int argc, char** argv) {
           for (const double g : {5.0, 50.0})
             for (const double r : fractions) region.push_back({mrm::Scheme::nitsche, n, theta, g, r, {}, {}});
       }
-      std::vector<std::size_t> order(region.size());
-      for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-      std::stable_sort(order.begin(), order.end(),
-                       [&](std::size_t a, std::size_t b) { return region[a].elements > region[b].elements; });
-      repro::run_in_parallel(order, threads, [&](std::size_t k) {
-        RegionRun& x = region[k];
-        const auto start = std::chrono::steady_clock::now();
+      // Through the sweep layer (repro/sweep.hpp): the runs of one mesh and law make one batch (the caller's
+      // keys), stepped in vector lanes (the Newmark-type kernel, lib/batched_step.cpp: each lane bitwise its run
+      // alone); a run that stops, or has reached its last horizon, stays as it is while the others go on.
+      std::vector<repro::BatchKey> keys;
+      std::vector<double> costs;
+      std::vector<mrm::Index> last_level(region.size());
+      std::vector<double> e0(region.size()), largest(region.size(), 1.0);
+      std::vector<bool> stopped(region.size(), false);
+      std::vector<std::vector<mrm::Index>> horizon_steps(region.size());
+      using Clock = std::chrono::steady_clock;
+      std::vector<Clock::time_point> began(region.size()), ended(region.size());
+      // Run k: Newmark (0, ½) with the law and the consistent mass, Δt = r Δt_max; its levels of the horizons.
+      const mrm::MassRedistribution mass = mrm::mass_redistribution_by_name("consistent");
+      std::vector<mrm::SchemeParameters> parameters(region.size());
+      std::vector<double> dt(region.size());
+      for (std::size_t k = 0; k < region.size(); ++k) {
+        const RegionRun& x = region[k];
         const mrm::UniformMesh mesh(1.0, x.elements);
-        mrm::SchemeParameters p;
+        mrm::SchemeParameters& p = parameters[k];
         p.scheme = x.scheme;
         p.newmark_beta = 0.0;
         p.newmark_gamma = 0.5;
         if (x.scheme == mrm::Scheme::penalty) p.penalty = x.gamma0;
         if (x.scheme == mrm::Scheme::nitsche) p.nitsche_gamma = x.gamma0, p.nitsche_theta = x.theta;
-        const mrm::MassRedistribution mass = mrm::mass_redistribution_by_name("consistent");
         const double limit =
             mrm::newmark_stability_limit(mrm::modified_mass(mesh, mass), mrm::p1_stiffness(mesh), p, mesh.h());
-        mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mass, p, x.fraction * limit);
-        const double e0 = simulation.sample().energy;
-        double largest = 1;
-        bool stopped = false;
+        dt[k] = x.fraction * limit;
         for (const double periods : horizons) {
           if (x.elements > 16 && periods > 100) break;
-          const mrm::Index steps = mrm::steps_to_reach(3.0 * periods, simulation.dt());
-          while (!stopped && simulation.level() < steps) {
-            simulation.step();
-            largest = std::max(largest, simulation.sample().energy / e0);
-            stopped = !(largest <= 1e3);
-          }
-          x.ratio.push_back(stopped ? 1e3 : largest);
-          x.stopped.push_back(stopped);
+          horizon_steps[k].push_back(mrm::steps_to_reach(3.0 * periods, dt[k]));
         }
-        x.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      });
+        // One batch per mesh and law; in it, runs of similar numbers of steps share the lanes of a group.
+        keys.emplace_back(x.elements, x.scheme == mrm::Scheme::penalty ? 0 : 1);
+        costs.push_back(static_cast<double>(x.elements * horizon_steps[k].back()));
+      }
+      // The largest E/E₀ up to each horizon's level, 1e3 once the run has passed 1e3 E₀ (it then stops).
+      const auto follow = [&](std::size_t k, const mrm::Sample& s) {
+        RegionRun& x = region[k];
+        if (s.level == 0) {
+          e0[k] = s.energy;
+          return true;
+        }
+        largest[k] = std::max(largest[k], s.energy / e0[k]);
+        stopped[k] = !(largest[k] <= 1e3);
+        while (x.ratio.size() < horizon_steps[k].size() &&
+               (stopped[k] || s.level == horizon_steps[k][x.ratio.size()])) {
+          x.ratio.push_back(stopped[k] ? 1e3 : largest[k]);
+          x.stopped.push_back(stopped[k]);
+        }
+        return x.ratio.size() < horizon_steps[k].size();
+      };
+      repro::SweepSettings settings;
+      settings.threads = static_cast<unsigned>(threads);
+      repro::step_in_batches(
+          keys, costs,
+          [&](std::size_t k, mrm::Index& steps) {
+            began[k] = Clock::now();
+            steps = horizon_steps[k].back();
+            return mrm::BarSimulation(mrm::benchmark_problem(), mrm::UniformMesh(1.0, region[k].elements), mass,
+                                      parameters[k], dt[k]);
+          },
+          follow, [&](std::size_t k) { ended[k] = Clock::now(); }, settings,
+          // The energy only: the lanes are read in place.
+          [&](std::size_t k, const mrm::Sample& s, const mrm::LaneVectors&) -> std::optional<bool> {
+            return follow(k, s);
+          },
+          {}, region.size(), /*own_rates=*/true);
+      // Each key is one batch: a law's time is the sum of its batches' wall times, a run's its share (printed, not
+      // in the data).
+      for (RegionRun& x : region) {
+        Clock::time_point first = Clock::time_point::max(), last = Clock::time_point::min();
+        std::size_t count = 0;
+        for (std::size_t m = 0; m < region.size(); ++m)
+          if (region[m].scheme == x.scheme && region[m].elements == x.elements)
+            first = std::min(first, began[m]), last = std::max(last, ended[m]), ++count;
+        x.seconds = std::chrono::duration<double>(last - first).count() / static_cast<double>(count);
+      }
       for (const mrm::Scheme law : {mrm::Scheme::penalty, mrm::Scheme::nitsche}) {
         const bool penalty = law == mrm::Scheme::penalty;
         const std::string name = mrm::to_string(law);
