@@ -510,12 +510,13 @@ TEST_CASE("the batched sweep gives each run's measures bit for bit, for any thre
   // measures see the same samples in the same order, and a shared reference is the same object a run
   // would build: so run_batched gives run_configuration's bytes for every run, whatever the threads,
   // the vector target (each one this machine has) or batching at all. The runs: the five schemes of
-  // the batched step, two masses, two meshes, two steps (runs of one batch end at different levels),
+  // the batched step and the three Newmark-type classes (newmark, penalty, nitsche: one family, β = ¼),
+  // two masses, two meshes, two steps (runs of one batch end at different levels),
   // with horizons; and two runs of each smooth benchmark on the same mesh and Δt, which share one reference
   // per benchmark (and must not get the other's); and runs that keep the stress histories (the recovered
   // strain read from the lanes), with and without the error measures.
   std::vector<Configuration> configurations;
-  for (const char* scheme : {"cn", "be", "ps", "ec", "cn-switch"})
+  for (const char* scheme : {"cn", "be", "ps", "ec", "cn-switch", "newmark", "penalty", "nitsche"})
     for (const char* mass : {"mod1", "mod3"})
       for (Index n : {10, 13})
         for (double courant : {0.5, 1.0}) {
