@@ -19,6 +19,9 @@
 
 #include "errors.hpp"
 #include "batched_step.hpp"
+#include "contact_classes.hpp"
+#include "p1.hpp"
+#include "mass_redistribution.hpp"
 #include "options.hpp"
 #include "parallel.hpp"
 
@@ -320,6 +323,12 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                       // whose runs are put together by cost, check_claims took 1.05–1.08 of the CPU time with
                       // rates (farm-bench, medians of 3 sets), though a profile of one pair said less.
                       std::vector<Index> rate(batch.size(), 1);
+                      std::vector<char> is_class(batch.size()), stepped(batch.size());
+                      bool classes = false;
+                      for (std::size_t j = 0; j < batch.size(); ++j) {
+                        is_class[j] = is_contact_class(simulations[j].parameters().scheme);
+                        classes = classes || is_class[j];
+                      }
                       if (own_rates) {
                         double dt_min = simulations.front().dt();
                         for (const BarSimulation& s : simulations) dt_min = std::min(dt_min, s.dt());
@@ -385,10 +394,17 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                         }
                         if (!any) break;
                         if (!moves) continue;
-                        if (own_rates)
+                        if (own_rates) {
                           lanes.step(advance);  // the others stay
-                        else
+                        } else if (!classes) {
                           lanes.step();  // every run, observed or not (the lockstep)
+                        } else {
+                          // The lockstep, except that a contact class's run that has ended stays: its step
+                          // checks the energy's finiteness, and an explicit run stepped past its horizon could
+                          // lose it and throw (the batched steps of the paper's schemes check nothing).
+                          for (std::size_t j = 0; j < batch.size(); ++j) stepped[j] = advance[j] || !is_class[j];
+                          lanes.step(stepped);
+                        }
                         look_all();
                       }
                     }
@@ -653,6 +669,42 @@ TEST_CASE("runs of dt, 2dt and 4dt in one batch step at their own rates, each bi
       CHECK(!std::is_sorted(lockstep.begin(), lockstep.end()));
     }
   }
+}
+
+TEST_CASE("in lockstep, a contact class's run that has ended is not stepped past its last level") {
+  // Prediction: explicit penalty (Newmark β = 0, γ = ½, γ₀ = 1, the consistent mass, N = 16) at 0.9 of the
+  // linear limit gains energy and loses finiteness at level 150911 (its step then throws, measured alone
+  // below). In one lockstep batch (the same family and mesh: two lanes) with a stable run of 160000 levels
+  // (β = ¼), the explicit run of 1000 levels stays at its last level, so the sweep completes. Stepped on (as
+  // the batches of the paper's schemes are), it would throw at level 150911 of the batch (checked: it did).
+  const UniformMesh mesh(1.0, 16);
+  const MassRedistribution mass = mass_redistribution_by_name("consistent");
+  SchemeParameters p;
+  p.scheme = Scheme::penalty, p.newmark_beta = 0.0, p.newmark_gamma = 0.5, p.penalty = 1.0;
+  const double dt = 0.9 * newmark_stability_limit(modified_mass(mesh, mass), p1_stiffness(mesh), p, mesh.h());
+  BarSimulation alone(benchmark_problem(), mesh, mass, p, dt);
+  Index lost = 0;
+  try {
+    for (; lost < 200000; ++lost) alone.step();
+  } catch (const std::runtime_error&) {
+  }
+  REQUIRE(lost == 150910);  // the step from level 150910 throws
+  const std::vector<Index> levels{1000, 160000};
+  std::vector<Index> last(2, -1);
+  CHECK_NOTHROW(step_in_batches(
+      {{16, 4}, {16, 4}}, {2.0, 1.0},
+      [&](std::size_t k, Index& steps) {
+        steps = levels[k];
+        SchemeParameters q = p;
+        if (k == 1) q.newmark_beta = 0.25;
+        return BarSimulation(benchmark_problem(), mesh, mass, q, dt);
+      },
+      [&](std::size_t k, const Sample& s) {
+        last[k] = s.level;
+        return true;
+      },
+      [](std::size_t) {}, {1, true}));
+  CHECK(last == levels);
 }
 
 TEST_CASE("a cached reference gives the same bytes as one computed directly, and is computed once") {

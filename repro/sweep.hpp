@@ -120,7 +120,9 @@ using BatchLevelPrepare = std::function<void(const std::vector<std::size_t>& run
 /// horizon, each run steps at its own rate (BatchedSimulation::step(advance)), so the runs reach their
 /// common instants at the same batch step, and a run that has ended, or whose observer wants no more,
 /// stays as it is (run_batched with the caller's keys). Otherwise every run of the batch steps at every
-/// batch step, observed up to its own last level.
+/// batch step, observed up to its own last level, except a contact class's run (contact_classes.hpp), which
+/// stays once it has ended: its step checks the energy's finiteness, and an explicit run stepped past its
+/// horizon could lose it and throw.
 /// Each run sees the samples it would see stepped alone, so whatever a caller writes from them, in its
 /// own order, has the same bytes for any thread count and any vector width. The first exception stops
 /// the sweep and is rethrown.
