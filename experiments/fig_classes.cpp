@@ -85,7 +85,7 @@ struct Cell {
 // What one long run measures.
 struct Long {
   bool run = false;
-  double energy_ratio = 0, seconds = 0, work = 0;
+  double energy_ratio = 0, work = 0;
   std::size_t impacts = 0;
   std::vector<double> every_ten;  // E/E(0) every 10 periods
 };
@@ -231,7 +231,7 @@ int main(int argc, char** argv) {
       out << "# colour " << mrm::scheme_registry()[k].id << " = " << palette[k % 10] << '\n';
     out << "# long_mesh = " << long_mesh << "\n# long_periods = " << long_periods << '\n';
 
-    // 3. The runs: the matrix and the long runs, costliest first, on --threads workers.
+    // 3. The runs: the long runs (the sweep layer), then the matrix, costliest first, on --threads workers.
     struct Job {
       std::size_t benchmark, c, mesh, courant;
     };
@@ -257,28 +257,43 @@ int main(int argc, char** argv) {
     // multiplier between levels), so it is made once for the group and seen through a record
     // (repro::GroupReferences; the same doubles, so the same bytes). A group holds up to ~10 MB: its runs
     // come one after the other in the order of the runs (costliest_first), so few are alive at once.
+    // The long runs through the sweep layer (repro/sweep.hpp: the runs of one scheme family in vector lanes,
+    // each bitwise its run alone), observed for the energy only (the lanes read in place).
+    {
+      std::vector<repro::Configuration> configurations;
+      std::vector<mrm::Index> every;
+      std::vector<double> e0(longs.size());
+      for (std::size_t k = long_first; k < jobs.size(); ++k) {
+        repro::Configuration configuration =
+            configuration_of(cases[jobs[k].c], "paper", long_mesh, courants[jobs[k].courant], 3 * long_periods);
+        configuration.measure_errors = false;  // a long run keeps its energy and its impacts only
+        every.push_back(mrm::steps_to_reach(30.0, configuration.step()));
+        configurations.push_back(configuration);
+      }
+      repro::SweepSettings settings;
+      settings.threads = static_cast<unsigned>(threads);
+      const std::vector<repro::Measures> measures = repro::run_batched(
+          configurations, settings,
+          [&](std::size_t k, const mrm::Sample& s) {
+            if (s.level == 0) e0[k] = s.energy;
+            if (s.level > 0 && s.level % every[k] == 0) longs[k].every_ten.push_back(s.energy / e0[k]);
+          },
+          {}, /*observer_reads_vectors=*/false);
+      for (std::size_t k = 0; k < longs.size(); ++k) {
+        const repro::Measures& m = measures[k];
+        longs[k].run = true;
+        longs[k].energy_ratio = m.energy_final / m.energy_initial;
+        longs[k].impacts = m.impacts.size();
+        longs[k].work = static_cast<double>(long_mesh) * static_cast<double>(m.steps);
+      }
+    }
+    std::vector<std::size_t> matrix_order;  // the matrix's runs, costliest first
+    for (std::size_t k : order)
+      if (!is_long(k)) matrix_order.push_back(k);
     repro::GroupReferences references(cases.size());
-    repro::run_in_parallel(order, threads, [&](std::size_t k) {
+    repro::run_in_parallel(matrix_order, threads, [&](std::size_t k) {
       const Job& job = jobs[k];
       const auto start = std::chrono::steady_clock::now();
-      if (is_long(k)) {
-        Long& result = longs[k - long_first];
-        repro::Configuration configuration =
-            configuration_of(cases[job.c], "paper", long_mesh, courants[job.courant], 3 * long_periods);
-        configuration.measure_errors = false;  // a long run keeps its energy and its impacts only
-        double e0 = 0;
-        const mrm::Index every = mrm::steps_to_reach(30.0, configuration.step());
-        const repro::Measures m = repro::run_configuration(configuration, [&](const mrm::Sample& s) {
-          if (s.level == 0) e0 = s.energy;
-          if (s.level > 0 && s.level % every == 0) result.every_ten.push_back(s.energy / e0);
-        });
-        result.run = true;
-        result.energy_ratio = m.energy_final / m.energy_initial;
-        result.impacts = m.impacts.size();
-        result.work = static_cast<double>(long_mesh) * static_cast<double>(m.steps);
-        result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        return;
-      }
       Cell& cell = cells[k];
       const std::string& benchmark = benchmarks[job.benchmark];
       const repro::Configuration configuration =
@@ -510,7 +525,7 @@ int main(int argc, char** argv) {
       std::vector<double> costs;
       std::vector<mrm::Index> last_level(region.size());
       std::vector<double> e0(region.size()), largest(region.size(), 1.0);
-      std::vector<bool> stopped(region.size(), false);
+      std::vector<char> stopped(region.size(), 0);  // (not vector<bool>: runs on different threads write it)
       std::vector<std::vector<mrm::Index>> horizon_steps(region.size());
       using Clock = std::chrono::steady_clock;
       std::vector<Clock::time_point> began(region.size()), ended(region.size());
