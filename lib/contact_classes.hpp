@@ -80,23 +80,30 @@ class NewmarkTypeStep : public ContactClassStep {
  public:
   /// What the lanes copy of a run (pointers into the step, valid while it lives).
   struct Lanes {
-    const Tridiagonal *mass, *stiffness, *linear;  ///< M, S (for the energy), S_ℓ (the force)
-    const ContactSolver *solver, *mass_solver;     ///< A = M + βΔt²S_ℓ and M̃ (row 0 e₀ᵀ if massless)
-    const Eigen::VectorXd* z;                      ///< A⁻¹ of the law's weights (zero for newmark)
-    Eigen::VectorXd* force;                        ///< Rⁿ: the step's own state beside the StepState
-    double dt, beta, gamma;
-    bool massless;
-    std::array<double, 2> g;  ///< the law's force −λg on rows 0 and 1
+    const Tridiagonal* mass;           ///< M
+    const Tridiagonal* stiffness;      ///< S (for the energy)
+    const Tridiagonal* linear;         ///< S_ℓ: S with Nitsche's linear part (the force)
+    const ContactSolver* solver;       ///< A = M + βΔt²S_ℓ (row 0 S_ℓ's if massless)
+    const ContactSolver* mass_solver;  ///< M̃: M with row 0 e₀ᵀ if massless
+    const Eigen::VectorXd* z;          ///< A⁻¹ of the law's weights (empty for newmark)
+    Eigen::VectorXd* force;            ///< Rⁿ: the step's own state beside the StepState
+    double dt;                         ///< Δt
+    double beta;                       ///< Newmark's β
+    double gamma;                      ///< Newmark's γ
+    bool massless;                     ///< whether the contact node is massless
+    std::array<double, 2> g;           ///< the law's force −λg on rows 0 and 1
   };
-  /// The contact decision on the sweep down's y₀ and y₁: λⁿ⁺¹, u₀ (of U_f for penalty and Nitsche, of
-  /// Uⁿ⁺¹ for newmark) and whether U = U_f − λz.
+  /// The contact decision on the sweep down's y₀ and y₁.
   struct Decision {
-    double lambda = 0, u0 = 0;
-    bool shift = false;
+    double lambda = 0;   ///< λⁿ⁺¹
+    double u0 = 0;       ///< u₀ of U_f (penalty, Nitsche) or of Uⁿ⁺¹ (newmark)
+    bool shift = false;  ///< whether U = U_f − λz
   };
   /// Whether the step is the fused one without a load (the batched step's only form).
   virtual bool batchable() const = 0;
+  /// The run's rows, factors and Rⁿ, for the lanes.
   virtual Lanes lanes() = 0;
+  /// The contact decision of the fused step on y₀ and y₁ of the sweep down of A.
   virtual Decision decide(double y0, double y1) const = 0;
   /// The end of step `level` → level + 1, with Uⁿ⁺¹ (its entries 0 and 1 at least) and Vⁿ⁺¹ in `state`:
   /// λ, the status, the energy from ½VᵀMV + ½UᵀSU (`kinetic_and_strain`); throws if it is not finite.
