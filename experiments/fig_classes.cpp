@@ -523,7 +523,6 @@ int main(int argc, char** argv) {
       // alone); a run that stops, or has reached its last horizon, stays as it is while the others go on.
       std::vector<repro::BatchKey> keys;
       std::vector<double> costs;
-      std::vector<mrm::Index> last_level(region.size());
       std::vector<double> e0(region.size()), largest(region.size(), 1.0);
       std::vector<char> stopped(region.size(), 0);  // (not vector<bool>: runs on different threads write it)
       std::vector<std::vector<mrm::Index>> horizon_steps(region.size());

@@ -857,16 +857,11 @@ const BarSimulation& BatchedSimulation::run(std::size_t k) {
   std::vector<std::size_t> lanes;
   for (std::size_t j = 0; j < g.used; ++j)
     if (stale_[g.runs[j]]) lanes.push_back(j);
-  if (lanes.size() == 1 || g.newmark) {  // (a Newmark-type group: lane by lane, with its Rⁿ)
+  if (lanes.size() == 1 || g.newmark) {  // one lane, or a Newmark-type group's lanes one by one (with Rⁿ)
     for (std::size_t j : lanes) {
       store_lane(g, j, runs_[g.runs[j]]);
       stale_[g.runs[j]] = 0;
     }
-    return runs_[k];
-  }
-  if (lanes.size() == 1) {
-    store_lane(g, lane_of_[k], runs_[k]);
-    stale_[k] = 0;
     return runs_[k];
   }
   std::vector<double*> u, w, x;
