@@ -145,6 +145,7 @@
 #include "contact_classes.hpp"
 #include "mass_redistribution.hpp"
 #include "p1.hpp"
+#include "sweep.hpp"
 
 namespace mrm::claims {
 
@@ -212,7 +213,9 @@ std::vector<ClaimResult> check_classes(const ClassesSettings& settings, Judge& j
     configurations.push_back(classes_configuration(s, "consistent", "paper", settings.long_mesh, 0.5, long_time));
   // The rows read TV(λ), the energy and the impacts of a run, never its eight error measures.
   for (repro::Configuration& c : configurations) c.measure_errors = false;
-  const std::vector<repro::Measures> measures = repro::run_configurations(configurations, 2);
+  // Through the sweep layer (repro/sweep.hpp): the Newmark-type runs of one mesh in vector lanes, the
+  // two-body runs whole, on the threads of the sweep's settings; each run's measures bit for bit its own.
+  const std::vector<repro::Measures> measures = repro::run_batched(configurations);
   const auto tv = [&](const std::string& b, Scheme s, const std::string& mass, std::size_t a, std::size_t k) {
     for (std::size_t i = 0; i < keys.size(); ++i)
       if (keys[i].benchmark == b && keys[i].scheme == s && keys[i].mass == mass && keys[i].mesh == a &&

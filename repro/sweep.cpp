@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <deque>
 #include <fstream>
 #include <future>
 #include <map>
@@ -18,6 +19,7 @@
 #include <doctest/doctest.h>
 
 #include "errors.hpp"
+#include "impact_solution.hpp"
 #include "batched_step.hpp"
 #include "contact_classes.hpp"
 #include "p1.hpp"
@@ -172,28 +174,42 @@ TEST_CASE("a sweep's grid numbers its runs with the last axis fastest, and a run
 namespace {
 
 // What a unit configuration's reference depends on (unit_reference in configurations.cpp): its data
-// (by content: the unit configuration of each run holds its own copy of the scaled data, so runs of the
-// same benchmark share one reference), or the benchmark's name and the paper's length and amplitude; its
-// field chain (by identity, kept alive by the cache so that its address cannot be reused by another);
-// its mesh, Δt and the horizon.
-using ReferenceKey = std::tuple<std::string, std::string, const void*, double, double, Index, double, double>;
+// or its field chain, by content (the unit configuration of each run holds its own scaled copy of
+// either, so runs of the same benchmark, whatever their mass or scheme, share one reference), or the
+// benchmark's name and the paper's length and amplitude; its mesh, Δt and the horizon.
+using ReferenceKey = std::tuple<std::string, std::string, std::string, double, double, Index, double, double>;
+void put(std::string& bytes, double v) { bytes.append(reinterpret_cast<const char*>(&v), sizeof v); }
+void put(std::string& bytes, const std::vector<double>& v) {
+  put(bytes, static_cast<double>(v.size()));
+  for (double c : v) put(bytes, c);
+}
 std::string data_bytes(const InitialData* data) {
   if (!data) return {};
   std::string bytes;
-  const auto put = [&](double v) { bytes.append(reinterpret_cast<const char*>(&v), sizeof v); };
   for (const InitialDataPiece& piece : data->pieces) {
-    put(piece.a), put(piece.b);
-    put(static_cast<double>(piece.displacement.size()));
-    for (double c : piece.displacement) put(c);
-    put(static_cast<double>(piece.velocity.size()));
-    for (double c : piece.velocity) put(c);
+    put(bytes, piece.a), put(bytes, piece.b);
+    put(bytes, piece.displacement), put(bytes, piece.velocity);
   }
+  return bytes;
+}
+// Every member of the chain that the exact solution reads (ImpactSolution), its data and its horizon.
+std::string field_bytes(const ImpactBenchmark* field) {
+  if (!field) return {};
+  const ImpactConfiguration& chain = field->configuration;
+  std::string bytes = field->id + '\0' + data_bytes(&field->data);
+  put(bytes, field->final_time);
+  for (const BarSegment& segment : chain.segments)
+    put(bytes, segment.length), put(bytes, segment.modulus), put(bytes, segment.density), put(bytes, segment.load);
+  for (const SegmentJunction& junction : chain.junctions)
+    put(bytes, junction.contact ? 1.0 : 0.0), put(bytes, junction.gap);
+  put(bytes, chain.obstacle ? 1.0 : 0.0), put(bytes, chain.obstacle_gap);
+  put(bytes, static_cast<double>(chain.far_end));
   return bytes;
 }
 ReferenceKey reference_key(const Configuration& unit, double horizon) {
   return {data_bytes(unit.data.get()),
           unit.data ? std::string() : unit.benchmark,
-          unit.field.get(),
+          field_bytes(unit.field.get()),
           unit.length,
           unit.amplitude,
           unit.elements,
@@ -206,7 +222,6 @@ ReferenceKey reference_key(const Configuration& unit, double horizon) {
 struct ReferenceCache::Store {
   mutable std::mutex mutex;
   std::map<ReferenceKey, std::shared_future<std::shared_ptr<const ReferenceSolution>>> references;
-  std::vector<std::shared_ptr<const ImpactBenchmark>> fields;  // the field chains keyed by address
   std::size_t computed = 0;
 };
 
@@ -230,7 +245,6 @@ std::shared_ptr<const ReferenceSolution> ReferenceCache::operator()(const Config
     if (found != store_->references.end()) return found->second.get();
     future = promise.get_future().share();
     store_->references.emplace(key, future);
-    if (unit.field) store_->fields.push_back(unit.field);
     ++store_->computed;
   }
   try {
@@ -277,11 +291,15 @@ void apply_sweep_options(const SweepOptions& options) {
 void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double>& costs, const BatchStart& start,
                      const BatchObserve& observe, const std::function<void(std::size_t k)>& finish,
                      const SweepSettings& settings, const BatchLaneObserve& lane_observe,
-                     const BatchLevelPrepare& prepare, std::size_t most, bool own_rates) {
+                     const BatchLevelPrepare& prepare, std::size_t most, bool own_rates, const std::vector<char>& whole,
+                     const std::function<void(std::size_t k)>& run_whole) {
   const std::size_t count = keys.size();
   if (costs.size() != count) throw std::invalid_argument("step_in_batches: one cost per run");
+  if (!whole.empty() && (whole.size() != count || !run_whole))
+    throw std::invalid_argument("step_in_batches: one whole flag per run, and a run_whole");
   std::map<BatchKey, std::vector<std::size_t>> groups;
-  for (std::size_t k = 0; k < count; ++k) groups[keys[k]].push_back(k);
+  for (std::size_t k = 0; k < count; ++k)
+    if (whole.empty() || !whole[k]) groups[keys[k]].push_back(k);
   const std::size_t width = most > 0           ? most
                             : settings.batched ? std::max<std::size_t>(1, current_batch_target().lanes)
                                                : 1;
@@ -295,9 +313,14 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
       batch_cost.push_back(costs[batches.back().front()]);
     }
   }
+  // The whole runs after the batches: task b ≥ batches.size() is whole run wholes[b − batches.size()].
+  std::vector<std::size_t> wholes;
+  for (std::size_t k = 0; k < whole.size(); ++k)
+    if (whole[k]) wholes.push_back(k), batch_cost.push_back(costs[k]);
   const unsigned threads = settings.threads > 0 ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
-  run_in_parallel(costliest_first(batches.size(), [&](std::size_t b) { return batch_cost[b]; }),
+  run_in_parallel(costliest_first(batch_cost.size(), [&](std::size_t b) { return batch_cost[b]; }),
                   static_cast<long>(threads), [&](std::size_t b) {
+                    if (b >= batches.size()) return run_whole(wholes[b - batches.size()]);
                     const std::vector<std::size_t>& batch = batches[b];
                     std::vector<BarSimulation> simulations;
                     std::vector<Index> steps(batch.size(), 0);
@@ -415,18 +438,25 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
 
 std::vector<Measures> run_batched(const std::vector<Configuration>& configurations, const SweepSettings& settings,
                                   const std::function<void(std::size_t k, const Sample& sample)>& observe,
-                                  const std::vector<BatchKey>& given_keys, bool observer_reads_vectors) {
+                                  const std::vector<BatchKey>& given_keys, bool observer_reads_vectors,
+                                  const std::vector<SweepTask>& tasks) {
   const std::size_t count = configurations.size();
   if (!given_keys.empty() && given_keys.size() != count)
     throw std::invalid_argument("run_batched: one key per configuration");
-  std::vector<BatchKey> keys(count);
-  std::vector<double> costs(count);
+  // Runs 0 … count − 1 are the configurations, count … the tasks; the two-body runs and the tasks are whole.
+  std::vector<BatchKey> keys(count + tasks.size());
+  std::vector<double> costs(count + tasks.size());
+  std::vector<char> whole(count + tasks.size(), 1);
   for (std::size_t k = 0; k < count; ++k) {
     const Configuration& c = configurations[k];
     const double steps = c.steps >= 0 ? static_cast<double>(c.steps) : c.final_time / c.step();
     costs[k] = static_cast<double>(c.elements) * steps;
     keys[k] = given_keys.empty() ? BatchKey{c.elements, batch_family(c.scheme.scheme)} : given_keys[k];
+    whole[k] = is_two_body_configuration(c);
+    if (whole[k] && observe)
+      throw std::invalid_argument("run_batched: two bodies take no observer (a Sample is one body's)");
   }
+  for (std::size_t t = 0; t < tasks.size(); ++t) costs[count + t] = tasks[t].cost;
   ReferenceCache cache;
   const ReferenceSource source = [&cache](const Configuration& unit, double horizon) { return cache(unit, horizon); };
   // Each slot is written by the worker of its batch only.
@@ -470,7 +500,13 @@ std::vector<Measures> run_batched(const std::vector<Configuration>& configuratio
           }
         ErrorAccumulator::add_lanes(level.data(), level.size());
       },
-      given_keys.empty() || !settings.batched ? 0 : count, !given_keys.empty());
+      given_keys.empty() || !settings.batched ? 0 : count, !given_keys.empty(), whole,
+      [&](std::size_t k) {
+        if (k < count)
+          results[k] = run_configuration(configurations[k]);
+        else
+          tasks[k - count].run();
+      });
   return results;
 }
 
@@ -573,6 +609,47 @@ TEST_CASE("the batched sweep gives each run's measures bit for bit, for any thre
       }
   }
   use_batch_target(0);
+}
+
+TEST_CASE("two bodies and a sweep's own tasks run on the sweep's workers, each once, with run_configuration's bytes") {
+  // Prediction: a two-body run is run whole (run_configuration) as a task among the batches, and a task
+  // that is not a configuration is run once; neither changes a batch. So every configuration's measures
+  // are run_configuration's, and every task has run exactly once, for 1 and 2 threads, in lanes or not,
+  // with the default keys and with the caller's. An observer cannot see a two-body run: refused before any
+  // run.
+  std::vector<Configuration> configurations;
+  for (const char* mass : {"mod1", "mod3"})
+    for (const char* benchmark : {"paper", "two-bars", "bouncing"}) {
+      Configuration c = paper_configuration("cn", "algebraic", mass, 10, 0.5, 3.0);
+      c.benchmark = benchmark;
+      if (is_impact_benchmark(benchmark)) c.final_time = impact_benchmark(benchmark).final_time;
+      configurations.push_back(c);
+    }
+  REQUIRE(is_two_body_configuration(configurations[1]));
+  std::vector<std::string> expected;
+  for (const Configuration& c : configurations) expected.push_back(measure_bytes(run_configuration(c)));
+  std::vector<BatchKey> keys;
+  for (std::size_t k = 0; k < configurations.size(); ++k) keys.push_back({10, static_cast<int>(k % 3)});
+  for (unsigned threads : {1u, 2u})
+    for (bool batched : {true, false})
+      for (bool own_keys : {false, true}) {
+        CAPTURE(threads);
+        CAPTURE(batched);
+        CAPTURE(own_keys);
+        std::vector<int> ran(5, 0);
+        std::vector<SweepTask> tasks;
+        for (std::size_t t = 0; t < ran.size(); ++t)
+          tasks.push_back({static_cast<double>(t) * 1e3, [&ran, t] { ++ran[t]; }});
+        const std::vector<Measures> got =
+            run_batched(configurations, {threads, batched}, {}, own_keys ? keys : std::vector<BatchKey>{}, true, tasks);
+        REQUIRE(got.size() == configurations.size());
+        for (std::size_t k = 0; k < got.size(); ++k) {
+          CAPTURE(k);
+          CHECK(measure_bytes(got[k]) == expected[k]);
+        }
+        CHECK(ran == std::vector<int>(5, 1));
+      }
+  CHECK_THROWS_AS(run_batched(configurations, {1, true}, [](std::size_t, const Sample&) {}), std::invalid_argument);
 }
 
 TEST_CASE("runs keyed together by the caller share a batch, each with its measures and observed samples bit for bit") {
@@ -745,6 +822,25 @@ TEST_CASE("a cached reference gives the same bytes as one computed directly, and
   other.courant = 0.25;
   ConfigurationRun other_run(other, nullptr, nullptr, source);
   CHECK(cache.computed() == 2);
+  // A field benchmark: each run's unit configuration holds its own copy of the scaled chain; two masses
+  // and two schemes of one benchmark, mesh and Δt share one reference (by the chain's content), another
+  // benchmark or mesh does not.
+  std::deque<ConfigurationRun> alive;
+  const auto field_reference = [&](const char* benchmark, const char* scheme, const char* mass, Index n) {
+    Configuration f = paper_configuration(scheme, "algebraic", mass, n, 0.5, 1.0);
+    f.benchmark = benchmark;
+    f.final_time = impact_benchmark(benchmark).final_time;
+    const ConfigurationRun& r = alive.emplace_back(f);  // kept: its chain's address is not reused
+    return cache(r.unit(), reference_horizon(r.steps(), r.unit().step())).get();
+  };
+  const auto bouncing = field_reference("bouncing", "cn", "mod1", 10);
+  CHECK(cache.computed() == 3);
+  CHECK(field_reference("bouncing", "cn", "mod3", 10) == bouncing);
+  CHECK(field_reference("bouncing", "be", "mod2", 10) == bouncing);
+  CHECK(cache.computed() == 3);
+  CHECK(field_reference("layered", "cn", "mod1", 10) != bouncing);
+  CHECK(field_reference("bouncing", "cn", "mod1", 20) != bouncing);
+  CHECK(cache.computed() == 5);
 }
 
 }  // namespace mrm::repro

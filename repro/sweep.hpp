@@ -130,10 +130,22 @@ using BatchLevelPrepare = std::function<void(const std::vector<std::size_t>& run
 /// vectors out of the lanes per level), each level of a batch's lanes first by `prepare` if given.
 /// `most`: the most runs per batch (0: the vector width; the batched step groups a batch's runs by family
 /// and width itself, and steps the others alone).
+/// `whole` (if not empty, one flag per run): the runs k with whole[k] ≠ 0 are not one-body simulations
+/// (two bodies, a program's own task): each is one task, `run_whole(k)`, on the same workers, placed among
+/// the batches by its cost; `start`, `observe` and `finish` are not called for it, and its key is not used.
 void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double>& costs, const BatchStart& start,
                      const BatchObserve& observe, const std::function<void(std::size_t k)>& finish,
                      const SweepSettings& settings = sweep_settings(), const BatchLaneObserve& lane_observe = {},
-                     const BatchLevelPrepare& prepare = {}, std::size_t most = 0, bool own_rates = false);
+                     const BatchLevelPrepare& prepare = {}, std::size_t most = 0, bool own_rates = false,
+                     const std::vector<char>& whole = {}, const std::function<void(std::size_t k)>& run_whole = {});
+
+/// A task of a sweep that is not a configuration (a program's own study, e.g. a run on a graded mesh):
+/// its cost in the units of a configuration's (elements × steps), for the order of the work, and the work,
+/// which writes its result to a place of its own.
+struct SweepTask {
+  double cost = 0;
+  std::function<void()> run;
+};
 
 /// Independent configurations, each measured as run_configuration measures it, through the sweep layer:
 /// the runs of the same number of elements and scheme family (batch_family: Crank–Nicolson and backward
@@ -153,9 +165,13 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
 /// `observer_reads_vectors` false: `observe` reads only a sample's level, instants, λ and energy
 /// (ConfigurationRun::set_observer_reads_vectors), so the runs in lanes are observed in place; its samples'
 /// displacement and velocity are null.
+/// Two bodies (is_two_body_configuration) are run whole by run_configuration on the same workers (they take
+/// no observer: with `observe`, std::invalid_argument before any run). `tasks`: the sweep's work that is
+/// not a configuration, each task run once on the same workers, ordered with the runs by cost.
 std::vector<Measures> run_batched(const std::vector<Configuration>& configurations,
                                   const SweepSettings& settings = sweep_settings(),
                                   const std::function<void(std::size_t k, const Sample& sample)>& observe = {},
-                                  const std::vector<BatchKey>& keys = {}, bool observer_reads_vectors = true);
+                                  const std::vector<BatchKey>& keys = {}, bool observer_reads_vectors = true,
+                                  const std::vector<SweepTask>& tasks = {});
 
 }  // namespace mrm::repro
