@@ -402,7 +402,8 @@ HWY_EXPORT(LaneInterpolantSums2);
 /// @endcond
 
 template <typename Stride>
-void ErrorAccumulator::add_vectors(const Sample& sample, const double* u, const double* v, Stride stride) {
+void ErrorAccumulator::add_vectors(const Sample& sample, const double* u, const double* v, Stride stride,
+                                   bool evaluated) {
   const Index n = mesh_.unknowns();
   const double* x = nodes_.data();
 
@@ -435,8 +436,10 @@ void ErrorAccumulator::add_vectors(const Sample& sample, const double* u, const 
     using Strided = Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<>>;
     const Strided uc(u, n, Eigen::InnerStride<>(static_cast<long>(stride)));
     const Strided vc(v, n, Eigen::InnerStride<>(static_cast<long>(stride)));
-    exact_->displacement_at_points(sample.time, x, static_cast<long>(n), interpolant_.data());
-    exact_->velocity_at_points(sample.velocity_time, x, static_cast<long>(n), velocity_interpolant_.data());
+    if (!evaluated) {
+      exact_->displacement_at_points(sample.time, x, static_cast<long>(n), interpolant_.data());
+      exact_->velocity_at_points(sample.velocity_time, x, static_cast<long>(n), velocity_interpolant_.data());
+    }
     error_ = uc - interpolant_;
     const double t = sample.time;
     u_l2_.add(t, mass_.bilinear(error_, error_), mass_.bilinear(interpolant_, interpolant_));
@@ -462,8 +465,10 @@ void ErrorAccumulator::add_vectors(const Sample& sample, const double* u, const 
   } else {
     double* ui = interpolant_.data();
     double* vi = velocity_interpolant_.data();
-    exact_->displacement_at_points(sample.time, x, static_cast<long>(n), ui);
-    exact_->velocity_at_points(sample.velocity_time, x, static_cast<long>(n), vi);
+    if (!evaluated) {
+      exact_->displacement_at_points(sample.time, x, static_cast<long>(n), ui);
+      exact_->velocity_at_points(sample.velocity_time, x, static_cast<long>(n), vi);
+    }
     su = sums(u, ui);
     sv = sums(v, vi);
   }
@@ -686,8 +691,38 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
       continue;
     }
     if (!takes(first)) {
-      lead.add(*first.sample, first.lanes);
-      continue;
+      // The other runs against a reference other than the closed form (on their own vectors, stepped
+      // alone in a batch; in lanes of a width without a kernel; on a mesh whose matrices are not
+      // Toeplitz): those of the same reference object, instants and nodes have u_I and (u_t)_I evaluated
+      // once (the lead's buffers, copied into each run's), and each adds its level from them
+      // (add_vectors with the stride add(sample, lanes) passes, so add's bits).
+      const Sample& at = *first.sample;
+      const Index n = lead.mesh_.unknowns();
+      set.assign(1, a);
+      for (std::size_t b = a + 1; b < count; ++b) {
+        const Lane& other = level[b];
+        const ErrorAccumulator& e = *other.errors;
+        if (!done[b] && !takes(other) && !evaluates(other) && e.exact_ == lead.exact_ && other.lanes.stride >= 1 &&
+            same_bits(other.sample->time, at.time) && same_bits(other.sample->velocity_time, at.velocity_time) &&
+            e.mesh_.unknowns() == n &&
+            std::memcmp(e.nodes_.data(), lead.nodes_.data(), static_cast<std::size_t>(n) * sizeof(double)) == 0)
+          set.push_back(b);
+      }
+      if (set.size() == 1 || first.lanes.stride < 1) {
+        lead.add(at, first.lanes);
+        continue;
+      }
+      const double* x = lead.nodes_.data();
+      lead.exact_->displacement_at_points(at.time, x, static_cast<long>(n), lead.interpolant_.data());
+      lead.exact_->velocity_at_points(at.velocity_time, x, static_cast<long>(n), lead.velocity_interpolant_.data());
+      for (std::size_t k : set) {
+        ErrorAccumulator& e = *level[k].errors;
+        if (k != a) e.interpolant_ = lead.interpolant_, e.velocity_interpolant_ = lead.velocity_interpolant_;
+        const LaneVectors& lanes = level[k].lanes;
+        e.add_vectors(*level[k].sample, lanes.displacement, lanes.velocity, static_cast<long>(lanes.stride), true);
+        done[k] = 1;
+      }
+      continue;  // evaluated together, summed one by one: not counted
     }
     const Index n = lead.mesh_.unknowns();
     const double* x = lead.nodes_.data();
@@ -1206,6 +1241,75 @@ TEST_CASE("runs on their own vectors at the same instants share the closed form'
     CHECK(ErrorAccumulator::add_lanes(lanes.data(), lanes.size()) == 0);
   }
   check_lanes_match(alone, together);
+}
+
+namespace {
+// A reference that counts its evaluations at the nodes (the doctest below).
+class CountingReference final : public ReferenceSolution {
+ public:
+  explicit CountingReference(const ReferenceSolution& r) : r_(r) {}
+  double length() const override { return r_.length(); }
+  double displacement(double x, double t) const override { return r_.displacement(x, t); }
+  double strain(double x, double t) const override { return r_.strain(x, t); }
+  double velocity(double x, double t) const override { return r_.velocity(x, t); }
+  double contact_displacement(double t) const override { return r_.contact_displacement(t); }
+  double contact_multiplier(double t) const override { return r_.contact_multiplier(t); }
+  double energy() const override { return r_.energy(); }
+  void displacement_at_points(double t, const double* x, long count, double* u) const override {
+    ++evaluations;
+    r_.displacement_at_points(t, x, count, u);
+  }
+  void velocity_at_points(double t, const double* x, long count, double* v) const override {
+    ++evaluations;
+    r_.velocity_at_points(t, x, count, v);
+  }
+  mutable long evaluations = 0;
+
+ private:
+  const ReferenceSolution& r_;
+};
+}  // namespace
+
+TEST_CASE("runs on their own vectors against one reference object at the same instants share its evaluation") {
+  // Prediction: add_lanes evaluates a reference other than the closed form once per level for the runs
+  // on their own vectors (stride 1: stepped alone in a batch) that ask the same object at the same
+  // instants on the same nodes, on a uniform mesh and on a graded one (whose matrices are not Toeplitz:
+  // the forms by Tridiagonal::bilinear), and each run adds its level from those values with add's
+  // arithmetic: every measure has the bits of add(sample). Four runs: three at the instants of a step
+  // h/2, one at 0.37 h (its own evaluation). So two evaluations of u_I and two of (u_t)_I per level,
+  // against eight alone; none is summed in one pass with another (no lanes of one vector).
+  const CharacteristicSolution solution(benchmark_initial_data(1.0, 0.5), 2.0);
+  for (const double ratio : {1.0, 1.01}) {
+    const UniformMesh mesh = graded_mesh(1.0, 20, ratio);
+    const Index n = mesh.unknowns();
+    const auto shared = std::make_shared<const CountingReference>(solution);
+    const auto own = std::make_shared<const CountingReference>(solution);
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> wiggle(-0.01, 0.01);
+    std::vector<ErrorAccumulator> together, alone;
+    for (int j = 0; j < 4; ++j) together.emplace_back(mesh, shared), alone.emplace_back(mesh, own);
+    std::vector<Eigen::VectorXd> u(4, Eigen::VectorXd(n)), v(4, Eigen::VectorXd(n));
+    for (int level = 0; level <= 30; ++level) {
+      std::vector<Sample> samples(4);
+      std::vector<ErrorAccumulator::Lane> lanes;
+      for (std::size_t j = 0; j < 4; ++j) {
+        const double dt = (j == 1 ? 0.37 : 0.5) * mesh.h(0), t = level * dt;
+        for (Index i = 0; i < n; ++i) {
+          u[j][i] = solution.displacement(mesh.x(i), t) + wiggle(random);
+          v[j][i] = solution.velocity(mesh.x(i), t) + wiggle(random);
+        }
+        samples[j] = {level, t, &u[j], t, &v[j], level > 0, t, solution.contact_multiplier(t) + wiggle(random), t, 0.0};
+        alone[j].add(samples[j]);
+        lanes.push_back({&together[j], &samples[j], LaneVectors{u[j].data(), v[j].data(), 1, 0}});
+      }
+      const long before = shared->evaluations;
+      CHECK(ErrorAccumulator::add_lanes(lanes.data(), lanes.size()) == 0);
+      CAPTURE(level);
+      CHECK(shared->evaluations - before == (level == 0 ? 2 : 4));  // level 0: t = 0 for all four
+    }
+    CAPTURE(ratio);
+    check_lanes_match(alone, together);
+  }
 }
 
 TEST_CASE("runs against one reference object at the same instants share its evaluation, each lane's bits its own") {

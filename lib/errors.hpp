@@ -91,8 +91,10 @@ class ErrorAccumulator {
   /// over the nodes with their lanes side by side in vector registers (errors.cpp); so are runs against
   /// the same other reference object (ReferenceCache shares one: the characteristic solution) at the
   /// same instants on the same nodes, its values at the nodes and contact point evaluated once for all
-  /// of them; any other run alone. The runs must be distinct (one lane each). Returns the number of runs
-  /// summed together.
+  /// of them. Runs against such a reference that cannot be summed so (on their own vectors, on a mesh
+  /// whose matrices are not Toeplitz) share its values at the nodes too, and each adds its level from
+  /// them alone; any other run alone. The runs must be distinct (one lane each). Returns the number of
+  /// runs summed together (in one pass).
   static std::size_t add_lanes(const Lane* level, std::size_t count);
   /// The relative errors of the samples added so far.
   ErrorNorms relative() const;
@@ -107,8 +109,10 @@ class ErrorAccumulator {
   struct Sums {
     double e0, e_last, e_differences, e_squares, i0, i_last, i_differences, i_squares;
   };
+  // The level from the vectors U and V seen with their stride; `evaluated`: a reference other than the
+  // closed form has been evaluated at the sample's instants into interpolant_ and velocity_interpolant_.
   template <typename Stride>
-  void add_vectors(const Sample& sample, const double* u, const double* v, Stride stride);
+  void add_vectors(const Sample& sample, const double* u, const double* v, Stride stride, bool evaluated = false);
   // The level from its sums (u_first: the displacement's first entry): the forms and the histories,
   // with the reference's u(0, t) and λ at the sample's instants (λ: 0 if the sample has no multiplier)
   // given, or evaluated.
