@@ -61,11 +61,10 @@
 #include "labels.hpp"
 #include "mass_redistribution.hpp"
 #include "mass_spec.hpp"
-#include "memoized_reference.hpp"
 #include "options.hpp"
-#include "parallel.hpp"
 #include "period_law.hpp"
 #include "report_values.hpp"
+#include "sweep.hpp"
 #include "table.hpp"
 #include "two_bodies.hpp"
 
@@ -173,71 +172,37 @@ int main(int argc, char** argv) {
     std::vector<GradedRun> graded;
     for (const double r : ratios)
       for (const std::string m : {"mod3", "mod1", "mod2", "spread:199"}) graded.push_back({r, m});
-    std::vector<mrm::repro::Measures> measures(configurations.size());
     const std::size_t total = configurations.size() + graded.size();
-    const auto cost = [&](std::size_t k) {
-      if (k < configurations.size())
-        return static_cast<double>(configurations[k].elements) * configurations[k].final_time /
-               configurations[k].step();
-      const mrm::UniformMesh mesh = mrm::graded_mesh(1.0, graded_elements, graded[k - configurations.size()].ratio);
-      return graded_elements * 3 * graded_periods / (0.5 * mesh.h(0));
-    };
-    // The exact solution of a group: the three masses of one benchmark and mesh (the h study's runs, Δt
-    // = h/(2c)) ask it the same questions at the same instants, so it is made once for the group and seen
-    // through a record (repro::GroupReferences: the same doubles as each run's own reference, so the same
-    // bytes). Not for two-bars (a two-body run takes no reference: run_configuration) nor for the Δt
-    // study's runs (one run per mesh and Δt). A record holds u and u_t at the N + 1 nodes at every
-    // instant asked: bouncing's finest group (N = 320) records ~61 000 answers, ~75 MB, the program's peak
-    // (85 MiB, against 11 MiB without the records); a group's runs have the same cost and are run one
-    // after the other (below), and the group is dropped after its last, so few groups are alive at once
-    // (beside a group's last run, the next group's first: a smaller one, costliest first).
-    using Key = mrm::repro::GroupReferences::Key;  // benchmark, mesh, Δt (h/(2c): one)
-    const auto grouped = [&](std::size_t k) {
-      return k < time_study && !mrm::repro::is_two_body_configuration(configurations[k]);
-    };
-    const auto key_of = [&](std::size_t k) { return Key{k / (levels * masses.size()), k % levels, 0}; };
-    mrm::repro::GroupReferences references(masses.size());
-    // Longest first, each group's runs together (costliest_first keeps the index order of equal costs,
-    // where another benchmark's runs of the same cost may come between a group's).
-    std::vector<std::size_t> order;
-    {
-      std::vector<bool> placed(configurations.size(), false);
-      const std::vector<std::size_t> longest = mrm::repro::costliest_first(total, cost);
-      for (const std::size_t k : longest) {
-        if (k >= configurations.size() || !grouped(k)) {
-          order.push_back(k);
-          continue;
-        }
-        if (placed[k]) continue;
-        for (const std::size_t j : longest)
-          if (j < configurations.size() && grouped(j) && key_of(j) == key_of(k)) order.push_back(j), placed[j] = true;
-      }
+    // Through the sweep layer (repro/sweep.hpp, run_batched), keyed by group: the three masses of one
+    // benchmark and mesh (the h study's runs, Δt = h/(2c)) make one batch, in vector lanes where the
+    // batched step takes them (the others, a benchmark with a load, stepped alone in it), and ask the same
+    // exact solution the same questions at the same instants: it is made once for the sweep
+    // (ReferenceCache) and evaluated once per instant for the batch (ErrorAccumulator::add_lanes). The Δt
+    // study's two runs of a benchmark make one batch (2h/c and h/c, each at its own rate). Two-bars' runs
+    // are two bodies, run whole; the graded runs are the sweep's own tasks (they are not configurations).
+    // Each run's measures are run_configuration's, bit for bit, on any thread count and vector width.
+    std::vector<mrm::repro::BatchKey> keys;
+    for (std::size_t k = 0; k < configurations.size(); ++k) {
+      const int benchmark = static_cast<int>(k < time_study ? k / (levels * masses.size())
+                                                            : (k - time_study) / (time_courants.size() - 1));
+      keys.push_back({configurations[k].elements, k < time_study ? benchmark : 100 + benchmark});
     }
-    const auto start = std::chrono::steady_clock::now();
-    mrm::repro::run_in_parallel(order, threads, [&](std::size_t k) {
-      if (k < configurations.size()) {
-        if (!grouped(k)) {
-          measures[k] = mrm::repro::run_configuration(configurations[k]);
-          return;
-        }
-        // run_configuration(configurations[k]) with the group's reference (the same measures but the
-        // phase, which a record does not give and this program does not use: repro::MemoizedReference).
-        const Key key = key_of(k);
-        mrm::repro::ConfigurationRun run(configurations[k], {}, nullptr, references.source(key));
-        mrm::run(run.simulation(), run.steps(), [&](const mrm::Sample& s) { run.add(s); });
-        measures[k] = run.measures();
-        references.done(key);
-        return;
-      }
-      GradedRun& g = graded[k - configurations.size()];
+    std::vector<mrm::repro::SweepTask> tasks;
+    for (GradedRun& g : graded) {
       const mrm::UniformMesh mesh = mrm::graded_mesh(1.0, graded_elements, g.ratio);
-      g.phase = mrm::measure_benchmark_phase(mesh, mrm::repro::mass_redistribution_from_spec(g.mass, mesh), 0.5,
-                                             graded_periods);
-    });
+      tasks.push_back({graded_elements * 3 * graded_periods / (0.5 * mesh.h(0)), [&g] {
+                         const mrm::UniformMesh m = mrm::graded_mesh(1.0, graded_elements, g.ratio);
+                         g.phase = mrm::measure_benchmark_phase(m, mrm::repro::mass_redistribution_from_spec(g.mass, m),
+                                                                0.5, graded_periods);
+                       }});
+    }
+    mrm::repro::SweepSettings settings = mrm::repro::sweep_settings();
+    settings.threads = static_cast<unsigned>(threads);
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<mrm::repro::Measures> measures =
+        mrm::repro::run_batched(configurations, settings, {}, keys, true, tasks);
     std::cerr << "fig_benchmark_convergence: " << total << " runs in "
-              << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
-              << " s; exact solutions: " << references.evaluations() << " evaluations for " << references.questions()
-              << " questions\n";
+              << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
 
     // 4. The data blocks.
     std::ostream& out = program.header("relative errors against h on the field's benchmarks; graded period law");
