@@ -143,8 +143,8 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
 /// its cost in the units of a configuration's (elements × steps), for the order of the work, and the work,
 /// which writes its result to a place of its own.
 struct SweepTask {
-  double cost = 0;
-  std::function<void()> run;
+  double cost = 0;            ///< elements × steps, or an estimate in those units
+  std::function<void()> run;  ///< the work; run once, on one of the sweep's workers
 };
 
 /// Independent configurations, each measured as run_configuration measures it, through the sweep layer:
