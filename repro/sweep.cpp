@@ -176,8 +176,9 @@ namespace {
 // What a unit configuration's reference depends on (unit_reference in configurations.cpp): its data
 // or its field chain, by content (the unit configuration of each run holds its own scaled copy of
 // either, so runs of the same benchmark, whatever their mass or scheme, share one reference), or the
-// benchmark's name and the paper's length and amplitude; its mesh, Δt and the horizon.
-using ReferenceKey = std::tuple<std::string, std::string, std::string, double, double, Index, double, double>;
+// benchmark's name and the paper's length and amplitude; its mesh (the grading too: a graded mesh takes
+// the characteristic solution where a uniform one takes the closed form or a table), Δt and the horizon.
+using ReferenceKey = std::tuple<std::string, std::string, std::string, double, double, double, Index, double, double>;
 void put(std::string& bytes, double v) { bytes.append(reinterpret_cast<const char*>(&v), sizeof v); }
 void put(std::string& bytes, const std::vector<double>& v) {
   put(bytes, static_cast<double>(v.size()));
@@ -212,6 +213,7 @@ ReferenceKey reference_key(const Configuration& unit, double horizon) {
           field_bytes(unit.field.get()),
           unit.length,
           unit.amplitude,
+          unit.grading,
           unit.elements,
           unit.step(),
           horizon};
@@ -833,6 +835,14 @@ TEST_CASE("a cached reference gives the same bytes as one computed directly, and
   other.courant = 0.25;
   ConfigurationRun other_run(other, nullptr, nullptr, source);
   CHECK(cache.computed() == 2);
+  // A graded mesh of the same data, N and Δt takes the characteristic solution (not the table): another key.
+  Configuration graded = c;
+  graded.grading = 1.01;
+  graded.dt = c.step();  // the same Δt: only the grading differs
+  ConfigurationRun graded_run(graded, nullptr, nullptr, source);
+  run(graded_run.simulation(), graded_run.steps(), [&](const Sample& s) { graded_run.add(s); });
+  CHECK(cache.computed() == 3);
+  CHECK(measure_bytes(graded_run.measures()) == measure_bytes(run_configuration(graded)));
   // A field benchmark: each run's unit configuration holds its own copy of the scaled chain; two masses
   // and two schemes of one benchmark, mesh and Δt share one reference (by the chain's content), another
   // benchmark or mesh does not.
@@ -845,13 +855,13 @@ TEST_CASE("a cached reference gives the same bytes as one computed directly, and
     return cache(r.unit(), reference_horizon(r.steps(), r.unit().step())).get();
   };
   const auto bouncing = field_reference("bouncing", "cn", "mod1", 10);
-  CHECK(cache.computed() == 3);
+  CHECK(cache.computed() == 4);
   CHECK(field_reference("bouncing", "cn", "mod3", 10) == bouncing);
   CHECK(field_reference("bouncing", "be", "mod2", 10) == bouncing);
-  CHECK(cache.computed() == 3);
+  CHECK(cache.computed() == 4);
   CHECK(field_reference("layered", "cn", "mod1", 10) != bouncing);
   CHECK(field_reference("bouncing", "cn", "mod1", 20) != bouncing);
-  CHECK(cache.computed() == 5);
+  CHECK(cache.computed() == 6);
 }
 
 }  // namespace mrm::repro
