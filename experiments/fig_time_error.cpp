@@ -72,9 +72,9 @@
 #include "convergence.hpp"
 #include "errors.hpp"
 #include "options.hpp"
-#include "parallel.hpp"
 #include "report_values.hpp"
 #include "schemes.hpp"
+#include "sweep.hpp"
 #include "table.hpp"
 
 namespace cli = mrm::cli;
@@ -307,7 +307,7 @@ int main(int argc, char** argv) {
       const double n = static_cast<double>(family_meshes[t - 2 - impact_tasks]);
       return 2.0 * static_cast<double>(family_reference_ratio) * n * n;
     };
-    mrm::repro::run_in_parallel(mrm::repro::costliest_first(tasks, cost), threads, [&](std::size_t t) {
+    const auto task = [&](std::size_t t) {
       if (t < 2) return compute(series[t], final_time, mass);
       if (t < 2 + impact_tasks) {
         const std::size_t j = (t - 2) / 2;
@@ -320,7 +320,15 @@ int main(int argc, char** argv) {
       family[f] = mrm::repro::time_family_mesh(
           family_meshes[f], family_masses[f],
           mrm::repro::scheme_parameters(mrm::Scheme::crank_nicolson, "algebraic", mass), family_settings);
-    });
+    };
+    // The sweep layer's workers (repro/sweep.hpp) run them as its own tasks, costliest first: each task
+    // steps its chains itself (a reference chain with its runs compared at the common instants; the
+    // family's two reference chains share two vector lanes from N = 100 on, time_family.cpp).
+    std::vector<mrm::repro::SweepTask> work;
+    for (std::size_t t = 0; t < tasks; ++t) work.push_back({cost(t), [&task, t] { task(t); }});
+    mrm::repro::SweepSettings settings = mrm::repro::sweep_settings();
+    settings.threads = static_cast<unsigned>(threads);
+    mrm::repro::run_batched({}, settings, {}, {}, true, work);
     for (const Series& se : series)
       for (const auto& e : se.differences)
         for (double v : e)
