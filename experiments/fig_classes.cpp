@@ -50,7 +50,6 @@
 #include "labels.hpp"
 #include "memoized_reference.hpp"
 #include "options.hpp"
-#include "parallel.hpp"
 #include "report_values.hpp"
 #include "sweep.hpp"
 #include "table.hpp"
@@ -246,11 +245,11 @@ int main(int argc, char** argv) {
     std::vector<Cell> cells(long_first);
     std::vector<Long> longs(jobs.size() - long_first);
     const auto is_long = [&](std::size_t k) { return k >= long_first; };
-    const std::vector<std::size_t> order = repro::costliest_first(jobs.size(), [&](std::size_t k) {
+    const auto job_cost = [&](std::size_t k) {
       const double n = is_long(k) ? long_mesh : static_cast<double>(meshes[jobs[k].mesh]);
       const double t = is_long(k) ? 3 * long_periods : final_time(benchmarks[jobs[k].benchmark]);
       return n * n * t / courants[jobs[k].courant];
-    });
+    };
     // The exact solution of one group of the matrix: the runs of every class-mass pair on one benchmark,
     // mesh and Δt (issue 24, item 2) ask it the same questions (u and u_t at the nodes, u(0, ·) and λ at
     // the instants of their samples: kΔt, and (k ± ½)Δt where a class samples its velocity or its
@@ -287,11 +286,8 @@ int main(int argc, char** argv) {
         longs[k].work = static_cast<double>(long_mesh) * static_cast<double>(m.steps);
       }
     }
-    std::vector<std::size_t> matrix_order;  // the matrix's runs, costliest first
-    for (std::size_t k : order)
-      if (!is_long(k)) matrix_order.push_back(k);
     repro::GroupReferences references(cases.size());
-    repro::run_in_parallel(matrix_order, threads, [&](std::size_t k) {
+    const auto matrix_run = [&](std::size_t k) {
       const Job& job = jobs[k];
       const auto start = std::chrono::steady_clock::now();
       Cell& cell = cells[k];
@@ -326,7 +322,16 @@ int main(int argc, char** argv) {
       cell.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       for (double v : cell.errors)
         if (!std::isfinite(v)) throw std::runtime_error("fig_classes: a non-finite error in " + cases[job.c].id());
-    });
+    };
+    // The matrix's runs as the sweep layer's tasks (repro/sweep.hpp), costliest first: each is stepped
+    // alone and timed, for the cost per step and node of its class, which a batch would mix.
+    {
+      std::vector<repro::SweepTask> tasks;
+      for (std::size_t k = 0; k < long_first; ++k) tasks.push_back({job_cost(k), [&matrix_run, k] { matrix_run(k); }});
+      repro::SweepSettings settings;
+      settings.threads = static_cast<unsigned>(threads);
+      repro::run_batched({}, settings, {}, {}, true, tasks);
+    }
     const auto cell = [&](std::size_t b, std::size_t c, std::size_t a, std::size_t k) -> const Cell& {
       return cells[((b * cases.size() + c) * meshes.size() + a) * courants.size() + k];
     };
