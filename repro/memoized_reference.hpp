@@ -78,7 +78,7 @@ class MemoizedReference final : public ReferenceSolution {
 /// wrapped: its error sums take a path of their own, cheaper than a record. A record holds the nodal
 /// values of every instant asked, about 2 (N + 1) doubles per level of the runs: the caller schedules a
 /// group's runs one after the other so that few groups are alive at once. Safe on several threads.
-/// (fig_classes, issue 24 item 2; fig_benchmark_convergence.)
+/// (fig_classes' class matrix, issue 24 item 2.)
 class GroupReferences {
  public:
   /// A group: three indices of the caller's (fig_classes: benchmark, mesh, Δt).
