@@ -193,12 +193,12 @@ std::string data_bytes(const InitialData* data) {
   }
   return bytes;
 }
-// Every member of the chain that the exact solution reads (ImpactSolution), its data and its horizon.
+// What the field's exact solution reads (ImpactReference: the chain and its data; the horizon is the
+// key's own): every member of the chain and the data.
 std::string field_bytes(const ImpactBenchmark* field) {
   if (!field) return {};
   const ImpactConfiguration& chain = field->configuration;
-  std::string bytes = field->id + '\0' + data_bytes(&field->data);
-  put(bytes, field->final_time);
+  std::string bytes = data_bytes(&field->data);
   for (const BarSegment& segment : chain.segments)
     put(bytes, segment.length), put(bytes, segment.modulus), put(bytes, segment.density), put(bytes, segment.load);
   for (const SegmentJunction& junction : chain.junctions)
@@ -289,7 +289,8 @@ void apply_sweep_options(const SweepOptions& options) {
 // multiples of the smallest, BatchedSimulation::step(advance), and a lane whose run has ended, or whose
 // observer wants no more, is kept as it is; otherwise such a lane is stepped on, no longer observed, except
 // a contact class's run, which is kept: its step checks finiteness and could throw past the run's horizon).
-// Each batch is one task of run_in_parallel, costliest first (its first run's cost).
+// Each batch is one task of run_in_parallel, and so is each whole run (two bodies, a caller's task):
+// costliest first (a batch's cost: its first run's).
 void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double>& costs, const BatchStart& start,
                      const BatchObserve& observe, const std::function<void(std::size_t k)>& finish,
                      const SweepSettings& settings, const BatchLaneObserve& lane_observe,
