@@ -729,7 +729,7 @@ class NewmarkContactStep final : public NewmarkTypeStep {
 };
 
 // Moreau–Jean (θ, e) (file comment, (MJ)).
-class MoreauJeanStep final : public ContactClassStep {
+class MoreauJeanStep final : public OneSolveStep {
  public:
   MoreauJeanStep(const Tridiagonal& mass, const Tridiagonal& stiffness, const SchemeParameters& p, double dt,
                  bool has_load, double gap, StepState& state)
@@ -789,15 +789,8 @@ class MoreauJeanStep final : public ContactClassStep {
     sweep_down_forming(solver_, n, y, explicit_part_, w, stiffness_, u, b,
                        b(0, row_product(explicit_part_, w, 0, n), row_product(stiffness_, u, 0, n)));
     // 2. The impact law, the sweep up and Uⁿ⁺¹.
-    const double v0 = w[0];
-    double impulse = 0, vi = 0;
-    if (u[0] + gap_ + 0.5 * dt * v0 <= 0) {
-      const ContactStep contact = solver_.resolve_contact(y[0], 1.0, -restitution_ * v0);
-      impulse = -contact.multiplier;
-      vi = contact.u0;
-    } else {
-      vi = y[0] * solver_.inverse_pivot()[0];
-    }
+    const Decision d = decide(y[0], u[0], w[0]);
+    double vi = d.x0;
     const double *ip = solver_.inverse_pivot().data(), *cu = solver_.upward().data();
     const double a = 1 - theta_;
     double* un = state.u.data();
@@ -808,18 +801,36 @@ class MoreauJeanStep final : public ContactClassStep {
       y[i] = vi;
       un[i] += dt * (theta_ * vi + a * w[i]);
     }
-    return impulse;
+    return d.value;
   }
 
   void step(StepState& state, Index level) override {
-    const double dt = dt_;
     state.u_new.resize(state.u.size());
     const double impulse = fused_ ? fused_advance(state) : readable_advance(state);
     state.w.swap(state.u_new);
-    state.lambda = -impulse / dt;
-    state.active = impulse > 0;
-    state.energy = energy(state);
+    finish(state, {0.0, impulse}, 0.0, energy(state), level);
     if (has_load_) state.f_now.swap(state.f_next);
+  }
+
+  // The pieces of the batched step (OneSolveStep), each the fused step's own.
+  bool batchable() const override { return fused_ && !has_load_; }
+  Lanes lanes() const override {
+    return {&mass_, &stiffness_, &explicit_part_, &solver_, &no_column_, dt_, dt_, theta_, gap_, false};
+  }
+  std::optional<double> projection(double, double) const override { return std::nullopt; }
+  // The index set from the predicted gap u₀ + g₀ + ½Δt v₀: the impact law (v₀ⁿ⁺¹ ≥ −e v₀ⁿ) or a free row 0.
+  Decision decide(double y0, double u0, double v0) const override {
+    if (u0 + gap_ + 0.5 * dt_ * v0 <= 0) {
+      const ContactStep contact = solver_.resolve_contact(y0, 1.0, -restitution_ * v0);
+      return {contact.u0, -contact.multiplier};
+    }
+    return {y0 * solver_.inverse_pivot()[0], 0.0};
+  }
+  // λ = −p/Δt, the status, the energy.
+  void finish(StepState& state, const Decision& d, double, double kinetic_and_strain, Index level) override {
+    state.lambda = -d.value / dt_;
+    state.active = d.value > 0;
+    state.energy = kinetic_and_strain;
     require_finite(state.energy, Scheme::moreau_jean, level + 1);
   }
 
@@ -830,6 +841,7 @@ class MoreauJeanStep final : public ContactClassStep {
   bool has_load_, fused_;
   double gap_;
   ContactSolver solver_;
+  Eigen::VectorXd no_column_;  // Lanes::column: no projection
 };
 
 // ---------------------------------------------------------------------------------------------------
@@ -884,7 +896,7 @@ class MoreauJeanStep final : public ContactClassStep {
 // (where Rⁿ₀ = 0 already drops λⁿ): the step is Crank–Nicolson's with the same mass, λ = μ (doctest, Mod 3:
 // the same run to round-off), so DKE is a treatment for the standard mass, and mass redistribution is
 // another cure of the same ill-posedness (field.md §2, 2).
-class DkeStep final : public ContactClassStep {
+class DkeStep final : public OneSolveStep {
  public:
   DkeStep(const Tridiagonal& mass, const Tridiagonal& stiffness, double dt, bool has_load, double gap, bool fused,
           StepState& state)
@@ -915,8 +927,8 @@ class DkeStep final : public ContactClassStep {
   }
 
   // The step as its derivation reads (StepKernel::reference): Uⁿ⁺¹ in state.u_new, Vⁿ⁺¹ in state.w;
-  // returns the contact step and α.
-  std::pair<ContactStep, double> readable_advance(StepState& state) {
+  // returns the contact step (u₀ⁿ⁺¹, μ) and α.
+  std::pair<Decision, double> readable_advance(StepState& state) {
     const double dt = dt_, q = 0.25 * dt * dt;
     // The predictor W = Uⁿ + τVⁿ and its M-projection P = W + αM⁻¹e₀; Ṽ = (P − Uⁿ)/τ.
     predicted_ = state.u + dt * state.w;
@@ -934,7 +946,7 @@ class DkeStep final : public ContactClassStep {
     const ContactStep contact = solver_.solve(rhs_.data(), u.data(), weight0_, gap_ != 0.0 ? -gap_ : 0.0);
     // Vⁿ⁺¹ = Ṽ + (2/τ)(Uⁿ⁺¹ − P), Ṽ = (P − Uⁿ)/τ.
     state.w = (predicted_ - state.u) / dt + (2 / dt) * (u - predicted_);
-    return {contact, alpha};
+    return {Decision{contact.u0, contact.multiplier}, alpha};
   }
 
   // The same step in three passes, each entry computed with the readable step's operations in the same
@@ -944,7 +956,7 @@ class DkeStep final : public ContactClassStep {
   //   2. b_i = (MP)_i − (τ²/4)(SUⁿ)_i (+ (τ²/4)(Fⁿ_i + Fⁿ⁺¹_i)), formed inside the sweep down of A;
   //   3. the contact step on row 0, then the sweep up of Uⁿ⁺¹ and, node by node,
   //      Vⁿ⁺¹_i = (P_i − Uⁿ_i)/τ + (2/τ)(Uⁿ⁺¹_i − P_i).
-  std::pair<ContactStep, double> fused_advance(StepState& state) {
+  std::pair<Decision, double> fused_advance(StepState& state) {
     const Index n = mass_.size();
     const double dt = dt_, q = 0.25 * dt * dt;
     const double *u = state.u.data(), *w = state.w.data();
@@ -953,8 +965,8 @@ class DkeStep final : public ContactClassStep {
     double* p = predicted_.data();
     for (Index i = 0; i < n; ++i) p[i] = u[i] + dt * w[i];
     double alpha = 0;
-    if (!massless_ && p[0] + gap_ < 0) {
-      alpha = -(p[0] + gap_) / inverse_column_[0];
+    if (const std::optional<double> projected = projection(u[0], w[0])) {
+      alpha = *projected;
       const double* column = inverse_column_.data();
       for (Index i = 0; i < n; ++i) p[i] += alpha * column[i];
       p[0] = -gap_;
@@ -971,11 +983,11 @@ class DkeStep final : public ContactClassStep {
         massless_ ? (has_load_ ? f_next[0] : 0.0) : b(0, row_product(mass_, p, 0, n), row_product(stiffness_, u, 0, n));
     sweep_down_forming(solver_, n, y, mass_, p, stiffness_, u, b, b0);
     // 3. The contact step, the sweep up and Vⁿ⁺¹.
-    const ContactStep contact = solver_.resolve_contact(y[0], weight0_, gap_ != 0.0 ? -gap_ : 0.0);
+    const Decision contact = decide(y[0], u[0], w[0]);
     const double *ip = solver_.inverse_pivot().data(), *cu = solver_.upward().data();
     const double two = 2 / dt;
     double* v = state.w.data();
-    double ui = contact.u0;
+    double ui = contact.x0;
     y[0] = ui;
     v[0] = (p[0] - u[0]) / dt + two * (ui - p[0]);
     for (Index i = 1; i < n; ++i) {
@@ -987,14 +999,34 @@ class DkeStep final : public ContactClassStep {
   }
 
   void step(StepState& state, Index level) override {
-    const double dt = dt_;
     state.u_new.resize(state.u.size());
     const auto [contact, alpha] = fused_ ? fused_advance(state) : readable_advance(state);
     state.u.swap(state.u_new);
-    state.lambda = massless_ ? contact.multiplier : 0.5 * contact.multiplier - alpha / (dt * dt);
-    state.active = state.lambda < 0;
-    state.energy = energy(state);
+    finish(state, contact, alpha, energy(state), level);
     if (has_load_) state.f_now.swap(state.f_next);
+  }
+
+  // The pieces of the batched step (OneSolveStep), each the fused step's own.
+  bool batchable() const override { return fused_ && !has_load_; }
+  Lanes lanes() const override {
+    return {&mass_, &stiffness_, &mass_, &solver_, &inverse_column_, dt_, 0.25 * dt_ * dt_, 1.0, gap_, massless_};
+  }
+  // α of the projection P = W + αM⁻¹e₀, where the predictor's w₀ = u₀ + Δt v₀ penetrates (a node with mass).
+  std::optional<double> projection(double u0, double v0) const override {
+    const double w0 = u0 + dt_ * v0;
+    if (!massless_ && w0 + gap_ < 0) return -(w0 + gap_) / inverse_column_[0];
+    return std::nullopt;
+  }
+  // The closed-form contact step on row 0 (weight τ²/4, or 1 on the algebraic row), the obstacle at −g₀.
+  Decision decide(double y0, double, double) const override {
+    const ContactStep contact = solver_.resolve_contact(y0, weight0_, gap_ != 0.0 ? -gap_ : 0.0);
+    return {contact.u0, contact.multiplier};
+  }
+  // λ = μ/2 − α/τ² (the step's mean contact force; μ on the algebraic row), the status, the energy.
+  void finish(StepState& state, const Decision& d, double alpha, double kinetic_and_strain, Index level) override {
+    state.lambda = massless_ ? d.value : 0.5 * d.value - alpha / (dt_ * dt_);
+    state.active = state.lambda < 0;
+    state.energy = kinetic_and_strain;
     require_finite(state.energy, Scheme::dke, level + 1);
   }
 
