@@ -1,9 +1,10 @@
 /// @file batched_step.cpp
 /// @brief The fused step of fast_step.cpp, one run per vector lane (Google Highway, the widest target
 /// of the processor chosen at run time: AVX-512, AVX2, SSE4, NEON, ... or a portable 128-bit emulation);
-/// and the fused step of the Newmark-type contact classes (contact_classes.cpp: newmark, penalty,
-/// nitsche) the same way, its four passes and the energy's two forms in vectors, its contact decision and
-/// end of step each lane's own (NewmarkTypeStep).
+/// and the fused steps of the implicit contact classes (contact_classes.cpp) the same way: the Newmark
+/// type (newmark, penalty, nitsche: four passes), Moreau–Jean and DKE (one solve each), their passes and the
+/// energy's two forms in vectors, their contact decisions and ends of step each lane's own (NewmarkTypeStep,
+/// OneSolveStep).
 ///
 /// A step of one run is two long chains of dependent operations (the sweeps of the tridiagonal solve,
 /// fast_step.cpp), so a run fills one lane of a vector unit. W runs with the same number of unknowns and
@@ -71,6 +72,23 @@ struct NewmarkKernel {
                *mass_inverse_pivot = nullptr, *mass_upward = nullptr, *z = nullptr;
   const double *dt = nullptr, *force_weight = nullptr, *one_minus_gamma = nullptr, *gamma = nullptr, *g0 = nullptr,
                *g1 = nullptr, *massless = nullptr, *u0 = nullptr, *lambda = nullptr, *shift = nullptr, *keep = nullptr;
+  double* kinetic_strain = nullptr;  // per lane: ½VᵀMV + ½UᵀSU of the new level
+};
+
+// The same for Moreau–Jean and DKE (contact_classes.cpp, OneSolveStep): the interleaved state (U, Y the
+// solve's unknowns, V, P DKE's projected predictor), the rows of the right-hand side's matrix (right), of M
+// and S, the factors of A, DKE's M⁻¹e₀, and per lane Δt, c, θ, 1 − θ, 2/Δt, the flag b₀ = 0, the projection
+// (α, its flag, −g₀), the decision's first unknown x₀, the keep flag and the two forms of the energy.
+struct OneSolveKernel {
+  std::size_t n = 0, lanes = 0;
+  bool keeps = false, dke = false;
+  double *u = nullptr, *y = nullptr, *w = nullptr, *p = nullptr;
+  const double *right_diag = nullptr, *right_lower = nullptr, *right_upper = nullptr, *m_diag = nullptr,
+               *m_lower = nullptr, *m_upper = nullptr, *s_diag = nullptr, *s_lower = nullptr, *s_upper = nullptr;
+  const double *elimination = nullptr, *inverse_pivot = nullptr, *upward = nullptr, *column = nullptr;
+  const double *dt = nullptr, *weight = nullptr, *theta = nullptr, *one_minus_theta = nullptr, *two_over_dt = nullptr,
+               *row0_zero = nullptr, *alpha = nullptr, *projected = nullptr, *minus_gap = nullptr, *x0 = nullptr,
+               *keep = nullptr;
   double* kinetic_strain = nullptr;  // per lane: ½VᵀMV + ½UᵀSU of the new level
 };
 
@@ -454,7 +472,112 @@ void NewmarkStepD(D d, const NewmarkKernel& k) {
   NewmarkEnergyT(d, k);
 }
 
+// ---- Moreau–Jean and DKE (contact_classes.cpp, MoreauJeanStep and DkeStep::fused_advance), on W lanes ----
+// The passes of the fused steps, with their operations in their order, operand for operand.
+
+// 1. DKE: the predictor P_i = Uⁿ_i + ΔtVⁿ_i, plus αM⁻¹e₀ in the lanes that project (and there P₀ = −g₀).
+// Then, for both, b_i = (R x)_i − c(SUⁿ)_i inside the sweep down of A (R = M − θ(1 − θ)Δt²S, x = Vⁿ, c = Δt for
+// Moreau–Jean; R = M, x = P, c = Δt²/4 for DKE), y_i = b_i − ε_i y_{i+1}; row 0's b is 0 on DKE's algebraic row.
+template <class D>
+void OneSolveDownT(D d, const OneSolveKernel& k) {
+  using V = hn::Vec<D>;
+  const std::size_t W = k.lanes;
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(k.n);
+  const auto at = [&](const double* a, std::ptrdiff_t i) { return hn::Load(d, a + static_cast<std::size_t>(i) * W); };
+  const V dt = hn::Load(d, k.dt), c = hn::Load(d, k.weight);
+  if (k.dke) {
+    const auto projects = hn::Ne(hn::Load(d, k.projected), hn::Zero(d));
+    const V alpha = hn::Load(d, k.alpha);
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
+      const V pi = at(k.u, i) + dt * at(k.w, i);
+      hn::Store(hn::IfThenElse(projects, pi + alpha * at(k.column, i), pi), d, k.p + static_cast<std::size_t>(i) * W);
+    }
+    hn::Store(hn::IfThenElse(projects, hn::Load(d, k.minus_gap), at(k.p, 0)), d, k.p);
+  }
+  const double* x = k.dke ? k.p : k.w;
+  const auto row = [&](const double* dg, const double* lo, const double* up, const double* v, std::ptrdiff_t i) {
+    V s = at(dg, i) * at(v, i);
+    if (i > 0) s = s + at(lo, i) * at(v, i - 1);
+    if (i + 1 < n) s = s + at(up, i) * at(v, i + 1);
+    return s;
+  };
+  const auto b = [&](std::ptrdiff_t i) {
+    return row(k.right_diag, k.right_lower, k.right_upper, x, i) - c * row(k.s_diag, k.s_lower, k.s_upper, k.u, i);
+  };
+  V yi = b(n - 1);
+  hn::Store(yi, d, k.y + static_cast<std::size_t>(n - 1) * W);
+  for (std::ptrdiff_t i = n - 2; i > 0; --i) {
+    yi = b(i) - at(k.elimination, i) * yi;
+    hn::Store(yi, d, k.y + static_cast<std::size_t>(i) * W);
+  }
+  const V b0 = hn::IfThenElse(hn::Ne(hn::Load(d, k.row0_zero), hn::Zero(d)), hn::Zero(d), b(0));
+  hn::Store(b0 - at(k.elimination, 0) * yi, d, k.y);
+}
+
+// 2. The sweep up of A from each lane's x₀ (the contact step's), and node by node the other vector: Moreau–Jean
+// Uⁿ⁺¹_i = Uⁿ_i + Δt(θVⁿ⁺¹_i + (1 − θ)Vⁿ_i) with Vⁿ⁺¹ in y; DKE Vⁿ⁺¹_i = (P_i − Uⁿ_i)/Δt + (2/Δt)(Uⁿ⁺¹_i − P_i)
+// with Uⁿ⁺¹ in y. A kept lane's y takes its old V (Moreau–Jean) or U (DKE) and its other vector stays, so that
+// the swap after the step leaves it as it was. Then the energy's two forms of the new level.
+template <bool dke, bool keeps, class D>
+void OneSolveUpT(D d, const OneSolveKernel& k) {
+  using V = hn::Vec<D>;
+  const std::size_t W = k.lanes;
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(k.n);
+  const auto at = [&](const double* a, std::ptrdiff_t i) { return hn::Load(d, a + static_cast<std::size_t>(i) * W); };
+  const auto keep = hn::Ne(hn::Load(d, k.keep), hn::Zero(d));
+  const auto put = [&](V v, double* a, std::ptrdiff_t i) { hn::Store(v, d, a + static_cast<std::size_t>(i) * W); };
+  const V dt = hn::Load(d, k.dt), theta = hn::Load(d, k.theta), a = hn::Load(d, k.one_minus_theta);
+  const V two = hn::Load(d, k.two_over_dt);
+  const auto emit = [&](std::ptrdiff_t i, V xi) {
+    if constexpr (dke) {
+      const V ui = at(k.u, i), pi = at(k.p, i);
+      const V vi = (pi - ui) / dt + two * (xi - pi);
+      if constexpr (keeps) {
+        put(hn::IfThenElse(keep, ui, xi), k.y, i);
+        put(hn::IfThenElse(keep, at(k.w, i), vi), k.w, i);
+      } else {
+        put(xi, k.y, i);
+        put(vi, k.w, i);
+      }
+    } else {
+      const V wi = at(k.w, i), ui = at(k.u, i);
+      const V un = ui + dt * (theta * xi + a * wi);
+      if constexpr (keeps) {
+        put(hn::IfThenElse(keep, wi, xi), k.y, i);
+        put(hn::IfThenElse(keep, ui, un), k.u, i);
+      } else {
+        put(xi, k.y, i);
+        put(un, k.u, i);
+      }
+    }
+  };
+  V xi = hn::Load(d, k.x0);
+  emit(0, xi);
+  for (std::ptrdiff_t i = 1; i < n; ++i) {
+    xi = at(k.inverse_pivot, i) * at(k.y, i) - at(k.upward, i) * xi;
+    emit(i, xi);
+  }
+  // ½VᵀMV + ½UᵀSU (kinetic_and_strain): Moreau–Jean's Vⁿ⁺¹ is in y, DKE's Uⁿ⁺¹.
+  const auto half = hn::Set(d, 0.5);
+  const auto kinetic = FormT(d, W, n, k.m_diag, k.m_lower, k.m_upper, dke ? k.w : k.y);
+  const auto strain = FormT(d, W, n, k.s_diag, k.s_lower, k.s_upper, dke ? k.y : k.u);
+  hn::Store(half * kinetic + half * strain, d, k.kinetic_strain);
+}
+
+template <class D>
+void OneSolveUpD(D d, const OneSolveKernel& k) {
+  if (k.dke) return k.keeps ? OneSolveUpT<true, true>(d, k) : OneSolveUpT<true, false>(d, k);
+  if (k.keeps) return OneSolveUpT<false, true>(d, k);
+  OneSolveUpT<false, false>(d, k);
+}
+
 // The entry points, one per width (where a capped width is the full one, the same code twice).
+void OneSolveDown(const OneSolveKernel& k) { OneSolveDownT(Full(), k); }
+void OneSolveDown4(const OneSolveKernel& k) { OneSolveDownT(Four(), k); }
+void OneSolveDown2(const OneSolveKernel& k) { OneSolveDownT(Two(), k); }
+void OneSolveUp(const OneSolveKernel& k) { OneSolveUpD(Full(), k); }
+void OneSolveUp4(const OneSolveKernel& k) { OneSolveUpD(Four(), k); }
+void OneSolveUp2(const OneSolveKernel& k) { OneSolveUpD(Two(), k); }
 void NewmarkDown(const NewmarkKernel& k) { NewmarkDownT(Full(), k); }
 void NewmarkDown4(const NewmarkKernel& k) { NewmarkDownT(Four(), k); }
 void NewmarkDown2(const NewmarkKernel& k) { NewmarkDownT(Two(), k); }
@@ -481,6 +604,7 @@ HWY_AFTER_NAMESPACE();
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <string>
 #include <stdexcept>
 #include <tuple>
@@ -512,6 +636,12 @@ HWY_EXPORT(NewmarkDown2);
 HWY_EXPORT(NewmarkUp);
 HWY_EXPORT(NewmarkUp4);
 HWY_EXPORT(NewmarkUp2);
+HWY_EXPORT(OneSolveDown);
+HWY_EXPORT(OneSolveDown4);
+HWY_EXPORT(OneSolveDown2);
+HWY_EXPORT(OneSolveUp);
+HWY_EXPORT(OneSolveUp4);
+HWY_EXPORT(OneSolveUp2);
 }  // namespace batched
 /// @endcond
 
@@ -550,6 +680,10 @@ int batch_family(Scheme scheme) {
       return 2;
     case Scheme::switching:
       return 3;
+    case Scheme::moreau_jean:
+      return 5;
+    case Scheme::dke:
+      return 6;
     default:  // the other classes: no batched kernel, each scheme a family of its own
       return -1 - static_cast<int>(scheme);
   }
@@ -579,6 +713,13 @@ struct BatchedSimulation::Group {
       l_upper, mass_elimination, mass_inverse_pivot, mass_upward, z, dt, force_weight, one_minus_gamma, gamma, g0, g1,
       massless, lambda, shift, kinetic_strain;
   std::vector<NewmarkTypeStep*> steps;  // each lane's step (its decision and end of step)
+  // A group of Moreau–Jean or DKE steps (batch_family 5 or 6, batched::OneSolveKernel): u, y, w, the rows of M
+  // and S, the factors of A, dt, keep and kinetic_strain above, u0_next as the decision's x₀, and these.
+  bool one_solve = false, dke = false;
+  hwy::AlignedFreeUniquePtr<double[]> p, right_diag, right_lower, right_upper, column, weight, theta, one_minus_theta,
+      two_over_dt, row0_zero, alpha, projected, minus_gap;
+  std::vector<OneSolveStep*> solve_steps;               // each lane's step (its pieces)
+  std::vector<OneSolveStep::Decision> solve_decisions;  // the lanes' decisions of the current step
 };
 
 namespace {
@@ -644,6 +785,12 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
         families[Key{n, 4, 0}].push_back(k);
         continue;
       }
+      // Moreau–Jean (family 5) or DKE (6) on the fused kernel without a load.
+      const auto* solve = dynamic_cast<const OneSolveStep*>(r.class_step_.get());
+      if (solve && solve->batchable()) {
+        families[Key{n, batch_family(r.parameters_.scheme), 0}].push_back(k);
+        continue;
+      }
     }
     if (!fast || r.problem_.load || n < 2 || lanes_ < 2 || r.level_ != 0) {
       alone_.push_back(k);
@@ -679,6 +826,12 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
       if (std::get<1>(key) == 4) {
         g->n = std::get<0>(key);
         fill_newmark(*g, runs_);
+        groups_.push_back(std::move(g));
+        continue;
+      }
+      if (std::get<1>(key) == 5 || std::get<1>(key) == 6) {
+        g->n = std::get<0>(key);
+        fill_one_solve(*g, runs_, std::get<1>(key) == 6);
         groups_.push_back(std::move(g));
         continue;
       }
@@ -804,8 +957,64 @@ void BatchedSimulation::fill_newmark(Group& g, const std::vector<BarSimulation>&
   }
 }
 
+// A Moreau–Jean or DKE run's step.
+OneSolveStep& BatchedSimulation::one_solve_step(const BarSimulation& run) {
+  return dynamic_cast<OneSolveStep&>(*run.class_step_);
+}
+
+void BatchedSimulation::fill_one_solve(Group& g, const std::vector<BarSimulation>& runs, bool dke) {
+  const std::size_t W = g.runs.size(), nw = g.n * W;
+  g.one_solve = true, g.dke = dke;
+  for (auto* a : {&g.u, &g.y, &g.w, &g.p, &g.elimination, &g.inverse_pivot, &g.upward, &g.right_diag, &g.right_lower,
+                  &g.right_upper, &g.m_diag, &g.m_lower, &g.m_upper, &g.s_diag, &g.s_lower, &g.s_upper, &g.column})
+    *a = hwy::AllocateAligned<double>(nw);
+  for (auto* a : {&g.dt, &g.weight, &g.theta, &g.one_minus_theta, &g.two_over_dt, &g.row0_zero, &g.alpha, &g.projected,
+                  &g.minus_gap, &g.u0_next, &g.keep, &g.kinetic_strain})
+    *a = hwy::AllocateAligned<double>(W);
+  g.solve_decisions.resize(W);
+  for (std::size_t j = 0; j < W; ++j) {
+    OneSolveStep& step = one_solve_step(runs[g.runs[j]]);
+    g.solve_steps.push_back(&step);
+    const OneSolveStep::Lanes l = step.lanes();
+    const auto interleave = [&](double* to, const Eigen::VectorXd& from) {
+      for (std::size_t i = 0; i < g.n; ++i) to[i * W + j] = from[static_cast<Index>(i)];
+    };
+    interleave(g.right_diag.get(), l.right->diag), interleave(g.right_lower.get(), l.right->lower);
+    interleave(g.right_upper.get(), l.right->upper);
+    interleave(g.m_diag.get(), l.mass->diag), interleave(g.m_lower.get(), l.mass->lower);
+    interleave(g.m_upper.get(), l.mass->upper);
+    interleave(g.s_diag.get(), l.stiffness->diag), interleave(g.s_lower.get(), l.stiffness->lower);
+    interleave(g.s_upper.get(), l.stiffness->upper);
+    interleave(g.elimination.get(), l.solver->elimination());
+    interleave(g.inverse_pivot.get(), l.solver->inverse_pivot());
+    interleave(g.upward.get(), l.solver->upward());
+    if (l.column->size() == static_cast<Index>(g.n))
+      interleave(g.column.get(), *l.column);
+    else
+      for (std::size_t i = 0; i < g.n; ++i) g.column[i * W + j] = 0.0;  // never projected
+    // As the fused steps compute them: 1 − θ, 2/Δt, −g₀.
+    g.dt[j] = l.dt;
+    g.weight[j] = l.weight;
+    g.theta[j] = l.theta;
+    g.one_minus_theta[j] = 1 - l.theta;
+    g.two_over_dt[j] = 2 / l.dt;
+    g.row0_zero[j] = l.row0_zero ? 1.0 : 0.0;
+    g.minus_gap[j] = -l.gap;
+    g.alpha[j] = 0.0, g.projected[j] = 0.0, g.keep[j] = 0.0;
+    load_lane(g, j, runs[g.runs[j]]);
+  }
+}
+
 void BatchedSimulation::load_lane(Group& g, std::size_t j, const BarSimulation& run) {
   const std::size_t W = g.runs.size();
+  if (g.one_solve) {
+    for (std::size_t i = 0; i < g.n; ++i) {
+      const auto e = static_cast<Index>(i);
+      g.u[i * W + j] = run.state_.u[e];
+      g.w[i * W + j] = run.state_.w[e];
+    }
+    return;
+  }
   if (g.newmark) {
     const Eigen::VectorXd& r = *newmark_step(run).lanes().force;
     for (std::size_t i = 0; i < g.n; ++i) {
@@ -827,6 +1036,14 @@ void BatchedSimulation::load_lane(Group& g, std::size_t j, const BarSimulation& 
 
 void BatchedSimulation::store_lane(const Group& g, std::size_t j, BarSimulation& run) {
   const std::size_t W = g.runs.size();
+  if (g.one_solve) {
+    for (std::size_t i = 0; i < g.n; ++i) {
+      const auto e = static_cast<Index>(i);
+      run.state_.u[e] = g.u[i * W + j];
+      run.state_.w[e] = g.w[i * W + j];
+    }
+    return;
+  }
   if (g.newmark) {
     Eigen::VectorXd& r = *newmark_step(run).lanes().force;
     for (std::size_t i = 0; i < g.n; ++i) {
@@ -857,7 +1074,7 @@ const BarSimulation& BatchedSimulation::run(std::size_t k) {
   std::vector<std::size_t> lanes;
   for (std::size_t j = 0; j < g.used; ++j)
     if (stale_[g.runs[j]]) lanes.push_back(j);
-  if (lanes.size() == 1 || g.newmark) {  // one lane, or a Newmark-type group's lanes one by one (with Rⁿ)
+  if (lanes.size() == 1 || g.newmark || g.one_solve) {  // one lane, or a class group's lanes one by one
     for (std::size_t j : lanes) {
       store_lane(g, j, runs_[g.runs[j]]);
       stale_[g.runs[j]] = 0;
@@ -948,6 +1165,10 @@ void BatchedSimulation::advance(const char* flags) {  // null: every run
     if (!any) continue;
     if (g.newmark) {
       advance_newmark(g, flags);
+      continue;
+    }
+    if (g.one_solve) {
+      advance_one_solve(g, flags);
       continue;
     }
     // Paoli–Schatzman's first step is Crank–Nicolson's (BarSimulation::step's starter): each run alone.
@@ -1109,21 +1330,94 @@ void BatchedSimulation::advance_newmark(Group& g, const char* flags) {
   }
 }
 
+// A Moreau–Jean or DKE group's step: each lane's projection (DKE), the sweep down of A, each lane's contact
+// step (the run's own decide()), the sweep up with the other vector and the energy's forms in vectors, then
+// each run's end of step (its finish(): λ, status, energy, the finiteness check) and BarSimulation's
+// bookkeeping. A kept lane (flags) is written back unchanged and its run is not touched.
+void BatchedSimulation::advance_one_solve(Group& g, const char* flags) {
+  const std::size_t W = g.runs.size();
+  const auto moves = [&](std::size_t j) { return !flags || flags[g.runs[j < g.used ? j : 0]] != 0; };
+  bool all = true;
+  for (std::size_t j = 0; j < g.used; ++j) all = all && moves(j);
+  batched::OneSolveKernel k;
+  k.n = g.n, k.lanes = W, k.keeps = !all, k.dke = g.dke;
+  k.u = g.u.get(), k.y = g.y.get(), k.w = g.w.get(), k.p = g.p.get();
+  k.right_diag = g.right_diag.get(), k.right_lower = g.right_lower.get(), k.right_upper = g.right_upper.get();
+  k.m_diag = g.m_diag.get(), k.m_lower = g.m_lower.get(), k.m_upper = g.m_upper.get();
+  k.s_diag = g.s_diag.get(), k.s_lower = g.s_lower.get(), k.s_upper = g.s_upper.get();
+  k.elimination = g.elimination.get(), k.inverse_pivot = g.inverse_pivot.get(), k.upward = g.upward.get();
+  k.column = g.column.get(), k.dt = g.dt.get(), k.weight = g.weight.get(), k.theta = g.theta.get();
+  k.one_minus_theta = g.one_minus_theta.get(), k.two_over_dt = g.two_over_dt.get(), k.row0_zero = g.row0_zero.get();
+  k.alpha = g.alpha.get(), k.projected = g.projected.get(), k.minus_gap = g.minus_gap.get();
+  k.x0 = g.u0_next.get(), k.keep = g.keep.get(), k.kinetic_strain = g.kinetic_strain.get();
+  for (std::size_t j = 0; j < W; ++j) {  // DKE's projection, from u₀ⁿ and v₀ⁿ (a kept lane projects nothing)
+    const std::optional<double> alpha = moves(j) ? g.solve_steps[j]->projection(g.u[j], g.w[j]) : std::nullopt;
+    g.projected[j] = alpha ? 1.0 : 0.0;
+    g.alpha[j] = alpha.value_or(0.0);
+  }
+  switch (g.width) {
+    case 0:
+      HWY_DYNAMIC_DISPATCH(batched::OneSolveDown)(k);
+      break;
+    case 1:
+      HWY_DYNAMIC_DISPATCH(batched::OneSolveDown4)(k);
+      break;
+    default:
+      HWY_DYNAMIC_DISPATCH(batched::OneSolveDown2)(k);
+  }
+  for (std::size_t j = 0; j < W; ++j) {
+    if (!moves(j)) {  // kept: its values are not written
+      g.keep[j] = 1.0, g.u0_next[j] = 0.0, g.solve_decisions[j] = {};
+      continue;
+    }
+    g.solve_decisions[j] = g.solve_steps[j]->decide(g.y[j], g.u[j], g.w[j]);
+    g.keep[j] = 0.0, g.u0_next[j] = g.solve_decisions[j].x0;
+  }
+  switch (g.width) {
+    case 0:
+      HWY_DYNAMIC_DISPATCH(batched::OneSolveUp)(k);
+      break;
+    case 1:
+      HWY_DYNAMIC_DISPATCH(batched::OneSolveUp4)(k);
+      break;
+    default:
+      HWY_DYNAMIC_DISPATCH(batched::OneSolveUp2)(k);
+  }
+  // The new level: Moreau–Jean's Vⁿ⁺¹ and DKE's Uⁿ⁺¹ are in y, as each step swaps them in.
+  std::swap(g.dke ? g.u : g.w, g.y);
+  for (std::size_t j = 0; j < g.used; ++j) {
+    if (!moves(j)) continue;
+    const std::size_t r = g.runs[j];
+    BarSimulation& run = runs_[r];
+    // finish_step reads u₀ and V₁ (the massless node's velocity): the entries 0 and 1 are copied out now, the
+    // rest of the vectors when run(k) is asked for.
+    run.state_.u[0] = g.u[j], run.state_.u[1] = g.u[W + j];
+    run.state_.w[0] = g.w[j], run.state_.w[1] = g.w[W + j];
+    stale_[r] = 1;
+    g.solve_steps[j]->finish(run.state_, g.solve_decisions[j], g.alpha[j], g.kinetic_strain[j], run.level_);
+    run.finish_step();
+    if (run.algebraic_row_ && !run.three_level_) g.w[j] = run.state_.w[0];  // its massless node's velocity
+  }
+}
+
 /// @file batched_step.cpp
 /// ## The batched step against the runs stepped alone
 ///
 /// Prediction: bit for bit the same states (U, W', X, λ, the energy, the status, the instants) at every
 /// step, lane by lane, for every scheme with a batched kernel (cn, be, ps with both contact rows, ec,
-/// cn-switch, and the Newmark-type classes newmark, penalty, nitsche) and every vector target this machine
-/// has: the batched step performs each lane's operations in the scalar order, and CN-switch's status
-/// changes and Paoli–Schatzman's first step are the lane's own scalar step, as are the classes' contact
-/// decisions and ends of step (NewmarkTypeStep::decide, finish). The runs of a batch differ in Δt (Courant
-/// numbers 0.5 … 1.7), mass (Mod 1, Mod 3, the consistent mass where the scheme allows it), for
-/// Paoli–Schatzman in β and e, for the classes in β (0 at 0.9 of the stability limit, or (γ + ½)²/4), γ,
-/// the penalty and Nitsche's θ and γ₀; their number 2W + 1 leaves a group with padding lanes or a run
-/// alone. A difference of one ulp anywhere fails; so do four mutations of the classes' kernel (tried): the
-/// form's partial sums paired otherwise, the law's force on row 0 dropped, the shift's select inverted, a
-/// kept lane's velocity not kept.
+/// cn-switch, the Newmark-type classes newmark, penalty, nitsche, and moreau-jean and dke) and every vector
+/// target this machine has: the batched step performs each lane's operations in the scalar order, and
+/// CN-switch's status changes and Paoli–Schatzman's first step are the lane's own scalar step, as are the
+/// classes' contact decisions, DKE's projection and the ends of step (NewmarkTypeStep::decide, finish;
+/// OneSolveStep::projection, decide, finish). The runs of a batch differ in Δt (Courant numbers 0.5 … 1.7),
+/// mass (Mod 1, Mod 3, the consistent mass where the scheme allows it), for Paoli–Schatzman in β and e, for
+/// the Newmark type in β (0 at 0.9 of the stability limit, or (γ + ½)²/4), γ, the penalty and Nitsche's θ
+/// and γ₀, for Moreau–Jean in θ and e, and for Moreau–Jean and DKE in the initial gap (0 or h/2); their
+/// number 2W + 1 leaves a group with padding lanes or a run alone. A difference of one ulp anywhere fails;
+/// so do four mutations of the Newmark-type kernel (tried): the form's partial sums paired otherwise, the
+/// law's force on row 0 dropped, the shift's select inverted, a kept lane's velocity not kept; and four of
+/// the one-solve kernel (tried): DKE's projection dropped, DKE's P₀ = −g₀ dropped, the kinetic form taken
+/// of the wrong vector, a kept Moreau–Jean lane's velocity not kept (the partial step below).
 namespace {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
@@ -1145,7 +1439,24 @@ std::vector<BatchedCase> batched_cases() {
           {Scheme::switching, ContactRow::algebraic},
           {Scheme::newmark, ContactRow::algebraic},
           {Scheme::penalty, ContactRow::algebraic},
-          {Scheme::nitsche, ContactRow::algebraic}};
+          {Scheme::nitsche, ContactRow::algebraic},
+          {Scheme::moreau_jean, ContactRow::algebraic},
+          {Scheme::dke, ContactRow::algebraic}};
+}
+
+bool is_newmark_type(Scheme scheme) {
+  return scheme == Scheme::newmark || scheme == Scheme::penalty || scheme == Scheme::nitsche;
+}
+
+// Run k's parameters, mass and gap of Moreau–Jean (θ = ½, ¾, 1; e = 1, ½, 0; the consistent mass, the one it
+// allows) or DKE (Mod 1, Mod 3, the consistent mass); every other
+// run of the two with an initial gap of h/2 (the obstacle at −g₀ in the decision and in DKE's projection).
+MassRedistribution one_solve_parameters(SchemeParameters& p, std::size_t k, Problem& problem, double h) {
+  if (k % 2 == 1) problem.gap = 0.5 * h;
+  if (p.scheme == Scheme::dke) return k % 3 == 0 ? mod1() : k % 3 == 1 ? mod3() : consistent_mass();
+  p.moreau_theta = k % 3 == 0 ? 0.5 : k % 3 == 1 ? 0.75 : 1.0;
+  p.restitution = k % 4 == 0 ? 1.0 : k % 4 == 1 ? 0.5 : 0.0;
+  return consistent_mass();
 }
 
 // Run k's parameters of a Newmark-type class: γ = ½ or 0.6; β = (γ + ½)²/4 (stable at any Δt) or, where
@@ -1187,22 +1498,25 @@ TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for
       for (std::size_t k = 0; k < count; ++k) {
         const bool inertia_allowed = c.scheme != Scheme::energy_conserving &&
                                      !(c.scheme == Scheme::paoli_schatzman && c.row == ContactRow::algebraic);
-        const MassRedistribution mass = k % 3 == 0        ? mod1()
-                                        : k % 3 == 1      ? mod3()
-                                        : inertia_allowed ? consistent_mass()
-                                                          : mod2();
+        MassRedistribution mass = k % 3 == 0        ? mod1()
+                                  : k % 3 == 1      ? mod3()
+                                  : inertia_allowed ? consistent_mass()
+                                                    : mod2();
         SchemeParameters p;
         p.scheme = c.scheme;
         p.contact_row = c.row;
+        Problem problem = benchmark_problem();
         // A restitution e > 0 with the literal row needs a contact node with inertia (schemes.cpp refuses
         // it on a massless node): the consistent mass of k % 3 == 2 only.
         const bool massless = !(k % 3 == 2 && inertia_allowed);
         if (c.scheme == Scheme::paoli_schatzman && k % 2 == 1)
           p.beta = 0.3, p.restitution = c.row == ContactRow::literal && massless ? 0.0 : 0.5;
         double dt = (0.5 + 0.1 * static_cast<double>(k % 13)) * mesh.h();
-        if (is_contact_class(c.scheme)) class_parameters(p, k, mesh, mass, true, dt);
-        batch.emplace_back(benchmark_problem(), mesh, mass, p, dt);
-        alone.emplace_back(benchmark_problem(), mesh, mass, p, dt);
+        if (is_newmark_type(c.scheme)) class_parameters(p, k, mesh, mass, true, dt);
+        if (c.scheme == Scheme::moreau_jean || c.scheme == Scheme::dke)
+          mass = one_solve_parameters(p, k, problem, mesh.h());
+        batch.emplace_back(problem, mesh, mass, p, dt);
+        alone.emplace_back(problem, mesh, mass, p, dt);
       }
       BatchedSimulation batched(std::move(batch));
       CHECK(batched.lanes() == target.lanes);
@@ -1279,10 +1593,13 @@ TEST_CASE("a partial step keeps the runs that stay, and runs at their own rates 
         p.contact_row = c.row;
         if (c.scheme == Scheme::paoli_schatzman && k % 2 == 1) p.beta = 0.3;
         double dt = 0.25 * static_cast<double>(rates[k % rates.size()]) * mesh.h();
-        const MassRedistribution mass = k % 2 == 0 ? mod1() : mod3();
-        if (is_contact_class(c.scheme)) class_parameters(p, k, mesh, mass, false, dt);  // implicit: any rate
-        batch.emplace_back(benchmark_problem(), mesh, mass, p, dt);
-        alone.emplace_back(benchmark_problem(), mesh, mass, p, dt);
+        MassRedistribution mass = k % 2 == 0 ? mod1() : mod3();
+        Problem problem = benchmark_problem();
+        if (is_newmark_type(c.scheme)) class_parameters(p, k, mesh, mass, false, dt);  // implicit: any rate
+        if (c.scheme == Scheme::moreau_jean || c.scheme == Scheme::dke)
+          mass = one_solve_parameters(p, k, problem, mesh.h());
+        batch.emplace_back(problem, mesh, mass, p, dt);
+        alone.emplace_back(problem, mesh, mass, p, dt);
       }
       BatchedSimulation batched(std::move(batch));
       REQUIRE(batched.batched_runs() > 0);
