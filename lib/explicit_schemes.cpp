@@ -267,26 +267,42 @@ void ExplicitStep::step(StepState& state, bool has_load) const {
   v += (0.5 * dt_) * a;  // Vⁿ⁺½ (entry 0 of a massless node: 0, its velocity is set by BarSimulation)
   u += dt_ * v;          // Ũ
   // The contact.
-  double lambda = 0.0;
-  if (taylor_flanagan_) {
-    if (u[0] + gap_ < 0) {
-      const double mu = v[0] / (dt_ * impulse_response_[0]);
-      v -= (dt_ * mu) * impulse_response_;
-      u -= (dt_ * dt_ * mu) * impulse_response_;
-      lambda = mu;
-    }
-    state.active = lambda != 0.0;
-  } else {
-    const CondensedContact c = condense_contact_node(u[1], compliance_, has_load ? state.f_next[0] : 0.0, -gap_);
-    u[0] = c.u0;
-    lambda = c.multiplier;
-    state.active = c.multiplier < 0 || c.u0 == -gap_;
+  const Contact c = contact(u[0], u[1], v[0], has_load ? state.f_next[0] : 0.0);
+  if (c.correct) {
+    v -= (dt_ * c.lambda) * impulse_response_;
+    u -= (dt_ * dt_ * c.lambda) * impulse_response_;
   }
+  if (c.set_u0) u[0] = c.u0;
+  state.active = c.active;
   // (E1): the second half kick with Fⁿ⁺¹.
-  accelerate(u, has_load ? &state.f_next : nullptr, lambda, a);
+  accelerate(u, has_load ? &state.f_next : nullptr, c.lambda, a);
   v += (0.5 * dt_) * a;
-  state.lambda = lambda;
+  state.lambda = c.lambda;
   if (has_load) state.f_now.swap(state.f_next);
+}
+
+// Taylor–Flanagan: μ = ṽ₀/(Δt r₀) where the drift penetrates, λ = μ; explicit: the algebraic row in
+// closed form (condense_contact_node), u₀ and λ.
+ExplicitStep::Contact ExplicitStep::contact(double u0, double u1, double v0, double load0) const {
+  Contact c;
+  if (taylor_flanagan_) {
+    if (u0 + gap_ < 0) {
+      c.lambda = v0 / (dt_ * impulse_response_[0]);
+      c.correct = true;
+    }
+    c.active = c.lambda != 0.0;
+    return c;
+  }
+  const CondensedContact condensed = condense_contact_node(u1, compliance_, load0, -gap_);
+  c.set_u0 = true;
+  c.u0 = condensed.u0;
+  c.lambda = condensed.multiplier;
+  c.active = condensed.multiplier < 0 || condensed.u0 == -gap_;
+  return c;
+}
+
+ExplicitStep::Lanes ExplicitStep::lanes() const {
+  return {&stiffness_, &inverse_mass_, &pivot_, &factor_, &impulse_response_, dt_, lumped_};
 }
 
 // ---------------------------------------------------------------------------------------------------

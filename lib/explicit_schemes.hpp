@@ -53,6 +53,31 @@ class ExplicitStep {
   /// level n+1 (Fⁿ⁺¹ swapped into f_now). The energy is left to the caller (BarSimulation: ½VᵀMV + ½UᵀSU).
   void step(StepState& state, bool has_load) const;
 
+  /// What the batched step (batched_step.cpp) copies of a run: the step's arrays and scalars (pointers
+  /// into this step, valid while it lives).
+  struct Lanes {
+    const Tridiagonal* stiffness;             ///< S
+    const Eigen::VectorXd* inverse_mass;      ///< 1/m_i (lumped; 0 at a massless node), empty otherwise
+    const Eigen::VectorXd* pivot;             ///< the consistent mass's LDLᵀ pivots d_i (lumping none)
+    const Eigen::VectorXd* factor;            ///< and its factors ℓ_i
+    const Eigen::VectorXd* impulse_response;  ///< r = M⁻¹e₀ (taylor-flanagan), empty otherwise
+    double dt;                                ///< Δt
+    bool lumped;                              ///< whether M is diagonal
+  };
+  /// The step's arrays, for the lanes.
+  Lanes lanes() const;
+  /// The contact after the drift (explicit_schemes.cpp): Taylor–Flanagan's correction, if ũ₀ + gap < 0,
+  /// or the massless node's algebraic row.
+  struct Contact {
+    double lambda = 0;     ///< λⁿ⁺¹ (Taylor–Flanagan's μ)
+    bool active = false;   ///< the status
+    bool correct = false;  ///< Taylor–Flanagan: V −= Δtμ r, U −= Δt²μ r
+    bool set_u0 = false;   ///< explicit: u₀ⁿ⁺¹ = u0
+    double u0 = 0;         ///< the massless node's new value
+  };
+  /// The contact of the step from the drift's ũ₀, ũ₁, ṽ₀ (Vⁿ⁺½'s) and the load's F₀ⁿ⁺¹.
+  Contact contact(double u0, double u1, double v0, double load0) const;
+
  private:
   void accelerate(const Eigen::VectorXd& u, const Eigen::VectorXd* load, double lambda, Eigen::VectorXd& a) const;
   bool taylor_flanagan_, lumped_, massless_;
