@@ -1,10 +1,11 @@
 /// @file batched_step.cpp
 /// @brief The fused step of fast_step.cpp, one run per vector lane (Google Highway, the widest target
 /// of the processor chosen at run time: AVX-512, AVX2, SSE4, NEON, ... or a portable 128-bit emulation);
-/// and the fused steps of the implicit contact classes (contact_classes.cpp) the same way: the Newmark
-/// type (newmark, penalty, nitsche: four passes), Moreau–Jean and DKE (one solve each), their passes and the
-/// energy's two forms in vectors, their contact decisions and ends of step each lane's own (NewmarkTypeStep,
-/// OneSolveStep).
+/// and the steps of the field's contact classes the same way: the Newmark type (newmark, penalty, nitsche: four
+/// passes), Moreau–Jean and DKE (one solve each; contact_classes.cpp) and the explicit classes
+/// (taylor-flanagan, explicit: a kick and drift, then a kick; explicit_schemes.cpp), their passes and the
+/// energy's forms in vectors, their contact decisions and ends of step each lane's own (NewmarkTypeStep,
+/// OneSolveStep, ExplicitStep::contact).
 ///
 /// A step of one run is two long chains of dependent operations (the sweeps of the tridiagonal solve,
 /// fast_step.cpp), so a run fills one lane of a vector unit. W runs with the same number of unknowns and
@@ -90,6 +91,22 @@ struct OneSolveKernel {
                *row0_zero = nullptr, *alpha = nullptr, *projected = nullptr, *minus_gap = nullptr, *x0 = nullptr,
                *keep = nullptr;
   double* kinetic_strain = nullptr;  // per lane: ½VᵀMV + ½UᵀSU of the new level
+};
+
+// The same for the explicit classes (explicit_schemes.cpp, ExplicitStep): the interleaved state (U, Y the
+// drift's Ũ and then Uⁿ⁺¹, V, A the consistent mass's solve), the rows of S and M, the lumped inverse mass or
+// the consistent mass's LDLᵀ (pivots, factors), r = M⁻¹e₀, and per lane Δt, Δt/2, h, whether the bar is
+// clamped at its far end, Taylor–Flanagan's correction (its flag, Δtμ, Δt²μ), the keep flag and the energy.
+struct ExplicitKernel {
+  std::size_t n = 0, lanes = 0;
+  bool keeps = false, lumped = true, corrects = false;
+  double *u = nullptr, *y = nullptr, *w = nullptr, *a = nullptr;
+  const double *s_diag = nullptr, *s_lower = nullptr, *s_upper = nullptr, *m_diag = nullptr, *m_lower = nullptr,
+               *m_upper = nullptr, *inverse_mass = nullptr, *pivot = nullptr, *factor = nullptr,
+               *impulse_response = nullptr;
+  const double *dt = nullptr, *half_dt = nullptr, *h = nullptr, *clamped = nullptr, *correct = nullptr,
+               *dt_mu = nullptr, *dt2_mu = nullptr, *keep = nullptr;
+  double* energy = nullptr;  // per lane: ½VᵀMV + ½UᵀSU of the new level (BarSimulation's)
 };
 
 }  // namespace mrm::batched
@@ -571,7 +588,118 @@ void OneSolveUpD(D d, const OneSolveKernel& k) {
   OneSolveUpT<false, false>(d, k);
 }
 
+// ---- The explicit classes (explicit_schemes.cpp, ExplicitStep::step), on W lanes ----
+// The passes of the step, with its operations in its order, operand for operand.
+
+// The acceleration M⁻¹(−SX) (ExplicitStep::accelerate: −(SX) by Tridiagonal::multiply's rows, then times 1/m_i,
+// or the consistent mass's LDLᵀ solve: ℓ forward, then d and ℓ backward), handed to take(i, a_i) node by node
+// (lumped: in any order, each node its own; consistent: from the last row up).
+template <bool lumped, class D, class Take>
+void AccelerateT(D d, const ExplicitKernel& k, const double* x, const Take& take) {
+  using V = hn::Vec<D>;
+  const std::size_t W = k.lanes;
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(k.n);
+  const auto at = [&](const double* a, std::ptrdiff_t i) { return hn::Load(d, a + static_cast<std::size_t>(i) * W); };
+  const auto row = [&](std::ptrdiff_t i) {
+    V s = at(k.s_diag, i) * at(x, i);
+    if (i > 0) s = s + at(k.s_lower, i) * at(x, i - 1);
+    if (i + 1 < n) s = s + at(k.s_upper, i) * at(x, i + 1);
+    return hn::Neg(s);
+  };
+  if constexpr (lumped) {
+    for (std::ptrdiff_t i = 0; i < n; ++i) take(i, row(i) * at(k.inverse_mass, i));
+  } else {
+    V a = row(0);
+    hn::Store(a, d, k.a);
+    for (std::ptrdiff_t i = 1; i < n; ++i) {
+      a = row(i) - at(k.factor, i) * a;
+      hn::Store(a, d, k.a + static_cast<std::size_t>(i) * W);
+    }
+    a = at(k.a, n - 1) / at(k.pivot, n - 1) - hn::Zero(d);
+    take(n - 1, a);
+    for (std::ptrdiff_t i = n - 2; i >= 0; --i) {
+      a = at(k.a, i) / at(k.pivot, i) - at(k.factor, i + 1) * a;
+      take(i, a);
+    }
+  }
+}
+
+// 1. The half kick and the drift: Vⁿ⁺½ = Vⁿ + (Δt/2)Aⁿ, Ũ = Uⁿ + ΔtVⁿ⁺½ into y (a kept lane: V and U as they were).
+template <bool lumped, bool keeps, class D>
+void ExplicitDriftT(D d, const ExplicitKernel& k) {
+  using V = hn::Vec<D>;
+  const std::size_t W = k.lanes;
+  const auto at = [&](const double* a, std::ptrdiff_t i) { return hn::Load(d, a + static_cast<std::size_t>(i) * W); };
+  const auto keep = hn::Ne(hn::Load(d, k.keep), hn::Zero(d));
+  const V dt = hn::Load(d, k.dt), half = hn::Load(d, k.half_dt);
+  AccelerateT<lumped>(d, k, k.u, [&](std::ptrdiff_t i, V a) {
+    const V wo = at(k.w, i), ui = at(k.u, i);
+    V v = wo + half * a, y = ui + dt * v;
+    if constexpr (keeps) v = hn::IfThenElse(keep, wo, v), y = hn::IfThenElse(keep, ui, y);
+    hn::Store(v, d, k.w + static_cast<std::size_t>(i) * W);
+    hn::Store(y, d, k.y + static_cast<std::size_t>(i) * W);
+  });
+}
+
+// 2. Taylor–Flanagan's correction in the lanes that make it (V −= Δtμ r, Ũ −= Δt²μ r), the second half kick
+// Vⁿ⁺¹ = Vⁿ⁺½ + (Δt/2)Aⁿ⁺¹ (a kept lane's V stays), then the energy ½VᵀMV + ½ Σ_e (Δ_e U)²/h, the elements'
+// differences in order, the last one (0 − u_{n−1}) only on a bar clamped at its far end (stiffness_form).
+template <bool lumped, bool keeps, class D>
+void ExplicitKickT(D d, const ExplicitKernel& k) {
+  using V = hn::Vec<D>;
+  const std::size_t W = k.lanes;
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(k.n);
+  const auto at = [&](const double* a, std::ptrdiff_t i) { return hn::Load(d, a + static_cast<std::size_t>(i) * W); };
+  const auto keep = hn::Ne(hn::Load(d, k.keep), hn::Zero(d));
+  const V half = hn::Load(d, k.half_dt);
+  if (k.corrects) {
+    const auto correct = hn::Ne(hn::Load(d, k.correct), hn::Zero(d));
+    const V dt_mu = hn::Load(d, k.dt_mu), dt2_mu = hn::Load(d, k.dt2_mu);
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
+      const V r = at(k.impulse_response, i), v = at(k.w, i), y = at(k.y, i);
+      hn::Store(hn::IfThenElse(correct, v - dt_mu * r, v), d, k.w + static_cast<std::size_t>(i) * W);
+      hn::Store(hn::IfThenElse(correct, y - dt2_mu * r, y), d, k.y + static_cast<std::size_t>(i) * W);
+    }
+  }
+  AccelerateT<lumped>(d, k, k.y, [&](std::ptrdiff_t i, V a) {
+    const V wo = at(k.w, i);
+    V v = wo + half * a;
+    if constexpr (keeps) v = hn::IfThenElse(keep, wo, v);
+    hn::Store(v, d, k.w + static_cast<std::size_t>(i) * W);
+  });
+  const V kinetic = FormT(d, W, n, k.m_diag, k.m_lower, k.m_upper, k.w);
+  V strain = hn::Zero(d);
+  for (std::ptrdiff_t e = 0; e + 1 < n; ++e) {
+    const V du = at(k.y, e + 1) - at(k.y, e);
+    strain = strain + du * du;
+  }
+  const V last = hn::Zero(d) - at(k.y, n - 1);
+  strain = hn::IfThenElse(hn::Ne(hn::Load(d, k.clamped), hn::Zero(d)), strain + last * last, strain);
+  const V point_five = hn::Set(d, 0.5);
+  hn::Store(point_five * kinetic + point_five * (strain / hn::Load(d, k.h)), d, k.energy);
+}
+
+template <class D>
+void ExplicitDriftD(D d, const ExplicitKernel& k) {
+  if (k.lumped) return k.keeps ? ExplicitDriftT<true, true>(d, k) : ExplicitDriftT<true, false>(d, k);
+  if (k.keeps) return ExplicitDriftT<false, true>(d, k);
+  ExplicitDriftT<false, false>(d, k);
+}
+
+template <class D>
+void ExplicitKickD(D d, const ExplicitKernel& k) {
+  if (k.lumped) return k.keeps ? ExplicitKickT<true, true>(d, k) : ExplicitKickT<true, false>(d, k);
+  if (k.keeps) return ExplicitKickT<false, true>(d, k);
+  ExplicitKickT<false, false>(d, k);
+}
+
 // The entry points, one per width (where a capped width is the full one, the same code twice).
+void ExplicitDrift(const ExplicitKernel& k) { ExplicitDriftD(Full(), k); }
+void ExplicitDrift4(const ExplicitKernel& k) { ExplicitDriftD(Four(), k); }
+void ExplicitDrift2(const ExplicitKernel& k) { ExplicitDriftD(Two(), k); }
+void ExplicitKick(const ExplicitKernel& k) { ExplicitKickD(Full(), k); }
+void ExplicitKick4(const ExplicitKernel& k) { ExplicitKickD(Four(), k); }
+void ExplicitKick2(const ExplicitKernel& k) { ExplicitKickD(Two(), k); }
 void OneSolveDown(const OneSolveKernel& k) { OneSolveDownT(Full(), k); }
 void OneSolveDown4(const OneSolveKernel& k) { OneSolveDownT(Four(), k); }
 void OneSolveDown2(const OneSolveKernel& k) { OneSolveDownT(Two(), k); }
@@ -615,6 +743,7 @@ HWY_AFTER_NAMESPACE();
 
 #include "contact.hpp"
 #include "contact_classes.hpp"
+#include "explicit_schemes.hpp"
 #include "fast_step.hpp"
 #include "mass_redistribution.hpp"
 
@@ -642,6 +771,12 @@ HWY_EXPORT(OneSolveDown2);
 HWY_EXPORT(OneSolveUp);
 HWY_EXPORT(OneSolveUp4);
 HWY_EXPORT(OneSolveUp2);
+HWY_EXPORT(ExplicitDrift);
+HWY_EXPORT(ExplicitDrift4);
+HWY_EXPORT(ExplicitDrift2);
+HWY_EXPORT(ExplicitKick);
+HWY_EXPORT(ExplicitKick4);
+HWY_EXPORT(ExplicitKick2);
 }  // namespace batched
 /// @endcond
 
@@ -684,7 +819,10 @@ int batch_family(Scheme scheme) {
       return 5;
     case Scheme::dke:
       return 6;
-    default:  // the other classes: no batched kernel, each scheme a family of its own
+    case Scheme::taylor_flanagan:
+    case Scheme::explicit_central:
+      return 7;
+    default:  // a scheme without a batched kernel (none today): a family of its own
       return -1 - static_cast<int>(scheme);
   }
 }
@@ -720,6 +858,13 @@ struct BatchedSimulation::Group {
       two_over_dt, row0_zero, alpha, projected, minus_gap;
   std::vector<OneSolveStep*> solve_steps;               // each lane's step (its pieces)
   std::vector<OneSolveStep::Decision> solve_decisions;  // the lanes' decisions of the current step
+  // A group of the explicit classes (batch_family 7, batched::ExplicitKernel): u, y, w, the rows of M and S, dt,
+  // keep and energy above, and these (a: the consistent mass's solve).
+  bool explicit_scheme = false, lumped = true;
+  hwy::AlignedFreeUniquePtr<double[]> a, inverse_mass, pivot, factor, impulse_response, half_dt, h, clamped, correct,
+      dt_mu, dt2_mu;
+  std::vector<const ExplicitStep*> explicit_steps;       // each lane's step (its contact)
+  std::vector<ExplicitStep::Contact> explicit_contacts;  // the lanes' contacts of the current step
 };
 
 namespace {
@@ -785,6 +930,12 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
         families[Key{n, 4, 0}].push_back(k);
         continue;
       }
+      // The explicit classes (family 7) on a uniform homogeneous mesh (the energy's stiffness_form on one h),
+      // lumped or not in groups of their own.
+      if (r.explicit_ && r.mesh_.uniform() && r.mesh_.homogeneous()) {
+        families[Key{n, 7, r.explicit_->lanes().lumped ? 0 : 1}].push_back(k);
+        continue;
+      }
       // Moreau–Jean (family 5) or DKE (6) on the fused kernel without a load.
       const auto* solve = dynamic_cast<const OneSolveStep*>(r.class_step_.get());
       if (solve && solve->batchable()) {
@@ -826,6 +977,12 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
       if (std::get<1>(key) == 4) {
         g->n = std::get<0>(key);
         fill_newmark(*g, runs_);
+        groups_.push_back(std::move(g));
+        continue;
+      }
+      if (std::get<1>(key) == 7) {
+        g->n = std::get<0>(key);
+        fill_explicit(*g, runs_);
         groups_.push_back(std::move(g));
         continue;
       }
@@ -1005,9 +1162,46 @@ void BatchedSimulation::fill_one_solve(Group& g, const std::vector<BarSimulation
   }
 }
 
+void BatchedSimulation::fill_explicit(Group& g, const std::vector<BarSimulation>& runs) {
+  const std::size_t W = g.runs.size(), nw = g.n * W;
+  g.explicit_scheme = true;
+  g.lumped = runs[g.runs[0]].explicit_->lanes().lumped;
+  for (auto* a : {&g.u, &g.y, &g.w, &g.a, &g.s_diag, &g.s_lower, &g.s_upper, &g.m_diag, &g.m_lower, &g.m_upper,
+                  &g.inverse_mass, &g.pivot, &g.factor, &g.impulse_response})
+    *a = hwy::AllocateAligned<double>(nw);
+  for (auto* a : {&g.dt, &g.half_dt, &g.h, &g.clamped, &g.correct, &g.dt_mu, &g.dt2_mu, &g.keep, &g.energy})
+    *a = hwy::AllocateAligned<double>(W);
+  g.explicit_contacts.resize(W);
+  for (std::size_t j = 0; j < W; ++j) {
+    const BarSimulation& run = runs[g.runs[j]];
+    const ExplicitStep& step = *run.explicit_;
+    g.explicit_steps.push_back(&step);
+    const ExplicitStep::Lanes l = step.lanes();
+    const auto interleave = [&](double* to, const Eigen::VectorXd& from) {
+      for (std::size_t i = 0; i < g.n; ++i)
+        to[i * W + j] = static_cast<std::size_t>(from.size()) == g.n ? from[static_cast<Index>(i)] : 0.0;
+    };
+    interleave(g.s_diag.get(), l.stiffness->diag), interleave(g.s_lower.get(), l.stiffness->lower);
+    interleave(g.s_upper.get(), l.stiffness->upper);
+    interleave(g.m_diag.get(), run.mass_.diag), interleave(g.m_lower.get(), run.mass_.lower);  // the energy's M
+    interleave(g.m_upper.get(), run.mass_.upper);
+    interleave(g.inverse_mass.get(), *l.inverse_mass);  // empty ones (lumped or not, r of explicit) as zeros
+    interleave(g.pivot.get(), *l.pivot);
+    interleave(g.factor.get(), *l.factor);
+    interleave(g.impulse_response.get(), *l.impulse_response);
+    // As the step and BarSimulation compute them: Δt/2 (0.5Δt) and the energy's h.
+    g.dt[j] = l.dt;
+    g.half_dt[j] = 0.5 * l.dt;
+    g.h[j] = run.mesh_.h();
+    g.clamped[j] = run.mesh_.elements == static_cast<Index>(g.n) ? 1.0 : 0.0;
+    g.correct[j] = 0.0, g.dt_mu[j] = 0.0, g.dt2_mu[j] = 0.0, g.keep[j] = 0.0;
+    load_lane(g, j, run);
+  }
+}
+
 void BatchedSimulation::load_lane(Group& g, std::size_t j, const BarSimulation& run) {
   const std::size_t W = g.runs.size();
-  if (g.one_solve) {
+  if (g.one_solve || g.explicit_scheme) {
     for (std::size_t i = 0; i < g.n; ++i) {
       const auto e = static_cast<Index>(i);
       g.u[i * W + j] = run.state_.u[e];
@@ -1036,7 +1230,7 @@ void BatchedSimulation::load_lane(Group& g, std::size_t j, const BarSimulation& 
 
 void BatchedSimulation::store_lane(const Group& g, std::size_t j, BarSimulation& run) {
   const std::size_t W = g.runs.size();
-  if (g.one_solve) {
+  if (g.one_solve || g.explicit_scheme) {
     for (std::size_t i = 0; i < g.n; ++i) {
       const auto e = static_cast<Index>(i);
       run.state_.u[e] = g.u[i * W + j];
@@ -1074,7 +1268,8 @@ const BarSimulation& BatchedSimulation::run(std::size_t k) {
   std::vector<std::size_t> lanes;
   for (std::size_t j = 0; j < g.used; ++j)
     if (stale_[g.runs[j]]) lanes.push_back(j);
-  if (lanes.size() == 1 || g.newmark || g.one_solve) {  // one lane, or a class group's lanes one by one
+  if (lanes.size() == 1 || g.newmark || g.one_solve ||
+      g.explicit_scheme) {  // one lane, or a class group's lanes one by one
     for (std::size_t j : lanes) {
       store_lane(g, j, runs_[g.runs[j]]);
       stale_[g.runs[j]] = 0;
@@ -1169,6 +1364,10 @@ void BatchedSimulation::advance(const char* flags) {  // null: every run
     }
     if (g.one_solve) {
       advance_one_solve(g, flags);
+      continue;
+    }
+    if (g.explicit_scheme) {
+      advance_explicit(g, flags);
       continue;
     }
     // Paoli–Schatzman's first step is Crank–Nicolson's (BarSimulation::step's starter): each run alone.
@@ -1400,24 +1599,96 @@ void BatchedSimulation::advance_one_solve(Group& g, const char* flags) {
   }
 }
 
+// An explicit group's step: the half kick and the drift in vectors, each lane's contact (the run's own
+// ExplicitStep::contact: Taylor–Flanagan's correction, whose update of V and Ũ is then made in vectors, or the
+// explicit scheme's u₀), the second half kick and the energy in vectors, then each run's end of step (λ, the
+// status, the energy) and BarSimulation's bookkeeping. A kept lane (flags) is written back unchanged and its
+// run is not touched.
+void BatchedSimulation::advance_explicit(Group& g, const char* flags) {
+  const std::size_t W = g.runs.size();
+  const auto moves = [&](std::size_t j) { return !flags || flags[g.runs[j < g.used ? j : 0]] != 0; };
+  bool all = true;
+  for (std::size_t j = 0; j < g.used; ++j) all = all && moves(j);
+  for (std::size_t j = 0; j < W; ++j) g.keep[j] = moves(j) ? 0.0 : 1.0, g.correct[j] = 0.0;
+  batched::ExplicitKernel k;
+  k.n = g.n, k.lanes = W, k.keeps = !all, k.lumped = g.lumped;
+  k.u = g.u.get(), k.y = g.y.get(), k.w = g.w.get(), k.a = g.a.get();
+  k.s_diag = g.s_diag.get(), k.s_lower = g.s_lower.get(), k.s_upper = g.s_upper.get();
+  k.m_diag = g.m_diag.get(), k.m_lower = g.m_lower.get(), k.m_upper = g.m_upper.get();
+  k.inverse_mass = g.inverse_mass.get(), k.pivot = g.pivot.get(), k.factor = g.factor.get();
+  k.impulse_response = g.impulse_response.get(), k.dt = g.dt.get(), k.half_dt = g.half_dt.get(), k.h = g.h.get();
+  k.clamped = g.clamped.get(), k.correct = g.correct.get(), k.dt_mu = g.dt_mu.get(), k.dt2_mu = g.dt2_mu.get();
+  k.keep = g.keep.get(), k.energy = g.energy.get();
+  switch (g.width) {
+    case 0:
+      HWY_DYNAMIC_DISPATCH(batched::ExplicitDrift)(k);
+      break;
+    case 1:
+      HWY_DYNAMIC_DISPATCH(batched::ExplicitDrift4)(k);
+      break;
+    default:
+      HWY_DYNAMIC_DISPATCH(batched::ExplicitDrift2)(k);
+  }
+  for (std::size_t j = 0; j < W; ++j) {
+    if (!moves(j)) continue;  // kept: no correction, its Ũ (its Uⁿ) untouched
+    const ExplicitStep::Contact c = g.explicit_steps[j]->contact(g.y[j], g.y[W + j], g.w[j], 0.0);
+    g.explicit_contacts[j] = c;
+    if (c.correct) {  // as the step computes them: (Δtμ) and (Δt Δt μ)
+      g.correct[j] = 1.0, g.dt_mu[j] = g.dt[j] * c.lambda, g.dt2_mu[j] = g.dt[j] * g.dt[j] * c.lambda;
+      k.corrects = true;
+    }
+    if (c.set_u0) g.y[j] = c.u0;
+  }
+  switch (g.width) {
+    case 0:
+      HWY_DYNAMIC_DISPATCH(batched::ExplicitKick)(k);
+      break;
+    case 1:
+      HWY_DYNAMIC_DISPATCH(batched::ExplicitKick4)(k);
+      break;
+    default:
+      HWY_DYNAMIC_DISPATCH(batched::ExplicitKick2)(k);
+  }
+  std::swap(g.u, g.y);  // U = Uⁿ⁺¹
+  for (std::size_t j = 0; j < g.used; ++j) {
+    if (!moves(j)) continue;
+    const std::size_t r = g.runs[j];
+    BarSimulation& run = runs_[r];
+    // finish_step reads u₀ and V₁ (the massless node's velocity): the entries 0 and 1 are copied out now, the
+    // rest of the vectors when run(k) is asked for.
+    run.state_.u[0] = g.u[j], run.state_.u[1] = g.u[W + j];
+    run.state_.w[0] = g.w[j], run.state_.w[1] = g.w[W + j];
+    stale_[r] = 1;
+    run.state_.lambda = g.explicit_contacts[j].lambda;
+    run.state_.active = g.explicit_contacts[j].active;
+    run.state_.energy = g.energy[j];
+    run.finish_step();
+    if (run.algebraic_row_ && !run.three_level_) g.w[j] = run.state_.w[0];  // its massless node's velocity
+  }
+}
+
 /// @file batched_step.cpp
 /// ## The batched step against the runs stepped alone
 ///
 /// Prediction: bit for bit the same states (U, W', X, λ, the energy, the status, the instants) at every
 /// step, lane by lane, for every scheme with a batched kernel (cn, be, ps with both contact rows, ec,
-/// cn-switch, the Newmark-type classes newmark, penalty, nitsche, and moreau-jean and dke) and every vector
-/// target this machine has: the batched step performs each lane's operations in the scalar order, and
-/// CN-switch's status changes and Paoli–Schatzman's first step are the lane's own scalar step, as are the
-/// classes' contact decisions, DKE's projection and the ends of step (NewmarkTypeStep::decide, finish;
-/// OneSolveStep::projection, decide, finish). The runs of a batch differ in Δt (Courant numbers 0.5 … 1.7),
-/// mass (Mod 1, Mod 3, the consistent mass where the scheme allows it), for Paoli–Schatzman in β and e, for
-/// the Newmark type in β (0 at 0.9 of the stability limit, or (γ + ½)²/4), γ, the penalty and Nitsche's θ
-/// and γ₀, for Moreau–Jean in θ and e, and for Moreau–Jean and DKE in the initial gap (0 or h/2); their
-/// number 2W + 1 leaves a group with padding lanes or a run alone. A difference of one ulp anywhere fails;
-/// so do four mutations of the Newmark-type kernel (tried): the form's partial sums paired otherwise, the
-/// law's force on row 0 dropped, the shift's select inverted, a kept lane's velocity not kept; and four of
-/// the one-solve kernel (tried): DKE's projection dropped, DKE's P₀ = −g₀ dropped, the kinetic form taken
-/// of the wrong vector, a kept Moreau–Jean lane's velocity not kept (the partial step below).
+/// cn-switch, the Newmark-type classes newmark, penalty, nitsche, moreau-jean, dke, taylor-flanagan and
+/// explicit: every scheme of the registry) and every vector target this machine has: the batched step
+/// performs each lane's operations in the scalar order, and CN-switch's status changes and
+/// Paoli–Schatzman's first step are the lane's own scalar step, as are the classes' contact decisions, DKE's
+/// projection and the ends of step (NewmarkTypeStep::decide, finish; OneSolveStep::projection, decide,
+/// finish; ExplicitStep::contact). The runs of a batch differ in Δt (Courant numbers 0.5 … 1.7; the explicit
+/// classes 0.5 … 0.92 of their stability limit), mass (Mod 1, Mod 3, the consistent mass where the scheme
+/// allows it; Taylor–Flanagan's lumped or not), for Paoli–Schatzman in β and e, for the Newmark type in β (0
+/// at 0.9 of the stability limit, or (γ + ½)²/4), γ, the penalty and Nitsche's θ and γ₀, for Moreau–Jean in
+/// θ and e, and for Moreau–Jean, DKE and the explicit classes in the initial gap (0 or h/2); their number
+/// 2W + 1 leaves a group with padding lanes or a run alone. A difference of one ulp anywhere fails; so do
+/// four mutations of the Newmark-type kernel (tried): the form's partial sums paired otherwise, the law's
+/// force on row 0 dropped, the shift's select inverted, a kept lane's velocity not kept; four of the
+/// one-solve kernel (tried): DKE's projection dropped, DKE's P₀ = −g₀ dropped, the kinetic form taken of the
+/// wrong vector, a kept Moreau–Jean lane's velocity not kept (the partial step below); and four of the
+/// explicit kernel (tried): Taylor–Flanagan's correction skipped, the clamped end's element dropped from the
+/// energy, a kept lane's second kick not kept, the explicit scheme's u₀ not set.
 namespace {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
@@ -1441,7 +1712,27 @@ std::vector<BatchedCase> batched_cases() {
           {Scheme::penalty, ContactRow::algebraic},
           {Scheme::nitsche, ContactRow::algebraic},
           {Scheme::moreau_jean, ContactRow::algebraic},
-          {Scheme::dke, ContactRow::algebraic}};
+          {Scheme::dke, ContactRow::algebraic},
+          {Scheme::taylor_flanagan, ContactRow::algebraic},
+          {Scheme::explicit_central, ContactRow::algebraic}};
+}
+
+bool is_explicit_class(Scheme scheme) {
+  return scheme == Scheme::taylor_flanagan || scheme == Scheme::explicit_central;
+}
+
+// Run k's lumping, mass, gap and Δt of an explicit class: Taylor–Flanagan with the consistent mass, lumped
+// (row-sum) or not; explicit with Mod 1 or Mod 3, lumped; every third run with a gap of h/2; Δt the fraction
+// `fraction` of the run's stability limit (explicit_stability_limit).
+MassRedistribution explicit_parameters(SchemeParameters& p, std::size_t k, Problem& problem, const UniformMesh& mesh,
+                                       double fraction, double& dt) {
+  if (k % 3 == 2) problem.gap = 0.5 * mesh.h();
+  const bool tf = p.scheme == Scheme::taylor_flanagan;
+  const MassRedistribution mass = tf ? consistent_mass() : k % 2 == 0 ? mod1() : mod3();
+  p.lumping = tf && k % 2 == 1 ? MassLumping::none : MassLumping::row_sum;
+  const Eigen::VectorXd lumped = row_sum_lumped_mass(mesh, mass);
+  dt = fraction * explicit_stability_limit(mesh, p.lumping == MassLumping::row_sum ? &lumped : nullptr);
+  return mass;
 }
 
 bool is_newmark_type(Scheme scheme) {
@@ -1515,6 +1806,8 @@ TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for
         if (is_newmark_type(c.scheme)) class_parameters(p, k, mesh, mass, true, dt);
         if (c.scheme == Scheme::moreau_jean || c.scheme == Scheme::dke)
           mass = one_solve_parameters(p, k, problem, mesh.h());
+        if (is_explicit_class(c.scheme))
+          mass = explicit_parameters(p, k, problem, mesh, 0.5 + 0.035 * static_cast<double>(k % 13), dt);
         batch.emplace_back(problem, mesh, mass, p, dt);
         alone.emplace_back(problem, mesh, mass, p, dt);
       }
@@ -1559,6 +1852,13 @@ TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for
   use_batch_target(0);
   // Not vacuous: every case went through the vector lanes on every target, CN-switch changed status.
   CHECK(batched_cases == static_cast<int>(targets.size() * cases.size()));
+  // Every scheme of the registry has a batched kernel (a family ≥ 0) and a case here: a scheme added
+  // without either fails.
+  for (const SchemeInfo& info : scheme_registry()) {
+    CAPTURE(info.id);
+    CHECK(batch_family(info.scheme) >= 0);
+    CHECK(std::any_of(cases.begin(), cases.end(), [&](const BatchedCase& c) { return c.scheme == info.scheme; }));
+  }
   CHECK(status_changes > 0);
 }
 
@@ -1598,6 +1898,8 @@ TEST_CASE("a partial step keeps the runs that stay, and runs at their own rates 
         if (is_newmark_type(c.scheme)) class_parameters(p, k, mesh, mass, false, dt);  // implicit: any rate
         if (c.scheme == Scheme::moreau_jean || c.scheme == Scheme::dke)
           mass = one_solve_parameters(p, k, problem, mesh.h());
+        if (is_explicit_class(c.scheme))  // rates 1, 2, 3, 5 of 0.18 of the stability limit
+          mass = explicit_parameters(p, k, problem, mesh, 0.18 * static_cast<double>(rates[k % rates.size()]), dt);
         batch.emplace_back(problem, mesh, mass, p, dt);
         alone.emplace_back(problem, mesh, mass, p, dt);
       }

@@ -39,17 +39,18 @@ BatchTarget current_batch_target();
 /// The family of a scheme's batched kernel: 0 for the two-level steps (Crank–Nicolson and backward
 /// Euler: the same sweeps, the scheme only in each lane's factors and rates), 1 Paoli–Schatzman (three
 /// levels), 2 EC, 3 CN-switch, 4 the Newmark-type classes (newmark, penalty, nitsche: contact_classes.hpp,
-/// NewmarkTypeStep), 5 Moreau–Jean and 6 DKE (OneSolveStep). Runs of the same number of unknowns and family,
-/// on the fast kernel and without a load, share the lanes of a group whatever their scheme, mass, Δt or
-/// data; runs of different families never do. A scheme without a batched kernel (the explicit classes
-/// Taylor–Flanagan and explicit) is a family of its own, −1 − its index (its runs are stepped alone). The
-/// sweep layer batches runs by it (repro/sweep.hpp).
+/// NewmarkTypeStep), 5 Moreau–Jean and 6 DKE (OneSolveStep), 7 the explicit classes (Taylor–Flanagan and
+/// explicit: ExplicitStep, lumped and consistent masses in groups of their own). Runs of the same number of
+/// unknowns and family, on the fast kernel and without a load, share the lanes of a group whatever their
+/// scheme, mass, Δt or data; runs of different families never do. A scheme without a batched kernel (none
+/// today) would be a family of its own, −1 − its index (its runs stepped alone). The sweep layer batches
+/// runs by it (repro/sweep.hpp).
 int batch_family(Scheme scheme);
 
 /// A batch of runs (BarSimulation's at level 0, moved in) advanced one step at a time. Runs whose
 /// steps can share vector registers (the fast kernel, no load, and the same number of unknowns, scheme
-/// family — two-level, Paoli–Schatzman, EC, CN-switch, Newmark-type, Moreau–Jean, DKE (the classes: at least
-/// 4 unknowns) — and fast-step
+/// family — two-level, Paoli–Schatzman, EC, CN-switch, Newmark-type, Moreau–Jean, DKE, explicit (the classes:
+/// at least 4 unknowns; the explicit ones on a uniform homogeneous mesh) — and fast-step
 /// layout, FastStep's explicit head rows) are grouped by lanes of the current target: groups of the target's full width, and the remainder
 /// of a family in one group of the narrowest width that holds it (2, 4 or the full width: padding lanes
 /// cost as much as runs); every other run (the reference kernel, a load, a remainder of one) is stepped
@@ -103,6 +104,8 @@ class BatchedSimulation {
   static void fill_one_solve(Group& g, const std::vector<BarSimulation>& runs, bool dke);  // Moreau–Jean's or DKE's
   void advance_one_solve(Group& g, const char* flags);                                     // its step
   static OneSolveStep& one_solve_step(const BarSimulation& run);                           // such a run's step
+  static void fill_explicit(Group& g, const std::vector<BarSimulation>& runs);             // an explicit group's lanes
+  void advance_explicit(Group& g, const char* flags);                                      // its step
   void advance(const char* flags);  // step(flags) without the check; null: every run
   std::vector<BarSimulation> runs_;
   std::vector<std::unique_ptr<Group>> groups_;

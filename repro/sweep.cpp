@@ -568,8 +568,8 @@ TEST_CASE("the batched sweep gives each run's measures bit for bit, for any thre
   // the vector target (each one this machine has) or batching at all. The runs: the five schemes of
   // the batched step and the three Newmark-type classes (newmark, penalty, nitsche: one family, β = ¼),
   // two masses, two meshes, two steps (runs of one batch end at different levels),
-  // with horizons; the other four classes (moreau-jean and dke in lanes, the two explicit ones, which have no
-  // batched kernel, each run stepped alone in its batch); and
+  // with horizons; the other four classes (moreau-jean, dke and the two explicit ones, each family in lanes);
+  // and
   // two runs of each smooth benchmark on the same mesh and Δt, which share one reference
   // per benchmark (and must not get the other's); and runs that keep the stress histories (the recovered
   // strain read from the lanes), with and without the error measures.
@@ -581,9 +581,8 @@ TEST_CASE("the batched sweep gives each run's measures bit for bit, for any thre
           configurations.push_back(paper_configuration(scheme, "algebraic", mass, n, courant, 3.5));
           configurations.back().horizons = {1.0, 3.0};
         }
-  // The other classes (a family each: moreau-jean and dke in lanes, the explicit ones stepped alone in their
-  // batches): the inertial ones with the consistent mass, the explicit one with Mod 3 below its stability
-  // limit.
+  // The other classes (moreau-jean, dke, and the explicit ones sharing a family): the inertial ones with the
+  // consistent mass, the explicit one with Mod 3 below its stability limit.
   for (const char* scheme : {"moreau-jean", "dke", "taylor-flanagan", "explicit"})
     for (Index n : {10, 13})
       for (double courant : {0.5, 0.9}) {
