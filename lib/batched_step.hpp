@@ -42,9 +42,8 @@ BatchTarget current_batch_target();
 /// NewmarkTypeStep), 5 Moreau–Jean and 6 DKE (OneSolveStep), 7 the explicit classes (Taylor–Flanagan and
 /// explicit: ExplicitStep, lumped and consistent masses in groups of their own). Runs of the same number of
 /// unknowns and family, on the fast kernel and without a load, share the lanes of a group whatever their
-/// scheme, mass, Δt or data; runs of different families never do. A scheme without a batched kernel (none
-/// today) would be a family of its own, −1 − its index (its runs stepped alone). The sweep layer batches
-/// runs by it (repro/sweep.hpp).
+/// scheme, mass, Δt or data; runs of different families never do. Every scheme of the registry has a
+/// family (a doctest checks it). The sweep layer batches runs by it (repro/sweep.hpp).
 int batch_family(Scheme scheme);
 
 /// A batch of runs (BarSimulation's at level 0, moved in) advanced one step at a time. Runs whose
