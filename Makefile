@@ -276,7 +276,7 @@ MATHJAX := /usr/share/javascript/mathjax
 MATHJAX_PARTS := MathJax.js extensions jax/input/TeX jax/element jax/output/HTML-CSS fonts/HTML-CSS/TeX \
                  localization/en
 
-$(DOC)/html/index.html: Doxyfile $(wildcard lib/*.hpp lib/*.cpp doc/*.md) | $(DOC)
+$(DOC)/html/index.html: Doxyfile $(wildcard lib/*/*.hpp lib/*/*.cpp doc/*.md) | $(DOC)
 	rm -rf $(DOC)/html
 	( cat Doxyfile; echo 'OUTPUT_DIRECTORY = $(DOC)'; echo 'INPUT = $(DOC_INPUT)'; \
 	  $(if $(filter doc/mainpage.md,$(DOC_INPUT)),,echo 'USE_MDFILE_AS_MAINPAGE =') ) \

@@ -24,14 +24,14 @@
 // field.md sec. 1) the run has the benchmark's load, gap, material and free far end, in its own units
 // (the harness runs the dimensionless problem and scales back: repro/configurations.hpp, Scaling;
 // Δt = C h/c with c the wave speed at the contact end), its reference is the chain's exact solution
-// (lib/impact_solution.hpp), and it also prints the exact contact windows over [0, T]
+// (lib/exact/impact_solution.hpp), and it also prints the exact contact windows over [0, T]
 // (exact_contact_windows = [t1, t2] ...) and the run's (measured_contact_windows), in the benchmark's
 // time unit. two-bars runs two meshes, N elements on each bar, coupled by one contact multiplier
-// (lib/two_bodies.hpp; Crank-Nicolson only, a massless contact node on each bar); its errors are the
+// (lib/time/two_bodies.hpp; Crank-Nicolson only, a massless contact node on each bar); its errors are the
 // larger of the two bars' (repro/configurations.hpp, run_configuration). --grading R runs the paper's
 // benchmark, a smooth one or data of one's own on the mesh h_k = h0 R^k (finer toward the contact,
 // dt = C h0), and on the paper's benchmark prints the period law's predictions for that mesh beside the
-// measured drift (lib/period_law.hpp: the eigenvalue law, and the first-order change against Mod 3). Its
+// measured drift (lib/measures/period_law.hpp: the eigenvalue law, and the first-order change against Mod 3). Its
 // standard output is the same bytes for the same command except the wall time of the run
 // (wall_seconds), which `--no-timing` leaves out.
 //
@@ -70,14 +70,14 @@
 #include "figure_program.hpp"
 #include "run_limits.hpp"
 #include "initial_data_file.hpp"
-#include "errors.hpp"
-#include "exact_solution.hpp"
-#include "impact_solution.hpp"
-#include "interior_mass.hpp"
-#include "period_law.hpp"
-#include "contact_classes.hpp"
-#include "schemes.hpp"
-#include "two_bodies.hpp"
+#include "measures/errors.hpp"
+#include "exact/exact_solution.hpp"
+#include "exact/impact_solution.hpp"
+#include "fem/interior_mass.hpp"
+#include "measures/period_law.hpp"
+#include "classes/contact_classes.hpp"
+#include "time/schemes.hpp"
+#include "time/two_bodies.hpp"
 
 namespace cli = mrm::cli;
 
@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
     long elements = 100;
     double courant = 0.5, dt = 0.0, final_time = 6.0, length = 1.0, amplitude = 0.5, beta = 0.25, restitution = 0.0,
            switch_theta = 1.0;
-    // The contact classes' parameters (lib/contact_classes.cpp), their defaults the library's.
+    // The contact classes' parameters (lib/classes/contact_classes.cpp), their defaults the library's.
     const mrm::SchemeParameters class_defaults;
     double newmark_beta = class_defaults.newmark_beta, newmark_gamma = class_defaults.newmark_gamma,
            penalty = class_defaults.penalty, nitsche_theta = class_defaults.nitsche_theta,
@@ -97,12 +97,12 @@ int main(int argc, char** argv) {
                 initial = "consistent", contact_velocity = "algebraic", output, lumping = "row-sum";
     std::string benchmark = "paper", initial_data;
     bool no_timing = false, phase_matched = false;
-    // The grading ratio R of the mesh h_k = h0 R^k (lib/p1.hpp graded_mesh): from 1 (uniform) to 1.1, a
+    // The grading ratio R of the mesh h_k = h0 R^k (lib/fem/p1.hpp graded_mesh): from 1 (uniform) to 1.1, a
     // coarsest element 1.1^(N-1) h0 (Δt = C h0 sets the cost; the step count is checked below).
     double grading = 1.0;
     constexpr double largest_grading = 1.1;
     std::string interior_mass = "consistent";
-    // The contact stress whose oscillation bar1d reports (lib/contact_stress.hpp; default: see the
+    // The contact stress whose oscillation bar1d reports (lib/measures/contact_stress.hpp; default: see the
     // --stress help and experiments/fig_stress.cpp's measurements).
     std::string stress = "window";
     // The ranges below keep every quantity of the run (h, Δt², the matrices' entries, the energy a²L/2)
@@ -158,7 +158,7 @@ int main(int argc, char** argv) {
     parser.add_real("--switch-theta", "", "TH",
                     "cn-switch: theta of the step that replaces a Crank-Nicolson step across a change of the "
                     "contact status; only 1 (backward Euler), the one theta whose energy identity proves that "
-                    "no step gains energy (below 1 a release may gain: lib/schemes.hpp)",
+                    "no step gains energy (below 1 a release may gain: lib/time/schemes.hpp)",
                     &switch_theta, cli::in_closed_range(mrm::switch_theta_without_gain, 1));
     parser.add_string("--mass", "-m", "M", mrm::repro::mass_option_help("mass matrix"), &mass);
     parser.add_real("--beta", "-b", "B",
@@ -241,18 +241,19 @@ int main(int argc, char** argv) {
     {
       std::vector<std::string> stresses;
       for (const mrm::ContactStressEntry& e : mrm::contact_stress_registry()) stresses.push_back(e.name);
-      parser.add_choice("--stress", "", "S",
-                        "contact stress whose oscillation lambda_tv_ratio reports (issue 26): the multiplier, its box "
-                        "or B-spline window average over 8 smearing widths, or the strain recovered over the first "
-                        "elements (lib/contact_stress.hpp); default window, multiplier on two-bars (its run keeps no "
-                        "stress history)",
-                        stresses, &stress);
+      parser.add_choice(
+          "--stress", "", "S",
+          "contact stress whose oscillation lambda_tv_ratio reports (issue 26): the multiplier, its box "
+          "or B-spline window average over 8 smearing widths, or the strain recovered over the first "
+          "elements (lib/measures/contact_stress.hpp); default window, multiplier on two-bars (its run keeps no "
+          "stress history)",
+          stresses, &stress);
     }
     parser.add_conflict("--dt", "--courant");
     parser.add_conflict("--interior-mass", "--phase-matched");
     parser.add_conflict("--initial-data", "--benchmark");
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
-    double blend = 0.0;  // the interior mass blend A (lib/interior_mass.hpp)
+    double blend = 0.0;  // the interior mass blend A (lib/fem/interior_mass.hpp)
     try {
       blend = mrm::repro::interior_blend_from_spec(interior_mass);
     } catch (const std::invalid_argument& e) {
@@ -306,7 +307,7 @@ int main(int argc, char** argv) {
         lumping = mrm::to_string(preset.scheme.lumping);
     }
     const mrm::Scheme scheme_id = mrm::scheme_by_name(scheme);
-    // Two bodies (two-bars, lib/two_bodies.hpp): Crank-Nicolson with a massless contact node on each bar,
+    // Two bodies (two-bars, lib/time/two_bodies.hpp): Crank-Nicolson with a massless contact node on each bar,
     // measured by run_configuration; the options of one body's run do not apply.
     const bool two_bodies = field_benchmark && mrm::is_two_body_chain(mrm::impact_benchmark(benchmark).configuration);
     if (two_bodies) {
@@ -473,7 +474,7 @@ int main(int argc, char** argv) {
                                                  configuration.mass, configuration.scheme, step, configuration.initial);
                                });
     // Explicit penalty and explicit Nitsche (Newmark beta < gamma/2): the linear step limit checked above is
-    // necessary, not sufficient (lib/contact_classes.cpp, "Central differences with a penalty" and "... with
+    // necessary, not sufficient (lib/classes/contact_classes.cpp, "Central differences with a penalty" and "... with
     // Nitsche's terms"); a run outside the measured region where the energy stayed below 2 E0 (fig_classes
     // blocks 5 and 6, per horizon) gets one warning line, labelled as measured, not derived.
     const bool stiff_law = scheme_id == mrm::Scheme::penalty || scheme_id == mrm::Scheme::nitsche;
@@ -509,7 +510,7 @@ int main(int argc, char** argv) {
       std::ostream& out = series->stream();
       out << "# bar1d: time series at the contact point x = 0 ("
           << (own_data ? std::string("initial data from a file") : benchmark + " benchmark") << "; exact values: "
-          << (field_benchmark                    ? "the chain's exact solution, lib/impact_solution.hpp"
+          << (field_benchmark                    ? "the chain's exact solution, lib/exact/impact_solution.hpp"
               : own_data || benchmark != "paper" ? "characteristic solution, mathematics.md sec. 10"
                                                  : "closed form, mathematics.md sec. 2")
           << ")\n";
@@ -610,7 +611,7 @@ int main(int argc, char** argv) {
                   << "period_law_first_order_drift_change_vs_mod3 = "
                   << cli::format_real(mrm::first_order_period_change(mesh, configuration.mass)) << '\n';
     }
-    // On a field benchmark: the exact contact windows over [0, T] (lib/impact_solution.hpp, computed in the
+    // On a field benchmark: the exact contact windows over [0, T] (lib/exact/impact_solution.hpp, computed in the
     // benchmark's own units) and the run's (the crossings of the contact indicator, phase.hpp), in the
     // benchmark's time unit.
     if (field_benchmark) {

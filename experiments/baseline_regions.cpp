@@ -47,8 +47,8 @@
 #include "report_values.hpp"
 #include "table.hpp"
 
-#include "errors.hpp"
-#include "exact_solution.hpp"
+#include "measures/errors.hpp"
+#include "exact/exact_solution.hpp"
 
 namespace cli = mrm::cli;
 namespace repro = mrm::repro;

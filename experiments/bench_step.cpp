@@ -2,14 +2,14 @@
 //
 // What it computes. A time step of Crank–Nicolson, backward Euler and Paoli–Schatzman on the P1 bar
 // with a redistributed mass is one solve with a constant tridiagonal matrix A plus a scalar contact
-// decision (mathematics.md §4, lib/schemes.cpp): its cost should be linear in the number of nodes N and
+// decision (mathematics.md §4, lib/time/schemes.cpp): its cost should be linear in the number of nodes N and
 // close to that of a bare solve with the same pre-factored A. For N = 2^6 … 2^20 elements this program
 // times, in nanoseconds per node per step:
 //   cn, be, ps   BarSimulation::step() of each scheme (Mod 3 mass, Δt = h/2, the benchmark problem;
 //                Paoli–Schatzman with β = ¼ and the algebraic contact row), with the fast step that
-//                every program uses (the fused two-chain kernel of lib/fast_step.cpp);
+//                every program uses (the fused two-chain kernel of lib/time/fast_step.cpp);
 //   cn_ref, be_ref, ps_ref
-//                the same with the reference step (StepKernel::reference, lib/schemes.cpp: the
+//                the same with the reference step (StepKernel::reference, lib/time/schemes.cpp: the
 //                scheme written as its derivation, assembled matrices, ContactSolver::solve, the
 //                velocity and the energy as whole vectors; mathematics.md §4);
 //   cn+errors    the same Crank–Nicolson step followed by ErrorAccumulator::add, the error measures of
@@ -22,7 +22,7 @@
 //   eigen        Eigen's SimplicialLDLT solve (factorised once) of the same matrix, symmetrised by
 //                scaling its algebraic contact row 0 by θ (same sparsity, same cost).
 // A second table, "batched", gives for the same N the cost per node, step and run of W runs of the cn
-// configuration advanced together in the W lanes of each vector target the machine has (lib/batched_step.cpp:
+// configuration advanced together in the W lanes of each vector target the machine has (lib/batched/batched_step.cpp:
 // AVX-512, AVX2, SSE4, ..., chosen at run time), beside the scalar step, the bare solve (plain, two-chain,
 // and two right-hand sides at a time, "bare_x2"), and the limit of the widest target: the larger of the time
 // of the step's memory traffic alone (64 to 104 bytes per node and run, timed as a skeleton of its sweeps,
@@ -78,11 +78,11 @@
 #include "step_limits.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
-#include "batched_step.hpp"
-#include "contact.hpp"
-#include "errors.hpp"
-#include "exact_solution.hpp"
-#include "schemes.hpp"
+#include "batched/batched_step.hpp"
+#include "time/contact.hpp"
+#include "measures/errors.hpp"
+#include "exact/exact_solution.hpp"
+#include "time/schemes.hpp"
 
 namespace cli = mrm::cli;
 using mrm::Index;
@@ -156,7 +156,7 @@ mrm::SchemeParameters parameters_of(mrm::Scheme scheme, mrm::StepKernel kernel =
 }
 
 // Crank–Nicolson's step matrix A = M^mod + θS with θ = Δt²/4 and row 0 replaced by the algebraic
-// contact row S₀· (lib/schemes.cpp); `symmetric` scales that row by θ instead, which gives the
+// contact row S₀· (lib/time/schemes.cpp); `symmetric` scales that row by θ instead, which gives the
 // symmetric M^mod + θS (M^mod has a zero row 0).
 mrm::Tridiagonal crank_nicolson_matrix(const mrm::UniformMesh& mesh, bool symmetric) {
   const double dt = courant * mesh.h(), theta = dt * dt / 4;
@@ -397,7 +397,7 @@ struct BatchedTimings {
   double limit = 0;                // the larger of traffic and arithmetic
 };
 
-// The batched step's memory traffic per node, step and run (lib/batched_step.cpp): the sweep down reads
+// The batched step's memory traffic per node, step and run (lib/batched/batched_step.cpp): the sweep down reads
 // U, W' and writes y; the sweep up reads y, U, W' and writes Uⁿ⁺¹ and W': 8 doubles, 64 bytes. Off the
 // plateau of the factors (BatchedSimulation::plateau_rows: the interior rows whose LU factors repeat, held
 // in registers) the sweeps also read ε, εε (down) and 1/d, c, cc (up): 40 bytes more. Which level of
@@ -722,7 +722,7 @@ int main(int argc, char** argv) {
     }
     std::cout << summary.str();
 
-    // The batched step (lib/batched_step.cpp): W runs of Crank–Nicolson (the same configuration as the
+    // The batched step (lib/batched/batched_step.cpp): W runs of Crank–Nicolson (the same configuration as the
     // cn column) in the W lanes of each vector target the machine has, ns per node per step per run,
     // against the scalar step, the bare solve (one and two at a time) and the limit of the widest target:
     // the larger of its memory traffic alone and of its operations at their peak rate.

@@ -5,7 +5,7 @@
 // compile definitions, so they are the versions the programs were compiled against), the build type,
 // and the vector target the batched step chooses on this processor at run time (Highway's name and its
 // number of double lanes: the width in which the sweeps' runs share vector registers,
-// lib/batched_step.cpp). Written as the report's values `\mrmdef{meta:KEY}{VALUE}`.
+// lib/batched/batched_step.cpp). Written as the report's values `\mrmdef{meta:KEY}{VALUE}`.
 //
 // The same build on the same machine gives the same bytes (no time, no host name); another machine may
 // choose another vector target, and says so.
@@ -18,7 +18,7 @@
 #include <iostream>
 #include <string>
 
-#include "batched_step.hpp"
+#include "batched/batched_step.hpp"
 #include "claims.hpp"
 #include "options.hpp"
 #include "output_file.hpp"

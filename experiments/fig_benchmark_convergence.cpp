@@ -1,7 +1,7 @@
 // fig_benchmark_convergence: convergence on the field's benchmarks, and the period law on graded meshes.
 //
-// What it computes. (1) On the field's benchmarks of lib/impact_solution.hpp (bouncing, impacting,
-// gravity-paper, layered, and two-bars: two meshes coupled by one contact multiplier, lib/two_bodies.hpp,
+// What it computes. (1) On the field's benchmarks of lib/exact/impact_solution.hpp (bouncing, impacting,
+// gravity-paper, layered, and two-bars: two meshes coupled by one contact multiplier, lib/time/two_bodies.hpp,
 // N elements on each bar, each measure the larger of the two bars'), the eight relative errors of
 // mathematics.md §5 against the chain's exact solution (ImpactReference, TwoBodyReference), for
 // Crank–Nicolson with Mod 1, 2 and 3, on the meshes N = N₀, 2N₀, …, 2^{K−1}N₀ with Δt = h/(2c) (h and
@@ -12,7 +12,7 @@
 // Mod 3 on the finest mesh with Δt = 2h/c, h/c, h/(2c). (3) The exact contact windows of each benchmark
 // and those of the finest Mod 3 run. (4) The period law on graded meshes h_k = h₀ r^k: the drift per
 // period of Mod 1, Mod 2 and equal shares over the N − 1 nodes (spread:N−1), each minus Mod 3's in the
-// same set-up, measured on the paper's benchmark (lib/period_law.hpp: measure_benchmark_phase, the
+// same set-up, measured on the paper's benchmark (lib/measures/period_law.hpp: measure_benchmark_phase, the
 // doctest's machinery) against the first-order prediction ΔP = Σ δmᵢ κ(xᵢ) (first_order_period_change).
 //
 // Predictions (conjectures: heuristic, from the regularity of the exact solutions, by the mechanisms
@@ -28,7 +28,7 @@
 //     in H¹ (a kink smeared over O(h) costs O(h) in L²), 2 for u in L²; u(0,·) ≡ 0 exactly and in every
 //     run (no measure).
 // A fitted order "agrees" within ±0.25; disagreements are printed in italics, not hidden.
-//   - graded meshes: the tolerance is the doctest's (lib/period_law.cpp), the measurement's resolution
+//   - graded meshes: the tolerance is the doctest's (lib/measures/period_law.cpp), the measurement's resolution
 //     measured on the uniform mesh, 0.15 h₀.
 //
 // Sample runs:
@@ -54,19 +54,19 @@
 
 #include "claims.hpp"
 #include "configurations.hpp"
-#include "convergence.hpp"
-#include "errors.hpp"
+#include "studies/convergence.hpp"
+#include "measures/errors.hpp"
 #include "figure_program.hpp"
-#include "impact_solution.hpp"
+#include "exact/impact_solution.hpp"
 #include "labels.hpp"
-#include "mass_redistribution.hpp"
+#include "fem/mass_redistribution.hpp"
 #include "mass_spec.hpp"
 #include "options.hpp"
-#include "period_law.hpp"
+#include "measures/period_law.hpp"
 #include "report_values.hpp"
 #include "sweep.hpp"
 #include "table.hpp"
-#include "two_bodies.hpp"
+#include "time/two_bodies.hpp"
 
 namespace cli = mrm::cli;
 
@@ -328,7 +328,7 @@ int main(int argc, char** argv) {
                         mrm::tex_number(fine.contact_windows.front().end - exact.front().end, 2));
       }
     }
-    // The data of each benchmark, from the registry (lib/impact_solution.cpp), and its exact windows
+    // The data of each benchmark, from the registry (lib/exact/impact_solution.cpp), and its exact windows
     // against an independent closed form where one is derived (the doctests of impact_solution.cpp):
     // bouncing, the free fall to the floor √(2g₀/g) = 1 then contacts of 2L/c every 8L/(3c) = [1 + 8k/3,
     // 5/3 + 8k/3]; impacting, [g₀/v, g₀/v + 2L/c]; gravity-paper, held over [0, T]. The layered bar has no

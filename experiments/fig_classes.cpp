@@ -54,12 +54,12 @@
 #include "sweep.hpp"
 #include "table.hpp"
 
-#include "errors.hpp"
-#include "exact_solution.hpp"
-#include "impact_solution.hpp"
-#include "mass_redistribution.hpp"
-#include "contact_classes.hpp"
-#include "schemes.hpp"
+#include "measures/errors.hpp"
+#include "exact/exact_solution.hpp"
+#include "exact/impact_solution.hpp"
+#include "fem/mass_redistribution.hpp"
+#include "classes/contact_classes.hpp"
+#include "time/schemes.hpp"
 
 namespace cli = mrm::cli;
 namespace repro = mrm::repro;
@@ -189,10 +189,10 @@ int main(int argc, char** argv) {
       for (const std::string mass : {"consistent", "mod3"}) {
         const Case c{info.scheme, mass};
         // dke with a massless contact node is Crank–Nicolson's run with the same mass (the projection moves
-        // no node with mass; lib/contact_classes.cpp, the doctest "dke: ...": 4e-13): not run twice.
+        // no node with mass; lib/classes/contact_classes.cpp, the doctest "dke: ...": 4e-13): not run twice.
         const std::string why = info.scheme == mrm::Scheme::dke && mass == "mod3"
                                     ? "not run: the same run as cn+mod3 (with a massless contact node the projection "
-                                      "moves no node with mass; doctest in lib/contact_classes.cpp)"
+                                      "moves no node with mass; doctest in lib/classes/contact_classes.cpp)"
                                     : refusal(c);
         if (why.empty())
           cases.push_back(c);
@@ -523,7 +523,7 @@ int main(int argc, char** argv) {
             for (const double r : fractions) region.push_back({mrm::Scheme::nitsche, n, theta, g, r, {}, {}});
       }
       // Through the sweep layer (repro/sweep.hpp): the runs of one mesh and law make one batch (the caller's
-      // keys), stepped in vector lanes (the Newmark-type kernel, lib/batched_step.cpp: each lane bitwise its run
+      // keys), stepped in vector lanes (the Newmark-type kernel, lib/batched/batched_step.cpp: each lane bitwise its run
       // alone); a run that stops, or has reached its last horizon, stays as it is while the others go on.
       std::vector<repro::BatchKey> keys;
       std::vector<double> costs;
@@ -635,7 +635,7 @@ int main(int argc, char** argv) {
           if (edge != library && mismatch.empty())
             mismatch = ("block " + std::string(penalty ? "5" : "6") + ": the measured edge of explicit " + name +
                         "'s region up to " + cli::format_real(horizons[h]) + " periods is " + cli::format_real(edge) +
-                        ", but lib/contact_classes.cpp's " + name + "_measured_safe_fraction says " +
+                        ", but lib/classes/contact_classes.cpp's " + name + "_measured_safe_fraction says " +
                         cli::format_real(library) + " (bar1d's warning uses it): update the one or the other");
           for (const RegionRun& x : region) {
             if (x.scheme != law || h >= x.ratio.size() || x.fraction != fractions.front()) continue;

@@ -31,14 +31,14 @@
 #include <vector>
 
 #include "options.hpp"
-#include "errors.hpp"
-#include "exact_solution.hpp"
+#include "measures/errors.hpp"
+#include "exact/exact_solution.hpp"
 #include "configurations.hpp"
 #include "labels.hpp"
 #include "figure_program.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
-#include "schemes.hpp"
+#include "time/schemes.hpp"
 
 namespace cli = mrm::cli;
 

@@ -30,9 +30,9 @@
 #include <vector>
 
 #include "options.hpp"
-#include "convergence.hpp"
-#include "errors.hpp"
-#include "exact_solution.hpp"
+#include "studies/convergence.hpp"
+#include "measures/errors.hpp"
+#include "exact/exact_solution.hpp"
 #include "configurations.hpp"
 #include "labels.hpp"
 #include "figure_program.hpp"
@@ -40,7 +40,7 @@
 #include "sweep.hpp"
 #include "report_values.hpp"
 #include "table.hpp"
-#include "schemes.hpp"
+#include "time/schemes.hpp"
 
 namespace cli = mrm::cli;
 

@@ -26,13 +26,13 @@
 #include <string>
 
 #include "options.hpp"
-#include "errors.hpp"
-#include "exact_solution.hpp"
+#include "measures/errors.hpp"
+#include "exact/exact_solution.hpp"
 #include "configurations.hpp"
 #include "labels.hpp"
 #include "figure_program.hpp"
 #include "report_values.hpp"
-#include "schemes.hpp"
+#include "time/schemes.hpp"
 
 namespace cli = mrm::cli;
 

@@ -45,13 +45,13 @@
 #include <utility>
 #include <vector>
 
-#include "batched_step.hpp"
+#include "batched/batched_step.hpp"
 #include "configurations.hpp"
 #include "figure_program.hpp"
-#include "energy_step.hpp"
+#include "time/energy_step.hpp"
 #include "options.hpp"
 #include "report_values.hpp"
-#include "schemes.hpp"
+#include "time/schemes.hpp"
 #include "sweep.hpp"
 #include "table.hpp"
 
@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
     program.parser.add_real(
         "--switch-theta", "", "TH",
         "cn-switch: theta of its switching step; only 1, the one theta whose energy identity proves no "
-        "gain (lib/schemes.hpp)",
+        "gain (lib/time/schemes.hpp)",
         &switch_theta, cli::in_closed_range(mrm::switch_theta_without_gain, 1));
     program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 64]; the output does not depend on it",
                                &threads, cli::in_closed_range(1, 64));

@@ -38,11 +38,11 @@
 #include "sweep.hpp"
 #include "report_values.hpp"
 
-#include "errors.hpp"
-#include "exact_solution.hpp"
-#include "mass_redistribution.hpp"
-#include "phase.hpp"
-#include "period_law.hpp"
+#include "measures/errors.hpp"
+#include "exact/exact_solution.hpp"
+#include "fem/mass_redistribution.hpp"
+#include "measures/phase.hpp"
+#include "measures/period_law.hpp"
 
 namespace cli = mrm::cli;
 

@@ -25,12 +25,12 @@
 #include "configurations.hpp"
 #include "figure_program.hpp"
 #include "labels.hpp"
-#include "errors.hpp"
+#include "measures/errors.hpp"
 #include "options.hpp"
 #include "output_file.hpp"
 #include "regions.hpp"
 #include "report_values.hpp"
-#include "schemes.hpp"
+#include "time/schemes.hpp"
 
 namespace cli = mrm::cli;
 namespace repro = mrm::repro;

@@ -5,9 +5,9 @@
 // many periods (30 by default) of the benchmark of mathematics.md §2: (a) the error of the contact
 // point |u₀ⁿ − u(0, tₙ)| and the L² error of u at every level (absolute: the exact u vanishes at the
 // instants of impact and release), against time; (b) the impact
-// times read off the contact indicator (lib/phase.cpp) and their errors eₖ = t̂ₖ − tₖ against the
+// times read off the contact indicator (lib/measures/phase.cpp) and their errors eₖ = t̂ₖ − tₖ against the
 // exact impacts tₖ = L + 3Lk, beside the period law's prediction e₀ + k ΔP with ΔP = 2ℓ_f + ℓ_c − 3L
-// from the first eigenvalues of the reduced pencils (lib/period_law.cpp: −4h/3, −h/3, 0 + O(h²)).
+// from the first eigenvalues of the reduced pencils (lib/measures/period_law.cpp: −4h/3, −h/3, 0 + O(h²)).
 // The measured drift per period (least squares, time units per period, early < 0) and the law's are
 // written for the report.
 //
@@ -30,11 +30,11 @@
 #include "options.hpp"
 #include "output_file.hpp"
 #include "report_values.hpp"
-#include "exact_solution.hpp"
-#include "p1.hpp"
-#include "period_law.hpp"
-#include "phase.hpp"
-#include "schemes.hpp"
+#include "exact/exact_solution.hpp"
+#include "fem/p1.hpp"
+#include "measures/period_law.hpp"
+#include "measures/phase.hpp"
+#include "time/schemes.hpp"
 
 namespace cli = mrm::cli;
 

@@ -1,7 +1,7 @@
 // fig_phase_matched: the phase-matched interior mass with impact (issue 26), measured.
 //
 // What it computes. (a) The discrete phase-speed error of Crank–Nicolson with the blended P1 mass
-// M^A = (1 − A) M + A M_L against ξ = kh (lib/interior_mass.cpp) for the three variants of the issue:
+// M^A = (1 − A) M + A M_L against ξ = kh (lib/fem/interior_mass.cpp) for the three variants of the issue:
 // Δt/h = ½ with A = 0 and with the matched A = ¼, and Δt/h = 1/√2 with A = 0 (matched there already).
 // (b) The eight relative errors (mathematics.md §5) of Crank–Nicolson + Mod 3 (defined on the blend:
 // mass_redistribution.cpp) for the same three variants, on the paper's benchmark over 1, 10 and 30
@@ -10,7 +10,7 @@
 // and CN-switch (θ = 1) at Δt/h = ½ with A = 0 and A = ¼, on the paper's benchmark.
 //
 // Predictions. (a) slope 2 for A = 0 at c = ½, slope 4 for the two matched variants, with the
-// coefficients (1 − 2A)/24 − c²/12 and −(1 − c⁴)/480 (lib/interior_mass.cpp). (b) The smearing argument
+// coefficients (1 − 2A)/24 − c²/12 and −(1 − c⁴)/480 (lib/fem/interior_mass.cpp). (b) The smearing argument
 // of the report (mathematics.md §9): a jump carried by a scheme of phase order μ spreads over
 // W ≈ (h^μ t)^{1/(μ+1)}; with μ = 4 instead of 2 the u error (a shift of O(W)) goes from h^{2/3} to
 // h^{4/5}, the energy-type measures and λ from h^{1/3} to h^{2/5} (√W/… : W^{1/2} with W = h^{4/5}).
@@ -39,11 +39,11 @@
 #include <vector>
 
 #include "configurations.hpp"
-#include "contact_stress.hpp"
-#include "convergence.hpp"
-#include "errors.hpp"
+#include "measures/contact_stress.hpp"
+#include "studies/convergence.hpp"
+#include "measures/errors.hpp"
 #include "figure_program.hpp"
-#include "interior_mass.hpp"
+#include "fem/interior_mass.hpp"
 #include "options.hpp"
 #include "sweep.hpp"
 #include "report_values.hpp"

@@ -26,12 +26,12 @@
 #include <vector>
 
 #include "options.hpp"
-#include "errors.hpp"
-#include "exact_solution.hpp"
+#include "measures/errors.hpp"
+#include "exact/exact_solution.hpp"
 #include "configurations.hpp"
 #include "figure_program.hpp"
 #include "report_values.hpp"
-#include "schemes.hpp"
+#include "time/schemes.hpp"
 
 namespace cli = mrm::cli;
 
@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
     program.parser.add_real(
         "--switch-theta", "", "TH",
         "cn-switch: theta of its switching step; only 1, the one theta whose energy identity proves no "
-        "gain (lib/schemes.hpp)",
+        "gain (lib/time/schemes.hpp)",
         &switch_theta, cli::in_closed_range(mrm::switch_theta_without_gain, 1));
     program.parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row", {"algebraic", "literal"},
                               &ps_form);

@@ -29,12 +29,12 @@
 #include <utility>
 #include <vector>
 
-#include "characteristics.hpp"
+#include "exact/characteristics.hpp"
 #include "configurations.hpp"
 #include "figure_program.hpp"
 #include "options.hpp"
 #include "report_values.hpp"
-#include "smooth_benchmarks.hpp"
+#include "exact/smooth_benchmarks.hpp"
 
 namespace cli = mrm::cli;
 

@@ -60,13 +60,13 @@
 
 #include "configurations.hpp"
 #include "figure_program.hpp"
-#include "convergence.hpp"
-#include "errors.hpp"
+#include "studies/convergence.hpp"
+#include "measures/errors.hpp"
 #include "options.hpp"
 #include "sweep.hpp"
 #include "parallel.hpp"
 #include "report_values.hpp"
-#include "smooth_benchmarks.hpp"
+#include "exact/smooth_benchmarks.hpp"
 #include "table.hpp"
 
 namespace cli = mrm::cli;

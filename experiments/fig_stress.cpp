@@ -5,12 +5,12 @@
 // phase-matched A = ¼ at Δt/h = ½, CN-switch (θ = 1 at status changes) with A = ¼ at ½ and A = 0 at 1,
 // backward Euler at ½, whose windows are also measured at CN's width, the width before each scheme had
 // its own: contact_stress.cpp §1b) (the last four on the paper's benchmark only) and each mesh N = N₀ 4^l, one run over ten periods (T = 30 on the unit bar; ten bounces, 10 · 8L/(3c),
-// for bouncing), and from that one run the four stresses of lib/contact_stress.hpp (multiplier, box,
+// for bouncing), and from that one run the four stresses of lib/measures/contact_stress.hpp (multiplier, box,
 // window, recovered): TV(stress)/TV(λ_exact), the relative L² error, and the largest error away from
 // the exact status changes (repro::stress_measures), with the slope of each against N (least squares
 // over the meshes).
 //
-// Predictions (lib/contact_stress.cpp, derived there before any measurement). The multiplier's ratio
+// Predictions (lib/measures/contact_stress.cpp, derived there before any measurement). The multiplier's ratio
 // grows like N^{1/2} for every variant (the wake of the smeared fronts runs down to the grid scale);
 // the box window of width 8W like N^{1/6} (μ = 2) or N^{3/10} (μ = 4); the recovered stress like the
 // box; the B-spline window of width 8W stays bounded (slope 0). The L² errors of all four are O(W^{1/2}):
@@ -40,10 +40,10 @@
 #include <vector>
 
 #include "configurations.hpp"
-#include "contact_stress.hpp"
-#include "convergence.hpp"
+#include "measures/contact_stress.hpp"
+#include "studies/convergence.hpp"
 #include "figure_program.hpp"
-#include "interior_mass.hpp"
+#include "fem/interior_mass.hpp"
 #include "options.hpp"
 #include "report_values.hpp"
 #include "sweep.hpp"
@@ -76,7 +76,7 @@ struct Benchmark {
   const char* key;
   double final_time;  // ten periods in the benchmark's own unit
 };
-// bouncing: contacts every 8L/(3c) with L = 10 m, c = 30 m/s (lib/impact_solution.cpp's closed form).
+// bouncing: contacts every 8L/(3c) with L = 10 m, c = 30 m/s (lib/exact/impact_solution.cpp's closed form).
 const std::vector<Benchmark> benchmarks{
     {"paper", "paper", 30.0}, {"smooth-impact", "s1", 30.0}, {"bouncing", "bouncing", 10 * 8.0 * 10 / (3 * 30)}};
 

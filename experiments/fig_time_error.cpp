@@ -44,7 +44,7 @@
 // The round-off benchmark: the first impact time at N = 40 (--impact-elements), Mod 1, Crank–Nicolson,
 // for Δt = h/1024, h/4096, …, h/262144 (--impact-finest), by the library's step, which solves for the
 // increment Uⁿ⁺¹ − Uⁿ, and by the same matrices solved for Uⁿ⁺¹ with the velocity recovered from the
-// difference (the form before; lib/schemes.cpp, "the increment form", derives the ε|U|/Δt per-step loss
+// difference (the form before; lib/time/schemes.cpp, "the increment form", derives the ε|U|/Δt per-step loss
 // of the latter and its Δt⁻² growth). The prediction for the increment form: flat to the truncation
 // error, C Δt² ≈ 1e-9 · (1024 Δt/h)², plus a round-off √K ε ≈ 1e-12.
 // The family: the same error in time on every mesh N = 24, 28, …, 80 and the powers of two up to 256
@@ -69,11 +69,11 @@
 #include "configurations.hpp"
 #include "time_family.hpp"
 #include "figure_program.hpp"
-#include "convergence.hpp"
-#include "errors.hpp"
+#include "studies/convergence.hpp"
+#include "measures/errors.hpp"
 #include "options.hpp"
 #include "report_values.hpp"
-#include "schemes.hpp"
+#include "time/schemes.hpp"
 #include "sweep.hpp"
 #include "table.hpp"
 

@@ -5,7 +5,7 @@
 #
 # Input: the data file of experiments/bench_step.cpp, columns
 #   log2N N, then for cn, be, ps, cn+errors, bare, eigen, bare2, cn_ref, be_ref, ps_ref in turn: median,
-#   minimum, steps per batch (cn, be, ps: the fast step; *_ref: the reference step of lib/schemes.cpp).
+#   minimum, steps per batch (cn, be, ps: the fast step; *_ref: the reference step of lib/time/schemes.cpp).
 # A flat curve is a cost linear in N; the bare solve is the practical limit of a step.
 if (!exists("data")) data = 'output/bench/bench_step.dat'
 if (!exists("output")) output = 'output/bench/bench_step.pdf'

@@ -57,13 +57,13 @@
 
 #include <doctest/doctest.h>
 
-#include "batched_step.hpp"
+#include "batched/batched_step.hpp"
 #include "configurations.hpp"
-#include "contact.hpp"
-#include "convergence.hpp"
-#include "exact_solution.hpp"
+#include "time/contact.hpp"
+#include "studies/convergence.hpp"
+#include "exact/exact_solution.hpp"
 #include "labels.hpp"
-#include "period_law.hpp"
+#include "measures/period_law.hpp"
 #include "regions.hpp"
 #include "report_values.hpp"
 #include "sweep.hpp"
@@ -662,7 +662,7 @@ TEST_CASE("the mass check fails for a weight that loses mass and for a wrong cla
 // judged over regions of parameters.
 //
 // The paper shows curves, not numbers, and names neither the measure nor the horizon. The mechanism
-// (mathematics.md §8, lib/period_law.cpp) says what to expect: each redistribution shifts the period of
+// (mathematics.md §8, lib/measures/period_law.cpp) says what to expect: each redistribution shifts the period of
 // the benchmark by ΔP = 2δm_loc + (3/2)δm_glob, −4h/3 (Mod 1), −h/3 (Mod 2), 0 (Mod 3), so the impact
 // times drift linearly and the mass-dependent error grows with the horizon, while the
 // mass-independent error (the smearing of the fronts, O((h²t)^{1/3}) for Crank–Nicolson) grows more
@@ -831,7 +831,7 @@ TEST_CASE("the ordering check fails when the masses are fed in the wrong order")
 // The mechanism of claim 3: the drift of the impact times (mathematics.md §8).
 //
 // The period law predicts the mass-dependent part of the drift per period, 2ℓ_f + ℓ_c − 3L, from the
-// first eigenvalues of the reduced pencils of each mesh (lib/period_law.cpp: −4h/3, −h/3, 0 + O(h²); the
+// first eigenvalues of the reduced pencils of each mesh (lib/measures/period_law.cpp: −4h/3, −h/3, 0 + O(h²); the
 // eigenvalues carry every order in h, so no next term needs estimating). A scheme adds a drift of its own
 // that the law does not describe (Crank–Nicolson's release of a smeared front; Mod 3's own drift grows
 // with N, −0.04h to −0.16h): the law says nothing about it, so the single masses' drifts are printed,
@@ -1434,7 +1434,7 @@ TEST_CASE("the energy checks fail for a scheme that does not conserve, or one th
 //
 // The step is rebuilt from the public state of the run alone — Uⁿ, the velocity (Vⁿ for the two-level
 // schemes, (Uⁿ − Uⁿ⁻¹)/Δt for Paoli–Schatzman, from which Uⁿ⁻¹ is recovered) and λⁿ — as the system
-// (★) of lib/schemes.cpp, A Uⁿ⁺¹ + κλe₀ = B₁Uⁿ + B₂W − κ'λⁿe₀ with W = Vⁿ or Uⁿ⁻¹ (f = 0 here: the
+// (★) of lib/time/schemes.cpp, A Uⁿ⁺¹ + κλe₀ = B₁Uⁿ + B₂W − κ'λⁿe₀ with W = Vⁿ or Uⁿ⁻¹ (f = 0 here: the
 // benchmark), whose coefficients are those of mathematics.md §4 (step_matrices, checked against the
 // formulas by its doctests):
 //
@@ -1445,7 +1445,7 @@ TEST_CASE("the energy checks fail for a scheme that does not conserve, or one th
 // and, when the contact node is massless and the contact row algebraic (every scheme but the literal
 // PS), row 0 replaced by the contact row S₀·Uⁿ⁺¹ + λ = 0 (paper eq. (6)). The active set is fixed to
 // the one the run found (u₀ on the obstacle, or λ = 0), and the (N + 1) × (N + 1) saddle-point system
-// in (U, λ) is solved by a general sparse LU (saddle_point_solve, lib/contact.cpp), which shares
+// in (U, λ) is solved by a general sparse LU (saddle_point_solve, lib/time/contact.cpp), which shares
 // nothing with the closed form's elimination. The criterion: the differences in
 // Uⁿ⁺¹ and λ, relative to the largest |U| and |λ| of the compared steps, are ≤ 1e-10 (a few hundred
 // round-offs for these well-conditioned systems), and the run's step satisfies the complementarity

@@ -17,11 +17,11 @@
 #include <utility>
 #include <vector>
 
-#include "errors.hpp"
-#include "mass_redistribution.hpp"
-#include "p1.hpp"
+#include "measures/errors.hpp"
+#include "fem/mass_redistribution.hpp"
+#include "fem/p1.hpp"
 #include "regions.hpp"
-#include "schemes.hpp"
+#include "time/schemes.hpp"
 
 namespace mrm::claims {
 

@@ -34,7 +34,7 @@
 //     much, so well outside the band [0.9, 1.1]; Crank–Nicolson with the consistent mass gains at
 //     releases (the contrast of claim 1) and leaves it upward. Prediction: EC + Mod 3 within 1e-6 of
 //     E(0) and each of those classes outside [1 − band, 1 + band], at Δt = h/2.
-// (D) Deuflhard–Krause–Ertel (dke, standard mass; lib/contact_classes.cpp derives the step and (DKE)).
+// (D) Deuflhard–Krause–Ertel (dke, standard mass; lib/classes/contact_classes.cpp derives the step and (DKE)).
 //     Its contact node keeps its inertia, and the projection of the predictor in the M-norm stops it within
 //     one step: where the predictor penetrates, Ṽ − Vⁿ = (α/τ)M⁻¹e₀ sets ṽ₀ = −gⁿ/τ, and λ carries
 //     −α/τ² = m_eff Δv₀/τ, Δv₀ = −v₀ⁿ − gⁿ/τ ∈ [0, v] the velocity removed, m_eff = 1/(M⁻¹)₀₀, which on a
@@ -83,7 +83,7 @@
 //     region apply, with TV_R of cn + Mod 3 from the true two-body run and TV_X of each inertial class
 //     from the reduced problem (ec and cn-switch: the two-body run refuses them, so not in R here).
 //     (E) does not apply: one contact, then the bodies separate for good (no 10³ impacts).
-// (M) Moreau–Jean (moreau-jean, θ = ½, e = 0: the registry's defaults; lib/contact_classes.cpp derives the
+// (M) Moreau–Jean (moreau-jean, θ = ½, e = 0: the registry's defaults; lib/classes/contact_classes.cpp derives the
 //     step and (MJ)). Its contact node keeps its inertia (the consistent mass; a massless node is refused),
 //     and the impact law stops its momentum within one step: when the index set opens (u₀ + g₀ + ½Δt v₀ ≤ 0)
 //     the impulse p makes v₀ⁿ⁺¹ = −e v₀ⁿ = 0 from v₀ⁿ = −v. The step solves (M + θ²Δt²S)Vⁿ⁺¹ = … + p e₀, so
@@ -121,7 +121,7 @@
 //     algebraic, S₀·U = −λ with S₀·U = −d·U, i.e. λ = d·U; active, λ = P = γu₀ + d·U, so γu₀ = 0: u₀ = 0 and
 //     λ = (u₁ − u₀)/h, Signorini's condensed row; inactive, λ = 0 = d·U and P = γu₀, active iff u₀ < 0. For
 //     every γ₀ > 0 Nitsche (θ = 0) + Mod 3 is exact enforcement + Mod 3, and Newmark(¼, ½) is Crank–Nicolson
-//     row for row (lib/contact_classes.cpp): nitsche + Mod 3 gives cn + Mod 3's λ (to round-off: bar1d
+//     row for row (lib/classes/contact_classes.cpp): nitsche + Mod 3 gives cn + Mod 3's λ (to round-off: bar1d
 //     -n 100, TV ratio 1.3767 for both; 4.45 for both in fig_classes), which is why the redistributed side of these rows needs no nitsche run. (Over the long run's 10³
 //     impacts the two part: bar1d -n 25, dt = h/2, E(T) equal to 4e-13 up to T = 1000, 0.11826 against
 //     0.11531 at T = 3000; a round-off-sized difference that flips an active-set decision, conjecture.)
@@ -140,11 +140,11 @@
 #include <doctest/doctest.h>
 
 #include "configurations.hpp"
-#include "impact_solution.hpp"
+#include "exact/impact_solution.hpp"
 #include "options.hpp"
-#include "contact_classes.hpp"
-#include "mass_redistribution.hpp"
-#include "p1.hpp"
+#include "classes/contact_classes.hpp"
+#include "fem/mass_redistribution.hpp"
+#include "fem/p1.hpp"
 #include "sweep.hpp"
 
 namespace mrm::claims {

@@ -12,11 +12,11 @@
 
 #include <doctest/doctest.h>
 
-#include "exact_solution.hpp"
-#include "impact_solution.hpp"
+#include "exact/exact_solution.hpp"
+#include "exact/impact_solution.hpp"
 #include "parallel.hpp"
-#include "smooth_benchmarks.hpp"
-#include "two_bodies.hpp"
+#include "exact/smooth_benchmarks.hpp"
+#include "time/two_bodies.hpp"
 
 namespace mrm::repro {
 
@@ -112,7 +112,7 @@ Problem configuration_problem(const Configuration& c) {
   if (b && is_two_body_chain(b->configuration))
     throw InvalidParameter("benchmark", b->id +
                                             ": two bodies have no one-body problem (run_configuration runs "
-                                            "them with lib/two_bodies.hpp)");
+                                            "them with lib/time/two_bodies.hpp)");
   Problem problem = configuration_data(c).problem();
   if (!b) return problem;
   configuration_mesh(c);  // refuses what the finite element runs do not take
@@ -155,7 +155,7 @@ UniformMesh configuration_mesh(const Configuration& c, int body) {
   if (!b) return mesh;
   const ImpactConfiguration& chain = b->configuration;
   if (is_two_body_chain(chain)) {
-    // Body k in its own frame (lib/two_bodies.hpp): its segment, N elements, its far end (the left
+    // Body k in its own frame (lib/time/two_bodies.hpp): its segment, N elements, its far end (the left
     // body's is x = 0, free: no obstacle; the right body's is the chain's far end).
     const BarSegment& s = chain.segments.at(static_cast<std::size_t>(body));
     UniformMesh own(s.length, c.elements);
@@ -682,7 +682,7 @@ std::shared_ptr<const ReferenceSolution> unit_configuration_reference(const Conf
 // (u₀ⁿ − u₀ⁿ⁻¹)/Δt from level 1 on; the impacts and the energy are the scheme's either way.
 // two-bars by symmetry (field.md §1: two identical free bars, L = 10, E = ρ = 1, touching, at ±0.1 toward
 // each other). Each body in its own frame (ξ from its contact end, w positive away from the other body:
-// lib/two_bodies.hpp) is a free bar with contact node 0 and ẇ⁰ = −0.1, the gap function between them
+// lib/time/two_bodies.hpp) is a free bar with contact node 0 and ẇ⁰ = −0.1, the gap function between them
 // z = w₀ᴬ + w₀ᴮ + g₀ ≥ 0, the same contact stress λ on both. The two bodies have the same mesh and mass, so
 // every class's discrete step commutes with the exchange of the bodies: from symmetric data wᴬ = wᴮ = w at
 // every level (in exact arithmetic), and each class reduces to a one-bar problem on w:
@@ -699,7 +699,7 @@ std::shared_ptr<const ReferenceSolution> unit_configuration_reference(const Conf
 //   the one-bar Nitsche with γ₀' = 2γ₀ and the same θ.
 // So two-bars runs as that one-bar problem (free bar L = 10, ẇ⁰ = −0.1, wall at g₀/2 = 0, the chain's
 // exact solution seen from one body as the reference), labelled "by symmetry" where it is reported
-// (fig_classes, claims_classes); the doctest of lib/contact_classes.cpp checks the reduction against the
+// (fig_classes, claims_classes); the doctest of lib/classes/contact_classes.cpp checks the reduction against the
 // true two-body run (two_bodies.hpp: CN + Mod 1/2/3).
 std::shared_ptr<const ImpactBenchmark> two_bars_by_symmetry() {
   static const std::shared_ptr<const ImpactBenchmark> reduced = [] {
@@ -722,7 +722,7 @@ void reduce_two_bars_by_symmetry(Configuration& configuration) {
   if (configuration.scheme.scheme == Scheme::nitsche) configuration.scheme.nitsche_gamma *= 2;
 }
 
-// Two bodies (two-bars; lib/two_bodies.hpp). The unit configuration's chain (the scaling of the field
+// Two bodies (two-bars; lib/time/two_bodies.hpp). The unit configuration's chain (the scaling of the field
 // benchmarks above), each body in its own frame with its data read off the chain's exact solution at
 // t = 0 (its own side of the junction), Crank–Nicolson, and the measures of run_configuration: each
 // body's eight errors in its own frame against the chain's exact solution (TwoBodyReference: the same
@@ -741,9 +741,9 @@ Measures run_two_bodies(const Configuration& configuration) {
                                          "only (allowed: cn)");
   for (const BarSegment& segment : b.configuration.segments)
     for (const double f : segment.load)
-      if (f != 0.0) throw InvalidParameter("benchmark", b.id + ": two bodies take no load (lib/two_bodies.hpp)");
+      if (f != 0.0) throw InvalidParameter("benchmark", b.id + ": two bodies take no load (lib/time/two_bodies.hpp)");
   // The multiplier is the one stress the two bodies' run reports: it keeps no history of the contact
-  // stresses that lib/contact_stress.hpp computes from one body's displacement (box, window, recovered).
+  // stresses that lib/measures/contact_stress.hpp computes from one body's displacement (box, window, recovered).
   if (c.stress != ContactStress::multiplier || c.keep_stress_history)
     throw InvalidParameter("stress", b.id + ": " + to_string(c.stress) +
                                          ": the two bodies' run keeps no stress history (allowed: multiplier)");
@@ -1249,7 +1249,7 @@ TEST_CASE("the field's benchmarks run through the harness in their own units aga
   // c and E of its bar, so the unit chain has Ê = ρ̂ = 1 and length 1, and the measures come back in
   // seconds and J/m². Mod 3 keeps the total mass (its level-0 energy is ½ρLv² = 8e6 J/m² to round-off);
   // the bar flies freely across the gap, so the contact starts at g₀/v within one step and lasts 2L/c
-  // within 4h/c (lib/problem_extensions.cpp, derivation 4). Every benchmark the runs take gives eight
+  // within 4h/c (lib/time/problem_data.cpp, derivation 4). Every benchmark the runs take gives eight
   // finite positive errors, or 0 for u(0,·) where the exact u(0,·) ≡ 0 (gravity-paper, held: the
   // absolute error, as ErrorNorms says, and the run's u₀ is exactly 0 too), and the error of u in
   // L²(0,T; L²) decreases from N = 20 to 40.

@@ -19,14 +19,14 @@
 #include "output_file.hpp"
 #include "run_limits.hpp"
 
-#include "characteristics.hpp"
-#include "contact_stress.hpp"
-#include "errors.hpp"
-#include "impact_solution.hpp"
-#include "mass_redistribution.hpp"
-#include "phase.hpp"
-#include "reference_solution.hpp"
-#include "schemes.hpp"
+#include "exact/characteristics.hpp"
+#include "measures/contact_stress.hpp"
+#include "measures/errors.hpp"
+#include "exact/impact_solution.hpp"
+#include "fem/mass_redistribution.hpp"
+#include "measures/phase.hpp"
+#include "exact/reference_solution.hpp"
+#include "time/schemes.hpp"
 
 namespace mrm::repro {
 
@@ -83,7 +83,7 @@ struct Configuration {
   std::vector<double> horizons;
   /// One of benchmark_names(); `length` and `amplitude` apply to "paper" only (the smooth benchmarks have
   /// L = 1). Ignored when `data` is set. A field benchmark (is_impact_benchmark: bouncing, impacting,
-  /// gravity-paper, layered) runs its chain of lib/impact_solution.hpp: its load, gap, material and far
+  /// gravity-paper, layered) runs its chain of lib/exact/impact_solution.hpp: its load, gap, material and far
   /// end, in its own units, with the exact ImpactSolution as the reference.
   std::string benchmark = "paper";
   /// The field benchmark's chain and data when they are not the registry's: set by unit_configuration
@@ -95,10 +95,10 @@ struct Configuration {
   /// The contact node's velocity in the velocity measures (the library's by default).
   ContactVelocity contact_velocity = ContactVelocity::algebraic;
   /// The mesh's grading ratio r: element sizes h_k = h₀ r^k, k = 0..N−1, finer toward the contact for
-  /// r > 1 (graded_mesh, lib/p1.hpp); 1, the uniform mesh, by default. Not on a field benchmark
+  /// r > 1 (graded_mesh, lib/fem/p1.hpp); 1, the uniform mesh, by default. Not on a field benchmark
   /// (configuration_mesh refuses it: their interfaces and Δt = C h/c are set on the uniform mesh).
   double grading = 1.0;
-  /// The contact stress whose oscillation Measures::lambda_tv_ratio reports (lib/contact_stress.hpp; the
+  /// The contact stress whose oscillation Measures::lambda_tv_ratio reports (lib/measures/contact_stress.hpp; the
   /// scheme's multiplier by default, as before issue 26's item 3).
   ContactStress stress = ContactStress::multiplier;
   /// Whether Measures::stress_history keeps the histories every stress is computed from (fig_stress).
@@ -124,7 +124,7 @@ struct Configuration {
 /// configuration to it and its outputs back. σ is a power of two (configuration_scaling), so that the
 /// mapping is exact in floating point whenever L is one too.
 ///
-/// A field benchmark (lib/impact_solution.hpp) has its own units: a wave speed c and a modulus E at the
+/// A field benchmark (lib/exact/impact_solution.hpp) has its own units: a wave speed c and a modulus E at the
 /// contact end (E = ρc²). With t = (L/c)τ, u = σL û, E = E_c Ê, ρ = ρ_c ρ̂ the equation
 /// ρu_tt − (E u_x)_x = f becomes (E_c σ/L)(ρ̂û_ττ − (Êû_ξ)_ξ) = f, so the unit problem has the load
 /// f̂ = f L/(E_c σ), the gaps ĝ = g/(σL), the material Ê, ρ̂ (1 at the contact end), and u_t = σc û_τ,
@@ -166,11 +166,11 @@ const ImpactBenchmark* configuration_field(const Configuration& configuration);
 /// a field benchmark its material per element and its far end. Throws InvalidParameter ("elements") when
 /// an interface between two materials is not a node (the allowed N named), InvalidParameter
 /// ("grading") for a grading on a field benchmark. On two bodies (two-bars: is_two_body_chain), the
-/// mesh of body k (0 the left one) in its own frame (lib/two_bodies.hpp: ξ from its contact end): N
+/// mesh of body k (0 the left one) in its own frame (lib/time/two_bodies.hpp: ξ from its contact end): N
 /// elements on its length, its material, its far end; both bodies have N elements.
 UniformMesh configuration_mesh(const Configuration& configuration, int body = 0);
 /// Whether the configuration is a field benchmark of two bodies in contact (two-bars), which
-/// run_configuration runs with lib/two_bodies.hpp (Crank–Nicolson only).
+/// run_configuration runs with lib/time/two_bodies.hpp (Crank–Nicolson only).
 bool is_two_body_configuration(const Configuration& configuration);
 
 /// two-bars by symmetry (repro/configurations.cpp, derived there): the one-bar problem each of the two
@@ -192,7 +192,7 @@ InitialData configuration_data(const Configuration& configuration);
 /// configuration and scaled back).
 std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& configuration, double horizon);
 
-/// Whether `benchmark` is one of the field's benchmarks of lib/impact_solution.hpp (impact_benchmarks():
+/// Whether `benchmark` is one of the field's benchmarks of lib/exact/impact_solution.hpp (impact_benchmarks():
 /// bouncing, impacting, gravity-paper, two-bars, layered), whose finite element runs need what the
 /// schemes do not have yet (a load, a free far end, a gap, layers, two bodies).
 bool is_impact_benchmark(const std::string& benchmark);
@@ -200,7 +200,7 @@ bool is_impact_benchmark(const std::string& benchmark);
 /// The exact solution's contact windows over [0, T] of a configuration's contact point, in the
 /// configuration's own units: for a field benchmark (is_impact_benchmark) its chain and data, for the
 /// others (paper, smooth ones, data of one's own) the clamped homogeneous bar of unit wave speed with
-/// configuration_data. Computed by mrm::ImpactSolution (lib/impact_solution.cpp), in the data's units
+/// configuration_data. Computed by mrm::ImpactSolution (lib/exact/impact_solution.cpp), in the data's units
 /// (SI for impacting: the exact solution needs no scaling). Throws mrm::InvalidParameter ("final_time")
 /// when the horizon needs more wave fronts than the solver keeps.
 std::vector<ContactInterval> configuration_contact_windows(const Configuration& configuration, double final_time);
@@ -224,7 +224,7 @@ Configuration study_configuration(const std::string& benchmark, Scheme scheme, c
 /// std::invalid_argument where Configuration::step() or mrm::steps_to_reach does.
 double run_cost(const Configuration& c);
 
-/// The histories of one run that every contact stress of lib/contact_stress.hpp is computed from, at the
+/// The histories of one run that every contact stress of lib/measures/contact_stress.hpp is computed from, at the
 /// unit scale of the run (unit_configuration: a ratio or a relative error does not depend on it): the
 /// multiplier λ_h at its instants, the recovered strain at the levels (k = recovered_elements(W(t), h)),
 /// the exact λ at the multiplier's instants, h, the spacing Δt, the smearing order of the run's interior

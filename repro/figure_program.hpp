@@ -28,7 +28,7 @@
 #include "options.hpp"
 #include "output_file.hpp"
 #include "run_limits.hpp"
-#include "schemes.hpp"
+#include "time/schemes.hpp"
 
 namespace mrm::repro {
 

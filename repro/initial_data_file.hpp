@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "characteristics.hpp"
+#include "exact/characteristics.hpp"
 
 namespace mrm::repro {
 

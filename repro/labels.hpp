@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "schemes.hpp"
+#include "time/schemes.hpp"
 
 namespace mrm::repro {
 
@@ -33,7 +33,7 @@ Label mass_label(const std::string& spec);
 /// The eight measures of mathematics.md §5, in the order of ErrorAccumulator::names.
 const std::array<Label, 8>& measure_labels();
 /// The benchmarks, in the order of their choice list: paper, smooth-impact, grazing, then the field's
-/// (bouncing, impacting, gravity-paper, two-bars, layered: lib/impact_solution.hpp, exact solution only).
+/// (bouncing, impacting, gravity-paper, two-bars, layered: lib/exact/impact_solution.hpp, exact solution only).
 const std::vector<Label>& benchmark_labels();
 std::vector<std::string> benchmark_names();
 

@@ -10,7 +10,7 @@
 
 #include <doctest/doctest.h>
 
-#include "interior_mass.hpp"
+#include "fem/interior_mass.hpp"
 #include "options.hpp"
 
 namespace mrm::repro {

@@ -1,12 +1,12 @@
 // The mass option's text: a spec string names a member of the weighted redistribution family
-// (lib/mass_redistribution.hpp: mrm::node1, mrm::beta, mrm::spread_over_first_nodes and the named Mod 1/2/3
+// (lib/fem/mass_redistribution.hpp: mrm::node1, mrm::beta, mrm::spread_over_first_nodes and the named Mod 1/2/3
 // and consistent masses). The library constructs the members and checks them on a mesh; reading them
 // from a command line is the harness's.
 #pragma once
 
 #include <string>
 
-#include "mass_redistribution.hpp"
+#include "fem/mass_redistribution.hpp"
 
 namespace mrm::repro {
 
@@ -26,7 +26,7 @@ MassRedistribution mass_redistribution_from_spec(const std::string& spec, const 
 
 /// The interior mass forms, in words: "consistent, lumped, blend:A with A a decimal or a fraction in [0, 1]".
 std::string interior_mass_forms();
-/// The blend A of an interior mass spec (issue 26, lib/interior_mass.hpp): consistent (0), lumped (1) or
+/// The blend A of an interior mass spec (issue 26, lib/fem/interior_mass.hpp): consistent (0), lumped (1) or
 /// blend:A, A a decimal or a fraction such as 1/4 in [0, 1]. Throws std::invalid_argument starting with
 /// the quoted spec and ending with the allowed forms otherwise. (`blend` in the two functions above is
 /// this A: each member is then defined on the blended mass, mrm::mass_redistribution.)

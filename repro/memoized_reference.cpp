@@ -11,8 +11,8 @@
 
 #include <doctest/doctest.h>
 
-#include "exact_solution.hpp"
-#include "impact_solution.hpp"
+#include "exact/exact_solution.hpp"
+#include "exact/impact_solution.hpp"
 
 namespace mrm::repro {
 

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "configurations.hpp"
-#include "reference_solution.hpp"
+#include "exact/reference_solution.hpp"
 
 namespace mrm::repro {
 

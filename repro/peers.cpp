@@ -26,7 +26,7 @@
 #include <stdexcept>
 
 #include "getfem_demo_v4.hpp"
-#include "mass_redistribution.hpp"
+#include "fem/mass_redistribution.hpp"
 
 namespace mrm::repro {
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "reference_solution.hpp"
-#include "schemes.hpp"
+#include "exact/reference_solution.hpp"
+#include "time/schemes.hpp"
 
 namespace mrm::repro {
 

@@ -27,10 +27,10 @@
 
 #include <doctest/doctest.h>
 
-#include "convergence.hpp"
+#include "studies/convergence.hpp"
 #include "options.hpp"
 #include "parallel.hpp"
-#include "period_law.hpp"
+#include "measures/period_law.hpp"
 #include "sweep.hpp"
 
 namespace mrm::repro {

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "configurations.hpp"
-#include "errors.hpp"
+#include "measures/errors.hpp"
 #include "labels.hpp"
 
 namespace mrm::repro {

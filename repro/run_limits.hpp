@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "schemes.hpp"
+#include "time/schemes.hpp"
 
 namespace mrm::cli {
 

@@ -18,7 +18,7 @@ using V = hn::Vec<D>;
 
 std::size_t LaneCount() { return hn::Lanes(D()); }
 
-// The skeleton of lib/batched_step.cpp's SweepDown and SweepUpT<false, false> on the interior rows (the
+// The skeleton of lib/batched/batched_step.cpp's SweepDown and SweepUpT<false, false> on the interior rows (the
 // few head and last rows are left out): the same loads and stores, row for row, in the same order, each
 // row's arithmetic replaced by the maximum of what it loaded. The plateau's factors are loaded once, as
 // the step holds them in registers.
@@ -98,7 +98,7 @@ HWY_AFTER_NAMESPACE();
 #include <doctest/doctest.h>
 #include <hwy/aligned_allocator.h>
 
-#include "batched_step.hpp"
+#include "batched/batched_step.hpp"
 
 namespace mrm::repro {
 namespace limits {

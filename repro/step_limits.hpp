@@ -3,7 +3,7 @@
 /// of its memory traffic alone and the rate of its arithmetic alone, each measured at the vector target
 /// the batched step uses (step_limits.cpp).
 ///
-/// The batched step (lib/batched_step.cpp) does two things per node, step and run: it moves bytes (the
+/// The batched step (lib/batched/batched_step.cpp) does two things per node, step and run: it moves bytes (the
 /// state and the sweeps' intermediate, 64 bytes on the plateau of the factors, 104 off it) and it
 /// performs about 32 double operations (bench_step.cpp counts them). Neither can take less time than it
 /// takes the machine to do it with nothing else in the way, so the larger of the two is a limit for the
@@ -29,7 +29,7 @@ struct TrafficArrays {
   const double *inverse_pivot = nullptr, *upward = nullptr, *upward_pair = nullptr;  // read by the sweep up
 };
 
-/// The lanes of the vector target now chosen (lib/batched_step.hpp, use_batch_target).
+/// The lanes of the vector target now chosen (lib/batched/batched_step.hpp, use_batch_target).
 std::size_t limit_lanes();
 
 /// One step's memory traffic of the two-level batched step (Crank–Nicolson) on its interior rows, on the

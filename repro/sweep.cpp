@@ -18,12 +18,12 @@
 
 #include <doctest/doctest.h>
 
-#include "errors.hpp"
-#include "impact_solution.hpp"
-#include "batched_step.hpp"
-#include "contact_classes.hpp"
-#include "p1.hpp"
-#include "mass_redistribution.hpp"
+#include "measures/errors.hpp"
+#include "exact/impact_solution.hpp"
+#include "batched/batched_step.hpp"
+#include "classes/contact_classes.hpp"
+#include "fem/p1.hpp"
+#include "fem/mass_redistribution.hpp"
 #include "options.hpp"
 #include "parallel.hpp"
 

@@ -94,7 +94,7 @@ void add_sweep_options(cli::Parser& parser, SweepOptions& options);
 void apply_sweep_options(const SweepOptions& options);
 
 /// What groups runs into batches: their number of elements and their scheme's batch_family
-/// (lib/batched_step.hpp: Crank–Nicolson and backward Euler share one).
+/// (lib/batched/batched_step.hpp: Crank–Nicolson and backward Euler share one).
 using BatchKey = std::pair<Index, int>;
 /// Starts run k on a worker: returns its simulation at level 0 and sets `steps`, its number of steps.
 using BatchStart = std::function<BarSimulation(std::size_t k, Index& steps)>;
@@ -114,7 +114,7 @@ using BatchLevelPrepare = std::function<void(const std::vector<std::size_t>& run
                                              const std::vector<LaneVectors>& lanes)>;
 /// The sweep layer's engine: independent simulations, run k started by `start`, observed by `observe`
 /// at each of its levels 0 … steps, then `finish(k)`. Runs of the same key are grouped, costliest first
-/// (`costs`), into batches of the vector width (lib/batched_step.hpp: each lane is bitwise its run
+/// (`costs`), into batches of the vector width (lib/batched/batched_step.hpp: each lane is bitwise its run
 /// stepped alone), and the batches are spread over the threads (repro/parallel.hpp), costliest first.
 /// `own_rates`: in a batch whose Δt are whole multiples of the smallest and whose runs reach the same
 /// horizon, each run steps at its own rate (BatchedSimulation::step(advance)), so the runs reach their
@@ -150,7 +150,7 @@ struct SweepTask {
 /// Independent configurations, each measured as run_configuration measures it, through the sweep layer:
 /// the runs of the same number of elements and scheme family (batch_family: Crank–Nicolson and backward
 /// Euler together) are grouped, costliest first, into batches of the
-/// vector width (lib/batched_step.hpp: each lane is bitwise its run stepped alone), the batches spread
+/// vector width (lib/batched/batched_step.hpp: each lane is bitwise its run stepped alone), the batches spread
 /// over the threads (repro/parallel.hpp), and the reference of each data, mesh, Δt and horizon is
 /// computed once (ReferenceCache). The measures come back in the order given, the same bytes as
 /// run_configurations for any thread count and any vector width; a run that throws stops the sweep

@@ -38,9 +38,9 @@
 #include <memory>
 #include <stdexcept>
 
-#include "batched_step.hpp"
-#include "convergence.hpp"
-#include "errors.hpp"
+#include "batched/batched_step.hpp"
+#include "studies/convergence.hpp"
+#include "measures/errors.hpp"
 
 namespace mrm::repro {
 

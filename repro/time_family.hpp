@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "mass_redistribution.hpp"
-#include "schemes.hpp"
+#include "fem/mass_redistribution.hpp"
+#include "time/schemes.hpp"
 
 namespace mrm::repro {
 

@@ -8,7 +8,7 @@
 #   - the time series of a file's data carries the characteristic solution's exact values;
 #   - the phase is measured for every data against the exact impacts: on S1 the first impact, a
 #     transversal one, is on time with Mod 3 to 0.05h (the period law, mathematics.md §8; the doctest
-#     in lib/phase.cpp checks Mod 1 and 2 too), and the paper's data given as a file give the paper's
+#     in lib/measures/phase.cpp checks Mod 1 and 2 too), and the paper's data given as a file give the paper's
 #     phase lines to 1e-9; the period law's predictions are printed for the paper's benchmark alone.
 set -euo pipefail
 if (($# != 1)) || [[ ! -x $1/bar1d ]]; then
@@ -61,7 +61,7 @@ for elements in 100 200; do
 done
 
 # The paper's data as a file (u0 = (1 - x)/2 is linear: two rows are exact) give the paper's phase: the
-# characteristic solution's impacts are L + 3Lk to round-off (lib/phase.cpp), 1e-9 is far above it.
+# characteristic solution's impacts are L + 3Lk to round-off (lib/measures/phase.cpp), 1e-9 is far above it.
 printf '0 0.5 0\n1 0 0\n' >"$work/paper.dat"
 "$bar1d" --elements 40 --final-time 15 --no-timing >"$work/paper_default"
 "$bar1d" --initial-data "$work/paper.dat" --elements 40 --final-time 15 --no-timing >"$work/paper_file"

@@ -53,8 +53,8 @@
 #include <vector>
 
 #include "options.hpp"
-#include "mass_redistribution.hpp"
-#include "schemes.hpp"
+#include "fem/mass_redistribution.hpp"
+#include "time/schemes.hpp"
 
 namespace cli = mrm::cli;
 

@@ -2,7 +2,7 @@
 # A sweep in this process gives the same bytes on every vector target and thread count (repro/sweep.hpp):
 # a small grid run by the program sweep with --vector none (every run alone), widest and each target the
 # processor has (as its help lists them), on 1 and 2 threads. The prediction: identical files, since each
-# lane of the batched step is bitwise its run stepped alone (the doctests of lib/batched_step.cpp) and the
+# lane of the batched step is bitwise its run stepped alone (the doctests of lib/batched/batched_step.cpp) and the
 # lines are written in grid order. The grid: five schemes x two masses x two meshes x two ratios, so that
 # every (N, scheme) group of the sweep layer is a batch of four runs of different masses and steps.
 # Usage: sweep_widths.sh BIN_DIR

@@ -27,7 +27,7 @@ packages=(
   texlive-fonts-recommended texlive-pictures  # the report
   poppler-utils                    # pdftoppm and pdffonts, to check the report's pages and fonts
   clang-format                     # the one C++ style, checked by tests/format.sh
-  libhwy-dev                       # Google Highway: the batched step's vector lanes (lib/batched_step.cpp)
+  libhwy-dev                       # Google Highway: the batched step's vector lanes (lib/batched/batched_step.cpp)
   parallel                         # GNU parallel: runs a sweep's job list (repro/sweep.hpp, ctest sweep_job_list)
 )
 

@@ -3,8 +3,8 @@
 // node's mass 2h/3 onto node 1, so the total stays L). tests/consumer/run.sh compares the two.
 #include <cstdio>
 
-#include "mass_redistribution.hpp"
-#include "p1.hpp"
+#include "fem/mass_redistribution.hpp"
+#include "fem/p1.hpp"
 
 int main() {
   const double length = 2.5;
