@@ -139,13 +139,8 @@
 
 namespace mrm {
 
-bool is_contact_class(Scheme scheme) {
-  return scheme == Scheme::newmark || scheme == Scheme::penalty || scheme == Scheme::nitsche ||
-         scheme == Scheme::moreau_jean || scheme == Scheme::dke;
-}
-
 void validate_contact_class(const SchemeParameters& p, bool massless) {
-  if (!is_contact_class(p.scheme)) return;
+  if (!(scheme_info(p.scheme).family == StepFamily::contact_class)) return;
   if (takes(p.scheme, SchemeParameter::newmark_beta)) {
     if (!(std::isfinite(p.newmark_beta) && p.newmark_beta >= 0))
       throw InvalidParameter("newmark_beta", "Newmark's beta must be finite and >= 0 (allowed: 0 <= beta < inf)");
@@ -1049,7 +1044,7 @@ std::unique_ptr<ContactClassStep> make_contact_class_step(const Tridiagonal& mas
     return std::make_unique<MoreauJeanStep>(mass, stiffness, p, dt, has_load, gap, state);
   if (p.scheme == Scheme::dke)
     return std::make_unique<DkeStep>(mass, stiffness, dt, has_load, gap, p.kernel == StepKernel::fast, state);
-  if (is_contact_class(p.scheme))
+  if ((scheme_info(p.scheme).family == StepFamily::contact_class))
     return std::make_unique<NewmarkContactStep>(mass, stiffness, p, dt, h, has_load, gap, state);
   throw std::logic_error("make_contact_class_step: " + to_string(p.scheme) + " is not a contact class");
 }

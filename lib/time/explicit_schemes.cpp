@@ -98,16 +98,6 @@
 
 namespace mrm {
 
-bool is_explicit(Scheme scheme) { return scheme == Scheme::taylor_flanagan || scheme == Scheme::explicit_central; }
-
-std::string to_string(MassLumping lumping) { return lumping == MassLumping::row_sum ? "row-sum" : "none"; }
-
-MassLumping mass_lumping_by_name(const std::string& name) {
-  if (name == "row-sum") return MassLumping::row_sum;
-  if (name == "none") return MassLumping::none;
-  throw std::invalid_argument("unknown mass lumping \"" + name + "\" (allowed: row-sum, none)");
-}
-
 Eigen::VectorXd row_sum_lumped_mass(const UniformMesh& mesh, const MassRedistribution& mass) {
   const Tridiagonal all = modified_mass_all_nodes(mesh, mass);
   const Index n = mesh.unknowns();
@@ -178,7 +168,7 @@ ExplicitStep::ExplicitStep(const UniformMesh& mesh, const MassRedistribution& ma
       gap_(gap),
       compliance_(mesh.contact_compliance()),
       stiffness_(stiffness) {
-  if (!is_explicit(parameters.scheme))
+  if (scheme_info(parameters.scheme).family != StepFamily::central_differences)
     throw InvalidParameter("scheme", to_string(parameters.scheme) + " is not an explicit scheme");
   const Tridiagonal consistent = modified_mass(mesh, mass);
   massless_ = contact_node_is_massless(consistent);

@@ -16,8 +16,8 @@
 
 namespace mrm {
 
-/// Whether `scheme` is one of the explicit schemes of this file (taylor-flanagan, explicit).
-bool is_explicit(Scheme scheme);
+/// Whether `scheme` is one of the explicit schemes of this file (its registry entry's step family).
+inline bool is_explicit(Scheme scheme) { return scheme_info(scheme).family == StepFamily::central_differences; }
 
 /// The row-sum lumping of a mass: m_i = Σ_j M̄_ij over all nodes 0..N (the clamped node's column
 /// included, as GetFEM's demo sums it before it eliminates the node), on the unknowns 0..N−1. For the

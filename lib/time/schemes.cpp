@@ -46,8 +46,8 @@ namespace {
   return energy;
 }
 
-[[maybe_unused]] SchemeParameters with(Scheme scheme, ContactRow row = ContactRow::algebraic,
-                                       StepKernel kernel = StepKernel::fast) {
+[[maybe_unused]] SchemeParameters parameters_of(Scheme scheme, ContactRow row = ContactRow::algebraic,
+                                                StepKernel kernel = StepKernel::fast) {
   SchemeParameters p;
   p.scheme = scheme;
   p.contact_row = row;
@@ -56,139 +56,6 @@ namespace {
 }
 
 }  // namespace
-
-// ---------------------------------------------------------------------------------------------------
-// The registry of schemes: one entry per scheme, its id, its summary and the parameters it takes.
-// Every name of a scheme in the library and the harness (help texts, choice lists, data headers,
-// claims rows) is read from here.
-
-const std::vector<SchemeInfo>& scheme_registry() {
-  using P = SchemeParameter;
-  static const std::vector<SchemeInfo> registry = {
-      {Scheme::crank_nicolson, "cn", "Crank–Nicolson (trapezoidal rule), two levels", {}},
-      {Scheme::backward_euler, "be", "backward Euler, two levels", {}},
-      {Scheme::paoli_schatzman,
-       "ps",
-       "Paoli–Schatzman (β, e), three levels, algebraic or literal contact row",
-       {P::beta, P::restitution, P::contact_row, P::ps_start}},
-      {Scheme::energy_conserving,
-       "ec",
-       "energy-conserving Crank–Nicolson: the discrete gradient of the contact energy (massless contact node)",
-       {}},
-      {Scheme::switching,
-       "cn-switch",
-       "Crank–Nicolson with a θ-step at each change of the contact status (θ = 1: backward Euler)",
-       {P::switch_theta}},
-      // The field's contact treatments (lib/classes/contact_classes.cpp).
-      {Scheme::newmark,
-       "newmark",
-       "Newmark (β, γ) with exact contact enforcement by a multiplier at the new level (β = 0: explicit)",
-       {P::newmark_beta, P::newmark_gamma}},
-      {Scheme::penalty,
-       "penalty",
-       "Newmark (β, γ) with the penalty force (γ₀/h) min(0, u₀)",
-       {P::newmark_beta, P::newmark_gamma, P::penalty}},
-      {Scheme::nitsche,
-       "nitsche",
-       "Newmark (β, γ) with Nitsche's contact terms (θ, γ₀), GetFEM's formulation",
-       {P::newmark_beta, P::newmark_gamma, P::nitsche_theta, P::nitsche_gamma}},
-      {Scheme::moreau_jean,
-       "moreau-jean",
-       "Moreau–Jean (θ, e): the θ-method with the velocity impact law v⁺ = −e v⁻ (contact node with inertia)",
-       {P::moreau_theta, P::restitution}},
-      // The explicit contact classes (explicit_schemes.cpp): central differences with a lumped mass.
-      {Scheme::taylor_flanagan,
-       "taylor-flanagan",
-       "central differences, lumped mass, contact by Taylor–Flanagan's velocity correction (GetFEM's version 4)",
-       {P::mass_lumping}},
-      {Scheme::explicit_central,
-       "explicit",
-       "central differences, lumped mass, massless contact node on its algebraic row (no impact law)",
-       {}},
-      // An energy-consistent treatment from the literature (lib/classes/contact_classes.cpp).
-      {Scheme::dke,
-       "dke",
-       "Deuflhard–Krause–Ertel's contact-stabilised Newmark (¼, ½): the predictor projected onto the admissible "
-       "set in the mass norm, the contact force at the new level only",
-       {}},
-  };
-  return registry;
-}
-
-const SchemeInfo& scheme_info(Scheme scheme) {
-  for (const SchemeInfo& info : scheme_registry())
-    if (info.scheme == scheme) return info;
-  throw std::logic_error("scheme_info: a scheme without a registry entry");
-}
-
-bool takes(Scheme scheme, SchemeParameter parameter) {
-  const std::vector<SchemeParameter>& p = scheme_info(scheme).parameters;
-  return std::find(p.begin(), p.end(), parameter) != p.end();
-}
-
-std::string to_string(Scheme s) { return scheme_info(s).id; }
-
-// The names in the order of the enum.
-std::string to_string(SchemeParameter p) {
-  static const char* const names[] = {"beta",          "restitution",   "contact_row", "switch_theta",
-                                      "newmark_beta",  "newmark_gamma", "penalty",     "nitsche_theta",
-                                      "nitsche_gamma", "moreau_theta",  "ps_start",    "mass_lumping"};
-  return names[static_cast<int>(p)];
-}
-
-Scheme scheme_by_name(const std::string& name) {
-  std::string allowed;
-  for (const SchemeInfo& info : scheme_registry()) {
-    if (info.id == name) return info.scheme;
-    allowed += (allowed.empty() ? "" : ", ") + info.id;
-  }
-  throw std::invalid_argument("unknown scheme \"" + name + "\" (allowed: " + allowed + ")");
-}
-
-TEST_CASE("the registry names every scheme once, and its ids read back") {
-  CHECK(scheme_registry().size() == 12);
-  for (const SchemeInfo& info : scheme_registry()) {
-    CAPTURE(info.id);
-    CHECK(scheme_by_name(info.id) == info.scheme);
-    CHECK(to_string(info.scheme) == info.id);
-    CHECK(&scheme_info(info.scheme) == &info);
-    CHECK(!info.summary.empty());
-  }
-  CHECK(to_string(Scheme::switching) == "cn-switch");
-  CHECK(takes(Scheme::paoli_schatzman, SchemeParameter::beta));
-  CHECK(!takes(Scheme::crank_nicolson, SchemeParameter::beta));
-  CHECK(takes(Scheme::switching, SchemeParameter::switch_theta));
-  CHECK(!takes(Scheme::backward_euler, SchemeParameter::restitution));
-  CHECK(to_string(SchemeParameter::beta) == "beta");
-  CHECK(to_string(SchemeParameter::restitution) == "restitution");
-  CHECK(to_string(SchemeParameter::contact_row) == "contact_row");
-  CHECK(to_string(SchemeParameter::switch_theta) == "switch_theta");
-  CHECK(to_string(SchemeParameter::mass_lumping) == "mass_lumping");
-  CHECK(takes(Scheme::taylor_flanagan, SchemeParameter::mass_lumping));
-  CHECK(!takes(Scheme::explicit_central, SchemeParameter::mass_lumping));
-  CHECK_THROWS_WITH_AS(
-      scheme_by_name("rk4"),
-      "unknown scheme \"rk4\" (allowed: cn, be, ps, ec, cn-switch, newmark, penalty, nitsche, moreau-jean, "
-      "taylor-flanagan, explicit, dke)",
-      std::invalid_argument);
-}
-
-std::string to_string(ContactRow r) { return r == ContactRow::algebraic ? "algebraic" : "literal"; }
-std::string to_string(InitialContactNode i) {
-  return i == InitialContactNode::consistent ? "consistent" : "interpolant";
-}
-std::string to_string(StepKernel k) { return k == StepKernel::reference ? "reference" : "fast"; }
-
-ContactRow contact_row_by_name(const std::string& name) {
-  if (name == "algebraic") return ContactRow::algebraic;
-  if (name == "literal") return ContactRow::literal;
-  throw std::invalid_argument("unknown contact-row form \"" + name + "\" (allowed: algebraic, literal)");
-}
-InitialContactNode initial_contact_node_by_name(const std::string& name) {
-  if (name == "consistent") return InitialContactNode::consistent;
-  if (name == "interpolant") return InitialContactNode::interpolant;
-  throw std::invalid_argument("unknown initial contact-node value \"" + name + "\" (allowed: consistent, interpolant)");
-}
 
 /// @file schemes.cpp
 /// ## The schemes (mathematics.md §4, the paper's §3)
@@ -460,26 +327,10 @@ void validate(const SchemeParameters& p, double dt) {
     throw InvalidParameter("switch_theta",
                            "the switch theta of cn-switch must lie in [0.5, 1] (allowed: 0.5 <= theta <= 1)");
   // A parameter the scheme does not take keeps its default: another value would be silently ignored.
-  const SchemeParameters defaults;
-  const auto refuse_unless_default = [&](SchemeParameter parameter, bool is_default) {
-    if (!is_default && !takes(p.scheme, parameter))
-      throw InvalidParameter(to_string(parameter), "the scheme " + to_string(p.scheme) + " does not take " +
-                                                       to_string(parameter) +
-                                                       " (allowed: its default, or a scheme "
-                                                       "that takes it)");
-  };
-  refuse_unless_default(SchemeParameter::beta, p.beta == defaults.beta);
-  refuse_unless_default(SchemeParameter::restitution, p.restitution == defaults.restitution);
-  refuse_unless_default(SchemeParameter::contact_row, p.contact_row == defaults.contact_row);
-  refuse_unless_default(SchemeParameter::switch_theta, p.switch_theta == defaults.switch_theta);
-  refuse_unless_default(SchemeParameter::newmark_beta, p.newmark_beta == defaults.newmark_beta);
-  refuse_unless_default(SchemeParameter::newmark_gamma, p.newmark_gamma == defaults.newmark_gamma);
-  refuse_unless_default(SchemeParameter::penalty, p.penalty == defaults.penalty);
-  refuse_unless_default(SchemeParameter::nitsche_theta, p.nitsche_theta == defaults.nitsche_theta);
-  refuse_unless_default(SchemeParameter::nitsche_gamma, p.nitsche_gamma == defaults.nitsche_gamma);
-  refuse_unless_default(SchemeParameter::moreau_theta, p.moreau_theta == defaults.moreau_theta);
-  refuse_unless_default(SchemeParameter::ps_start, p.ps_explicit_start == defaults.ps_explicit_start);
-  refuse_unless_default(SchemeParameter::mass_lumping, p.lumping == defaults.lumping);
+  for (const ParameterSpec& spec : scheme_parameter_specs())
+    if (!takes(p.scheme, spec.parameter) && !is_default(p, spec.parameter))
+      throw InvalidParameter(spec.name, "the scheme " + to_string(p.scheme) + " does not take " + spec.name +
+                                            " (allowed: its default, or a scheme that takes it)");
 }
 
 // M^mod on the mesh, its refusal (weights not symmetric or not finite, a matrix that is not
@@ -541,7 +392,8 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   // A contact class (lib/classes/contact_classes.cpp) checks its own parameters and has its own step, set up
   // at the end from the initial level; StepKernel::fast runs its fused step, StepKernel::reference its
   // readable one (the same bits: contact_classes.cpp).
-  const bool contact_class = is_contact_class(parameters.scheme);
+  const StepFamily family = scheme_info(parameters.scheme).family;
+  const bool contact_class = family == StepFamily::contact_class;
   validate_contact_class(parameters, massless_);
   // Newmark with β < γ/2 is explicit-like: its step limit, checked before any work (contact_classes.cpp).
   if (contact_class)
@@ -564,7 +416,7 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   // The explicit schemes (explicit_schemes.cpp) have no (★): their step checks its own mass and stability
   // limit, and its mass (row-sum lumped, or the consistent one) is the run's. One implementation of the
   // step, whatever StepKernel asks (the fast path falls back to it).
-  if (is_explicit(parameters.scheme)) {
+  if (family == StepFamily::central_differences) {
     explicit_ = std::make_unique<const ExplicitStep>(mesh, mass, stiffness_, parameters, dt, problem.gap);
     mass_ = explicit_->mass();
   }
@@ -580,11 +432,11 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
     solver_ = ContactSolver(step_.a);
     // CN-switch's θ-step, with its own factorisation (once per run, like A's).
     if (parameters.scheme == Scheme::switching) {
-      SwitchStep redo;
-      redo.matrices = theta_step_matrices(M, S, parameters.switch_theta, dt);
-      redo.matrices.obstacle_offset = step_.obstacle_offset;
-      redo.solver = ContactSolver(redo.matrices.a);
-      switch_ = std::make_unique<const SwitchStep>(std::move(redo));
+      SwitchStep theta_step;
+      theta_step.matrices = theta_step_matrices(M, S, parameters.switch_theta, dt);
+      theta_step.matrices.obstacle_offset = step_.obstacle_offset;
+      theta_step.solver = ContactSolver(theta_step.matrices.a);
+      switch_ = std::make_unique<const SwitchStep>(std::move(theta_step));
     }
     // The fast path reads B₁, B₂, M and S from its own rows (fast_step.cpp): B₁ and B₂ are kept only
     // for the reference step, so that the fast path's memory is that of the state and the factors.
@@ -673,8 +525,8 @@ BarSimulation& BarSimulation::operator=(BarSimulation&&) = default;
 
 TEST_CASE("the massless contact node starts on its algebraic row: E_h(0) = (1 - h)/8") {
   const UniformMesh mesh(1.0, 20);
-  const BarSimulation consistent(benchmark_problem(), mesh, mod3(), with(Scheme::crank_nicolson), 0.025);
-  const BarSimulation interpolant(benchmark_problem(), mesh, mod3(), with(Scheme::crank_nicolson), 0.025,
+  const BarSimulation consistent(benchmark_problem(), mesh, mod3(), parameters_of(Scheme::crank_nicolson), 0.025);
+  const BarSimulation interpolant(benchmark_problem(), mesh, mod3(), parameters_of(Scheme::crank_nicolson), 0.025,
                                   InitialContactNode::interpolant);
   CHECK(std::abs(consistent.sample().energy - (1 - mesh.h()) / 8) < 1e-15);
   CHECK(std::abs(interpolant.sample().energy - 0.125) < 1e-15);
@@ -683,7 +535,7 @@ TEST_CASE("the massless contact node starts on its algebraic row: E_h(0) = (1 - 
 
 TEST_CASE("bad scheme parameters are rejected with a message naming them") {
   const UniformMesh mesh(1.0, 10);
-  SchemeParameters p = with(Scheme::paoli_schatzman);
+  SchemeParameters p = parameters_of(Scheme::paoli_schatzman);
   p.beta = -0.1;
   CHECK_THROWS_WITH_AS(BarSimulation(benchmark_problem(), mesh, mod3(), p, 0.1), doctest::Contains("beta"),
                        std::invalid_argument);
@@ -704,7 +556,7 @@ TEST_CASE("bad scheme parameters are rejected with a message naming them") {
                        std::invalid_argument);
   CHECK_NOTHROW(BarSimulation(benchmark_problem(), mesh, consistent_mass(), p, 0.01));
   CHECK_THROWS_WITH_AS(scheme_by_name("rk4"), doctest::Contains("allowed: cn, be, ps"), std::invalid_argument);
-  p = with(Scheme::crank_nicolson);
+  p = parameters_of(Scheme::crank_nicolson);
   for (double restitution : {-0.5, std::nan("")}) {
     p.restitution = restitution;
     CAPTURE(restitution);
@@ -723,21 +575,21 @@ TEST_CASE("bad scheme parameters are rejected with a message naming them") {
     }
     return std::string("accepted");
   };
-  SchemeParameters q = with(Scheme::crank_nicolson);
+  SchemeParameters q = parameters_of(Scheme::crank_nicolson);
   q.beta = 0.5;
   CHECK(refused(q, mod3()) == "beta");
-  q = with(Scheme::backward_euler);
+  q = parameters_of(Scheme::backward_euler);
   q.restitution = 0.7;
   CHECK(refused(q, mod3()) == "restitution");
-  q = with(Scheme::crank_nicolson, ContactRow::literal);
+  q = parameters_of(Scheme::crank_nicolson, ContactRow::literal);
   CHECK(refused(q, consistent_mass()) == "contact_row");
-  q = with(Scheme::paoli_schatzman);
+  q = parameters_of(Scheme::paoli_schatzman);
   q.switch_theta = 0.5;
   CHECK(refused(q, mod3()) == "switch_theta");
-  CHECK(refused(with(Scheme::paoli_schatzman), consistent_mass()) == "contact_row");
-  CHECK(refused(with(Scheme::energy_conserving), consistent_mass()) == "mass");
-  CHECK(refused(with(Scheme::crank_nicolson), node1(0.01)) == "mass");  // not positive definite on N = 10
-  q = with(Scheme::switching);
+  CHECK(refused(parameters_of(Scheme::paoli_schatzman), consistent_mass()) == "contact_row");
+  CHECK(refused(parameters_of(Scheme::energy_conserving), consistent_mass()) == "mass");
+  CHECK(refused(parameters_of(Scheme::crank_nicolson), node1(0.01)) == "mass");  // not positive definite on N = 10
+  q = parameters_of(Scheme::switching);
   q.switch_theta = 0.75;
   CHECK(refused(q, mod3()) == "accepted");
   for (double dt : {-0.1, std::nan(""), HUGE_VAL}) {
@@ -749,7 +601,7 @@ TEST_CASE("bad scheme parameters are rejected with a message naming them") {
 
 TEST_CASE("a problem without initial data, with non-finite data or on another bar is rejected") {
   const UniformMesh mesh(1.0, 10);
-  const SchemeParameters p = with(Scheme::crank_nicolson);
+  const SchemeParameters p = parameters_of(Scheme::crank_nicolson);
   Problem problem = benchmark_problem();
   problem.initial_displacement = {};
   CHECK_THROWS_WITH_AS(BarSimulation(problem, mesh, mod3(), p, 0.1), doctest::Contains("no initial displacement"),
@@ -879,7 +731,7 @@ TEST_CASE("a steady load is formed once, with the bits of the load formed at eve
   Problem moving = benchmark_problem();
   moving.load = [](double x, double t) { return -1.0 + 0.7 * std::sin(3 * x + 5 * t); };
   moving.steady_load = true;
-  CHECK_THROWS_WITH_AS(BarSimulation(moving, mesh, mod3(), with(Scheme::crank_nicolson), dt),
+  CHECK_THROWS_WITH_AS(BarSimulation(moving, mesh, mod3(), parameters_of(Scheme::crank_nicolson), dt),
                        doctest::Contains("steady_load"), std::invalid_argument);
 }
 
@@ -899,7 +751,7 @@ TEST_CASE(
   for (const Scheme scheme : {Scheme::crank_nicolson, Scheme::backward_euler}) {
     for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
       for (const InitialContactNode initial : {InitialContactNode::consistent, InitialContactNode::interpolant}) {
-        SchemeParameters p = with(scheme);
+        SchemeParameters p = parameters_of(scheme);
         p.kernel = kernel;
         BarSimulation simulation(benchmark_problem(), mesh, mod3(), p, dt, initial);
         double worst = 0, recovered = 0, largest_alternation = 0;
@@ -930,7 +782,7 @@ TEST_CASE(
   loaded.initial_displacement = [](double x) { return 0.5 * (1 - x) + 0.1; };  // keeps the gap open at first
   loaded.load = [](double x, double t) { return std::sin(t) * (1 + x); };
   const double h = mesh.h();
-  BarSimulation simulation(loaded, mesh, mod1(), with(Scheme::crank_nicolson), dt);
+  BarSimulation simulation(loaded, mesh, mod1(), parameters_of(Scheme::crank_nicolson), dt);
   double worst = 0;
   run(simulation, 20, [&](const Sample& s) {
     if ((*s.displacement)[0] > 0)
@@ -1071,8 +923,8 @@ TEST_CASE("Crank–Nicolson conserves the discrete energy to round-off while the
   for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference})
     for (const MassRedistribution& mass : {mod1(), mod2(), mod3(), consistent_mass()}) {
       for (double courant : {0.5, 1.0, 3.0}) {
-        const std::vector<double> e =
-            energy_history(mass, with(Scheme::crank_nicolson, ContactRow::algebraic, kernel), 40, courant, 0.9 - 0.075);
+        const std::vector<double> e = energy_history(
+            mass, parameters_of(Scheme::crank_nicolson, ContactRow::algebraic, kernel), 40, courant, 0.9 - 0.075);
         CAPTURE(to_string(kernel));
         CAPTURE(mass.name);
         CAPTURE(courant);
@@ -1087,7 +939,8 @@ TEST_CASE("Paoli–Schatzman with beta = 1/4 conserves its energy while the cont
   for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference})
     for (ContactRow row : {ContactRow::algebraic, ContactRow::literal}) {
       // From level 2 on: levels 0 and 1 carry the two-level energy of the Crank–Nicolson start.
-      const std::vector<double> e = energy_history(mod3(), with(Scheme::paoli_schatzman, row, kernel), 40, 0.5, 0.85);
+      const std::vector<double> e =
+          energy_history(mod3(), parameters_of(Scheme::paoli_schatzman, row, kernel), 40, 0.5, 0.85);
       CAPTURE(to_string(kernel));
       CAPTURE(to_string(row));
       REQUIRE(e.size() > 10);
@@ -1099,7 +952,7 @@ TEST_CASE("backward Euler never increases the discrete energy") {
   for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference})
     for (const MassRedistribution& mass : {mod1(), mod2(), mod3(), consistent_mass()}) {
       const std::vector<double> e =
-          energy_history(mass, with(Scheme::backward_euler, ContactRow::algebraic, kernel), 30, 0.5, 9.0);
+          energy_history(mass, parameters_of(Scheme::backward_euler, ContactRow::algebraic, kernel), 30, 0.5, 9.0);
       CAPTURE(to_string(kernel));
       CAPTURE(mass.name);
       int increases = 0;
@@ -1221,8 +1074,8 @@ TEST_CASE("Paoli–Schatzman (1/4, 0) with the algebraic contact row coincides w
   const UniformMesh mesh(1.0, 32);
   const double dt = 0.5 * mesh.h();
   for (const MassRedistribution& mass : {mod1(), mod2(), mod3()}) {
-    BarSimulation cn(benchmark_problem(), mesh, mass, with(Scheme::crank_nicolson), dt);
-    BarSimulation ps(benchmark_problem(), mesh, mass, with(Scheme::paoli_schatzman), dt);
+    BarSimulation cn(benchmark_problem(), mesh, mass, parameters_of(Scheme::crank_nicolson), dt);
+    BarSimulation ps(benchmark_problem(), mesh, mass, parameters_of(Scheme::paoli_schatzman), dt);
     double difference = 0;
     for (Index k = 0; k < steps_to_reach(6.0, dt); ++k) {
       cn.step();
@@ -1306,8 +1159,8 @@ TEST_CASE("EC conserves the discrete energy to round-off at every step, status c
   for (const Case& c : {Case{16, 10.0, 300.0}, Case{20, 1.0, 3000.0}}) {
     for (const MassRedistribution& mass : {mod1(), mod2(), mod3()}) {
       for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
-        const EnergyRun r = energy_run(with(Scheme::energy_conserving, ContactRow::algebraic, kernel), mass, c.elements,
-                                       c.courant, c.final_time);
+        const EnergyRun r = energy_run(parameters_of(Scheme::energy_conserving, ContactRow::algebraic, kernel), mass,
+                                       c.elements, c.courant, c.final_time);
         CAPTURE(c.elements);
         CAPTURE(c.courant);
         CAPTURE(mass.name);
@@ -1329,14 +1182,16 @@ TEST_CASE("one EC step is Crank–Nicolson's without a status change, and conser
     for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
       const UniformMesh mesh(1.0, 24);
       const double dt = courant * mesh.h(), h = mesh.h();
-      BarSimulation run(benchmark_problem(), mesh, mod3(), with(Scheme::crank_nicolson), dt);
+      BarSimulation run(benchmark_problem(), mesh, mod3(), parameters_of(Scheme::crank_nicolson), dt);
       int same = 0, changed = 0;
       CAPTURE(courant);
       CAPTURE(to_string(kernel));
       for (Index k = 0; k < steps_to_reach(9.0, dt); ++k, run.step()) {
         const Problem restart = restart_problem(run.sample(), mesh);
-        BarSimulation cn(restart, mesh, mod3(), with(Scheme::crank_nicolson, ContactRow::algebraic, kernel), dt);
-        BarSimulation ec(restart, mesh, mod3(), with(Scheme::energy_conserving, ContactRow::algebraic, kernel), dt);
+        BarSimulation cn(restart, mesh, mod3(), parameters_of(Scheme::crank_nicolson, ContactRow::algebraic, kernel),
+                         dt);
+        BarSimulation ec(restart, mesh, mod3(), parameters_of(Scheme::energy_conserving, ContactRow::algebraic, kernel),
+                         dt);
         const double e0 = cn.sample().energy, a = (*cn.sample().displacement)[1];
         cn.step();
         ec.step();
@@ -1368,7 +1223,8 @@ TEST_CASE("EC with a load: the energy changes by the work of the loads only") {
   Problem problem = benchmark_problem();
   problem.load = [](double x, double t) { return -1.0 + 0.7 * std::sin(3 * x + 5 * t); };
   for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
-    BarSimulation ec(problem, mesh, mod2(), with(Scheme::energy_conserving, ContactRow::algebraic, kernel), dt);
+    BarSimulation ec(problem, mesh, mod2(), parameters_of(Scheme::energy_conserving, ContactRow::algebraic, kernel),
+                     dt);
     const auto load = [&](double t) { return p1_load(mesh, [&](double x) { return problem.load(x, t); }); };
     int changes = 0;
     CAPTURE(to_string(kernel));
@@ -1403,8 +1259,8 @@ TEST_CASE("CN-switch never increases the energy, dissipating O(h) per status cha
   for (const Case& c : {Case{16, 10.0, 300.0}, Case{20, 1.0, 3000.0}}) {
     for (const MassRedistribution& mass : {mod1(), mod2(), mod3(), consistent_mass()}) {
       for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
-        const EnergyRun r = energy_run(with(Scheme::switching, ContactRow::algebraic, kernel), mass, c.elements,
-                                       c.courant, c.final_time);
+        const EnergyRun r = energy_run(parameters_of(Scheme::switching, ContactRow::algebraic, kernel), mass,
+                                       c.elements, c.courant, c.final_time);
         CAPTURE(c.elements);
         CAPTURE(mass.name);
         CAPTURE(to_string(kernel));
@@ -1423,7 +1279,7 @@ TEST_CASE("CN-switch never increases the energy, dissipating O(h) per status cha
   for (const MassRedistribution& mass : {mod1(), mod2(), mod3()}) {
     double previous_loss = 0;
     for (const Index elements : {100, 200, 400}) {
-      const EnergyRun r = energy_run(with(Scheme::switching), mass, elements, 0.5, 30.0);
+      const EnergyRun r = energy_run(parameters_of(Scheme::switching), mass, elements, 0.5, 30.0);
       const double loss = 1 - r.final_ratio;
       CAPTURE(mass.name);
       CAPTURE(elements);
@@ -1440,12 +1296,12 @@ TEST_CASE("CN-switch never increases the energy, dissipating O(h) per status cha
 
 TEST_CASE("CN-switch with theta = 1/2 is Crank–Nicolson, and theta outside 1/2 ... 1 is refused") {
   const UniformMesh mesh(1.0, 20);
-  SchemeParameters p = with(Scheme::switching);
+  SchemeParameters p = parameters_of(Scheme::switching);
   p.switch_theta = 0.5;
   for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
     p.kernel = kernel;
-    BarSimulation cn(benchmark_problem(), mesh, mod1(), with(Scheme::crank_nicolson, ContactRow::algebraic, kernel),
-                     0.05);
+    BarSimulation cn(benchmark_problem(), mesh, mod1(),
+                     parameters_of(Scheme::crank_nicolson, ContactRow::algebraic, kernel), 0.05);
     BarSimulation sw(benchmark_problem(), mesh, mod1(), p, 0.05);
     double difference = 0;
     for (Index k = 0; k < 240; ++k) {
@@ -1463,7 +1319,7 @@ TEST_CASE("CN-switch with theta = 1/2 is Crank–Nicolson, and theta outside 1/2
                          std::invalid_argument);
   }
   CHECK_THROWS_WITH_AS(
-      BarSimulation(benchmark_problem(), mesh, consistent_mass(), with(Scheme::energy_conserving), 0.1),
+      BarSimulation(benchmark_problem(), mesh, consistent_mass(), parameters_of(Scheme::energy_conserving), 0.1),
       doctest::Contains("massless contact node"), std::invalid_argument);
 }
 
