@@ -1,5 +1,5 @@
 /// @file contact_classes.hpp
-/// @brief The field's contact treatments in time (Doyen–Ern–Piperno's classes, field.md §2) as schemes
+/// @brief The field's contact treatments in time (Doyen–Ern–Piperno's classes, doc/contact_treatments.md) as schemes
 /// of the registry: Newmark(β, γ) with exact enforcement (`newmark`), with a penalty (`penalty`), with
 /// Nitsche's terms (`nitsche`), Moreau–Jean's velocity-level impact law (`moreau-jean`) and
 /// Deuflhard–Krause–Ertel's contact-stabilised Newmark (`dke`). Derived in

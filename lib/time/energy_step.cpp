@@ -812,4 +812,249 @@ TEST_CASE(
         }
 }
 
+// ---------------------------------------------------------------------------------------------------
+// Checks of EC and CN-switch in the library's step (mathematics.md §12; the derivation and the checks
+// of its scalar pieces and of the reduced problem are in energy_step.cpp). Both kernels are run.
+
+namespace {
+
+// The doctests' scheme parameters: `scheme` with its defaults, the contact row and kernel given.
+[[maybe_unused]] SchemeParameters parameters_of(Scheme scheme, ContactRow row = ContactRow::algebraic,
+                                                StepKernel kernel = StepKernel::fast) {
+  SchemeParameters p;
+  p.scheme = scheme;
+  p.contact_row = row;
+  p.kernel = kernel;
+  return p;
+}
+
+// A problem whose initial data are the nodal values (U, V) of another run's level: the massless
+// contact node takes its algebraic value again, so a two-level scheme restarts exactly from (Ū, V).
+[[maybe_unused]] Problem restart_problem(const Sample& sample, const UniformMesh& mesh) {
+  Problem p = benchmark_problem(mesh.length);
+  const Eigen::VectorXd u = *sample.displacement, v = *sample.velocity;
+  const double h = mesh.h();
+  const auto node = [h, n = u.size()](double x) { return std::min<Index>(static_cast<Index>(std::lround(x / h)), n); };
+  p.initial_displacement = [u, node](double x) {
+    const Index i = node(x);
+    return i < u.size() ? u[i] : 0.0;
+  };
+  p.initial_velocity = [v, node](double x) {
+    const Index i = node(x);
+    return i < v.size() ? v[i] : 0.0;
+  };
+  return p;
+}
+
+struct EnergyRun {
+  double largest_drift = 0;     // max |Eⁿ − E⁰| / E⁰
+  double largest_increase = 0;  // max (Eⁿ⁺¹ − Eⁿ) / E⁰, or −∞ … as the largest one-step change
+  double final_ratio = 0;       // E(T)/E⁰
+  int status_changes = 0;
+  Index steps = 0;
+};
+
+[[maybe_unused]] EnergyRun energy_run(const SchemeParameters& p, const MassRedistribution& mass, Index elements,
+                                      double courant, double final_time) {
+  const UniformMesh mesh(1.0, elements);
+  const double dt = courant * mesh.h();
+  BarSimulation simulation(benchmark_problem(), mesh, mass, p, dt);
+  EnergyRun r;
+  r.largest_increase = -HUGE_VAL;
+  r.steps = steps_to_reach(final_time, dt);
+  const double e0 = simulation.sample().energy;
+  double previous = e0;
+  bool active = simulation.sample().multiplier < 0;
+  for (Index k = 0; k < r.steps; ++k) {
+    simulation.step();
+    const Sample s = simulation.sample();
+    r.largest_drift = std::max(r.largest_drift, std::abs(s.energy - e0) / e0);
+    r.largest_increase = std::max(r.largest_increase, (s.energy - previous) / e0);
+    previous = s.energy;
+    r.status_changes += (s.multiplier < 0) != active;
+    active = s.multiplier < 0;
+  }
+  r.final_ratio = previous / e0;
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("EC conserves the discrete energy to round-off at every step, status changes included") {
+  // Crank–Nicolson gains orders of magnitude on the first run (N = 16, Δt = 10h, 100 periods) and a few
+  // E₀ on the second (N = 20, Δt = h, 1000 periods). EC's energy changes only by round-off: one step
+  // conserves E up to the residual of its solve, a few ε times the condition of A = M + θS relative to
+  // M, which grows like 1 + (Δt/h)², and these errors accumulate at most linearly in the number of
+  // steps k: |E_k − E₀| ≤ k · 1e-15 (1 + (Δt/h)²) E₀.
+  struct Case {
+    Index elements;
+    double courant, final_time;
+  };
+  for (const Case& c : {Case{16, 10.0, 300.0}, Case{20, 1.0, 3000.0}}) {
+    for (const MassRedistribution& mass : {mod1(), mod2(), mod3()}) {
+      for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
+        const EnergyRun r = energy_run(parameters_of(Scheme::energy_conserving, ContactRow::algebraic, kernel), mass,
+                                       c.elements, c.courant, c.final_time);
+        CAPTURE(c.elements);
+        CAPTURE(c.courant);
+        CAPTURE(mass.name);
+        CAPTURE(to_string(kernel));
+        CAPTURE(r.largest_drift);
+        CHECK(r.largest_drift <= static_cast<double>(r.steps) * 1e-15 * (1 + c.courant * c.courant));
+        CHECK(r.status_changes >= static_cast<int>(2 * c.final_time / 3) - 2);  // an impact and a release per period
+      }
+    }
+  }
+}
+
+TEST_CASE("one EC step is Crank–Nicolson's without a status change, and conserves E across one") {
+  // From the states of a Crank–Nicolson run (every level over 3 periods, Δt = h/2 and 3h), one step of
+  // each scheme: without a change of the contact status the two steps agree to round-off (the same
+  // linear system; the contact is decided on another row); across one, Crank–Nicolson's energy changes by
+  // ab/2h at an impact and −ab/2h at a release (a, b = u₁ before and after) and EC's does not.
+  for (const double courant : {0.5, 3.0}) {
+    for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
+      const UniformMesh mesh(1.0, 24);
+      const double dt = courant * mesh.h(), h = mesh.h();
+      BarSimulation run(benchmark_problem(), mesh, mod3(), parameters_of(Scheme::crank_nicolson), dt);
+      int same = 0, changed = 0;
+      CAPTURE(courant);
+      CAPTURE(to_string(kernel));
+      for (Index k = 0; k < steps_to_reach(9.0, dt); ++k, run.step()) {
+        const Problem restart = restart_problem(run.sample(), mesh);
+        BarSimulation cn(restart, mesh, mod3(), parameters_of(Scheme::crank_nicolson, ContactRow::algebraic, kernel),
+                         dt);
+        BarSimulation ec(restart, mesh, mod3(), parameters_of(Scheme::energy_conserving, ContactRow::algebraic, kernel),
+                         dt);
+        const double e0 = cn.sample().energy, a = (*cn.sample().displacement)[1];
+        cn.step();
+        ec.step();
+        const double b = (*cn.sample().displacement)[1];
+        const double scale = 1 + cn.sample().displacement->cwiseAbs().maxCoeff();
+        CAPTURE(k);
+        CHECK(std::abs(ec.sample().energy - e0) <= 1e-14);
+        if (contact_is_active(a) == contact_is_active(b)) {
+          CHECK((*ec.sample().displacement - *cn.sample().displacement).cwiseAbs().maxCoeff() <= 1e-14 * scale);
+          CHECK((*ec.sample().velocity - *cn.sample().velocity).cwiseAbs().maxCoeff() <= 1e-14 * scale / dt);
+          ++same;
+        } else {
+          CHECK(std::abs(cn.sample().energy - e0 - contact_energy_defect(a, b, h, 0.5)) <= 1e-14);
+          CHECK(std::abs(contact_energy_defect(a, b, h, 0.5)) > 1e-9);  // a real status change, not a graze
+          ++changed;
+        }
+      }
+      CHECK(same > 5 * changed);
+      CHECK(changed >= 6);  // an impact and a release per period
+    }
+  }
+}
+
+TEST_CASE("EC with a load: the energy changes by the work of the loads only") {
+  // energy_step.cpp: with E = ½VᵀM̄V + ½ŪᵀS̄Ū − ψ(s), s = u₁ + hF₀, one EC step changes E by
+  // ½(F̄ⁿ + F̄ⁿ⁺¹)·(Ūⁿ⁺¹ − Ūⁿ) − ½χ(sⁿ, sⁿ⁺¹)(F₀ⁿ⁺¹ − F₀ⁿ); the library's energy is that E plus F₀u₀.
+  const UniformMesh mesh(1.0, 20);
+  const double h = mesh.h(), dt = 2 * h;
+  Problem problem = benchmark_problem();
+  problem.load = [](double x, double t) { return -1.0 + 0.7 * std::sin(3 * x + 5 * t); };
+  for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
+    BarSimulation ec(problem, mesh, mod2(), parameters_of(Scheme::energy_conserving, ContactRow::algebraic, kernel),
+                     dt);
+    const auto load = [&](double t) { return p1_load(mesh, [&](double x) { return problem.load(x, t); }); };
+    int changes = 0;
+    CAPTURE(to_string(kernel));
+    for (Index k = 0; k < 200; ++k) {
+      const Sample before = ec.sample();
+      const Eigen::VectorXd u = *before.displacement, f = load(before.time);
+      const double e = before.energy;
+      ec.step();
+      const Sample after = ec.sample();
+      const Eigen::VectorXd& u_next = *after.displacement;
+      const Eigen::VectorXd f_next = load(after.time);
+      const double a = u[1] + h * f[0], b = u_next[1] + h * f_next[0];
+      const Index m = u.size() - 1;
+      const double work = 0.5 * (f + f_next).tail(m).dot((u_next - u).tail(m)) -
+                          0.5 * contact_secant(a, b) * (f_next[0] - f[0]) + f_next[0] * u_next[0] - f[0] * u[0];
+      CAPTURE(k);
+      CHECK(std::abs(after.energy - e - work) <= 1e-13 * (1 + std::abs(e)));
+      changes += contact_is_active(a) != contact_is_active(b);
+    }
+    CHECK(changes >= 4);
+  }
+}
+
+TEST_CASE("CN-switch never increases the energy, dissipating O(h) per status change") {
+  // mathematics.md §12, energy_step.cpp §4: a Crank–Nicolson step without a status change conserves E, a
+  // backward-Euler step dissipates at least ½‖ΔV‖²_M̄. So no step gains more than round-off, bounded in
+  // energy_step.cpp §5 by 16 N ε (1 + h/Δt) E₀, on the runs where Crank–Nicolson gains most.
+  struct Case {
+    Index elements;
+    double courant, final_time;
+  };
+  for (const Case& c : {Case{16, 10.0, 300.0}, Case{20, 1.0, 3000.0}}) {
+    for (const MassRedistribution& mass : {mod1(), mod2(), mod3(), consistent_mass()}) {
+      for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
+        const EnergyRun r = energy_run(parameters_of(Scheme::switching, ContactRow::algebraic, kernel), mass,
+                                       c.elements, c.courant, c.final_time);
+        CAPTURE(c.elements);
+        CAPTURE(mass.name);
+        CAPTURE(to_string(kernel));
+        CAPTURE(r.largest_increase);
+        CAPTURE(energy_round_off_per_step(c.elements, c.courant));
+        CHECK(r.largest_increase <= energy_round_off_per_step(c.elements, c.courant));
+        CHECK(r.final_ratio < 1);
+      }
+    }
+  }
+  // The dissipation. An impact or a release changes the velocity by O(1) on the elements the front
+  // crosses in one step, of mass O(Δt) = O(h) at fixed Δt/h: the backward-Euler step there dissipates
+  // O(h), every other step nothing. Over 10 periods (20 status changes), Δt = h/2, the loss
+  // E₀ − E(T) should halve when h halves: the ratio of the losses at N and 2N is 2 up to the O(h)
+  // corrections, measured within 2 ± 0.3 on N = 100, 200, 400.
+  for (const MassRedistribution& mass : {mod1(), mod2(), mod3()}) {
+    double previous_loss = 0;
+    for (const Index elements : {100, 200, 400}) {
+      const EnergyRun r = energy_run(parameters_of(Scheme::switching), mass, elements, 0.5, 30.0);
+      const double loss = 1 - r.final_ratio;
+      CAPTURE(mass.name);
+      CAPTURE(elements);
+      CAPTURE(loss);
+      CAPTURE(r.status_changes);
+      MESSAGE("loss " << mass.name << " " << elements << " " << loss);
+      CHECK(loss > 0);
+      if (previous_loss > 0) CHECK(std::abs(previous_loss / loss - 2) <= 0.3);
+      CHECK(r.status_changes == 20);
+      previous_loss = loss;
+    }
+  }
+}
+
+TEST_CASE("CN-switch with theta = 1/2 is Crank–Nicolson, and theta outside 1/2 ... 1 is refused") {
+  const UniformMesh mesh(1.0, 20);
+  SchemeParameters p = parameters_of(Scheme::switching);
+  p.switch_theta = 0.5;
+  for (const StepKernel kernel : {StepKernel::fast, StepKernel::reference}) {
+    p.kernel = kernel;
+    BarSimulation cn(benchmark_problem(), mesh, mod1(),
+                     parameters_of(Scheme::crank_nicolson, ContactRow::algebraic, kernel), 0.05);
+    BarSimulation sw(benchmark_problem(), mesh, mod1(), p, 0.05);
+    double difference = 0;
+    for (Index k = 0; k < 240; ++k) {
+      cn.step();
+      sw.step();
+      difference = std::max(difference, (*cn.sample().displacement - *sw.sample().displacement).cwiseAbs().maxCoeff());
+    }
+    CAPTURE(to_string(kernel));
+    CHECK(difference <= 1e-13);
+  }
+  for (const double theta : {0.49, 1.01, std::nan("")}) {
+    p.switch_theta = theta;
+    CAPTURE(theta);
+    CHECK_THROWS_WITH_AS(BarSimulation(benchmark_problem(), mesh, mod3(), p, 0.1), doctest::Contains("[0.5, 1]"),
+                         std::invalid_argument);
+  }
+  CHECK_THROWS_WITH_AS(
+      BarSimulation(benchmark_problem(), mesh, consistent_mass(), parameters_of(Scheme::energy_conserving), 0.1),
+      doctest::Contains("massless contact node"), std::invalid_argument);
+}
+
 }  // namespace mrm
