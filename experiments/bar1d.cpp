@@ -75,7 +75,7 @@
 #include "exact/exact_solution.hpp"
 #include "exact/impact_solution.hpp"
 #include "fem/interior_mass.hpp"
-#include "measures/period_law.hpp"
+#include "fem/period_law.hpp"
 #include "classes/contact_classes.hpp"
 #include "time/schemes.hpp"
 #include "time/two_bodies.hpp"

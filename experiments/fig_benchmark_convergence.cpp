@@ -62,7 +62,7 @@
 #include "fem/mass_redistribution.hpp"
 #include "mass_spec.hpp"
 #include "options.hpp"
-#include "measures/period_law.hpp"
+#include "measures/phase.hpp"
 #include "report_values.hpp"
 #include "sweep.hpp"
 #include "table.hpp"

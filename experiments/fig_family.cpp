@@ -42,7 +42,7 @@
 #include "exact/exact_solution.hpp"
 #include "fem/mass_redistribution.hpp"
 #include "measures/phase.hpp"
-#include "measures/period_law.hpp"
+#include "fem/period_law.hpp"
 
 namespace cli = mrm::cli;
 

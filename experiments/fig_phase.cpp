@@ -32,7 +32,7 @@
 #include "report_values.hpp"
 #include "exact/exact_solution.hpp"
 #include "fem/p1.hpp"
-#include "measures/period_law.hpp"
+#include "fem/period_law.hpp"
 #include "measures/phase.hpp"
 #include "time/schemes.hpp"
 

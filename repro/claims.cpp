@@ -63,7 +63,7 @@
 #include "studies/convergence.hpp"
 #include "exact/exact_solution.hpp"
 #include "labels.hpp"
-#include "measures/period_law.hpp"
+#include "fem/period_law.hpp"
 #include "regions.hpp"
 #include "report_values.hpp"
 #include "sweep.hpp"

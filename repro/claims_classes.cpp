@@ -143,6 +143,7 @@
 #include "exact/impact_solution.hpp"
 #include "options.hpp"
 #include "classes/contact_classes.hpp"
+#include "fem/pencil.hpp"
 #include "fem/mass_redistribution.hpp"
 #include "fem/p1.hpp"
 #include "sweep.hpp"

@@ -30,7 +30,7 @@
 #include "studies/convergence.hpp"
 #include "options.hpp"
 #include "parallel.hpp"
-#include "measures/period_law.hpp"
+#include "fem/period_law.hpp"
 #include "sweep.hpp"
 
 namespace mrm::repro {

@@ -27,10 +27,6 @@ inline bool is_contact_class(Scheme scheme) { return scheme_info(scheme).family 
 /// the gap").
 void validate_contact_class(const SchemeParameters& parameters, bool massless_contact_node);
 
-/// The largest eigenvalue of the pencil (K, M), K symmetric tridiagonal, M positive definite tridiagonal,
-/// by bisection on the inertia of K − σM (contact_classes.cpp, "The stability limit of Newmark"): an upper
-/// bound within a relative 1e-13.
-double largest_pencil_eigenvalue(const Tridiagonal& stiffness, const Tridiagonal& mass);
 /// The largest stable step of a Newmark contact class (newmark, penalty, nitsche) with β < γ/2:
 /// Ω_c/ω_max, Ω_c = 1/√(γ/2 − β), ω²_max over both sides of the contact law (the penalty stiffness γ₀/h,
 /// Nitsche's terms; the contact node eliminated when massless); +∞ for β ≥ γ/2 or another scheme.

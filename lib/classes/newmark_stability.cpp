@@ -17,6 +17,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
+#include "fem/pencil.hpp"
 #include "time/contact.hpp"
 
 namespace mrm {
@@ -49,19 +50,6 @@ namespace mrm {
 // the bound used (so the refusal's limit is never above the true one by more than that).
 namespace {
 
-// The number of eigenvalues of the pencil (K, M) below σ: the negative pivots of K − σM.
-Index eigenvalues_below(const Tridiagonal& k, const Tridiagonal& m, double sigma) {
-  Index count = 0;
-  double pivot = 1;
-  for (Index i = 0; i < k.size(); ++i) {
-    const double off = i > 0 ? k.lower[i] - sigma * m.lower[i] : 0.0;
-    pivot = (k.diag[i] - sigma * m.diag[i]) - (i > 0 ? off * off / pivot : 0.0);
-    if (pivot == 0.0) pivot = -1e-300;  // a zero pivot: σ is an eigenvalue, counted as below
-    count += pivot < 0;
-  }
-  return count;
-}
-
 // The rows and columns first..n−1 of a tridiagonal matrix.
 Tridiagonal trailing_block(const Tridiagonal& a, Index first) {
   const Index n = a.size() - first;
@@ -74,18 +62,6 @@ Tridiagonal trailing_block(const Tridiagonal& a, Index first) {
 }
 
 }  // namespace
-
-double largest_pencil_eigenvalue(const Tridiagonal& k, const Tridiagonal& m) {
-  const Index n = k.size();
-  double hi = 1.0;
-  while (eigenvalues_below(k, m, hi) < n) hi *= 2;
-  double lo = 0.0;
-  while (hi - lo > 1e-13 * hi) {
-    const double mid = 0.5 * (lo + hi);
-    (eigenvalues_below(k, m, mid) < n ? lo : hi) = mid;
-  }
-  return hi;
-}
 
 double newmark_stability_limit(const Tridiagonal& mass, const Tridiagonal& stiffness, const SchemeParameters& p,
                                double contact_compliance) {

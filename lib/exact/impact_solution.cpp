@@ -1,6 +1,6 @@
 /// @file impact_solution.cpp
 /// @brief The exact solution of the field's impact benchmarks: loads, a free far end, gaps, layered
-/// bars and two bars in contact (field.md §1), by characteristics in time and Skorokhod reflections.
+/// bars and two bars in contact (doc/benchmarks.md), by characteristics in time and Skorokhod reflections.
 ///
 /// The problem. A chain of segments [x_j, x_{j+1}], each homogeneous (E_j, ρ_j, wave speed
 /// c_j = √(E_j/ρ_j), impedance Z_j = ρ_j c_j, transit time τ_j = ℓ_j/c_j), with
@@ -688,7 +688,7 @@ void ImpactReference::velocity_at_points(double t, const double* x, long count, 
 namespace mrm {
 
 // ---------------------------------------------------------------------------------------------------
-// The named benchmarks (field.md §1). Each is a chain as above; the closed forms they are checked
+// The named benchmarks (doc/benchmarks.md). Each is a chain as above; the closed forms they are checked
 // against are derived in the doctests below.
 
 std::string configuration_features(const ImpactConfiguration& c) {

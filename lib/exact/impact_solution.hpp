@@ -1,5 +1,5 @@
 /// @file impact_solution.hpp
-/// @brief The exact solution of the field's 1D impact benchmarks (field.md §1): a chain of bar segments
+/// @brief The exact solution of the field's 1D impact benchmarks (doc/benchmarks.md): a chain of bar segments
 /// with piecewise-constant E and ρ, a piecewise-polynomial load f(x), a clamped or free far end, an
 /// initial gap, and unilateral contact with a rigid obstacle or between two bars — by characteristics
 /// in time and the Skorokhod reflection at every contact (derivation in impact_solution.cpp).
@@ -138,7 +138,7 @@ class ImpactReference : public ReferenceSolution {
 /// E or rho", "two bodies in contact", joined by ", "; empty for the paper's problem.
 std::string configuration_features(const ImpactConfiguration& configuration);
 
-/// A named benchmark of the field (field.md §1): its chain, its initial data and its default horizon
+/// A named benchmark of the field (doc/benchmarks.md): its chain, its initial data and its default horizon
 /// (the first two periods or the first three contacts), in its own units.
 struct ImpactBenchmark {
   std::string id;                     ///< the name on the command line

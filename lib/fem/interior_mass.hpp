@@ -1,5 +1,5 @@
 /// @file interior_mass.hpp
-/// @brief The blended interior mass M^A = (1 − A) M + A M_L (issue 26): the discrete dispersion of
+/// @brief The blended interior mass M^A = (1 − A) M + A M_L: the discrete dispersion of
 /// Crank–Nicolson with it, the phase-matched blend A = ½ − (Δt/h)², and the names of the interior masses.
 #pragma once
 

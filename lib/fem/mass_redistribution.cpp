@@ -28,12 +28,10 @@
 
 #include <doctest/doctest.h>
 
-#include "measures/period_law.hpp"
-
 namespace mrm {
 
 // ---------------------------------------------------------------------------------------------------
-// The family on the blended interior mass (issue 26; the paper has the consistent mass only, this is the
+// The family on the blended interior mass (the paper has the consistent mass only, this is the
 // project's construction). The interior mass M^A = (1 − A) M + A M_L (p1.cpp: per element
 // m/6 [2 + A, 1 − A; 1 − A, 2 + A]) replaces M before any redistribution, and each member is defined by
 // what it does with the mass that removing row and column 0 takes off M^A,
@@ -95,7 +93,7 @@ MassRedistribution mod1(double blend) {
 }
 
 // ---------------------------------------------------------------------------------------------------
-// Unequal elements and piecewise material (issue 22; the paper defines the family on a uniform mesh of
+// Unequal elements and piecewise material (the paper defines the family on a uniform mesh of
 // a homogeneous bar only: what follows is this project's reconstruction). With element sizes h_e and
 // densities ρ_e, removing row and column 0 removes
 //
@@ -479,9 +477,6 @@ PeriodLawMasses period_law_masses(const UniformMesh& mesh, const MassRedistribut
 
 namespace {
 
-// ΔP of the period law (period_law.hpp) for a split.
-[[maybe_unused]] double law(const PeriodLawMasses& m) { return predicted_period_change(m.local, m.uniform); }
-
 // max over all entries of |A − B|, on all nodes 0..N.
 [[maybe_unused]] double max_entry_difference(const UniformMesh& mesh, const MassRedistribution& a,
                                              const MassRedistribution& b) {
@@ -535,41 +530,6 @@ TEST_CASE("total masses: node1(X) is L - 2h/3 + (X - 2/3)h, every beta(B) keeps 
   }
 }
 
-TEST_CASE("the period law's split: Mod 1, 2, 3 drift by -4h/3, -h/3, 0 per period") {
-  for (Index n : {20, 100, 400}) {
-    const UniformMesh mesh(1.0, n);
-    const double h = mesh.h();
-    // The split subtracts L from a sum of 3N + 1 entries: round-off up to about N ulps of L.
-    const double tol = 8 * static_cast<double>(n) * 1.1e-16 * mesh.length;
-    CAPTURE(n);
-    // Mod 1, Mod 2 and Mod 3
-    CHECK(std::abs(law(period_law_masses(mesh, mod1())) + 4 * h / 3) < tol);
-    CHECK(std::abs(law(period_law_masses(mesh, mod2())) + h / 3) < tol);
-    CHECK(std::abs(law(period_law_masses(mesh, mod3()))) < tol);
-    CHECK(std::abs(period_law_masses(mesh, mod1()).local + 2 * h / 3) < tol);
-    CHECK(std::abs(period_law_masses(mesh, mod2()).uniform - 2 * h / 3) < tol);
-    // node1:X moves only the local mass: 2(X − 4/3) h; GetFEM's 7/6 drifts like Mod 2, its 7/12 by −3h/2
-    for (double x : {1.0 / 3.0, 7.0 / 12.0, 7.0 / 6.0, 2.0}) {
-      CAPTURE(x);
-      const PeriodLawMasses m = period_law_masses(mesh, node1(x));
-      CHECK(std::abs(m.uniform) < tol);
-      CHECK(std::abs(law(m) - 2 * (x - 4.0 / 3.0) * h) < tol);
-    }
-    // beta:B trades local for uniform mass one for one: (B − 2/3) h / 2
-    for (double b : {1.0 / 6.0, 1.0 / 3.0, 1.0, 4.0 / 3.0}) {
-      CAPTURE(b);
-      const PeriodLawMasses m = period_law_masses(mesh, beta(b));
-      CHECK(std::abs(m.uniform - (2.0 / 3.0 - b) * h) < tol);
-      CHECK(std::abs(law(m) - (b - 2.0 / 3.0) * h / 2) < tol);
-    }
-    // spread:K (K < N − 1) keeps the lost mass near the contact node: no drift predicted
-    for (Index k : {Index(2), Index(10), n / 2}) {
-      CAPTURE(k);
-      CHECK(std::abs(law(period_law_masses(mesh, spread_over_first_nodes(k)))) < tol);
-    }
-  }
-}
-
 TEST_CASE("the period law's split refuses the consistent mass and a weight that varies along the bar") {
   const UniformMesh mesh(1.0, 20);
   CHECK_THROWS_WITH_AS(period_law_masses(mesh, consistent_mass()), doctest::Contains("keeps the inertia"),
@@ -582,7 +542,7 @@ TEST_CASE("the period law's split refuses the consistent mass and a weight that 
 }
 
 // ---------------------------------------------------------------------------------------------------
-// The family on unequal elements and piecewise material (issue 22; the reconstruction above).
+// The family on unequal elements and piecewise material (the reconstruction above).
 
 TEST_CASE("on graded layered meshes Mod 3 is P^T M P, Mod 1 loses 2 rho0 h0/3, the others keep the bar's mass") {
   std::vector<double> young(16, 1.0), density(16, 1.0);

@@ -18,7 +18,7 @@ struct MassRedistribution {
   std::string description;  ///< one line for help texts and reports
   /// w(i, j, mesh) for |i − j| ≤ 1, 0 ≤ i, j ≤ N; must be symmetric in (i, j).
   std::function<double(Index i, Index j, const UniformMesh& mesh)> weight;
-  /// The interior mass blend A ∈ [0, 1] (issue 26, interior_mass.hpp): the weights multiply the entries
+  /// The interior mass blend A ∈ [0, 1] (interior_mass.hpp): the weights multiply the entries
   /// of M^A = (1 − A) M + A M_L (p1_blended_mass_all_nodes) instead of M's. 0, the paper's consistent
   /// mass, by default. Set by the constructors below (their argument `blend`), which define each member
   /// on M^A by what it does with M^A's lost mass; a weight written for A = 0 keeps A = 0.

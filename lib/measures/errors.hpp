@@ -88,7 +88,7 @@ class ErrorAccumulator {
   /// Adds one level of each of `count` runs, each as `errors->add(*sample, lanes)` would: the same bits.
   /// Runs that lie in the lanes of one batch (the same vectors, stride and mesh) and whose interpolants
   /// are the same affine runs of the closed form (the same instants) are summed together, in one pass
-  /// over the nodes with their lanes side by side in vector registers (errors.cpp); so are runs against
+  /// over the nodes with their lanes side by side in vector registers (batched/lane_errors.cpp); so are runs against
   /// the same other reference object (ReferenceCache shares one: the characteristic solution) at the
   /// same instants on the same nodes, its values at the nodes and contact point evaluated once for all
   /// of them. Runs against such a reference that cannot be summed so (on their own vectors, on a mesh

@@ -11,6 +11,9 @@
 
 #include "exact/characteristics.hpp"
 #include "exact/exact_solution.hpp"
+#include "fem/mass_redistribution.hpp"
+#include "fem/p1.hpp"
+#include "fem/period_law.hpp"
 #include "core/problem.hpp"
 
 namespace mrm {
@@ -97,5 +100,16 @@ std::optional<PhaseMeasures> benchmark_phase(const std::vector<double>& impacts,
 /// data whose motion has no period (3L for the benchmark's impacts). Throws std::invalid_argument for
 /// fewer than two impacts.
 double mean_impact_interval(const std::vector<double>& impacts);
+
+/// The phase of the paper's benchmark measured on a mesh (graded or not): Crank–Nicolson with Δt =
+/// courant·h₀ over `periods` periods, the impacts read off the contact indicator u₀ + (h₀/E₀)λ, their
+/// errors against the exact 1 + 3k, the drift the least-squares slope per period (phase.hpp).
+struct MeasuredPhase {
+  double drift_per_period;    ///< time units per period, early = negative
+  double first_impact_error;  ///< the first impact's error
+};
+/// Runs it; throws std::runtime_error when the run does not have one impact per period.
+MeasuredPhase measure_benchmark_phase(const UniformMesh& mesh, const MassRedistribution& redistribution, double courant,
+                                      double periods);
 
 }  // namespace mrm

@@ -6,14 +6,9 @@
 
 #include "fem/mass_redistribution.hpp"
 #include "fem/p1.hpp"
+#include "fem/pencil.hpp"
 
 namespace mrm {
-
-/// The smallest eigenvalue μ of the symmetric tridiagonal pencil K x = μ M x, K and M positive
-/// definite, by bisection on Sylvester's inertia count of K − μM (to a relative width 1e-15).
-/// Throws std::invalid_argument for sizes that differ, an empty pencil, or a K or M that is not
-/// positive definite.
-double smallest_eigenvalue(const Tridiagonal& stiffness, const Tridiagonal& mass);
 
 /// The two linear systems a bar with a massless contact node alternates between (f = 0), on the
 /// nodes 1..N−1 (mathematics.md §8): free flight, u₀ = u₁, stiffness S̄ − e₁e₁ᵀ/h (the element
@@ -62,7 +57,7 @@ double predicted_period_change(double local, double global);
 /// κ(0) = 2 (a mass at the contact end: 2 δm_loc), its mean over the bar 3/2 (spread: (3/2) δm_glob).
 double drift_kernel(double xi);
 
-/// The period law on any mesh (graded, issue 22), to first order in the mass change: with δm_i the
+/// The period law on any mesh (graded), to first order in the mass change: with δm_i the
 /// row sums (lumped masses) of M̄ − M̄_Mod3 at the nodes i ≥ 1 of a homogeneous bar of unit wave
 /// speed, ΔP = Σ_i δm_i κ(x_i/L), the change of the period 2ℓ_f + ℓ_c against Mod 3's (which is 0 +
 /// O(h²) on any mesh). On the uniform mesh it is 2 δm_loc + (3/2) δm_glob up to O(h²). Throws
@@ -72,16 +67,5 @@ double first_order_period_change(const UniformMesh& mesh, const MassRedistributi
 /// The two parts of first_order_period_change: δℓ_f = Σ δm_i cos²(πx_i/2L) (the first impact moves by
 /// it) and δℓ_c = Σ δm_i sin²(πx_i/L), as an EffectiveLengths of changes (period() is ΔP). Same refusals.
 EffectiveLengths first_order_length_changes(const UniformMesh& mesh, const MassRedistribution& redistribution);
-
-/// The phase of the paper's benchmark measured on a mesh (graded or not): Crank–Nicolson with Δt =
-/// courant·h₀ over `periods` periods, the impacts read off the contact indicator u₀ + (h₀/E₀)λ, their
-/// errors against the exact 1 + 3k, the drift the least-squares slope per period (phase.hpp).
-struct MeasuredPhase {
-  double drift_per_period;    ///< time units per period, early = negative
-  double first_impact_error;  ///< the first impact's error
-};
-/// Runs it; throws std::runtime_error when the run does not have one impact per period.
-MeasuredPhase measure_benchmark_phase(const UniformMesh& mesh, const MassRedistribution& redistribution, double courant,
-                                      double periods);
 
 }  // namespace mrm

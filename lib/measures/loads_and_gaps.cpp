@@ -1,5 +1,6 @@
-/// @file problem_data.cpp
-/// @brief The finite element side of issue 22 checked through the schemes: a load f, a free far end,
+/// @file loads_and_gaps.cpp
+/// @brief Static solutions under a load, the energy balance with the load's work, the free fall and the
+/// gap closing, checked through the schemes: a load f, a free far end,
 /// an initial gap, piecewise-constant material and graded meshes, each against a closed form or an
 /// identity. The code is where it belongs (p1.cpp: the mesh, the material and the load vector;
 /// mass_redistribution.cpp: the family on unequal elements; contact.cpp and schemes.cpp: the gap as an
