@@ -1,8 +1,6 @@
 /// @file dke.cpp
 /// @brief Deuflhard–Krause–Ertel's contact-stabilised Newmark (`dke`): its derivation and its step. The
 /// doctests that run it are in contact_classes.cpp ("dke: (DKE) at every step ...", "dke with a load").
-#include "classes/contact_classes.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -23,8 +23,6 @@
 /// step by step (measured below: gains of 2e-4 E₀ at θ = ½, e = ½). It needs the contact node's inertia
 /// (refused with a massless node).
 ///
-#include "classes/contact_classes.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>

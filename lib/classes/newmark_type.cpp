@@ -58,8 +58,6 @@
 /// (a < 0 < b) gains ½(γ₀/h)|ab|, as Crank–Nicolson's release with a massless node does (schemes.cpp, EC).
 /// Doctests in contact_classes.cpp check (E) and this defect step by step.
 ///
-#include "classes/contact_classes.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -10,7 +10,7 @@
 
 #include <Eigen/Core>
 
-#include "classes/contact_classes.hpp"
+#include "classes/class_step.hpp"
 #include "time/contact.hpp"
 
 namespace mrm::class_steps {
