@@ -37,8 +37,8 @@
 // row holds after all, it is reported as FAILED so that somebody updates the table, and an entry that
 // no check produces is reported as well.
 #include "claims.hpp"
-#include "claims_classes.hpp"
-#include "claims_phase.hpp"
+#include "claims/claims_classes.hpp"
+#include "claims/claims_phase.hpp"
 #include "time_family.hpp"
 
 #include <algorithm>
