@@ -29,7 +29,7 @@
 // repro/step_limits.hpp) and of its 32 operations per node and run at the peak rate measured for them; its
 // last lines give the widest target and batched_speedup, scalar over batched at the largest N.
 // Then the ratio of each scheme (fast and reference steps) and of a run with its error measures (cn+errors:
-// the budget of issue 11 is 1.5) to the bare solve, the log-log slope of the cost per step against N
+// its budget is 1.5) to the bare solve, the log-log slope of the cost per step against N
 // over 2^10 … 2^20 (least squares), and the peak resident memory of a Crank–Nicolson and of a
 // Paoli–Schatzman run at the largest N and at N/4, each in a fresh child process, to show that the
 // memory is linear in N.

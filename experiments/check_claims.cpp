@@ -1,6 +1,6 @@
 // check_claims: every claim of the paper (mathematics.md §6) checked by one command.
 //
-// What it computes. It runs the checks of repro/claims.cpp on the benchmark of mathematics.md §2 — stability
+// What it computes. It runs the checks of repro/claims/ on the benchmark of mathematics.md §2 — stability
 // over 100 periods and over a region of Δt/h and 1000 periods, total mass, the ordering Mod 3 < Mod 2 <
 // Mod 1 of the paper's Figure 1 per cell (scheme, Δt/h, N, horizon) of a sweep, with its mechanism (the
 // drift of the impact times, mathematics.md §8) and its sensitivity to the reconstruction of the masses,
@@ -10,7 +10,7 @@
 // numerical solution) — and prints a summary of at most 12 lines (each claim, its verdict, the region
 // where it holds and where it fails, the decisive numbers), then one table: claim | what was measured |
 // criterion | verdict. The verdict is "reproduced", "not reproduced" (an
-// expected failure, listed with its reason and numbers in repro/claims.cpp's expectation table) or
+// expected failure, listed with its reason and numbers in repro/claims/expectations.cpp) or
 // "FAILED". The exit status is 0 iff no row FAILED; an expected failure that unexpectedly holds is a
 // failure too. The table is deterministic; the time each check took goes to stderr only.
 //

@@ -57,6 +57,7 @@
 #include "studies/convergence.hpp"
 #include "measures/errors.hpp"
 #include "figure_program.hpp"
+#include "refinement.hpp"
 #include "exact/impact_solution.hpp"
 #include "labels.hpp"
 #include "fem/mass_redistribution.hpp"
@@ -121,6 +122,164 @@ mrm::repro::Configuration benchmark_configuration(const std::string& benchmark, 
   return configuration;
 }
 
+// One run of the graded meshes' period law: the ratio r of h_k = h₀ r^k, the mass, its measured phase.
+struct GradedRun {
+  double ratio;
+  std::string mass;
+  mrm::MeasuredPhase phase{};
+};
+
+// The table of the benchmarks' data and the check of their exact windows (`layered_windows`: the finest
+// Mod 3 run's on the layered bar, which has no closed form here).
+void write_data_table(std::ostream& defs, const std::vector<mrm::ContactInterval>& layered_windows) {
+  // The data of each benchmark, from the registry (lib/exact/impact_solution.cpp), and its exact windows
+  // against an independent closed form where one is derived (the doctests of impact_solution.cpp):
+  // bouncing, the free fall to the floor √(2g₀/g) = 1 then contacts of 2L/c every 8L/(3c) = [1 + 8k/3,
+  // 5/3 + 8k/3]; impacting, [g₀/v, g₀/v + 2L/c]; gravity-paper, held over [0, T]. The layered bar has no
+  // closed form here: its windows are compared with the finest Mod 3 run.
+  mrm::repro::Table data_table(
+      {"benchmark", "segments $(\\ell, E, \\rho)$", "load $f$", "far end", "gap $g_0$", "$v^0$", "$T$", "source"});
+  for (const char* key : benchmarks) {
+    const mrm::ImpactBenchmark& bench = mrm::impact_benchmark(key);
+    std::string segments, loads;
+    for (const mrm::BarSegment& segment : bench.configuration.segments) {
+      segments += (segments.empty() ? "" : ", ") +
+                  ("$(" + mrm::tex_number(segment.length, 3) + ", " + mrm::tex_number(segment.modulus, 4) + ", " +
+                   mrm::tex_number(segment.density, 3) + ")$");
+      loads += (loads.empty() ? "" : ", ") +
+               (segment.load.empty() ? std::string("0") : "$" + mrm::tex_number(segment.load.front(), 3) + "$");
+    }
+    // Two bodies: the gap between them, and the velocity of each (the left bar's, then the right one's).
+    const bool two = mrm::is_two_body_chain(bench.configuration);
+    const double gap = two ? bench.configuration.junctions.front().gap : bench.configuration.obstacle_gap;
+    const std::string velocity = two ? mrm::tex_number(bench.data.velocity(0.0), 3) + ", " +
+                                           mrm::tex_number(bench.data.velocity(bench.configuration.length()), 3)
+                                     : mrm::tex_number(bench.data.velocity(0.0), 3);
+    data_table.add_row(
+        {key, segments, loads, bench.configuration.far_end == mrm::FarEnd::free ? "free" : "clamped",
+         "$" + mrm::tex_number(gap, 3) + "$", "$" + velocity + "$",
+         "$" + mrm::tex_number(bench.final_time, 3) + "$" + (bench.time_unit.empty() ? "" : "~" + bench.time_unit),
+         mrm::claims::latex_escape(bench.source)});  // "Code_Aster", "01_bouncingBar": text, not math
+    const std::vector<mrm::ContactInterval> exact =
+        mrm::exact_contact_windows(bench.configuration, bench.data, bench.final_time);
+    std::vector<mrm::ContactInterval> closed;
+    const mrm::BarSegment& bar = bench.configuration.segments.front();
+    const double c = std::sqrt(bar.modulus / bar.density), length = bench.configuration.length();
+    const std::string id = key;
+    if (id == "bouncing")
+      for (int k = 0; k < 3; ++k) closed.push_back({1 + 8.0 * k / 3, 5.0 / 3 + 8.0 * k / 3, false});
+    if (id == "impacting") {
+      const double t1 = bench.configuration.obstacle_gap / -bench.data.velocity(0.0);
+      closed.push_back({t1, t1 + 2 * length / c, false});
+    }
+    if (id == "gravity-paper") closed.push_back({0.0, bench.final_time, true});
+    if (id == "two-bars") closed.push_back({0.0, 2 * bench.configuration.segments.front().length / c, false});
+    const std::vector<mrm::ContactInterval>& other = closed.empty() ? layered_windows : closed;
+    double difference = exact.size() == other.size() ? 0.0 : HUGE_VAL;
+    for (std::size_t w = 0; w < std::min(exact.size(), other.size()); ++w)
+      difference =
+          std::max({difference, std::abs(exact[w].start - other[w].start), std::abs(exact[w].end - other[w].end)});
+    if (!std::isfinite(difference))
+      throw std::runtime_error(id + ": the exact solution and its comparison have different numbers of windows");
+    mrm::tex_define(defs, "benchconv:check:" + id, closed.empty() ? "the finest Mod~3 run" : "the closed form");
+    mrm::tex_define(defs, "benchconv:checkdiff:" + id, mrm::tex_number(difference, 2));
+    std::cout << id << ": exact windows against " << (closed.empty() ? "the finest Mod 3 run" : "the closed form")
+              << ": max |difference| = " << cli::format_real(difference) << '\n';
+  }
+  defs << "\\mrmdef{benchconv:table:data}{" << mrm::repro::latex_tabular(data_table, "llllrrrp{3.2cm}") << "}\n";
+}
+
+// The graded meshes' block of the data file and their table: each member's drift minus Mod 3's.
+void write_graded(std::ostream& out, std::ostream& defs, const std::vector<GradedRun>& graded) {
+  mrm::repro::Table graded_table(
+      {"$r$", "$h_{\\max}/h_0$", "mass", "predicted $\\Delta P/h_0$", "measured $/h_0$", "$|$difference$|/h_0$"});
+  double worst = 0;
+  std::cout << "graded meshes (N = " << graded_elements << ", cn, dt = h0/2, " << graded_periods
+            << " periods): drift per period minus Mod 3's, in units of h0\n"
+            << "r h_max/h0 member predicted measured |difference|\n";
+  for (std::size_t i = 0; i < graded.size(); ++i) {
+    const GradedRun& g = graded[i];
+    if (g.mass == "mod3") continue;
+    const GradedRun& reference = graded[i - (i % 4)];
+    const mrm::UniformMesh mesh = mrm::graded_mesh(1.0, graded_elements, g.ratio);
+    const double h0 = mesh.h(0);
+    const double predicted =
+        mrm::first_order_period_change(mesh, mrm::repro::mass_redistribution_from_spec(g.mass, mesh));
+    const double measured = g.phase.drift_per_period - reference.phase.drift_per_period;
+    const double difference = std::abs(measured - predicted);
+    worst = std::max(worst, difference / h0);
+    out << cli::format_real(g.ratio) << ' ' << cli::format_real(mesh.h(graded_elements - 1) / h0) << ' ' << g.mass
+        << ' ' << cli::format_real(predicted / h0) << ' ' << cli::format_real(measured / h0) << ' '
+        << cli::format_real(difference / h0) << '\n';
+    char line[160];
+    std::snprintf(line, sizeof line, "%-7g %-9.3f %-11s %+9.4f %+9.4f %8.4f", g.ratio, mesh.h(graded_elements - 1) / h0,
+                  g.mass.c_str(), predicted / h0, measured / h0, difference / h0);
+    std::cout << line << '\n';
+    graded_table.add_row({cli::format_real(g.ratio), mrm::tex_number(mesh.h(graded_elements - 1) / h0, 3),
+                          mrm::repro::mass_label(g.mass).abbreviation, mrm::tex_number(predicted / h0, 3),
+                          mrm::tex_number(measured / h0, 3), mrm::tex_number(difference / h0, 2)});
+  }
+  mrm::tex_define(defs, "benchconv:graded:N", std::to_string(graded_elements));
+  mrm::tex_define(defs, "benchconv:graded:periods", mrm::tex_number(graded_periods, 2));
+  mrm::tex_define(defs, "benchconv:graded:worst", mrm::tex_number(worst, 2));
+  mrm::tex_define(defs, "benchconv:graded:tolerance", mrm::tex_number(graded_tolerance, 2));
+  mrm::tex_define(defs, "benchconv:graded:verdict", worst <= graded_tolerance ? "within" : "not within");
+  defs << "\\mrmdef{benchconv:table:graded}{" << mrm::repro::latex_tabular(graded_table, "rrlrrr") << "}\n";
+}
+
+// The measures of the h study's runs: benchmark b, mass m, mesh level l.
+struct Study {
+  const std::vector<mrm::repro::Measures>& measures;
+  std::size_t levels;
+  const mrm::repro::Measures& at(std::size_t b, std::size_t m, std::size_t l) const {
+    return measures[(b * masses.size() + m) * levels + l];
+  }
+};
+
+// The row of benchmark b and mass m in the table of orders: each measure's fitted order over every mesh,
+// the local order between the two finest and the conjectured order, with their values; counts the
+// measures whose fit agrees with the conjecture.
+std::vector<std::string> mass_orders_row(std::ostream& defs, const Study& study,
+                                         const mrm::repro::MeshRefinement& meshes, std::size_t b, std::size_t m,
+                                         long& agreeing, long& cases) {
+  const std::string key = benchmarks[b];
+  const std::size_t levels = study.levels;
+  std::vector<std::string> row{m == 0 ? key : "", mrm::repro::mass_label(masses[m]).abbreviation};
+  for (std::size_t k = 0; k < 8; ++k) {
+    const double predicted = predicted_order(b, k);
+    std::vector<double> errors(levels);
+    for (std::size_t l = 0; l < levels; ++l) errors[l] = mrm::ErrorAccumulator::values(study.at(b, m, l).errors)[k];
+    if (predicted == 0) {
+      if (!std::all_of(errors.begin(), errors.end(), [](double e) { return e == 0; }))
+        throw std::runtime_error(key + ": u(0,.) is not 0 in a run (its exact value is 0)");
+      row.push_back("n/a");
+      continue;
+    }
+    if (!std::all_of(errors.begin(), errors.end(), [](double e) { return e > 0 && std::isfinite(e); }))
+      throw std::runtime_error("the errors of " + key + " " + masses[m] + " cannot be fitted");
+    // The fit over all meshes and the local order between the two finest (a fit that disagrees
+    // with the local order says the errors are not yet in their asymptotic regime).
+    const mrm::OrderFit fit = meshes.fit(errors);
+    const double local = meshes.finest_local_order(errors);
+    const bool agrees = std::abs(fit.order - predicted) <= agreement;
+    agreeing += agrees;
+    ++cases;
+    const std::string fitted = mrm::tex_number(fit.order, 2);
+    row.push_back((agrees ? fitted : "\\textit{" + fitted + "}") + " {\\scriptsize[" + mrm::tex_number(local, 2) +
+                  "] (" + fraction(predicted) + ")}");
+    mrm::tex_define(defs, "benchconv:local:" + key + ":" + masses[m] + ":" + mrm::ErrorAccumulator::names[k],
+                    mrm::tex_number(local, 2));
+    const std::string name = key + ":" + masses[m] + ":" + mrm::ErrorAccumulator::names[k];
+    mrm::tex_define(defs, "benchconv:order:" + name, fitted);
+    mrm::tex_define(defs, "benchconv:err:" + name, mrm::tex_number(errors.back(), 2));
+    std::cout << key << ' ' << masses[m] << ' ' << mrm::ErrorAccumulator::names[k] << " order "
+              << cli::format_real(std::round(fit.order * 100) / 100) << " local "
+              << cli::format_real(std::round(local * 100) / 100) << " (conjecture " << fraction(predicted) << ")"
+              << (agrees ? "" : " DISAGREES") << '\n';
+  }
+  return row;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -151,24 +310,20 @@ int main(int argc, char** argv) {
 
     // 2. Outputs.
     program.open();
-    const std::size_t levels = static_cast<std::size_t>(refinements);
-    const mrm::Index finest = static_cast<mrm::Index>(coarsest) << (levels - 1);
+    const mrm::repro::MeshRefinement meshes(static_cast<mrm::Index>(coarsest), static_cast<std::size_t>(refinements));
+    const std::size_t levels = meshes.levels();
+    const mrm::Index finest = meshes.finest();
 
     // 3. The runs: the convergence study, Δt alone, and the graded meshes; longest first.
     std::vector<mrm::repro::Configuration> configurations;
     for (const char* b : benchmarks)
       for (const char* m : masses)
         for (std::size_t l = 0; l < levels; ++l)
-          configurations.push_back(benchmark_configuration(b, m, static_cast<mrm::Index>(coarsest) << l, courant));
+          configurations.push_back(benchmark_configuration(b, m, meshes.elements(l), courant));
     const std::size_t time_study = configurations.size();
     for (const char* b : benchmarks)
       for (std::size_t c = 0; c + 1 < time_courants.size(); ++c)
         configurations.push_back(benchmark_configuration(b, "mod3", finest, time_courants[c]));
-    struct GradedRun {
-      double ratio;
-      std::string mass;
-      mrm::MeasuredPhase phase{};
-    };
     std::vector<GradedRun> graded;
     for (const double r : ratios)
       for (const std::string m : {"mod3", "mod1", "mod2", "spread:199"}) graded.push_back({r, m});
@@ -210,8 +365,9 @@ int main(int argc, char** argv) {
     out << "# blocks: 3 b + m: benchmark b in (bouncing, impacting, gravity-paper, layered, two-bars), mass m in "
            "(mod1, mod2, mod3), scheme cn, dt = h/(2c); "
         << time_block << ": dt alone (mod3, N = " << finest << "); " << graded_block << ": graded meshes\n";
+    const Study study{measures, levels};
     const auto at = [&](std::size_t b, std::size_t m, std::size_t l) -> const mrm::repro::Measures& {
-      return measures[(b * masses.size() + m) * levels + l];
+      return study.at(b, m, l);
     };
     // The Δt study's run c of benchmark b (the last ratio is the h study's finest Mod 3 run).
     const auto time_run = [&](std::size_t b, std::size_t c) -> const mrm::repro::Measures& {
@@ -224,7 +380,7 @@ int main(int argc, char** argv) {
             << ", mass = " << masses[m] << ", scheme = cn\n";
         std::vector<mrm::repro::ErrorRow> rows;
         for (std::size_t l = 0; l < levels; ++l)
-          rows.push_back({static_cast<mrm::Index>(coarsest) << l, mrm::ErrorAccumulator::values(at(b, m, l).errors)});
+          rows.push_back({meshes.elements(l), mrm::ErrorAccumulator::values(at(b, m, l).errors)});
         mrm::repro::write_error_rows(out, 1.0, courant, rows);
       }
     out << "\n\n# block " << time_block << ": dt alone, cn, mod3, N = " << finest
@@ -247,9 +403,6 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "benchconv:Nmax", std::to_string(finest));
     mrm::tex_define(defs, "benchconv:meshes", std::to_string(levels));
     mrm::tex_define(defs, "benchconv:tolerance", mrm::tex_number(agreement, 2));
-    std::vector<double> steps(levels);
-    for (std::size_t l = 0; l < levels; ++l)
-      steps[l] = 1.0 / static_cast<double>(static_cast<mrm::Index>(coarsest) << l);
     std::vector<std::string> headers{"benchmark", "mass"};
     for (const mrm::repro::Label& label : mrm::repro::measure_labels())
       headers.push_back("\\rotatebox{70}{" + label.latex + "}");
@@ -258,40 +411,7 @@ int main(int argc, char** argv) {
     for (std::size_t b = 0; b < benchmarks.size(); ++b) {
       const std::string key = benchmarks[b];
       for (std::size_t m = 0; m < masses.size(); ++m) {
-        std::vector<std::string> row{m == 0 ? key : "", mrm::repro::mass_label(masses[m]).abbreviation};
-        for (std::size_t k = 0; k < 8; ++k) {
-          const double predicted = predicted_order(b, k);
-          std::vector<double> errors(levels);
-          for (std::size_t l = 0; l < levels; ++l) errors[l] = mrm::ErrorAccumulator::values(at(b, m, l).errors)[k];
-          if (predicted == 0) {
-            if (!std::all_of(errors.begin(), errors.end(), [](double e) { return e == 0; }))
-              throw std::runtime_error(key + ": u(0,.) is not 0 in a run (its exact value is 0)");
-            row.push_back("n/a");
-            continue;
-          }
-          if (!std::all_of(errors.begin(), errors.end(), [](double e) { return e > 0 && std::isfinite(e); }))
-            throw std::runtime_error("the errors of " + key + " " + masses[m] + " cannot be fitted");
-          // The fit over all meshes and the local order between the two finest (a fit that disagrees
-          // with the local order says the errors are not yet in their asymptotic regime).
-          const mrm::OrderFit fit = mrm::fit_order(steps, errors);
-          const double local = mrm::repro::local_orders(steps, errors).back();
-          const bool agrees = std::abs(fit.order - predicted) <= agreement;
-          agreeing += agrees;
-          ++cases;
-          const std::string fitted = mrm::tex_number(fit.order, 2);
-          row.push_back((agrees ? fitted : "\\textit{" + fitted + "}") + " {\\scriptsize[" + mrm::tex_number(local, 2) +
-                        "] (" + fraction(predicted) + ")}");
-          mrm::tex_define(defs, "benchconv:local:" + key + ":" + masses[m] + ":" + mrm::ErrorAccumulator::names[k],
-                          mrm::tex_number(local, 2));
-          const std::string name = key + ":" + masses[m] + ":" + mrm::ErrorAccumulator::names[k];
-          mrm::tex_define(defs, "benchconv:order:" + name, fitted);
-          mrm::tex_define(defs, "benchconv:err:" + name, mrm::tex_number(errors.back(), 2));
-          std::cout << key << ' ' << masses[m] << ' ' << mrm::ErrorAccumulator::names[k] << " order "
-                    << cli::format_real(std::round(fit.order * 100) / 100) << " local "
-                    << cli::format_real(std::round(local * 100) / 100) << " (conjecture " << fraction(predicted) << ")"
-                    << (agrees ? "" : " DISAGREES") << '\n';
-        }
-        orders.add_row(row);
+        orders.add_row(mass_orders_row(defs, study, meshes, b, m, agreeing, cases));
       }
       if (b + 1 < benchmarks.size()) orders.add_rule();
       // Δt alone: the order in Δt from the three steps (fit), Mod 3 on the finest mesh.
@@ -328,61 +448,7 @@ int main(int argc, char** argv) {
                         mrm::tex_number(fine.contact_windows.front().end - exact.front().end, 2));
       }
     }
-    // The data of each benchmark, from the registry (lib/exact/impact_solution.cpp), and its exact windows
-    // against an independent closed form where one is derived (the doctests of impact_solution.cpp):
-    // bouncing, the free fall to the floor √(2g₀/g) = 1 then contacts of 2L/c every 8L/(3c) = [1 + 8k/3,
-    // 5/3 + 8k/3]; impacting, [g₀/v, g₀/v + 2L/c]; gravity-paper, held over [0, T]. The layered bar has no
-    // closed form here: its windows are compared with the finest Mod 3 run.
-    mrm::repro::Table data_table(
-        {"benchmark", "segments $(\\ell, E, \\rho)$", "load $f$", "far end", "gap $g_0$", "$v^0$", "$T$", "source"});
-    for (const char* key : benchmarks) {
-      const mrm::ImpactBenchmark& bench = mrm::impact_benchmark(key);
-      std::string segments, loads;
-      for (const mrm::BarSegment& segment : bench.configuration.segments) {
-        segments += (segments.empty() ? "" : ", ") +
-                    ("$(" + mrm::tex_number(segment.length, 3) + ", " + mrm::tex_number(segment.modulus, 4) + ", " +
-                     mrm::tex_number(segment.density, 3) + ")$");
-        loads += (loads.empty() ? "" : ", ") +
-                 (segment.load.empty() ? std::string("0") : "$" + mrm::tex_number(segment.load.front(), 3) + "$");
-      }
-      // Two bodies: the gap between them, and the velocity of each (the left bar's, then the right one's).
-      const bool two = mrm::is_two_body_chain(bench.configuration);
-      const double gap = two ? bench.configuration.junctions.front().gap : bench.configuration.obstacle_gap;
-      const std::string velocity = two ? mrm::tex_number(bench.data.velocity(0.0), 3) + ", " +
-                                             mrm::tex_number(bench.data.velocity(bench.configuration.length()), 3)
-                                       : mrm::tex_number(bench.data.velocity(0.0), 3);
-      data_table.add_row(
-          {key, segments, loads, bench.configuration.far_end == mrm::FarEnd::free ? "free" : "clamped",
-           "$" + mrm::tex_number(gap, 3) + "$", "$" + velocity + "$",
-           "$" + mrm::tex_number(bench.final_time, 3) + "$" + (bench.time_unit.empty() ? "" : "~" + bench.time_unit),
-           mrm::claims::latex_escape(bench.source)});  // "Code_Aster", "01_bouncingBar": text, not math
-      const std::vector<mrm::ContactInterval> exact =
-          mrm::exact_contact_windows(bench.configuration, bench.data, bench.final_time);
-      std::vector<mrm::ContactInterval> closed;
-      const mrm::BarSegment& bar = bench.configuration.segments.front();
-      const double c = std::sqrt(bar.modulus / bar.density), length = bench.configuration.length();
-      const std::string id = key;
-      if (id == "bouncing")
-        for (int k = 0; k < 3; ++k) closed.push_back({1 + 8.0 * k / 3, 5.0 / 3 + 8.0 * k / 3, false});
-      if (id == "impacting") {
-        const double t1 = bench.configuration.obstacle_gap / -bench.data.velocity(0.0);
-        closed.push_back({t1, t1 + 2 * length / c, false});
-      }
-      if (id == "gravity-paper") closed.push_back({0.0, bench.final_time, true});
-      if (id == "two-bars") closed.push_back({0.0, 2 * bench.configuration.segments.front().length / c, false});
-      const std::vector<mrm::ContactInterval>& other = closed.empty() ? at(3, 2, levels - 1).contact_windows : closed;
-      double difference = exact.size() == other.size() ? 0.0 : HUGE_VAL;
-      for (std::size_t w = 0; w < std::min(exact.size(), other.size()); ++w)
-        difference =
-            std::max({difference, std::abs(exact[w].start - other[w].start), std::abs(exact[w].end - other[w].end)});
-      if (!std::isfinite(difference))
-        throw std::runtime_error(id + ": the exact solution and its comparison have different numbers of windows");
-      mrm::tex_define(defs, "benchconv:check:" + id, closed.empty() ? "the finest Mod~3 run" : "the closed form");
-      mrm::tex_define(defs, "benchconv:checkdiff:" + id, mrm::tex_number(difference, 2));
-      std::cout << id << ": exact windows against " << (closed.empty() ? "the finest Mod 3 run" : "the closed form")
-                << ": max |difference| = " << cli::format_real(difference) << '\n';
-    }
-    defs << "\\mrmdef{benchconv:table:data}{" << mrm::repro::latex_tabular(data_table, "llllrrrp{3.2cm}") << "}\n";
+    write_data_table(defs, at(3, 2, levels - 1).contact_windows);
     mrm::tex_define(defs, "benchconv:agreeing", std::to_string(agreeing));
     mrm::tex_define(defs, "benchconv:cases", std::to_string(cases));
     for (std::size_t part = 0; part < 2; ++part) {
@@ -395,40 +461,7 @@ int main(int argc, char** argv) {
     }
 
     // The graded table: each member's drift minus Mod 3's against Σ δmᵢ κ(xᵢ), in units of h₀.
-    mrm::repro::Table graded_table(
-        {"$r$", "$h_{\\max}/h_0$", "mass", "predicted $\\Delta P/h_0$", "measured $/h_0$", "$|$difference$|/h_0$"});
-    double worst = 0;
-    std::cout << "graded meshes (N = " << graded_elements << ", cn, dt = h0/2, " << graded_periods
-              << " periods): drift per period minus Mod 3's, in units of h0\n"
-              << "r h_max/h0 member predicted measured |difference|\n";
-    for (std::size_t i = 0; i < graded.size(); ++i) {
-      const GradedRun& g = graded[i];
-      if (g.mass == "mod3") continue;
-      const GradedRun& reference = graded[i - (i % 4)];
-      const mrm::UniformMesh mesh = mrm::graded_mesh(1.0, graded_elements, g.ratio);
-      const double h0 = mesh.h(0);
-      const double predicted =
-          mrm::first_order_period_change(mesh, mrm::repro::mass_redistribution_from_spec(g.mass, mesh));
-      const double measured = g.phase.drift_per_period - reference.phase.drift_per_period;
-      const double difference = std::abs(measured - predicted);
-      worst = std::max(worst, difference / h0);
-      out << cli::format_real(g.ratio) << ' ' << cli::format_real(mesh.h(graded_elements - 1) / h0) << ' ' << g.mass
-          << ' ' << cli::format_real(predicted / h0) << ' ' << cli::format_real(measured / h0) << ' '
-          << cli::format_real(difference / h0) << '\n';
-      char line[160];
-      std::snprintf(line, sizeof line, "%-7g %-9.3f %-11s %+9.4f %+9.4f %8.4f", g.ratio,
-                    mesh.h(graded_elements - 1) / h0, g.mass.c_str(), predicted / h0, measured / h0, difference / h0);
-      std::cout << line << '\n';
-      graded_table.add_row({cli::format_real(g.ratio), mrm::tex_number(mesh.h(graded_elements - 1) / h0, 3),
-                            mrm::repro::mass_label(g.mass).abbreviation, mrm::tex_number(predicted / h0, 3),
-                            mrm::tex_number(measured / h0, 3), mrm::tex_number(difference / h0, 2)});
-    }
-    mrm::tex_define(defs, "benchconv:graded:N", std::to_string(graded_elements));
-    mrm::tex_define(defs, "benchconv:graded:periods", mrm::tex_number(graded_periods, 2));
-    mrm::tex_define(defs, "benchconv:graded:worst", mrm::tex_number(worst, 2));
-    mrm::tex_define(defs, "benchconv:graded:tolerance", mrm::tex_number(graded_tolerance, 2));
-    mrm::tex_define(defs, "benchconv:graded:verdict", worst <= graded_tolerance ? "within" : "not within");
-    defs << "\\mrmdef{benchconv:table:graded}{" << mrm::repro::latex_tabular(graded_table, "rrlrrr") << "}\n";
+    write_graded(out, defs, graded);
 
     // 6. Commit.
     program.commit();

@@ -1,4 +1,4 @@
-// fig_classes: the field's contact treatments side by side (issue 23): every contact class of the
+// fig_classes: the field's contact treatments side by side: every contact class of the
 // scheme registry, with the standard mass and, where the class allows it, with Mod 3, on every benchmark
 // the harness can run, four meshes and three steps.
 //
@@ -67,14 +67,14 @@ namespace repro = mrm::repro;
 namespace {
 
 // One class with one mass.
-struct Case {
+struct ClassWithMass {
   mrm::Scheme scheme;
   std::string mass;
   std::string id() const { return mrm::to_string(scheme) + "+" + mass; }
 };
 
 // What one run measures.
-struct Cell {
+struct MatrixRunMeasures {
   bool run = false;
   std::array<double, 8> errors{};
   double tv_ratio = 0, penetration = 0, energy_per_impact = 0, work = 0, seconds = 0;
@@ -82,15 +82,15 @@ struct Cell {
 };
 
 // What one long run measures.
-struct Long {
+struct LongRunMeasures {
   bool run = false;
   double energy_ratio = 0, work = 0;
   std::size_t impacts = 0;
   std::vector<double> every_ten;  // E/E(0) every 10 periods
 };
 
-repro::Configuration configuration_of(const Case& c, const std::string& benchmark, mrm::Index elements, double courant,
-                                      double final_time) {
+repro::Configuration configuration_of(const ClassWithMass& c, const std::string& benchmark, mrm::Index elements,
+                                      double courant, double final_time) {
   repro::Configuration configuration = repro::paper_configuration(
       c.scheme, c.mass == "consistent" ? "literal" : "algebraic", c.mass, elements, courant, final_time);
   configuration.benchmark = benchmark;
@@ -101,7 +101,7 @@ repro::Configuration configuration_of(const Case& c, const std::string& benchmar
 }
 
 // Why a class refuses a mass (the library's reason), or "" if it runs it.
-std::string refusal(const Case& c) {
+std::string refusal(const ClassWithMass& c) {
   try {
     const repro::Configuration configuration = configuration_of(c, "paper", 25, 0.5, 3.0);
     const mrm::UniformMesh mesh(1.0, 25);
@@ -124,8 +124,8 @@ double horizon_of(const std::string& benchmark) {
 // why not: the first refusal, named by its case. A benchmark joins the matrix only whole, so that every
 // table compares every class on it (the field's benchmarks with a gap or a load are refused by the classes
 // that take neither, e.g. EC and a gap).
-std::string benchmark_refusal(const std::string& benchmark, const std::vector<Case>& cases) {
-  for (const Case& c : cases) {
+std::string benchmark_refusal(const std::string& benchmark, const std::vector<ClassWithMass>& cases) {
+  for (const ClassWithMass& c : cases) {
     try {
       repro::Configuration probe = configuration_of(c, benchmark, 10, 0.5, horizon_of(benchmark));
       probe.steps = 1;
@@ -156,6 +156,208 @@ double geometric_mean(const std::array<double, 8>& values, const std::array<bool
   return count ? std::exp(log_sum / count) : std::nan("");
 }
 
+// Blocks 5 and 6 and their tables: the measured regions of explicit penalty and explicit Nitsche (the
+// comment at the call says what is run and checked).
+void write_explicit_regions(std::ostream& out, std::ostream& defs, long threads, bool no_timing) {
+  const std::vector<double> fractions{0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.99};
+  const std::vector<double> horizons{10.0, 100.0, 1000.0};
+  struct RegionRun {
+    mrm::Scheme scheme;
+    mrm::Index elements;
+    double theta, gamma0, fraction;
+    std::vector<double> ratio;  // per horizon; 1e3 when stopped
+    std::vector<bool> stopped;
+    double seconds = 0;
+  };
+  std::vector<RegionRun> region;
+  for (const mrm::Index n : {16, 64}) {
+    for (const double g : {1.0, 10.0, 100.0})
+      for (const double r : fractions) region.push_back({mrm::Scheme::penalty, n, 0.0, g, r, {}, {}});
+    for (const double theta : {0.0, 1.0})
+      for (const double g : {5.0, 50.0})
+        for (const double r : fractions) region.push_back({mrm::Scheme::nitsche, n, theta, g, r, {}, {}});
+  }
+  // Through the sweep layer (repro/sweep.hpp): the runs of one mesh and law make one batch (the caller's
+  // keys), stepped in vector lanes (the Newmark-type kernel, lib/batched/batched_step.cpp: each lane bitwise its run
+  // alone); a run that stops, or has reached its last horizon, stays as it is while the others go on.
+  std::vector<repro::BatchKey> keys;
+  std::vector<double> costs;
+  std::vector<double> e0(region.size()), largest(region.size(), 1.0);
+  std::vector<char> stopped(region.size(), 0);  // (not vector<bool>: runs on different threads write it)
+  std::vector<std::vector<mrm::Index>> horizon_steps(region.size());
+  using Clock = std::chrono::steady_clock;
+  std::vector<Clock::time_point> began(region.size()), ended(region.size());
+  // Run k: Newmark (0, ½) with the law and the consistent mass, Δt = r Δt_max; its levels of the horizons.
+  const mrm::MassRedistribution mass = mrm::mass_redistribution_by_name("consistent");
+  std::vector<mrm::SchemeParameters> parameters(region.size());
+  std::vector<double> dt(region.size());
+  for (std::size_t k = 0; k < region.size(); ++k) {
+    const RegionRun& x = region[k];
+    const mrm::UniformMesh mesh(1.0, x.elements);
+    mrm::SchemeParameters& p = parameters[k];
+    p.scheme = x.scheme;
+    p.newmark_beta = 0.0;
+    p.newmark_gamma = 0.5;
+    if (x.scheme == mrm::Scheme::penalty) p.penalty = x.gamma0;
+    if (x.scheme == mrm::Scheme::nitsche) p.nitsche_gamma = x.gamma0, p.nitsche_theta = x.theta;
+    const double limit =
+        mrm::newmark_stability_limit(mrm::modified_mass(mesh, mass), mrm::p1_stiffness(mesh), p, mesh.h());
+    dt[k] = x.fraction * limit;
+    for (const double periods : horizons) {
+      if (x.elements > 16 && periods > 100) break;
+      horizon_steps[k].push_back(mrm::steps_to_reach(3.0 * periods, dt[k]));
+    }
+    // One batch per mesh and law; in it, runs of similar numbers of steps share the lanes of a group.
+    keys.emplace_back(x.elements, x.scheme == mrm::Scheme::penalty ? 0 : 1);
+    costs.push_back(static_cast<double>(x.elements * horizon_steps[k].back()));
+  }
+  // The largest E/E₀ up to each horizon's level, 1e3 once the run has passed 1e3 E₀ (it then stops).
+  const auto follow = [&](std::size_t k, const mrm::Sample& s) {
+    RegionRun& x = region[k];
+    if (s.level == 0) {
+      e0[k] = s.energy;
+      return true;
+    }
+    largest[k] = std::max(largest[k], s.energy / e0[k]);
+    stopped[k] = !(largest[k] <= 1e3);
+    while (x.ratio.size() < horizon_steps[k].size() && (stopped[k] || s.level == horizon_steps[k][x.ratio.size()])) {
+      x.ratio.push_back(stopped[k] ? 1e3 : largest[k]);
+      x.stopped.push_back(stopped[k]);
+    }
+    return x.ratio.size() < horizon_steps[k].size();
+  };
+  repro::SweepSettings settings;
+  settings.threads = static_cast<unsigned>(threads);
+  repro::step_in_batches(
+      keys, costs,
+      [&](std::size_t k, mrm::Index& steps) {
+        began[k] = Clock::now();
+        steps = horizon_steps[k].back();
+        return mrm::BarSimulation(mrm::benchmark_problem(), mrm::UniformMesh(1.0, region[k].elements), mass,
+                                  parameters[k], dt[k]);
+      },
+      follow, [&](std::size_t k) { ended[k] = Clock::now(); }, settings,
+      // The energy only: the lanes are read in place.
+      [&](std::size_t k, const mrm::Sample& s, const mrm::LaneVectors&) -> std::optional<bool> { return follow(k, s); },
+      {}, region.size(), /*own_rates=*/true);
+  // Each key is one batch: a law's time is the sum of its batches' wall times, a run's its share (printed, not
+  // in the data).
+  for (RegionRun& x : region) {
+    Clock::time_point first = Clock::time_point::max(), last = Clock::time_point::min();
+    std::size_t count = 0;
+    for (std::size_t m = 0; m < region.size(); ++m)
+      if (region[m].scheme == x.scheme && region[m].elements == x.elements)
+        first = std::min(first, began[m]), last = std::max(last, ended[m]), ++count;
+    x.seconds = std::chrono::duration<double>(last - first).count() / static_cast<double>(count);
+  }
+  for (const mrm::Scheme law : {mrm::Scheme::penalty, mrm::Scheme::nitsche}) {
+    const bool penalty = law == mrm::Scheme::penalty;
+    const std::string name = mrm::to_string(law);
+    out << "\n\n# block " << (penalty ? 5 : 6) << ": explicit " << name
+        << " (Newmark beta = 0, gamma = 1/2, consistent mass, paper's benchmark): E_max/E0 up to a horizon at dt = "
+           "fraction * dt_max (the linear limit); 1e3 with stopped = 1: the run passed 1e3 E0 and was stopped\n"
+        << (penalty ? "# columns: elements gamma0 fraction periods energy_max_ratio stopped\n"
+                    : "# columns: elements theta gamma0 fraction periods energy_max_ratio stopped\n");
+    std::vector<std::string> head{"$N$"};
+    if (!penalty) head.push_back("$\\theta$");
+    head.insert(head.end(), {"$\\gamma_0$", "periods"});
+    for (const double r : fractions) head.push_back(cli::format_real(r));
+    repro::Table region_table(head);
+    double seconds = 0;
+    for (const RegionRun& x : region)
+      if (x.scheme == law) seconds += x.seconds;
+    std::string mismatch;  // thrown after the table is printed
+    for (std::size_t h = 0; h < horizons.size(); ++h) {
+      // The edge: the largest grid fraction r such that every run at every r' <= r kept E_max <= 2 E0.
+      double edge = 0;
+      for (const double r : fractions) {
+        bool safe = true;
+        for (const RegionRun& x : region)
+          if (x.scheme == law && x.fraction <= r && h < x.ratio.size())
+            safe = safe && !x.stopped[h] && x.ratio[h] <= 2.0;
+        if (!safe) break;
+        edge = r;
+      }
+      mrm::tex_define(defs, "classes:" + name + "-region:edge:" + cli::format_real(horizons[h]),
+                      cli::format_real(edge));
+      std::cout << "explicit " << name << ": E_max <= 2 E0 up to " << horizons[h] << " periods for dt <= " << edge
+                << " dt_max (measured)\n";
+      const double library =
+          penalty ? mrm::penalty_measured_safe_fraction(horizons[h]) : mrm::nitsche_measured_safe_fraction(horizons[h]);
+      if (edge != library && mismatch.empty())
+        mismatch = ("block " + std::string(penalty ? "5" : "6") + ": the measured edge of explicit " + name +
+                    "'s region up to " + cli::format_real(horizons[h]) + " periods is " + cli::format_real(edge) +
+                    ", but lib/classes/contact_classes.cpp's " + name + "_measured_safe_fraction says " +
+                    cli::format_real(library) + " (bar1d's warning uses it): update the one or the other");
+      for (const RegionRun& x : region) {
+        if (x.scheme != law || h >= x.ratio.size() || x.fraction != fractions.front()) continue;
+        std::vector<std::string> row{std::to_string(x.elements)};
+        if (!penalty) row.push_back(cli::format_real(x.theta));
+        row.insert(row.end(), {cli::format_real(x.gamma0), cli::format_real(horizons[h])});
+        for (const RegionRun& y : region)
+          if (y.scheme == law && y.elements == x.elements && y.gamma0 == x.gamma0 && y.theta == x.theta)
+            row.push_back(y.stopped[h] ? "$>10^3$" : mrm::tex_number(y.ratio[h], 3));
+        region_table.add_row(row);
+      }
+      region_table.add_rule();
+    }
+    for (const RegionRun& x : region) {
+      if (x.scheme != law) continue;
+      for (std::size_t h = 0; h < x.ratio.size(); ++h) {
+        out << x.elements << ' ';
+        if (!penalty) out << cli::format_real(x.theta) << ' ';
+        out << cli::format_real(x.gamma0) << ' ' << cli::format_real(x.fraction) << ' ' << cli::format_real(horizons[h])
+            << ' ' << cli::format_real(x.ratio[h]) << ' ' << x.stopped[h] << '\n';
+      }
+    }
+    std::ostringstream tex;
+    repro::LatexLayout layout;
+    layout.columns = std::string(penalty ? "rrr" : "rrrr") + std::string(fractions.size(), 'r');
+    region_table.write_latex(tex, layout);
+    mrm::tex_define(defs, "classes:" + name + "-region", tex.str());
+    std::cout << "explicit " << name << ", E_max/E0 (rows N, " << (penalty ? "" : "theta, ")
+              << "gamma0, periods; columns dt/dt_max):\n";
+    region_table.write_markdown(std::cout);
+    if (!no_timing)
+      std::cout << "explicit " << name << "'s region: " << cli::format_real(std::round(seconds * 100) / 100)
+                << " CPU-s\n";
+    if (!mismatch.empty()) throw std::runtime_error(mismatch);
+  }
+}
+
+// Block 4: the largest nodal error at Δt = h on the paper's benchmark (the comment at the call says which
+// schemes and horizons), with its values.
+void write_nodal_errors(std::ostream& out, std::ostream& defs) {
+  out << "\n\n# block 4: the largest nodal error at dt = h on the paper's benchmark (t <= T)\n"
+         "# columns: scheme mass elements T max_nodal_error\n";
+  const mrm::ExactSolution exact;
+  const auto nodal = [&](mrm::Scheme scheme, const std::string& mass, mrm::Index n, double horizon) {
+    const mrm::UniformMesh mesh(1.0, n);
+    mrm::SchemeParameters p;
+    p.scheme = scheme;
+    mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(mass), p, mesh.h());
+    double worst = 0;
+    mrm::run(simulation, mrm::steps_to_reach(horizon, mesh.h()) - (horizon < 1.5 ? 1 : 0), [&](const mrm::Sample& x) {
+      for (mrm::Index i = 0; i < n; ++i)
+        worst = std::max(worst, std::abs((*x.displacement)[i] - exact.displacement(mesh.x(i), x.time)));
+    });
+    out << mrm::to_string(scheme) << ' ' << mass << ' ' << n << ' ' << cli::format_real(horizon) << ' '
+        << cli::format_real(worst) << '\n';
+    return worst;
+  };
+  for (const mrm::Index n : {20, 40, 80}) {
+    const std::string N = std::to_string(n);
+    mrm::tex_define(defs, "classes:dth:explicit:" + N,
+                    mrm::tex_number(nodal(mrm::Scheme::explicit_central, "mod3", n, 3.0), 2));
+    mrm::tex_define(defs, "classes:dth:cn:" + N,
+                    mrm::tex_number(nodal(mrm::Scheme::crank_nicolson, "mod3", n, 3.0), 2));
+    mrm::tex_define(defs, "classes:dth:tf-free:" + N,
+                    mrm::tex_number(nodal(mrm::Scheme::taylor_flanagan, "consistent", n, 1.0), 2));
+    mrm::tex_define(defs, "classes:dth:tf:" + N,
+                    mrm::tex_number(nodal(mrm::Scheme::taylor_flanagan, "consistent", n, 3.0), 2));
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -182,12 +384,12 @@ int main(int argc, char** argv) {
 
     // 2. The matrix, decided before any long work: classes × masses (refusals listed), benchmarks (probe).
     program.open();
-    std::vector<Case> cases;
+    std::vector<ClassWithMass> cases;
     std::vector<std::pair<std::string, std::string>> refused;
     for (const mrm::SchemeInfo& info : mrm::scheme_registry()) {
       if (info.scheme == mrm::Scheme::backward_euler) continue;
       for (const std::string mass : {"consistent", "mod3"}) {
-        const Case c{info.scheme, mass};
+        const ClassWithMass c{info.scheme, mass};
         // dke with a massless contact node is Crank–Nicolson's run with the same mass (the projection moves
         // no node with mass; lib/classes/contact_classes.cpp, the doctest "dke: ...": 4e-13): not run twice.
         const std::string why = info.scheme == mrm::Scheme::dke && mass == "mod3"
@@ -242,14 +444,14 @@ int main(int argc, char** argv) {
     const std::size_t long_first = jobs.size();
     for (std::size_t c = 0; c < cases.size(); ++c)
       for (std::size_t k = 0; k < courants.size(); ++k) jobs.push_back({0, c, 0, k});
-    std::vector<Cell> cells(long_first);
-    std::vector<Long> longs(jobs.size() - long_first);
+    std::vector<MatrixRunMeasures> cells(long_first);
+    std::vector<LongRunMeasures> longs(jobs.size() - long_first);
     const auto matrix_cost = [&](std::size_t k) {  // a matrix run's (k < long_first)
       const double n = static_cast<double>(meshes[jobs[k].mesh]);
       return n * n * final_time(benchmarks[jobs[k].benchmark]) / courants[jobs[k].courant];
     };
     // The exact solution of one group of the matrix: the runs of every class-mass pair on one benchmark,
-    // mesh and Δt (issue 24, item 2) ask it the same questions (u and u_t at the nodes, u(0, ·) and λ at
+    // mesh and Δt ask it the same questions (u and u_t at the nodes, u(0, ·) and λ at
     // the instants of their samples: kΔt, and (k ± ½)Δt where a class samples its velocity or its
     // multiplier between levels), so it is made once for the group and seen through a record
     // (repro::GroupReferences; the same doubles, so the same bytes). A group holds up to ~10 MB: its runs
@@ -288,7 +490,7 @@ int main(int argc, char** argv) {
     const auto matrix_run = [&](std::size_t k) {
       const Job& job = jobs[k];
       const auto start = std::chrono::steady_clock::now();
-      Cell& cell = cells[k];
+      MatrixRunMeasures& cell = cells[k];
       const std::string& benchmark = benchmarks[job.benchmark];
       const repro::Configuration configuration =
           configuration_of(cases[job.c], benchmark, meshes[job.mesh], courants[job.courant], final_time(benchmark));
@@ -331,10 +533,12 @@ int main(int argc, char** argv) {
       settings.threads = static_cast<unsigned>(threads);
       repro::run_batched({}, settings, {}, {}, true, tasks);
     }
-    const auto cell = [&](std::size_t b, std::size_t c, std::size_t a, std::size_t k) -> const Cell& {
+    const auto cell = [&](std::size_t b, std::size_t c, std::size_t a, std::size_t k) -> const MatrixRunMeasures& {
       return cells[((b * cases.size() + c) * meshes.size() + a) * courants.size() + k];
     };
-    const auto long_run = [&](std::size_t c, std::size_t k) -> const Long& { return longs[c * courants.size() + k]; };
+    const auto long_run = [&](std::size_t c, std::size_t k) -> const LongRunMeasures& {
+      return longs[c * courants.size() + k];
+    };
     // An error that is 0 on some mesh (the exact u(0, ·) ≡ 0 held exactly on gravity-paper) has no order:
     // NaN, written as a word.
     const auto orders = [&](std::size_t b, std::size_t c, std::size_t k) {
@@ -373,7 +577,7 @@ int main(int argc, char** argv) {
       for (std::size_t c = 0; c < cases.size(); ++c)
         for (std::size_t k = 0; k < courants.size(); ++k)
           for (std::size_t a = 0; a < meshes.size(); ++a) {
-            const Cell& x = cell(b, c, a, k);
+            const MatrixRunMeasures& x = cell(b, c, a, k);
             const double h = 1.0 / static_cast<double>(meshes[a]);
             out << benchmarks[b] << ' ' << mrm::to_string(cases[c].scheme) << ' ' << cases[c].mass << ' '
                 << cli::format_real(courants[k]) << ' ' << meshes[a] << ' ' << cli::format_real(h) << ' '
@@ -405,7 +609,7 @@ int main(int argc, char** argv) {
            "energy_ratio\n";
     for (std::size_t c = 0; c < cases.size(); ++c)
       for (std::size_t k = 0; k < courants.size(); ++k) {
-        const Long& l = long_run(c, k);
+        const LongRunMeasures& l = long_run(c, k);
         for (std::size_t j = 0; j < l.every_ten.size(); ++j)
           out << mrm::to_string(cases[c].scheme) << ' ' << cases[c].mass << ' ' << cli::format_real(courants[k]) << ' '
               << 10 * (j + 1) << ' ' << cli::format_real(l.every_ten[j]) << '\n';
@@ -425,7 +629,7 @@ int main(int argc, char** argv) {
     repro::Table table(head);
     for (std::size_t b = 0; b < benchmarks.size(); ++b) {
       for (std::size_t c = 0; c < cases.size(); ++c) {
-        const Cell& x = cell(b, c, fine, half);
+        const MatrixRunMeasures& x = cell(b, c, fine, half);
         std::array<double, 8> g_by_mesh{};
         std::vector<double> hs, gs;
         for (std::size_t a = 0; a < meshes.size(); ++a)
@@ -460,38 +664,7 @@ int main(int argc, char** argv) {
     // largest nodal error max_n max_i |u_i − u(x_i, t_n)| of the paper's benchmark over one period, for
     // explicit + Mod 3 and cn + Mod 3, and for taylor-flanagan (lumped) up to the first impact (t < 1,
     // the free wave equation) and over the period.
-    out << "\n\n# block 4: the largest nodal error at dt = h on the paper's benchmark (t <= T)\n"
-           "# columns: scheme mass elements T max_nodal_error\n";
-    {
-      const mrm::ExactSolution exact;
-      const auto nodal = [&](mrm::Scheme scheme, const std::string& mass, mrm::Index n, double horizon) {
-        const mrm::UniformMesh mesh(1.0, n);
-        mrm::SchemeParameters p;
-        p.scheme = scheme;
-        mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mass_redistribution_by_name(mass), p,
-                                      mesh.h());
-        double worst = 0;
-        mrm::run(simulation, mrm::steps_to_reach(horizon, mesh.h()) - (horizon < 1.5 ? 1 : 0),
-                 [&](const mrm::Sample& x) {
-                   for (mrm::Index i = 0; i < n; ++i)
-                     worst = std::max(worst, std::abs((*x.displacement)[i] - exact.displacement(mesh.x(i), x.time)));
-                 });
-        out << mrm::to_string(scheme) << ' ' << mass << ' ' << n << ' ' << cli::format_real(horizon) << ' '
-            << cli::format_real(worst) << '\n';
-        return worst;
-      };
-      for (const mrm::Index n : {20, 40, 80}) {
-        const std::string N = std::to_string(n);
-        mrm::tex_define(defs, "classes:dth:explicit:" + N,
-                        mrm::tex_number(nodal(mrm::Scheme::explicit_central, "mod3", n, 3.0), 2));
-        mrm::tex_define(defs, "classes:dth:cn:" + N,
-                        mrm::tex_number(nodal(mrm::Scheme::crank_nicolson, "mod3", n, 3.0), 2));
-        mrm::tex_define(defs, "classes:dth:tf-free:" + N,
-                        mrm::tex_number(nodal(mrm::Scheme::taylor_flanagan, "consistent", n, 1.0), 2));
-        mrm::tex_define(defs, "classes:dth:tf:" + N,
-                        mrm::tex_number(nodal(mrm::Scheme::taylor_flanagan, "consistent", n, 3.0), 2));
-      }
-    }
+    write_nodal_errors(out, defs);
     // Blocks 5 and 6: the measured regions of explicit penalty and explicit Nitsche (contact_classes.cpp,
     // "Central differences with a penalty" and "... with Nitsche's terms": the linear limit is necessary,
     // not sufficient, and no sufficient limit is derived). Newmark (0, ½) with the law and the consistent
@@ -503,179 +676,11 @@ int main(int argc, char** argv) {
     // on growing; the later horizons then read "> 1e3"). The region's edge per horizon (the largest r below
     // which every run of the law kept E_max ≤ 2E₀) must equal the library's penalty_measured_safe_fraction
     // and nitsche_measured_safe_fraction, which bar1d's warnings use: checked here.
-    {
-      const std::vector<double> fractions{0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.99};
-      const std::vector<double> horizons{10.0, 100.0, 1000.0};
-      struct RegionRun {
-        mrm::Scheme scheme;
-        mrm::Index elements;
-        double theta, gamma0, fraction;
-        std::vector<double> ratio;  // per horizon; 1e3 when stopped
-        std::vector<bool> stopped;
-        double seconds = 0;
-      };
-      std::vector<RegionRun> region;
-      for (const mrm::Index n : {16, 64}) {
-        for (const double g : {1.0, 10.0, 100.0})
-          for (const double r : fractions) region.push_back({mrm::Scheme::penalty, n, 0.0, g, r, {}, {}});
-        for (const double theta : {0.0, 1.0})
-          for (const double g : {5.0, 50.0})
-            for (const double r : fractions) region.push_back({mrm::Scheme::nitsche, n, theta, g, r, {}, {}});
-      }
-      // Through the sweep layer (repro/sweep.hpp): the runs of one mesh and law make one batch (the caller's
-      // keys), stepped in vector lanes (the Newmark-type kernel, lib/batched/batched_step.cpp: each lane bitwise its run
-      // alone); a run that stops, or has reached its last horizon, stays as it is while the others go on.
-      std::vector<repro::BatchKey> keys;
-      std::vector<double> costs;
-      std::vector<double> e0(region.size()), largest(region.size(), 1.0);
-      std::vector<char> stopped(region.size(), 0);  // (not vector<bool>: runs on different threads write it)
-      std::vector<std::vector<mrm::Index>> horizon_steps(region.size());
-      using Clock = std::chrono::steady_clock;
-      std::vector<Clock::time_point> began(region.size()), ended(region.size());
-      // Run k: Newmark (0, ½) with the law and the consistent mass, Δt = r Δt_max; its levels of the horizons.
-      const mrm::MassRedistribution mass = mrm::mass_redistribution_by_name("consistent");
-      std::vector<mrm::SchemeParameters> parameters(region.size());
-      std::vector<double> dt(region.size());
-      for (std::size_t k = 0; k < region.size(); ++k) {
-        const RegionRun& x = region[k];
-        const mrm::UniformMesh mesh(1.0, x.elements);
-        mrm::SchemeParameters& p = parameters[k];
-        p.scheme = x.scheme;
-        p.newmark_beta = 0.0;
-        p.newmark_gamma = 0.5;
-        if (x.scheme == mrm::Scheme::penalty) p.penalty = x.gamma0;
-        if (x.scheme == mrm::Scheme::nitsche) p.nitsche_gamma = x.gamma0, p.nitsche_theta = x.theta;
-        const double limit =
-            mrm::newmark_stability_limit(mrm::modified_mass(mesh, mass), mrm::p1_stiffness(mesh), p, mesh.h());
-        dt[k] = x.fraction * limit;
-        for (const double periods : horizons) {
-          if (x.elements > 16 && periods > 100) break;
-          horizon_steps[k].push_back(mrm::steps_to_reach(3.0 * periods, dt[k]));
-        }
-        // One batch per mesh and law; in it, runs of similar numbers of steps share the lanes of a group.
-        keys.emplace_back(x.elements, x.scheme == mrm::Scheme::penalty ? 0 : 1);
-        costs.push_back(static_cast<double>(x.elements * horizon_steps[k].back()));
-      }
-      // The largest E/E₀ up to each horizon's level, 1e3 once the run has passed 1e3 E₀ (it then stops).
-      const auto follow = [&](std::size_t k, const mrm::Sample& s) {
-        RegionRun& x = region[k];
-        if (s.level == 0) {
-          e0[k] = s.energy;
-          return true;
-        }
-        largest[k] = std::max(largest[k], s.energy / e0[k]);
-        stopped[k] = !(largest[k] <= 1e3);
-        while (x.ratio.size() < horizon_steps[k].size() &&
-               (stopped[k] || s.level == horizon_steps[k][x.ratio.size()])) {
-          x.ratio.push_back(stopped[k] ? 1e3 : largest[k]);
-          x.stopped.push_back(stopped[k]);
-        }
-        return x.ratio.size() < horizon_steps[k].size();
-      };
-      repro::SweepSettings settings;
-      settings.threads = static_cast<unsigned>(threads);
-      repro::step_in_batches(
-          keys, costs,
-          [&](std::size_t k, mrm::Index& steps) {
-            began[k] = Clock::now();
-            steps = horizon_steps[k].back();
-            return mrm::BarSimulation(mrm::benchmark_problem(), mrm::UniformMesh(1.0, region[k].elements), mass,
-                                      parameters[k], dt[k]);
-          },
-          follow, [&](std::size_t k) { ended[k] = Clock::now(); }, settings,
-          // The energy only: the lanes are read in place.
-          [&](std::size_t k, const mrm::Sample& s, const mrm::LaneVectors&) -> std::optional<bool> {
-            return follow(k, s);
-          },
-          {}, region.size(), /*own_rates=*/true);
-      // Each key is one batch: a law's time is the sum of its batches' wall times, a run's its share (printed, not
-      // in the data).
-      for (RegionRun& x : region) {
-        Clock::time_point first = Clock::time_point::max(), last = Clock::time_point::min();
-        std::size_t count = 0;
-        for (std::size_t m = 0; m < region.size(); ++m)
-          if (region[m].scheme == x.scheme && region[m].elements == x.elements)
-            first = std::min(first, began[m]), last = std::max(last, ended[m]), ++count;
-        x.seconds = std::chrono::duration<double>(last - first).count() / static_cast<double>(count);
-      }
-      for (const mrm::Scheme law : {mrm::Scheme::penalty, mrm::Scheme::nitsche}) {
-        const bool penalty = law == mrm::Scheme::penalty;
-        const std::string name = mrm::to_string(law);
-        out << "\n\n# block " << (penalty ? 5 : 6) << ": explicit " << name
-            << " (Newmark beta = 0, gamma = 1/2, consistent mass, paper's benchmark): E_max/E0 up to a horizon at dt = "
-               "fraction * dt_max (the linear limit); 1e3 with stopped = 1: the run passed 1e3 E0 and was stopped\n"
-            << (penalty ? "# columns: elements gamma0 fraction periods energy_max_ratio stopped\n"
-                        : "# columns: elements theta gamma0 fraction periods energy_max_ratio stopped\n");
-        std::vector<std::string> head{"$N$"};
-        if (!penalty) head.push_back("$\\theta$");
-        head.insert(head.end(), {"$\\gamma_0$", "periods"});
-        for (const double r : fractions) head.push_back(cli::format_real(r));
-        repro::Table region_table(head);
-        double seconds = 0;
-        for (const RegionRun& x : region)
-          if (x.scheme == law) seconds += x.seconds;
-        std::string mismatch;  // thrown after the table is printed
-        for (std::size_t h = 0; h < horizons.size(); ++h) {
-          // The edge: the largest grid fraction r such that every run at every r' <= r kept E_max <= 2 E0.
-          double edge = 0;
-          for (const double r : fractions) {
-            bool safe = true;
-            for (const RegionRun& x : region)
-              if (x.scheme == law && x.fraction <= r && h < x.ratio.size())
-                safe = safe && !x.stopped[h] && x.ratio[h] <= 2.0;
-            if (!safe) break;
-            edge = r;
-          }
-          mrm::tex_define(defs, "classes:" + name + "-region:edge:" + cli::format_real(horizons[h]),
-                          cli::format_real(edge));
-          std::cout << "explicit " << name << ": E_max <= 2 E0 up to " << horizons[h] << " periods for dt <= " << edge
-                    << " dt_max (measured)\n";
-          const double library = penalty ? mrm::penalty_measured_safe_fraction(horizons[h])
-                                         : mrm::nitsche_measured_safe_fraction(horizons[h]);
-          if (edge != library && mismatch.empty())
-            mismatch = ("block " + std::string(penalty ? "5" : "6") + ": the measured edge of explicit " + name +
-                        "'s region up to " + cli::format_real(horizons[h]) + " periods is " + cli::format_real(edge) +
-                        ", but lib/classes/contact_classes.cpp's " + name + "_measured_safe_fraction says " +
-                        cli::format_real(library) + " (bar1d's warning uses it): update the one or the other");
-          for (const RegionRun& x : region) {
-            if (x.scheme != law || h >= x.ratio.size() || x.fraction != fractions.front()) continue;
-            std::vector<std::string> row{std::to_string(x.elements)};
-            if (!penalty) row.push_back(cli::format_real(x.theta));
-            row.insert(row.end(), {cli::format_real(x.gamma0), cli::format_real(horizons[h])});
-            for (const RegionRun& y : region)
-              if (y.scheme == law && y.elements == x.elements && y.gamma0 == x.gamma0 && y.theta == x.theta)
-                row.push_back(y.stopped[h] ? "$>10^3$" : mrm::tex_number(y.ratio[h], 3));
-            region_table.add_row(row);
-          }
-          region_table.add_rule();
-        }
-        for (const RegionRun& x : region) {
-          if (x.scheme != law) continue;
-          for (std::size_t h = 0; h < x.ratio.size(); ++h) {
-            out << x.elements << ' ';
-            if (!penalty) out << cli::format_real(x.theta) << ' ';
-            out << cli::format_real(x.gamma0) << ' ' << cli::format_real(x.fraction) << ' '
-                << cli::format_real(horizons[h]) << ' ' << cli::format_real(x.ratio[h]) << ' ' << x.stopped[h] << '\n';
-          }
-        }
-        std::ostringstream tex;
-        repro::LatexLayout layout;
-        layout.columns = std::string(penalty ? "rrr" : "rrrr") + std::string(fractions.size(), 'r');
-        region_table.write_latex(tex, layout);
-        mrm::tex_define(defs, "classes:" + name + "-region", tex.str());
-        std::cout << "explicit " << name << ", E_max/E0 (rows N, " << (penalty ? "" : "theta, ")
-                  << "gamma0, periods; columns dt/dt_max):\n";
-        region_table.write_markdown(std::cout);
-        if (!no_timing)
-          std::cout << "explicit " << name << "'s region: " << cli::format_real(std::round(seconds * 100) / 100)
-                    << " CPU-s\n";
-        if (!mismatch.empty()) throw std::runtime_error(mismatch);
-      }
-    }
+    write_explicit_regions(out, defs, threads, no_timing);
     // Values of the summary the report's sentences quote: per benchmark and pair at N = 200, Δt = h/2.
     for (std::size_t b = 0; b < benchmarks.size(); ++b)
       for (std::size_t c = 0; c < cases.size(); ++c) {
-        const Cell& x = cell(b, c, fine, half);
+        const MatrixRunMeasures& x = cell(b, c, fine, half);
         const std::string key =
             "classes:" + benchmarks[b] + ":" + mrm::to_string(cases[c].scheme) + ":" + cases[c].mass + ":";
         mrm::tex_define(defs, key + "tv", mrm::tex_number(x.tv_ratio, 3));

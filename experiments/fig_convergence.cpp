@@ -36,6 +36,7 @@
 #include "configurations.hpp"
 #include "labels.hpp"
 #include "figure_program.hpp"
+#include "refinement.hpp"
 #include "parallel.hpp"
 #include "sweep.hpp"
 #include "report_values.hpp"
@@ -57,6 +58,115 @@ struct Run {
   double cost;  // steps × unknowns, to start the longest runs first
   std::array<double, 8> errors{};
 };
+
+// The runs of the study in the order of the data blocks (scheme, mass, ratio, mesh).
+struct Study {
+  const std::vector<Run>& runs;
+  std::size_t masses, levels;
+  const Run& at(std::size_t s, std::size_t m, std::size_t c, std::size_t l) const {
+    return runs[((s * masses + m) * courants.size() + c) * levels + l];
+  }
+};
+
+// Step 6: the orders (fit over all meshes), the tables of orders and of the errors on the finest mesh,
+// the ranking of the three masses, and the values quoted in the prose.
+void write_orders(std::ostream& defs, const Study& study, const mrm::repro::MeshRefinement& meshes,
+                  const std::vector<std::string>& schemes, const std::vector<std::string>& masses,
+                  const std::string& ps_form, double final_time) {
+  const mrm::Index finest = meshes.finest();
+  const mrm::Index coarsest = meshes.coarsest();
+  const std::size_t levels = meshes.levels();
+  auto at = [&](std::size_t s, std::size_t m, std::size_t c, std::size_t l) -> const Run& {
+    return study.at(s, m, c, l);
+  };
+  mrm::tex_define(defs, "conv:Nmin", std::to_string(coarsest));
+  mrm::tex_define(defs, "conv:Nmax", std::to_string(finest));
+  mrm::tex_define(defs, "conv:meshes", std::to_string(levels));
+  mrm::tex_define(defs, "conv:T", cli::format_real(final_time));
+  mrm::tex_define(defs, "conv:psform", ps_form);
+  // The two steps of the study, for the prose ("\mrm{conv:dt:dth2}" prints "$\Delta t = h/2$").
+  for (std::size_t c = 0; c < courants.size(); ++c)
+    mrm::tex_define(defs, std::string("conv:dt:") + courant_keys[c], courant_labels[c]);
+  std::vector<std::string> headers{"scheme", "mass", "$\\Delta t$"}, ranking_headers{"scheme", "$\\Delta t$"};
+  for (const mrm::repro::Label& label : mrm::repro::measure_labels()) {
+    headers.push_back("\\rotatebox{70}{" + label.latex + "}");
+    ranking_headers.push_back(headers.back());
+  }
+  mrm::repro::Table orders_table(headers), errors_table(headers), ranking_table(ranking_headers);
+
+  for (std::size_t s = 0; s < schemes.size(); ++s) {
+    long ordered = 0, cases = 0;
+    for (std::size_t m = 0; m < masses.size(); ++m)
+      for (std::size_t c = 0; c < courants.size(); ++c) {
+        std::vector<std::string> orders_row{
+            m == 0 && c == 0 ? mrm::repro::scheme_row_label(schemes[s], ps_form) : std::string(),
+            c == 0 ? mrm::repro::mass_label(masses[m]).abbreviation : std::string(), courant_labels[c]};
+        std::vector<std::string> errors_row = orders_row;
+        for (std::size_t k = 0; k < 8; ++k) {
+          std::vector<double> errors(levels);
+          for (std::size_t l = 0; l < levels; ++l) errors[l] = at(s, m, c, l).errors[k];
+          const std::string key =
+              schemes[s] + ":" + masses[m] + ":" + courant_keys[c] + ":" + mrm::ErrorAccumulator::names[k];
+          const bool fittable =
+              std::all_of(errors.begin(), errors.end(), [](double e) { return e > 0 && std::isfinite(e); });
+          if (fittable) {
+            const mrm::OrderFit fit = meshes.fit(errors);
+            orders_row.push_back(mrm::tex_number(fit.order, 2));
+            mrm::tex_define(defs, "conv:order:" + key, mrm::tex_number(fit.order, 2));
+            mrm::tex_define(defs, "conv:stderr:" + key, mrm::tex_number(fit.order_std_error, 1));
+          } else {
+            orders_row.push_back("n/a");
+            mrm::tex_define(defs, "conv:order:" + key, "n/a");
+            mrm::tex_define(defs, "conv:stderr:" + key, "n/a");
+          }
+          errors_row.push_back(mrm::tex_number(errors.back(), 2));
+          mrm::tex_define(defs, "conv:err:" + key, mrm::tex_number(errors.back(), 2));
+          mrm::tex_define(defs, "conv:errcoarse:" + key, mrm::tex_number(errors.front(), 2));
+        }
+        orders_table.add_row(orders_row);
+        errors_table.add_row(errors_row);
+      }
+    // The paper's claim 3: Mod 3 < Mod 2 < Mod 1 in error. Counted over every measure, mesh and ratio.
+    for (std::size_t c = 0; c < courants.size(); ++c) {
+      std::vector<std::string> ranking_row{c == 0 ? mrm::repro::scheme_row_label(schemes[s], ps_form) : std::string(),
+                                           courant_labels[c]};
+      for (std::size_t k = 0; k < 8; ++k) {
+        for (std::size_t l = 0; l < levels; ++l) {
+          const double e1 = at(s, 0, c, l).errors[k], e2 = at(s, 1, c, l).errors[k], e3 = at(s, 2, c, l).errors[k];
+          ordered += (e3 < e2 && e2 < e1);
+          ++cases;
+        }
+        // The ranking on the finest mesh, best first: "3 2 1" is the paper's order.
+        std::array<std::size_t, 3> rank{0, 1, 2};
+        std::stable_sort(rank.begin(), rank.end(), [&](std::size_t a, std::size_t b) {
+          return at(s, a, c, levels - 1).errors[k] < at(s, b, c, levels - 1).errors[k];
+        });
+        const bool paper = rank[0] == 2 && rank[1] == 1 && rank[2] == 0;
+        const std::string ranking =
+            std::to_string(rank[0] + 1) + std::to_string(rank[1] + 1) + std::to_string(rank[2] + 1);
+        ranking_row.push_back(paper ? "\\textbf{" + ranking + "}" : ranking);
+      }
+      ranking_table.add_row(ranking_row);
+    }
+    for (mrm::repro::Table* table : {&orders_table, &errors_table, &ranking_table}) table->add_rule();
+    mrm::tex_define(defs, "conv:ordered:" + schemes[s], std::to_string(ordered));
+    mrm::tex_define(defs, "conv:cases:" + schemes[s], std::to_string(cases));
+  }
+  // Each table in two halves at the text size (measures 1-4, then 5-8 of mathematics.md §5), not shrunk.
+  const auto halves = [&](const std::string& key, const mrm::repro::Table& table, std::size_t lead, char align) {
+    for (std::size_t half = 0; half < 2; ++half) {
+      std::vector<std::size_t> keep;
+      for (std::size_t c = 0; c < lead; ++c) keep.push_back(c);
+      for (std::size_t k = 4 * half; k < 4 * half + 4; ++k) keep.push_back(lead + k);
+      defs << "\\mrmdef{" << key << (half == 0 ? ":a" : ":b") << "}{"
+           << mrm::repro::latex_tabular(table.columns_subset(keep), std::string(lead, 'l') + std::string(4, align))
+           << "}\n";
+    }
+  };
+  halves("conv:table:orders", orders_table, 3, 'r');
+  halves("conv:table:errors", errors_table, 3, 'r');
+  halves("conv:table:ranking", ranking_table, 2, 'c');
+}
 
 }  // namespace
 
@@ -105,13 +215,14 @@ int main(int argc, char** argv) {
     const auto& masses = mrm::repro::mass_names();
 
     // 3. The runs, longest first.
+    const mrm::repro::MeshRefinement meshes(static_cast<mrm::Index>(coarsest), static_cast<std::size_t>(refinements));
     std::vector<Run> runs;
     for (std::size_t s = 0; s < schemes.size(); ++s)
       for (std::size_t m = 0; m < masses.size(); ++m)
         for (std::size_t c = 0; c < courants.size(); ++c)
-          for (std::size_t l = 0; l < static_cast<std::size_t>(refinements); ++l) {
-            const mrm::Index n = static_cast<mrm::Index>(coarsest) << l;
-            const double h = 1.0 / static_cast<double>(n);
+          for (std::size_t l = 0; l < meshes.levels(); ++l) {
+            const mrm::Index n = meshes.elements(l);
+            const double h = meshes.mesh_sizes()[l];
             runs.push_back(
                 {s, m, c, l, n, static_cast<double>(mrm::steps_to_reach(final_time, courants[c] * h)) * n, {}});
           }
@@ -133,9 +244,10 @@ int main(int argc, char** argv) {
     mrm::repro::write_scheme_titles(out, ps_form);
     out << "# blocks: 2 (3 s + m) + c: scheme s in (cn, be, ps), mass m in (mod1, mod2, mod3), c in (dt = h, dt = "
            "h/2)\n";
-    const std::size_t levels = static_cast<std::size_t>(refinements);
+    const Study study{runs, masses.size(), meshes.levels()};
+    const std::size_t levels = meshes.levels();
     auto at = [&](std::size_t s, std::size_t m, std::size_t c, std::size_t l) -> const Run& {
-      return runs[((s * masses.size() + m) * courants.size() + c) * levels + l];
+      return study.at(s, m, c, l);
     };
     for (std::size_t s = 0; s < schemes.size(); ++s)
       for (std::size_t m = 0; m < masses.size(); ++m)
@@ -150,98 +262,7 @@ int main(int argc, char** argv) {
 
     // 6. Orders (fit over all meshes), the tables of orders and of the errors on the finest mesh, the
     // ranking of the three masses, and the values quoted in the prose.
-    std::ostream& defs = program.values();
-    const mrm::Index finest = static_cast<mrm::Index>(coarsest) << (levels - 1);
-    mrm::tex_define(defs, "conv:Nmin", std::to_string(coarsest));
-    mrm::tex_define(defs, "conv:Nmax", std::to_string(finest));
-    mrm::tex_define(defs, "conv:meshes", std::to_string(levels));
-    mrm::tex_define(defs, "conv:T", cli::format_real(final_time));
-    mrm::tex_define(defs, "conv:psform", ps_form);
-    // The two steps of the study, for the prose ("\mrm{conv:dt:dth2}" prints "$\Delta t = h/2$").
-    for (std::size_t c = 0; c < courants.size(); ++c)
-      mrm::tex_define(defs, std::string("conv:dt:") + courant_keys[c], courant_labels[c]);
-    std::vector<std::string> headers{"scheme", "mass", "$\\Delta t$"}, ranking_headers{"scheme", "$\\Delta t$"};
-    for (const mrm::repro::Label& label : mrm::repro::measure_labels()) {
-      headers.push_back("\\rotatebox{70}{" + label.latex + "}");
-      ranking_headers.push_back(headers.back());
-    }
-    mrm::repro::Table orders_table(headers), errors_table(headers), ranking_table(ranking_headers);
-
-    std::vector<double> steps(levels);
-    for (std::size_t l = 0; l < levels; ++l)
-      steps[l] = 1.0 / static_cast<double>(static_cast<mrm::Index>(coarsest) << l);
-    for (std::size_t s = 0; s < schemes.size(); ++s) {
-      long ordered = 0, cases = 0;
-      for (std::size_t m = 0; m < masses.size(); ++m)
-        for (std::size_t c = 0; c < courants.size(); ++c) {
-          std::vector<std::string> orders_row{
-              m == 0 && c == 0 ? mrm::repro::scheme_row_label(schemes[s], ps_form) : std::string(),
-              c == 0 ? mrm::repro::mass_label(masses[m]).abbreviation : std::string(), courant_labels[c]};
-          std::vector<std::string> errors_row = orders_row;
-          for (std::size_t k = 0; k < 8; ++k) {
-            std::vector<double> errors(levels);
-            for (std::size_t l = 0; l < levels; ++l) errors[l] = at(s, m, c, l).errors[k];
-            const std::string key =
-                schemes[s] + ":" + masses[m] + ":" + courant_keys[c] + ":" + mrm::ErrorAccumulator::names[k];
-            const bool fittable =
-                std::all_of(errors.begin(), errors.end(), [](double e) { return e > 0 && std::isfinite(e); });
-            if (fittable) {
-              const mrm::OrderFit fit = mrm::fit_order(steps, errors);
-              orders_row.push_back(mrm::tex_number(fit.order, 2));
-              mrm::tex_define(defs, "conv:order:" + key, mrm::tex_number(fit.order, 2));
-              mrm::tex_define(defs, "conv:stderr:" + key, mrm::tex_number(fit.order_std_error, 1));
-            } else {
-              orders_row.push_back("n/a");
-              mrm::tex_define(defs, "conv:order:" + key, "n/a");
-              mrm::tex_define(defs, "conv:stderr:" + key, "n/a");
-            }
-            errors_row.push_back(mrm::tex_number(errors.back(), 2));
-            mrm::tex_define(defs, "conv:err:" + key, mrm::tex_number(errors.back(), 2));
-            mrm::tex_define(defs, "conv:errcoarse:" + key, mrm::tex_number(errors.front(), 2));
-          }
-          orders_table.add_row(orders_row);
-          errors_table.add_row(errors_row);
-        }
-      // The paper's claim 3: Mod 3 < Mod 2 < Mod 1 in error. Counted over every measure, mesh and ratio.
-      for (std::size_t c = 0; c < courants.size(); ++c) {
-        std::vector<std::string> ranking_row{c == 0 ? mrm::repro::scheme_row_label(schemes[s], ps_form) : std::string(),
-                                             courant_labels[c]};
-        for (std::size_t k = 0; k < 8; ++k) {
-          for (std::size_t l = 0; l < levels; ++l) {
-            const double e1 = at(s, 0, c, l).errors[k], e2 = at(s, 1, c, l).errors[k], e3 = at(s, 2, c, l).errors[k];
-            ordered += (e3 < e2 && e2 < e1);
-            ++cases;
-          }
-          // The ranking on the finest mesh, best first: "3 2 1" is the paper's order.
-          std::array<std::size_t, 3> rank{0, 1, 2};
-          std::stable_sort(rank.begin(), rank.end(), [&](std::size_t a, std::size_t b) {
-            return at(s, a, c, levels - 1).errors[k] < at(s, b, c, levels - 1).errors[k];
-          });
-          const bool paper = rank[0] == 2 && rank[1] == 1 && rank[2] == 0;
-          const std::string ranking =
-              std::to_string(rank[0] + 1) + std::to_string(rank[1] + 1) + std::to_string(rank[2] + 1);
-          ranking_row.push_back(paper ? "\\textbf{" + ranking + "}" : ranking);
-        }
-        ranking_table.add_row(ranking_row);
-      }
-      for (mrm::repro::Table* table : {&orders_table, &errors_table, &ranking_table}) table->add_rule();
-      mrm::tex_define(defs, "conv:ordered:" + schemes[s], std::to_string(ordered));
-      mrm::tex_define(defs, "conv:cases:" + schemes[s], std::to_string(cases));
-    }
-    // Each table in two halves at the text size (measures 1-4, then 5-8 of mathematics.md §5), not shrunk.
-    const auto halves = [&](const std::string& key, const mrm::repro::Table& table, std::size_t lead, char align) {
-      for (std::size_t half = 0; half < 2; ++half) {
-        std::vector<std::size_t> keep;
-        for (std::size_t c = 0; c < lead; ++c) keep.push_back(c);
-        for (std::size_t k = 4 * half; k < 4 * half + 4; ++k) keep.push_back(lead + k);
-        defs << "\\mrmdef{" << key << (half == 0 ? ":a" : ":b") << "}{"
-             << mrm::repro::latex_tabular(table.columns_subset(keep), std::string(lead, 'l') + std::string(4, align))
-             << "}\n";
-      }
-    };
-    halves("conv:table:orders", orders_table, 3, 'r');
-    halves("conv:table:errors", errors_table, 3, 'r');
-    halves("conv:table:ranking", ranking_table, 2, 'c');
+    write_orders(program.values(), study, meshes, schemes, masses, ps_form, final_time);
 
     // 7. Commit.
     program.commit();

@@ -122,6 +122,220 @@ std::string step_text(double courant) {
   return courant < 1 ? "h/" + cli::format_real(1 / courant) : cli::format_real(courant) + "h";
 }
 
+// The grid of each view: the history's ratios Δt/h, the map's ratios and meshes, the measures' meshes
+// and ratio, the masses, the long runs (coarse: N = 16, Δt = 10h, 100 periods; long: N = 20, Δt = h,
+// 1000 periods), the period and the measures' horizon in periods.
+const std::vector<double> history_ratios{0.5, 1.0, 5.0};
+const std::vector<double> map_ratios{0.25, 0.5, 1, 2, 5, 10, 20, 40};
+const std::vector<mrm::Index> map_meshes{16, 32, 64, 128}, measure_meshes{100, 400};
+const double measure_courant = 0.5;
+const std::vector<std::string> masses{"mod1", "mod2", "mod3"};
+struct LongRun {
+  const char* key;
+  mrm::Index elements;
+  double courant, periods;
+};
+const std::array<LongRun, 2> long_runs{LongRun{"coarse", 16, 10.0, 100}, LongRun{"long", 20, 1.0, 1000}};
+const double period = 3.0, measure_periods = 10;
+
+// Steps 4 and 5 of a view: its blocks in the data file and its values, the runs taken in the order they
+// were made.
+struct ViewWriter {
+  std::ostream& out;
+  std::ostream& defs;
+  const std::vector<Run>& runs;
+  std::size_t next = 0, block = 0;
+  // CN-switch and backward Euler: every one-step increase within the round-off bound (energy_step.cpp §5).
+  double largest_bound_fraction = -std::numeric_limits<double>::infinity();
+  void start_block(const std::string& title, const std::string& columns) {
+    out << (block ? "\n\n" : "") << "# block " << block << ": " << title << "\n# columns: " << columns << '\n';
+    ++block;
+  }
+  void check_increase(const Run& r) {
+    if (r.scheme != switching && r.scheme != be) return;
+    const double bound = mrm::energy_round_off_per_step(r.elements, r.courant);
+    largest_bound_fraction = std::max(largest_bound_fraction, r.largest_increase / bound);
+    if (!(r.largest_increase <= bound))
+      throw std::runtime_error(r.scheme + " " + r.mass + " N = " + std::to_string(r.elements) +
+                               " dt/h = " + cli::format_real(r.courant) + ": a one-step energy increase of " +
+                               cli::format_real(r.largest_increase) + " E0, above the round-off bound " +
+                               cli::format_real(bound) + " E0");
+  }
+};
+
+// The history view: E_h(t)/E_h(0) of every scheme at three ratios Δt/h on one mesh.
+void write_history(ViewWriter& w, const std::string& mass, mrm::Index elements) {
+  w.out << "# mass = " << mass << "\n# N = " << elements << "\n# T = " << cli::format_real(10 * period) << '\n';
+  mrm::tex_define(w.defs, "ecs:hist:N", std::to_string(elements));
+  mrm::tex_define(w.defs, "ecs:hist:mass", mrm::repro::mass_label(mass).latex);
+  mrm::tex_define(w.defs, "ecs:hist:T", mrm::tex_number(10 * period, 2));
+  for (std::size_t j = 0; j < history_ratios.size(); ++j)
+    mrm::tex_define(w.defs, "ecs:hist:dt:" + std::to_string(j), step_text(history_ratios[j]));
+  for (double c : history_ratios)
+    for (const std::string& s : schemes) {
+      const Run& r = w.runs[w.next++];
+      w.check_increase(r);
+      w.start_block(std::string("scheme = ") + s + ", dt/h = " + cli::format_real(c), "t_energy energy_ratio");
+      for (const auto& [t, e] : r.energy) w.out << cli::format_real(t) << ' ' << cli::format_real(e) << '\n';
+      const std::string key = std::string("ecs:hist:") + s + ":" + cli::format_real(c);
+      mrm::tex_define(w.defs, key + ":final", mrm::tex_number(ratio(r, r.measures.energy_final), 4));
+      mrm::tex_define(w.defs, key + ":largest", mrm::tex_number(ratio(r, r.measures.energy_max), 4));
+    }
+}
+
+// The map view: the largest E_h/E_h(0) of every scheme over meshes and ratios, and the long runs.
+void write_map(ViewWriter& w, const std::string& mass) {
+  w.out << "# mass = " << mass << "\n# T = " << cli::format_real(100 * period) << '\n';
+  mrm::tex_define(w.defs, "ecs:map:mass", mrm::repro::mass_label(mass).latex);
+  mrm::tex_define(w.defs, "ecs:map:T", mrm::tex_number(100 * period, 2));
+  mrm::tex_define(w.defs, "ecs:map:Nmin", std::to_string(map_meshes.front()));
+  mrm::tex_define(w.defs, "ecs:map:Nmax", std::to_string(map_meshes.back()));
+  mrm::tex_define(w.defs, "ecs:map:ratiomin", mrm::tex_number(map_ratios.front(), 2));
+  mrm::tex_define(w.defs, "ecs:map:ratiomax", mrm::tex_number(map_ratios.back(), 2));
+  w.out << "# increase_bound = 16 N eps (1 + h/dt): the largest one-step increase (E^{n+1} - E^n)/E^0 that "
+           "round-off explains where the exact energy does not increase (cn-switch, be; energy_step.cpp sec. 5)\n";
+  for (const std::string& s : schemes) {
+    double largest = 0, largest_drift = 0, largest_increase = -std::numeric_limits<double>::infinity();
+    for (mrm::Index n : map_meshes) {
+      w.start_block(std::string("scheme = ") + s + ", N = " + std::to_string(n),
+                    "dt_over_h largest smallest final largest_increase increase_bound");
+      for (double c : map_ratios) {
+        const Run& r = w.runs[w.next++];
+        w.out << cli::format_real(c) << ' ' << cli::format_real(ratio(r, r.measures.energy_max)) << ' '
+              << cli::format_real(ratio(r, r.measures.energy_min)) << ' '
+              << cli::format_real(ratio(r, r.measures.energy_final)) << ' ' << cli::format_real(r.largest_increase)
+              << ' ' << cli::format_real(mrm::energy_round_off_per_step(n, c)) << '\n';
+        w.check_increase(r);
+        largest = std::max(largest, ratio(r, r.measures.energy_max));
+        largest_drift = std::max(largest_drift, drift(r));
+        largest_increase = std::max(largest_increase, r.largest_increase);
+        if (s == cn)
+          mrm::tex_define(w.defs, "ecs:map:cn:" + std::to_string(n) + ":" + cli::format_real(c),
+                          mrm::tex_magnitude(ratio(r, r.measures.energy_max)));
+      }
+    }
+    const std::string key = std::string("ecs:map:") + s;
+    mrm::tex_define(w.defs, key + ":largest", mrm::tex_magnitude(largest));
+    mrm::tex_define(w.defs, key + ":drift", mrm::tex_number(largest_drift, 2));
+    mrm::tex_define(w.defs, key + ":increase", mrm::tex_number(largest_increase, 2));
+  }
+  // The long runs: a block and a table (run, scheme, mass: drift, largest increase, largest, final).
+  w.start_block("the long runs",
+                "run scheme mass N dt_over_h periods drift largest_increase largest final increase_bound");
+  mrm::repro::Table table({stacked("$N$, $\\Delta t$,", "periods"), "scheme", "mass",
+                           stacked("$\\max_n |E_h^n - E_h(0)|$", "$/E_h(0)$"),
+                           stacked("$\\max_n (E_h^{n+1} - E_h^n)$", "$/E_h(0)$"),
+                           stacked("$\\max_n E_h^n$", "$/E_h(0)$"), stacked("$E_h(T)$", "$/E_h(0)$")});
+  for (const LongRun& l : long_runs) {
+    const std::string run_label =
+        std::to_string(l.elements) + ", $" + step_text(l.courant) + "$, " + cli::format_real(l.periods);
+    mrm::tex_define(w.defs, std::string("ecs:long:") + l.key + ":N", std::to_string(l.elements));
+    mrm::tex_define(w.defs, std::string("ecs:long:") + l.key + ":courant", cli::format_real(l.courant));
+    mrm::tex_define(w.defs, std::string("ecs:long:") + l.key + ":dt", step_text(l.courant));
+    mrm::tex_define(w.defs, std::string("ecs:long:") + l.key + ":periods", cli::format_real(l.periods));
+    const double bound = mrm::energy_round_off_per_step(l.elements, l.courant);
+    mrm::tex_define(w.defs, std::string("ecs:long:") + l.key + ":bound", mrm::tex_number(bound, 2));
+    for (std::size_t s = 0; s < schemes.size(); ++s) {
+      for (const std::string& m : masses) {
+        const Run& r = w.runs[w.next++];
+        w.out << l.key << ' ' << schemes[s] << ' ' << m << ' ' << l.elements << ' ' << cli::format_real(l.courant)
+              << ' ' << cli::format_real(l.periods) << ' ' << cli::format_real(drift(r)) << ' '
+              << cli::format_real(r.largest_increase) << ' ' << cli::format_real(ratio(r, r.measures.energy_max)) << ' '
+              << cli::format_real(ratio(r, r.measures.energy_final)) << ' ' << cli::format_real(bound) << '\n';
+        w.check_increase(r);
+        const std::string key = std::string("ecs:long:") + l.key + ":" + schemes[s] + ":" + m;
+        mrm::tex_define(w.defs, key + ":drift", mrm::tex_number(drift(r), 2));
+        mrm::tex_define(w.defs, key + ":increase", mrm::tex_number(r.largest_increase, 2));
+        mrm::tex_define(w.defs, key + ":largest", mrm::tex_magnitude(ratio(r, r.measures.energy_max)));
+        mrm::tex_define(w.defs, key + ":final", mrm::tex_number(ratio(r, r.measures.energy_final), 3));
+        table.add_row({s == 0 && m == masses.front() ? run_label : std::string(),
+                       m == masses.front() ? mrm::repro::scheme_label(schemes[s]).abbreviation : std::string(),
+                       mrm::repro::mass_label(m).latex, mrm::tex_number(drift(r), 2),
+                       mrm::tex_number(r.largest_increase, 2),
+                       "$" + mrm::tex_magnitude(ratio(r, r.measures.energy_max)) + "$",
+                       mrm::tex_number(ratio(r, r.measures.energy_final), 3)});
+      }
+      table.add_rule();
+    }
+  }
+  mrm::tex_define(w.defs, "ecs:long:table", mrm::repro::latex_tabular(table, "lllrrrr"));
+  // The largest one-step increase of CN-switch and backward Euler over every run above, as a fraction
+  // of its round-off bound.
+  mrm::tex_define(w.defs, "ecs:increase:bound_fraction", mrm::tex_number(w.largest_bound_fraction, 2));
+  w.out << "# largest_bound_fraction = " << cli::format_real(w.largest_bound_fraction)
+        << " (max over the cn-switch and be runs of largest_increase / increase_bound)\n";
+}
+
+// The measures view: the eight errors of every scheme and mass, relative to Crank–Nicolson's.
+void write_measures(ViewWriter& w) {
+  w.out << "# dt/h = " << cli::format_real(measure_courant) << "\n# T = " << cli::format_real(measure_periods * period)
+        << '\n';
+  mrm::tex_define(w.defs, "ecs:meas:T", mrm::tex_number(measure_periods * period, 2));
+  mrm::tex_define(w.defs, "ecs:meas:periods", cli::format_real(measure_periods));
+  mrm::tex_define(w.defs, "ecs:meas:dt", step_text(measure_courant));
+  mrm::tex_define(w.defs, "ecs:meas:coarse", std::to_string(measure_meshes[0]));
+  mrm::tex_define(w.defs, "ecs:meas:fine", std::to_string(measure_meshes[1]));
+  std::vector<double> switch_lost;  // CN-switch with Mod 3, per mesh: the loss is O(h) per event
+  for (mrm::Index n : measure_meshes) {
+    w.start_block("N = " + std::to_string(n),
+                  "scheme mass (8 measures) (8 ratios to cn) energy_lost; measures in the order of mathematics.md "
+                  "sec. 5: u0_L2 lambda_L2 u_LinfL2 u_LinfH1 v_LinfL2 u_L2L2 u_L2H1 v_L2L2");
+    // The table in three parts, measures 0–2, 3–5 and 6–7 with the energy lost, each within the text
+    // width.
+    constexpr std::size_t per_part = 3;
+    std::array<std::vector<std::string>, 3> headers;
+    for (auto& h : headers) h = {"scheme", "mass"};
+    for (std::size_t k = 0; k < mrm::repro::measure_labels().size(); ++k)
+      headers[k / per_part].push_back(mrm::repro::measure_labels()[k].latex);
+    headers.back().push_back("energy lost, \\%");
+    std::array<mrm::repro::Table, 3> tables{mrm::repro::Table(headers[0]), mrm::repro::Table(headers[1]),
+                                            mrm::repro::Table(headers[2])};
+    const std::size_t first = w.next;  // Crank–Nicolson's runs come first, one per mass
+    for (std::size_t s = 0; s < schemes.size(); ++s) {
+      double largest_ratio = 0, largest_deviation = 0;  // over the measures and the masses
+      for (std::size_t m = 0; m < masses.size(); ++m) {
+        const Run& r = w.runs[w.next++];
+        const auto errors = mrm::ErrorAccumulator::values(r.measures.errors);
+        const auto reference = mrm::ErrorAccumulator::values(w.runs[first + m].measures.errors);
+        const double lost = 1 - ratio(r, r.measures.energy_final);
+        w.out << schemes[s] << ' ' << masses[m];
+        for (double e : errors) w.out << ' ' << cli::format_real(e);
+        for (std::size_t k = 0; k < errors.size(); ++k) w.out << ' ' << cli::format_real(errors[k] / reference[k]);
+        w.out << ' ' << cli::format_real(lost) << '\n';
+        std::array<std::vector<std::string>, 3> rows;
+        for (auto& row : rows)
+          row = {m == 0 ? mrm::repro::scheme_label(schemes[s]).abbreviation : std::string(),
+                 mrm::repro::mass_label(masses[m]).latex};
+        const std::string key = "ecs:meas:" + std::to_string(n) + ":" + schemes[s] + ":" + masses[m];
+        for (std::size_t k = 0; k < errors.size(); ++k) {
+          const std::string value = mrm::tex_number(errors[k], 3);
+          // Beside Crank–Nicolson's row, each other scheme's error relative to it, in per cent.
+          const std::string relative = mrm::tex_number(100 * (errors[k] / reference[k] - 1), 2);
+          rows[k / per_part].push_back(
+              s == 0 ? value : value + " (" + (errors[k] >= reference[k] ? "+" : "") + relative + "\\%)");
+          mrm::tex_define(w.defs, key + ":" + mrm::ErrorAccumulator::names[k], value);
+          mrm::tex_define(w.defs, key + ":" + mrm::ErrorAccumulator::names[k] + ":vs_cn", relative);
+          largest_ratio = std::max(largest_ratio, errors[k] / reference[k]);
+          largest_deviation = std::max(largest_deviation, std::abs(errors[k] / reference[k] - 1));
+        }
+        if (schemes[s] == switching && masses[m] == "mod3") switch_lost.push_back(lost);
+        rows.back().push_back(mrm::tex_number(100 * lost, 2));
+        mrm::tex_define(w.defs, key + ":lost", mrm::tex_number(100 * lost, 2));
+        for (std::size_t t = 0; t < tables.size(); ++t) tables[t].add_row(rows[t]);
+      }
+      for (auto& table : tables) table.add_rule();
+      const std::string key = "ecs:meas:" + std::to_string(n) + ":" + schemes[s];
+      mrm::tex_define(w.defs, key + ":largest_ratio", mrm::tex_number(largest_ratio, 2));
+      mrm::tex_define(w.defs, key + ":largest_deviation", mrm::tex_number(100 * largest_deviation, 2));
+    }
+    for (std::size_t t = 0; t < tables.size(); ++t)
+      mrm::tex_define(w.defs, "ecs:meas:table:" + std::to_string(n) + ":" + std::to_string(t + 1),
+                      mrm::repro::latex_tabular(tables[t], "ll" + std::string(tables[t].columns() - 2, 'r')));
+  }
+  mrm::tex_define(w.defs, "ecs:meas:cn-switch:mod3:lost_ratio", mrm::tex_number(switch_lost[0] / switch_lost[1], 2));
+  mrm::tex_define(w.defs, "ecs:meas:mesh_ratio", std::to_string(measure_meshes[1] / measure_meshes[0]));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -179,18 +393,6 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "ecs:theta", theta_text);
 
     // 3. The runs of the view.
-    const std::vector<double> history_ratios{0.5, 1.0, 5.0};
-    const std::vector<double> map_ratios{0.25, 0.5, 1, 2, 5, 10, 20, 40};
-    const std::vector<mrm::Index> map_meshes{16, 32, 64, 128}, measure_meshes{100, 400};
-    const double measure_courant = 0.5;
-    const std::vector<std::string> masses{"mod1", "mod2", "mod3"};
-    struct LongRun {
-      const char* key;
-      mrm::Index elements;
-      double courant, periods;
-    };
-    const std::array<LongRun, 2> long_runs{LongRun{"coarse", 16, 10.0, 100}, LongRun{"long", 20, 1.0, 1000}};
-    const double period = 3.0, measure_periods = 10;
     std::vector<Run> runs;
     if (view == "history") {
       for (double c : history_ratios)
@@ -216,9 +418,9 @@ int main(int argc, char** argv) {
     // The batches: the runs of one mesh and scheme family, given as the caller's keys, so that each run
     // steps at its own rate (Δt/h = ¼ … 40 in one batch of the map, every Δt a whole multiple of the
     // smallest, one horizon: repro/sweep.hpp, own_rates). With the default keys every lane of a batch
-    // steps as often as its finest run: the map view then took 3.8 times the CPU time of run_configuration
+    // steps as often as its finest run: the map view then takes 3.8 times the CPU time of run_configuration
     // alone (3.62–3.95, 3 pairs); with these keys 0.77 (0.70–0.90), the measures view 0.41 (0.38–0.47)
-    // (farm-bench, 5 pairs, --threads 1).
+    // (5 pairs, --threads 1).
     std::vector<mrm::repro::BatchKey> keys;
     for (const mrm::repro::Configuration& c : configurations)
       keys.emplace_back(c.elements, mrm::batch_family(c.scheme.scheme));
@@ -228,189 +430,13 @@ int main(int argc, char** argv) {
     for (std::size_t k = 0; k < runs.size(); ++k) runs[k].measures = measures[k];
 
     // 4 and 5. The blocks, the values and the tables, view by view (runs in the order they were made).
-    std::size_t next = 0;
-    std::size_t block = 0;
-    const auto start_block = [&](const std::string& title, const std::string& columns) {
-      out << (block ? "\n\n" : "") << "# block " << block << ": " << title << "\n# columns: " << columns << '\n';
-      ++block;
-    };
-    // CN-switch and backward Euler: every one-step increase within the round-off bound (energy_step.cpp §5).
-    double largest_bound_fraction = -std::numeric_limits<double>::infinity();
-    const auto check_increase = [&](const Run& r) {
-      if (r.scheme != switching && r.scheme != be) return;
-      const double bound = mrm::energy_round_off_per_step(r.elements, r.courant);
-      largest_bound_fraction = std::max(largest_bound_fraction, r.largest_increase / bound);
-      if (!(r.largest_increase <= bound))
-        throw std::runtime_error(r.scheme + " " + r.mass + " N = " + std::to_string(r.elements) +
-                                 " dt/h = " + cli::format_real(r.courant) + ": a one-step energy increase of " +
-                                 cli::format_real(r.largest_increase) + " E0, above the round-off bound " +
-                                 cli::format_real(bound) + " E0");
-    };
-    if (view == "history") {
-      out << "# mass = " << mass << "\n# N = " << elements << "\n# T = " << cli::format_real(10 * period) << '\n';
-      mrm::tex_define(defs, "ecs:hist:N", std::to_string(elements));
-      mrm::tex_define(defs, "ecs:hist:mass", mrm::repro::mass_label(mass).latex);
-      mrm::tex_define(defs, "ecs:hist:T", mrm::tex_number(10 * period, 2));
-      for (std::size_t j = 0; j < history_ratios.size(); ++j)
-        mrm::tex_define(defs, "ecs:hist:dt:" + std::to_string(j), step_text(history_ratios[j]));
-      for (double c : history_ratios)
-        for (const std::string& s : schemes) {
-          const Run& r = runs[next++];
-          check_increase(r);
-          start_block(std::string("scheme = ") + s + ", dt/h = " + cli::format_real(c), "t_energy energy_ratio");
-          for (const auto& [t, e] : r.energy) out << cli::format_real(t) << ' ' << cli::format_real(e) << '\n';
-          const std::string key = std::string("ecs:hist:") + s + ":" + cli::format_real(c);
-          mrm::tex_define(defs, key + ":final", mrm::tex_number(ratio(r, r.measures.energy_final), 4));
-          mrm::tex_define(defs, key + ":largest", mrm::tex_number(ratio(r, r.measures.energy_max), 4));
-        }
-    } else if (view == "map") {
-      out << "# mass = " << mass << "\n# T = " << cli::format_real(100 * period) << '\n';
-      mrm::tex_define(defs, "ecs:map:mass", mrm::repro::mass_label(mass).latex);
-      mrm::tex_define(defs, "ecs:map:T", mrm::tex_number(100 * period, 2));
-      mrm::tex_define(defs, "ecs:map:Nmin", std::to_string(map_meshes.front()));
-      mrm::tex_define(defs, "ecs:map:Nmax", std::to_string(map_meshes.back()));
-      mrm::tex_define(defs, "ecs:map:ratiomin", mrm::tex_number(map_ratios.front(), 2));
-      mrm::tex_define(defs, "ecs:map:ratiomax", mrm::tex_number(map_ratios.back(), 2));
-      out << "# increase_bound = 16 N eps (1 + h/dt): the largest one-step increase (E^{n+1} - E^n)/E^0 that "
-             "round-off explains where the exact energy does not increase (cn-switch, be; energy_step.cpp sec. 5)\n";
-      for (const std::string& s : schemes) {
-        double largest = 0, largest_drift = 0, largest_increase = -std::numeric_limits<double>::infinity();
-        for (mrm::Index n : map_meshes) {
-          start_block(std::string("scheme = ") + s + ", N = " + std::to_string(n),
-                      "dt_over_h largest smallest final largest_increase increase_bound");
-          for (double c : map_ratios) {
-            const Run& r = runs[next++];
-            out << cli::format_real(c) << ' ' << cli::format_real(ratio(r, r.measures.energy_max)) << ' '
-                << cli::format_real(ratio(r, r.measures.energy_min)) << ' '
-                << cli::format_real(ratio(r, r.measures.energy_final)) << ' ' << cli::format_real(r.largest_increase)
-                << ' ' << cli::format_real(mrm::energy_round_off_per_step(n, c)) << '\n';
-            check_increase(r);
-            largest = std::max(largest, ratio(r, r.measures.energy_max));
-            largest_drift = std::max(largest_drift, drift(r));
-            largest_increase = std::max(largest_increase, r.largest_increase);
-            if (s == cn)
-              mrm::tex_define(defs, "ecs:map:cn:" + std::to_string(n) + ":" + cli::format_real(c),
-                              mrm::tex_magnitude(ratio(r, r.measures.energy_max)));
-          }
-        }
-        const std::string key = std::string("ecs:map:") + s;
-        mrm::tex_define(defs, key + ":largest", mrm::tex_magnitude(largest));
-        mrm::tex_define(defs, key + ":drift", mrm::tex_number(largest_drift, 2));
-        mrm::tex_define(defs, key + ":increase", mrm::tex_number(largest_increase, 2));
-      }
-      // The long runs: a block and a table (run, scheme, mass: drift, largest increase, largest, final).
-      start_block("the long runs",
-                  "run scheme mass N dt_over_h periods drift largest_increase largest final increase_bound");
-      mrm::repro::Table table({stacked("$N$, $\\Delta t$,", "periods"), "scheme", "mass",
-                               stacked("$\\max_n |E_h^n - E_h(0)|$", "$/E_h(0)$"),
-                               stacked("$\\max_n (E_h^{n+1} - E_h^n)$", "$/E_h(0)$"),
-                               stacked("$\\max_n E_h^n$", "$/E_h(0)$"), stacked("$E_h(T)$", "$/E_h(0)$")});
-      for (const LongRun& l : long_runs) {
-        const std::string run_label =
-            std::to_string(l.elements) + ", $" + step_text(l.courant) + "$, " + cli::format_real(l.periods);
-        mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":N", std::to_string(l.elements));
-        mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":courant", cli::format_real(l.courant));
-        mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":dt", step_text(l.courant));
-        mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":periods", cli::format_real(l.periods));
-        const double bound = mrm::energy_round_off_per_step(l.elements, l.courant);
-        mrm::tex_define(defs, std::string("ecs:long:") + l.key + ":bound", mrm::tex_number(bound, 2));
-        for (std::size_t s = 0; s < schemes.size(); ++s) {
-          for (const std::string& m : masses) {
-            const Run& r = runs[next++];
-            out << l.key << ' ' << schemes[s] << ' ' << m << ' ' << l.elements << ' ' << cli::format_real(l.courant)
-                << ' ' << cli::format_real(l.periods) << ' ' << cli::format_real(drift(r)) << ' '
-                << cli::format_real(r.largest_increase) << ' ' << cli::format_real(ratio(r, r.measures.energy_max))
-                << ' ' << cli::format_real(ratio(r, r.measures.energy_final)) << ' ' << cli::format_real(bound) << '\n';
-            check_increase(r);
-            const std::string key = std::string("ecs:long:") + l.key + ":" + schemes[s] + ":" + m;
-            mrm::tex_define(defs, key + ":drift", mrm::tex_number(drift(r), 2));
-            mrm::tex_define(defs, key + ":increase", mrm::tex_number(r.largest_increase, 2));
-            mrm::tex_define(defs, key + ":largest", mrm::tex_magnitude(ratio(r, r.measures.energy_max)));
-            mrm::tex_define(defs, key + ":final", mrm::tex_number(ratio(r, r.measures.energy_final), 3));
-            table.add_row({s == 0 && m == masses.front() ? run_label : std::string(),
-                           m == masses.front() ? mrm::repro::scheme_label(schemes[s]).abbreviation : std::string(),
-                           mrm::repro::mass_label(m).latex, mrm::tex_number(drift(r), 2),
-                           mrm::tex_number(r.largest_increase, 2),
-                           "$" + mrm::tex_magnitude(ratio(r, r.measures.energy_max)) + "$",
-                           mrm::tex_number(ratio(r, r.measures.energy_final), 3)});
-          }
-          table.add_rule();
-        }
-      }
-      mrm::tex_define(defs, "ecs:long:table", mrm::repro::latex_tabular(table, "lllrrrr"));
-      // The largest one-step increase of CN-switch and backward Euler over every run above, as a fraction
-      // of its round-off bound.
-      mrm::tex_define(defs, "ecs:increase:bound_fraction", mrm::tex_number(largest_bound_fraction, 2));
-      out << "# largest_bound_fraction = " << cli::format_real(largest_bound_fraction)
-          << " (max over the cn-switch and be runs of largest_increase / increase_bound)\n";
-    } else {
-      out << "# dt/h = " << cli::format_real(measure_courant)
-          << "\n# T = " << cli::format_real(measure_periods * period) << '\n';
-      mrm::tex_define(defs, "ecs:meas:T", mrm::tex_number(measure_periods * period, 2));
-      mrm::tex_define(defs, "ecs:meas:periods", cli::format_real(measure_periods));
-      mrm::tex_define(defs, "ecs:meas:dt", step_text(measure_courant));
-      mrm::tex_define(defs, "ecs:meas:coarse", std::to_string(measure_meshes[0]));
-      mrm::tex_define(defs, "ecs:meas:fine", std::to_string(measure_meshes[1]));
-      std::vector<double> switch_lost;  // CN-switch with Mod 3, per mesh: the loss is O(h) per event
-      for (mrm::Index n : measure_meshes) {
-        start_block("N = " + std::to_string(n),
-                    "scheme mass (8 measures) (8 ratios to cn) energy_lost; measures in the order of mathematics.md "
-                    "sec. 5: u0_L2 lambda_L2 u_LinfL2 u_LinfH1 v_LinfL2 u_L2L2 u_L2H1 v_L2L2");
-        // The table in three parts, measures 0–2, 3–5 and 6–7 with the energy lost, each within the text
-        // width.
-        constexpr std::size_t per_part = 3;
-        std::array<std::vector<std::string>, 3> headers;
-        for (auto& h : headers) h = {"scheme", "mass"};
-        for (std::size_t k = 0; k < mrm::repro::measure_labels().size(); ++k)
-          headers[k / per_part].push_back(mrm::repro::measure_labels()[k].latex);
-        headers.back().push_back("energy lost, \\%");
-        std::array<mrm::repro::Table, 3> tables{mrm::repro::Table(headers[0]), mrm::repro::Table(headers[1]),
-                                                mrm::repro::Table(headers[2])};
-        const std::size_t first = next;  // Crank–Nicolson's runs come first, one per mass
-        for (std::size_t s = 0; s < schemes.size(); ++s) {
-          double largest_ratio = 0, largest_deviation = 0;  // over the measures and the masses
-          for (std::size_t m = 0; m < masses.size(); ++m) {
-            const Run& r = runs[next++];
-            const auto errors = mrm::ErrorAccumulator::values(r.measures.errors);
-            const auto reference = mrm::ErrorAccumulator::values(runs[first + m].measures.errors);
-            const double lost = 1 - ratio(r, r.measures.energy_final);
-            out << schemes[s] << ' ' << masses[m];
-            for (double e : errors) out << ' ' << cli::format_real(e);
-            for (std::size_t k = 0; k < errors.size(); ++k) out << ' ' << cli::format_real(errors[k] / reference[k]);
-            out << ' ' << cli::format_real(lost) << '\n';
-            std::array<std::vector<std::string>, 3> rows;
-            for (auto& row : rows)
-              row = {m == 0 ? mrm::repro::scheme_label(schemes[s]).abbreviation : std::string(),
-                     mrm::repro::mass_label(masses[m]).latex};
-            const std::string key = "ecs:meas:" + std::to_string(n) + ":" + schemes[s] + ":" + masses[m];
-            for (std::size_t k = 0; k < errors.size(); ++k) {
-              const std::string value = mrm::tex_number(errors[k], 3);
-              // Beside Crank–Nicolson's row, each other scheme's error relative to it, in per cent.
-              const std::string relative = mrm::tex_number(100 * (errors[k] / reference[k] - 1), 2);
-              rows[k / per_part].push_back(
-                  s == 0 ? value : value + " (" + (errors[k] >= reference[k] ? "+" : "") + relative + "\\%)");
-              mrm::tex_define(defs, key + ":" + mrm::ErrorAccumulator::names[k], value);
-              mrm::tex_define(defs, key + ":" + mrm::ErrorAccumulator::names[k] + ":vs_cn", relative);
-              largest_ratio = std::max(largest_ratio, errors[k] / reference[k]);
-              largest_deviation = std::max(largest_deviation, std::abs(errors[k] / reference[k] - 1));
-            }
-            if (schemes[s] == switching && masses[m] == "mod3") switch_lost.push_back(lost);
-            rows.back().push_back(mrm::tex_number(100 * lost, 2));
-            mrm::tex_define(defs, key + ":lost", mrm::tex_number(100 * lost, 2));
-            for (std::size_t t = 0; t < tables.size(); ++t) tables[t].add_row(rows[t]);
-          }
-          for (auto& table : tables) table.add_rule();
-          const std::string key = "ecs:meas:" + std::to_string(n) + ":" + schemes[s];
-          mrm::tex_define(defs, key + ":largest_ratio", mrm::tex_number(largest_ratio, 2));
-          mrm::tex_define(defs, key + ":largest_deviation", mrm::tex_number(100 * largest_deviation, 2));
-        }
-        for (std::size_t t = 0; t < tables.size(); ++t)
-          mrm::tex_define(defs, "ecs:meas:table:" + std::to_string(n) + ":" + std::to_string(t + 1),
-                          mrm::repro::latex_tabular(tables[t], "ll" + std::string(tables[t].columns() - 2, 'r')));
-      }
-      mrm::tex_define(defs, "ecs:meas:cn-switch:mod3:lost_ratio", mrm::tex_number(switch_lost[0] / switch_lost[1], 2));
-      mrm::tex_define(defs, "ecs:meas:mesh_ratio", std::to_string(measure_meshes[1] / measure_meshes[0]));
-    }
+    ViewWriter w{out, defs, runs};
+    if (view == "history")
+      write_history(w, mass, elements);
+    else if (view == "map")
+      write_map(w, mass);
+    else
+      write_measures(w);
 
     // 6. Commit.
     program.commit();

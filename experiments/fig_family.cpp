@@ -98,6 +98,80 @@ struct Run {
   std::array<double, 8> errors{};
 };
 
+// The ratio to Mod 3 of the members the law puts at zero drift: its range and those members, over every
+// block.
+struct ZeroDrift {
+  double lo = INFINITY, hi = 0;
+  std::vector<std::string> members;
+};
+
+// Block `block` of the data file (N = elements, Δt/h = courant, `periods` periods), one row per member of
+// `rows` (in members() order), and its values for the prose.
+void write_block(std::ostream& out, std::ostream& defs, const Run* rows, std::size_t block, mrm::Index elements,
+                 double courant, long periods, std::size_t reference_member, ZeroDrift& zero) {
+  const std::size_t per_block = members().size();
+  const Run& reference = rows[reference_member];
+  out << (block ? "\n\n" : "") << "# block " << block << ": N = " << elements
+      << ", dt/h = " << cli::format_real(courant) << ", periods = " << periods
+      << "\n# columns: index member family parameter total_mass dm_loc dm_glob predicted predicted_eigen "
+         "first_impact_error drift drift_rel ratio";
+  for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
+  out << '\n';
+  const std::string where =
+      "N" + std::to_string(elements) + ":c" + cli::format_real(courant) + ":T" + std::to_string(periods);
+  // Each member's mean of log(error / Mod 3's error) over the eight measures: its ratio to Mod 3
+  // is the exponential (the geometric mean), and the best member has the smallest.
+  std::vector<double> mean_log(per_block);
+  for (std::size_t m = 0; m < per_block; ++m) {
+    double log_sum = 0;
+    for (std::size_t q = 0; q < 8; ++q) {
+      if (!(rows[m].errors[q] > 0 && reference.errors[q] > 0))
+        throw std::runtime_error("fig_family: a zero error, no ratio to Mod 3 (" + members()[m].label + ")");
+      log_sum += std::log(rows[m].errors[q] / reference.errors[q]);
+    }
+    mean_log[m] = log_sum / 8;
+  }
+  for (std::size_t m = 0; m < per_block; ++m) {
+    const Run& r = rows[m];
+    const Member& member = members()[m];
+    const double ratio = std::exp(mean_log[m]), relative = r.drift - reference.drift;
+    out << m << ' ' << member.spec(elements) << ' ' << member.family << ' '
+        << cli::format_real(member.label == "spread:N/2" ? static_cast<double>(elements / 2) : member.parameter) << ' '
+        << cli::format_real(r.total_mass) << ' ' << cli::format_real(r.local) << ' ' << cli::format_real(r.uniform)
+        << ' ' << cli::format_real(r.predicted) << ' ' << cli::format_real(r.predicted_eigen) << ' '
+        << cli::format_real(r.first_impact_error) << ' ' << cli::format_real(r.drift) << ' '
+        << cli::format_real(relative) << ' ' << cli::format_real(ratio);
+    for (double e : r.errors) out << ' ' << cli::format_real(e);
+    out << '\n';
+    const std::string key = "family:" + where + ":" + key_of(member.label);
+    mrm::tex_define(defs, key + ":predicted", mrm::tex_number(r.predicted, 2));
+    mrm::tex_define(defs, key + ":eigen", mrm::tex_number(r.predicted_eigen, 2));
+    mrm::tex_define(defs, key + ":drift", mrm::tex_number(r.drift, 2));
+    mrm::tex_define(defs, key + ":rel", mrm::tex_number(relative, 2));
+    mrm::tex_define(defs, key + ":ratio", mrm::tex_number(ratio, 3));
+  }
+  // The member with the smallest geometric-mean error in this block, and how far the law's
+  // prediction is from the measured drift relative to Mod 3 over the members whose non-uniform
+  // mass sits next to the contact node (all but spread:10 and spread:N/2).
+  const std::size_t best =
+      static_cast<std::size_t>(std::min_element(mean_log.begin(), mean_log.end()) - mean_log.begin());
+  double worst_gap = 0;
+  for (std::size_t m = 0; m < per_block; ++m) {
+    const std::string& label = members()[m].label;
+    if (rows[m].predicted == 0 && m != reference_member) {  // the spread among the members the law
+      zero.lo = std::min(zero.lo, std::exp(mean_log[m]));   // puts at zero drift, Mod 3 aside
+      zero.hi = std::max(zero.hi, std::exp(mean_log[m]));
+      if (std::find(zero.members.begin(), zero.members.end(), label) == zero.members.end())
+        zero.members.push_back(label);
+    }
+    if (label != "spread:10" && label != "spread:N/2")
+      worst_gap = std::max(worst_gap, std::abs(rows[m].drift - reference.drift - rows[m].predicted));
+  }
+  mrm::tex_define(defs, "family:" + where + ":best", members()[best].label);
+  mrm::tex_define(defs, "family:" + where + ":bestratio", mrm::tex_number(std::exp(mean_log[best]), 3));
+  mrm::tex_define(defs, "family:" + where + ":gap", mrm::tex_number(worst_gap, 2));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -238,80 +312,19 @@ int main(int argc, char** argv) {
         << "# measured drift of the impact times per period; drift_rel = drift - Mod 3's drift (same block);\n"
         << "# ratio = geometric mean over the eight measures of error / Mod 3's error (same block).\n";
     std::ostream& defs = program.values();
-    double zero_lo = INFINITY, zero_hi = 0;  // the ratio to Mod 3 of the members the law puts at zero drift
-    std::vector<std::string> zero_members;
+    ZeroDrift zero;
     const std::size_t per_block = members().size();
     std::size_t block = 0;
     for (std::size_t a = 0; a < meshes.size(); ++a)
       for (std::size_t b = 0; b < courants.size(); ++b)
         for (std::size_t c = 0; c < horizons.size(); ++c, ++block) {
-          const Run* rows = &runs[block * per_block];
-          const Run& reference = rows[reference_member];
-          out << (block ? "\n\n" : "") << "# block " << block << ": N = " << meshes[a]
-              << ", dt/h = " << cli::format_real(courants[b]) << ", periods = " << horizons[c]
-              << "\n# columns: index member family parameter total_mass dm_loc dm_glob predicted predicted_eigen "
-                 "first_impact_error drift drift_rel ratio";
-          for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
-          out << '\n';
-          const std::string where = "N" + std::to_string(meshes[a]) + ":c" + cli::format_real(courants[b]) + ":T" +
-                                    std::to_string(horizons[c]);
-          // Each member's mean of log(error / Mod 3's error) over the eight measures: its ratio to Mod 3
-          // is the exponential (the geometric mean), and the best member has the smallest.
-          std::vector<double> mean_log(per_block);
-          for (std::size_t m = 0; m < per_block; ++m) {
-            double log_sum = 0;
-            for (std::size_t q = 0; q < 8; ++q) {
-              if (!(rows[m].errors[q] > 0 && reference.errors[q] > 0))
-                throw std::runtime_error("fig_family: a zero error, no ratio to Mod 3 (" + members()[m].label + ")");
-              log_sum += std::log(rows[m].errors[q] / reference.errors[q]);
-            }
-            mean_log[m] = log_sum / 8;
-          }
-          for (std::size_t m = 0; m < per_block; ++m) {
-            const Run& r = rows[m];
-            const Member& member = members()[m];
-            const double ratio = std::exp(mean_log[m]), relative = r.drift - reference.drift;
-            out << m << ' ' << member.spec(meshes[a]) << ' ' << member.family << ' '
-                << cli::format_real(member.label == "spread:N/2" ? static_cast<double>(meshes[a] / 2)
-                                                                 : member.parameter)
-                << ' ' << cli::format_real(r.total_mass) << ' ' << cli::format_real(r.local) << ' '
-                << cli::format_real(r.uniform) << ' ' << cli::format_real(r.predicted) << ' '
-                << cli::format_real(r.predicted_eigen) << ' ' << cli::format_real(r.first_impact_error) << ' '
-                << cli::format_real(r.drift) << ' ' << cli::format_real(relative) << ' ' << cli::format_real(ratio);
-            for (double e : r.errors) out << ' ' << cli::format_real(e);
-            out << '\n';
-            const std::string key = "family:" + where + ":" + key_of(member.label);
-            mrm::tex_define(defs, key + ":predicted", mrm::tex_number(r.predicted, 2));
-            mrm::tex_define(defs, key + ":eigen", mrm::tex_number(r.predicted_eigen, 2));
-            mrm::tex_define(defs, key + ":drift", mrm::tex_number(r.drift, 2));
-            mrm::tex_define(defs, key + ":rel", mrm::tex_number(relative, 2));
-            mrm::tex_define(defs, key + ":ratio", mrm::tex_number(ratio, 3));
-          }
-          // The member with the smallest geometric-mean error in this block, and how far the law's
-          // prediction is from the measured drift relative to Mod 3 over the members whose non-uniform
-          // mass sits next to the contact node (all but spread:10 and spread:N/2).
-          const std::size_t best =
-              static_cast<std::size_t>(std::min_element(mean_log.begin(), mean_log.end()) - mean_log.begin());
-          double worst_gap = 0;
-          for (std::size_t m = 0; m < per_block; ++m) {
-            const std::string& label = members()[m].label;
-            if (rows[m].predicted == 0 && m != reference_member) {  // the spread among the members the law
-              zero_lo = std::min(zero_lo, std::exp(mean_log[m]));   // puts at zero drift, Mod 3 aside
-              zero_hi = std::max(zero_hi, std::exp(mean_log[m]));
-              if (std::find(zero_members.begin(), zero_members.end(), label) == zero_members.end())
-                zero_members.push_back(label);
-            }
-            if (label != "spread:10" && label != "spread:N/2")
-              worst_gap = std::max(worst_gap, std::abs(rows[m].drift - reference.drift - rows[m].predicted));
-          }
-          mrm::tex_define(defs, "family:" + where + ":best", members()[best].label);
-          mrm::tex_define(defs, "family:" + where + ":bestratio", mrm::tex_number(std::exp(mean_log[best]), 3));
-          mrm::tex_define(defs, "family:" + where + ":gap", mrm::tex_number(worst_gap, 2));
+          write_block(out, defs, &runs[block * per_block], block, meshes[a], courants[b], horizons[c], reference_member,
+                      zero);
         }
     std::string zero_list;
-    for (const std::string& label : zero_members) zero_list += (zero_list.empty() ? "" : ", ") + label;
+    for (const std::string& label : zero.members) zero_list += (zero_list.empty() ? "" : ", ") + label;
     mrm::tex_define(defs, "family:zerodrift:members", zero_list);
-    mrm::tex_define(defs, "family:zerodrift:range", mrm::tex_number(zero_lo, 3) + "--" + mrm::tex_number(zero_hi, 3));
+    mrm::tex_define(defs, "family:zerodrift:range", mrm::tex_number(zero.lo, 3) + "--" + mrm::tex_number(zero.hi, 3));
     mrm::tex_define(defs, "family:members", std::to_string(members().size()));
     // The parameters the prose names (the keys above carry them too, so that a change shows at once).
     mrm::tex_define(defs, "family:Ncoarse", std::to_string(meshes.front()));

@@ -60,6 +60,7 @@
 
 #include "configurations.hpp"
 #include "figure_program.hpp"
+#include "refinement.hpp"
 #include "studies/convergence.hpp"
 #include "measures/errors.hpp"
 #include "options.hpp"
@@ -151,14 +152,15 @@ int main(int argc, char** argv) {
     const double final_time = mrm::smooth_benchmark(mrm::SmoothBenchmark::grazing).final_time;
 
     // 3. The runs, longest first.
+    const mrm::repro::MeshRefinement meshes(static_cast<mrm::Index>(coarsest), static_cast<std::size_t>(refinements));
     std::vector<Run> runs;
     for (std::size_t b = 0; b < benchmarks.size(); ++b)
       for (std::size_t s = 0; s < schemes.size(); ++s)
         for (std::size_t m = 0; m < masses.size(); ++m)
           for (std::size_t c = 0; c < courants.size(); ++c)
-            for (std::size_t l = 0; l < static_cast<std::size_t>(refinements); ++l) {
-              const mrm::Index n = static_cast<mrm::Index>(coarsest) << l;
-              const double h = 1.0 / static_cast<double>(n);
+            for (std::size_t l = 0; l < meshes.levels(); ++l) {
+              const mrm::Index n = meshes.elements(l);
+              const double h = meshes.mesh_sizes()[l];
               runs.push_back(
                   {b, s, m, c, l, n, static_cast<double>(mrm::steps_to_reach(final_time, courants[c] * h)) * n, {}});
             }
@@ -188,7 +190,7 @@ int main(int argc, char** argv) {
         << mrm::to_string(schemes[0]) << ", " << mrm::to_string(schemes[1])
         << "), "
            "mass m in (mod1, mod2, mod3), c in (dt = h, dt = h/2)\n";
-    const std::size_t levels = static_cast<std::size_t>(refinements);
+    const std::size_t levels = meshes.levels();
     auto at = [&](std::size_t b, std::size_t s, std::size_t m, std::size_t c, std::size_t l) -> const Run& {
       return runs[(((b * schemes.size() + s) * masses.size() + m) * courants.size() + c) * levels + l];
     };
@@ -208,7 +210,7 @@ int main(int argc, char** argv) {
 
     // 6. Orders (fit over all meshes) beside the predictions, the tables, and the values of the prose.
     std::ostream& defs = program.values();
-    const mrm::Index finest = static_cast<mrm::Index>(coarsest) << (levels - 1);
+    const mrm::Index finest = meshes.finest();
     mrm::tex_define(defs, "smooth:Nmin", std::to_string(coarsest));
     mrm::tex_define(defs, "smooth:Nmax", std::to_string(finest));
     mrm::tex_define(defs, "smooth:meshes", std::to_string(levels));
@@ -221,9 +223,6 @@ int main(int argc, char** argv) {
     for (const mrm::repro::Label& label : mrm::repro::measure_labels())
       headers.push_back("\\rotatebox{70}{" + label.latex + "}");
     mrm::repro::Table orders_table(headers);
-    std::vector<double> steps(levels);
-    for (std::size_t l = 0; l < levels; ++l)
-      steps[l] = 1.0 / static_cast<double>(static_cast<mrm::Index>(coarsest) << l);
     long agreeing = 0, cases = 0;
     for (std::size_t b = 0; b < benchmarks.size(); ++b) {
       for (std::size_t s = 0; s < schemes.size(); ++s)
@@ -242,7 +241,7 @@ int main(int argc, char** argv) {
               mrm::tex_define(defs, "smooth:predicted:" + key, fraction(predicted));
               if (!std::all_of(errors.begin(), errors.end(), [](double e) { return e > 0 && std::isfinite(e); }))
                 throw std::runtime_error("the errors of " + key + " cannot be fitted (a zero or non-finite error)");
-              const mrm::OrderFit fit = mrm::fit_order(steps, errors);
+              const mrm::OrderFit fit = meshes.fit(errors);
               const bool agrees = std::abs(fit.order - predicted) <= agreement;
               agreeing += agrees;
               ++cases;
@@ -250,8 +249,7 @@ int main(int argc, char** argv) {
               row.push_back((agrees ? fitted : "\\textit{" + fitted + "}") + " {\\scriptsize(" + fraction(predicted) +
                             ")}");
               mrm::tex_define(defs, "smooth:order:" + key, fitted);
-              mrm::tex_define(defs, "smooth:local:" + key,
-                              mrm::tex_number(mrm::repro::local_orders(steps, errors).back(), 2));
+              mrm::tex_define(defs, "smooth:local:" + key, mrm::tex_number(meshes.finest_local_order(errors), 2));
               mrm::tex_define(defs, "smooth:stderr:" + key, mrm::tex_number(fit.order_std_error, 1));
               mrm::tex_define(defs, "smooth:err:" + key, mrm::tex_number(errors.back(), 2));
             }

@@ -40,7 +40,7 @@
 // reference and its runs in lockstep, every run compared at each of its levels; (4) the fitted orders
 // and verdicts; (5) the data blocks; (6) the tables and the quoted values; (7) commit.
 //
-// Two further studies (issue 21).
+// Two further studies.
 // The round-off benchmark: the first impact time at N = 40 (--impact-elements), Mod 1, Crank–Nicolson,
 // for Δt = h/1024, h/4096, …, h/262144 (--impact-finest), by the library's step, which solves for the
 // increment Uⁿ⁺¹ − Uⁿ, and by the same matrices solved for Uⁿ⁺¹ with the velocity recovered from the
@@ -155,17 +155,194 @@ double finest_order(const Series& series, std::size_t s, std::size_t k, std::siz
   }
   return steps.size() >= 2 ? mrm::fit_order(steps, errors).order : std::nan("");
 }
+// The round-off benchmark's table and values: the first impact time solved for U^{n+1} and for the
+// increment at each step h/R, against the finest.
+void write_impact_table(std::ostream& defs, const std::vector<long>& impact_ratios,
+                        const std::vector<double>& impact_times, double impact_finest_value, double impact_spread_after,
+                        double impact_spread_before, long impact_elements) {
+  mrm::repro::Table table({"$h/\\Delta t$", "for $U^{n+1}$ (before)", "increment (after)", "before $-$ finest after",
+                           "after $-$ finest after"});
+  for (std::size_t j = 0; j < impact_ratios.size(); ++j)
+    table.add_row({std::to_string(impact_ratios[j]), mrm::tex_number(impact_times[2 * j], 12),
+                   mrm::tex_number(impact_times[2 * j + 1], 12),
+                   mrm::tex_number(impact_times[2 * j] - impact_finest_value, 2),
+                   mrm::tex_number(impact_times[2 * j + 1] - impact_finest_value, 2)});
+  defs << "\\mrmdef{time:impact:table}{" << mrm::repro::latex_tabular(table, "rllrr") << "}\n";
+  mrm::tex_define(defs, "time:impact:elements", std::to_string(impact_elements));
+  mrm::tex_define(defs, "time:impact:coarsest", std::to_string(impact_ratios.front()));
+  mrm::tex_define(defs, "time:impact:finest", std::to_string(impact_ratios.back()));
+  mrm::tex_define(defs, "time:impact:spreadafter", mrm::tex_number(impact_spread_after, 2));
+  mrm::tex_define(defs, "time:impact:spreadbefore", mrm::tex_number(impact_spread_before, 2));
+}
+
+// The family's verdict table (meshes x measures: the range of the judged local orders, pass/fail) and
+// its values: where order 2 holds, and from which step on.
+void write_family_table(std::ostream& defs, const std::vector<mrm::repro::TimeFamilyMesh>& family,
+                        const std::vector<long>& family_meshes, long family_reference_ratio, int family_all_holds,
+                        const std::array<int, 8>& family_holds, int meshes_with_region, double onset_smallest,
+                        double onset_largest, double onset_slope) {
+  std::vector<std::string> headers{"$N$"};
+  for (const mrm::repro::Label& label : mrm::repro::measure_labels())
+    headers.push_back("\\rotatebox{70}{" + label.latex + "}");
+  headers.push_back("\\rotatebox{70}{mismatched levels}");
+  mrm::repro::Table table(headers);
+  for (const mrm::repro::TimeFamilyMesh& f : family) {
+    std::vector<std::string> cells{std::to_string(f.elements)};
+    for (std::size_t k = 0; k < 8; ++k) {
+      const double onset = 1.0 / (f.dt[f.onset[k]] * static_cast<double>(f.elements));
+      std::string cell =
+          "$h/" + std::to_string(std::lround(onset)) + "$; " +
+          (f.judged_count[k] == 0 ? std::string("none judged")
+                                  : mrm::tex_number(f.lowest[k], 2) + "--" + mrm::tex_number(f.highest[k], 2));
+      cells.push_back(cell + (f.holds[k] ? " \\checkmark" : " \\textbf{fail}"));
+    }
+    long mismatched = 0;
+    for (long m : f.mismatched) mismatched += m;
+    cells.push_back(std::to_string(mismatched));
+    table.add_row(cells);
+  }
+  // Split in two (the first four measures, then the other four and the mismatched levels): the
+  // ten columns in one row are wider than the page.
+  defs << "\\mrmdef{time:family:table:a}{"
+       << mrm::repro::latex_tabular(table.columns_subset({0, 1, 2, 3, 4}), "r" + std::string(4, 'r')) << "}\n";
+  defs << "\\mrmdef{time:family:table:b}{"
+       << mrm::repro::latex_tabular(table.columns_subset({0, 5, 6, 7, 8, 9}), "r" + std::string(5, 'r')) << "}\n";
+  std::string meshes;
+  for (long n : family_meshes) meshes += (meshes.empty() ? "" : ", ") + std::to_string(n);
+  mrm::tex_define(defs, "time:family:meshes", meshes);
+  mrm::tex_define(defs, "time:family:count", std::to_string(family.size()));
+  mrm::tex_define(defs, "time:family:R", std::to_string(family_reference_ratio));
+  mrm::tex_define(defs, "time:family:allhold", std::to_string(family_all_holds));
+  std::string per_measure;
+  for (std::size_t k = 0; k < 8; ++k) {
+    mrm::tex_define(defs, std::string("time:family:holds:") + mrm::ErrorAccumulator::names[k],
+                    std::to_string(family_holds[k]));
+    if (family_holds[k] < static_cast<int>(family.size()))
+      per_measure += (per_measure.empty() ? "" : "; ") + mrm::repro::measure_labels()[k].latex + ": " +
+                     std::to_string(family_holds[k]);
+  }
+  if (meshes_with_region == 0) onset_smallest = onset_largest = 0;  // printed as "on no mesh" below
+  mrm::tex_define(defs, "time:family:verdict",
+                  "from $\\Delta t = h/2$ on, order 2 holds at every halving in all 8 measures on " +
+                      std::to_string(family_all_holds) + " of the " + std::to_string(family.size()) + " meshes" +
+                      (per_measure.empty() ? std::string("") : " (meshes where a measure holds: " + per_measure + ")") +
+                      "; it holds at every halving from $\\Delta t = h/" + std::to_string(std::lround(onset_smallest)) +
+                      "$ to $h/" + std::to_string(std::lround(onset_largest)) +
+                      "$ on, depending on the mesh, in all 8 "
+                      "measures on " +
+                      std::to_string(meshes_with_region) + " of the " + std::to_string(family.size()) + " meshes");
+  mrm::tex_define(defs, "time:family:onsetslope", std::isfinite(onset_slope) ? mrm::tex_number(onset_slope, 2) : "n/a");
+  mrm::tex_define(defs, "time:family:onsetfrom", std::to_string(std::lround(onset_smallest)));
+  mrm::tex_define(defs, "time:family:onsetto", std::to_string(std::lround(onset_largest)));
+}
+
+// The options of the program beyond the mesh and the final time (FigureProgram's), with their defaults.
+struct Options {
+  long reference_ratio = 128, largest = 4, steps_count = 6;
+  long coarse_elements = 32, coarse_reference_ratio = 4096, coarse_steps_count = 11;
+  long fit_points = 3, threads = 2;
+  long impact_elements = 40, impact_finest = 262144;
+  long family_from = 24, family_to = 80, family_powers_to = 256, family_reference_ratio = 2048;
+  std::string mass = "mod3";
+};
+
+// Step 1: the options, declared on the program's parser.
+void declare_options(mrm::repro::FigureProgram& program, Options& o) {
+  program.add_elements(256, "fine mesh: number of elements N (h = 1/N), in [2, 1e7]");
+  program.parser.add_integer("--reference-ratio", "-r", "R",
+                             "fine mesh: reference step dt_ref = h/R; a power of 2 in [2, 2^30]", &o.reference_ratio,
+                             cli::in_closed_range(2, 1 << 30));
+  program.parser.add_integer("--steps", "-k", "K",
+                             "fine mesh: number of steps dt = P h, P h/2, ..., P h/2^(K-1), in [3, 50]", &o.steps_count,
+                             cli::in_closed_range(3, 50));
+  program.parser.add_integer("--coarse-elements", "", "N", "coarse mesh: number of elements, in [2, 1e7]",
+                             &o.coarse_elements, mrm::repro::elements_range());
+  program.parser.add_integer("--coarse-reference-ratio", "", "R",
+                             "coarse mesh: dt_ref = h/R; a power of 2 in [2, 2^30]", &o.coarse_reference_ratio,
+                             cli::in_closed_range(2, 1 << 30));
+  program.parser.add_integer("--coarse-steps", "", "K",
+                             "coarse mesh: number of steps dt = P h, ..., P h/2^(K-1), in [3, 50]",
+                             &o.coarse_steps_count, cli::in_closed_range(3, 50));
+  program.parser.add_integer("--largest", "", "P", "largest step dt = P h of both meshes; a power of 2 in [1, 2^20]",
+                             &o.largest, cli::in_closed_range(1, 1 << 20));
+  program.parser.add_integer("--fit-points", "", "F", "the order is fitted over the finest F steps (>= 2, <= each K)",
+                             &o.fit_points, cli::at_least(2));
+  program.add_final_time(3.0, "final time (> 0); one period is 3");
+  program.parser.add_string("--mass", "-m", "M", mrm::repro::mass_option_help("a redistributed mass (not consistent)"),
+                            &o.mass);
+  program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
+                             &o.threads, cli::in_closed_range(1, cli::max_threads));
+  program.parser.add_integer("--impact-elements", "", "N",
+                             "round-off benchmark: elements of its mesh (Mod 1), in [2, 1000]", &o.impact_elements,
+                             cli::in_closed_range(2, 1000));
+  program.parser.add_integer("--impact-finest", "", "R",
+                             "round-off benchmark: finest step h/R; steps h/R, h/(R/4), ... down to h/1024; a "
+                             "power of 2 in [4, 2^22]",
+                             &o.impact_finest, cli::in_closed_range(4, 1 << 22));
+  program.parser.add_integer("--family-from", "", "N", "family: smallest mesh, in [4, 1000]", &o.family_from,
+                             cli::in_closed_range(4, 1000));
+  program.parser.add_integer("--family-to", "", "N",
+                             "family: meshes from --family-from to N in steps of 4, in [4, 1000]", &o.family_to,
+                             cli::in_closed_range(4, 1000));
+  program.parser.add_integer("--family-powers-to", "", "N",
+                             "family: then the powers of 2 above --family-to up to N, in [4, 4096]",
+                             &o.family_powers_to, cli::in_closed_range(4, 4096));
+  program.parser.add_integer("--family-reference-ratio", "", "R",
+                             "family: reference h/R checked against h/(2R); a power of 2 in [64, 2^16]",
+                             &o.family_reference_ratio, cli::in_closed_range(64, 1 << 16));
+}
+
+// The checks of the options that the parser's ranges cannot make, before any file is touched.
+void check_options(const Options& o, long elements, double final_time) {
+  // The ranges were checked by the parser; here the powers of 2 within them.
+  auto require_power_of_two = [](const char* option, long v, const char* range) {
+    if (v <= 0 || (v & (v - 1)) != 0)
+      throw cli::UsageError(std::string(option) + ": " + std::to_string(v) +
+                            " is not allowed (expected a power of 2 in " + range + ")");
+  };
+  require_power_of_two("--reference-ratio", o.reference_ratio, "[2, 2^30]");
+  require_power_of_two("--coarse-reference-ratio", o.coarse_reference_ratio, "[2, 2^30]");
+  require_power_of_two("--largest", o.largest, "[1, 2^20]");
+  require_power_of_two("--impact-finest", o.impact_finest, "[4, 2^22]");
+  require_power_of_two("--family-reference-ratio", o.family_reference_ratio, "[64, 2^16]");
+  if (o.family_to < o.family_from)
+    throw cli::UsageError("--family-to: " + std::to_string(o.family_to) +
+                          " is below --family-from (allowed: at least --family-from)");
+  // Every step Δt_j = P h / 2^j must be a multiple m_j = P R / 2^j ≥ 2 of the reference step.
+  // P R <= 2^50 and K <= 50 by the ranges: no shift below overflows.
+  auto require_steps = [&](const char* option, long count, long ratio) {
+    if (((o.largest * ratio) >> (count - 1)) < 2)
+      throw cli::UsageError(std::string(option) +
+                            ": the smallest step P h/2^(K-1) must be at least twice the reference step h/R");
+  };
+  require_steps("--steps", o.steps_count, o.reference_ratio);
+  require_steps("--coarse-steps", o.coarse_steps_count, o.coarse_reference_ratio);
+  // The reference run of each mesh makes T/dt_ref steps (T rounded up to a whole largest step); its 2K
+  // runs and their comparisons are held at once with the reference: about 256 bytes per element each.
+  auto require_run = [&](const char* elements_option, const char* ratio_option, long n, long ratio, long count) {
+    const double h = 1.0 / static_cast<double>(n);
+    const mrm::Index coarse_steps =
+        cli::checked_steps("--final-time", final_time, static_cast<double>(o.largest) * h, "--largest");
+    const double reference_steps = static_cast<double>(coarse_steps) * static_cast<double>(o.largest * ratio);
+    if (!(reference_steps <= cli::max_steps))
+      throw cli::UsageError(std::string(ratio_option) + ": " + std::to_string(ratio) + " gives the reference run " +
+                            cli::format_real(reference_steps) +
+                            " steps (allowed: at most 1e12 steps; lower it, the elements or --final-time)");
+    cli::require_mesh_memory(elements_option, static_cast<double>(n), 256, 2 * static_cast<double>(count) + 2);
+  };
+  require_run("--elements", "--reference-ratio", elements, o.reference_ratio, o.steps_count);
+  require_run("--coarse-elements", "--coarse-reference-ratio", o.coarse_elements, o.coarse_reference_ratio,
+              o.coarse_steps_count);
+  if (o.fit_points > o.steps_count || o.fit_points > o.coarse_steps_count)
+    throw cli::UsageError("--fit-points: at most the number of steps of each mesh (--steps, --coarse-steps)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_time_error", [&] {
     // 1. Options.
-    long reference_ratio = 128, largest = 4, steps_count = 6;
-    long coarse_elements = 32, coarse_reference_ratio = 4096, coarse_steps_count = 11;
-    long fit_points = 3, threads = 2;
-    long impact_elements = 40, impact_finest = 262144;
-    long family_from = 24, family_to = 80, family_powers_to = 256, family_reference_ratio = 2048;
-    std::string mass = "mod3";
+    Options o;
     mrm::repro::FigureProgram program(
         "fig_time_error",
         "Writes the error of Crank-Nicolson and backward Euler against the time step at a fixed "
@@ -174,92 +351,18 @@ int main(int argc, char** argv) {
         "fitted orders in time over the finest steps beside the predicted ones (2 and 1).",
         {"fig_time_error --output output/data/fig_time_error.dat --tex output/data/fig_time_error.tex",
          "fig_time_error --elements 128 --reference-ratio 128 --mass mod1 --threads 1 --output t.dat"});
-    program.add_elements(256, "fine mesh: number of elements N (h = 1/N), in [2, 1e7]");
-    program.parser.add_integer("--reference-ratio", "-r", "R",
-                               "fine mesh: reference step dt_ref = h/R; a power of 2 in [2, 2^30]", &reference_ratio,
-                               cli::in_closed_range(2, 1 << 30));
-    program.parser.add_integer("--steps", "-k", "K",
-                               "fine mesh: number of steps dt = P h, P h/2, ..., P h/2^(K-1), in [3, 50]", &steps_count,
-                               cli::in_closed_range(3, 50));
-    program.parser.add_integer("--coarse-elements", "", "N", "coarse mesh: number of elements, in [2, 1e7]",
-                               &coarse_elements, mrm::repro::elements_range());
-    program.parser.add_integer("--coarse-reference-ratio", "", "R",
-                               "coarse mesh: dt_ref = h/R; a power of 2 in [2, 2^30]", &coarse_reference_ratio,
-                               cli::in_closed_range(2, 1 << 30));
-    program.parser.add_integer("--coarse-steps", "", "K",
-                               "coarse mesh: number of steps dt = P h, ..., P h/2^(K-1), in [3, 50]",
-                               &coarse_steps_count, cli::in_closed_range(3, 50));
-    program.parser.add_integer("--largest", "", "P", "largest step dt = P h of both meshes; a power of 2 in [1, 2^20]",
-                               &largest, cli::in_closed_range(1, 1 << 20));
-    program.parser.add_integer("--fit-points", "", "F", "the order is fitted over the finest F steps (>= 2, <= each K)",
-                               &fit_points, cli::at_least(2));
-    program.add_final_time(3.0, "final time (> 0); one period is 3");
-    program.parser.add_string("--mass", "-m", "M",
-                              mrm::repro::mass_option_help("a redistributed mass (not consistent)"), &mass);
-    program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
-                               &threads, cli::in_closed_range(1, cli::max_threads));
-    program.parser.add_integer("--impact-elements", "", "N",
-                               "round-off benchmark: elements of its mesh (Mod 1), in [2, 1000]", &impact_elements,
-                               cli::in_closed_range(2, 1000));
-    program.parser.add_integer("--impact-finest", "", "R",
-                               "round-off benchmark: finest step h/R; steps h/R, h/(R/4), ... down to h/1024; a "
-                               "power of 2 in [4, 2^22]",
-                               &impact_finest, cli::in_closed_range(4, 1 << 22));
-    program.parser.add_integer("--family-from", "", "N", "family: smallest mesh, in [4, 1000]", &family_from,
-                               cli::in_closed_range(4, 1000));
-    program.parser.add_integer("--family-to", "", "N",
-                               "family: meshes from --family-from to N in steps of 4, in [4, 1000]", &family_to,
-                               cli::in_closed_range(4, 1000));
-    program.parser.add_integer("--family-powers-to", "", "N",
-                               "family: then the powers of 2 above --family-to up to N, in [4, 4096]",
-                               &family_powers_to, cli::in_closed_range(4, 4096));
-    program.parser.add_integer("--family-reference-ratio", "", "R",
-                               "family: reference h/R checked against h/(2R); a power of 2 in [64, 2^16]",
-                               &family_reference_ratio, cli::in_closed_range(64, 1 << 16));
+    declare_options(program, o);
     if (!program.parse(argc, argv, "also write the tables and values the report quotes")) return 0;
     const long elements = program.elements;
     const double final_time = program.final_time;
-    // The ranges were checked by the parser; here the powers of 2 within them.
-    auto require_power_of_two = [](const char* option, long v, const char* range) {
-      if (v <= 0 || (v & (v - 1)) != 0)
-        throw cli::UsageError(std::string(option) + ": " + std::to_string(v) +
-                              " is not allowed (expected a power of 2 in " + range + ")");
-    };
-    require_power_of_two("--reference-ratio", reference_ratio, "[2, 2^30]");
-    require_power_of_two("--coarse-reference-ratio", coarse_reference_ratio, "[2, 2^30]");
-    require_power_of_two("--largest", largest, "[1, 2^20]");
-    require_power_of_two("--impact-finest", impact_finest, "[4, 2^22]");
-    require_power_of_two("--family-reference-ratio", family_reference_ratio, "[64, 2^16]");
-    if (family_to < family_from)
-      throw cli::UsageError("--family-to: " + std::to_string(family_to) +
-                            " is below --family-from (allowed: at least --family-from)");
-    // Every step Δt_j = P h / 2^j must be a multiple m_j = P R / 2^j ≥ 2 of the reference step.
-    // P R <= 2^50 and K <= 50 by the ranges: no shift below overflows.
-    auto require_steps = [&](const char* option, long count, long ratio) {
-      if (((largest * ratio) >> (count - 1)) < 2)
-        throw cli::UsageError(std::string(option) +
-                              ": the smallest step P h/2^(K-1) must be at least twice the reference step h/R");
-    };
-    require_steps("--steps", steps_count, reference_ratio);
-    require_steps("--coarse-steps", coarse_steps_count, coarse_reference_ratio);
-    // The reference run of each mesh makes T/dt_ref steps (T rounded up to a whole largest step); its 2K
-    // runs and their comparisons are held at once with the reference: about 256 bytes per element each.
-    auto require_run = [&](const char* elements_option, const char* ratio_option, long n, long ratio, long count) {
-      const double h = 1.0 / static_cast<double>(n);
-      const mrm::Index coarse_steps =
-          cli::checked_steps("--final-time", final_time, static_cast<double>(largest) * h, "--largest");
-      const double reference_steps = static_cast<double>(coarse_steps) * static_cast<double>(largest * ratio);
-      if (!(reference_steps <= cli::max_steps))
-        throw cli::UsageError(std::string(ratio_option) + ": " + std::to_string(ratio) + " gives the reference run " +
-                              cli::format_real(reference_steps) +
-                              " steps (allowed: at most 1e12 steps; lower it, the elements or --final-time)");
-      cli::require_mesh_memory(elements_option, static_cast<double>(n), 256, 2 * static_cast<double>(count) + 2);
-    };
-    require_run("--elements", "--reference-ratio", elements, reference_ratio, steps_count);
-    require_run("--coarse-elements", "--coarse-reference-ratio", coarse_elements, coarse_reference_ratio,
-                coarse_steps_count);
-    if (fit_points > steps_count || fit_points > coarse_steps_count)
-      throw cli::UsageError("--fit-points: at most the number of steps of each mesh (--steps, --coarse-steps)");
+    check_options(o, elements, final_time);
+    const long reference_ratio = o.reference_ratio, largest = o.largest, steps_count = o.steps_count;
+    const long coarse_elements = o.coarse_elements, coarse_reference_ratio = o.coarse_reference_ratio,
+               coarse_steps_count = o.coarse_steps_count, fit_points = o.fit_points, threads = o.threads;
+    const long impact_elements = o.impact_elements, impact_finest = o.impact_finest;
+    const long family_from = o.family_from, family_to = o.family_to, family_powers_to = o.family_powers_to,
+               family_reference_ratio = o.family_reference_ratio;
+    const std::string& mass = o.mass;
 
     // The mass, checked on each mesh (a spread over more nodes than a mesh has, a matrix that is not
     // positive definite there) before any file is touched.
@@ -595,80 +698,10 @@ int main(int argc, char** argv) {
       }
     }
 
-    // The round-off benchmark's table and values.
-    {
-      mrm::repro::Table table({"$h/\\Delta t$", "for $U^{n+1}$ (before)", "increment (after)",
-                               "before $-$ finest after", "after $-$ finest after"});
-      for (std::size_t j = 0; j < impact_ratios.size(); ++j)
-        table.add_row({std::to_string(impact_ratios[j]), mrm::tex_number(impact_times[2 * j], 12),
-                       mrm::tex_number(impact_times[2 * j + 1], 12),
-                       mrm::tex_number(impact_times[2 * j] - impact_finest_value, 2),
-                       mrm::tex_number(impact_times[2 * j + 1] - impact_finest_value, 2)});
-      defs << "\\mrmdef{time:impact:table}{" << mrm::repro::latex_tabular(table, "rllrr") << "}\n";
-      mrm::tex_define(defs, "time:impact:elements", std::to_string(impact_elements));
-      mrm::tex_define(defs, "time:impact:coarsest", std::to_string(impact_ratios.front()));
-      mrm::tex_define(defs, "time:impact:finest", std::to_string(impact_ratios.back()));
-      mrm::tex_define(defs, "time:impact:spreadafter", mrm::tex_number(impact_spread_after, 2));
-      mrm::tex_define(defs, "time:impact:spreadbefore", mrm::tex_number(impact_spread_before, 2));
-    }
-    // The family's verdict table (meshes x measures: the range of the judged local orders, pass/fail).
-    {
-      std::vector<std::string> headers{"$N$"};
-      for (const mrm::repro::Label& label : mrm::repro::measure_labels())
-        headers.push_back("\\rotatebox{70}{" + label.latex + "}");
-      headers.push_back("\\rotatebox{70}{mismatched levels}");
-      mrm::repro::Table table(headers);
-      for (const mrm::repro::TimeFamilyMesh& f : family) {
-        std::vector<std::string> cells{std::to_string(f.elements)};
-        for (std::size_t k = 0; k < 8; ++k) {
-          const double onset = 1.0 / (f.dt[f.onset[k]] * static_cast<double>(f.elements));
-          std::string cell =
-              "$h/" + std::to_string(std::lround(onset)) + "$; " +
-              (f.judged_count[k] == 0 ? std::string("none judged")
-                                      : mrm::tex_number(f.lowest[k], 2) + "--" + mrm::tex_number(f.highest[k], 2));
-          cells.push_back(cell + (f.holds[k] ? " \\checkmark" : " \\textbf{fail}"));
-        }
-        long mismatched = 0;
-        for (long m : f.mismatched) mismatched += m;
-        cells.push_back(std::to_string(mismatched));
-        table.add_row(cells);
-      }
-      // Split in two (the first four measures, then the other four and the mismatched levels): the
-      // ten columns in one row are wider than the page.
-      defs << "\\mrmdef{time:family:table:a}{"
-           << mrm::repro::latex_tabular(table.columns_subset({0, 1, 2, 3, 4}), "r" + std::string(4, 'r')) << "}\n";
-      defs << "\\mrmdef{time:family:table:b}{"
-           << mrm::repro::latex_tabular(table.columns_subset({0, 5, 6, 7, 8, 9}), "r" + std::string(5, 'r')) << "}\n";
-      std::string meshes;
-      for (long n : family_meshes) meshes += (meshes.empty() ? "" : ", ") + std::to_string(n);
-      mrm::tex_define(defs, "time:family:meshes", meshes);
-      mrm::tex_define(defs, "time:family:count", std::to_string(family.size()));
-      mrm::tex_define(defs, "time:family:R", std::to_string(family_reference_ratio));
-      mrm::tex_define(defs, "time:family:allhold", std::to_string(family_all_holds));
-      std::string per_measure;
-      for (std::size_t k = 0; k < 8; ++k) {
-        mrm::tex_define(defs, std::string("time:family:holds:") + mrm::ErrorAccumulator::names[k],
-                        std::to_string(family_holds[k]));
-        if (family_holds[k] < static_cast<int>(family.size()))
-          per_measure += (per_measure.empty() ? "" : "; ") + mrm::repro::measure_labels()[k].latex + ": " +
-                         std::to_string(family_holds[k]);
-      }
-      if (meshes_with_region == 0) onset_smallest = onset_largest = 0;  // printed as "on no mesh" below
-      mrm::tex_define(
-          defs, "time:family:verdict",
-          "from $\\Delta t = h/2$ on, order 2 holds at every halving in all 8 measures on " +
-              std::to_string(family_all_holds) + " of the " + std::to_string(family.size()) + " meshes" +
-              (per_measure.empty() ? std::string("") : " (meshes where a measure holds: " + per_measure + ")") +
-              "; it holds at every halving from $\\Delta t = h/" + std::to_string(std::lround(onset_smallest)) +
-              "$ to $h/" + std::to_string(std::lround(onset_largest)) +
-              "$ on, depending on the mesh, in all 8 "
-              "measures on " +
-              std::to_string(meshes_with_region) + " of the " + std::to_string(family.size()) + " meshes");
-      mrm::tex_define(defs, "time:family:onsetslope",
-                      std::isfinite(onset_slope) ? mrm::tex_number(onset_slope, 2) : "n/a");
-      mrm::tex_define(defs, "time:family:onsetfrom", std::to_string(std::lround(onset_smallest)));
-      mrm::tex_define(defs, "time:family:onsetto", std::to_string(std::lround(onset_largest)));
-    }
+    write_impact_table(defs, impact_ratios, impact_times, impact_finest_value, impact_spread_after,
+                       impact_spread_before, impact_elements);
+    write_family_table(defs, family, family_meshes, family_reference_ratio, family_all_holds, family_holds,
+                       meshes_with_region, onset_smallest, onset_largest, onset_slope);
 
     // 7. Commit.
     program.commit();

@@ -3,7 +3,7 @@
 ///
 /// Each check takes its inputs explicitly (the schemes, the masses, the meshes, the time steps) and
 /// returns table rows: the claim, what was measured (with the numbers), the criterion with its basis
-/// (derived from the theory, or from a measured uncertainty; claims.cpp says which criteria were revised
+/// (derived from the theory, or from a measured uncertainty; claims/check_all.cpp says which criteria were set
 /// after a run, and why), the margin of the measured value against the threshold, and a verdict. A row
 /// within 10 % of its threshold is "marginal". A claim that does not reproduce is not weakened until it passes: its
 /// row is listed in an `Expectations` table with the reason and the numbers that motivated it, and
@@ -68,7 +68,7 @@ struct ClaimResult {
 /// numbers that motivated it). Every other row is expected to reproduce.
 using Expectations = std::map<std::string, std::string>;
 
-/// The expectation table of this repository (claims.cpp, with the measured numbers in comments).
+/// The expectation table of this repository (claims/expectations.cpp, with the measured numbers in comments).
 const Expectations& paper_expectations();
 
 /// Gives a row its verdict from whether its criterion holds and what the expectation table says, and
@@ -152,7 +152,7 @@ SummaryLine summarize_ordering(const repro::Sweep& sweep, const std::string& sch
 /// The mechanism of claim 3 (mathematics.md §8): the measured drift of the impact times per period of
 /// Mod 1 and Mod 2 relative to Mod 3 (where the scheme's own share cancels) against the period law's, in
 /// every (Δt/h, N) cell of `scheme`: within `difference_tolerance`·h (h/6, half the smallest predicted
-/// difference, claims.cpp).
+/// difference, claims/phase_drift.cpp).
 struct PhaseDriftSettings {
   std::string scheme = to_string(Scheme::crank_nicolson);
   double difference_tolerance = 1.0 / 6;
@@ -203,7 +203,7 @@ struct EnergySettings {
   std::vector<Index> elements = {50, 100, 200, 400};
   double courant = 0.5;
   double final_time = 3;
-  /// An energy change counts as round-off if |ΔE| ≤ round_off_factor · ε √N (L/Δt) · E_h(0) (claims.cpp).
+  /// An energy change counts as round-off if |ΔE| ≤ round_off_factor · ε √N (L/Δt) · E_h(0) (claims/energy.cpp).
   double round_off_factor = 16;
 };
 /// Conservation: |E_hⁿ⁺¹ − E_hⁿ| within round-off at every step that keeps the contact status, and
