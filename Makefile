@@ -267,11 +267,13 @@ $(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/
 	mv $@.tmp $@
 
 # The API documentation (Doxyfile): lib/ and the documents of doc/ that exist (the main page, the
-# mathematics and one page per module whose derivation it renders, doc/module_*.md). Any warning in
-# $(DOC)/doxygen.log (an undocumented public member, a broken reference) fails the build. The formulas
-# are rendered by MathJax 2 from Debian's libjs-mathjax, whose needed parts are copied beside the HTML
-# (MATHJAX_RELPATH = mathjax), so that the pages work offline.
-DOC_INPUT := lib $(wildcard doc/mainpage.md doc/mathematics.md doc/module_*.md)
+# mathematics, the field's benchmarks, contact treatments and peer, and one page per module whose
+# derivation it renders, doc/module_*.md). Any warning in $(DOC)/doxygen.log (an undocumented public
+# member, a broken reference) fails the build. The formulas are rendered by MathJax 2 from Debian's
+# libjs-mathjax, whose needed parts are copied beside the HTML (MATHJAX_RELPATH = mathjax), so that the
+# pages work offline.
+DOC_INPUT := lib $(wildcard doc/mainpage.md doc/mathematics.md doc/benchmarks.md doc/contact_treatments.md doc/peer.md \
+                            doc/module_*.md)
 MATHJAX := /usr/share/javascript/mathjax
 MATHJAX_PARTS := MathJax.js extensions jax/input/TeX jax/element jax/output/HTML-CSS fonts/HTML-CSS/TeX \
                  localization/en
