@@ -65,28 +65,28 @@ std::vector<ClaimResult> check_phase_matched(const PhaseMatchedSettings& setting
   for (const auto& [k, name] : measures_shown) {
     const double ratio = error(0, levels - 1, k) / error(1, levels - 1, k);
     const double target = k == u_L2L2 ? settings.ratio_u : settings.ratio_h1_lambda;
-    rows.push_back(judge("7/phase-matched/ratio-" + std::string(name),
-                         "The phase-matched mass (A = 1/4) lowers the " + std::string(ErrorAccumulator::names[k]) +
-                             " error of " + where + " (issue 26)",
-                         "error(A = 0)/error(A = 1/4) at N = " + std::to_string(settings.finest) + ": " +
-                             significant(error(0, levels - 1, k)) + "/" + significant(error(1, levels - 1, k)) + " = " +
-                             significant(ratio),
-                         "at least the issue's target " + significant(target) + " (a prediction, not a derived bound)",
-                         at_least("ratio", ratio, target)));
+    rows.push_back(judge(
+        "7/phase-matched/ratio-" + std::string(name),
+        "The phase-matched mass (A = 1/4) lowers the " + std::string(ErrorAccumulator::names[k]) + " error of " + where,
+        "error(A = 0)/error(A = 1/4) at N = " + std::to_string(settings.finest) + ": " +
+            significant(error(0, levels - 1, k)) + "/" + significant(error(1, levels - 1, k)) + " = " +
+            significant(ratio),
+        "at least the target " + significant(target) + " (a prediction, not a derived bound)",
+        at_least("ratio", ratio, target)));
   }
   for (const auto& [k, name] : measures_shown) {
     std::vector<double> errors;
     for (std::size_t l = 0; l < levels; ++l) errors.push_back(error(1, l, k));
     const double order = fit_order(steps, errors).order;
     const double target = k == u_L2L2 ? settings.order_u : settings.order_h1_lambda;
-    rows.push_back(judge("7/phase-matched/order-" + std::string(name),
-                         "With A = 1/4 the " + std::string(ErrorAccumulator::names[k]) + " error of " + where +
-                             " converges at the order the issue predicts",
-                         "least-squares order over N = " + std::to_string(settings.coarsest) + " ... " +
-                             std::to_string(settings.finest) + ": " + decimals(order, 3),
-                         "at least the issue's target " + significant(target) +
-                             " (the smearing argument gives 4/5 and 2/5 asymptotically)",
-                         at_least("order", order, target)));
+    rows.push_back(judge(
+        "7/phase-matched/order-" + std::string(name),
+        "With A = 1/4 the " + std::string(ErrorAccumulator::names[k]) + " error of " + where +
+            " converges at the predicted order",
+        "least-squares order over N = " + std::to_string(settings.coarsest) + " ... " +
+            std::to_string(settings.finest) + ": " + decimals(order, 3),
+        "at least the target " + significant(target) + " (the smearing argument gives 4/5 and 2/5 asymptotically)",
+        at_least("order", order, target)));
   }
   // The field's benchmarks: A = 0 against A = 1/4 at Δt = h/2 on one mesh, over each one's horizon.
   std::vector<repro::Configuration> field;
@@ -109,7 +109,7 @@ std::vector<ClaimResult> check_phase_matched(const PhaseMatchedSettings& setting
       rows.push_back(judge(
           "7/phase-matched/" + settings.field_benchmarks[b] + "-" + name,
           "The phase-matched mass (A = 1/4) lowers the " + std::string(ErrorAccumulator::names[k]) + " error of CN + " +
-              "Mod 3 on the field's benchmark " + settings.field_benchmarks[b] + " (its fronts' phase error; issue 26)",
+              "Mod 3 on the field's benchmark " + settings.field_benchmarks[b] + " (its fronts' phase error)",
           "error(A = 0)/error(A = 1/4) at N = " + std::to_string(settings.field_elements) +
               ", dt = h/2, T = " + significant(c.final_time) + " (" + decimals(transits, 1) +
               " transits): " + significant(a0) + "/" + significant(a14) + " = " + significant(ratio) +
@@ -169,9 +169,9 @@ ClaimResult check_bounded_stress(const StressSettings& settings, Judge& judge) {
                "The " + settings.stress +
                    " contact stress keeps TV(stress) / TV(lambda) bounded as the mesh is refined, with an L2 error no "
                    "larger than the multiplier's (CN + Mod 3, paper's benchmark, dt = h/2, T = " +
-                   decimals(settings.final_time, 0) + "; issue 26)",
+                   decimals(settings.final_time, 0) + ")",
                measured,
-               "ratio at most " + significant(settings.ratio) + " on every mesh (the issue's target), slope at most " +
+               "ratio at most " + significant(settings.ratio) + " on every mesh (the target), slope at most " +
                    decimals(settings.slope, 3) +
                    " (half-way between the predicted 0 and the box window's 1/6), L2 error at most the multiplier's",
                margin);
