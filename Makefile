@@ -226,15 +226,15 @@ $(DATA)/fig_energy_schemes_%.dat $(DATA)/fig_energy_schemes_%.tex: $(BUILD)/bin/
 $(BASELINE) &: $(BUILD)/bin/baseline_regions | $(DATA)
 	$< --output $(DATA)/baseline_regions.dat --tex $(DATA)/baseline_regions.tex
 
-# The peer match (issue 23): bar1d --peer getfem-vK against the measures GetFEM's demo printed
+# The peer match (doc/peer.md): bar1d --peer getfem-vK against the measures GetFEM's demo printed
 # (tests/data/getfem/measures.dat, its header says how they were made), compared and tabulated by
 # tools/getfem_peer.sh (a few seconds; the same comparison is the ctest entry getfem_peer).
 PEER_TEX := $(DATA)/peer_getfem.tex
 $(PEER_TEX): $(BUILD)/bin/bar1d tests/data/getfem/measures.dat tools/getfem_peer.sh | $(DATA)
 	tools/getfem_peer.sh $< tests/data/getfem/measures.dat $@ > $(DATA)/peer_getfem.txt
 
-# The contact classes side by side (issue 23, experiments/fig_classes.cpp): one run (its wall time on
-# standard output, ~10 s), one data file and values, four figures read from that file.
+# The contact classes side by side (doc/contact_treatments.md, experiments/fig_classes.cpp): one run (its wall
+# time on standard output, ~10 s), one data file and values, four figures read from that file.
 CLASSES_VIEWS := accuracy oscillation energy penetration
 CLASSES := $(DATA)/fig_classes.dat $(DATA)/fig_classes.tex
 CLASSES_PDFS := $(CLASSES_VIEWS:%=$(FIGURES)/fig_classes_%.pdf)
@@ -255,7 +255,7 @@ $(DATA)/cn_large_step.tex: $(BUILD)/bin/cn_large_step | $(DATA)
 # The report: every figure and fragment is found through TEXINPUTS (so OUT=dir works); latexmk keeps its
 # auxiliary files in $(OUT)/latex. The full benchmark's table and plot (make bench) are included if
 # present, the short benchmark's otherwise. A bitmap (Type 3) font in the PDF fails the rule: the report is
-# vector throughout (issue 27).
+# vector throughout (so that it prints and zooms alike).
 $(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/cn_large_step.tex $(BASELINE) \
            $(DATA)/report_meta.tex $(BENCH_SHORT)/bench_short.tex $(PEER_TEX) \
            $(wildcard $(OUT)/bench/bench_step.tex $(OUT)/bench/bench_step.pdf) | $(DATA)
@@ -267,11 +267,13 @@ $(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/
 	mv $@.tmp $@
 
 # The API documentation (Doxyfile): lib/ and the documents of doc/ that exist (the main page, the
-# mathematics and one page per module whose derivation it renders, doc/module_*.md). Any warning in
-# $(DOC)/doxygen.log (an undocumented public member, a broken reference) fails the build. The formulas
-# are rendered by MathJax 2 from Debian's libjs-mathjax, whose needed parts are copied beside the HTML
-# (MATHJAX_RELPATH = mathjax), so that the pages work offline.
-DOC_INPUT := lib $(wildcard doc/mainpage.md doc/mathematics.md doc/module_*.md)
+# mathematics, the field's benchmarks, contact treatments and peer, and one page per module whose
+# derivation it renders, doc/module_*.md). Any warning in $(DOC)/doxygen.log (an undocumented public
+# member, a broken reference) fails the build. The formulas are rendered by MathJax 2 from Debian's
+# libjs-mathjax, whose needed parts are copied beside the HTML (MATHJAX_RELPATH = mathjax), so that the
+# pages work offline.
+DOC_INPUT := lib $(wildcard doc/mainpage.md doc/mathematics.md doc/benchmarks.md doc/contact_treatments.md doc/peer.md \
+                            doc/module_*.md)
 MATHJAX := /usr/share/javascript/mathjax
 MATHJAX_PARTS := MathJax.js extensions jax/input/TeX jax/element jax/output/HTML-CSS fonts/HTML-CSS/TeX \
                  localization/en

@@ -1,6 +1,6 @@
 # fig_classes.dat's rows (experiments/fig_classes.cpp) read in one pass for the four figures
 # figures/fig_classes_*.gp, which `load` this program's output (gnuplot commands), so that each curve
-# reads its own block where it read the whole file (issue 24):
+# reads its own block instead of the whole file:
 # - `benchmarks` and `pairs` (scheme/mass): the words in the order of their first row in block 0;
 # - the datablock $runs: block 0's runs at dt = h/2, one block per benchmark and pair in that order:
 #   block (b - 1) * words(pairs) + p - 1 holds the rows of benchmark b and pair p;

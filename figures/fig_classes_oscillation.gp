@@ -9,7 +9,7 @@ load dir.'style.gp'
 # The benchmarks, the pairs and their runs at dt = h/2, one block a benchmark and pair, read in one pass
 # (figures/fig_classes_blocks.awk).
 load sprintf("< awk -f '%sfig_classes_blocks.awk' '%s'", dir, data)
-# One row of panels for up to four benchmarks, two rows beyond (the field's benchmarks, issue 23).
+# One row of panels for up to four benchmarks, two rows beyond (the field's benchmarks, doc/benchmarks.md).
 rows = words(benchmarks) > 4 ? 2 : 1
 cols = (words(benchmarks) + rows - 1) / rows
 eval sprintf("set terminal %s size 16cm,%dcm", figure_terminal, rows == 2 ? 12 : 7)

@@ -1,4 +1,4 @@
-# The phase-matched interior mass (experiments/fig_phase_matched.cpp, issue 26): top, the relative
+# The phase-matched interior mass (experiments/fig_phase_matched.cpp): top, the relative
 # phase-speed error |ω̃/k − 1| of Crank–Nicolson against ξ = kh (block 0) for Δt/h = ½ with A = 0 and
 # A = ¼ and Δt/h = 1/√2 with A = 0, with the slopes 2 and 4 of the derivation; bottom, the error of u in
 # L²(0,T;L²) of CN + Mod 3 on the paper's benchmark over ten periods (T = 30) against N for the same

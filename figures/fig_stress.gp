@@ -1,4 +1,4 @@
-# The contact stresses (experiments/fig_stress.cpp, issue 26 item 3), paper's benchmark, ten periods:
+# The contact stresses (experiments/fig_stress.cpp), paper's benchmark, ten periods:
 # top left, TV(stress)/TV(λ) against N for CN + Mod 3 at Δt/h = 1/2 with the four stresses of
 # lib/measures/contact_stress.hpp, the B-spline window on the phase-matched run and the multiplier of CN-switch
 # (A = 1/4), with the predicted slope 1/2 of the multiplier; top right, the relative L² error of the

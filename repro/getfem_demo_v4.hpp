@@ -2,7 +2,7 @@
 /// @brief GetFEM's demo_dynamic_contact_1D.py, version 4 (Taylor–Flanagan), as a configuration of this
 /// project, and the demo's own error measures (its definitions, not this project's), so that the two
 /// codes' printed numbers can be compared digit by digit (tests/getfem_demo_v4.cpp,
-/// tests/data/getfem_demo_v4.txt). For `bar1d --peer getfem-v4` (issue 23).
+/// tests/data/getfem_demo_v4.txt). For `bar1d --peer getfem-v4` (doc/peer.md).
 #pragma once
 
 #include <array>

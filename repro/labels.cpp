@@ -74,7 +74,7 @@ const std::vector<Label>& benchmark_labels() {
       {"paper", "the paper's benchmark (closed-form solution)", "the paper's benchmark"},
       {"smooth-impact", "S1, a smooth impact", "S1 (smooth impact)"},
       {"grazing", "S2, a grazing contact", "S2 (grazing contact)"},
-      // The field's benchmarks (lib/exact/impact_solution.hpp impact_benchmarks(), field.md sec. 1): each with
+      // The field's benchmarks (lib/exact/impact_solution.hpp impact_benchmarks(), doc/benchmarks.md): each with
       // its load, gap, material, far end and units, and the chain's exact solution as the reference.
       {"bouncing", "Doyen-Ern-Piperno's bouncing bar (falling under gravity)",
        "the bouncing bar (Doyen--Ern--Piperno)"},

@@ -26,7 +26,7 @@ MassRedistribution mass_redistribution_from_spec(const std::string& spec, const 
 
 /// The interior mass forms, in words: "consistent, lumped, blend:A with A a decimal or a fraction in [0, 1]".
 std::string interior_mass_forms();
-/// The blend A of an interior mass spec (issue 26, lib/fem/interior_mass.hpp): consistent (0), lumped (1) or
+/// The blend A of an interior mass spec (lib/fem/interior_mass.hpp): consistent (0), lumped (1) or
 /// blend:A, A a decimal or a fraction such as 1/4 in [0, 1]. Throws std::invalid_argument starting with
 /// the quoted spec and ending with the allowed forms otherwise. (`blend` in the two functions above is
 /// this A: each member is then defined on the blended mass, mrm::mass_redistribution.)

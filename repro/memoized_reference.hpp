@@ -2,7 +2,7 @@
 /// @brief A reference solution that answers a question it was asked before from its record: runs on the
 /// same mesh and time grid (the class-mass pairs of fig_classes) ask the exact solution the same
 /// questions at the same instants, and its evaluation (a field benchmark's chain, a characteristic
-/// solution) costs more than the run's step. Issue 24, item 2.
+/// solution) costs more than the run's step.
 #pragma once
 
 #include <atomic>
@@ -78,7 +78,7 @@ class MemoizedReference final : public ReferenceSolution {
 /// wrapped: its error sums take a path of their own, cheaper than a record. A record holds the nodal
 /// values of every instant asked, about 2 (N + 1) doubles per level of the runs: the caller schedules a
 /// group's runs one after the other so that few groups are alive at once. Safe on several threads.
-/// (fig_classes' class matrix, issue 24 item 2.)
+/// (fig_classes' class matrix.)
 class GroupReferences {
  public:
   /// A group: three indices of the caller's (fig_classes: benchmark, mesh, Δt).

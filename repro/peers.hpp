@@ -1,6 +1,6 @@
 /// @file peers.hpp
 /// @brief The configurations that match a peer code's run (bar1d --peer): GetFEM's
-/// demo_dynamic_contact_1D.py, versions 0–4, at its defaults (field.md §2, beyond.md §7).
+/// demo_dynamic_contact_1D.py, versions 0–4, at its defaults (doc/peer.md, mathematics.md §13).
 #pragma once
 
 #include <array>
@@ -41,7 +41,7 @@ const PeerPreset& peer_preset(const std::string& id);
 /// the exact nodal values; L² in time: the plain sum over the levels (dt Σ, the demo's rule, where this
 /// project integrates by the trapezoidal rule), relative to the same sum for the exact nodal values.
 ///
-/// Issue 23 adds its velocity and stress measures with its definitions: LinfL2v and L2L2v the same norms
+/// Its velocity and stress measures, with its definitions as well: LinfL2v and L2L2v the same norms
 /// (L², max and plain sum over the levels) of the P1 function with nodal values Vⁿ − v(x_i, t_n), Vⁿ the
 /// scheme's velocity at level n (the sample's; with a massless contact node the demo replaces node 0's by
 /// the backward difference (u₀ⁿ − u₀ⁿ⁻¹)/Δt, 0 at n = 0, and so does this accumulator); L2sn the plain sum

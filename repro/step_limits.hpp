@@ -1,5 +1,5 @@
 /// @file step_limits.hpp
-/// @brief What bounds the batched step from below on this machine (bench_step, issue 24 item 6): the time
+/// @brief What bounds the batched step from below on this machine (bench_step): the time
 /// of its memory traffic alone and the rate of its arithmetic alone, each measured at the vector target
 /// the batched step uses (step_limits.cpp).
 ///

@@ -11,7 +11,7 @@ trap 'rm -rf -- "$work"' EXIT
 cd "$root"
 inputs=lib
 mainpage=doc/mainpage.md
-for f in doc/mainpage.md doc/mathematics.md doc/module_*.md; do [[ -f $f ]] && inputs+=" $f"; done
+for f in doc/mainpage.md doc/mathematics.md doc/benchmarks.md doc/contact_treatments.md doc/peer.md doc/module_*.md; do [[ -f $f ]] && inputs+=" $f"; done
 [[ -f $mainpage ]] || mainpage=''
 { cat Doxyfile; echo "OUTPUT_DIRECTORY = $work"; echo "INPUT = $inputs"; echo "USE_MDFILE_AS_MAINPAGE = $mainpage"; } |
   doxygen - >"$work/doxygen.log" 2>&1
@@ -37,6 +37,10 @@ expect contact_8cpp.html '\( A U = b - \kappa \lambda e_0' 'a MathJax formula'
 # benchmarks' exact solution and the phase diagnostics, each with its derivation as MathJax formulas.
 for page in contact_classes explicit_schemes interior_mass batched_step impact_solution phase; do
   expect "module_$page.html" '\[' "the derivation of $page as a displayed formula"
+done
+# The pages of the field: the benchmarks, the contact treatments and the peer, each with its references.
+for page in benchmarks contact_treatments peer; do
+  expect "$page.html" 'References' "the references of $page"
 done
 ((status == 0)) && echo "doxygen_warnings: no warning; derivations and formulas on the pages of schemes.cpp, contact.cpp and the modules"
 exit "$status"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The C++ style (issue 9): every C++ file of the project is as clang-format lays it out with the
+# The C++ style: every C++ file of the project is as clang-format lays it out with the
 # repository's .clang-format, so that one style is kept rather than re-applied from time to time.
 # The files: lib/, repro/, experiments/ and tests/ (*.cpp, *.hpp), given to one clang-format process
 # (from Debian's package, tools/deps.sh); a file that differs is named with the first place clang-format

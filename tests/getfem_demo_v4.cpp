@@ -1,5 +1,5 @@
 // getfem_demo_v4: this project's taylor-flanagan against GetFEM's demo_dynamic_contact_1D.py, version 4
-// (issue 23, "matched to a peer"). The demo's printed measures, produced once with python3-getfem (the
+// (doc/peer.md). The demo's printed measures, produced once with python3-getfem (the
 // command is in the data file's header; CI needs no GetFEM), are read from tests/data/getfem_demo_v4.txt;
 // this project's run of the same configuration (repro/getfem_demo_v4.hpp) is measured as the demo
 // measures, and every measure must agree to 1e-6 relative, the final energy to the 6 digits printed.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The peer match of issue 23: bar1d --peer getfem-vK reproduces the displacement measures that GetFEM's
+# The peer match (doc/peer.md): bar1d --peer getfem-vK reproduces the displacement measures that GetFEM's
 # demo_dynamic_contact_1D.py printed (tests/data/getfem/measures.dat, made once with python3-getfem; CI
 # does not need it), each to the tolerance of its row. Usage: getfem_peer.sh BIN_DIR
 set -euo pipefail

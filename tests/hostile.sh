@@ -29,7 +29,7 @@
 #   two_outputs    a write error (a file-size limit, a full file system) fails the run with status 1,
 #                  and no output of the run is replaced (all or nothing);
 #   leftovers      a valid long file name (up to NAME_MAX) is accepted, a longer one refused;
-#   non_finite     no nan or inf in any output: the runs of issue 25 that wrote one exit 0 with n/a
+#   non_finite     no nan or inf in any output: runs at the edges that cannot compute a value exit 0 with n/a
 #                  and its reason, or fail and commit nothing;
 #   closed_stdout  long_runs (C stdio) fails with a closed standard output or on /dev/full;
 #   memory         what does not fit under ulimit -v is refused at once, naming the option.
@@ -589,9 +589,10 @@ run_small "$quick" fig_energy --output "$long"
 expect_refusal fig_energy --output
 expect_entries
 
-# ==== non_finite: no nan or inf in any output (issue 25, class 3) =====================================
+# ==== non_finite: no nan or inf in any output ======================================================
 
-# The runs the issue lists, and their neighbours: each exits 0 with every output free of a non-finite
+# Runs at the edges (two elements, Courant numbers far above one, few exact points), and their
+# neighbours: each exits 0 with every output free of a non-finite
 # word (a value that cannot be computed is written n/a with the reason), or fails (status 1 or 2) and
 # commits nothing. The check is the word test of output_file.hpp (NonFiniteWatch): a word of letters,
 # digits and '_' that reads nan, inf or infinity in any case.
@@ -632,7 +633,7 @@ grep -q ' n/a ' o.dat || fail "no n/a for the level without a multiplier"
 
 # ==== closed_stdout: every program, the test programs included, fails on a closed or full stdout ====
 
-# (issue 25, class 7: long_runs prints with C's stdio, which guarded_main now checks as well.)
+# (long_runs prints with C's stdio, which guarded_main checks as well.)
 for target in closed full; do
   begin closed_stdout "long_runs with its standard output $target: status 1"
   if [[ $target == closed ]]; then

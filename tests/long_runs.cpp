@@ -1,5 +1,5 @@
 // long_runs: every scheme with every mass over many periods, and with time steps far above the mesh
-// size, on a coarse mesh (issue 6, "long runs").
+// size, on a coarse mesh.
 //
 // What it checks. The claims of mathematics.md §6 that concern long times: the schemes with a
 // redistributed mass are stable (claim 1: no blow-up, the energy stays within a fixed factor of its

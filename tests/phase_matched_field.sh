@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # bar1d --phase-matched on the field's benchmarks (ctest runs `bash tests/phase_matched_field.sh BIN_DIR`):
 # the blend is A = 1/2 - C^2 with C = c dt/h the Courant number of the contact element (c the wave speed
-# there; Configuration::step() sets dt = C h/c), not 1/2 - (dt/h)^2 in the benchmark's units, which
-# gave A = 1/2 - (C/c)^2, about 1/2, on bouncing (c = 30 m/s) and impacting (c = 5.8 km/s) before issue
-# 26's second round. Checked: the blend printed at C = 1/2 and 0.6 (A = 1/4 and 0.14), the same run as
-# --interior-mass blend:A, and C above 1/sqrt(2) refused (exit 2).
+# there; Configuration::step() sets dt = C h/c), not 1/2 - (dt/h)^2 in the benchmark's units, which would give
+# A = 1/2 - (C/c)^2, about 1/2, on bouncing (c = 30 m/s) and impacting (c = 5.8 km/s). Checked: the blend
+# printed at C = 1/2 and 0.6 (A = 1/4 and 0.14), the same run as --interior-mass blend:A, and C above
+# 1/sqrt(2) refused (exit 2).
 set -euo pipefail
 if (($# != 1)) || [[ ! -x $1/bar1d ]]; then
   echo "usage: bash tests/phase_matched_field.sh BIN_DIR (with BIN_DIR/bar1d)" >&2

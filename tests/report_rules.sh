@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The report's presentation rules (issue 15), checked on the sources so that a new figure or table cannot
+# The report's presentation rules, checked on the sources so that a new figure or table cannot
 # slip past them:
 #   - every figure script loads figures/style.gp (the report's typeface, the masses' colours, labels from
 #     the data headers) and names no typeface of its own;

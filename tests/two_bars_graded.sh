@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# bar1d's two issue-22 paths (ctest runs `bash tests/two_bars_graded.sh BIN_DIR`):
+# bar1d's two paths beyond one uniform bar, two bars and a graded mesh (ctest runs
+# `bash tests/two_bars_graded.sh BIN_DIR`):
 #   - golden: `--benchmark two-bars` (two meshes, one contact multiplier, lib/time/two_bodies.hpp) and a
 #     graded mesh (`--grading 1.01` on the paper's benchmark) against their committed outputs in
 #     tests/expected/ (numdiff -r 1e-12 -a 1e-14, the tolerance of tests/expected/README.md: a few

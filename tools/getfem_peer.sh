@@ -16,8 +16,8 @@ bar1d=$1
 data=$2
 tex=${3:-}
 demo_names=(LinfL2u LinfH1u LinfL2v L2L2u L2H1u L2L2v L2sn)
-# bar1d prints all seven measures with the demo's definitions as peer_* (repro/peers.hpp, issue 23: the
-# velocity and stress measures added). Compared with the row's tolerance: the four displacement measures and
+# bar1d prints all seven measures with the demo's definitions as peer_* (repro/peers.hpp: the
+# displacement, velocity and stress measures). Compared with the row's tolerance: the four displacement measures and
 # L2sn (the contact stress: every class's multiplier is the demo's s at the same level), and LinfL2v and
 # L2L2v except for Paoli-Schatzman (getfem-v1: this project's velocity is the three-level (U^n - U^{n-1})/dt,
 # the demo's the explicit Newmark velocity with its contact correction, another formulation: shown).

@@ -40,7 +40,7 @@ double UniformMesh::bar_mass() const {
   return m;
 }
 
-// The graded mesh (issue 22): h_k = h₀ r^k with Σ h_k = h₀ (rᴺ − 1)/(r − 1) = L. The nodes are the
+// The graded mesh: h_k = h₀ r^k with Σ h_k = h₀ (rᴺ − 1)/(r − 1) = L. The nodes are the
 // partial sums x_{k+1} = x_k + h_k; the last is set to L (the sum carries round-off).
 UniformMesh graded_mesh(double length, Index elements, double ratio) {
   UniformMesh mesh(length, elements);
@@ -515,9 +515,9 @@ TEST_CASE("the P1 load vector refuses a load that is not finite") {
 }
 
 // ---------------------------------------------------------------------------------------------------
-// Graded meshes, piecewise material and the free far end (issue 22). The element matrices integrate
-// ρ φ_a φ_b and E φ_a' φ_b' exactly on each element, so 1ᵀM1 = Σ ρ_e h_e = ∫ρ, xᵀMx = ∫ρx², S1 = 0 on
-// all nodes, and xᵀSx = ∫E (x' = 1).
+// Graded meshes, piecewise material and the free far end (the field's benchmarks, doc/benchmarks.md).
+// The element matrices integrate ρ φ_a φ_b and E φ_a' φ_b' exactly on each element, so 1ᵀM1 = Σ ρ_e h_e
+// = ∫ρ, xᵀMx = ∫ρx², S1 = 0 on all nodes, and xᵀSx = ∫E (x' = 1).
 
 TEST_CASE("a graded mesh has h_k = h0 r^k, ends at L, and its P1 matrices integrate rho and E exactly") {
   for (const double r : {1.0, 0.9, 1.05, 1.3}) {

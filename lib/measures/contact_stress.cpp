@@ -1,6 +1,7 @@
 /// @file contact_stress.cpp
 /// @brief Where the oscillation of the contact stress comes from, and stresses that keep it bounded
-/// (issue 26, item 3): derivation and checks. The measurements are experiments/fig_stress.cpp's.
+/// (the paper's benchmark, CN + Mod 3 and the other schemes): derivation and checks. The measurements are
+/// experiments/fig_stress.cpp's.
 ///
 /// 1. The wake of a smeared front. A status change makes the exact λ jump by J and sends a front (a jump
 /// of u_x) into the bar; the front comes back to x = 0 and makes λ jump again. The front is the sum of
@@ -22,13 +23,12 @@
 ///
 ///     TV(wake) ≈ (2/π) ∫ a k dd ~ J (C t / h)^{1/2} ∫₀^{O(1)} ξ^{(μ−1)/2} dξ  ∝  J (t/h)^{1/2}.
 ///
-/// **TV(λ_h)/TV(λ) grows like N^{1/2} whatever μ**: the phase order changes the constant, not the
-/// exponent (the grid-scale modes, where the matched blend is no better, carry the variation). Measured
-/// last round (CN + Mod 3, c = ½, ten periods): 5.64, 11.4, 22.5 at N = 100, 400, 1600, slopes 0.51 and
-/// 0.49 per factor four; fig_stress measures it again. The wake's L² norm, ∫ a² dd ~ J² h ∫_{h/W} ξ^{−2} dξ
-/// = J² W, is of the order of the front's own smearing error J W^{1/2}: the wake is about half the L²
-/// error of λ_h, and all of its variation. A step average or a moving average over a few steps (width
-/// O(h) ≪ W) removes neither (the issue measured < 25 %): this is not sampling noise.
+/// **TV(λ_h)/TV(λ) grows like N^{1/2} whatever μ**: the phase order changes the constant, not the exponent
+/// (the grid-scale modes, where the matched blend is no better, carry the variation); fig_stress measures the
+/// slope (CN + Mod 3, c = ½, ten periods) for N from 100 to 1600. The wake's L² norm, ∫ a² dd ~ J² h ∫_{h/W}
+/// ξ^{−2} dξ = J² W, is of the order of the front's own smearing error J W^{1/2}: the wake is about half the
+/// L² error of λ_h, and all of its variation. A step average or a moving average over a few steps (width O(h)
+/// ≪ W) removes neither (it lowers the variation by less than a quarter): this is not sampling noise.
 ///
 /// 1b. Each scheme's own smearing width. W is where a mode stops travelling with the front: a phase lag
 /// k t C (kh)^μ of one radian (a dispersive scheme), or a damping e^{−1} (a dissipative one); either way
@@ -41,9 +41,9 @@
 /// Backward Euler's amplification 1/(1 ∓ iΩ) has modulus (1 + Ω²)^{−1/2}: over a time t a mode is damped
 /// by exp(−k²Δt t/2) (its phase error −(kΔt)²/3 is slower than that damping acts), so W = (Δt t/2)^{1/2}
 /// = ((c/2) h t)^{1/2}: μ = 1, C = c/2 — no dispersive wake to remove, and a front already smeared over
-/// W ≫ CN's (doctest below). Before this round every scheme used CN's W; for PS (β = ¼ by default)
-/// nothing changes, for backward Euler the window was too narrow by (W_BE/W_CN) = O(h^{−1/6}) and did
-/// almost nothing (fig_stress measures both: the window's TV and L² on BE with its own width).
+/// W ≫ CN's (doctest below). So each scheme's window takes its own W: for PS (β = ¼ by default) it is
+/// CN's, for backward Euler CN's width would be too narrow by (W_BE/W_CN) = O(h^{−1/6}) and do almost
+/// nothing (fig_stress measures the window's TV and L² on BE with its own width).
 ///
 /// 2. Window averages. Averaging λ_h over a window of width δ with a kernel whose transfer decays like
 /// (kδ)^{−p} multiplies the wake's mode k by min(1, (kδ)^{−p}):
@@ -62,8 +62,8 @@
 /// phase. This constant is chosen by that rule before any measurement, not fitted. The fronts of a run
 /// have different ages; the window takes the age t (the current instant), an upper bound for every
 /// front's (a simplification: a front born late is smoothed more than it needs).
-/// 2b. The bounded level, and why the matched mass sits higher (derived after fig_stress measured 2.05
-/// with A = ¼ against 1.34 with A = 0, then checked against both). Smoothing a jump with a positive
+/// 2b. The bounded level, and why the matched mass sits higher (derived to explain fig_stress's levels,
+/// 2.05 with A = ¼ against 1.34 with A = 0, and checked against both). Smoothing a jump with a positive
 /// kernel keeps its variation, so the ratio is 1 + TV(wake after the window)/TV(λ). With the amplitude
 /// of §1, the windowed wake is J (μ(μ + 1) C t/h)^{1/2} ∫_{h/W} ξ^{(μ−1)/2} (ξW/h)^{−p} dξ (the spline
 /// passes the modes below 1/W, and (h/W)^{(μ+1)/2} = (h/(C t))^{1/2}):
@@ -79,9 +79,9 @@
 ///
 /// L² error: the window smears a jump over δ, an error J c_K δ^{1/2} (below: c_K δ^{1/2} checked), of the
 /// order W^{1/2} of λ_h's own error, and it removes the wake's part of that error; whether the sum is
-/// below λ_h's is a matter of constants (conjecture; measured by fig_stress). So the conjecture of the
-/// issue ("a window matched to W bounds TV with an L² error O(W^{1/2})") holds for a window smooth
-/// enough (p > (μ + 1)/2) and fails for the box.
+/// below λ_h's is a matter of constants (conjecture; measured by fig_stress). So the conjecture
+/// "a window matched to W bounds TV with an L² error O(W^{1/2})" holds for a window smooth enough
+/// (p > (μ + 1)/2) and fails for the box.
 ///
 /// 3. A positive kernel of unit mass and fixed width, applied to the samples extended by constants, is
 /// a convolution with a probability: it cannot increase the total variation (TV(K * v) ≤ TV(v)), it

@@ -1,5 +1,5 @@
 /// @file contact_stress.hpp
-/// @brief The contact stresses a run can report (issue 26, item 3): the scheme's multiplier λ_h and
+/// @brief The contact stresses a run can report: the scheme's multiplier λ_h and
 /// post-processings of one run that keep its oscillation bounded as the mesh is refined; their registry,
 /// the smearing width they are matched to, and the measures of a stress history.
 #pragma once

@@ -1,10 +1,11 @@
-// Issue 23's verdicts over regions: mass redistribution against the other contact classes. See
+// The verdicts over regions of mass redistribution against the other contact classes
+// (doc/contact_treatments.md). See
 // claims_classes.hpp; the full matrix is experiments/fig_classes.cpp, these rows its checked part.
 //
 // The predictions, derived before the numbers, with their mechanisms:
 //
 // (O) Stress oscillation. A class that keeps the contact node's inertia (the standard mass) and
-//     enforces the contact on it, exactly or by a velocity correction (today: cn, ps, cn-switch,
+//     enforces the contact on it, exactly or by a velocity correction (in the registry: cn, ps, cn-switch,
 //     taylor-flanagan with the consistent mass), must stop the node's momentum m₀v (m₀ = M₀₀ = h/3)
 //     within one step at every impact and at every re-impact of a node that chatters: λ carries an
 //     impulse m₀v/Δt per switch, of order (h/3)(½)/(Ch) = 1/(6C), independent of h, and the number of
@@ -16,16 +17,16 @@
 //     which baseline_regions calls two schemes equal), in every cell N ∈ {50, 100, 200}, Δt/h ∈ {½, 1/√3}.
 //     Not predicted here for classes whose force is not an impulse (penalty and Nitsche: their own
 //     derivations, (P) and (N') below) nor on the grazing benchmark (no impact, no impulse).
-// (O') The field's benchmarks with an impact at nonzero speed (issue 23, once every class took a load and a
-//     gap): impacting (Code_Aster SDNV100: a rigid impact at v₀ across a gap, one contact of 2L/c),
+// (O') The field's benchmarks with an impact at nonzero speed (doc/benchmarks.md; every class takes a load and
+//     a gap): impacting (Code_Aster SDNV100: a rigid impact at v₀ across a gap, one contact of 2L/c),
 //     layered (a two-layer bar hitting a wall, waves reflected at the interface back onto the contact
 //     end) and bouncing (Doyen–Ern–Piperno: impacts at the free-fall speed under gravity). Each stops the
 //     contact end's momentum at every impact, so (O)'s mechanism applies unchanged, with m₀v/Δt of the
 //     benchmark's own speed, and so does its prediction, criterion and band, cell by cell over the same
 //     region. Not predicted on gravity-paper: after its impact the load presses the node onto the
-//     obstacle, and how many switches the chatter of (O) then makes was not derived. (These rows were
-//     written after fig_classes's N = 200, Δt = h/2 column was seen; the prediction, criterion, band and
-//     region are (O)'s, not chosen from it.)
+//     obstacle, and how many switches the chatter of (O) then makes was not derived. (fig_classes's N = 200,
+//     Δt = h/2 column was known when these rows were set; the prediction, criterion, band and region are
+//     (O)'s, not chosen from it.)
 // (E) Energy over 10³ impacts. EC + Mod 3 conserves its discrete energy exactly (energy_step.cpp) up
 //     to round-off, 1e-6 over 10³ impacts with room to spare. A class that removes the inertial node's
 //     kinetic energy at each impact (ps with e = 0, taylor-flanagan: ½ṽ₀²/r₀ per correction,

@@ -1,6 +1,6 @@
 /// @file claims_classes.hpp
-/// @brief Issue 23's verdicts: where mass redistribution (Mod 3 with CN, EC, CN-switch) is better than,
-/// equal to or worse than each other contact class of the registry, with the mechanism and the
+/// @brief The verdicts of the contact classes: where mass redistribution (Mod 3 with CN, EC, CN-switch) is
+/// better than, equal to or worse than each other contact class of the registry, with the mechanism and the
 /// criterion derived before the numbers (claims_classes.cpp). Registered in check_all (claims.cpp).
 #pragma once
 

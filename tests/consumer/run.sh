@@ -10,10 +10,10 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/mrm-consumer.XXXXXX")
 trap 'rm -rf -- "$work"' EXIT
 
 cmake --install "$build" --prefix "$work/prefix" >"$work/install.log" || { cat "$work/install.log"; exit 1; }
-for f in lib/libmrm.a include/mrm/p1.hpp lib/cmake/mrm/mrmConfig.cmake lib/cmake/mrm/mrmConfigVersion.cmake; do
+for f in lib/libmrm.a include/mrm/core/problem.hpp include/mrm/fem/p1.hpp lib/cmake/mrm/mrmConfig.cmake lib/cmake/mrm/mrmConfigVersion.cmake; do
   [[ -f $work/prefix/$f ]] || { echo "install_consumer: $f was not installed"; exit 1; }
 done
-if grep -lE '^[[:space:]]*#[[:space:]]*include[[:space:]]*[<"]doctest' "$work"/prefix/include/mrm/*.hpp; then
+if grep -rlE --include='*.hpp' '^[[:space:]]*#[[:space:]]*include[[:space:]]*[<"]doctest' "$work"/prefix/include/mrm; then
   echo "install_consumer: an installed header includes doctest (listed above)"; exit 1
 fi
 cmake -S "$source" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_CXX_COMPILER="$cxx" \
