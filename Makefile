@@ -149,11 +149,11 @@ $(BENCH_SHORT):
 	mkdir -p $@
 
 # ---- The claims of the paper (mathematics.md §6) ----------------------------------------------------
-# `make check-claims` runs every check of repro/claims.cpp (the program experiments/check_claims.cpp)
+# `make check-claims` runs every check of repro/claims/ (the program experiments/check_claims.cpp)
 # and prints its summary (at most 12 lines of at most 100 columns: each claim and its verdict); the table
 # claim | measured, with the margin | criterion, with its basis | verdict is $(DATA)/claims.txt (--detail).
 # It fails iff a check FAILED (expected
-# failures, listed with their reasons in repro/claims.cpp, do not fail it). `make test` runs it (the
+# failures, listed with their reasons in repro/claims/expectations.cpp, do not fail it). `make test` runs it (the
 # ctest entry check_claims). The same table for the report, as LaTeX and Markdown: $(DATA)/claims.tex and
 # $(DATA)/claims.md; its summary (at most 12 lines: verdict and region of each claim) as \mrmdef values
 # and as a table, $(DATA)/claims_summary.tex and $(DATA)/claims_summary_table.tex; and the sweep behind

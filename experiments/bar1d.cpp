@@ -31,7 +31,7 @@
 // larger of the two bars' (repro/configurations.hpp, run_configuration). --grading R runs the paper's
 // benchmark, a smooth one or data of one's own on the mesh h_k = h0 R^k (finer toward the contact,
 // dt = C h0), and on the paper's benchmark prints the period law's predictions for that mesh beside the
-// measured drift (lib/measures/period_law.hpp: the eigenvalue law, and the first-order change against Mod 3). Its
+// measured drift (lib/fem/period_law.hpp: the eigenvalue law, and the first-order change against Mod 3). Its
 // standard output is the same bytes for the same command except the wall time of the run
 // (wall_seconds), which `--no-timing` leaves out.
 //
@@ -273,7 +273,7 @@ void resolve_options(const cli::Parser& parser, Options& o, Run& r) {
       throw cli::UsageError("--scheme: " + o.scheme + ": --benchmark " + o.benchmark +
                             " (two bodies coupled by one contact multiplier) runs with cn only (allowed: cn)");
     // The stresses other than the multiplier are computed from one body's history, which the two bodies'
-    // run does not keep (repro/configurations.cpp, run_two_bodies): the multiplier is its stress.
+    // run does not keep (repro/configurations/two_bodies.cpp, run_two_bodies): the multiplier is its stress.
     if (parser.given("--stress") && o.stress != "multiplier")
       throw cli::UsageError("--stress: " + o.stress + " with --benchmark " + o.benchmark +
                             " (the two bodies' run keeps no stress history; allowed: multiplier)");

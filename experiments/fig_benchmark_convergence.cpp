@@ -12,7 +12,7 @@
 // Mod 3 on the finest mesh with Δt = 2h/c, h/c, h/(2c). (3) The exact contact windows of each benchmark
 // and those of the finest Mod 3 run. (4) The period law on graded meshes h_k = h₀ r^k: the drift per
 // period of Mod 1, Mod 2 and equal shares over the N − 1 nodes (spread:N−1), each minus Mod 3's in the
-// same set-up, measured on the paper's benchmark (lib/measures/period_law.hpp: measure_benchmark_phase, the
+// same set-up, measured on the paper's benchmark (lib/measures/phase.hpp: measure_benchmark_phase, the
 // doctest's machinery) against the first-order prediction ΔP = Σ δmᵢ κ(xᵢ) (first_order_period_change).
 //
 // Predictions (conjectures: heuristic, from the regularity of the exact solutions, by the mechanisms
@@ -28,7 +28,7 @@
 //     in H¹ (a kink smeared over O(h) costs O(h) in L²), 2 for u in L²; u(0,·) ≡ 0 exactly and in every
 //     run (no measure).
 // A fitted order "agrees" within ±0.25; disagreements are printed in italics, not hidden.
-//   - graded meshes: the tolerance is the doctest's (lib/measures/period_law.cpp), the measurement's resolution
+//   - graded meshes: the tolerance is the doctest's (lib/fem/period_law.cpp), the measurement's resolution
 //     measured on the uniform mesh, 0.15 h₀.
 //
 // Sample runs:

@@ -7,7 +7,7 @@
 // instants of impact and release), against time; (b) the impact
 // times read off the contact indicator (lib/measures/phase.cpp) and their errors eₖ = t̂ₖ − tₖ against the
 // exact impacts tₖ = L + 3Lk, beside the period law's prediction e₀ + k ΔP with ΔP = 2ℓ_f + ℓ_c − 3L
-// from the first eigenvalues of the reduced pencils (lib/measures/period_law.cpp: −4h/3, −h/3, 0 + O(h²)).
+// from the first eigenvalues of the reduced pencils (lib/fem/period_law.cpp: −4h/3, −h/3, 0 + O(h²)).
 // The measured drift per period (least squares, time units per period, early < 0) and the law's are
 // written for the report.
 //

@@ -13,28 +13,16 @@
 namespace mrm::repro {
 
 const Label& scheme_label(Scheme scheme) {
-  // One entry per scheme of mrm::scheme_registry(), in its order (the test below checks both).
-  static const std::array<Label, 12> labels{{
-      {to_string(Scheme::crank_nicolson), "Crank–Nicolson", "Crank--Nicolson", "CN"},
-      {to_string(Scheme::backward_euler), "backward Euler", "backward Euler", "BE"},
-      {to_string(Scheme::paoli_schatzman), "Paoli–Schatzman (¼, 0)", "Paoli--Schatzman $(\\frac14, 0)$", "PS"},
-      {to_string(Scheme::energy_conserving), "EC", "energy-conserving Crank--Nicolson", "EC"},
-      {to_string(Scheme::switching), "CN-switch", "Crank--Nicolson with a $\\theta$-step at each status change",
-       "CN-switch"},
-      {to_string(Scheme::newmark), "Newmark (β, γ), exact contact", "Newmark $(\\beta, \\gamma)$, exact contact",
-       "Newmark"},
-      {to_string(Scheme::penalty), "penalty", "Newmark $(\\beta, \\gamma)$ with a penalty", "penalty"},
-      {to_string(Scheme::nitsche), "Nitsche", "Newmark $(\\beta, \\gamma)$ with Nitsche's terms", "Nitsche"},
-      {to_string(Scheme::moreau_jean), "Moreau–Jean", "Moreau--Jean $(\\theta, e)$", "MJ"},
-      {to_string(Scheme::taylor_flanagan), "Taylor–Flanagan", "Taylor--Flanagan (central differences)", "TF"},
-      {to_string(Scheme::explicit_central), "explicit, massless contact node",
-       "central differences with a massless contact node", "CD"},
-      {to_string(Scheme::dke), "DKE (contact-stabilised Newmark)",
-       "Deuflhard--Krause--Ertel's contact-stabilised Newmark", "DKE"},
-  }};
+  // One label per entry of mrm::scheme_registry(), read from the entry (lib/time/scheme_registry.cpp).
+  static const std::vector<Label> labels = [] {
+    std::vector<Label> all;
+    for (const SchemeInfo& info : scheme_registry())
+      all.push_back({info.id, info.plain, info.latex, info.abbreviation});
+    return all;
+  }();
   const auto& registry = scheme_registry();
   for (std::size_t k = 0; k < registry.size(); ++k)
-    if (registry[k].scheme == scheme) return labels.at(k);
+    if (registry[k].scheme == scheme) return labels[k];
   throw std::logic_error("scheme_label: a scheme without a registry entry");
 }
 

@@ -1,7 +1,7 @@
 // The Δt study over a family of meshes (the error estimate in time, mathematics.md §5): Crank–Nicolson's
 // error in time at fixed h, against a reference that is itself checked against a finer one, every halving
 // of Δt in the asymptotic range judged, on every mesh of a family. Used by experiments/fig_time_error.cpp
-// (the table of the report) and by the claims check's row on the order in time (repro/claims.cpp). The
+// (the table of the report) and by the claims check's row on the order in time (repro/claims/). The
 // derivations are in time_family.cpp.
 #pragma once
 

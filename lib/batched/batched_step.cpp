@@ -800,31 +800,7 @@ std::vector<BatchTarget> batch_targets() {
   return targets;
 }
 
-int batch_family(Scheme scheme) {
-  switch (scheme) {
-    case Scheme::newmark:
-    case Scheme::penalty:
-    case Scheme::nitsche:
-      return 4;
-    case Scheme::crank_nicolson:
-    case Scheme::backward_euler:
-      return 0;
-    case Scheme::paoli_schatzman:
-      return 1;
-    case Scheme::energy_conserving:
-      return 2;
-    case Scheme::switching:
-      return 3;
-    case Scheme::moreau_jean:
-      return 5;
-    case Scheme::dke:
-      return 6;
-    case Scheme::taylor_flanagan:
-    case Scheme::explicit_central:
-      return 7;
-  }  // no default: a scheme added to the enum without a case is a -Wswitch warning (an error in CI)
-  throw std::logic_error("batch_family: not a scheme of the registry");
-}
+int batch_family(Scheme scheme) { return scheme_info(scheme).batch_family; }
 
 BatchTarget current_batch_target() {
   const std::int64_t bit = hwy::SupportedAndGeneratedTargets().front();  // the best the dispatch chooses
@@ -1788,7 +1764,7 @@ TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for
         if (batch_family(c.scheme) == 4) class_parameters(p, k, mesh, mass, true, dt);
         if (c.scheme == Scheme::moreau_jean || c.scheme == Scheme::dke)
           mass = one_solve_parameters(p, k, problem, mesh.h());
-        if (is_explicit(c.scheme))
+        if ((scheme_info(c.scheme).family == StepFamily::central_differences))
           mass = explicit_parameters(p, k, problem, mesh, 0.5 + 0.035 * static_cast<double>(k % 13), dt);
         batch.emplace_back(problem, mesh, mass, p, dt);
         alone.emplace_back(problem, mesh, mass, p, dt);
@@ -1879,7 +1855,8 @@ TEST_CASE("a partial step keeps the runs that stay, and runs at their own rates 
         if (batch_family(c.scheme) == 4) class_parameters(p, k, mesh, mass, false, dt);  // implicit: any rate
         if (c.scheme == Scheme::moreau_jean || c.scheme == Scheme::dke)
           mass = one_solve_parameters(p, k, problem, mesh.h());
-        if (is_explicit(c.scheme))  // rates 1, 2, 3, 5 of 0.18 of the stability limit
+        if ((scheme_info(c.scheme).family ==
+             StepFamily::central_differences))  // rates 1, 2, 3, 5 of 0.18 of the stability limit
           mass = explicit_parameters(p, k, problem, mesh, 0.18 * static_cast<double>(rates[k % rates.size()]), dt);
         batch.emplace_back(problem, mesh, mass, p, dt);
         alone.emplace_back(problem, mesh, mass, p, dt);

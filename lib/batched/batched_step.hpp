@@ -44,6 +44,7 @@ BatchTarget current_batch_target();
 /// unknowns and family, on the fast kernel and without a load, share the lanes of a group whatever their
 /// scheme, mass, Δt or data; runs of different families never do. Every scheme of the registry has a
 /// family (a doctest checks it). The sweep layer batches runs by it (repro/sweep.hpp).
+/// It is the scheme's registry entry's batch_family (lib/time/scheme_registry.hpp).
 int batch_family(Scheme scheme);
 
 /// A batch of runs (BarSimulation's at level 0, moved in) advanced one step at a time. Runs whose
@@ -69,7 +70,7 @@ class BatchedSimulation {
   void step();
   /// Advances the runs k with advance[k] ≠ 0 by one step and leaves the others as they are, bit for bit
   /// (a run's lane is kept, not stepped): runs of different Δt share a batch, each stepped at its own rate
-  /// (the sweep layer, repro/sweep.cpp). Throws std::invalid_argument unless there is one flag per run.
+  /// (the sweep layer, repro/sweep/batched.cpp). Throws std::invalid_argument unless there is one flag per run.
   void step(const std::vector<char>& advance);
   /// The number of runs.
   std::size_t size() const { return runs_.size(); }

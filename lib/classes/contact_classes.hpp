@@ -16,9 +16,6 @@
 
 namespace mrm {
 
-/// Whether `scheme` is one of the contact classes of this file (its registry entry's step family).
-inline bool is_contact_class(Scheme scheme) { return scheme_info(scheme).family == StepFamily::contact_class; }
-
 /// The checks of a contact class's parameters and mass, before any work; throws InvalidParameter naming
 /// the parameter: β < 0 or not finite, γ < ½ (Newmark amplifies), γ₀ ≤ 0, θ_N ∉ [−1, 1], θ_N ≥ γ₀_N
 /// (the first element's stiffness (1 − θ/γ₀)/h is not positive), Moreau–Jean's θ ∉ [½, 1]; exact

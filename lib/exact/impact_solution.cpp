@@ -765,7 +765,7 @@ std::vector<ImpactBenchmark> make_benchmarks() {
     // (λ oscillates between 0 and −1 with period 2, mean −½ = the static λ).
     ImpactBenchmark b{"gravity-paper",
                       "the paper's bar suddenly pressed onto the obstacle by f = -1 (persistent contact)",
-                      "this project's choice (field.md sec. 1)",
+                      "this project's choice (doc/benchmarks.md sec. 5)",
                       "",
                       {},
                       {},

@@ -13,7 +13,7 @@
 /// given their symmetric value (exact_solution.hpp).
 ///
 /// Scale. The measures are computed on the dimensionless problem (L = 1, amplitude of order one: the
-/// harness maps any run to it, repro/configurations.cpp), where every squared norm is of order one;
+/// harness maps any run to it, repro/configurations/scaling.cpp), where every squared norm is of order one;
 /// the measures are ratios of two norms of the same kind, so they do not change under the scaling.
 #include "measures/errors.hpp"
 

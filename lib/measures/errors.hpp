@@ -62,7 +62,7 @@ inline LaneVectors own_lanes(const Sample& sample) { return {sample.displacement
 /// The reference is the closed form of the benchmark (mathematics.md §2) or any other ReferenceSolution,
 /// such as the characteristic solution for any data (mathematics.md §10). The squared norms are taken
 /// as they are: the runs are those of the dimensionless problem (L = 1, data of order one), to which
-/// the harness maps every run (repro/configurations.cpp); the relative measures do not change under
+/// the harness maps every run (repro/configurations/scaling.cpp); the relative measures do not change under
 /// that scaling.
 class ErrorAccumulator {
  public:

@@ -57,7 +57,7 @@
 /// impact is the k-th exact one, however far it has drifted. Other data break that: where the exact
 /// contact force is small for a while, a discrete run floats off the obstacle by a fraction of h and
 /// lands again (on S1 it records contacts of its own between the exact ones, checked by a doctest of
-/// repro/configurations.cpp), and it may miss an exact contact that follows a short free flight. Pairing in order would then compare
+/// repro/configurations/scaling.cpp), and it may miss an exact contact that follows a short free flight. Pairing in order would then compare
 /// unrelated events. For such data a measured impact t̂ and an exact one t are paired when each is the
 /// other's nearest and |t̂ − t| is less than half the smallest interval between exact impacts; unpaired
 /// impacts are reported by count, not compared, and e₀ is defined only when the first exact impact has

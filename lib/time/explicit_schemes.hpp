@@ -1,5 +1,5 @@
 /// @file explicit_schemes.hpp
-/// @brief The explicit contact classes of Doyen–Ern–Piperno (field.md §2, class 6): central differences
+/// @brief The explicit contact classes of Doyen–Ern–Piperno (doc/contact_treatments.md §6): central differences
 /// with a lumped mass and the contact by Taylor–Flanagan's velocity correction (`taylor-flanagan`, GetFEM's
 /// demo_dynamic_contact_1D.py version 4), or with a massless contact node whose algebraic row mass
 /// redistribution makes explicit (`explicit`). Derivations, stability limits and doctests in
@@ -15,9 +15,6 @@
 #include "time/schemes.hpp"
 
 namespace mrm {
-
-/// Whether `scheme` is one of the explicit schemes of this file (its registry entry's step family).
-inline bool is_explicit(Scheme scheme) { return scheme_info(scheme).family == StepFamily::central_differences; }
 
 /// The row-sum lumping of a mass: m_i = Σ_j M̄_ij over all nodes 0..N (the clamped node's column
 /// included, as GetFEM's demo sums it before it eliminates the node), on the unknowns 0..N−1. For the

@@ -92,7 +92,7 @@ FastStep::ContactDecision FastStep::contact_decision(double u0, double u1, doubl
   // EC decides the contact on row 1 instead (energy_step.cpp: its sweep up starts from the value u₀
   // that carries the discrete-gradient force, which is not the contact node's new value at a status
   // change); CN-switch returns before writing anything when the status changes.
-  // The obstacle g = −e u₀ⁿ⁻¹ = −e (u₀ⁿ − W'₀), moved by the gap (issue 22), and of the increment g − u₀ⁿ;
+  // The obstacle g = −e u₀ⁿ⁻¹ = −e (u₀ⁿ − W'₀), moved by the gap, and of the increment g − u₀ⁿ;
   // on contact u₀ⁿ⁺¹ = g exactly. EC's scalar problem is written for u: row 1's ΔU₁ = z + μΔU₀ is passed as
   // u₁ⁿ⁺¹ = (u₁ⁿ + z − μu₀ⁿ) + μu₀ⁿ⁺¹ (schemes.cpp, the reference step).
   double obstacle = three_level_ ? -restitution_ * (u0 - w0) : 0.0;
@@ -392,7 +392,7 @@ TEST_CASE("the fast step and the reference step agree to round-off for every sch
           p.contact_row = form.row;
           const bool large = courant > 1;
           p.beta = form.scheme == Scheme::paoli_schatzman && large ? 0.3 : 0.25;
-          // (e > 0 with the literal row and a massless contact node is refused: schemes.cpp, issue 23.)
+          // (e > 0 with the literal row and a massless contact node is refused: schemes.cpp.)
           const bool literal_massless = form.row == ContactRow::literal && mass.name != "consistent";
           p.restitution = form.scheme == Scheme::paoli_schatzman && large && !literal_massless ? 0.5 : 0.0;
           const double dt = courant * mesh.h();

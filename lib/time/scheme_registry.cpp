@@ -190,11 +190,11 @@ TEST_CASE("every registry entry has its labels, a step family and a batched kern
   std::vector<std::string> texts;
   for (const SchemeInfo& info : scheme_registry()) {
     CAPTURE(info.id);
-    CHECK(!info.text.empty());
+    CHECK(!info.plain.empty());
     CHECK(!info.latex.empty());
-    CHECK(!info.brief.empty());
-    CHECK(std::find(texts.begin(), texts.end(), info.text) == texts.end());  // labels tell schemes apart
-    texts.push_back(info.text);
+    CHECK(!info.abbreviation.empty());
+    CHECK(std::find(texts.begin(), texts.end(), info.plain) == texts.end());  // labels tell schemes apart
+    texts.push_back(info.plain);
     CHECK(info.batch_family >= 0);
     // A contact class, and only one, has a batched kernel of families 4–6; central differences, 7.
     CHECK((info.family == StepFamily::contact_class) == (info.batch_family >= 4 && info.batch_family <= 6));

@@ -17,7 +17,7 @@ enum class Scheme {
   paoli_schatzman,    ///< Paoli–Schatzman (β, e), three levels
   energy_conserving,  ///< EC: Crank–Nicolson with the discrete gradient of the contact energy (mathematics.md §12)
   switching,          ///< CN-switch: Crank–Nicolson, a θ-step where the contact status changes (mathematics.md §12)
-  // The field's contact treatments (Doyen–Ern–Piperno's classes, field.md §2; lib/classes/contact_classes.cpp):
+  // The field's contact treatments (Doyen–Ern–Piperno's classes, doc/contact_treatments.md; lib/classes/):
   newmark,           ///< Newmark(β, γ) with exact (Signorini) enforcement by a multiplier at the new level
   penalty,           ///< Newmark(β, γ) with the penalty force (γ₀/h) min(0, u₀)
   nitsche,           ///< Newmark(β, γ) with Nitsche's boundary terms (θ, γ₀), GetFEM's formulation
@@ -157,9 +157,9 @@ struct SchemeInfo {
   /// Paoli–Schatzman, 2 EC, 3 CN-switch, 4 the Newmark-type classes, 5 Moreau–Jean, 6 DKE, 7 the central
   /// differences (batched_step.hpp, batch_family).
   int batch_family;
-  std::string text;   ///< its label in plain text (figure keys, data headers)
-  std::string latex;  ///< its label in LaTeX (the report's tables)
-  std::string brief;  ///< its short label (narrow table columns)
+  std::string plain;         ///< its label in plain text (figure keys, data headers)
+  std::string latex;         ///< its label in LaTeX (the report's tables)
+  std::string abbreviation;  ///< its short ASCII label (narrow table columns)
 };
 /// Every scheme of the library, in the order of the enum. Adding a scheme is: its code, its doctests,
 /// one entry here (scheme_registry.cpp).

@@ -214,7 +214,7 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
     check_newmark_step(mass_, stiffness_, parameters, dt, mesh.contact_compliance(),
                        mesh.uniform() && mesh.homogeneous() ? mesh.h() : 0.0);
 
-  // The literal row with a massless contact node and a restitution e > 0 (issue 23). The restitution
+  // The literal row with a massless contact node and a restitution e > 0. The restitution
   // law is a law on the velocity of a node with inertia; on the massless node the obstacle −e u₀ⁿ⁻¹
   // follows the literal row's undamped sawtooth of u₀ − u₁ (above: β dⁿ⁺¹ + (1 − 2β) dⁿ + β dⁿ⁻¹ = 0 off
   // contact, roots on the unit circle) and, as measured, feeds it: E(T) = 7e9 at e = ½ (N = 100, c = ½,
@@ -676,7 +676,7 @@ void BarSimulation::reference_step(bool has_load) {
   // its discrete-gradient force (energy_step.cpp); its scalar problem is written for u, so row 1's
   // ΔU₁ = z + μΔU₀ is passed as u₁ⁿ⁺¹ = (u₁ⁿ + z − μu₀ⁿ) + μu₀ⁿ⁺¹. CN-switch decides it as Crank–Nicolson
   // does, and if the status changes, takes its θ-step instead (nothing has been written yet). The gap
-  // (issue 22) moves the obstacle by step_.obstacle_offset.
+  // moves the obstacle by step_.obstacle_offset.
   double obstacle = three_level_ ? -parameters_.restitution * (u[0] - w[0]) : 0.0;  // g
   if (step_.obstacle_offset != 0.0) obstacle += step_.obstacle_offset;              // (keeps a −0)
   Eigen::VectorXd& du = state_.u_new;                                               // ΔU, then Uⁿ⁺¹
@@ -784,7 +784,7 @@ void BarSimulation::switch_step(bool has_load) {
       increment_right_hand_side(theta_step, state_.u, state_.w, state_.lambda, has_load ? &state_.f_now : nullptr,
                                 has_load ? &state_.f_next : nullptr);
   Eigen::VectorXd& du = state_.u_new;                  // ΔU (the increment form), then Uⁿ⁺¹
-  const double obstacle = theta_step.obstacle_offset;  // g: the gap (issue 22), 0 without one
+  const double obstacle = theta_step.obstacle_offset;  // g: the gap, 0 without one
   const ContactStep contact = switch_->solver.solve(rhs.data(), du.data(), theta_step.kappa, obstacle - state_.u[0]);
   const double u0_next = contact.active ? obstacle : state_.u[0] + contact.u0;
   du[0] = u0_next - state_.u[0];
@@ -798,7 +798,7 @@ void BarSimulation::switch_step(bool has_load) {
   if (has_load) state_.f_now.swap(state_.f_next);
 }
 
-// Paoli–Schatzman's explicit first step (GetFEM's demo, issue 23): U¹ = U⁰ + ΔtV⁰ + ½Δt² M⁻¹(F⁰ − SU⁰),
+// Paoli–Schatzman's explicit first step (GetFEM's demo, doc/peer.md): U¹ = U⁰ + ΔtV⁰ + ½Δt² M⁻¹(F⁰ − SU⁰),
 // the three-level scheme's state W' = U¹ − U⁰, X = W'/Δt, and its energy E^{1/2} at t = Δt/2. The demo
 // corrects U¹ when the averaged constraint fails in this step; that case is refused (not needed by the
 // benchmarks, whose contact node starts away from the obstacle).

@@ -41,7 +41,7 @@ class ExplicitStep;
 /// SchemeParameters::kernel says). Memory is O(N): no history is kept. The formulas hold for any L,
 /// but the numbers are sized for the dimensionless problem, L = 1 and data of order one (the energy's
 /// quadratic forms are taken as they are): the harness maps any length and amplitude to it by the
-/// scaling law (mathematics.md §1, repro/configurations.cpp).
+/// scaling law (mathematics.md §1, repro/configurations/scaling.cpp).
 class BarSimulation {
  public:
   /// Checks every input before any work and throws InvalidParameter (a std::invalid_argument) naming
@@ -130,8 +130,8 @@ Index steps_to_reach(double final_time, double dt);
 void run(BarSimulation& simulation, Index steps, const std::function<void(const Sample&)>& observe);
 
 /// How Crank–Nicolson's step is solved: for the increment ΔU = Uⁿ⁺¹ − Uⁿ (the library's step), or for
-/// Uⁿ⁺¹ with the velocity recovered from the difference 2(Uⁿ⁺¹ − Uⁿ)/Δt − Vⁿ (the form before issue 21,
-/// kept only for the round-off benchmark of the time study and its doctest).
+/// Uⁿ⁺¹ with the velocity recovered from the difference 2(Uⁿ⁺¹ − Uⁿ)/Δt − Vⁿ (kept only for the round-off
+/// benchmark of the time study and its doctest, which compare the two).
 enum class StepForm { increment, for_u };
 /// The benchmark's first impact time by Crank–Nicolson with `mass` (massless contact node) on N
 /// elements at step dt: the zero of the contact indicator u₁ (f = 0), linear between the two levels

@@ -44,7 +44,7 @@ namespace {
 // Uⁿ⁺¹ is rounded to ε|U| and the two-level velocity Vⁿ⁺¹ = (Uⁿ⁺¹ − Uⁿ)/(θΔt) − ((1−θ)/θ)Vⁿ turns that
 // into ε|U|/Δt per step, which the next step carries on (Δt M Vⁿ in the right-hand side); over T/Δt
 // steps the error grows like Δt⁻² (N = 40, Mod 1, the first impact time: 7.5e-7 off at Δt = h/4096,
-// 1.6e-4 at h/65536, 1.8e-3 at h/262144; issue 21). Solving for ΔU = Uⁿ⁺¹ − Uⁿ instead, with
+// 1.6e-4 at h/65536, 1.8e-3 at h/262144). Solving for ΔU = Uⁿ⁺¹ − Uⁿ instead, with
 // Uⁿ⁺¹ = Uⁿ + ΔU, Uⁿ⁻¹ = Uⁿ − W' (W' = Uⁿ − Uⁿ⁻¹, Paoli–Schatzman's previous increment):
 //
 //     A ΔU = (B₁ − A) Uⁿ + B₂ Vⁿ + G − κλe₀                         (two levels),

@@ -13,7 +13,7 @@ namespace mrm {
 /// The matrices and scalars of one step (★) of schemes.cpp,
 /// A Uⁿ⁺¹ = B₁ Uⁿ + B₂ W + G − κ λ e₀, 0 ≤ u₀ⁿ⁺¹ − g ⊥ λ ≤ 0, for one scheme, mass and Δt: the one
 /// builder of the step's coefficients, used by the reference step, the fast kernel's set-up,
-/// CN-switch's θ-step and the harness's checks of the contact step (repro/claims.cpp).
+/// CN-switch's θ-step and the harness's checks of the contact step (repro/claims/).
 struct StepMatrices {
   Tridiagonal a;   ///< A, the step matrix (row 0 the algebraic contact row S₀· when `algebraic_row`)
   Tridiagonal b1;  ///< B₁, applied to Uⁿ (row 0 zero with the algebraic row)

@@ -1,5 +1,5 @@
 /// @file two_bodies.cpp
-/// @brief Two bars in unilateral contact (field.md §1, two-bars) on the finite element side; see two_bodies.hpp.
+/// @brief Two bars in unilateral contact (doc/benchmarks.md §6, two-bars) on the finite element side; see two_bodies.hpp.
 #include "time/two_bodies.hpp"
 
 #include <algorithm>
@@ -14,7 +14,7 @@
 
 namespace mrm {
 
-/// ## Two bodies coupled by one contact multiplier (issue 22; the project's derivation)
+/// ## Two bodies coupled by one contact multiplier (the project's derivation)
 ///
 /// **The problem.** Two bars A (left, (0, ℓ_A)) and B (right, (ℓ_A, ℓ_A + ℓ_B)) touch at x = ℓ_A across
 /// an initial gap g₀ ≥ 0; the gap z(t) = u_B(ℓ_A⁺, t) − u_A(ℓ_A⁻, t) + g₀ stays ≥ 0, the contact stress

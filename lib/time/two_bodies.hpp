@@ -1,5 +1,5 @@
 /// @file two_bodies.hpp
-/// @brief Two bars in unilateral contact with each other (field.md §1, two-bars): two P1 meshes coupled by
+/// @brief Two bars in unilateral contact with each other (doc/benchmarks.md §6, two-bars): two P1 meshes coupled by
 /// one contact multiplier, each contact node massless under redistribution, stepped by Crank–Nicolson
 /// (derivation in two_bodies.cpp), and the exact chain solution seen from each body.
 #pragma once

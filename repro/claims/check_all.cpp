@@ -203,7 +203,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
         [&] { append(check_contact_step(paper_contact_step_cases(), ContactStepSettings(), judge)); });
   timed("6 exact solution",
         [&] { rows.push_back(check_exact_solution(ExactSolution(1.0, 0.5), FineSolutionSettings(), judge)); });
-  timed("classes (issue 23)", [&] { append(check_classes(ClassesSettings(), judge)); });  // claims_classes.cpp
+  timed("classes", [&] { append(check_classes(ClassesSettings(), judge)); });  // claims_classes.cpp
   timed("7 phase-matched mass", [&] { append(check_phase_matched(PhaseMatchedSettings(), judge)); });  // claims_phase
   timed("7 contact stress", [&] { rows.push_back(check_bounded_stress(StressSettings(), judge)); });   // claims_phase
   append(judge.stale());

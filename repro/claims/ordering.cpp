@@ -39,7 +39,7 @@ namespace mrm::claims {
 // judged over regions of parameters.
 //
 // The paper shows curves, not numbers, and names neither the measure nor the horizon. The mechanism
-// (mathematics.md §8, lib/measures/period_law.cpp) says what to expect: each redistribution shifts the period of
+// (mathematics.md §8, lib/fem/period_law.cpp) says what to expect: each redistribution shifts the period of
 // the benchmark by ΔP = 2δm_loc + (3/2)δm_glob, −4h/3 (Mod 1), −h/3 (Mod 2), 0 (Mod 3), so the impact
 // times drift linearly and the mass-dependent error grows with the horizon, while the
 // mass-independent error (the smearing of the fronts, O((h²t)^{1/3}) for Crank–Nicolson) grows more

@@ -37,7 +37,7 @@ namespace mrm::claims {
 // The mechanism of claim 3: the drift of the impact times (mathematics.md §8).
 //
 // The period law predicts the mass-dependent part of the drift per period, 2ℓ_f + ℓ_c − 3L, from the
-// first eigenvalues of the reduced pencils of each mesh (lib/measures/period_law.cpp: −4h/3, −h/3, 0 + O(h²); the
+// first eigenvalues of the reduced pencils of each mesh (lib/fem/period_law.cpp: −4h/3, −h/3, 0 + O(h²); the
 // eigenvalues carry every order in h, so no next term needs estimating). A scheme adds a drift of its own
 // that the law does not describe (Crank–Nicolson's release of a smeared front; Mod 3's own drift grows
 // with N, −0.04h to −0.16h): the law says nothing about it, so the single masses' drifts are printed,

@@ -434,7 +434,7 @@ TEST_CASE("the field's benchmarks run through the harness in their own units aga
   // c and E of its bar, so the unit chain has Ê = ρ̂ = 1 and length 1, and the measures come back in
   // seconds and J/m². Mod 3 keeps the total mass (its level-0 energy is ½ρLv² = 8e6 J/m² to round-off);
   // the bar flies freely across the gap, so the contact starts at g₀/v within one step and lasts 2L/c
-  // within 4h/c (lib/time/problem_data.cpp, derivation 4). Every benchmark the runs take gives eight
+  // within 4h/c (lib/measures/loads_and_gaps.cpp, derivation 4). Every benchmark the runs take gives eight
   // finite positive errors, or 0 for u(0,·) where the exact u(0,·) ≡ 0 (gravity-paper, held: the
   // absolute error, as ErrorNorms says, and the run's u₀ is exactly 0 too), and the error of u in
   // L²(0,T; L²) decreases from N = 20 to 40.

@@ -84,7 +84,7 @@ std::string joined(const std::vector<std::string>& words) {
 
 // The help, as CLI11 formatters make it (one column of names aligned on the longest, then the
 // description, which carries the default and the choices since registration), followed by the
-// sample runs: the layout tests/bad_invocations.sh reads.
+// sample runs: the layout tests/bad_invocations.cpp reads.
 class Help : public CLI::Formatter {
  public:
   explicit Help(std::vector<std::string> sample_runs) : sample_runs_(std::move(sample_runs)) {}

@@ -214,7 +214,8 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                       std::vector<char> is_class(batch.size()), stepped(batch.size());
                       bool classes = false;
                       for (std::size_t j = 0; j < batch.size(); ++j) {
-                        is_class[j] = is_contact_class(simulations[j].parameters().scheme);
+                        is_class[j] =
+                            scheme_info(simulations[j].parameters().scheme).family == StepFamily::contact_class;
                         classes = classes || is_class[j];
                       }
                       if (own_rates) {
