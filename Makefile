@@ -272,7 +272,7 @@ $(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/
 # member, a broken reference) fails the build. The formulas are rendered by MathJax 2 from Debian's
 # libjs-mathjax, whose needed parts are copied beside the HTML (MATHJAX_RELPATH = mathjax), so that the
 # pages work offline.
-DOC_INPUT := lib $(wildcard doc/mainpage.md doc/mathematics.md doc/benchmarks.md doc/contact_treatments.md doc/peer.md \
+DOC_INPUT := lib $(wildcard doc/mainpage.md doc/mathematics.md doc/architecture.md doc/benchmarks.md doc/contact_treatments.md doc/peer.md \
                             doc/module_*.md)
 MATHJAX := /usr/share/javascript/mathjax
 MATHJAX_PARTS := MathJax.js extensions jax/input/TeX jax/element jax/output/HTML-CSS fonts/HTML-CSS/TeX \

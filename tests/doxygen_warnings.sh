@@ -11,7 +11,7 @@ trap 'rm -rf -- "$work"' EXIT
 cd "$root"
 inputs=lib
 mainpage=doc/mainpage.md
-for f in doc/mainpage.md doc/mathematics.md doc/benchmarks.md doc/contact_treatments.md doc/peer.md doc/module_*.md; do [[ -f $f ]] && inputs+=" $f"; done
+for f in doc/mainpage.md doc/mathematics.md doc/architecture.md doc/benchmarks.md doc/contact_treatments.md doc/peer.md doc/module_*.md; do [[ -f $f ]] && inputs+=" $f"; done
 [[ -f $mainpage ]] || mainpage=''
 { cat Doxyfile; echo "OUTPUT_DIRECTORY = $work"; echo "INPUT = $inputs"; echo "USE_MDFILE_AS_MAINPAGE = $mainpage"; } |
   doxygen - >"$work/doxygen.log" 2>&1

@@ -15,27 +15,27 @@
 
 namespace mrm::class_steps {
 
-// A solve with a factorised matrix and no contact: the sweep down, u₀ from the reduced row, the sweep up.
+/// A solve with a factorised matrix and no contact: the sweep down, u₀ from the reduced row, the sweep up.
 inline void solve_free(const ContactSolver& solver, Eigen::VectorXd& x) {
   solver.sweep_down(x.data(), x.data());
   solver.sweep_up(x[0] * solver.inverse_pivot()[0], x.data());
 }
 
-// The discrete energy ½ VᵀMV + ½ UᵀSU of a level (each class adds its contact law's own part, if any).
-// Tridiagonal::form is xᵀAx in one pass without a product vector, the bits of bilinear(x, x) (p1.cpp).
+/// The discrete energy ½ VᵀMV + ½ UᵀSU of a level (each class adds its contact law's own part, if any).
+/// Tridiagonal::form is xᵀAx in one pass without a product vector, the bits of bilinear(x, x) (p1.cpp).
 inline double kinetic_and_strain(const Tridiagonal& mass, const Tridiagonal& stiffness, const StepState& s) {
   return 0.5 * mass.form(s.w) + 0.5 * stiffness.form(s.u);
 }
 
-// (A x)_i as Tridiagonal::multiply sums it: (A_ii x_i + A_{i,i−1} x_{i−1}) + A_{i,i+1} x_{i+1}, the terms
-// that exist, in this order (the fused steps below form their products row by row with these bits).
+/// (A x)_i as Tridiagonal::multiply sums it: (A_ii x_i + A_{i,i−1} x_{i−1}) + A_{i,i+1} x_{i+1}, the terms
+/// that exist, in this order (the fused steps below form their products row by row with these bits).
 inline double row_product(const Tridiagonal& a, const double* x, Index i, Index n) {
   double s = a.diag[i] * x[i];
   if (i > 0) s += a.lower[i] * x[i - 1];
   if (i + 1 < n) s += a.upper[i] * x[i + 1];
   return s;
 }
-// The same for an interior row, 0 < i < n − 1, read from raw diagonals (no test per row).
+/// The same for an interior row, 0 < i < n − 1, read from raw diagonals (no test per row).
 inline double interior_row(const double* d, const double* lo, const double* up, const double* x, Index i) {
   double s = d[i] * x[i];
   s += lo[i] * x[i - 1];
@@ -43,9 +43,9 @@ inline double interior_row(const double* d, const double* lo, const double* up, 
   return s;
 }
 
-// The sweep down of the solver's A (contact.cpp: y_{n−1} = b_{n−1}, y_i = b_i − ε_i y_{i+1}) with b formed
-// row by row: b_row(i, P_i, Q_i) from the two matrix–vector rows (P x)_i and (Q y)_i, row_product at the
-// last row and interior_row on rows n − 2 … 1; b0, row 0's, is the caller's (a massless node's differs).
+/// The sweep down of the solver's A (contact.cpp: y_{n−1} = b_{n−1}, y_i = b_i − ε_i y_{i+1}) with b formed
+/// row by row: b_row(i, P_i, Q_i) from the two matrix–vector rows (P x)_i and (Q y)_i, row_product at the
+/// last row and interior_row on rows n − 2 … 1; b0, row 0's, is the caller's (a massless node's differs).
 template <class Row>
 inline void sweep_down_forming(const ContactSolver& solver, Index n, double* y, const Tridiagonal& p_matrix,
                                const double* x, const Tridiagonal& q_matrix, const double* z, const Row& b_row,
@@ -62,6 +62,7 @@ inline void sweep_down_forming(const ContactSolver& solver, Index n, double* y, 
   y[0] = b0 - eps[0] * yi;
 }
 
+/// Throws std::runtime_error naming the scheme and the level when the discrete energy is not finite.
 inline void require_finite(double energy, Scheme scheme, Index level) {
   if (!std::isfinite(energy))
     throw std::runtime_error("scheme " + to_string(scheme) + ": the run lost finiteness at level " +
