@@ -231,10 +231,79 @@ void write_graded(std::ostream& out, std::ostream& defs, const std::vector<Grade
 struct Study {
   const std::vector<mrm::repro::Measures>& measures;
   std::size_t levels;
+  std::size_t time_study;  ///< the index of the Δt study's first run
   const mrm::repro::Measures& at(std::size_t b, std::size_t m, std::size_t l) const {
     return measures[(b * masses.size() + m) * levels + l];
   }
+  // The Δt study's run c of benchmark b (the last ratio is the h study's finest Mod 3 run).
+  const mrm::repro::Measures& time_run(std::size_t b, std::size_t c) const {
+    return c + 1 < time_courants.size() ? measures[time_study + b * (time_courants.size() - 1) + c]
+                                        : at(b, 2, levels - 1);
+  }
 };
+
+// The data blocks of the h study (one per benchmark and mass) and the block of Δt alone.
+void write_error_blocks(std::ostream& out, const Study& study, const mrm::repro::MeshRefinement& meshes) {
+  const std::size_t time_block = benchmarks.size() * masses.size();
+  for (std::size_t b = 0; b < benchmarks.size(); ++b)
+    for (std::size_t m = 0; m < masses.size(); ++m) {
+      out << (b + m ? "\n\n" : "") << "# block " << b * masses.size() + m << ": benchmark = " << benchmarks[b]
+          << ", mass = " << masses[m] << ", scheme = cn\n";
+      std::vector<mrm::repro::ErrorRow> rows;
+      for (std::size_t l = 0; l < study.levels; ++l)
+        rows.push_back({meshes.elements(l), mrm::ErrorAccumulator::values(study.at(b, m, l).errors)});
+      mrm::repro::write_error_rows(out, 1.0, courant, rows);
+    }
+  out << "\n\n# block " << time_block << ": dt alone, cn, mod3, N = " << meshes.finest()
+      << "\n# columns: benchmark dt_over_h_over_c";
+  for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
+  out << '\n';
+  for (std::size_t b = 0; b < benchmarks.size(); ++b)
+    for (std::size_t c = 0; c < time_courants.size(); ++c) {
+      out << benchmarks[b] << ' ' << cli::format_real(time_courants[c]);
+      for (const double e : mrm::ErrorAccumulator::values(study.time_run(b, c).errors))
+        out << ' ' << cli::format_real(e);
+      out << '\n';
+    }
+}
+
+// The row of benchmark b in the table of orders in Δt alone: the order from the three steps (fit), Mod 3
+// on the finest mesh.
+std::vector<std::string> time_orders_row(const Study& study, std::size_t b) {
+  std::vector<std::string> time_row{benchmarks[b], "Mod 3"};
+  std::vector<double> dts(time_courants.begin(), time_courants.end());
+  for (std::size_t k = 0; k < 8; ++k) {
+    std::vector<double> errors;
+    for (std::size_t c = 0; c < time_courants.size(); ++c)
+      errors.push_back(mrm::ErrorAccumulator::values(study.time_run(b, c).errors)[k]);
+    if (std::all_of(errors.begin(), errors.end(), [](double e) { return e == 0; })) {
+      time_row.push_back("n/a");
+      continue;
+    }
+    time_row.push_back(mrm::tex_number(mrm::fit_order(dts, errors).order, 2));
+  }
+  return time_row;
+}
+
+// The contact windows of benchmark `key`: exact (in the benchmark's units) and the finest Mod 3 run's
+// (N = finest), on standard output and as values of the prose, with the shift of the first window's ends.
+void write_windows(std::ostream& defs, const std::string& key, const std::vector<mrm::ContactInterval>& exact,
+                   const mrm::repro::Measures& fine, mrm::Index finest) {
+  mrm::tex_define(defs, "benchconv:windows:exact:" + key, windows_text(exact, 6));
+  mrm::tex_define(defs, "benchconv:windows:measured:" + key, windows_text(fine.contact_windows, 6));
+  std::cout << key << " exact_contact_windows =";
+  for (const auto& w : exact) std::cout << " [" << cli::format_real(w.start) << ", " << cli::format_real(w.end) << "]";
+  std::cout << "\n" << key << " measured_contact_windows (cn, mod3, N = " << finest << ") =";
+  for (const auto& w : fine.contact_windows)
+    std::cout << " [" << cli::format_real(w.start) << ", " << cli::format_real(w.end) << "]";
+  std::cout << '\n';
+  if (!exact.empty() && !fine.contact_windows.empty()) {
+    mrm::tex_define(defs, "benchconv:firststart:" + key,
+                    mrm::tex_number(fine.contact_windows.front().start - exact.front().start, 2));
+    mrm::tex_define(defs, "benchconv:firstend:" + key,
+                    mrm::tex_number(fine.contact_windows.front().end - exact.front().end, 2));
+  }
+}
 
 // The row of benchmark b and mass m in the table of orders: each measure's fitted order over every mesh,
 // the local order between the two finest and the conjectured order, with their values; counts the
@@ -365,34 +434,8 @@ int main(int argc, char** argv) {
     out << "# blocks: 3 b + m: benchmark b in (bouncing, impacting, gravity-paper, layered, two-bars), mass m in "
            "(mod1, mod2, mod3), scheme cn, dt = h/(2c); "
         << time_block << ": dt alone (mod3, N = " << finest << "); " << graded_block << ": graded meshes\n";
-    const Study study{measures, levels};
-    const auto at = [&](std::size_t b, std::size_t m, std::size_t l) -> const mrm::repro::Measures& {
-      return study.at(b, m, l);
-    };
-    // The Δt study's run c of benchmark b (the last ratio is the h study's finest Mod 3 run).
-    const auto time_run = [&](std::size_t b, std::size_t c) -> const mrm::repro::Measures& {
-      return c + 1 < time_courants.size() ? measures[time_study + b * (time_courants.size() - 1) + c]
-                                          : at(b, 2, levels - 1);
-    };
-    for (std::size_t b = 0; b < benchmarks.size(); ++b)
-      for (std::size_t m = 0; m < masses.size(); ++m) {
-        out << (b + m ? "\n\n" : "") << "# block " << b * masses.size() + m << ": benchmark = " << benchmarks[b]
-            << ", mass = " << masses[m] << ", scheme = cn\n";
-        std::vector<mrm::repro::ErrorRow> rows;
-        for (std::size_t l = 0; l < levels; ++l)
-          rows.push_back({meshes.elements(l), mrm::ErrorAccumulator::values(at(b, m, l).errors)});
-        mrm::repro::write_error_rows(out, 1.0, courant, rows);
-      }
-    out << "\n\n# block " << time_block << ": dt alone, cn, mod3, N = " << finest
-        << "\n# columns: benchmark dt_over_h_over_c";
-    for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
-    out << '\n';
-    for (std::size_t b = 0; b < benchmarks.size(); ++b)
-      for (std::size_t c = 0; c < time_courants.size(); ++c) {
-        out << benchmarks[b] << ' ' << cli::format_real(time_courants[c]);
-        for (const double e : mrm::ErrorAccumulator::values(time_run(b, c).errors)) out << ' ' << cli::format_real(e);
-        out << '\n';
-      }
+    const Study study{measures, levels, time_study};
+    write_error_blocks(out, study, meshes);
     out << "\n\n# block " << graded_block << ": graded meshes h_k = h0 r^k, N = " << graded_elements
         << ", cn, dt = h0/2, " << graded_periods << " periods; drifts per period in units of h0, each minus Mod 3's\n"
         << "# columns: r h_max_over_h0 member predicted measured difference\n";
@@ -414,41 +457,14 @@ int main(int argc, char** argv) {
         orders.add_row(mass_orders_row(defs, study, meshes, b, m, agreeing, cases));
       }
       if (b + 1 < benchmarks.size()) orders.add_rule();
-      // Δt alone: the order in Δt from the three steps (fit), Mod 3 on the finest mesh.
-      std::vector<std::string> time_row{key, "Mod 3"};
-      std::vector<double> dts(time_courants.begin(), time_courants.end());
-      for (std::size_t k = 0; k < 8; ++k) {
-        std::vector<double> errors;
-        for (std::size_t c = 0; c < time_courants.size(); ++c)
-          errors.push_back(mrm::ErrorAccumulator::values(time_run(b, c).errors)[k]);
-        if (std::all_of(errors.begin(), errors.end(), [](double e) { return e == 0; })) {
-          time_row.push_back("n/a");
-          continue;
-        }
-        time_row.push_back(mrm::tex_number(mrm::fit_order(dts, errors).order, 2));
-      }
-      time_orders.add_row(time_row);
+      time_orders.add_row(time_orders_row(study, b));
       // The windows: exact (in the benchmark's units) and the finest Mod 3 run's.
-      const mrm::repro::Measures& fine = at(b, 2, levels - 1);
-      const std::vector<mrm::ContactInterval> exact = mrm::repro::configuration_contact_windows(
-          configurations[(b * masses.size() + 2) * levels], mrm::impact_benchmark(key).final_time);
-      mrm::tex_define(defs, "benchconv:windows:exact:" + key, windows_text(exact, 6));
-      mrm::tex_define(defs, "benchconv:windows:measured:" + key, windows_text(fine.contact_windows, 6));
-      std::cout << key << " exact_contact_windows =";
-      for (const auto& w : exact)
-        std::cout << " [" << cli::format_real(w.start) << ", " << cli::format_real(w.end) << "]";
-      std::cout << "\n" << key << " measured_contact_windows (cn, mod3, N = " << finest << ") =";
-      for (const auto& w : fine.contact_windows)
-        std::cout << " [" << cli::format_real(w.start) << ", " << cli::format_real(w.end) << "]";
-      std::cout << '\n';
-      if (!exact.empty() && !fine.contact_windows.empty()) {
-        mrm::tex_define(defs, "benchconv:firststart:" + key,
-                        mrm::tex_number(fine.contact_windows.front().start - exact.front().start, 2));
-        mrm::tex_define(defs, "benchconv:firstend:" + key,
-                        mrm::tex_number(fine.contact_windows.front().end - exact.front().end, 2));
-      }
+      write_windows(defs, key,
+                    mrm::repro::configuration_contact_windows(configurations[(b * masses.size() + 2) * levels],
+                                                              mrm::impact_benchmark(key).final_time),
+                    study.at(b, 2, levels - 1), finest);
     }
-    write_data_table(defs, at(3, 2, levels - 1).contact_windows);
+    write_data_table(defs, study.at(3, 2, levels - 1).contact_windows);
     mrm::tex_define(defs, "benchconv:agreeing", std::to_string(agreeing));
     mrm::tex_define(defs, "benchconv:cases", std::to_string(cases));
     for (std::size_t part = 0; part < 2; ++part) {

@@ -358,6 +358,369 @@ void write_nodal_errors(std::ostream& out, std::ostream& defs) {
   }
 }
 
+// The grid of the matrix: the meshes and the ratios Δt/h; the long runs' mesh and horizon (periods).
+const std::vector<mrm::Index> meshes{25, 50, 100, 200};
+const std::vector<double> courants{0.5, 1 / std::sqrt(3.0), 1.0};
+constexpr double long_periods = 1000;
+constexpr mrm::Index long_mesh = 25;
+
+// The matrix, decided before any long work: the class-mass pairs run and those refused (with the reason),
+// the benchmarks run and those left out (a probe run decides).
+struct Matrix {
+  std::vector<ClassWithMass> cases;
+  std::vector<std::pair<std::string, std::string>> refused;
+  std::vector<std::string> benchmarks;
+  std::vector<std::pair<std::string, std::string>> skipped;
+};
+
+Matrix decide_matrix() {
+  Matrix matrix;
+  for (const mrm::SchemeInfo& info : mrm::scheme_registry()) {
+    if (info.scheme == mrm::Scheme::backward_euler) continue;
+    for (const std::string mass : {"consistent", "mod3"}) {
+      const ClassWithMass c{info.scheme, mass};
+      // dke with a massless contact node is Crank–Nicolson's run with the same mass (the projection moves
+      // no node with mass; lib/classes/contact_classes.cpp, the doctest "dke: ...": 4e-13): not run twice.
+      const std::string why = info.scheme == mrm::Scheme::dke && mass == "mod3"
+                                  ? "not run: the same run as cn+mod3 (with a massless contact node the projection "
+                                    "moves no node with mass; doctest in lib/classes/contact_classes.cpp)"
+                                  : refusal(c);
+      if (why.empty())
+        matrix.cases.push_back(c);
+      else
+        matrix.refused.emplace_back(c.id(), why);
+    }
+  }
+  for (const std::string& b : repro::benchmark_names()) {
+    const std::string why = benchmark_refusal(b, matrix.cases);
+    if (why.empty())
+      matrix.benchmarks.push_back(b);
+    else
+      matrix.skipped.emplace_back(b, why);
+  }
+  return matrix;
+}
+
+// The data file's header: the refusals, the two-bars reduction, the colours of the plots and the long runs.
+void write_header(std::ostream& out, const Matrix& matrix) {
+  for (const auto& [id, why] : matrix.refused) out << "# refused: " << id << ": " << why << '\n';
+  for (const auto& [b, why] : matrix.skipped) out << "# benchmark not run: " << b << ": " << why << '\n';
+  if (std::find(matrix.benchmarks.begin(), matrix.benchmarks.end(), "two-bars") != matrix.benchmarks.end())
+    out << "# two-bars by symmetry: each body as one free bar (L = 10, velocity -0.1) against a wall at g0/2 = 0, "
+           "penalty and Nitsche with gamma0' = 2 gamma0 (repro::reduce_two_bars_by_symmetry), the chain's exact "
+           "solution "
+           "seen from one body as the reference\n";
+  // One colour per class (its position in the registry); the mass is the line's dash (figures/fig_classes_*.gp).
+  static const char* const palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
+                                        "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
+  for (std::size_t k = 0; k < mrm::scheme_registry().size(); ++k)
+    out << "# colour " << mrm::scheme_registry()[k].id << " = " << palette[k % 10] << '\n';
+  out << "# long_mesh = " << long_mesh << "\n# long_periods = " << long_periods << '\n';
+}
+
+// One run of the matrix (benchmark, class-mass pair, mesh, Δt/h), or of the long runs (c and courant).
+struct Job {
+  std::size_t benchmark, c, mesh, courant;
+};
+
+// The runs and what they measured: the matrix's, in the order (benchmark, pair, mesh, Δt/h), then the
+// long runs', in the order (pair, Δt/h).
+struct Study {
+  const Matrix& matrix;
+  std::vector<Job> jobs;
+  std::size_t long_first = 0;  ///< the index of the first long run in jobs
+  std::vector<MatrixRunMeasures> cells;
+  std::vector<LongRunMeasures> longs;
+
+  explicit Study(const Matrix& m) : matrix(m) {
+    for (std::size_t b = 0; b < matrix.benchmarks.size(); ++b)
+      for (std::size_t c = 0; c < matrix.cases.size(); ++c)
+        for (std::size_t a = 0; a < meshes.size(); ++a)
+          for (std::size_t k = 0; k < courants.size(); ++k) jobs.push_back({b, c, a, k});
+    long_first = jobs.size();
+    for (std::size_t c = 0; c < matrix.cases.size(); ++c)
+      for (std::size_t k = 0; k < courants.size(); ++k) jobs.push_back({0, c, 0, k});
+    cells.resize(long_first);
+    longs.resize(jobs.size() - long_first);
+  }
+  const MatrixRunMeasures& cell(std::size_t b, std::size_t c, std::size_t a, std::size_t k) const {
+    return cells[((b * matrix.cases.size() + c) * meshes.size() + a) * courants.size() + k];
+  }
+  const LongRunMeasures& long_run(std::size_t c, std::size_t k) const { return longs[c * courants.size() + k]; }
+  // The observed orders of (benchmark b, pair c, Δt/h k). An error that is 0 on some mesh (the exact
+  // u(0, ·) ≡ 0 held exactly on gravity-paper) has no order: NaN, written as a word.
+  std::array<double, 8> orders(std::size_t b, std::size_t c, std::size_t k) const {
+    std::array<double, 8> p{};
+    for (std::size_t q = 0; q < 8; ++q) {
+      std::vector<double> hs, es;
+      bool zero = false;
+      for (std::size_t a = 0; a < meshes.size(); ++a) {
+        hs.push_back(1.0 / static_cast<double>(meshes[a])), es.push_back(cell(b, c, a, k).errors[q]);
+        zero = zero || !(es.back() > 0);
+      }
+      p[q] = zero ? std::nan("") : slope(hs, es);
+    }
+    return p;
+  }
+};
+
+// The long runs through the sweep layer (repro/sweep.hpp: the runs of one scheme family in vector lanes,
+// each bitwise its run alone), observed for the energy only (the lanes read in place).
+void run_long(Study& study, long threads) {
+  std::vector<repro::Configuration> configurations;
+  std::vector<mrm::Index> every;
+  std::vector<double> e0(study.longs.size());
+  for (std::size_t k = study.long_first; k < study.jobs.size(); ++k) {
+    const Job& job = study.jobs[k];
+    repro::Configuration configuration =
+        configuration_of(study.matrix.cases[job.c], "paper", long_mesh, courants[job.courant], 3 * long_periods);
+    configuration.measure_errors = false;  // a long run keeps its energy and its impacts only
+    every.push_back(mrm::steps_to_reach(30.0, configuration.step()));
+    configurations.push_back(configuration);
+  }
+  repro::SweepSettings settings;
+  settings.threads = static_cast<unsigned>(threads);
+  const std::vector<repro::Measures> measures = repro::run_batched(
+      configurations, settings,
+      [&](std::size_t k, const mrm::Sample& s) {
+        if (s.level == 0) e0[k] = s.energy;
+        if (s.level > 0 && s.level % every[k] == 0) study.longs[k].every_ten.push_back(s.energy / e0[k]);
+      },
+      {}, /*observer_reads_vectors=*/false);
+  for (std::size_t k = 0; k < study.longs.size(); ++k) {
+    const repro::Measures& m = measures[k];
+    LongRunMeasures& l = study.longs[k];
+    l.run = true;
+    l.energy_ratio = m.energy_final / m.energy_initial;
+    l.impacts = m.impacts.size();
+    l.work = static_cast<double>(long_mesh) * static_cast<double>(m.steps);
+  }
+}
+
+// Run k of the matrix, timed. The exact solution of one group of the matrix: the runs of every class-mass
+// pair on one benchmark, mesh and Δt ask it the same questions (u and u_t at the nodes, u(0, ·) and λ at
+// the instants of their samples: kΔt, and (k ± ½)Δt where a class samples its velocity or its
+// multiplier between levels), so it is made once for the group and seen through a record
+// (repro::GroupReferences; the same doubles, so the same bytes). A group holds up to ~10 MB: its runs
+// come one after the other in the order of the runs (costliest_first), so few are alive at once.
+void run_matrix_cell(Study& study, std::size_t k, repro::GroupReferences& references) {
+  const Job& job = study.jobs[k];
+  const auto start = std::chrono::steady_clock::now();
+  MatrixRunMeasures& cell = study.cells[k];
+  const std::string& benchmark = study.matrix.benchmarks[job.benchmark];
+  const repro::Configuration configuration = configuration_of(study.matrix.cases[job.c], benchmark, meshes[job.mesh],
+                                                              courants[job.courant], horizon_of(benchmark));
+  // run_configuration(configuration) with the group's reference (its measures but the phase, which a
+  // record does not give and this program does not use: repro::MemoizedReference).
+  const repro::GroupReferences::Key group{job.benchmark, job.mesh, job.courant};
+  repro::ConfigurationRun run(configuration, {}, nullptr, references.source(group));
+  mrm::run(run.simulation(), run.steps(), [&](const mrm::Sample& s) { run.add(s); });
+  const repro::Measures m = run.measures();
+  references.done(group);
+  if (!m.lambda_tv_ratio)
+    throw std::runtime_error("fig_classes: the exact contact stress does not vary on " + benchmark);
+  cell.run = true;
+  cell.errors = mrm::ErrorAccumulator::values(m.errors);
+  cell.tv_ratio = *m.lambda_tv_ratio;  // repro::Measures (configurations.hpp)
+  cell.penetration = m.max_penetration;
+  // two-bars' one contact starts at t = 0 (the bars touch), which the impact list (instants t > 0 where
+  // a contact begins) leaves out: the run's contact windows (same chatter rule) count it.
+  cell.impacts = benchmark == "two-bars" ? m.contact_windows.size() : m.impacts.size();
+  // Under a load (bouncing, gravity-paper) the mechanical energy is not conserved by the exact flow (it
+  // changes by the load's work; the bouncing bar starts with E = 0): no energy change per impact, NaN
+  // (the word "loaded" in the data, n/a in the table).
+  const bool loaded = static_cast<bool>(repro::configuration_problem(configuration).load);
+  cell.energy_per_impact =
+      loaded         ? std::nan("")
+      : cell.impacts ? (m.energy_final - m.energy_initial) / (m.energy_initial * static_cast<double>(cell.impacts))
+                     : 0.0;
+  cell.work = static_cast<double>(meshes[job.mesh]) * static_cast<double>(m.steps);
+  cell.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (double v : cell.errors)
+    if (!std::isfinite(v))
+      throw std::runtime_error("fig_classes: a non-finite error in " + study.matrix.cases[job.c].id());
+}
+
+// The matrix's runs as the sweep layer's tasks (repro/sweep.hpp), costliest first: each is stepped
+// alone and timed, for the cost per step and node of its class, which a batch would mix.
+void run_matrix(Study& study, long threads, repro::GroupReferences& references) {
+  std::vector<repro::SweepTask> tasks;
+  for (std::size_t k = 0; k < study.long_first; ++k) {
+    const Job& job = study.jobs[k];
+    const double n = static_cast<double>(meshes[job.mesh]);
+    const double cost = n * n * horizon_of(study.matrix.benchmarks[job.benchmark]) / courants[job.courant];
+    tasks.push_back({cost, [&study, &references, k] { run_matrix_cell(study, k, references); }});
+  }
+  repro::SweepSettings settings;
+  settings.threads = static_cast<unsigned>(threads);
+  repro::run_batched({}, settings, {}, {}, true, tasks);
+}
+
+// The measures of a benchmark's geometric mean g: those nonzero in every run on it (on gravity-paper
+// the exact u(0, ·) ≡ 0, which exact enforcement reproduces exactly: a mean with a zero in it would be
+// 0 for those classes and say nothing), so that g compares the classes on the same measures. Listed in
+// the data file's header.
+std::vector<std::array<bool, 8>> common_measures(std::ostream& out, const Study& study) {
+  const std::vector<std::string>& benchmarks = study.matrix.benchmarks;
+  std::vector<std::array<bool, 8>> common(benchmarks.size());
+  for (std::size_t b = 0; b < benchmarks.size(); ++b) {
+    common[b].fill(true);
+    for (std::size_t k = 0; k < study.cells.size(); ++k)
+      if (study.jobs[k].benchmark == b)
+        for (std::size_t q = 0; q < 8; ++q) common[b][q] = common[b][q] && study.cells[k].errors[q] > 0;
+    out << "# geometric mean g on " << benchmarks[b] << " over:";
+    for (std::size_t q = 0; q < 8; ++q)
+      if (common[b][q]) out << ' ' << mrm::ErrorAccumulator::names[q];
+    out << '\n';
+  }
+  return common;
+}
+
+// Blocks 0 to 3: the runs, the observed orders, the long runs and their energy every 10 periods.
+void write_data_blocks(std::ostream& out, const Study& study) {
+  const std::vector<std::string>& benchmarks = study.matrix.benchmarks;
+  const std::vector<ClassWithMass>& cases = study.matrix.cases;
+  out << "# block 0: the runs\n# columns: benchmark scheme mass courant elements h dt";
+  for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
+  out << " tv_ratio max_penetration energy_change_per_impact impacts node_steps\n";
+  for (std::size_t b = 0; b < benchmarks.size(); ++b)
+    for (std::size_t c = 0; c < cases.size(); ++c)
+      for (std::size_t k = 0; k < courants.size(); ++k)
+        for (std::size_t a = 0; a < meshes.size(); ++a) {
+          const MatrixRunMeasures& x = study.cell(b, c, a, k);
+          const double h = 1.0 / static_cast<double>(meshes[a]);
+          out << benchmarks[b] << ' ' << mrm::to_string(cases[c].scheme) << ' ' << cases[c].mass << ' '
+              << cli::format_real(courants[k]) << ' ' << meshes[a] << ' ' << cli::format_real(h) << ' '
+              << cli::format_real(courants[k] * h);
+          for (double v : x.errors) out << ' ' << cli::format_real(v);
+          out << ' ' << cli::format_real(x.tv_ratio) << ' ' << cli::format_real(x.penetration) << ' '
+              << (std::isfinite(x.energy_per_impact) ? cli::format_real(x.energy_per_impact) : "loaded") << ' '
+              << x.impacts << ' ' << cli::format_real(x.work) << '\n';
+        }
+  out << "\n\n# block 1: the observed orders (least-squares slope over N = 25..200)\n"
+         "# columns: benchmark scheme mass courant";
+  for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
+  out << '\n';
+  for (std::size_t b = 0; b < benchmarks.size(); ++b)
+    for (std::size_t c = 0; c < cases.size(); ++c)
+      for (std::size_t k = 0; k < courants.size(); ++k) {
+        out << benchmarks[b] << ' ' << mrm::to_string(cases[c].scheme) << ' ' << cases[c].mass << ' '
+            << cli::format_real(courants[k]);
+        for (double p : study.orders(b, c, k)) out << ' ' << (std::isfinite(p) ? cli::format_real(p) : "no-order");
+        out << '\n';
+      }
+  out << "\n\n# block 2: the long runs (paper, N = " << long_mesh << ", " << long_periods
+      << " periods)\n# columns: scheme mass courant impacts energy_ratio\n";
+  for (std::size_t c = 0; c < cases.size(); ++c)
+    for (std::size_t k = 0; k < courants.size(); ++k)
+      out << mrm::to_string(cases[c].scheme) << ' ' << cases[c].mass << ' ' << cli::format_real(courants[k]) << ' '
+          << study.long_run(c, k).impacts << ' ' << cli::format_real(study.long_run(c, k).energy_ratio) << '\n';
+  out << "\n\n# block 3: the long runs' energy every 10 periods\n# columns: scheme mass courant periods "
+         "energy_ratio\n";
+  for (std::size_t c = 0; c < cases.size(); ++c)
+    for (std::size_t k = 0; k < courants.size(); ++k) {
+      const LongRunMeasures& l = study.long_run(c, k);
+      for (std::size_t j = 0; j < l.every_ten.size(); ++j)
+        out << mrm::to_string(cases[c].scheme) << ' ' << cases[c].mass << ' ' << cli::format_real(courants[k]) << ' '
+            << 10 * (j + 1) << ' ' << cli::format_real(l.every_ten[j]) << '\n';
+      out << '\n';
+    }
+}
+
+// The summary's cell: the finest mesh (N = 200) and Δt = h/2.
+const std::size_t fine = meshes.size() - 1, half = 0;
+
+// The summary table (stdout and the report): per class and mass, on each benchmark at N = 200 and
+// Δt = h/2, the geometric mean of the eight errors, the λ error, TV(λ)/TV(λ_exact), the largest
+// penetration, the energy change per impact; the paper's benchmark's order of the geometric mean;
+// E(T)/E(0) after 10³ impacts at N = 25, Δt = h/2.
+repro::Table summary_table(const Study& study, const std::vector<std::array<bool, 8>>& common) {
+  const std::vector<std::string>& benchmarks = study.matrix.benchmarks;
+  const std::vector<ClassWithMass>& cases = study.matrix.cases;
+  repro::Table table({"benchmark", "class", "mass", "$g$", "$\\lambda$ err", "TV ratio", "max pen.",
+                      "$\\Delta E$/impact", "order $g$", "$E/E_0$, $10^3$ imp."});
+  for (std::size_t b = 0; b < benchmarks.size(); ++b) {
+    for (std::size_t c = 0; c < cases.size(); ++c) {
+      const MatrixRunMeasures& x = study.cell(b, c, fine, half);
+      std::vector<double> hs, gs;
+      for (std::size_t a = 0; a < meshes.size(); ++a)
+        hs.push_back(1.0 / static_cast<double>(meshes[a])),
+            gs.push_back(geometric_mean(study.cell(b, c, a, half).errors, common[b]));
+      table.add_row({benchmarks[b] == "two-bars" ? "two-bars (sym.)" : benchmarks[b], mrm::to_string(cases[c].scheme),
+                     cases[c].mass, mrm::tex_number(geometric_mean(x.errors, common[b]), 3),
+                     mrm::tex_number(x.errors[1], 3), mrm::tex_number(x.tv_ratio, 3), mrm::tex_number(x.penetration, 2),
+                     mrm::tex_number(x.energy_per_impact, 2), mrm::tex_number(slope(hs, gs), 2),
+                     b == 0 ? mrm::tex_number(study.long_run(c, half).energy_ratio, 3) : "--"});
+    }
+    table.add_rule();
+  }
+  return table;
+}
+
+// The summary table for the report, and the matrix the report names: refusals, benchmarks, number of runs.
+void write_summary_values(std::ostream& defs, const Study& study, const repro::Table& table) {
+  std::ostringstream tex;
+  repro::LatexLayout layout;
+  layout.columns = "lll" + std::string(table.columns() - 3, 'r');
+  layout.longtable = true;  // seven benchmarks × 16 pairs: more than a page
+  table.write_latex(tex, layout);
+  mrm::tex_define(defs, "classes:summary", tex.str());
+  std::string refusals;
+  for (const auto& [id, why] : study.matrix.refused) refusals += (refusals.empty() ? "" : "; ") + id;
+  mrm::tex_define(defs, "classes:refused", refusals.empty() ? "none" : refusals);
+  std::string benchmark_list;
+  for (const std::string& b : study.matrix.benchmarks) benchmark_list += (benchmark_list.empty() ? "" : ", ") + b;
+  mrm::tex_define(defs, "classes:benchmarks", benchmark_list);
+  mrm::tex_define(defs, "classes:runs", std::to_string(study.cells.size() + study.longs.size()));
+}
+
+// Values of the summary the report's sentences quote: per benchmark and pair at N = 200, Δt = h/2.
+void write_quoted_values(std::ostream& defs, const Study& study, const std::vector<std::array<bool, 8>>& common) {
+  const std::vector<std::string>& benchmarks = study.matrix.benchmarks;
+  const std::vector<ClassWithMass>& cases = study.matrix.cases;
+  for (std::size_t b = 0; b < benchmarks.size(); ++b)
+    for (std::size_t c = 0; c < cases.size(); ++c) {
+      const MatrixRunMeasures& x = study.cell(b, c, fine, half);
+      const std::string key =
+          "classes:" + benchmarks[b] + ":" + mrm::to_string(cases[c].scheme) + ":" + cases[c].mass + ":";
+      mrm::tex_define(defs, key + "tv", mrm::tex_number(x.tv_ratio, 3));
+      mrm::tex_define(defs, key + "g", mrm::tex_number(geometric_mean(x.errors, common[b]), 3));
+      mrm::tex_define(defs, key + "lambda", mrm::tex_number(x.errors[1], 3));
+      if (b == 0) mrm::tex_define(defs, key + "long", mrm::tex_number(study.long_run(c, half).energy_ratio, 3));
+    }
+}
+
+// Standard output: the matrix, its refusals and the summary table.
+void print_summary(const Study& study, const repro::Table& table) {
+  const Matrix& matrix = study.matrix;
+  std::cout << "fig_classes: " << matrix.cases.size() << " class-mass pairs x " << matrix.benchmarks.size()
+            << " benchmarks x " << meshes.size() << " meshes x " << courants.size() << " steps = " << study.cells.size()
+            << " runs, and " << study.longs.size() << " runs of 1000 impacts\n";
+  for (const auto& [id, why] : matrix.refused) std::cout << "refused: " << id << ": " << why << '\n';
+  for (const auto& [b, why] : matrix.skipped) std::cout << "benchmark not run: " << b << ": " << why << '\n';
+  std::cout << "summary (N = 200, dt = h/2; g: geometric mean of the errors nonzero in every run of the benchmark, "
+               "listed in the data header; last column: N = 25, dt = h/2):\n";
+  table.write_markdown(std::cout);
+}
+
+// Standard output, unless --no-timing: the cost of a step per node, per class and mass (wall time over
+// node-steps of its matrix runs), how much the groups shared and the wall time.
+void print_timing(const Study& study, long threads, const repro::GroupReferences& references, double wall) {
+  std::cout << "cost per step and node (ns, all runs of the matrix, " << threads << " threads):\n";
+  for (std::size_t c = 0; c < study.matrix.cases.size(); ++c) {
+    double seconds = 0, work = 0;
+    for (std::size_t k = 0; k < study.cells.size(); ++k)
+      if (study.jobs[k].c == c) seconds += study.cells[k].seconds, work += study.cells[k].work;
+    std::cout << "  " << study.matrix.cases[c].id() << ": "
+              << cli::format_real(std::round(1e9 * seconds / work * 10) / 10) << '\n';
+  }
+  // How much the groups shared (not in the data file: two runs of a group that ask the same instant at
+  // the same moment both evaluate it, so the count varies by a few from run to run).
+  std::cout << "exact solution of the field and smooth benchmarks: " << references.evaluations() << " evaluations for "
+            << references.questions() << " questions of the runs\n";
+  std::cout << "wall_seconds = " << cli::format_real(std::round(wall * 100) / 100) << '\n';
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -384,282 +747,22 @@ int main(int argc, char** argv) {
 
     // 2. The matrix, decided before any long work: classes × masses (refusals listed), benchmarks (probe).
     program.open();
-    std::vector<ClassWithMass> cases;
-    std::vector<std::pair<std::string, std::string>> refused;
-    for (const mrm::SchemeInfo& info : mrm::scheme_registry()) {
-      if (info.scheme == mrm::Scheme::backward_euler) continue;
-      for (const std::string mass : {"consistent", "mod3"}) {
-        const ClassWithMass c{info.scheme, mass};
-        // dke with a massless contact node is Crank–Nicolson's run with the same mass (the projection moves
-        // no node with mass; lib/classes/contact_classes.cpp, the doctest "dke: ...": 4e-13): not run twice.
-        const std::string why = info.scheme == mrm::Scheme::dke && mass == "mod3"
-                                    ? "not run: the same run as cn+mod3 (with a massless contact node the projection "
-                                      "moves no node with mass; doctest in lib/classes/contact_classes.cpp)"
-                                    : refusal(c);
-        if (why.empty())
-          cases.push_back(c);
-        else
-          refused.emplace_back(c.id(), why);
-      }
-    }
-    std::vector<std::string> benchmarks;
-    std::vector<std::pair<std::string, std::string>> skipped;
-    for (const std::string& b : repro::benchmark_names()) {
-      const std::string why = benchmark_refusal(b, cases);
-      if (why.empty())
-        benchmarks.push_back(b);
-      else
-        skipped.emplace_back(b, why);
-    }
-    const std::vector<mrm::Index> meshes{25, 50, 100, 200};
-    const std::vector<double> courants{0.5, 1 / std::sqrt(3.0), 1.0};
-    const auto final_time = [](const std::string& b) { return horizon_of(b); };
-    constexpr double long_periods = 1000;
-    constexpr mrm::Index long_mesh = 25;
-
+    const Matrix matrix = decide_matrix();
     std::ostream& out = program.header("the contact classes side by side (issue 23)");
-    for (const auto& [id, why] : refused) out << "# refused: " << id << ": " << why << '\n';
-    for (const auto& [b, why] : skipped) out << "# benchmark not run: " << b << ": " << why << '\n';
-    if (std::find(benchmarks.begin(), benchmarks.end(), "two-bars") != benchmarks.end())
-      out << "# two-bars by symmetry: each body as one free bar (L = 10, velocity -0.1) against a wall at g0/2 = 0, "
-             "penalty and Nitsche with gamma0' = 2 gamma0 (repro::reduce_two_bars_by_symmetry), the chain's exact "
-             "solution "
-             "seen from one body as the reference\n";
-    // One colour per class (its position in the registry); the mass is the line's dash (figures/fig_classes_*.gp).
-    static const char* const palette[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd",
-                                          "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
-    for (std::size_t k = 0; k < mrm::scheme_registry().size(); ++k)
-      out << "# colour " << mrm::scheme_registry()[k].id << " = " << palette[k % 10] << '\n';
-    out << "# long_mesh = " << long_mesh << "\n# long_periods = " << long_periods << '\n';
+    write_header(out, matrix);
 
     // 3. The runs: the long runs (the sweep layer), then the matrix, costliest first, on --threads workers.
-    struct Job {
-      std::size_t benchmark, c, mesh, courant;
-    };
-    std::vector<Job> jobs;
-    for (std::size_t b = 0; b < benchmarks.size(); ++b)
-      for (std::size_t c = 0; c < cases.size(); ++c)
-        for (std::size_t a = 0; a < meshes.size(); ++a)
-          for (std::size_t k = 0; k < courants.size(); ++k) jobs.push_back({b, c, a, k});
-    const std::size_t long_first = jobs.size();
-    for (std::size_t c = 0; c < cases.size(); ++c)
-      for (std::size_t k = 0; k < courants.size(); ++k) jobs.push_back({0, c, 0, k});
-    std::vector<MatrixRunMeasures> cells(long_first);
-    std::vector<LongRunMeasures> longs(jobs.size() - long_first);
-    const auto matrix_cost = [&](std::size_t k) {  // a matrix run's (k < long_first)
-      const double n = static_cast<double>(meshes[jobs[k].mesh]);
-      return n * n * final_time(benchmarks[jobs[k].benchmark]) / courants[jobs[k].courant];
-    };
-    // The exact solution of one group of the matrix: the runs of every class-mass pair on one benchmark,
-    // mesh and Δt ask it the same questions (u and u_t at the nodes, u(0, ·) and λ at
-    // the instants of their samples: kΔt, and (k ± ½)Δt where a class samples its velocity or its
-    // multiplier between levels), so it is made once for the group and seen through a record
-    // (repro::GroupReferences; the same doubles, so the same bytes). A group holds up to ~10 MB: its runs
-    // come one after the other in the order of the runs (costliest_first), so few are alive at once.
-    // The long runs through the sweep layer (repro/sweep.hpp: the runs of one scheme family in vector lanes,
-    // each bitwise its run alone), observed for the energy only (the lanes read in place).
-    {
-      std::vector<repro::Configuration> configurations;
-      std::vector<mrm::Index> every;
-      std::vector<double> e0(longs.size());
-      for (std::size_t k = long_first; k < jobs.size(); ++k) {
-        repro::Configuration configuration =
-            configuration_of(cases[jobs[k].c], "paper", long_mesh, courants[jobs[k].courant], 3 * long_periods);
-        configuration.measure_errors = false;  // a long run keeps its energy and its impacts only
-        every.push_back(mrm::steps_to_reach(30.0, configuration.step()));
-        configurations.push_back(configuration);
-      }
-      repro::SweepSettings settings;
-      settings.threads = static_cast<unsigned>(threads);
-      const std::vector<repro::Measures> measures = repro::run_batched(
-          configurations, settings,
-          [&](std::size_t k, const mrm::Sample& s) {
-            if (s.level == 0) e0[k] = s.energy;
-            if (s.level > 0 && s.level % every[k] == 0) longs[k].every_ten.push_back(s.energy / e0[k]);
-          },
-          {}, /*observer_reads_vectors=*/false);
-      for (std::size_t k = 0; k < longs.size(); ++k) {
-        const repro::Measures& m = measures[k];
-        longs[k].run = true;
-        longs[k].energy_ratio = m.energy_final / m.energy_initial;
-        longs[k].impacts = m.impacts.size();
-        longs[k].work = static_cast<double>(long_mesh) * static_cast<double>(m.steps);
-      }
-    }
-    repro::GroupReferences references(cases.size());
-    const auto matrix_run = [&](std::size_t k) {
-      const Job& job = jobs[k];
-      const auto start = std::chrono::steady_clock::now();
-      MatrixRunMeasures& cell = cells[k];
-      const std::string& benchmark = benchmarks[job.benchmark];
-      const repro::Configuration configuration =
-          configuration_of(cases[job.c], benchmark, meshes[job.mesh], courants[job.courant], final_time(benchmark));
-      // run_configuration(configuration) with the group's reference (its measures but the phase, which a
-      // record does not give and this program does not use: repro::MemoizedReference).
-      const repro::GroupReferences::Key group{job.benchmark, job.mesh, job.courant};
-      repro::ConfigurationRun run(configuration, {}, nullptr, references.source(group));
-      mrm::run(run.simulation(), run.steps(), [&](const mrm::Sample& s) { run.add(s); });
-      const repro::Measures m = run.measures();
-      references.done(group);
-      if (!m.lambda_tv_ratio)
-        throw std::runtime_error("fig_classes: the exact contact stress does not vary on " + benchmark);
-      cell.run = true;
-      cell.errors = mrm::ErrorAccumulator::values(m.errors);
-      cell.tv_ratio = *m.lambda_tv_ratio;  // repro::Measures (configurations.hpp)
-      cell.penetration = m.max_penetration;
-      // two-bars' one contact starts at t = 0 (the bars touch), which the impact list (instants t > 0 where
-      // a contact begins) leaves out: the run's contact windows (same chatter rule) count it.
-      cell.impacts = benchmark == "two-bars" ? m.contact_windows.size() : m.impacts.size();
-      // Under a load (bouncing, gravity-paper) the mechanical energy is not conserved by the exact flow (it
-      // changes by the load's work; the bouncing bar starts with E = 0): no energy change per impact, NaN
-      // (the word "loaded" in the data, n/a in the table).
-      const bool loaded = static_cast<bool>(repro::configuration_problem(configuration).load);
-      cell.energy_per_impact =
-          loaded         ? std::nan("")
-          : cell.impacts ? (m.energy_final - m.energy_initial) / (m.energy_initial * static_cast<double>(cell.impacts))
-                         : 0.0;
-      cell.work = static_cast<double>(meshes[job.mesh]) * static_cast<double>(m.steps);
-      cell.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      for (double v : cell.errors)
-        if (!std::isfinite(v)) throw std::runtime_error("fig_classes: a non-finite error in " + cases[job.c].id());
-    };
-    // The matrix's runs as the sweep layer's tasks (repro/sweep.hpp), costliest first: each is stepped
-    // alone and timed, for the cost per step and node of its class, which a batch would mix.
-    {
-      std::vector<repro::SweepTask> tasks;
-      for (std::size_t k = 0; k < long_first; ++k)
-        tasks.push_back({matrix_cost(k), [&matrix_run, k] { matrix_run(k); }});
-      repro::SweepSettings settings;
-      settings.threads = static_cast<unsigned>(threads);
-      repro::run_batched({}, settings, {}, {}, true, tasks);
-    }
-    const auto cell = [&](std::size_t b, std::size_t c, std::size_t a, std::size_t k) -> const MatrixRunMeasures& {
-      return cells[((b * cases.size() + c) * meshes.size() + a) * courants.size() + k];
-    };
-    const auto long_run = [&](std::size_t c, std::size_t k) -> const LongRunMeasures& {
-      return longs[c * courants.size() + k];
-    };
-    // An error that is 0 on some mesh (the exact u(0, ·) ≡ 0 held exactly on gravity-paper) has no order:
-    // NaN, written as a word.
-    const auto orders = [&](std::size_t b, std::size_t c, std::size_t k) {
-      std::array<double, 8> p{};
-      for (std::size_t q = 0; q < 8; ++q) {
-        std::vector<double> hs, es;
-        bool zero = false;
-        for (std::size_t a = 0; a < meshes.size(); ++a) {
-          hs.push_back(1.0 / static_cast<double>(meshes[a])), es.push_back(cell(b, c, a, k).errors[q]);
-          zero = zero || !(es.back() > 0);
-        }
-        p[q] = zero ? std::nan("") : slope(hs, es);
-      }
-      return p;
-    };
-    // The measures of a benchmark's geometric mean g: those nonzero in every run on it (on gravity-paper
-    // the exact u(0, ·) ≡ 0, which exact enforcement reproduces exactly: a mean with a zero in it would be
-    // 0 for those classes and say nothing), so that g compares the classes on the same measures.
-    std::vector<std::array<bool, 8>> common(benchmarks.size());
-    for (std::size_t b = 0; b < benchmarks.size(); ++b) {
-      common[b].fill(true);
-      for (std::size_t k = 0; k < cells.size(); ++k)
-        if (jobs[k].benchmark == b)
-          for (std::size_t q = 0; q < 8; ++q) common[b][q] = common[b][q] && cells[k].errors[q] > 0;
-      out << "# geometric mean g on " << benchmarks[b] << " over:";
-      for (std::size_t q = 0; q < 8; ++q)
-        if (common[b][q]) out << ' ' << mrm::ErrorAccumulator::names[q];
-      out << '\n';
-    }
+    Study study(matrix);
+    run_long(study, threads);
+    repro::GroupReferences references(matrix.cases.size());
+    run_matrix(study, threads, references);
+    const std::vector<std::array<bool, 8>> common = common_measures(out, study);
 
-    // 4. The data.
-    out << "# block 0: the runs\n# columns: benchmark scheme mass courant elements h dt";
-    for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
-    out << " tv_ratio max_penetration energy_change_per_impact impacts node_steps\n";
-    for (std::size_t b = 0; b < benchmarks.size(); ++b)
-      for (std::size_t c = 0; c < cases.size(); ++c)
-        for (std::size_t k = 0; k < courants.size(); ++k)
-          for (std::size_t a = 0; a < meshes.size(); ++a) {
-            const MatrixRunMeasures& x = cell(b, c, a, k);
-            const double h = 1.0 / static_cast<double>(meshes[a]);
-            out << benchmarks[b] << ' ' << mrm::to_string(cases[c].scheme) << ' ' << cases[c].mass << ' '
-                << cli::format_real(courants[k]) << ' ' << meshes[a] << ' ' << cli::format_real(h) << ' '
-                << cli::format_real(courants[k] * h);
-            for (double v : x.errors) out << ' ' << cli::format_real(v);
-            out << ' ' << cli::format_real(x.tv_ratio) << ' ' << cli::format_real(x.penetration) << ' '
-                << (std::isfinite(x.energy_per_impact) ? cli::format_real(x.energy_per_impact) : "loaded") << ' '
-                << x.impacts << ' ' << cli::format_real(x.work) << '\n';
-          }
-    out << "\n\n# block 1: the observed orders (least-squares slope over N = 25..200)\n"
-           "# columns: benchmark scheme mass courant";
-    for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
-    out << '\n';
-    for (std::size_t b = 0; b < benchmarks.size(); ++b)
-      for (std::size_t c = 0; c < cases.size(); ++c)
-        for (std::size_t k = 0; k < courants.size(); ++k) {
-          out << benchmarks[b] << ' ' << mrm::to_string(cases[c].scheme) << ' ' << cases[c].mass << ' '
-              << cli::format_real(courants[k]);
-          for (double p : orders(b, c, k)) out << ' ' << (std::isfinite(p) ? cli::format_real(p) : "no-order");
-          out << '\n';
-        }
-    out << "\n\n# block 2: the long runs (paper, N = " << long_mesh << ", " << long_periods
-        << " periods)\n# columns: scheme mass courant impacts energy_ratio\n";
-    for (std::size_t c = 0; c < cases.size(); ++c)
-      for (std::size_t k = 0; k < courants.size(); ++k)
-        out << mrm::to_string(cases[c].scheme) << ' ' << cases[c].mass << ' ' << cli::format_real(courants[k]) << ' '
-            << long_run(c, k).impacts << ' ' << cli::format_real(long_run(c, k).energy_ratio) << '\n';
-    out << "\n\n# block 3: the long runs' energy every 10 periods\n# columns: scheme mass courant periods "
-           "energy_ratio\n";
-    for (std::size_t c = 0; c < cases.size(); ++c)
-      for (std::size_t k = 0; k < courants.size(); ++k) {
-        const LongRunMeasures& l = long_run(c, k);
-        for (std::size_t j = 0; j < l.every_ten.size(); ++j)
-          out << mrm::to_string(cases[c].scheme) << ' ' << cases[c].mass << ' ' << cli::format_real(courants[k]) << ' '
-              << 10 * (j + 1) << ' ' << cli::format_real(l.every_ten[j]) << '\n';
-        out << '\n';
-      }
-
-    // The summary table (stdout and the report): per class and mass, on each benchmark at N = 200 and
-    // Δt = h/2, the geometric mean of the eight errors, the λ error, TV(λ)/TV(λ_exact), the largest
-    // penetration, the energy change per impact; the paper's benchmark's order of the geometric mean;
-    // E(T)/E(0) after 10³ impacts at N = 25, Δt = h/2.
-    const std::size_t fine = meshes.size() - 1, half = 0;
-    std::vector<std::string> head = {"benchmark",      "class",
-                                     "mass",           "$g$",
-                                     "$\\lambda$ err", "TV ratio",
-                                     "max pen.",       "$\\Delta E$/impact",
-                                     "order $g$",      "$E/E_0$, $10^3$ imp."};
-    repro::Table table(head);
-    for (std::size_t b = 0; b < benchmarks.size(); ++b) {
-      for (std::size_t c = 0; c < cases.size(); ++c) {
-        const MatrixRunMeasures& x = cell(b, c, fine, half);
-        std::array<double, 8> g_by_mesh{};
-        std::vector<double> hs, gs;
-        for (std::size_t a = 0; a < meshes.size(); ++a)
-          hs.push_back(1.0 / static_cast<double>(meshes[a])),
-              gs.push_back(geometric_mean(cell(b, c, a, half).errors, common[b]));
-        (void)g_by_mesh;
-        table.add_row(
-            {benchmarks[b] == "two-bars" ? "two-bars (sym.)" : benchmarks[b], mrm::to_string(cases[c].scheme),
-             cases[c].mass, mrm::tex_number(geometric_mean(x.errors, common[b]), 3), mrm::tex_number(x.errors[1], 3),
-             mrm::tex_number(x.tv_ratio, 3), mrm::tex_number(x.penetration, 2), mrm::tex_number(x.energy_per_impact, 2),
-             mrm::tex_number(slope(hs, gs), 2), b == 0 ? mrm::tex_number(long_run(c, half).energy_ratio, 3) : "--"});
-      }
-      table.add_rule();
-    }
+    // 4. The data, the tables and the values the report quotes.
+    write_data_blocks(out, study);
+    const repro::Table table = summary_table(study, common);
     std::ostream& defs = program.values();
-    {
-      std::ostringstream tex;
-      repro::LatexLayout layout;
-      layout.columns = "lll" + std::string(head.size() - 3, 'r');
-      layout.longtable = true;  // seven benchmarks × 16 pairs: more than a page
-      table.write_latex(tex, layout);
-      mrm::tex_define(defs, "classes:summary", tex.str());
-      std::string refusals;
-      for (const auto& [id, why] : refused) refusals += (refusals.empty() ? "" : "; ") + id;
-      mrm::tex_define(defs, "classes:refused", refusals.empty() ? "none" : refusals);
-      std::string benchmark_list;
-      for (const std::string& b : benchmarks) benchmark_list += (benchmark_list.empty() ? "" : ", ") + b;
-      mrm::tex_define(defs, "classes:benchmarks", benchmark_list);
-      mrm::tex_define(defs, "classes:runs", std::to_string(cells.size() + longs.size()));
-    }
+    write_summary_values(defs, study, table);
     // Is a scheme exact at the nodes at Δt = h (explicit_schemes.cpp, "Is `explicit` exact ...")? The
     // largest nodal error max_n max_i |u_i − u(x_i, t_n)| of the paper's benchmark over one period, for
     // explicit + Mod 3 and cn + Mod 3, and for taylor-flanagan (lumped) up to the first impact (t < 1,
@@ -677,42 +780,11 @@ int main(int argc, char** argv) {
     // which every run of the law kept E_max ≤ 2E₀) must equal the library's penalty_measured_safe_fraction
     // and nitsche_measured_safe_fraction, which bar1d's warnings use: checked here.
     write_explicit_regions(out, defs, threads, no_timing);
-    // Values of the summary the report's sentences quote: per benchmark and pair at N = 200, Δt = h/2.
-    for (std::size_t b = 0; b < benchmarks.size(); ++b)
-      for (std::size_t c = 0; c < cases.size(); ++c) {
-        const MatrixRunMeasures& x = cell(b, c, fine, half);
-        const std::string key =
-            "classes:" + benchmarks[b] + ":" + mrm::to_string(cases[c].scheme) + ":" + cases[c].mass + ":";
-        mrm::tex_define(defs, key + "tv", mrm::tex_number(x.tv_ratio, 3));
-        mrm::tex_define(defs, key + "g", mrm::tex_number(geometric_mean(x.errors, common[b]), 3));
-        mrm::tex_define(defs, key + "lambda", mrm::tex_number(x.errors[1], 3));
-        if (b == 0) mrm::tex_define(defs, key + "long", mrm::tex_number(long_run(c, half).energy_ratio, 3));
-      }
-    std::cout << "fig_classes: " << cases.size() << " class-mass pairs x " << benchmarks.size() << " benchmarks x "
-              << meshes.size() << " meshes x " << courants.size() << " steps = " << cells.size() << " runs, and "
-              << longs.size() << " runs of 1000 impacts\n";
-    for (const auto& [id, why] : refused) std::cout << "refused: " << id << ": " << why << '\n';
-    for (const auto& [b, why] : skipped) std::cout << "benchmark not run: " << b << ": " << why << '\n';
-    std::cout << "summary (N = 200, dt = h/2; g: geometric mean of the errors nonzero in every run of the benchmark, "
-                 "listed in the data header; last column: N = 25, dt = h/2):\n";
-    table.write_markdown(std::cout);
-    if (!no_timing) {
-      // The cost of a step per node, per class and mass: wall time over node-steps of its matrix runs.
-      std::cout << "cost per step and node (ns, all runs of the matrix, " << threads << " threads):\n";
-      for (std::size_t c = 0; c < cases.size(); ++c) {
-        double seconds = 0, work = 0;
-        for (std::size_t k = 0; k < cells.size(); ++k)
-          if (jobs[k].c == c) seconds += cells[k].seconds, work += cells[k].work;
-        std::cout << "  " << cases[c].id() << ": " << cli::format_real(std::round(1e9 * seconds / work * 10) / 10)
-                  << '\n';
-      }
-      // How much the groups shared (not in the data file: two runs of a group that ask the same instant at
-      // the same moment both evaluate it, so the count varies by a few from run to run).
-      std::cout << "exact solution of the field and smooth benchmarks: " << references.evaluations()
-                << " evaluations for " << references.questions() << " questions of the runs\n";
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-      std::cout << "wall_seconds = " << cli::format_real(std::round(wall * 100) / 100) << '\n';
-    }
+    write_quoted_values(defs, study, common);
+    print_summary(study, table);
+    if (!no_timing)
+      print_timing(study, threads, references,
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count());
 
     // 5. Commit.
     program.commit();

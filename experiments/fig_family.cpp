@@ -90,6 +90,12 @@ std::string key_of(const std::string& label) {
   return k;
 }
 
+// The grid: the meshes, the ratios Δt/h and the horizons (periods); the reference member, Mod 3.
+const std::vector<mrm::Index> meshes{100, 400};
+const std::vector<double> courants{0.5, 1.0};
+const std::vector<long> horizons{10, 30};    // periods
+constexpr std::size_t reference_member = 2;  // Mod 3
+
 struct Run {
   std::size_t member, mesh, courant, horizon;
   // results
@@ -97,6 +103,58 @@ struct Run {
   double first_impact_error = 0, drift = 0;
   std::array<double, 8> errors{};
 };
+
+// The slot of (mesh a, Δt/h b, horizon c, member m) in the runs, in the order of the data blocks.
+std::size_t run_index(std::size_t a, std::size_t b, std::size_t c, std::size_t m) {
+  return ((a * courants.size() + b) * horizons.size() + c) * members().size() + m;
+}
+
+// One run per (member, mesh, Δt/h), to the longest horizon; its cost ∝ N² T / C orders the jobs.
+struct Job {
+  std::size_t member, mesh, courant;
+  double cost;
+};
+
+// Job `job`'s measures at every horizon, written to its own slots of `runs`. The phase is lib/phase's, as
+// in run_configuration: the impacts read off the contact indicator, their errors against the exact impacts
+// L + 3Lk, the least-squares drift per period.
+void measure_job(const Job& job, const mrm::repro::Configuration& configuration, const mrm::repro::Measures& measures,
+                 const mrm::ExactSolution& exact, std::vector<Run>& runs) {
+  const Member& member = members()[job.member];
+  const mrm::Index n = meshes[job.mesh];
+  const mrm::UniformMesh mesh(1.0, n);
+  const double h = mesh.h();
+  const double dt = configuration.step();
+  const mrm::PeriodLawMasses masses = mrm::period_law_masses(mesh, configuration.mass);
+  // The split subtracts L from a sum of 3N + 1 entries (round-off of about N ulps of L, 1e-13 h here):
+  // rounded to 1e-9 h, far below anything measured.
+  auto in_h = [h](double v) { return std::round(v / h * 1e9) / 1e9 + 0.0; };
+  const double predicted_eigen = mrm::predict_period(mesh, configuration.mass).period_error / h;
+  for (std::size_t c = 0; c < horizons.size(); ++c) {
+    Run& r = runs[run_index(job.mesh, job.courant, c, job.member)];
+    const double end =
+        static_cast<double>(mrm::steps_to_reach(exact.period() * static_cast<double>(horizons[c]), dt)) * dt;
+    std::vector<double> impacts;
+    for (double t : measures.impacts)
+      if (t <= end) impacts.push_back(t);
+    if (impacts.size() < 2)
+      throw std::runtime_error("fig_family: " + member.spec(n) + " at N = " + std::to_string(n) +
+                               ": fewer than two impacts, no drift can be measured");
+    const std::optional<mrm::PhaseMeasures> paired = mrm::benchmark_phase(impacts, exact);
+    if (!paired || paired->matched != impacts.size())
+      throw std::runtime_error("fig_family: " + member.spec(n) + " at N = " + std::to_string(n) +
+                               ": an impact farther than 3L/2 from its exact partner");
+    const mrm::PhaseMeasures& phase = *paired;
+    r.total_mass = mrm::total_mass(mesh, configuration.mass);
+    r.local = in_h(masses.local);
+    r.uniform = in_h(masses.uniform);
+    r.predicted = in_h(mrm::predicted_period_change(masses.local, masses.uniform));
+    r.predicted_eigen = predicted_eigen;
+    r.first_impact_error = phase.first_impact_error / h;
+    r.drift = *phase.drift_per_period / h;
+    r.errors = mrm::ErrorAccumulator::values(c + 1 < horizons.size() ? measures.horizon_errors[c] : measures.errors);
+  }
+}
 
 // The ratio to Mod 3 of the members the law puts at zero drift: its range and those members, over every
 // block.
@@ -191,11 +249,7 @@ int main(int argc, char** argv) {
 
     // 2. Outputs.
     program.open();
-    const std::vector<mrm::Index> meshes{100, 400};
-    const std::vector<double> courants{0.5, 1.0};
-    const std::vector<long> horizons{10, 30};  // periods
-    const mrm::ExactSolution exact;            // L = 1, u⁰ = (1 − x)/2: period 3
-    const std::size_t reference_member = 2;    // Mod 3
+    const mrm::ExactSolution exact;  // L = 1, u⁰ = (1 − x)/2: period 3
     if (members()[reference_member].label != "mod3") throw std::logic_error("fig_family: Mod 3 is not member 2");
 
     // 3. One run per (member, mesh, Δt/h), to the longest horizon: a shorter horizon is a prefix of it
@@ -208,13 +262,6 @@ int main(int argc, char** argv) {
       for (std::size_t b = 0; b < courants.size(); ++b)
         for (std::size_t c = 0; c < horizons.size(); ++c)
           for (std::size_t m = 0; m < members().size(); ++m) runs.push_back({m, a, b, c});
-    const auto run_index = [&](std::size_t a, std::size_t b, std::size_t c, std::size_t m) {
-      return ((a * courants.size() + b) * horizons.size() + c) * members().size() + m;
-    };
-    struct Job {
-      std::size_t member, mesh, courant;
-      double cost;
-    };
     std::vector<Job> jobs;
     for (std::size_t a = 0; a < meshes.size(); ++a)
       for (std::size_t b = 0; b < courants.size(); ++b)
@@ -252,47 +299,7 @@ int main(int argc, char** argv) {
     // is lib/phase's, as in run_configuration: the impacts read off the contact indicator, their errors
     // against the exact impacts L + 3Lk, the least-squares drift per period.
     mrm::repro::run_in_parallel(
-        order, threads,
-        [&](std::size_t k) {
-          const Job& job = jobs[k];
-          const Member& member = members()[job.member];
-          const mrm::Index n = meshes[job.mesh];
-          const mrm::UniformMesh mesh(1.0, n);
-          const double h = mesh.h();
-          const mrm::repro::Configuration& configuration = configurations[k];
-          const mrm::repro::Measures& measures = all_measures[k];
-          const double dt = configuration.step();
-          const mrm::PeriodLawMasses masses = mrm::period_law_masses(mesh, configuration.mass);
-          // The split subtracts L from a sum of 3N + 1 entries (round-off of about N ulps of L, 1e-13 h here):
-          // rounded to 1e-9 h, far below anything measured.
-          auto in_h = [h](double v) { return std::round(v / h * 1e9) / 1e9 + 0.0; };
-          const double predicted_eigen = mrm::predict_period(mesh, configuration.mass).period_error / h;
-          for (std::size_t c = 0; c < horizons.size(); ++c) {
-            Run& r = runs[run_index(job.mesh, job.courant, c, job.member)];
-            const double end =
-                static_cast<double>(mrm::steps_to_reach(exact.period() * static_cast<double>(horizons[c]), dt)) * dt;
-            std::vector<double> impacts;
-            for (double t : measures.impacts)
-              if (t <= end) impacts.push_back(t);
-            if (impacts.size() < 2)
-              throw std::runtime_error("fig_family: " + member.spec(n) + " at N = " + std::to_string(n) +
-                                       ": fewer than two impacts, no drift can be measured");
-            const std::optional<mrm::PhaseMeasures> paired = mrm::benchmark_phase(impacts, exact);
-            if (!paired || paired->matched != impacts.size())
-              throw std::runtime_error("fig_family: " + member.spec(n) + " at N = " + std::to_string(n) +
-                                       ": an impact farther than 3L/2 from its exact partner");
-            const mrm::PhaseMeasures& phase = *paired;
-            r.total_mass = mrm::total_mass(mesh, configuration.mass);
-            r.local = in_h(masses.local);
-            r.uniform = in_h(masses.uniform);
-            r.predicted = in_h(mrm::predicted_period_change(masses.local, masses.uniform));
-            r.predicted_eigen = predicted_eigen;
-            r.first_impact_error = phase.first_impact_error / h;
-            r.drift = *phase.drift_per_period / h;
-            r.errors =
-                mrm::ErrorAccumulator::values(c + 1 < horizons.size() ? measures.horizon_errors[c] : measures.errors);
-          }
-        },
+        order, threads, [&](std::size_t k) { measure_job(jobs[k], configurations[k], all_measures[k], exact, runs); },
         [&](std::size_t position, std::size_t k) {
           const Job& job = jobs[k];
           std::cerr << "fig_family: " << position << '/' << order.size() << ' '

@@ -44,6 +44,44 @@ namespace {
 constexpr std::array<std::pair<double, double>, 2> closed_form_bars{{{1.0, 0.5}, {2.5, 1e-3}}};
 constexpr double closed_form_periods = 10;
 
+// The characteristic solution against the closed form over 10 periods (a check of the reference,
+// mathematics.md §2 against §10), for two bars; every difference must be within the round-off bound
+// derived in characteristics.cpp. Writes the differences to the data file's header and the report's values.
+void check_closed_form(std::ostream& out, std::ostream& defs) {
+  const double bound = mrm::closed_form_round_off_bound(closed_form_periods);
+  out << "# closed_form_periods = " << cli::format_real(closed_form_periods)
+      << "\n# closed_form_bound = " << cli::format_real(bound)
+      << " (eps (W (W + 1)/2 + 8 (W + 1)), W = 3 x periods: the number of windows of length L)\n"
+      << "# closed_form_k_*: bar k, the largest |difference| of u and u0 = u(0,t) relative to aL, of u_x, u_t and "
+         "lambda relative to a\n";
+  mrm::tex_define(defs, "smoothbench:closedform:periods", cli::format_real(closed_form_periods));
+  mrm::tex_define(defs, "smoothbench:closedform:bound", mrm::tex_number(bound, 2));
+  for (std::size_t k = 0; k < closed_form_bars.size(); ++k) {
+    const auto [length, amplitude] = closed_form_bars[k];
+    const mrm::ClosedFormDifference d = mrm::closed_form_difference(length, amplitude, closed_form_periods);
+    const std::string key = "smoothbench:closedform:" + std::to_string(k + 1);
+    const std::pair<const char*, double> entries[] = {{"u", d.displacement},
+                                                      {"u_x", d.strain},
+                                                      {"u_t", d.velocity},
+                                                      {"u0", d.contact_displacement},
+                                                      {"lambda", d.contact_multiplier}};
+    const std::string prefix = "# closed_form_" + std::to_string(k + 1) + "_";
+    out << prefix << "L = " << cli::format_real(length) << '\n'
+        << prefix << "a = " << cli::format_real(amplitude) << '\n';
+    for (const auto& [name, value] : entries) out << prefix << name << " = " << cli::format_real(value) << '\n';
+    mrm::tex_define(defs, key + ":L", cli::format_real(length));
+    mrm::tex_define(defs, key + ":a", cli::format_real(amplitude));
+    for (const auto& [name, value] : entries) {
+      if (!(value <= bound))
+        throw std::runtime_error(std::string("the characteristic solution differs from the closed form in ") + name +
+                                 " by " + cli::format_real(value) + " (L = " + cli::format_real(length) +
+                                 ", a = " + cli::format_real(amplitude) + "), above the round-off bound " +
+                                 cli::format_real(bound));
+      mrm::tex_define(defs, key + ":" + name, mrm::tex_number(value, 2));
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -72,41 +110,8 @@ int main(int argc, char** argv) {
     std::ostream& defs = program.values();
     const auto& masses = mrm::repro::mass_names();
 
-    // 3. The characteristic solution against the closed form over 10 periods (a check of the reference,
-    // mathematics.md §2 against §10), for two bars; every difference must be within the round-off bound
-    // derived in characteristics.cpp.
-    const double bound = mrm::closed_form_round_off_bound(closed_form_periods);
-    out << "# closed_form_periods = " << cli::format_real(closed_form_periods)
-        << "\n# closed_form_bound = " << cli::format_real(bound)
-        << " (eps (W (W + 1)/2 + 8 (W + 1)), W = 3 x periods: the number of windows of length L)\n"
-        << "# closed_form_k_*: bar k, the largest |difference| of u and u0 = u(0,t) relative to aL, of u_x, u_t and "
-           "lambda relative to a\n";
-    mrm::tex_define(defs, "smoothbench:closedform:periods", cli::format_real(closed_form_periods));
-    mrm::tex_define(defs, "smoothbench:closedform:bound", mrm::tex_number(bound, 2));
-    for (std::size_t k = 0; k < closed_form_bars.size(); ++k) {
-      const auto [length, amplitude] = closed_form_bars[k];
-      const mrm::ClosedFormDifference d = mrm::closed_form_difference(length, amplitude, closed_form_periods);
-      const std::string key = "smoothbench:closedform:" + std::to_string(k + 1);
-      const std::pair<const char*, double> entries[] = {{"u", d.displacement},
-                                                        {"u_x", d.strain},
-                                                        {"u_t", d.velocity},
-                                                        {"u0", d.contact_displacement},
-                                                        {"lambda", d.contact_multiplier}};
-      const std::string prefix = "# closed_form_" + std::to_string(k + 1) + "_";
-      out << prefix << "L = " << cli::format_real(length) << '\n'
-          << prefix << "a = " << cli::format_real(amplitude) << '\n';
-      for (const auto& [name, value] : entries) out << prefix << name << " = " << cli::format_real(value) << '\n';
-      mrm::tex_define(defs, key + ":L", cli::format_real(length));
-      mrm::tex_define(defs, key + ":a", cli::format_real(amplitude));
-      for (const auto& [name, value] : entries) {
-        if (!(value <= bound))
-          throw std::runtime_error(std::string("the characteristic solution differs from the closed form in ") + name +
-                                   " by " + cli::format_real(value) + " (L = " + cli::format_real(length) +
-                                   ", a = " + cli::format_real(amplitude) + "), above the round-off bound " +
-                                   cli::format_real(bound));
-        mrm::tex_define(defs, key + ":" + name, mrm::tex_number(value, 2));
-      }
-    }
+    // 3. The characteristic solution against the closed form (a check of the reference).
+    check_closed_form(out, defs);
     out << "# lambda_h = n/a at a level without a multiplier\n";
 
     // 4. One block per benchmark: the three runs sampled at their levels, the exact values beside them.

@@ -236,6 +236,296 @@ void write_family_table(std::ostream& defs, const std::vector<mrm::repro::TimeFa
   mrm::tex_define(defs, "time:family:onsetto", std::to_string(std::lround(onset_largest)));
 }
 
+/// The fitted orders orders[i][s][k] of mesh i, scheme s, measure k over the finest `points` steps, and
+/// the same fit one step coarser (the steps ending at the second finest), to show how the verdict
+/// depends on where the range stops.
+struct Orders {
+  const std::vector<Series>& series;
+  std::size_t points;
+  std::vector<std::vector<std::array<double, 8>>> finest, shifted;
+
+  /// The verdict: within the tolerance of the predicted order.
+  bool within(std::size_t i, std::size_t s, std::size_t k) const {
+    return std::abs(finest[i][s][k] - predicted_order(schemes[s])) <= order_tolerance;
+  }
+  /// The shifted fit in words. Where it cannot be formed, the row says why (never a NaN): "n/a: fewer
+  /// than F + 1 steps" (K = F), or "n/a: fewer than two positive errors" there.
+  std::string shifted_text(std::size_t i, std::size_t s, std::size_t k, bool tex) const {
+    const double p = shifted[i][s][k];
+    if (std::isfinite(p)) return tex ? mrm::tex_number(p, 3) : cli::format_real(p);
+    return std::string(series[i].ratio.size() > points ? "n/a: fewer than two positive errors"
+                                                       : "n/a: fewer than fit_points + 1 steps");
+  }
+};
+
+Orders fit_orders(const std::vector<Series>& series, std::size_t points) {
+  Orders o{series,
+           points,
+           std::vector<std::vector<std::array<double, 8>>>(series.size(),
+                                                           std::vector<std::array<double, 8>>(schemes.size())),
+           {}};
+  for (std::size_t i = 0; i < series.size(); ++i)
+    for (std::size_t s = 0; s < schemes.size(); ++s)
+      for (std::size_t k = 0; k < 8; ++k) {
+        o.finest[i][s][k] = finest_order(series[i], s, k, points);
+        if (!std::isfinite(o.finest[i][s][k]))
+          throw std::runtime_error("no order over the finest steps: an error is zero (" + mrm::to_string(schemes[s]) +
+                                   ", " + mrm::ErrorAccumulator::names[k] + ")");
+      }
+  o.shifted = o.finest;
+  for (std::size_t i = 0; i < series.size(); ++i)
+    for (std::size_t s = 0; s < schemes.size(); ++s)
+      for (std::size_t k = 0; k < 8; ++k)
+        o.shifted[i][s][k] = series[i].ratio.size() > points ? finest_order(series[i], s, k, points, 1) : std::nan("");
+  return o;
+}
+
+// Blocks 0 to 3: the errors of each scheme on each mesh against the step, with the fitted orders and
+// their verdicts in the block's header.
+void write_series_blocks(std::ostream& out, const std::vector<Series>& series, const Orders& orders) {
+  out << "# reference: Crank-Nicolson with the same mesh and mass\n"
+      << "# predicted_order_" << mrm::to_string(schemes[0]) << " = " << predicted_order(schemes[0]) << '\n'
+      << "# predicted_order_" << mrm::to_string(schemes[1]) << " = " << predicted_order(schemes[1]) << '\n'
+      << "# order_tolerance = " << cli::format_real(order_tolerance)
+      << "\n# verdict: within if |order over the finest fit_points steps - predicted| <= order_tolerance\n"
+      << "# blocks: 2 i + s, mesh i in (fine, coarse), scheme s in (" << mrm::to_string(schemes[0]) << ", "
+      << mrm::to_string(schemes[1]) << ")\n";
+  for (std::size_t i = 0; i < series.size(); ++i)
+    out << "# mesh " << i << ": h = " << cli::format_real(series[i].h())
+        << ", dt_ref = " << cli::format_real(series[i].dt_ref()) << ", total_mass = "
+        << cli::format_real(mrm::total_mass(mrm::UniformMesh(1.0, series[i].elements), series[i].mass))
+        << ", final_time_used = " << cli::format_real(series[i].final_time_used) << '\n';
+  for (std::size_t i = 0; i < series.size(); ++i)
+    for (std::size_t s = 0; s < schemes.size(); ++s) {
+      const Series& se = series[i];
+      out << (i + s ? "\n\n" : "") << "# block " << 2 * i + s << ": scheme = " << mrm::to_string(schemes[s])
+          << ", elements = " << se.elements << ", reference_ratio = " << se.reference_ratio << '\n';
+      for (std::size_t k = 0; k < 8; ++k)
+        out << "# order_finest " << mrm::ErrorAccumulator::names[k] << " = " << cli::format_real(orders.finest[i][s][k])
+            << " (" << (orders.within(i, s, k) ? "within" : "outside")
+            << "); one step coarser: " << orders.shifted_text(i, s, k, false) << '\n';
+      out << "# columns: dt dt_over_h";
+      for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
+      out << " mismatched_levels\n";
+      for (std::size_t j = 0; j < se.ratio.size(); ++j) {
+        out << cli::format_real(se.dt(j)) << ' ' << cli::format_real(se.dt(j) / se.h());
+        for (double e : se.differences[s * se.ratio.size() + j]) out << ' ' << cli::format_real(e);
+        out << ' ' << se.mismatched[s * se.ratio.size() + j] << '\n';
+      }
+    }
+}
+
+// The round-off benchmark's first impact times against the finest one.
+struct ImpactSummary {
+  double finest = 0;                           ///< the first impact time at the finest step (increment form)
+  double spread_after = 0, spread_before = 0;  ///< the largest |time - finest| of each form
+};
+
+// Block 4: the first impact time of the round-off benchmark, solved for U^{n+1} and for the increment.
+ImpactSummary write_impact_block(std::ostream& out, const std::vector<long>& impact_ratios,
+                                 const std::vector<double>& impact_times, long impact_elements) {
+  ImpactSummary summary;
+  summary.finest = impact_times.back();
+  out << "\n\n# block 4: first impact time, N = " << impact_elements
+      << ", Mod 1, Crank-Nicolson, solved for U^{n+1} (before) and for the increment (after)\n"
+      << "# columns: dt_over_h_inverse t_for_u t_increment for_u_minus_finest increment_minus_finest\n";
+  for (std::size_t j = 0; j < impact_ratios.size(); ++j) {
+    const double before = impact_times[2 * j], after = impact_times[2 * j + 1];
+    summary.spread_after = std::max(summary.spread_after, std::abs(after - summary.finest));
+    summary.spread_before = std::max(summary.spread_before, std::abs(before - summary.finest));
+    out << impact_ratios[j] << ' ' << cli::format_real(before) << ' ' << cli::format_real(after) << ' '
+        << cli::format_real(before - summary.finest) << ' ' << cli::format_real(after - summary.finest) << '\n';
+  }
+  return summary;
+}
+
+// What the family's meshes show: per measure the meshes where order 2 holds, the meshes where it holds in
+// all 8, and the region where it holds (its onset's range in h/Δt and its slope against h).
+struct FamilySummary {
+  std::array<int, 8> holds{};
+  int all_holds = 0, meshes_with_region = 0;
+  double onset_smallest = HUGE_VAL, onset_largest = 0, onset_slope = 0;
+};
+
+// Block 5: the family of meshes, each mesh's verdicts in the header and its errors against the step.
+FamilySummary write_family_block(std::ostream& out, const std::vector<mrm::repro::TimeFamilyMesh>& family,
+                                 const std::string& mass, long family_reference_ratio,
+                                 const mrm::repro::TimeFamilySettings& family_settings) {
+  std::array<int, 8> family_holds{};
+  int family_all_holds = 0;
+  for (const mrm::repro::TimeFamilyMesh& f : family) {
+    bool all8 = true;
+    for (std::size_t k = 0; k < 8; ++k) family_holds[k] += f.holds[k], all8 = all8 && f.holds[k];
+    family_all_holds += all8;
+  }
+  out << "\n\n# block 5: family of meshes, Crank-Nicolson, " << mrm::repro::mass_label(mass).abbreviation
+      << ", reference h/" << family_reference_ratio << " checked against h/" << 2 * family_reference_ratio
+      << "; judged: every halving from dt <= h/2 whose errors are >= " << family_settings.floor_factor
+      << " x the reference bound, |local order - 2| <= " << family_settings.tolerance
+      << "; velocity measures on matched levels (repro/time_family.cpp)\n";
+  for (std::size_t k = 0; k < 8; ++k)
+    out << "# family_holds " << mrm::ErrorAccumulator::names[k] << " = " << family_holds[k] << " of " << family.size()
+        << " meshes\n";
+  out << "# family_all_measures_hold = " << family_all_holds << " of " << family.size() << " meshes\n";
+  // The region where order 2 holds: on each mesh the largest step from which every halving holds in
+  // all 8 measures (the latest onset of the measures), and how it scales with h (a conjecture: the
+  // accumulated phase error of the highest modes, ω³Δt²T/12 with ω ~ 1/h, must be small, so the onset
+  // should scale like h^{3/2}); the least-squares slope of log onset against log h.
+  std::vector<double> onset_h, onset_dt;
+  double onset_smallest = HUGE_VAL, onset_largest = 0;
+  int meshes_with_region = 0;  // the meshes where at least the finest halving holds in all 8 measures
+  for (const mrm::repro::TimeFamilyMesh& f : family) {
+    std::size_t latest = 0;
+    for (std::size_t k = 0; k < 8; ++k) latest = std::max(latest, f.onset[k]);
+    if (latest + 1 >= f.dt.size()) continue;
+    ++meshes_with_region;
+    onset_h.push_back(1.0 / static_cast<double>(f.elements));
+    onset_dt.push_back(f.dt[latest]);
+    const double ratio = 1.0 / (f.dt[latest] * static_cast<double>(f.elements));
+    onset_smallest = std::min(onset_smallest, ratio), onset_largest = std::max(onset_largest, ratio);
+  }
+  const double onset_slope = onset_h.size() >= 2 ? mrm::fit_order(onset_h, onset_dt).order : std::nan("");
+  out << "# family_onset: order 2 at every halving from "
+      << (meshes_with_region > 0
+              ? "dt = h/" + cli::format_real(onset_smallest) + " to h/" + cli::format_real(onset_largest) + " on"
+              : std::string("n/a: no mesh has such a step"))
+      << " (all 8 measures); slope of log onset vs log h = "
+      << (std::isfinite(onset_slope) ? cli::format_real(onset_slope) : std::string("n/a: fewer than two meshes"))
+      << " (conjecture: 1.5); meshes with such a region: " << meshes_with_region << " of " << family.size() << '\n';
+  for (const mrm::repro::TimeFamilyMesh& f : family) {
+    out << "# mesh N = " << f.elements << ": reference_bound";
+    for (double b : f.reference_bound) out << ' ' << cli::format_real(b);
+    out << "; reference_mismatched_levels " << f.reference_mismatched << '\n';
+    for (std::size_t k = 0; k < 8; ++k) {
+      out << "#   " << mrm::ErrorAccumulator::names[k] << ": " << (f.holds[k] ? "holds" : "fails")
+          << " from dt = h/2, judged " << f.judged_count[k]
+          << "; order 2 from dt/h = " << cli::format_real(f.dt[f.onset[k]] * static_cast<double>(f.elements))
+          << "; local orders";
+      for (std::size_t j = 0; j < f.local[k].size(); ++j)
+        out << ' ' << (std::isfinite(f.local[k][j]) ? cli::format_real(f.local[k][j]) : std::string("n/a"))
+            << (f.judged[k][j] ? "" : "(not judged)");
+      out << '\n';
+    }
+  }
+  out << "# columns: elements dt_over_h";
+  for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
+  out << " err_v_LinfL2_all_levels err_v_L2L2_all_levels mismatched_levels\n";
+  for (const mrm::repro::TimeFamilyMesh& f : family)
+    for (std::size_t j = 0; j < f.dt.size(); ++j) {
+      out << f.elements << ' ' << cli::format_real(f.dt[j] * static_cast<double>(f.elements));
+      for (std::size_t k = 0; k < 8; ++k) out << ' ' << cli::format_real(f.judged_errors(j, k)[k]);
+      out << ' ' << cli::format_real(f.all[j][4]) << ' ' << cli::format_real(f.all[j][7]) << ' ' << f.mismatched[j]
+          << '\n';
+    }
+  return {family_holds, family_all_holds, meshes_with_region, onset_smallest, onset_largest, onset_slope};
+}
+
+// The table of mesh i (errors with the order between consecutive steps, the fitted orders) and its
+// quoted values: the keys time:… for the fine mesh, time:coarse:… for the coarse one.
+void write_series_values(std::ostream& defs, const Series& se, std::size_t i, const Orders& orders) {
+  const std::string prefix = i == 0 ? "time:" : "time:coarse:";
+  // A step as a multiple of h, for the prose: "4h", "h", "h/8".
+  auto step_text = [&](long m) {
+    const double q = static_cast<double>(m) / static_cast<double>(se.reference_ratio);
+    if (q == 1) return std::string("h");
+    return q > 1 ? std::to_string(static_cast<long>(q)) + "h" : "h/" + std::to_string(static_cast<long>(1 / q));
+  };
+  mrm::tex_define(defs, prefix + "elements", std::to_string(se.elements));
+  mrm::tex_define(defs, prefix + "steps", std::to_string(se.ratio.size()));
+  mrm::tex_define(defs, prefix + "R", std::to_string(se.reference_ratio));
+  mrm::tex_define(defs, prefix + "T", mrm::tex_number(se.final_time_used, 3));
+  mrm::tex_define(defs, prefix + "largest", step_text(se.ratio.front()));
+  mrm::tex_define(defs, prefix + "smallest", step_text(se.ratio.back()));
+  mrm::tex_define(defs, prefix + "fitlargest", step_text(se.ratio[se.ratio.size() - orders.points]));
+  if (se.ratio.size() > orders.points) {
+    mrm::tex_define(defs, prefix + "shiftlargest", step_text(se.ratio[se.ratio.size() - orders.points - 1]));
+    mrm::tex_define(defs, prefix + "shiftsmallest", step_text(se.ratio[se.ratio.size() - 2]));
+  }
+  std::vector<std::string> headers{"scheme", "$\\Delta t/h$"};
+  for (const mrm::repro::Label& label : mrm::repro::measure_labels())
+    headers.push_back("\\rotatebox{70}{" + label.latex + "}");
+  headers.push_back("\\rotatebox{70}{mismatched levels}");
+  mrm::repro::Table table(headers);
+  const std::size_t half = se.ratio.size() / 2;
+  for (std::size_t s = 0; s < schemes.size(); ++s) {
+    std::vector<double> steps;
+    for (std::size_t j = 0; j < se.ratio.size(); ++j) steps.push_back(se.dt(j));
+    for (std::size_t j = 0; j < se.ratio.size(); ++j) {
+      const double q = static_cast<double>(se.ratio[j]) / static_cast<double>(se.reference_ratio);
+      std::vector<std::string> cells{
+          j == 0 ? mrm::repro::scheme_label(schemes[s]).abbreviation : std::string(),
+          q >= 1 ? std::to_string(static_cast<long>(q)) : "1/" + std::to_string(static_cast<long>(1 / q))};
+      for (std::size_t k = 0; k < 8; ++k) {
+        const double e = se.differences[s * se.ratio.size() + j][k];
+        cells.push_back(mrm::tex_number(e, 2));
+        if (j > 0) {  // the local order of this halving of the step
+          const double local = mrm::repro::local_orders({steps[j - 1], steps[j]},
+                                                        {se.differences[s * se.ratio.size() + j - 1][k], e})[1];
+          cells.back() += " (" + mrm::tex_number(local, 2) + ")";
+        }
+      }
+      cells.push_back(std::to_string(se.mismatched[s * se.ratio.size() + j]));
+      table.add_row(cells);
+    }
+    std::vector<std::string> fitted{"", "order"};
+    for (std::size_t k = 0; k < 8; ++k) fitted.push_back(mrm::tex_number(orders.finest[i][s][k], 2));
+    fitted.push_back("");
+    table.add_row(fitted);
+    table.add_rule();
+    std::size_t count = 0;
+    for (std::size_t k = 0; k < 8; ++k) {
+      const std::string key = mrm::to_string(schemes[s]) + ":" + mrm::ErrorAccumulator::names[k];
+      mrm::tex_define(defs, prefix + "orderfinest:" + key, mrm::tex_number(orders.finest[i][s][k], 3));
+      mrm::tex_define(defs, prefix + "ordershifted:" + key, orders.shifted_text(i, s, k, true));
+      mrm::tex_define(defs, prefix + "verdict:" + key, orders.within(i, s, k) ? "within" : "outside");
+      count += orders.within(i, s, k);
+      mrm::tex_define(defs, prefix + "errfine:" + key,
+                      mrm::tex_number(se.differences[s * se.ratio.size() + se.ratio.size() - 1][k], 2));
+      if (i == 0) {  // the fine mesh: the fit over all steps and over the finer half
+        std::vector<double> all_steps, all_errors, fine_steps, fine_errors;
+        for (std::size_t j = 0; j < se.ratio.size(); ++j) {
+          const double e = se.differences[s * se.ratio.size() + j][k];
+          if (!(e > 0)) continue;
+          all_steps.push_back(steps[j]);
+          all_errors.push_back(e);
+          if (j >= half) fine_steps.push_back(steps[j]), fine_errors.push_back(e);
+        }
+        mrm::tex_define(
+            defs, prefix + "order:" + key,
+            all_steps.size() >= 2 ? mrm::tex_number(mrm::fit_order(all_steps, all_errors).order, 2) : "n/a");
+        mrm::tex_define(
+            defs, prefix + "orderfine:" + key,
+            fine_steps.size() >= 2 ? mrm::tex_number(mrm::fit_order(fine_steps, fine_errors).order, 2) : "n/a");
+      }
+    }
+    mrm::tex_define(defs, prefix + "within:" + mrm::to_string(schemes[s]), std::to_string(count));
+    // The steps whose run has levels in the other contact state than the reference.
+    std::string mismatch;
+    for (std::size_t j = 0; j < se.ratio.size(); ++j)
+      if (se.mismatched[s * se.ratio.size() + j] > 0)
+        mismatch += (mismatch.empty() ? "" : ", ") + std::string("$") + step_text(se.ratio[j]) + "$";
+    mrm::tex_define(defs, prefix + "mismatch:" + mrm::to_string(schemes[s]), mismatch.empty() ? "none" : mismatch);
+    std::size_t mismatched_steps = 0, finest_mismatched = se.ratio.size();
+    for (std::size_t j = 0; j < se.ratio.size(); ++j)
+      if (se.mismatched[s * se.ratio.size() + j] > 0) ++mismatched_steps, finest_mismatched = j;
+    mrm::tex_define(defs, prefix + "mismatchsteps:" + mrm::to_string(schemes[s]), std::to_string(mismatched_steps));
+    mrm::tex_define(defs, prefix + "mismatchfinest:" + mrm::to_string(schemes[s]),
+                    finest_mismatched < se.ratio.size() ? "$" + step_text(se.ratio[finest_mismatched]) + "$" : "none");
+    mrm::tex_define(defs, prefix + "withinwords:" + mrm::to_string(schemes[s]),
+                    count == 8 ? "all 8 measures" : std::to_string(count) + " of the 8 measures");
+  }
+  if (i == 0) mrm::tex_define(defs, "time:finehalf", step_text(se.ratio[half]));
+  // The table in two halves at the text size (measures 1-4, then 5-8 of mathematics.md §5 and the
+  // mismatched levels), not shrunk.
+  for (std::size_t part = 0; part < 2; ++part) {
+    std::vector<std::size_t> keep{0, 1};
+    for (std::size_t k = 4 * part; k < 4 * part + 4; ++k) keep.push_back(2 + k);
+    if (part == 1) keep.push_back(10);
+    defs << "\\mrmdef{" << prefix << "table" << (part == 0 ? ":a" : ":b") << "}{"
+         << mrm::repro::latex_tabular(table.columns_subset(keep), "ll" + std::string(keep.size() - 2, 'r')) << "}\n";
+  }
+}
+
 // The options of the program beyond the mesh and the final time (FigureProgram's), with their defaults.
 struct Options {
   long reference_ratio = 128, largest = 4, steps_count = 6;
@@ -440,150 +730,17 @@ int main(int argc, char** argv) {
 
     // 4. Orders over the finest steps and the verdicts.
     const std::size_t points = static_cast<std::size_t>(fit_points);
-    // orders[i][s][k]
-    std::vector<std::vector<std::array<double, 8>>> orders(series.size(),
-                                                           std::vector<std::array<double, 8>>(schemes.size()));
-    for (std::size_t i = 0; i < series.size(); ++i)
-      for (std::size_t s = 0; s < schemes.size(); ++s)
-        for (std::size_t k = 0; k < 8; ++k) {
-          orders[i][s][k] = finest_order(series[i], s, k, points);
-          if (!std::isfinite(orders[i][s][k]))
-            throw std::runtime_error("no order over the finest steps: an error is zero (" + mrm::to_string(schemes[s]) +
-                                     ", " + mrm::ErrorAccumulator::names[k] + ")");
-        }
-    // The same fit one step coarser (the steps ending at the second finest), to show how the verdict
-    // depends on where the range stops. Where it cannot be formed, the row says why in words (never a
-    // NaN): "n/a: fewer than F + 1 steps" (K = F), or "n/a: fewer than two positive errors" there.
-    std::vector<std::vector<std::array<double, 8>>> shifted = orders;
-    auto shifted_text = [&](std::size_t i, std::size_t s, std::size_t k, bool tex) {
-      const double p = shifted[i][s][k];
-      if (std::isfinite(p)) return tex ? mrm::tex_number(p, 3) : cli::format_real(p);
-      return std::string(series[i].ratio.size() > points ? "n/a: fewer than two positive errors"
-                                                         : "n/a: fewer than fit_points + 1 steps");
-    };
-    for (std::size_t i = 0; i < series.size(); ++i)
-      for (std::size_t s = 0; s < schemes.size(); ++s)
-        for (std::size_t k = 0; k < 8; ++k)
-          shifted[i][s][k] = series[i].ratio.size() > points ? finest_order(series[i], s, k, points, 1) : std::nan("");
-    auto within = [&](std::size_t i, std::size_t s, std::size_t k) {
-      return std::abs(orders[i][s][k] - predicted_order(schemes[s])) <= order_tolerance;
-    };
+    const Orders orders = fit_orders(series, points);
 
     // 5. Data blocks.
     std::ostream& out =
         program.header("error in time at fixed h against a reference with dt_ref = h/R (mathematics.md sec. 5, 7, 9)");
-    out << "# reference: Crank-Nicolson with the same mesh and mass\n"
-        << "# predicted_order_" << mrm::to_string(schemes[0]) << " = " << predicted_order(schemes[0]) << '\n'
-        << "# predicted_order_" << mrm::to_string(schemes[1]) << " = " << predicted_order(schemes[1]) << '\n'
-        << "# order_tolerance = " << cli::format_real(order_tolerance)
-        << "\n# verdict: within if |order over the finest fit_points steps - predicted| <= order_tolerance\n"
-        << "# blocks: 2 i + s, mesh i in (fine, coarse), scheme s in (" << mrm::to_string(schemes[0]) << ", "
-        << mrm::to_string(schemes[1]) << ")\n";
-    for (std::size_t i = 0; i < series.size(); ++i)
-      out << "# mesh " << i << ": h = " << cli::format_real(series[i].h())
-          << ", dt_ref = " << cli::format_real(series[i].dt_ref()) << ", total_mass = "
-          << cli::format_real(mrm::total_mass(mrm::UniformMesh(1.0, series[i].elements), series[i].mass))
-          << ", final_time_used = " << cli::format_real(series[i].final_time_used) << '\n';
-    for (std::size_t i = 0; i < series.size(); ++i)
-      for (std::size_t s = 0; s < schemes.size(); ++s) {
-        const Series& se = series[i];
-        out << (i + s ? "\n\n" : "") << "# block " << 2 * i + s << ": scheme = " << mrm::to_string(schemes[s])
-            << ", elements = " << se.elements << ", reference_ratio = " << se.reference_ratio << '\n';
-        for (std::size_t k = 0; k < 8; ++k)
-          out << "# order_finest " << mrm::ErrorAccumulator::names[k] << " = " << cli::format_real(orders[i][s][k])
-              << " (" << (within(i, s, k) ? "within" : "outside")
-              << "); one step coarser: " << shifted_text(i, s, k, false) << '\n';
-        out << "# columns: dt dt_over_h";
-        for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
-        out << " mismatched_levels\n";
-        for (std::size_t j = 0; j < se.ratio.size(); ++j) {
-          out << cli::format_real(se.dt(j)) << ' ' << cli::format_real(se.dt(j) / se.h());
-          for (double e : se.differences[s * se.ratio.size() + j]) out << ' ' << cli::format_real(e);
-          out << ' ' << se.mismatched[s * se.ratio.size() + j] << '\n';
-        }
-      }
+    write_series_blocks(out, series, orders);
 
     // Block 4: the round-off benchmark.
-    const double impact_finest_value = impact_times.back();
-    out << "\n\n# block 4: first impact time, N = " << impact_elements
-        << ", Mod 1, Crank-Nicolson, solved for U^{n+1} (before) and for the increment (after)\n"
-        << "# columns: dt_over_h_inverse t_for_u t_increment for_u_minus_finest increment_minus_finest\n";
-    double impact_spread_after = 0, impact_spread_before = 0;
-    for (std::size_t j = 0; j < impact_ratios.size(); ++j) {
-      const double before = impact_times[2 * j], after = impact_times[2 * j + 1];
-      impact_spread_after = std::max(impact_spread_after, std::abs(after - impact_finest_value));
-      impact_spread_before = std::max(impact_spread_before, std::abs(before - impact_finest_value));
-      out << impact_ratios[j] << ' ' << cli::format_real(before) << ' ' << cli::format_real(after) << ' '
-          << cli::format_real(before - impact_finest_value) << ' ' << cli::format_real(after - impact_finest_value)
-          << '\n';
-    }
+    const ImpactSummary impact = write_impact_block(out, impact_ratios, impact_times, impact_elements);
     // Block 5: the family.
-    std::array<int, 8> family_holds{};
-    int family_all_holds = 0;
-    for (const mrm::repro::TimeFamilyMesh& f : family) {
-      bool all8 = true;
-      for (std::size_t k = 0; k < 8; ++k) family_holds[k] += f.holds[k], all8 = all8 && f.holds[k];
-      family_all_holds += all8;
-    }
-    out << "\n\n# block 5: family of meshes, Crank-Nicolson, " << mrm::repro::mass_label(mass).abbreviation
-        << ", reference h/" << family_reference_ratio << " checked against h/" << 2 * family_reference_ratio
-        << "; judged: every halving from dt <= h/2 whose errors are >= " << family_settings.floor_factor
-        << " x the reference bound, |local order - 2| <= " << family_settings.tolerance
-        << "; velocity measures on matched levels (repro/time_family.cpp)\n";
-    for (std::size_t k = 0; k < 8; ++k)
-      out << "# family_holds " << mrm::ErrorAccumulator::names[k] << " = " << family_holds[k] << " of " << family.size()
-          << " meshes\n";
-    out << "# family_all_measures_hold = " << family_all_holds << " of " << family.size() << " meshes\n";
-    // The region where order 2 holds: on each mesh the largest step from which every halving holds in
-    // all 8 measures (the latest onset of the measures), and how it scales with h (a conjecture: the
-    // accumulated phase error of the highest modes, ω³Δt²T/12 with ω ~ 1/h, must be small, so the onset
-    // should scale like h^{3/2}); the least-squares slope of log onset against log h.
-    std::vector<double> onset_h, onset_dt;
-    double onset_smallest = HUGE_VAL, onset_largest = 0;
-    int meshes_with_region = 0;  // the meshes where at least the finest halving holds in all 8 measures
-    for (const mrm::repro::TimeFamilyMesh& f : family) {
-      std::size_t latest = 0;
-      for (std::size_t k = 0; k < 8; ++k) latest = std::max(latest, f.onset[k]);
-      if (latest + 1 >= f.dt.size()) continue;
-      ++meshes_with_region;
-      onset_h.push_back(1.0 / static_cast<double>(f.elements));
-      onset_dt.push_back(f.dt[latest]);
-      const double ratio = 1.0 / (f.dt[latest] * static_cast<double>(f.elements));
-      onset_smallest = std::min(onset_smallest, ratio), onset_largest = std::max(onset_largest, ratio);
-    }
-    const double onset_slope = onset_h.size() >= 2 ? mrm::fit_order(onset_h, onset_dt).order : std::nan("");
-    out << "# family_onset: order 2 at every halving from "
-        << (meshes_with_region > 0
-                ? "dt = h/" + cli::format_real(onset_smallest) + " to h/" + cli::format_real(onset_largest) + " on"
-                : std::string("n/a: no mesh has such a step"))
-        << " (all 8 measures); slope of log onset vs log h = "
-        << (std::isfinite(onset_slope) ? cli::format_real(onset_slope) : std::string("n/a: fewer than two meshes"))
-        << " (conjecture: 1.5); meshes with such a region: " << meshes_with_region << " of " << family.size() << '\n';
-    for (const mrm::repro::TimeFamilyMesh& f : family) {
-      out << "# mesh N = " << f.elements << ": reference_bound";
-      for (double b : f.reference_bound) out << ' ' << cli::format_real(b);
-      out << "; reference_mismatched_levels " << f.reference_mismatched << '\n';
-      for (std::size_t k = 0; k < 8; ++k) {
-        out << "#   " << mrm::ErrorAccumulator::names[k] << ": " << (f.holds[k] ? "holds" : "fails")
-            << " from dt = h/2, judged " << f.judged_count[k]
-            << "; order 2 from dt/h = " << cli::format_real(f.dt[f.onset[k]] * static_cast<double>(f.elements))
-            << "; local orders";
-        for (std::size_t j = 0; j < f.local[k].size(); ++j)
-          out << ' ' << (std::isfinite(f.local[k][j]) ? cli::format_real(f.local[k][j]) : std::string("n/a"))
-              << (f.judged[k][j] ? "" : "(not judged)");
-        out << '\n';
-      }
-    }
-    out << "# columns: elements dt_over_h";
-    for (const char* name : mrm::ErrorAccumulator::names) out << ' ' << name;
-    out << " err_v_LinfL2_all_levels err_v_L2L2_all_levels mismatched_levels\n";
-    for (const mrm::repro::TimeFamilyMesh& f : family)
-      for (std::size_t j = 0; j < f.dt.size(); ++j) {
-        out << f.elements << ' ' << cli::format_real(f.dt[j] * static_cast<double>(f.elements));
-        for (std::size_t k = 0; k < 8; ++k) out << ' ' << cli::format_real(f.judged_errors(j, k)[k]);
-        out << ' ' << cli::format_real(f.all[j][4]) << ' ' << cli::format_real(f.all[j][7]) << ' ' << f.mismatched[j]
-            << '\n';
-      }
+    const FamilySummary summary = write_family_block(out, family, mass, family_reference_ratio, family_settings);
 
     // 6. The tables (errors with the order between consecutive steps) and the quoted values: the keys
     // time:… for the fine mesh, time:coarse:… for the coarse one.
@@ -591,117 +748,12 @@ int main(int argc, char** argv) {
     mrm::tex_define(defs, "time:mass", mrm::repro::mass_label(mass).abbreviation);
     mrm::tex_define(defs, "time:tolerance", mrm::tex_number(order_tolerance, 2));
     mrm::tex_define(defs, "time:fitpoints", std::to_string(fit_points));
-    for (std::size_t i = 0; i < series.size(); ++i) {
-      const Series& se = series[i];
-      const std::string prefix = i == 0 ? "time:" : "time:coarse:";
-      // A step as a multiple of h, for the prose: "4h", "h", "h/8".
-      auto step_text = [&](long m) {
-        const double q = static_cast<double>(m) / static_cast<double>(se.reference_ratio);
-        if (q == 1) return std::string("h");
-        return q > 1 ? std::to_string(static_cast<long>(q)) + "h" : "h/" + std::to_string(static_cast<long>(1 / q));
-      };
-      mrm::tex_define(defs, prefix + "elements", std::to_string(se.elements));
-      mrm::tex_define(defs, prefix + "steps", std::to_string(se.ratio.size()));
-      mrm::tex_define(defs, prefix + "R", std::to_string(se.reference_ratio));
-      mrm::tex_define(defs, prefix + "T", mrm::tex_number(se.final_time_used, 3));
-      mrm::tex_define(defs, prefix + "largest", step_text(se.ratio.front()));
-      mrm::tex_define(defs, prefix + "smallest", step_text(se.ratio.back()));
-      mrm::tex_define(defs, prefix + "fitlargest", step_text(se.ratio[se.ratio.size() - points]));
-      if (se.ratio.size() > points) {
-        mrm::tex_define(defs, prefix + "shiftlargest", step_text(se.ratio[se.ratio.size() - points - 1]));
-        mrm::tex_define(defs, prefix + "shiftsmallest", step_text(se.ratio[se.ratio.size() - 2]));
-      }
-      std::vector<std::string> headers{"scheme", "$\\Delta t/h$"};
-      for (const mrm::repro::Label& label : mrm::repro::measure_labels())
-        headers.push_back("\\rotatebox{70}{" + label.latex + "}");
-      headers.push_back("\\rotatebox{70}{mismatched levels}");
-      mrm::repro::Table table(headers);
-      const std::size_t half = se.ratio.size() / 2;
-      for (std::size_t s = 0; s < schemes.size(); ++s) {
-        std::vector<double> steps;
-        for (std::size_t j = 0; j < se.ratio.size(); ++j) steps.push_back(se.dt(j));
-        for (std::size_t j = 0; j < se.ratio.size(); ++j) {
-          const double q = static_cast<double>(se.ratio[j]) / static_cast<double>(se.reference_ratio);
-          std::vector<std::string> cells{
-              j == 0 ? mrm::repro::scheme_label(schemes[s]).abbreviation : std::string(),
-              q >= 1 ? std::to_string(static_cast<long>(q)) : "1/" + std::to_string(static_cast<long>(1 / q))};
-          for (std::size_t k = 0; k < 8; ++k) {
-            const double e = se.differences[s * se.ratio.size() + j][k];
-            cells.push_back(mrm::tex_number(e, 2));
-            if (j > 0) {  // the local order of this halving of the step
-              const double local = mrm::repro::local_orders({steps[j - 1], steps[j]},
-                                                            {se.differences[s * se.ratio.size() + j - 1][k], e})[1];
-              cells.back() += " (" + mrm::tex_number(local, 2) + ")";
-            }
-          }
-          cells.push_back(std::to_string(se.mismatched[s * se.ratio.size() + j]));
-          table.add_row(cells);
-        }
-        std::vector<std::string> fitted{"", "order"};
-        for (std::size_t k = 0; k < 8; ++k) fitted.push_back(mrm::tex_number(orders[i][s][k], 2));
-        fitted.push_back("");
-        table.add_row(fitted);
-        table.add_rule();
-        std::size_t count = 0;
-        for (std::size_t k = 0; k < 8; ++k) {
-          const std::string key = mrm::to_string(schemes[s]) + ":" + mrm::ErrorAccumulator::names[k];
-          mrm::tex_define(defs, prefix + "orderfinest:" + key, mrm::tex_number(orders[i][s][k], 3));
-          mrm::tex_define(defs, prefix + "ordershifted:" + key, shifted_text(i, s, k, true));
-          mrm::tex_define(defs, prefix + "verdict:" + key, within(i, s, k) ? "within" : "outside");
-          count += within(i, s, k);
-          mrm::tex_define(defs, prefix + "errfine:" + key,
-                          mrm::tex_number(se.differences[s * se.ratio.size() + se.ratio.size() - 1][k], 2));
-          if (i == 0) {  // the fine mesh: the fit over all steps and over the finer half, as before
-            std::vector<double> all_steps, all_errors, fine_steps, fine_errors;
-            for (std::size_t j = 0; j < se.ratio.size(); ++j) {
-              const double e = se.differences[s * se.ratio.size() + j][k];
-              if (!(e > 0)) continue;
-              all_steps.push_back(steps[j]);
-              all_errors.push_back(e);
-              if (j >= half) fine_steps.push_back(steps[j]), fine_errors.push_back(e);
-            }
-            mrm::tex_define(
-                defs, prefix + "order:" + key,
-                all_steps.size() >= 2 ? mrm::tex_number(mrm::fit_order(all_steps, all_errors).order, 2) : "n/a");
-            mrm::tex_define(
-                defs, prefix + "orderfine:" + key,
-                fine_steps.size() >= 2 ? mrm::tex_number(mrm::fit_order(fine_steps, fine_errors).order, 2) : "n/a");
-          }
-        }
-        mrm::tex_define(defs, prefix + "within:" + mrm::to_string(schemes[s]), std::to_string(count));
-        // The steps whose run has levels in the other contact state than the reference.
-        std::string mismatch;
-        for (std::size_t j = 0; j < se.ratio.size(); ++j)
-          if (se.mismatched[s * se.ratio.size() + j] > 0)
-            mismatch += (mismatch.empty() ? "" : ", ") + std::string("$") + step_text(se.ratio[j]) + "$";
-        mrm::tex_define(defs, prefix + "mismatch:" + mrm::to_string(schemes[s]), mismatch.empty() ? "none" : mismatch);
-        std::size_t mismatched_steps = 0, finest_mismatched = se.ratio.size();
-        for (std::size_t j = 0; j < se.ratio.size(); ++j)
-          if (se.mismatched[s * se.ratio.size() + j] > 0) ++mismatched_steps, finest_mismatched = j;
-        mrm::tex_define(defs, prefix + "mismatchsteps:" + mrm::to_string(schemes[s]), std::to_string(mismatched_steps));
-        mrm::tex_define(
-            defs, prefix + "mismatchfinest:" + mrm::to_string(schemes[s]),
-            finest_mismatched < se.ratio.size() ? "$" + step_text(se.ratio[finest_mismatched]) + "$" : "none");
-        mrm::tex_define(defs, prefix + "withinwords:" + mrm::to_string(schemes[s]),
-                        count == 8 ? "all 8 measures" : std::to_string(count) + " of the 8 measures");
-      }
-      if (i == 0) mrm::tex_define(defs, "time:finehalf", step_text(se.ratio[half]));
-      // The table in two halves at the text size (measures 1-4, then 5-8 of mathematics.md §5 and the
-      // mismatched levels), not shrunk.
-      for (std::size_t part = 0; part < 2; ++part) {
-        std::vector<std::size_t> keep{0, 1};
-        for (std::size_t k = 4 * part; k < 4 * part + 4; ++k) keep.push_back(2 + k);
-        if (part == 1) keep.push_back(10);
-        defs << "\\mrmdef{" << prefix << "table" << (part == 0 ? ":a" : ":b") << "}{"
-             << mrm::repro::latex_tabular(table.columns_subset(keep), "ll" + std::string(keep.size() - 2, 'r'))
-             << "}\n";
-      }
-    }
+    for (std::size_t i = 0; i < series.size(); ++i) write_series_values(defs, series[i], i, orders);
 
-    write_impact_table(defs, impact_ratios, impact_times, impact_finest_value, impact_spread_after,
-                       impact_spread_before, impact_elements);
-    write_family_table(defs, family, family_meshes, family_reference_ratio, family_all_holds, family_holds,
-                       meshes_with_region, onset_smallest, onset_largest, onset_slope);
+    write_impact_table(defs, impact_ratios, impact_times, impact.finest, impact.spread_after, impact.spread_before,
+                       impact_elements);
+    write_family_table(defs, family, family_meshes, family_reference_ratio, summary.all_holds, summary.holds,
+                       summary.meshes_with_region, summary.onset_smallest, summary.onset_largest, summary.onset_slope);
 
     // 7. Commit.
     program.commit();
