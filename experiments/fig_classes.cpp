@@ -748,7 +748,7 @@ int main(int argc, char** argv) {
     // 2. The matrix, decided before any long work: classes × masses (refusals listed), benchmarks (probe).
     program.open();
     const Matrix matrix = decide_matrix();
-    std::ostream& out = program.header("the contact classes side by side (issue 23)");
+    std::ostream& out = program.header("the contact classes side by side");
     write_header(out, matrix);
 
     // 3. The runs: the long runs (the sweep layer), then the matrix, costliest first, on --threads workers.

@@ -166,7 +166,7 @@ struct ZeroDrift {
 // Block `block` of the data file (N = elements, Δt/h = courant, `periods` periods), one row per member of
 // `rows` (in members() order), and its values for the prose.
 void write_block(std::ostream& out, std::ostream& defs, const Run* rows, std::size_t block, mrm::Index elements,
-                 double courant, long periods, std::size_t reference_member, ZeroDrift& zero) {
+                 double courant, long periods, ZeroDrift& zero) {
   const std::size_t per_block = members().size();
   const Run& reference = rows[reference_member];
   out << (block ? "\n\n" : "") << "# block " << block << ": N = " << elements
@@ -325,8 +325,7 @@ int main(int argc, char** argv) {
     for (std::size_t a = 0; a < meshes.size(); ++a)
       for (std::size_t b = 0; b < courants.size(); ++b)
         for (std::size_t c = 0; c < horizons.size(); ++c, ++block) {
-          write_block(out, defs, &runs[block * per_block], block, meshes[a], courants[b], horizons[c], reference_member,
-                      zero);
+          write_block(out, defs, &runs[block * per_block], block, meshes[a], courants[b], horizons[c], zero);
         }
     std::string zero_list;
     for (const std::string& label : zero.members) zero_list += (zero_list.empty() ? "" : ", ") + label;

@@ -307,7 +307,7 @@ int main(int argc, char** argv) {
         "fig_phase_matched",
         "Writes the phase error of CN with the blended interior mass against kh, and the errors and orders of "
         "CN + Mod 3 with A = 0 and the phase-matched A (and of EC and CN-switch) on the paper's benchmark "
-        "(1, 10, 30 periods) and on S1, S2 (issue 26).",
+        "(1, 10, 30 periods) and on S1, S2.",
         {"fig_phase_matched --output output/data/fig_phase_matched.dat --tex output/data/fig_phase_matched.tex",
          "fig_phase_matched --coarsest 25 --refinements 3 --long-refinements 2 --energy-refinements 2 --output p.dat"});
     program.parser.add_integer("--coarsest", "-n", "N0", "number of elements of the coarsest mesh, in [4, 1e4]",

@@ -281,8 +281,7 @@ int main(int argc, char** argv) {
         "fig_stress",
         "Writes the oscillation TV(stress)/TV(lambda_exact), the L2 error and the largest error away from the jumps "
         "of four contact stresses (the multiplier, box and B-spline windows of width 8W, the recovered strain) for "
-        "CN + Mod 3, phase-matched CN and CN-switch on the paper's benchmark, S1 and bouncing over ten periods "
-        "(issue 26, item 3).",
+        "CN + Mod 3, phase-matched CN and CN-switch on the paper's benchmark, S1 and bouncing over ten periods.",
         {"fig_stress --output output/data/fig_stress.dat --tex output/data/fig_stress.tex",
          "fig_stress --coarsest 50 --refinements 2 --output s.dat"});
     program.parser.add_integer("--coarsest", "-n", "N0", "number of elements of the coarsest mesh, in [10, 1e4]",
