@@ -247,7 +247,8 @@ TEST_CASE("a static load: a piecewise-polynomial f(x) on a layered bar in static
 
 TEST_CASE("two bars: equal bars meet as one bar on a wall; unequal impedances separate after 2 transits") {
   // Two free bars touching at t = 0 with velocities v_A > v_B. Free flight would close the gap at
-  // β = v_B − v_A < 0, so they stay in contact with σ = μ β, μ = Z_A Z_B/(Z_A + Z_B) (derivation §3).
+  // β = v_B − v_A < 0, so they stay in contact with σ = μ β, μ = Z_A Z_B/(Z_A + Z_B) (impact_chain.cpp,
+  // derivation §3).
   // With equal transit times τ the free ends send back p′ = r′, q′ = s′ at t = 2τ, so that
   // β = 2(s′ − r′) = 2(p′ − q′)_{before} = −β_before > 0: release at 2τ for any impedances.
   // Equal bars (Z_A = Z_B) are symmetric about the contact plane: bar B is one bar on a rigid wall.
