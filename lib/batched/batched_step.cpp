@@ -152,30 +152,31 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
   using Key = std::tuple<std::size_t, int, std::size_t>;
   std::map<Key, std::vector<std::size_t>> families;
   for (std::size_t k = 0; k < count; ++k) {
-    const BarSimulation& r = runs_[k];
-    const FastStep* fast = r.fast_.get();
-    const std::size_t n = static_cast<std::size_t>(r.state_.u.size());
-    if (!fast && r.problem_.load == nullptr && lanes_ >= 2 && r.level_ == 0 && n >= 4) {
+    BarSimulation& r = runs_[k];
+    const BarSimulation::StepParts parts = r.step_parts();
+    const FastStep* fast = parts.fast;
+    const std::size_t n = static_cast<std::size_t>(parts.state->u.size());
+    if (!fast && !parts.has_load && lanes_ >= 2 && r.level() == 0 && n >= 4) {
       // A Newmark-type step (newmark, penalty, nitsche) on the fused kernel without a load: family 4.
-      const auto* step = dynamic_cast<const NewmarkTypeStep*>(r.class_step_.get());
+      const auto* step = dynamic_cast<const NewmarkTypeStep*>(parts.class_step);
       if (step && step->batchable()) {
         families[Key{n, 4, 0}].push_back(k);
         continue;
       }
       // The explicit classes (family 7) on a uniform homogeneous mesh (the energy's stiffness_form on one h),
       // lumped or not in groups of their own.
-      if (r.explicit_ && r.mesh_.uniform() && r.mesh_.homogeneous()) {
-        families[Key{n, 7, r.explicit_->lanes().lumped ? 0 : 1}].push_back(k);
+      if (parts.explicit_step && r.mesh().uniform() && r.mesh().homogeneous()) {
+        families[Key{n, 7, parts.explicit_step->lanes().lumped ? 0 : 1}].push_back(k);
         continue;
       }
       // Moreau–Jean (family 5) or DKE (6) on the fused kernel without a load.
-      const auto* solve = dynamic_cast<const OneSolveStep*>(r.class_step_.get());
+      const auto* solve = dynamic_cast<const OneSolveStep*>(parts.class_step);
       if (solve && solve->batchable()) {
-        families[Key{n, batch_family(r.parameters_.scheme), 0}].push_back(k);
+        families[Key{n, batch_family(r.parameters().scheme), 0}].push_back(k);
         continue;
       }
     }
-    if (!fast || r.problem_.load || n < 2 || lanes_ < 2 || r.level_ != 0) {
+    if (!fast || parts.has_load || n < 2 || lanes_ < 2 || r.level() != 0) {
       alone_.push_back(k);
       continue;
     }
@@ -224,11 +225,11 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
         groups_.push_back(std::move(g));
         continue;
       }
-      const BarSimulation& r0 = runs_[g->runs[0]];
+      const FastStep& f0 = *runs_[g->runs[0]].step_parts().fast;
       g->n = std::get<0>(key);
       g->head = std::get<2>(key);
-      g->three_level = r0.fast_->three_level_;
-      g->switching = r0.fast_->switching_;
+      g->three_level = f0.three_level_;
+      g->switching = f0.switching_;
       const std::size_t nw = g->n * width;
       for (auto* a : {&g->u, &g->y, &g->w, &g->x, &g->elimination, &g->elimination_pair, &g->inverse_pivot, &g->upward,
                       &g->upward_pair})
@@ -240,9 +241,9 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
         *a = hwy::AllocateAligned<double>(width);
       g->decisions.resize(width);
       for (std::size_t j = 0; j < width; ++j) {
-        const BarSimulation& r = runs_[g->runs[j]];
-        const FastStep& f = *r.fast_;
-        const ContactSolver& s = r.solver_;
+        const BarSimulation::StepParts parts = runs_[g->runs[j]].step_parts();
+        const FastStep& f = *parts.fast;
+        const ContactSolver& s = *parts.solver;
         for (std::size_t i = 0; i < g->n; ++i) {
           const auto e = static_cast<Index>(i);
           g->elimination[i * width + j] = s.elimination()[e];
@@ -297,11 +298,11 @@ void interleave(const std::array<double*, 3>& to, const ContactSolver& a, std::s
 }  // namespace
 
 // A Newmark-type run's step (its lanes' rows, factors and Rⁿ).
-NewmarkTypeStep& BatchedSimulation::newmark_step(const BarSimulation& run) {
-  return dynamic_cast<NewmarkTypeStep&>(*run.class_step_);
+NewmarkTypeStep& BatchedSimulation::newmark_step(BarSimulation& run) {
+  return dynamic_cast<NewmarkTypeStep&>(*run.step_parts().class_step);
 }
 
-void BatchedSimulation::fill_newmark(Group& g, const std::vector<BarSimulation>& runs) {
+void BatchedSimulation::fill_newmark(Group& g, std::vector<BarSimulation>& runs) {
   const std::size_t W = g.runs.size(), nw = g.n * W;
   g.newmark = true;
   for (auto* a : {&g.u,
@@ -354,11 +355,11 @@ void BatchedSimulation::fill_newmark(Group& g, const std::vector<BarSimulation>&
 }
 
 // A Moreau–Jean or DKE run's step.
-OneSolveStep& BatchedSimulation::one_solve_step(const BarSimulation& run) {
-  return dynamic_cast<OneSolveStep&>(*run.class_step_);
+OneSolveStep& BatchedSimulation::one_solve_step(BarSimulation& run) {
+  return dynamic_cast<OneSolveStep&>(*run.step_parts().class_step);
 }
 
-void BatchedSimulation::fill_one_solve(Group& g, const std::vector<BarSimulation>& runs, bool dke) {
+void BatchedSimulation::fill_one_solve(Group& g, std::vector<BarSimulation>& runs, bool dke) {
   const std::size_t W = g.runs.size(), nw = g.n * W;
   g.one_solve = true, g.dke = dke;
   for (auto* a : {&g.u, &g.y, &g.w, &g.p, &g.elimination, &g.inverse_pivot, &g.upward, &g.right_diag, &g.right_lower,
@@ -390,10 +391,10 @@ void BatchedSimulation::fill_one_solve(Group& g, const std::vector<BarSimulation
   }
 }
 
-void BatchedSimulation::fill_explicit(Group& g, const std::vector<BarSimulation>& runs) {
+void BatchedSimulation::fill_explicit(Group& g, std::vector<BarSimulation>& runs) {
   const std::size_t W = g.runs.size(), nw = g.n * W;
   g.explicit_scheme = true;
-  g.lumped = runs[g.runs[0]].explicit_->lanes().lumped;
+  g.lumped = runs[g.runs[0]].step_parts().explicit_step->lanes().lumped;
   for (auto* a : {&g.u, &g.y, &g.w, &g.a, &g.s_diag, &g.s_lower, &g.s_upper, &g.m_diag, &g.m_lower, &g.m_upper,
                   &g.inverse_mass, &g.pivot, &g.factor, &g.impulse_response})
     *a = hwy::AllocateAligned<double>(nw);
@@ -401,12 +402,12 @@ void BatchedSimulation::fill_explicit(Group& g, const std::vector<BarSimulation>
     *a = hwy::AllocateAligned<double>(W);
   g.explicit_contacts.resize(W);
   for (std::size_t j = 0; j < W; ++j) {
-    const BarSimulation& run = runs[g.runs[j]];
-    const ExplicitStep& step = *run.explicit_;
+    BarSimulation& run = runs[g.runs[j]];
+    const ExplicitStep& step = *run.step_parts().explicit_step;
     g.explicit_steps.push_back(&step);
     const ExplicitStep::Lanes l = step.lanes();
     interleave({g.s_diag.get(), g.s_lower.get(), g.s_upper.get()}, *l.stiffness, g.n, W, j);
-    interleave({g.m_diag.get(), g.m_lower.get(), g.m_upper.get()}, run.mass_, g.n, W, j);  // the energy's M
+    interleave({g.m_diag.get(), g.m_lower.get(), g.m_upper.get()}, run.mass(), g.n, W, j);  // the energy's M
     // The other mass's arrays (lumped: pivot and factor; consistent: 1/m) and explicit's r are empty: zeros.
     interleave(g.inverse_mass.get(), *l.inverse_mass, g.n, W, j);
     interleave(g.pivot.get(), *l.pivot, g.n, W, j);
@@ -415,20 +416,21 @@ void BatchedSimulation::fill_explicit(Group& g, const std::vector<BarSimulation>
     // As the step and BarSimulation compute them: Δt/2 (0.5Δt) and the energy's h.
     g.dt[j] = l.dt;
     g.half_dt[j] = 0.5 * l.dt;
-    g.h[j] = run.mesh_.h();
-    g.clamped[j] = run.mesh_.elements == static_cast<Index>(g.n) ? 1.0 : 0.0;
+    g.h[j] = run.mesh().h();
+    g.clamped[j] = run.mesh().elements == static_cast<Index>(g.n) ? 1.0 : 0.0;
     g.correct[j] = 0.0, g.dt_mu[j] = 0.0, g.dt2_mu[j] = 0.0, g.keep[j] = 0.0;
     load_lane(g, j, run);
   }
 }
 
-void BatchedSimulation::load_lane(Group& g, std::size_t j, const BarSimulation& run) {
+void BatchedSimulation::load_lane(Group& g, std::size_t j, BarSimulation& run) {
+  const StepState& state = *run.step_parts().state;
   const std::size_t W = g.runs.size();
   if (g.one_solve || g.explicit_scheme) {
     for (std::size_t i = 0; i < g.n; ++i) {
       const auto e = static_cast<Index>(i);
-      g.u[i * W + j] = run.state_.u[e];
-      g.w[i * W + j] = run.state_.w[e];
+      g.u[i * W + j] = state.u[e];
+      g.w[i * W + j] = state.w[e];
     }
     return;
   }
@@ -436,28 +438,29 @@ void BatchedSimulation::load_lane(Group& g, std::size_t j, const BarSimulation& 
     const Eigen::VectorXd& r = *newmark_step(run).lanes().force;
     for (std::size_t i = 0; i < g.n; ++i) {
       const auto e = static_cast<Index>(i);
-      g.u[i * W + j] = run.state_.u[e];
-      g.w[i * W + j] = run.state_.w[e];
+      g.u[i * W + j] = state.u[e];
+      g.w[i * W + j] = state.w[e];
       g.r[i * W + j] = r[e];
     }
     return;
   }
-  const bool has_x = static_cast<std::size_t>(run.state_.x.size()) == g.n;
+  const bool has_x = static_cast<std::size_t>(state.x.size()) == g.n;
   for (std::size_t i = 0; i < g.n; ++i) {
     const auto e = static_cast<Index>(i);
-    g.u[i * W + j] = run.state_.u[e];
-    g.w[i * W + j] = run.state_.w[e];
-    g.x[i * W + j] = has_x ? run.state_.x[e] : 0.0;
+    g.u[i * W + j] = state.u[e];
+    g.w[i * W + j] = state.w[e];
+    g.x[i * W + j] = has_x ? state.x[e] : 0.0;
   }
 }
 
 void BatchedSimulation::store_lane(const Group& g, std::size_t j, BarSimulation& run) {
+  StepState& state = *run.step_parts().state;
   const std::size_t W = g.runs.size();
   if (g.one_solve || g.explicit_scheme) {
     for (std::size_t i = 0; i < g.n; ++i) {
       const auto e = static_cast<Index>(i);
-      run.state_.u[e] = g.u[i * W + j];
-      run.state_.w[e] = g.w[i * W + j];
+      state.u[e] = g.u[i * W + j];
+      state.w[e] = g.w[i * W + j];
     }
     return;
   }
@@ -465,18 +468,18 @@ void BatchedSimulation::store_lane(const Group& g, std::size_t j, BarSimulation&
     Eigen::VectorXd& r = *newmark_step(run).lanes().force;
     for (std::size_t i = 0; i < g.n; ++i) {
       const auto e = static_cast<Index>(i);
-      run.state_.u[e] = g.u[i * W + j];
-      run.state_.w[e] = g.w[i * W + j];
+      state.u[e] = g.u[i * W + j];
+      state.w[e] = g.w[i * W + j];
       r[e] = g.r[i * W + j];
     }
     return;
   }
-  const bool has_x = static_cast<std::size_t>(run.state_.x.size()) == g.n;
+  const bool has_x = static_cast<std::size_t>(state.x.size()) == g.n;
   for (std::size_t i = 0; i < g.n; ++i) {
     const auto e = static_cast<Index>(i);
-    run.state_.u[e] = g.u[i * W + j];
-    run.state_.w[e] = g.w[i * W + j];
-    if (has_x) run.state_.x[e] = g.x[i * W + j];
+    state.u[e] = g.u[i * W + j];
+    state.w[e] = g.w[i * W + j];
+    if (has_x) state.x[e] = g.x[i * W + j];
   }
 }
 
@@ -501,10 +504,10 @@ const BarSimulation& BatchedSimulation::run(std::size_t k) {
   }
   std::vector<double*> u, w, x;
   for (std::size_t j : lanes) {
-    BarSimulation& r = runs_[g.runs[j]];
-    u.push_back(r.state_.u.data());
-    w.push_back(r.state_.w.data());
-    x.push_back(static_cast<std::size_t>(r.state_.x.size()) == g.n ? r.state_.x.data() : nullptr);
+    StepState& state = *runs_[g.runs[j]].step_parts().state;
+    u.push_back(state.u.data());
+    w.push_back(state.w.data());
+    x.push_back(static_cast<std::size_t>(state.x.size()) == g.n ? state.x.data() : nullptr);
   }
   const std::size_t count = lanes.size();
   for (std::size_t i = 0; i < g.n; ++i) {
@@ -533,7 +536,7 @@ Sample BatchedSimulation::sample(std::size_t k, LaneVectors& lanes) const {
     // schemes, W for the two-level ones) in x or w.
     const Group& g = *groups_[group_of_[k]];
     const std::size_t W = g.runs.size(), j = lane_of_[k];
-    lanes = {&g.u[j], r.three_level_ ? &g.x[j] : &g.w[j], W, j};
+    lanes = {&g.u[j], g.three_level ? &g.x[j] : &g.w[j], W, j};
   }
   return s;
 }
@@ -595,7 +598,8 @@ void BatchedSimulation::advance(const char* flags) {  // null: every run
     }
     // Paoli–Schatzman's first step is Crank–Nicolson's (BarSimulation::step's starter): each run alone.
     bool starting = false;
-    for (std::size_t j = 0; j < g.used; ++j) starting = starting || (moves(j) && runs_[g.runs[j]].start_ != nullptr);
+    for (std::size_t j = 0; j < g.used; ++j)
+      starting = starting || (moves(j) && runs_[g.runs[j]].step_parts().starting);
     if (starting) {
       for (std::size_t j = 0; j < W; ++j) {
         if (!moves(j)) continue;  // a run that stays: its lane stays too (it may be newer than its vectors)
@@ -630,10 +634,10 @@ void BatchedSimulation::advance(const char* flags) {  // null: every run
         g.recurrence_d0[j] = 0.0;
         continue;
       }
-      const BarSimulation& run = runs_[g.runs[j]];
+      const BarSimulation::StepParts parts = runs_[g.runs[j]].step_parts();
       const FastStep::ContactDecision c =
-          run.fast_->contact_decision(g.u[j], g.u[W + j], g.w[j], g.w[W + j], g.y[W + j], run.state_.lambda,
-                                      run.state_.active, run.solver_, false, 0.0, 0.0);
+          parts.fast->contact_decision(g.u[j], g.u[W + j], g.w[j], g.w[W + j], g.y[W + j], parts.state->lambda,
+                                       parts.state->active, *parts.solver, false, 0.0, 0.0);
       decisions[j] = c;
       g.keep[j] = c.status_change ? 1.0 : 0.0;
       g.u0_next[j] = c.status_change ? g.u[j] : c.u0_next;  // (a kept lane's values are not written)
@@ -645,23 +649,25 @@ void BatchedSimulation::advance(const char* flags) {  // null: every run
       if (!moves(j)) continue;
       const std::size_t r = g.runs[j];
       BarSimulation& run = runs_[r];
+      const BarSimulation::StepParts parts = run.step_parts();
+      StepState& state = *parts.state;
       if (decisions[j].status_change) {  // CN-switch's θ-step, alone, from the untouched state
         store_lane(g, j, run);
         run.switch_step(false);
         load_lane(g, j, run);
         stale_[r] = 0;
       } else {
-        run.state_.lambda = decisions[j].lambda;
-        run.state_.active = decisions[j].active;
-        run.state_.energy = g.energy[j];
+        state.lambda = decisions[j].lambda;
+        state.active = decisions[j].active;
+        state.energy = g.energy[j];
         // finish_step reads the new u₀ and V₁ (the massless node's velocity): those two are copied
         // out now, the rest of the vectors when run(k) is asked for.
-        run.state_.u[0] = g.u[j];
-        run.state_.w[1] = g.w[W + j];
+        state.u[0] = g.u[j];
+        state.w[1] = g.w[W + j];
         stale_[r] = 1;
       }
       run.finish_step();
-      if (run.algebraic_row_ && !run.three_level_) g.w[j] = run.state_.w[0];  // its massless node's velocity
+      if (parts.algebraic_row && !parts.three_level) g.w[j] = state.w[0];  // its massless node's velocity
     }
   }
 }
@@ -704,15 +710,17 @@ void BatchedSimulation::advance_newmark(Group& g, const char* flags) {
     if (!moves(j)) continue;
     const std::size_t r = g.runs[j];
     BarSimulation& run = runs_[r];
+    const BarSimulation::StepParts parts = run.step_parts();
+    StepState& state = *parts.state;
     // finish() reads u₀, u₁ (Nitsche's energy) and finish_step V₁ (the massless node's velocity): those are
     // copied out now, the rest of the vectors when run(k) is asked for.
-    run.state_.u[0] = g.u[j];
-    run.state_.u[1] = g.u[W + j];
-    run.state_.w[1] = g.w[W + j];
+    state.u[0] = g.u[j];
+    state.u[1] = g.u[W + j];
+    state.w[1] = g.w[W + j];
     stale_[r] = 1;
-    g.steps[j]->finish(run.state_, g.lambda[j], g.kinetic_strain[j], run.level_);
+    g.steps[j]->finish(state, g.lambda[j], g.kinetic_strain[j], run.level());
     run.finish_step();
-    if (run.algebraic_row_ && !run.three_level_) g.w[j] = run.state_.w[0];  // its massless node's velocity
+    if (parts.algebraic_row && !parts.three_level) g.w[j] = state.w[0];  // its massless node's velocity
   }
 }
 
@@ -757,14 +765,16 @@ void BatchedSimulation::advance_one_solve(Group& g, const char* flags) {
     if (!moves(j)) continue;
     const std::size_t r = g.runs[j];
     BarSimulation& run = runs_[r];
+    const BarSimulation::StepParts parts = run.step_parts();
+    StepState& state = *parts.state;
     // finish_step reads u₀ and V₁ (the massless node's velocity): the entries 0 and 1 are copied out now, the
     // rest of the vectors when run(k) is asked for.
-    run.state_.u[0] = g.u[j], run.state_.u[1] = g.u[W + j];
-    run.state_.w[0] = g.w[j], run.state_.w[1] = g.w[W + j];
+    state.u[0] = g.u[j], state.u[1] = g.u[W + j];
+    state.w[0] = g.w[j], state.w[1] = g.w[W + j];
     stale_[r] = 1;
-    g.solve_steps[j]->finish(run.state_, g.solve_decisions[j], g.alpha[j], g.kinetic_strain[j], run.level_);
+    g.solve_steps[j]->finish(state, g.solve_decisions[j], g.alpha[j], g.kinetic_strain[j], run.level());
     run.finish_step();
-    if (run.algebraic_row_ && !run.three_level_) g.w[j] = run.state_.w[0];  // its massless node's velocity
+    if (parts.algebraic_row && !parts.three_level) g.w[j] = state.w[0];  // its massless node's velocity
   }
 }
 
@@ -805,16 +815,18 @@ void BatchedSimulation::advance_explicit(Group& g, const char* flags) {
     if (!moves(j)) continue;
     const std::size_t r = g.runs[j];
     BarSimulation& run = runs_[r];
+    const BarSimulation::StepParts parts = run.step_parts();
+    StepState& state = *parts.state;
     // finish_step reads u₀ and V₁ (the massless node's velocity): the entries 0 and 1 are copied out now, the
     // rest of the vectors when run(k) is asked for.
-    run.state_.u[0] = g.u[j], run.state_.u[1] = g.u[W + j];
-    run.state_.w[0] = g.w[j], run.state_.w[1] = g.w[W + j];
+    state.u[0] = g.u[j], state.u[1] = g.u[W + j];
+    state.w[0] = g.w[j], state.w[1] = g.w[W + j];
     stale_[r] = 1;
-    run.state_.lambda = g.explicit_contacts[j].lambda;
-    run.state_.active = g.explicit_contacts[j].active;
-    run.state_.energy = g.energy[j];
+    state.lambda = g.explicit_contacts[j].lambda;
+    state.active = g.explicit_contacts[j].active;
+    state.energy = g.energy[j];
     run.finish_step();
-    if (run.algebraic_row_ && !run.three_level_) g.w[j] = run.state_.w[0];  // its massless node's velocity
+    if (parts.algebraic_row && !parts.three_level) g.w[j] = state.w[0];  // its massless node's velocity
   }
 }
 
