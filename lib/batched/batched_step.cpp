@@ -63,6 +63,7 @@ BatchTarget current_batch_target() {
 
 int batch_family(Scheme scheme) { return scheme_info(scheme).batch_family; }
 
+/// @cond MRM_INTERNAL (a group's lanes: not part of the library's interface)
 // One group: W lanes (a run each, or a copy of lane 0's run for the lanes left over), interleaved. W is
 // the target's full width, or 4 or 2 for the remainder of a family (the constructor).
 struct BatchedSimulation::Group {
@@ -97,6 +98,7 @@ struct BatchedSimulation::Group {
   std::vector<const ExplicitStep*> explicit_steps;       // each lane's step (its contact)
   std::vector<ExplicitStep::Contact> explicit_contacts;  // the lanes' contacts of the current step
 };
+/// @endcond
 
 namespace {
 
