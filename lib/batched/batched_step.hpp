@@ -56,7 +56,7 @@ int batch_family(Scheme scheme);
 /// cost as much as runs); every other run (the reference kernel, a load, a remainder of one) is stepped
 /// alone. Paoli–Schatzman's Crank–Nicolson first step and CN-switch's θ-step
 /// at a status change are each lane's own scalar step. Every run ends in the same state, bit for bit,
-/// as if stepped alone by BarSimulation::step (the doctest of batched_step.cpp).
+/// as if stepped alone by BarSimulation::step (the doctests of lanes_alone.cpp).
 class BatchedSimulation {
  public:
   /// Takes the runs (each at level 0), groups them by lanes of the current target and copies the
@@ -95,17 +95,17 @@ class BatchedSimulation {
 
  private:
   struct Group;
-  static void load_lane(Group& g, std::size_t j, const BarSimulation& run);   // run's vectors → lane j
+  static void load_lane(Group& g, std::size_t j, BarSimulation& run);         // run's vectors → lane j
   static void store_lane(const Group& g, std::size_t j, BarSimulation& run);  // lane j → run's vectors
   static void find_plateau(Group& g);  // the interior rows whose factors repeat (batched_step.cpp)
-  static void fill_newmark(Group& g, const std::vector<BarSimulation>& runs);  // a Newmark-type group's lanes
-  void advance_newmark(Group& g, const char* flags);                           // its step
-  static NewmarkTypeStep& newmark_step(const BarSimulation& run);              // a Newmark-type run's step
-  static void fill_one_solve(Group& g, const std::vector<BarSimulation>& runs, bool dke);  // Moreau–Jean's or DKE's
-  void advance_one_solve(Group& g, const char* flags);                                     // its step
-  static OneSolveStep& one_solve_step(const BarSimulation& run);                           // such a run's step
-  static void fill_explicit(Group& g, const std::vector<BarSimulation>& runs);             // an explicit group's lanes
-  void advance_explicit(Group& g, const char* flags);                                      // its step
+  static void fill_newmark(Group& g, std::vector<BarSimulation>& runs);              // a Newmark-type group's lanes
+  void advance_newmark(Group& g, const char* flags);                                 // its step
+  static NewmarkTypeStep& newmark_step(BarSimulation& run);                          // a Newmark-type run's step
+  static void fill_one_solve(Group& g, std::vector<BarSimulation>& runs, bool dke);  // Moreau–Jean's or DKE's
+  void advance_one_solve(Group& g, const char* flags);                               // its step
+  static OneSolveStep& one_solve_step(BarSimulation& run);                           // such a run's step
+  static void fill_explicit(Group& g, std::vector<BarSimulation>& runs);             // an explicit group's lanes
+  void advance_explicit(Group& g, const char* flags);                                // its step
   void advance(const char* flags);  // step(flags) without the check; null: every run
   std::vector<BarSimulation> runs_;
   std::vector<std::unique_ptr<Group>> groups_;

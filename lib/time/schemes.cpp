@@ -776,6 +776,12 @@ TEST_CASE("backward Euler never increases the discrete energy") {
     }
 }
 
+BarSimulation::StepParts BarSimulation::step_parts() {
+  const bool has_load = problem_.load != nullptr, starting = start_ != nullptr;
+  return {&state_,  &solver_,     fast_.get(),    class_step_.get(), explicit_.get(),
+          has_load, three_level_, algebraic_row_, starting};
+}
+
 // CN-switch's θ-step, steps 1–4 of the reference step with the θ-step's matrices (both kernels call it:
 // it replaces a Crank–Nicolson step at a change of the contact status only, a few steps per period).
 void BarSimulation::switch_step(bool has_load) {

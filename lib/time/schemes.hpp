@@ -73,6 +73,29 @@ class BarSimulation {
   bool massless_contact_node() const { return massless_; }            ///< whether row 0 of M vanishes
   const SchemeParameters& parameters() const { return parameters_; }  ///< the scheme and its parameters
 
+  /// The state and the pieces of the step of this run, for a step taken outside BarSimulation::step (the
+  /// batched step, batched_step.hpp, which advances the state in vector lanes and then calls
+  /// finish_step): pointers into this simulation, valid while it is neither moved nor destroyed.
+  struct StepParts {
+    StepState* state;                   ///< the current level's state, advanced by the step
+    const ContactSolver* solver;        ///< A of the step (★), factorised
+    const FastStep* fast;               ///< the fast kernel (null for the reference step and the classes)
+    ContactClassStep* class_step;       ///< a contact class's step (null for the other schemes)
+    const ExplicitStep* explicit_step;  ///< an explicit class's step (null for the other schemes)
+    bool has_load;                      ///< whether the problem has a load
+    bool three_level;                   ///< Paoli–Schatzman's three levels (W' = Uⁿ − Uⁿ⁻¹)
+    bool algebraic_row;                 ///< whether row 0 is algebraic (a massless contact node)
+    bool starting;                      ///< whether Paoli–Schatzman's Crank–Nicolson first step is pending
+  };
+  /// This run's StepParts.
+  StepParts step_parts();
+  /// CN-switch's θ-step from the current state, replacing a Crank–Nicolson step at a change of the contact
+  /// status (`has_load`: the problem has a load and Fⁿ⁺¹ has been filled in); finish_step follows.
+  void switch_step(bool has_load);
+  /// The bookkeeping after the state has been advanced by one step: the massless node's velocity, the
+  /// instants of λ and of the energy, the level.
+  void finish_step();
+
  private:
   void load_at(double t, Eigen::VectorXd& f) const;
   double energy_two_level() const;
@@ -80,9 +103,6 @@ class BarSimulation {
   double contact_load_rate(double t) const;
   double massless_node_velocity(double t) const;
   void reference_step(bool has_load);
-  void switch_step(bool has_load);  // CN-switch's θ-step, replacing a Crank–Nicolson step
-  void finish_step();               // the bookkeeping after the state has been advanced
-  friend class BatchedSimulation;   // advances many runs' states together (batched_step.hpp)
 
   Problem problem_;
   UniformMesh mesh_;
