@@ -674,56 +674,72 @@ void BatchedSimulation::advance(const char* flags) {  // null: every run
   }
 }
 
-// The Newmark-type group's step: the sweep down of A, each lane's decision (the run's own decide()), the
-// sweep up with Rⁿ⁺¹, V and the energy's forms in vectors, then each run's end of step (its finish(): λ,
-// status, energy, the finiteness check) and BarSimulation's bookkeeping. A kept lane (flags) is written back
-// unchanged and its run is not touched.
-void BatchedSimulation::advance_newmark(Group& g, const char* flags) {
-  const std::size_t W = g.runs.size();
+// The skeleton of a class group's step (Newmark type, Moreau–Jean and DKE, explicit): which lanes advance
+// (flags: a kept lane is written back unchanged and its run is not touched; a padding lane follows lane 0),
+// the family's passes and its lanes' decisions, passes(moves, all) (all: every run advances), then for each
+// advancing run its end of step, finish(j, run, state) (the entries its end of step reads are copied out of
+// the lanes now, the rest of the vectors when run(k) is asked for), BarSimulation's bookkeeping and the
+// massless node's velocity back into the lane.
+template <class Passes, class Finish>
+void BatchedSimulation::advance_class(Group& g, const char* flags, const Passes& passes, const Finish& finish) {
   const auto moves = [&](std::size_t j) { return !flags || flags[g.runs[j < g.used ? j : 0]] != 0; };
   bool all = true;
   for (std::size_t j = 0; j < g.used; ++j) all = all && moves(j);
-  batched::NewmarkKernel k;
-  k.n = g.n, k.lanes = W, k.keeps = !all;
-  k.u = g.u.get(), k.y = g.y.get(), k.w = g.w.get(), k.r = g.r.get(), k.r_next = g.r_next.get(), k.t = g.t.get();
-  k.m_diag = g.m_diag.get(), k.m_lower = g.m_lower.get(), k.m_upper = g.m_upper.get();
-  k.s_diag = g.s_diag.get(), k.s_lower = g.s_lower.get(), k.s_upper = g.s_upper.get();
-  k.l_diag = g.l_diag.get(), k.l_lower = g.l_lower.get(), k.l_upper = g.l_upper.get();
-  k.elimination = g.elimination.get(), k.inverse_pivot = g.inverse_pivot.get(), k.upward = g.upward.get();
-  k.mass_elimination = g.mass_elimination.get(), k.mass_inverse_pivot = g.mass_inverse_pivot.get();
-  k.mass_upward = g.mass_upward.get(), k.z = g.z.get();
-  k.dt = g.dt.get(), k.force_weight = g.force_weight.get(), k.one_minus_gamma = g.one_minus_gamma.get();
-  k.gamma = g.gamma.get(), k.g0 = g.g0.get(), k.g1 = g.g1.get(), k.massless = g.massless.get();
-  k.u0 = g.u0_next.get(), k.lambda = g.lambda.get(), k.shift = g.shift.get(), k.keep = g.keep.get();
-  k.kinetic_strain = g.kinetic_strain.get();
-  batched::newmark_down(g.width, k);
-  for (std::size_t j = 0; j < W; ++j) {
-    if (!moves(j)) {  // kept: its values are not written
-      g.keep[j] = 1.0, g.lambda[j] = 0.0, g.shift[j] = 0.0, g.u0_next[j] = g.u[j];
-      continue;
-    }
-    const NewmarkTypeStep::Decision c = g.steps[j]->decide(g.y[j], g.y[W + j]);
-    g.keep[j] = 0.0, g.lambda[j] = c.lambda, g.shift[j] = c.shift ? 1.0 : 0.0, g.u0_next[j] = c.u0;
-  }
-  batched::newmark_up(g.width, k);
-  std::swap(g.u, g.y);  // U = Uⁿ⁺¹ and Rⁿ = Rⁿ⁺¹, as the step swaps them
-  std::swap(g.r, g.r_next);
+  passes(moves, all);
   for (std::size_t j = 0; j < g.used; ++j) {
     if (!moves(j)) continue;
     const std::size_t r = g.runs[j];
     BarSimulation& run = runs_[r];
     const BarSimulation::StepParts parts = run.step_parts();
     StepState& state = *parts.state;
+    stale_[r] = 1;
+    finish(j, run, state);
+    run.finish_step();
+    if (parts.algebraic_row && !parts.three_level) g.w[j] = state.w[0];  // its massless node's velocity
+  }
+}
+
+// The Newmark-type group's step: the sweep down of A, each lane's decision (the run's own decide()), the
+// sweep up with Rⁿ⁺¹, V and the energy's forms in vectors, then each run's end of step (its finish(): λ,
+// status, energy, the finiteness check) and BarSimulation's bookkeeping. A kept lane (flags) is written back
+// unchanged and its run is not touched.
+void BatchedSimulation::advance_newmark(Group& g, const char* flags) {
+  const std::size_t W = g.runs.size();
+  const auto passes = [&](const auto& moves, bool all) {
+    batched::NewmarkKernel k;
+    k.n = g.n, k.lanes = W, k.keeps = !all;
+    k.u = g.u.get(), k.y = g.y.get(), k.w = g.w.get(), k.r = g.r.get(), k.r_next = g.r_next.get(), k.t = g.t.get();
+    k.m_diag = g.m_diag.get(), k.m_lower = g.m_lower.get(), k.m_upper = g.m_upper.get();
+    k.s_diag = g.s_diag.get(), k.s_lower = g.s_lower.get(), k.s_upper = g.s_upper.get();
+    k.l_diag = g.l_diag.get(), k.l_lower = g.l_lower.get(), k.l_upper = g.l_upper.get();
+    k.elimination = g.elimination.get(), k.inverse_pivot = g.inverse_pivot.get(), k.upward = g.upward.get();
+    k.mass_elimination = g.mass_elimination.get(), k.mass_inverse_pivot = g.mass_inverse_pivot.get();
+    k.mass_upward = g.mass_upward.get(), k.z = g.z.get();
+    k.dt = g.dt.get(), k.force_weight = g.force_weight.get(), k.one_minus_gamma = g.one_minus_gamma.get();
+    k.gamma = g.gamma.get(), k.g0 = g.g0.get(), k.g1 = g.g1.get(), k.massless = g.massless.get();
+    k.u0 = g.u0_next.get(), k.lambda = g.lambda.get(), k.shift = g.shift.get(), k.keep = g.keep.get();
+    k.kinetic_strain = g.kinetic_strain.get();
+    batched::newmark_down(g.width, k);
+    for (std::size_t j = 0; j < W; ++j) {
+      if (!moves(j)) {  // kept: its values are not written
+        g.keep[j] = 1.0, g.lambda[j] = 0.0, g.shift[j] = 0.0, g.u0_next[j] = g.u[j];
+        continue;
+      }
+      const NewmarkTypeStep::Decision c = g.steps[j]->decide(g.y[j], g.y[W + j]);
+      g.keep[j] = 0.0, g.lambda[j] = c.lambda, g.shift[j] = c.shift ? 1.0 : 0.0, g.u0_next[j] = c.u0;
+    }
+    batched::newmark_up(g.width, k);
+    std::swap(g.u, g.y);  // U = Uⁿ⁺¹ and Rⁿ = Rⁿ⁺¹, as the step swaps them
+    std::swap(g.r, g.r_next);
+  };
+  advance_class(g, flags, passes, [&](std::size_t j, BarSimulation& run, StepState& state) {
     // finish() reads u₀, u₁ (Nitsche's energy) and finish_step V₁ (the massless node's velocity): those are
     // copied out now, the rest of the vectors when run(k) is asked for.
     state.u[0] = g.u[j];
     state.u[1] = g.u[W + j];
     state.w[1] = g.w[W + j];
-    stale_[r] = 1;
     g.steps[j]->finish(state, g.lambda[j], g.kinetic_strain[j], run.level());
-    run.finish_step();
-    if (parts.algebraic_row && !parts.three_level) g.w[j] = state.w[0];  // its massless node's velocity
-  }
+  });
 }
 
 // A Moreau–Jean or DKE group's step: each lane's projection (DKE), the sweep down of A, each lane's contact
@@ -732,52 +748,43 @@ void BatchedSimulation::advance_newmark(Group& g, const char* flags) {
 // bookkeeping. A kept lane (flags) is written back unchanged and its run is not touched.
 void BatchedSimulation::advance_one_solve(Group& g, const char* flags) {
   const std::size_t W = g.runs.size();
-  const auto moves = [&](std::size_t j) { return !flags || flags[g.runs[j < g.used ? j : 0]] != 0; };
-  bool all = true;
-  for (std::size_t j = 0; j < g.used; ++j) all = all && moves(j);
-  batched::OneSolveKernel k;
-  k.n = g.n, k.lanes = W, k.keeps = !all, k.dke = g.dke;
-  k.u = g.u.get(), k.y = g.y.get(), k.w = g.w.get(), k.p = g.p.get();
-  k.right_diag = g.right_diag.get(), k.right_lower = g.right_lower.get(), k.right_upper = g.right_upper.get();
-  k.m_diag = g.m_diag.get(), k.m_lower = g.m_lower.get(), k.m_upper = g.m_upper.get();
-  k.s_diag = g.s_diag.get(), k.s_lower = g.s_lower.get(), k.s_upper = g.s_upper.get();
-  k.elimination = g.elimination.get(), k.inverse_pivot = g.inverse_pivot.get(), k.upward = g.upward.get();
-  k.column = g.column.get(), k.dt = g.dt.get(), k.weight = g.weight.get(), k.theta = g.theta.get();
-  k.one_minus_theta = g.one_minus_theta.get(), k.two_over_dt = g.two_over_dt.get(), k.row0_zero = g.row0_zero.get();
-  k.alpha = g.alpha.get(), k.projected = g.projected.get(), k.minus_gap = g.minus_gap.get();
-  k.x0 = g.u0_next.get(), k.keep = g.keep.get(), k.kinetic_strain = g.kinetic_strain.get();
-  for (std::size_t j = 0; j < W; ++j) {  // DKE's projection, from u₀ⁿ and v₀ⁿ (a kept lane projects nothing)
-    const std::optional<double> alpha = moves(j) ? g.solve_steps[j]->projection(g.u[j], g.w[j]) : std::nullopt;
-    g.projected[j] = alpha ? 1.0 : 0.0;
-    g.alpha[j] = alpha.value_or(0.0);
-  }
-  batched::one_solve_down(g.width, k);
-  for (std::size_t j = 0; j < W; ++j) {
-    if (!moves(j)) {  // kept: its values are not written
-      g.keep[j] = 1.0, g.u0_next[j] = 0.0, g.solve_decisions[j] = {};
-      continue;
+  const auto passes = [&](const auto& moves, bool all) {
+    batched::OneSolveKernel k;
+    k.n = g.n, k.lanes = W, k.keeps = !all, k.dke = g.dke;
+    k.u = g.u.get(), k.y = g.y.get(), k.w = g.w.get(), k.p = g.p.get();
+    k.right_diag = g.right_diag.get(), k.right_lower = g.right_lower.get(), k.right_upper = g.right_upper.get();
+    k.m_diag = g.m_diag.get(), k.m_lower = g.m_lower.get(), k.m_upper = g.m_upper.get();
+    k.s_diag = g.s_diag.get(), k.s_lower = g.s_lower.get(), k.s_upper = g.s_upper.get();
+    k.elimination = g.elimination.get(), k.inverse_pivot = g.inverse_pivot.get(), k.upward = g.upward.get();
+    k.column = g.column.get(), k.dt = g.dt.get(), k.weight = g.weight.get(), k.theta = g.theta.get();
+    k.one_minus_theta = g.one_minus_theta.get(), k.two_over_dt = g.two_over_dt.get(), k.row0_zero = g.row0_zero.get();
+    k.alpha = g.alpha.get(), k.projected = g.projected.get(), k.minus_gap = g.minus_gap.get();
+    k.x0 = g.u0_next.get(), k.keep = g.keep.get(), k.kinetic_strain = g.kinetic_strain.get();
+    for (std::size_t j = 0; j < W; ++j) {  // DKE's projection, from u₀ⁿ and v₀ⁿ (a kept lane projects nothing)
+      const std::optional<double> alpha = moves(j) ? g.solve_steps[j]->projection(g.u[j], g.w[j]) : std::nullopt;
+      g.projected[j] = alpha ? 1.0 : 0.0;
+      g.alpha[j] = alpha.value_or(0.0);
     }
-    g.solve_decisions[j] = g.solve_steps[j]->decide(g.y[j], g.u[j], g.w[j]);
-    g.keep[j] = 0.0, g.u0_next[j] = g.solve_decisions[j].x0;
-  }
-  batched::one_solve_up(g.width, k);
-  // The new level: Moreau–Jean's Vⁿ⁺¹ and DKE's Uⁿ⁺¹ are in y, as each step swaps them in.
-  std::swap(g.dke ? g.u : g.w, g.y);
-  for (std::size_t j = 0; j < g.used; ++j) {
-    if (!moves(j)) continue;
-    const std::size_t r = g.runs[j];
-    BarSimulation& run = runs_[r];
-    const BarSimulation::StepParts parts = run.step_parts();
-    StepState& state = *parts.state;
+    batched::one_solve_down(g.width, k);
+    for (std::size_t j = 0; j < W; ++j) {
+      if (!moves(j)) {  // kept: its values are not written
+        g.keep[j] = 1.0, g.u0_next[j] = 0.0, g.solve_decisions[j] = {};
+        continue;
+      }
+      g.solve_decisions[j] = g.solve_steps[j]->decide(g.y[j], g.u[j], g.w[j]);
+      g.keep[j] = 0.0, g.u0_next[j] = g.solve_decisions[j].x0;
+    }
+    batched::one_solve_up(g.width, k);
+    // The new level: Moreau–Jean's Vⁿ⁺¹ and DKE's Uⁿ⁺¹ are in y, as each step swaps them in.
+    std::swap(g.dke ? g.u : g.w, g.y);
+  };
+  advance_class(g, flags, passes, [&](std::size_t j, BarSimulation& run, StepState& state) {
     // finish_step reads u₀ and V₁ (the massless node's velocity): the entries 0 and 1 are copied out now, the
     // rest of the vectors when run(k) is asked for.
     state.u[0] = g.u[j], state.u[1] = g.u[W + j];
     state.w[0] = g.w[j], state.w[1] = g.w[W + j];
-    stale_[r] = 1;
     g.solve_steps[j]->finish(state, g.solve_decisions[j], g.alpha[j], g.kinetic_strain[j], run.level());
-    run.finish_step();
-    if (parts.algebraic_row && !parts.three_level) g.w[j] = state.w[0];  // its massless node's velocity
-  }
+  });
 }
 
 // An explicit group's step: the half kick and the drift in vectors, each lane's contact (the run's own
@@ -787,49 +794,40 @@ void BatchedSimulation::advance_one_solve(Group& g, const char* flags) {
 // run is not touched.
 void BatchedSimulation::advance_explicit(Group& g, const char* flags) {
   const std::size_t W = g.runs.size();
-  const auto moves = [&](std::size_t j) { return !flags || flags[g.runs[j < g.used ? j : 0]] != 0; };
-  bool all = true;
-  for (std::size_t j = 0; j < g.used; ++j) all = all && moves(j);
-  for (std::size_t j = 0; j < W; ++j) g.keep[j] = moves(j) ? 0.0 : 1.0, g.correct[j] = 0.0;
-  batched::ExplicitKernel k;
-  k.n = g.n, k.lanes = W, k.keeps = !all, k.lumped = g.lumped;
-  k.u = g.u.get(), k.y = g.y.get(), k.w = g.w.get(), k.a = g.a.get();
-  k.s_diag = g.s_diag.get(), k.s_lower = g.s_lower.get(), k.s_upper = g.s_upper.get();
-  k.m_diag = g.m_diag.get(), k.m_lower = g.m_lower.get(), k.m_upper = g.m_upper.get();
-  k.inverse_mass = g.inverse_mass.get(), k.pivot = g.pivot.get(), k.factor = g.factor.get();
-  k.impulse_response = g.impulse_response.get(), k.dt = g.dt.get(), k.half_dt = g.half_dt.get(), k.h = g.h.get();
-  k.clamped = g.clamped.get(), k.correct = g.correct.get(), k.dt_mu = g.dt_mu.get(), k.dt2_mu = g.dt2_mu.get();
-  k.keep = g.keep.get(), k.energy = g.energy.get();
-  batched::explicit_drift(g.width, k);
-  for (std::size_t j = 0; j < W; ++j) {
-    if (!moves(j)) continue;  // kept: no correction, its Ũ (its Uⁿ) untouched
-    const ExplicitStep::Contact c = g.explicit_steps[j]->contact(g.y[j], g.y[W + j], g.w[j], 0.0);
-    g.explicit_contacts[j] = c;
-    if (c.correct) {  // as the step computes them: (Δtμ) and (Δt Δt μ)
-      g.correct[j] = 1.0, g.dt_mu[j] = g.dt[j] * c.lambda, g.dt2_mu[j] = g.dt[j] * g.dt[j] * c.lambda;
-      k.corrects = true;
+  const auto passes = [&](const auto& moves, bool all) {
+    for (std::size_t j = 0; j < W; ++j) g.keep[j] = moves(j) ? 0.0 : 1.0, g.correct[j] = 0.0;
+    batched::ExplicitKernel k;
+    k.n = g.n, k.lanes = W, k.keeps = !all, k.lumped = g.lumped;
+    k.u = g.u.get(), k.y = g.y.get(), k.w = g.w.get(), k.a = g.a.get();
+    k.s_diag = g.s_diag.get(), k.s_lower = g.s_lower.get(), k.s_upper = g.s_upper.get();
+    k.m_diag = g.m_diag.get(), k.m_lower = g.m_lower.get(), k.m_upper = g.m_upper.get();
+    k.inverse_mass = g.inverse_mass.get(), k.pivot = g.pivot.get(), k.factor = g.factor.get();
+    k.impulse_response = g.impulse_response.get(), k.dt = g.dt.get(), k.half_dt = g.half_dt.get(), k.h = g.h.get();
+    k.clamped = g.clamped.get(), k.correct = g.correct.get(), k.dt_mu = g.dt_mu.get(), k.dt2_mu = g.dt2_mu.get();
+    k.keep = g.keep.get(), k.energy = g.energy.get();
+    batched::explicit_drift(g.width, k);
+    for (std::size_t j = 0; j < W; ++j) {
+      if (!moves(j)) continue;  // kept: no correction, its Ũ (its Uⁿ) untouched
+      const ExplicitStep::Contact c = g.explicit_steps[j]->contact(g.y[j], g.y[W + j], g.w[j], 0.0);
+      g.explicit_contacts[j] = c;
+      if (c.correct) {  // as the step computes them: (Δtμ) and (Δt Δt μ)
+        g.correct[j] = 1.0, g.dt_mu[j] = g.dt[j] * c.lambda, g.dt2_mu[j] = g.dt[j] * g.dt[j] * c.lambda;
+        k.corrects = true;
+      }
+      if (c.set_u0) g.y[j] = c.u0;
     }
-    if (c.set_u0) g.y[j] = c.u0;
-  }
-  batched::explicit_kick(g.width, k);
-  std::swap(g.u, g.y);  // U = Uⁿ⁺¹
-  for (std::size_t j = 0; j < g.used; ++j) {
-    if (!moves(j)) continue;
-    const std::size_t r = g.runs[j];
-    BarSimulation& run = runs_[r];
-    const BarSimulation::StepParts parts = run.step_parts();
-    StepState& state = *parts.state;
+    batched::explicit_kick(g.width, k);
+    std::swap(g.u, g.y);  // U = Uⁿ⁺¹
+  };
+  advance_class(g, flags, passes, [&](std::size_t j, BarSimulation&, StepState& state) {
     // finish_step reads u₀ and V₁ (the massless node's velocity): the entries 0 and 1 are copied out now, the
     // rest of the vectors when run(k) is asked for.
     state.u[0] = g.u[j], state.u[1] = g.u[W + j];
     state.w[0] = g.w[j], state.w[1] = g.w[W + j];
-    stale_[r] = 1;
     state.lambda = g.explicit_contacts[j].lambda;
     state.active = g.explicit_contacts[j].active;
     state.energy = g.energy[j];
-    run.finish_step();
-    if (parts.algebraic_row && !parts.three_level) g.w[j] = state.w[0];  // its massless node's velocity
-  }
+  });
 }
 
 }  // namespace mrm

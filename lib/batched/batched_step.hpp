@@ -107,6 +107,10 @@ class BatchedSimulation {
   static void fill_explicit(Group& g, std::vector<BarSimulation>& runs);             // an explicit group's lanes
   void advance_explicit(Group& g, const char* flags);                                // its step
   void advance(const char* flags);  // step(flags) without the check; null: every run
+  // A class group's step: the family's passes(moves, all), then each advancing run's finish(j, run, state)
+  // and its bookkeeping (batched_step.cpp).
+  template <class Passes, class Finish>
+  void advance_class(Group& g, const char* flags, const Passes& passes, const Finish& finish);
   std::vector<BarSimulation> runs_;
   std::vector<std::unique_ptr<Group>> groups_;
   std::vector<std::size_t> alone_;  // the runs stepped alone
