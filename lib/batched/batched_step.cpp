@@ -183,8 +183,8 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
       continue;
     }
     // batch_family's numbers (its doctest checks that they agree)
-    const int family = fast->three_level_ ? 1 : fast->energy_conserving_ ? 2 : fast->switching_ ? 3 : 0;
-    families[Key{n, family, fast->head_.size()}].push_back(k);
+    const int family = fast->three_level() ? 1 : fast->energy_conserving() ? 2 : fast->switching() ? 3 : 0;
+    families[Key{n, family, fast->head().size()}].push_back(k);
   }
   // Each family: groups of the full width, then the remainder q < W in one group of the narrowest width
   // that holds it (2 runs in 2 lanes, 3 or 4 in 4, more in the full width), or alone if q = 1. The width
@@ -230,8 +230,8 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
       const FastStep& f0 = *runs_[g->runs[0]].step_parts().fast;
       g->n = std::get<0>(key);
       g->head = std::get<2>(key);
-      g->three_level = f0.three_level_;
-      g->switching = f0.switching_;
+      g->three_level = f0.three_level();
+      g->switching = f0.switching();
       const std::size_t nw = g->n * width;
       for (auto* a : {&g->u, &g->y, &g->w, &g->x, &g->elimination, &g->elimination_pair, &g->inverse_pivot, &g->upward,
                       &g->upward_pair})
@@ -255,17 +255,17 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
           g->upward_pair[i * width + j] = s.upward_pair()[e];
         }
         for (std::size_t h = 0; h < g->head; ++h) {
-          const auto c = coefficients(f.head_[h]);
+          const auto c = coefficients(f.head()[h]);
           for (std::size_t m = 0; m < 10; ++m) g->head_rows[(h * 10 + m) * width + j] = c[m];
         }
-        const auto ci = coefficients(f.interior_), cl = coefficients(f.last_);
+        const auto ci = coefficients(f.interior()), cl = coefficients(f.last());
         for (std::size_t m = 0; m < 10; ++m) {
           g->interior[m * width + j] = ci[m];
           g->last[m * width + j] = cl[m];
         }
-        g->rate[j] = f.coefficients_.velocity_rate;
-        g->memory[j] = f.coefficients_.velocity_memory;
-        g->ps_q_weight[j] = 1 - 4 * f.beta_;  // as fused_step writes it: (1 − 4β)
+        g->rate[j] = f.coefficients().velocity_rate;
+        g->memory[j] = f.coefficients().velocity_memory;
+        g->ps_q_weight[j] = 1 - 4 * f.beta();  // as fused_step writes it: (1 − 4β)
         g->keep[j] = 0;
       }
       for (std::size_t j = 0; j < width; ++j) load_lane(*g, j, runs_[g->runs[j]]);

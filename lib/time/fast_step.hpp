@@ -32,26 +32,49 @@ class FastStep {
   /// θ-step instead (a change of the contact status across the Crank–Nicolson step).
   bool step(StepState& state, const ContactSolver& solver, bool has_load) const;
 
- private:
-  // One row of B₁ and B₂ (lower, diagonal, upper) and of M and S (diagonal and twice the lower entry).
+  // What the batched step (batched_step.cpp) reads of one run's fast step to step it in a vector lane:
+  // its rows, its scalars, and the contact decision of row 0, the scalar code every lane runs.
+
+  /// One row of B₁ and B₂ (lower, diagonal, upper) and of M and S (diagonal and twice the lower entry).
   struct Row {
-    double c1l, c1d, c1u, c2l, c2d, c2u;
-    double md, ml2, sd, sl2;
+    double c1l;  ///< C₁'s lower entry (the increment form's C₁ = B₁ − A, or B₁ + B₂ − A)
+    double c1d;  ///< C₁'s diagonal entry
+    double c1u;  ///< C₁'s upper entry
+    double c2l;  ///< C₂'s lower entry (B₂, or −B₂ for three levels)
+    double c2d;  ///< C₂'s diagonal entry
+    double c2u;  ///< C₂'s upper entry
+    double md;   ///< M's diagonal entry
+    double ml2;  ///< twice M's lower entry
+    double sd;   ///< S's diagonal entry
+    double sl2;  ///< twice S's lower entry
   };
+  /// Row 0 and the contact decision of one run (fast_step.cpp).
+  struct ContactDecision {
+    double u0_next = 0;          ///< u₀ⁿ⁺¹
+    double recurrence_d0 = 0;    ///< the sweep up's start at row 0
+    double lambda = 0;           ///< λⁿ⁺¹
+    bool active = false;         ///< the contact status
+    bool status_change = false;  ///< CN-switch must take its θ-step
+  };
+  /// The contact decision at row 0 from the sweep down's last values (fast_step.cpp).
+  ContactDecision contact_decision(double u0, double u1, double w0, double w1, double y_next, double lambda,
+                                   bool active, const ContactSolver& solver, bool has_load, double f0_now,
+                                   double f0_next) const;
+  const std::vector<Row>& head() const { return head_; }              ///< rows 0 … head−1
+  const Row& interior() const { return interior_; }                   ///< the common row of head … N−2
+  const Row& last() const { return last_; }                           ///< row N−1
+  const StepMatrices& coefficients() const { return coefficients_; }  ///< the step's scalars
+  bool three_level() const { return three_level_; }                   ///< Paoli–Schatzman
+  bool energy_conserving() const { return energy_conserving_; }       ///< EC
+  bool switching() const { return switching_; }                       ///< CN-switch
+  double beta() const { return beta_; }                               ///< Paoli–Schatzman's β
+
+ private:
   std::vector<Row> head_;      // rows 0 … head−1, explicitly
   Row interior_{}, last_{};    // the common row of head … N−2, and row N−1
   StepMatrices coefficients_;  // the step's scalars (its matrices are in the Rows)
   bool three_level_, energy_conserving_, switching_;
   double restitution_, beta_, h_;
-  friend class BatchedSimulation;  // reads the rows and scalars (batched_step.cpp)
-  // Row 0 and the contact decision of one run (fast_step.cpp), shared with the batched step.
-  struct ContactDecision {
-    double u0_next = 0, recurrence_d0 = 0, lambda = 0;
-    bool active = false, status_change = false;  // status_change: CN-switch must take its θ-step
-  };
-  ContactDecision contact_decision(double u0, double u1, double w0, double w1, double y_next, double lambda,
-                                   bool active, const ContactSolver& solver, bool has_load, double f0_now,
-                                   double f0_next) const;
   template <bool three_level, bool has_load>
   bool fused_step(StepState& state, const ContactSolver& solver) const;
 };
