@@ -471,28 +471,6 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
 namespace mrm {
 
 namespace {
-// A reference behind another face, which counts its evaluations at the nodes: the accumulator cannot
-// recognise the closed form through it and takes the general path.
-struct ForwardedSolution final : ReferenceSolution {
-  const ReferenceSolution& inner;  // outlives this object in the doctests
-  mutable long evaluations = 0;
-  explicit ForwardedSolution(const ReferenceSolution& r) : inner(r) {}
-  double length() const override { return inner.length(); }
-  double displacement(double x, double t) const override { return inner.displacement(x, t); }
-  double strain(double x, double t) const override { return inner.strain(x, t); }
-  double velocity(double x, double t) const override { return inner.velocity(x, t); }
-  double contact_displacement(double t) const override { return inner.contact_displacement(t); }
-  double contact_multiplier(double t) const override { return inner.contact_multiplier(t); }
-  double energy() const override { return inner.energy(); }
-  void displacement_at_points(double t, const double* x, long count, double* u) const override {
-    ++evaluations;
-    inner.displacement_at_points(t, x, count, u);
-  }
-  void velocity_at_points(double t, const double* x, long count, double* v) const override {
-    ++evaluations;
-    inner.velocity_at_points(t, x, count, v);
-  }
-};
 
 // Every lane's eight measures against its run alone: the same bits, and positive (not vacuous).
 void check_lanes_match(const std::vector<ErrorAccumulator>& alone, const std::vector<ErrorAccumulator>& together) {
@@ -641,8 +619,8 @@ TEST_CASE("runs on their own vectors against one reference object at the same in
   for (const double ratio : {1.0, 1.01}) {
     const UniformMesh mesh = graded_mesh(1.0, 20, ratio);
     const Index n = mesh.unknowns();
-    const auto shared = std::make_shared<const ForwardedSolution>(solution);
-    const auto own = std::make_shared<const ForwardedSolution>(solution);
+    const auto shared = std::make_shared<const error_sums::ForwardedSolution>(solution);
+    const auto own = std::make_shared<const error_sums::ForwardedSolution>(solution);
     std::mt19937 random(7);
     std::uniform_real_distribution<double> wiggle(-0.01, 0.01);
     std::vector<ErrorAccumulator> together, alone;

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "exact/exact_solution.hpp"
+#include "exact/reference_solution.hpp"
 
 /// @cond MRM_INTERNAL (the arithmetic of ErrorAccumulator: not part of the library's interface)
 namespace mrm::error_sums {
@@ -122,6 +123,29 @@ inline InterpolantSums interpolant_run_sums(const double* x, double h, const Exa
   }
   return {z[0], z_prev, id, is};
 }
+
+/// A reference behind another face (for the doctests of errors.cpp and lane_errors.cpp), which counts its evaluations at the nodes: the accumulator cannot
+/// recognise the closed form through it and takes the general path.
+struct ForwardedSolution final : ReferenceSolution {
+  const ReferenceSolution& inner;  // outlives this object in the doctests
+  mutable long evaluations = 0;
+  explicit ForwardedSolution(const ReferenceSolution& r) : inner(r) {}
+  double length() const override { return inner.length(); }
+  double displacement(double x, double t) const override { return inner.displacement(x, t); }
+  double strain(double x, double t) const override { return inner.strain(x, t); }
+  double velocity(double x, double t) const override { return inner.velocity(x, t); }
+  double contact_displacement(double t) const override { return inner.contact_displacement(t); }
+  double contact_multiplier(double t) const override { return inner.contact_multiplier(t); }
+  double energy() const override { return inner.energy(); }
+  void displacement_at_points(double t, const double* x, long count, double* u) const override {
+    ++evaluations;
+    inner.displacement_at_points(t, x, count, u);
+  }
+  void velocity_at_points(double t, const double* x, long count, double* v) const override {
+    ++evaluations;
+    inner.velocity_at_points(t, x, count, v);
+  }
+};
 
 }  // namespace mrm::error_sums
 /// @endcond

@@ -433,31 +433,6 @@ TEST_CASE("each scheme approaches the exact solution on a coarse mesh and improv
 }  // namespace mrm
 
 namespace mrm {
-namespace {
-// A reference behind another face, which counts its evaluations at the nodes: the accumulator cannot
-// recognise the closed form through it and takes the general path.
-struct ForwardedSolution final : ReferenceSolution {
-  const ReferenceSolution& inner;  // outlives this object in the doctests
-  mutable long evaluations = 0;
-  explicit ForwardedSolution(const ReferenceSolution& r) : inner(r) {}
-  double length() const override { return inner.length(); }
-  double displacement(double x, double t) const override { return inner.displacement(x, t); }
-  double strain(double x, double t) const override { return inner.strain(x, t); }
-  double velocity(double x, double t) const override { return inner.velocity(x, t); }
-  double contact_displacement(double t) const override { return inner.contact_displacement(t); }
-  double contact_multiplier(double t) const override { return inner.contact_multiplier(t); }
-  double energy() const override { return inner.energy(); }
-  void displacement_at_points(double t, const double* x, long count, double* u) const override {
-    ++evaluations;
-    inner.displacement_at_points(t, x, count, u);
-  }
-  void velocity_at_points(double t, const double* x, long count, double* v) const override {
-    ++evaluations;
-    inner.velocity_at_points(t, x, count, v);
-  }
-};
-}  // namespace
-
 TEST_CASE("the closed form's runs give the same measures as its values at the nodes") {
   // The prediction: both paths sum the same quadratic forms, in another order and with the interpolant's
   // sums over a run in closed form, so the eight measures agree to round-off. Each sum has at most N + 1
@@ -470,7 +445,8 @@ TEST_CASE("the closed form's runs give the same measures as its values at the no
         for (const double courant : {0.5, 1.0, 0.37}) {
           const UniformMesh mesh(length, elements);
           const ExactSolution exact(length, amplitude);
-          ErrorAccumulator runs(mesh, exact), values(mesh, std::make_shared<const ForwardedSolution>(exact));
+          ErrorAccumulator runs(mesh, exact),
+              values(mesh, std::make_shared<const error_sums::ForwardedSolution>(exact));
           SchemeParameters p;
           p.contact_row = ContactRow::algebraic;
           const double dt = courant * mesh.h();
