@@ -129,15 +129,7 @@ std::unique_ptr<ContactClassStep> make_contact_class_step(const Tridiagonal& mas
 // Doctests: the limit cases and the energy identities of the derivation above, on the library's runs.
 namespace {
 
-[[maybe_unused]] SchemeParameters class_parameters(Scheme scheme, double beta = 0.25, double gamma = 0.5) {
-  SchemeParameters p;
-  p.scheme = scheme;
-  if (takes(scheme, SchemeParameter::newmark_beta)) {
-    p.newmark_beta = beta;
-    p.newmark_gamma = gamma;
-  }
-  return p;
-}
+using class_steps::class_parameters;
 
 // The identity (MJ) of Moreau–Jean checked at every step of `run` up to `horizon`: E changes by
 // p(θv₀ⁿ⁺¹ + (1 − θ)v₀ⁿ) − (θ − ½)(‖ΔV‖²_M + ‖ΔU‖²_S), plus the load's work F·ΔU for a load constant in time

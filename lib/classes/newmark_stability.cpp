@@ -17,6 +17,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 
+#include "classes/step_pieces.hpp"
 #include "fem/pencil.hpp"
 #include "time/contact.hpp"
 
@@ -238,16 +239,7 @@ double nitsche_measured_safe_fraction(double periods) {
 
 namespace {
 
-// The doctests' parameters of a contact class: Newmark's (β, γ) where the class takes them.
-[[maybe_unused]] SchemeParameters class_parameters(Scheme scheme, double beta = 0.25, double gamma = 0.5) {
-  SchemeParameters p;
-  p.scheme = scheme;
-  if (takes(scheme, SchemeParameter::newmark_beta)) {
-    p.newmark_beta = beta;
-    p.newmark_gamma = gamma;
-  }
-  return p;
-}
+using class_steps::class_parameters;
 
 // The largest eigenvalue of M⁻¹K by a power iteration on the dense matrices (K, M symmetric, M positive
 // definite): xₖ₊₁ = M⁻¹K xₖ/‖·‖, the Rayleigh quotient xᵀKx/xᵀMx of the last iterate.

@@ -69,6 +69,17 @@ inline void require_finite(double energy, Scheme scheme, Index level) {
                              std::to_string(level) + " (the discrete energy is not finite)");
 }
 
+/// The parameters of a contact class for the doctests: Newmark's (β, γ) where the class takes them.
+inline SchemeParameters class_parameters(Scheme scheme, double beta = 0.25, double gamma = 0.5) {
+  SchemeParameters p;
+  p.scheme = scheme;
+  if (takes(scheme, SchemeParameter::newmark_beta)) {
+    p.newmark_beta = beta;
+    p.newmark_gamma = gamma;
+  }
+  return p;
+}
+
 /// The step of a Newmark-type class (newmark, penalty, nitsche: newmark_type.cpp), set up on `state`.
 std::unique_ptr<ContactClassStep> make_newmark_type_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
                                                          const SchemeParameters& p, double dt, double h, bool has_load,
