@@ -7,7 +7,7 @@
 // times, in nanoseconds per node per step:
 //   cn, be, ps   BarSimulation::step() of each scheme (Mod 3 mass, Δt = h/2, the benchmark problem;
 //                Paoli–Schatzman with β = ¼ and the algebraic contact row), with the fast step that
-//                every program uses (the fused two-chain kernel of lib/time/fast_step.cpp);
+//                every program uses (the fused two-chain kernel of lib/steps/fast_step.cpp);
 //   cn_ref, be_ref, ps_ref
 //                the same with the reference step (StepKernel::reference, lib/time/schemes.cpp: the
 //                scheme written as its derivation, assembled matrices, ContactSolver::solve, the
@@ -79,7 +79,7 @@
 #include "report_values.hpp"
 #include "table.hpp"
 #include "batched/batched_step.hpp"
-#include "time/contact.hpp"
+#include "steps/contact.hpp"
 #include "measures/errors.hpp"
 #include "exact/exact_solution.hpp"
 #include "time/schemes.hpp"

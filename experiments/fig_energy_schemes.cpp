@@ -48,7 +48,7 @@
 #include "batched/batched_step.hpp"
 #include "configurations.hpp"
 #include "figure_program.hpp"
-#include "time/energy_step.hpp"
+#include "steps/energy_step.hpp"
 #include "options.hpp"
 #include "report_values.hpp"
 #include "time/schemes.hpp"

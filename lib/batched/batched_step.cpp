@@ -28,10 +28,10 @@
 #include <hwy/targets.h>
 
 #include "batched/kernels.hpp"
-#include "time/contact.hpp"
+#include "steps/contact.hpp"
 #include "classes/contact_classes.hpp"
-#include "time/explicit_schemes.hpp"
-#include "time/fast_step.hpp"
+#include "steps/explicit_schemes.hpp"
+#include "steps/fast_step.hpp"
 #include "fem/mass_redistribution.hpp"
 
 namespace mrm {

@@ -11,7 +11,7 @@
 #include <doctest/doctest.h>
 
 #include "classes/contact_classes.hpp"
-#include "time/explicit_schemes.hpp"
+#include "steps/explicit_schemes.hpp"
 #include "fem/mass_redistribution.hpp"
 
 namespace mrm {
@@ -147,7 +147,7 @@ TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for
         if (batch_family(c.scheme) == 4) class_parameters(p, k, mesh, mass, true, dt);
         if (c.scheme == Scheme::moreau_jean || c.scheme == Scheme::dke)
           mass = one_solve_parameters(p, k, problem, mesh.h());
-        if ((scheme_info(c.scheme).family == StepFamily::central_differences))
+        if (find_entry(central_difference_schemes(), c.scheme))
           mass = explicit_parameters(p, k, problem, mesh, 0.5 + 0.035 * static_cast<double>(k % 13), dt);
         batch.emplace_back(problem, mesh, mass, p, dt);
         alone.emplace_back(problem, mesh, mass, p, dt);
@@ -238,8 +238,7 @@ TEST_CASE("a partial step keeps the runs that stay, and runs at their own rates 
         if (batch_family(c.scheme) == 4) class_parameters(p, k, mesh, mass, false, dt);  // implicit: any rate
         if (c.scheme == Scheme::moreau_jean || c.scheme == Scheme::dke)
           mass = one_solve_parameters(p, k, problem, mesh.h());
-        if ((scheme_info(c.scheme).family ==
-             StepFamily::central_differences))  // rates 1, 2, 3, 5 of 0.18 of the stability limit
+        if (find_entry(central_difference_schemes(), c.scheme))  // rates 1, 2, 3, 5 of 0.18 of the stability limit
           mass = explicit_parameters(p, k, problem, mesh, 0.18 * static_cast<double>(rates[k % rates.size()]), dt);
         batch.emplace_back(problem, mesh, mass, p, dt);
         alone.emplace_back(problem, mesh, mass, p, dt);

@@ -7,8 +7,8 @@
 #include <array>
 #include <optional>
 
-#include "time/contact.hpp"
-#include "time/schemes.hpp"
+#include "steps/contact.hpp"
+#include "steps/step.hpp"
 
 namespace mrm {
 
@@ -17,11 +17,12 @@ namespace mrm {
 /// every level there: u, w (the velocity), lambda (the contact stress λ ≤ 0 at the new level; Moreau–Jean:
 /// the impulse per step −p/Δt), energy (the class's discrete energy), active. A run that loses
 /// finiteness throws std::runtime_error naming the level.
-class ContactClassStep {
+class ContactClassStep : public Step {
  public:
-  virtual ~ContactClassStep() = default;
   /// Advances `state` from level n to n+1 (n the argument, for the error message).
   virtual void step(StepState& state, Index level) = 0;
+  /// One step (step); a class reads Fⁿ⁺¹ from the state when it was built with a load.
+  void advance(StepState& state, Index level, bool) override { step(state, level); }
 };
 
 /// The step of the Newmark type (newmark, penalty, nitsche: contact_classes.cpp, (N)) as the batched step

@@ -3,7 +3,7 @@
 /// of the registry: Newmark(β, γ) with exact enforcement (`newmark`), with a penalty (`penalty`), with
 /// Nitsche's terms (`nitsche`), Moreau–Jean's velocity-level impact law (`moreau-jean`) and
 /// Deuflhard–Krause–Ertel's contact-stabilised Newmark (`dke`). Derived in
-/// contact_classes.cpp; BarSimulation (schemes.hpp) runs them through ContactClassStep.
+/// contact_classes.cpp; a run (time/schemes.hpp) holds one as its Step.
 #pragma once
 
 #include <array>
@@ -11,8 +11,8 @@
 #include <optional>
 
 #include "classes/class_step.hpp"
-#include "time/contact.hpp"
-#include "time/schemes.hpp"
+#include "steps/contact.hpp"
+#include "steps/step.hpp"
 
 namespace mrm {
 
@@ -54,13 +54,16 @@ double penalty_measured_safe_fraction(double periods);
 /// modified energy is conserved even between switches); 0 beyond the measured horizons.
 double nitsche_measured_safe_fraction(double periods);
 
-/// The step of `parameters.scheme` (a contact class), set up on `state`'s initial level (which it
-/// completes: λ⁰, the energy E⁰). `contact_compliance` is h/E of the contact element (h on the paper's mesh);
+/// The step of `parameters.scheme` (a contact class), whose start() completes the run's initial level (λ⁰,
+/// the energy E⁰). `contact_compliance` is h/E of the contact element (h on the paper's mesh);
 /// with `has_load` the step reads Fⁿ from state.f_now and Fⁿ⁺¹ from state.f_next (which the caller fills
 /// before each step) and swaps them; `gap` is the initial gap g₀ ≥ 0 (the constraint u₀ + g₀ ≥ 0).
 std::unique_ptr<ContactClassStep> make_contact_class_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
                                                           const SchemeParameters& parameters, double dt,
-                                                          double contact_compliance, bool has_load, double gap,
-                                                          StepState& state);
+                                                          double contact_compliance, bool has_load, double gap);
+
+/// The registry entries of the contact classes: newmark, penalty, nitsche, moreau-jean, dke
+/// (time/scheme_registry.hpp gathers them). Their checks are validate_contact_class and check_newmark_step.
+const std::vector<SchemeInfo>& contact_class_schemes();
 
 }  // namespace mrm

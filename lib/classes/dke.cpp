@@ -72,8 +72,7 @@ namespace {
 // another cure of the same ill-posedness (doc/contact_treatments.md §2).
 class DkeStep final : public OneSolveStep {
  public:
-  DkeStep(const Tridiagonal& mass, const Tridiagonal& stiffness, double dt, bool has_load, double gap, bool fused,
-          StepState& state)
+  DkeStep(const Tridiagonal& mass, const Tridiagonal& stiffness, double dt, bool has_load, double gap, bool fused)
       : mass_(mass),
         stiffness_(stiffness),
         dt_(dt),
@@ -94,10 +93,14 @@ class DkeStep final : public OneSolveStep {
       solve_free(ContactSolver(mass), inverse_column_);
     }
     solver_ = ContactSolver(a);
-    state.lambda = 0.0;  // no contact force at the initial level (the scheme has none at level n)
+    rhs_.resize(mass.size());
+  }
+
+  // The initial level: no contact force (the scheme has none at level n), E⁰.
+  void start(StepState& state) override {
+    state.lambda = 0.0;
     state.active = false;
     state.energy = energy(state);
-    rhs_.resize(mass.size());
   }
 
   // The step as its derivation reads (StepKernel::reference): Uⁿ⁺¹ in state.u_new, Vⁿ⁺¹ in state.w;
@@ -217,8 +220,8 @@ class DkeStep final : public OneSolveStep {
 }  // namespace
 
 std::unique_ptr<ContactClassStep> make_dke_step(const Tridiagonal& mass, const Tridiagonal& stiffness, double dt,
-                                                bool has_load, double gap, bool fused, StepState& state) {
-  return std::make_unique<DkeStep>(mass, stiffness, dt, has_load, gap, fused, state);
+                                                bool has_load, double gap, bool fused) {
+  return std::make_unique<DkeStep>(mass, stiffness, dt, has_load, gap, fused);
 }
 
 }  // namespace mrm::class_steps

@@ -44,7 +44,7 @@ namespace {
 class MoreauJeanStep final : public OneSolveStep {
  public:
   MoreauJeanStep(const Tridiagonal& mass, const Tridiagonal& stiffness, const SchemeParameters& p, double dt,
-                 bool has_load, double gap, StepState& state)
+                 bool has_load, double gap)
       : mass_(mass),
         stiffness_(stiffness),
         dt_(dt),
@@ -55,6 +55,10 @@ class MoreauJeanStep final : public OneSolveStep {
         gap_(gap) {
     solver_ = ContactSolver(mass.plus(theta_ * theta_ * dt * dt, stiffness));
     explicit_part_ = mass.plus(-theta_ * (1 - theta_) * dt * dt, stiffness);
+  }
+
+  // The initial level: no impulse yet, E⁰.
+  void start(StepState& state) override {
     state.lambda = 0.0;
     state.active = false;
     state.energy = energy(state);
@@ -161,9 +165,8 @@ class MoreauJeanStep final : public OneSolveStep {
 }  // namespace
 
 std::unique_ptr<ContactClassStep> make_moreau_jean_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
-                                                        const SchemeParameters& p, double dt, bool has_load, double gap,
-                                                        StepState& state) {
-  return std::make_unique<MoreauJeanStep>(mass, stiffness, p, dt, has_load, gap, state);
+                                                        const SchemeParameters& p, double dt, bool has_load, double gap) {
+  return std::make_unique<MoreauJeanStep>(mass, stiffness, p, dt, has_load, gap);
 }
 
 }  // namespace mrm::class_steps

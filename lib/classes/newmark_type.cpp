@@ -79,7 +79,7 @@ namespace {
 class NewmarkContactStep final : public NewmarkTypeStep {
  public:
   NewmarkContactStep(const Tridiagonal& mass, const Tridiagonal& stiffness, const SchemeParameters& p, double dt,
-                     double h, bool has_load, double gap, StepState& state)
+                     double h, bool has_load, double gap)
       : scheme_(p.scheme),
         mass_(mass),
         stiffness_(stiffness),
@@ -138,13 +138,16 @@ class NewmarkContactStep final : public NewmarkTypeStep {
       solve_free(solver_, z_);
       ell_z_ = ell_[0] * z_[0] + ell_[1] * z_[1];
     }
-    // The initial level: λ⁰ from the law (exact enforcement: BarSimulation's, 0 with inertia), R⁰, E⁰.
+    rhs_.resize(n);
+    r_next_.resize(n);
+  }
+
+  // The initial level: λ⁰ from the law (exact enforcement: the run's, 0 with inertia), R⁰, E⁰.
+  void start(StepState& state) override {
     if (scheme_ != Scheme::newmark) state.lambda = law(state.u);
     force(state.u, state.lambda, has_load_ ? &state.f_now : nullptr, r_);
     state.active = state.lambda < 0;
     state.energy = energy(state);
-    rhs_.resize(n);
-    r_next_.resize(n);
   }
 
   // The step as its derivation reads (StepKernel::reference): Uⁿ⁺¹ in state.u_new, Rⁿ⁺¹ in r_next_,
@@ -327,8 +330,8 @@ class NewmarkContactStep final : public NewmarkTypeStep {
 
 std::unique_ptr<ContactClassStep> make_newmark_type_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
                                                          const SchemeParameters& p, double dt, double h, bool has_load,
-                                                         double gap, StepState& state) {
-  return std::make_unique<NewmarkContactStep>(mass, stiffness, p, dt, h, has_load, gap, state);
+                                                         double gap) {
+  return std::make_unique<NewmarkContactStep>(mass, stiffness, p, dt, h, has_load, gap);
 }
 
 }  // namespace mrm::class_steps

@@ -11,7 +11,8 @@
 #include <Eigen/Core>
 
 #include "classes/class_step.hpp"
-#include "time/contact.hpp"
+#include "classes/contact_classes.hpp"
+#include "steps/contact.hpp"
 
 namespace mrm::class_steps {
 
@@ -65,7 +66,8 @@ inline void sweep_down_forming(const ContactSolver& solver, Index n, double* y, 
 /// Throws std::runtime_error naming the scheme and the level when the discrete energy is not finite.
 inline void require_finite(double energy, Scheme scheme, Index level) {
   if (!std::isfinite(energy))
-    throw std::runtime_error("scheme " + to_string(scheme) + ": the run lost finiteness at level " +
+    throw std::runtime_error("scheme " + find_entry(contact_class_schemes(), scheme)->id +
+                             ": the run lost finiteness at level " +
                              std::to_string(level) + " (the discrete energy is not finite)");
 }
 
@@ -73,23 +75,23 @@ inline void require_finite(double energy, Scheme scheme, Index level) {
 inline SchemeParameters class_parameters(Scheme scheme, double beta = 0.25, double gamma = 0.5) {
   SchemeParameters p;
   p.scheme = scheme;
-  if (takes(scheme, SchemeParameter::newmark_beta)) {
+  const SchemeInfo* entry = find_entry(contact_class_schemes(), scheme);  // null for the other schemes
+  if (entry && entry->takes(SchemeParameter::newmark_beta)) {
     p.newmark_beta = beta;
     p.newmark_gamma = gamma;
   }
   return p;
 }
 
-/// The step of a Newmark-type class (newmark, penalty, nitsche: newmark_type.cpp), set up on `state`.
+/// The step of a Newmark-type class (newmark, penalty, nitsche: newmark_type.cpp).
 std::unique_ptr<ContactClassStep> make_newmark_type_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
                                                          const SchemeParameters& p, double dt, double h, bool has_load,
-                                                         double gap, StepState& state);
-/// The step of Moreau–Jean (moreau_jean.cpp), set up on `state`.
+                                                         double gap);
+/// The step of Moreau–Jean (moreau_jean.cpp).
 std::unique_ptr<ContactClassStep> make_moreau_jean_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
-                                                        const SchemeParameters& p, double dt, bool has_load, double gap,
-                                                        StepState& state);
-/// The step of DKE (dke.cpp), set up on `state`.
+                                                        const SchemeParameters& p, double dt, bool has_load, double gap);
+/// The step of DKE (dke.cpp).
 std::unique_ptr<ContactClassStep> make_dke_step(const Tridiagonal& mass, const Tridiagonal& stiffness, double dt,
-                                                bool has_load, double gap, bool fused, StepState& state);
+                                                bool has_load, double gap, bool fused);
 
 }  // namespace mrm::class_steps

@@ -250,6 +250,18 @@ Tridiagonal Tridiagonal::plus(double c, const Tridiagonal& b) const {
   return r;
 }
 
+double stiffness_form(const Eigen::VectorXd& u, const Eigen::VectorXd& v, const UniformMesh& mesh) {
+  const Index n = u.size();
+  double sum = 0;
+  const bool plain = mesh.uniform() && mesh.homogeneous();
+  for (Index e = 0; e < mesh.elements; ++e) {
+    const double du = (e + 1 < n ? u[e + 1] : 0.0) - u[e];
+    const double dv = (e + 1 < n ? v[e + 1] : 0.0) - v[e];
+    sum += plain ? du * dv : du * dv * mesh.young(e) / mesh.h(e);
+  }
+  return plain ? sum / mesh.h() : sum;
+}
+
 Eigen::SparseMatrix<double> Tridiagonal::to_sparse() const {
   const Index n = size();
   std::vector<Eigen::Triplet<double>> triplets;

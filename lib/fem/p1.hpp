@@ -140,6 +140,11 @@ Tridiagonal p1_stiffness_all_nodes(const UniformMesh& mesh);
 Tridiagonal p1_stiffness(const UniformMesh& mesh);
 /// The consistent mass matrix M on the unknowns 0..N-1 (clamped node eliminated).
 Tridiagonal p1_mass(const UniformMesh& mesh);
+/// UᵀSV for the P1 stiffness on the unknowns 0..N−1, summed element by element (node N clamped, or an
+/// unknown at a free far end): Σ_e (E_e/h_e) Δu_e Δv_e, as Σ Δu Δv / h on the paper's mesh. The same number
+/// as S's bilinear form, without cancelling the terms 2u_i²/h against −2u_{i−1}u_i/h (whose sizes grow like
+/// N² times the energy): the schemes' energies use it.
+double stiffness_form(const Eigen::VectorXd& u, const Eigen::VectorXd& v, const UniformMesh& mesh);
 
 /// The load vector F_i = ∫ f(x) φ_i(x) dx on the unknowns, by two-point Gauss quadrature on each
 /// element (exact for f of degree ≤ 2 on each element, so for a piecewise-quadratic f whose pieces

@@ -1,184 +1,33 @@
 /// @file scheme_registry.hpp
-/// @brief The registry of time schemes: each scheme's id, summary, labels, parameters (with the option,
-/// range, default and help a program offers them by), how its step is built and its batched kernel's
-/// family. Every name of a scheme and of a scheme parameter in the library and the harness is read
-/// from here.
+/// @brief The registry of time schemes: every scheme's entry (SchemeInfo, steps/step.hpp: its id, summary,
+/// labels, parameters, checks, step builder and batched kernel's family), gathered from the files of the
+/// families that register them: the paper's one-step form (steps/one_step_form.cpp), central differences
+/// (steps/explicit_schemes.cpp) and the contact classes (classes/contact_classes.cpp). Every name of a
+/// scheme in the library and the harness is read from here.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "classes/contact_classes.hpp"
+#include "steps/explicit_schemes.hpp"
+#include "steps/one_step_form.hpp"
+#include "steps/step.hpp"
+
 namespace mrm {
 
-/// The time schemes of the paper (mathematics.md §4).
-enum class Scheme {
-  crank_nicolson,     ///< Crank–Nicolson (trapezoidal rule), two levels
-  backward_euler,     ///< backward Euler, two levels
-  paoli_schatzman,    ///< Paoli–Schatzman (β, e), three levels
-  energy_conserving,  ///< EC: Crank–Nicolson with the discrete gradient of the contact energy (mathematics.md §12)
-  switching,          ///< CN-switch: Crank–Nicolson, a θ-step where the contact status changes (mathematics.md §12)
-  // The field's contact treatments (Doyen–Ern–Piperno's classes, doc/contact_treatments.md; lib/classes/):
-  newmark,           ///< Newmark(β, γ) with exact (Signorini) enforcement by a multiplier at the new level
-  penalty,           ///< Newmark(β, γ) with the penalty force (γ₀/h) min(0, u₀)
-  nitsche,           ///< Newmark(β, γ) with Nitsche's boundary terms (θ, γ₀), GetFEM's formulation
-  moreau_jean,       ///< Moreau–Jean (θ, e): the θ-method with a velocity-level impact law (inertial contact node)
-  taylor_flanagan,   ///< central differences, contact by Taylor–Flanagan's velocity correction (explicit_schemes.cpp)
-  explicit_central,  ///< central differences with a massless contact node on its algebraic row (explicit_schemes.cpp)
-  dke  ///< Deuflhard–Krause–Ertel's contact-stabilised Newmark (¼, ½): the predictor projected in the mass norm
-};
-
-/// The mass an explicit scheme uses (explicit_schemes.cpp): `row_sum` lumps the run's mass by row sums
-/// (the default), `none` keeps the consistent mass and solves with it at every step (GetFEM's demo with
-/// lump_mass_matrix = 0; taylor-flanagan with the consistent mass only).
-enum class MassLumping { row_sum, none };
-
-/// How the Paoli–Schatzman scheme treats the contact row when the contact node is massless:
-/// `literal` applies the three-level formula to every row, the contact row included;
-/// `algebraic` imposes the contact row S₀·U = F₀ − λ at every new level, as the other schemes do.
-enum class ContactRow { algebraic, literal };
-
-/// The initial value of a massless contact node: `consistent` solves its algebraic row,
-/// u₀(0) = max(0, u₁(0) + hF₀); `interpolant` keeps the nodal value of u⁰.
-enum class InitialContactNode { consistent, interpolant };
-
-/// Which implementation of one step a BarSimulation runs (mathematics.md §4). Both compute the step
-/// (★) of schemes.cpp and give the same samples up to round-off (doctest "the fast step and the
-/// reference step agree to round-off"):
-/// `reference` is the step written as its derivation (schemes.cpp: the assembled matrices A, B₁, B₂,
-/// one tridiagonal solve with the closed-form contact step, the velocity and the energy from their
-/// definitions); `fast` is the fused two-chain kernel of fast_step.cpp, the default, used by every
-/// program of this project (bench_step times both). The contact classes (contact_classes.hpp) read it
-/// too: `reference` their step written as its derivation, `fast` the same operations fused node by node,
-/// the same bits.
-enum class StepKernel { reference, fast };
-
-/// A parameter of SchemeParameters that only some schemes take (the registry says which).
-enum class SchemeParameter {
-  beta,           ///< Paoli–Schatzman's β
-  restitution,    ///< Paoli–Schatzman's restitution coefficient e
-  contact_row,    ///< Paoli–Schatzman's contact-row form (algebraic or literal)
-  switch_theta,   ///< CN-switch's θ of the step taken at a change of the contact status
-  newmark_beta,   ///< Newmark's β of the contact classes (newmark, penalty, nitsche)
-  newmark_gamma,  ///< Newmark's γ of the contact classes
-  penalty,        ///< the penalty parameter γ₀ (stiffness γ₀/h)
-  nitsche_theta,  ///< Nitsche's symmetry parameter θ ∈ [−1, 1]
-  nitsche_gamma,  ///< Nitsche's γ₀ (γ = γ₀/h)
-  moreau_theta,   ///< Moreau–Jean's θ ∈ [½, 1]
-  ps_start,       ///< Paoli–Schatzman's first step (Crank–Nicolson, or GetFEM's explicit Newmark step)
-  mass_lumping    ///< the explicit schemes' mass lumping (row-sum or none)
-};
-
-/// A time scheme with its parameters.
-struct SchemeParameters {
-  Scheme scheme = Scheme::crank_nicolson;          ///< the scheme
-  double beta = 0.25;                              ///< Paoli–Schatzman's β ≥ 0
-  double restitution = 0.0;                        ///< Paoli–Schatzman's e ∈ [0, 1]
-  ContactRow contact_row = ContactRow::algebraic;  ///< Paoli–Schatzman's contact row (massless node)
-  StepKernel kernel = StepKernel::fast;            ///< the implementation of the step (same results to round-off)
-  /// CN-switch's θ ∈ [½, 1] of the step that replaces a Crank–Nicolson step across which the contact
-  /// status changes: 1 is backward Euler, the only value for which the energy provably never increases.
-  double switch_theta = 1.0;
-  // The contact classes (lib/classes/contact_classes.cpp). The defaults of γ₀ and θ are GetFEM's demo's
-  // (demo_dynamic_contact_1D.py: γ₀_P = 1, γ₀_N = 5, θ_N = 0); Newmark's default is (¼, ½), Crank–Nicolson.
-  double newmark_beta = 0.25;  ///< Newmark's β ≥ 0 (0: explicit, the step solves with the mass)
-  double newmark_gamma = 0.5;  ///< Newmark's γ ≥ ½
-  double penalty = 1.0;        ///< the penalty's γ₀ > 0: the contact force (γ₀/h) min(0, u₀)
-  double nitsche_theta = 0.0;  ///< Nitsche's θ ∈ [−1, 1] (1 symmetric, 0 skew-free, −1 skew-symmetric)
-  double nitsche_gamma = 5.0;  ///< Nitsche's γ₀ > 0 (and > θ): γ = γ₀/h
-  double moreau_theta = 0.5;   ///< Moreau–Jean's θ ∈ [½, 1]
-  /// Paoli–Schatzman's first step: false, one Crank–Nicolson step (the library's); true, the explicit
-  /// Newmark step U¹ = U⁰ + ΔtV⁰ + ½Δt² M⁻¹(F⁰ − SU⁰) of GetFEM's demo (a contact node with inertia only).
-  bool ps_explicit_start = false;
-  MassLumping lumping = MassLumping::row_sum;  ///< the explicit schemes' mass (explicit_schemes.hpp)
-};
-
-/// The θ of CN-switch's step for which the θ-step's energy identity proves that no step gains energy
-/// (energy_step.cpp §4): Eⁿ⁺¹ − Eⁿ ≤ −(θ − ½)‖ΔV‖²_M̄ + ρ_θ(a, b), and at a release (a < 0 ≤ b, s = u₁ + hF₀
-/// before and after) ρ_θ = ((1 − θ)|ab| − (θ − ½)a²)/h, positive as soon as |b|/|a| > (θ − ½)/(1 − θ).
-/// A release falls anywhere inside its step, so |b|/|a| takes every value in (0, ∞): for every θ < 1
-/// some release gains energy (θ = 0.6 gains energy on the benchmark, θ = 0.51 blows up), and only θ = 1
-/// (backward Euler, ρ₁ ≤ 0 in every case) is proved. The programs accept this value only; the library
-/// keeps θ ∈ [½, 1] for the checks of the θ-step itself.
-constexpr double switch_theta_without_gain = 1.0;
-
-/// How a scheme's step is built (BarSimulation): the paper's one-step form (★) (schemes.cpp: the
-/// reference step or the fast kernel of fast_step.cpp, with EC's and CN-switch's variants); a contact
-/// class's own step (contact_classes.hpp, ContactClassStep); or central differences (explicit_schemes.hpp,
-/// ExplicitStep).
-enum class StepFamily { one_step_form, contact_class, central_differences };
-
-/// One parameter of SchemeParameters that only some schemes take: what a program needs to offer it as
-/// an option (its name, its option, its allowed values, its default, its help), spelled once here, as
-/// PETSc's TS types own their -ts_* options. A real parameter has the closed range [lowest, highest]
-/// (lowest excluded when `lowest_excluded`); a named one, its `choices`.
-struct ParameterSpec {
-  SchemeParameter parameter;         ///< which member of SchemeParameters
-  std::string name;                  ///< its name in messages ("newmark_beta"): to_string(parameter)
-  std::string option;                ///< its command-line option ("--newmark-beta")
-  std::string short_option;          ///< a one-letter option ("-b"), or empty
-  std::string placeholder;           ///< the value's name in help texts ("B")
-  std::string help;                  ///< one sentence: what it is, which schemes take it, its range
-  std::vector<std::string> choices;  ///< a named parameter's values; empty for a real one
-  double lowest = 0;                 ///< a real parameter's smallest value a program accepts
-  double highest = 0;                ///< its largest
-  bool lowest_excluded = false;      ///< whether `lowest` itself is refused (a positive parameter)
-};
-/// The specs of every SchemeParameter, in the order of the enum (doctest: one per member, each named
-/// as to_string says).
-const std::vector<ParameterSpec>& scheme_parameter_specs();
-/// The spec of one parameter.
-const ParameterSpec& parameter_spec(SchemeParameter parameter);
-/// A real parameter's value in `parameters` (the default of every parameter is its value in
-/// SchemeParameters{}); std::invalid_argument for a named one.
-double number(const SchemeParameters& parameters, SchemeParameter parameter);
-/// The choice a named parameter has in `parameters` ("algebraic", "cn", "row-sum"); std::invalid_argument
-/// for a real one.
-std::string choice(const SchemeParameters& parameters, SchemeParameter parameter);
-/// Sets a real parameter (no check of the value: BarSimulation checks it); std::invalid_argument for a
-/// named one.
-void set_number(SchemeParameters& parameters, SchemeParameter parameter, double value);
-/// Sets a named parameter from one of its choices; std::invalid_argument listing the choices otherwise.
-void set_choice(SchemeParameters& parameters, SchemeParameter parameter, const std::string& value);
-/// Whether a parameter keeps its default value in `parameters`.
-bool is_default(const SchemeParameters& parameters, SchemeParameter parameter);
-
-/// One entry of the registry of schemes: everything the library and the programs name or decide about a
-/// scheme, spelled once: its id and summary (help texts, choice lists, data headers, claims rows, as
-/// MFEM's ODESolver::Types or PETSc's -ts_type list), its labels in plain text, LaTeX and short form
-/// (figures and tables), the parameters it takes, how its step is built, and the family of its batched
-/// kernel (batched_step.hpp).
-struct SchemeInfo {
-  Scheme scheme;                            ///< the scheme
-  std::string id;                           ///< its name on command lines and in data files ("cn")
-  std::string summary;                      ///< one line for help texts and reports
-  std::vector<SchemeParameter> parameters;  ///< the parameters it takes beyond Δt (the others keep their defaults)
-  StepFamily family;                        ///< how BarSimulation builds its step
-  /// Its batched kernel's family: 0 the two-level steps of (★) (Crank–Nicolson and backward Euler), 1
-  /// Paoli–Schatzman, 2 EC, 3 CN-switch, 4 the Newmark-type classes, 5 Moreau–Jean, 6 DKE, 7 the central
-  /// differences (batched_step.hpp, batch_family).
-  int batch_family;
-  std::string plain;         ///< its label in plain text (figure keys, data headers)
-  std::string latex;         ///< its label in LaTeX (the report's tables)
-  std::string abbreviation;  ///< its short ASCII label (narrow table columns)
-};
-/// Every scheme of the library, in the order of the enum. Adding a scheme is: its code, its doctests,
-/// one entry here (scheme_registry.cpp).
+/// Every scheme of the library, in the order of the enum: the entries of the one-step form
+/// (one_step_form_schemes), of central differences (central_difference_schemes) and of the contact classes
+/// (contact_class_schemes). Adding a scheme is: its step with its doctests, and one entry in its family's
+/// list (a new family: its list, named in scheme_registry.cpp).
 const std::vector<SchemeInfo>& scheme_registry();
 /// The registry entry of a scheme.
 const SchemeInfo& scheme_info(Scheme);
 /// Whether `scheme` takes `parameter` (its registry entry lists it).
 bool takes(Scheme scheme, SchemeParameter parameter);
 
-std::string to_string(Scheme);                         ///< the registry's id: "cn", "be", "ps", "ec", "cn-switch"
-std::string to_string(SchemeParameter);                ///< its spec's name: "beta", "restitution", ...
-std::string to_string(ContactRow);                     ///< "algebraic", "literal"
-std::string to_string(InitialContactNode);             ///< "consistent", "interpolant"
-std::string to_string(StepKernel);                     ///< "reference", "fast"
-std::string to_string(MassLumping);                    ///< "row-sum", "none"
-MassLumping mass_lumping_by_name(const std::string&);  ///< row-sum, none; std::invalid_argument otherwise
-/// Parsers of the names above; throw std::invalid_argument listing the allowed names.
-Scheme scheme_by_name(const std::string&);                            ///< an id of the registry
-ContactRow contact_row_by_name(const std::string&);                   ///< algebraic, literal
-InitialContactNode initial_contact_node_by_name(const std::string&);  ///< consistent, interpolant
+std::string to_string(Scheme);  ///< the registry's id: "cn", "be", "ps", "ec", "cn-switch", ...
+/// The scheme of a registry id; throws std::invalid_argument listing the ids.
+Scheme scheme_by_name(const std::string&);
 
 }  // namespace mrm

@@ -1,19 +1,12 @@
 /// @file schemes.cpp
-/// @brief The time schemes: mathematics.md §4, the paper's §3 (Crank–Nicolson, backward Euler, Paoli–Schatzman).
+/// @brief A run of a time scheme (BarSimulation, mathematics.md §4, the paper's §3): the checks of its
+/// inputs, the initial level, the step its registry entry builds, Paoli–Schatzman's first step, the
+/// instants of λ and of the energy; with the doctests that run the paper's schemes.
 ///
 /// The semi-discrete problem is M U'' + S U = −λ e₀ + F, 0 ≤ u₀ ⊥ λ ≤ 0 (paper eq. (5)), with M the
-/// consistent mass or a redistributed mass M^mod whose row and column 0 vanish (paper eq. (6)).
-///
-/// One step of every scheme, written on all unknowns 0..N−1, is
-///
-///     A Uⁿ⁺¹ = B₁ Uⁿ + B₂ W + G − κ λ e₀,     0 ≤ u₀ⁿ⁺¹ − g ⊥ λ ≤ 0,                         (★)
-///
-/// that is, \f$ A U^{n+1} = B_1 U^n + B_2 W + G - \kappa \lambda e_0 \f$ with \f$ 0 \le u_0^{n+1} - g \perp \lambda \le 0 \f$,
-/// with constant tridiagonal A, B₁, B₂, a scalar κ > 0, W = Vⁿ for the two-level schemes and
-/// W = Uⁿ⁻¹ for the three-level one, and g the obstacle (0, or −e u₀ⁿ⁻¹). (★) is solved by the
-/// closed-form contact step of contact.cpp: one sweep down, the contact decision at the contact
-/// node's pivot, one sweep up. The schemes differ only in their coefficients (below: the schemes and
-/// their contact rows; the discrete energies; the velocity of the massless node).
+/// consistent mass or a redistributed mass M^mod whose row and column 0 vanish (paper eq. (6)). The step
+/// of the paper's schemes, (★) A Uⁿ⁺¹ = B₁ Uⁿ + B₂ W + G − κ λ e₀ with its contact condition, is derived in
+/// steps/one_step_form.cpp; the other families' steps in steps/explicit_schemes.cpp and lib/classes/.
 #include "time/schemes.hpp"
 
 #include <algorithm>
@@ -25,11 +18,11 @@
 
 #include <doctest/doctest.h>
 
-#include "classes/contact_classes.hpp"
-#include "time/energy_step.hpp"
+#include "classes/class_step.hpp"
 #include "exact/exact_solution.hpp"
-#include "time/explicit_schemes.hpp"
-#include "time/fast_step.hpp"
+#include "steps/energy_step.hpp"
+#include "steps/explicit_schemes.hpp"
+#include "steps/one_step_form.hpp"
 
 namespace mrm {
 
@@ -56,55 +49,6 @@ namespace {
 }
 
 }  // namespace
-
-/// @file schemes.cpp
-/// ## The schemes (mathematics.md §4, the paper's §3)
-///
-/// Crank–Nicolson (trapezoidal rule for U' = V, M V' = −SU − λe₀ + F). Eliminating
-/// Vⁿ⁺¹ = 2(Uⁿ⁺¹ − Uⁿ)/Δt − Vⁿ from M(Vⁿ⁺¹ − Vⁿ) = Δt/2 (−S(Uⁿ⁺¹ + Uⁿ) − (λⁿ⁺¹ + λⁿ)e₀ + Fⁿ⁺¹ + Fⁿ):
-///
-///     (M + θS) Uⁿ⁺¹ = (M − θS) Uⁿ + Δt M Vⁿ + θ(Fⁿ + Fⁿ⁺¹) − θλⁿe₀ − θλⁿ⁺¹e₀,    θ = Δt²/4.
-///
-/// Backward Euler: Uⁿ⁺¹ = Uⁿ + Δt Vⁿ⁺¹, M(Vⁿ⁺¹ − Vⁿ) = Δt(−SUⁿ⁺¹ − λⁿ⁺¹e₀ + Fⁿ⁺¹):
-///
-///     (M + Δt²S) Uⁿ⁺¹ = M Uⁿ + Δt M Vⁿ + Δt² Fⁿ⁺¹ − Δt² λⁿ⁺¹ e₀,   Vⁿ⁺¹ = (Uⁿ⁺¹ − Uⁿ)/Δt.
-///
-/// Paoli–Schatzman (three levels, β ≥ 0, restitution e ∈ [0, 1]):
-///
-///     M(Uⁿ⁺¹ − 2Uⁿ + Uⁿ⁻¹)/Δt² + S(βUⁿ⁺¹ + (1−2β)Uⁿ + βUⁿ⁻¹) = Fⁿ − λⁿe₀,
-///     0 ≤ (u₀ⁿ⁺¹ + e u₀ⁿ⁻¹)/(1 + e) ⊥ λⁿ ≤ 0,
-///
-/// that is (M + βΔt²S) Uⁿ⁺¹ = (2M − (1−2β)Δt²S) Uⁿ − (M + βΔt²S) Uⁿ⁻¹ + Δt²Fⁿ − Δt²λⁿe₀ with the
-/// obstacle g = −e u₀ⁿ⁻¹.
-///
-/// Energy-conserving Crank–Nicolson (EC) and CN-switch (mathematics.md §12, derived in energy_step.cpp).
-/// Crank–Nicolson creates energy at every release of a massless contact node. EC keeps Crank–Nicolson's
-/// (★) and replaces the contact force of the step, the trapezoidal average of ψ'(sⁿ) and ψ'(sⁿ⁺¹)
-/// (s = u₁ + hF₀, ψ(s) = max(0, s)²/2h), by the discrete gradient (ψ(sⁿ⁺¹) − ψ(sⁿ))/(sⁿ⁺¹ − sⁿ): the
-/// contact is then decided on row 1 after the sweep down, by the closed-form root of a monotone scalar
-/// equation, and the sweep up starts from the value of u₀ that carries that force
-/// (energy_conserving_contact). It needs the condensed contact row (a massless contact node). CN-switch
-/// takes Crank–Nicolson's step unless the contact status changes across it (decided after the sweep
-/// down, before anything is written), and then takes a θ-step of the θ-rule instead,
-///
-///     Uⁿ⁺¹ − Uⁿ = Δt((1 − θ)Vⁿ + θVⁿ⁺¹),   M(Vⁿ⁺¹ − Vⁿ) = Δt((1 − θ)Gⁿ + θGⁿ⁺¹),   G = −SU − λe₀ + F,
-///
-/// that is (M + θ²Δt²S) Uⁿ⁺¹ = (M − θ(1−θ)Δt²S) Uⁿ + Δt M Vⁿ + θ(1−θ)Δt²(Fⁿ − λⁿe₀) + θ²Δt²(Fⁿ⁺¹ − λⁿ⁺¹e₀),
-/// Vⁿ⁺¹ = (Uⁿ⁺¹ − Uⁿ)/(θΔt) − ((1−θ)/θ)Vⁿ: θ = ½ is Crank–Nicolson, θ = 1 backward Euler (the default,
-/// whose energy provably never increases), with the same contact rows as they.
-///
-/// The massless contact row. With a redistributed mass, row 0 of the system has no inertia: it is
-/// the algebraic contact row S₀·U = F₀ − λ, 0 ≤ u₀ ⊥ λ ≤ 0 (paper eq. (6)), to hold at every time level.
-/// Crank–Nicolson's row 0 is then (S₀·Uⁿ⁺¹ − F₀ⁿ⁺¹ + λⁿ⁺¹) + (S₀·Uⁿ − F₀ⁿ + λⁿ) = 0 and backward Euler's
-/// is S₀·Uⁿ⁺¹ = F₀ⁿ⁺¹ − λⁿ⁺¹: with the row holding at level n, both are the algebraic row at level n+1.
-/// This implementation writes it as such for every scheme ("algebraic" form): row 0 of A is S₀·,
-/// row 0 of B₁ and B₂ vanish, G₀ = F₀ⁿ⁺¹ and κ = 1 for that row, so the row holds at every level
-/// whatever round-off or initial data did before. Paoli–Schatzman applied literally ("literal" form)
-/// keeps its own row 0, Δt² S₀·(βUⁿ⁺¹ + (1−2β)Uⁿ + βUⁿ⁻¹) = Δt²(F₀ⁿ − λⁿ): the contact row then only
-/// holds in the β-average of three levels, and its defect dⁿ = S₀·Uⁿ − F₀ⁿ + λ obeys
-/// βdⁿ⁺¹ + (1−2β)dⁿ + βdⁿ⁻¹ = 0 while the contact is inactive: for β = ¼, dⁿ = (p + qn)(−1)ⁿ, a
-/// sawtooth that may grow (mathematics.md §4). The experiments show whether it does.
-///
 
 // The round-off floor, on the first impact time at N = 8 (Mod 1), Δt = h/4096, h/16384, h/65536
 // (4·10⁵ steps at the finest). The increment form's spread is the truncation error: O(Δt²), measured
@@ -177,90 +121,18 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
     throw InvalidParameter("gap", "the initial gap must be finite and >= 0 (got " + std::to_string(problem.gap) + ")");
   massless_ = contact_node_is_massless(mass_);
   three_level_ = parameters.scheme == Scheme::paoli_schatzman;
-  if (three_level_ && parameters.contact_row == ContactRow::algebraic && !massless_)
-    throw InvalidParameter("contact_row",
-                           "the algebraic contact row needs a massless contact node (allowed: any mass but "
-                           "consistent, or the literal Paoli–Schatzman row with the consistent mass)");
   algebraic_row_ = massless_ && (!three_level_ || parameters.contact_row == ContactRow::algebraic);
-  energy_conserving_ = parameters.scheme == Scheme::energy_conserving;
-  if (energy_conserving_ && !massless_)
-    throw InvalidParameter("mass",
-                           "the energy-conserving scheme (ec) needs a massless contact node (allowed: any mass but "
-                           "consistent): with inertia at the contact node the contact energy is not a function of u1");
-  // The literal Paoli–Schatzman row with a massless contact node: row 0 of A is βΔt²S₀·, singular for
-  // β = 0. Off contact, row 0 reads β dⁿ⁺¹ + (1 − 2β) dⁿ + β dⁿ⁻¹ = 0 for d = u₀ − u₁ (S's row 0 is
-  // (1, −1)/h): the roots of β r² + (1 − 2β) r + β have product 1 and are real and distinct when
-  // β < ¼, so one exceeds 1 in modulus and d grows geometrically at every step of free flight (by 1.5
-  // per step at β = 0.24, overflowing within a few thousand steps): no finite or meaningful value can
-  // come out. β ≥ ¼ puts both roots on the unit circle.
-  if (massless_ && three_level_ && !algebraic_row_ && parameters.beta == 0.0)
-    throw InvalidParameter("beta",
-                           "0 with the literal Paoli–Schatzman row and a massless contact node is singular (row 0 "
-                           "of the step matrix vanishes) (allowed: beta >= 1/4, or the algebraic row)");
-  if (massless_ && three_level_ && !algebraic_row_ && parameters.beta < 0.25)
-    throw InvalidParameter("beta",
-                           "below 1/4 with the literal Paoli–Schatzman row and a massless contact node, u0 - u1 "
-                           "grows at every step of free flight (allowed: beta >= 1/4, the algebraic row, or the "
-                           "consistent mass)");
-
-  // A contact class (lib/classes/contact_classes.cpp) checks its own parameters and has its own step, set up
-  // at the end from the initial level; StepKernel::fast runs its fused step, StepKernel::reference its
-  // readable one (the same bits: contact_classes.cpp).
-  const StepFamily family = scheme_info(parameters.scheme).family;
-  const bool contact_class = family == StepFamily::contact_class;
-  validate_contact_class(parameters, massless_);
-  // Newmark with β < γ/2 is explicit-like: its step limit, checked before any work (contact_classes.cpp).
-  if (contact_class)
-    check_newmark_step(mass_, stiffness_, parameters, dt, mesh.contact_compliance(),
-                       mesh.uniform() && mesh.homogeneous() ? mesh.h() : 0.0);
-
-  // The literal row with a massless contact node and a restitution e > 0. The restitution
-  // law is a law on the velocity of a node with inertia; on the massless node the obstacle −e u₀ⁿ⁻¹
-  // follows the literal row's undamped sawtooth of u₀ − u₁ (above: β dⁿ⁺¹ + (1 − 2β) dⁿ + β dⁿ⁻¹ = 0 off
-  // contact, roots on the unit circle) and, as measured, feeds it: E(T) = 7e9 at e = ½ (N = 100, c = ½,
-  // T = 30, Mod 3), a non-finite energy at e = 1 on N = 20 and 100, c = ¼ and 1, Mod 1 and Mod 3 (bounded at
-  // e = 0 and e = 0.1 on those runs; the ratchet is our reading of the measurements, not a proof). The
-  // algebraic row with e ∈ [0, 1] stays bounded on the same runs (E(T)/E(0) ≤ 1.01): it is the sound
-  // form, and the literal one is refused with e > 0.
-  if (massless_ && three_level_ && !algebraic_row_ && parameters.restitution > 0)
-    throw InvalidParameter("restitution",
-                           "above 0 with the literal Paoli–Schatzman row and a massless contact node: the restitution "
-                           "acts on a node without inertia and the run grows without bound (measured: E = 7e9 at "
-                           "e = 0.5, N = 100) (allowed: e = 0, the algebraic row, or the consistent mass)");
-  // The explicit schemes (explicit_schemes.cpp) have no (★): their step checks its own mass and stability
-  // limit, and its mass (row-sum lumped, or the consistent one) is the run's. One implementation of the
-  // step, whatever StepKernel asks (the fast path falls back to it).
-  if (family == StepFamily::central_differences) {
-    explicit_ = std::make_unique<const ExplicitStep>(mesh, mass, stiffness_, parameters, dt, problem.gap);
-    mass_ = explicit_->mass();
-  }
-
-  // The matrices and scalars of (★) (step_matrices above), A factorised once per run.
-  const Tridiagonal& M = mass_;
-  const Tridiagonal& S = stiffness_;
-  if (!contact_class && !explicit_) {
-    step_ = step_matrices(M, S, parameters, dt);
-    // The gap moves the obstacle: u₀ⁿ⁺¹ ≥ −gap (Paoli–Schatzman: the averaged constraint, see StepMatrices).
-    // (+0.0 without a gap: a −0.0 would print as "-0" where the contact node sits on the obstacle.)
-    if (problem.gap != 0.0) step_.obstacle_offset = -(three_level_ ? 1 + parameters.restitution : 1.0) * problem.gap;
-    solver_ = ContactSolver(step_.a);
-    // CN-switch's θ-step, with its own factorisation (once per run, like A's).
-    if (parameters.scheme == Scheme::switching) {
-      SwitchStep theta_step;
-      theta_step.matrices = theta_step_matrices(M, S, parameters.switch_theta, dt);
-      theta_step.matrices.obstacle_offset = step_.obstacle_offset;
-      theta_step.solver = ContactSolver(theta_step.matrices.a);
-      switch_ = std::make_unique<const SwitchStep>(std::move(theta_step));
-    }
-    // The fast path reads B₁, B₂, M and S from its own rows (fast_step.cpp): B₁ and B₂ are kept only
-    // for the reference step, so that the fast path's memory is that of the state and the factors.
-    if (parameters.kernel == StepKernel::fast) {
-      fast_ = std::make_unique<const FastStep>(step_, M, S, parameters, mesh.contact_compliance());
-      step_.b1 = Tridiagonal();
-      step_.b2 = Tridiagonal();
-    }
-    step_.a = Tridiagonal();
-  }
+  // The scheme's own checks and its step, from its registry entry (scheme_registry.hpp): the paper's form
+  // (★) (steps/one_step_form.cpp), central differences (steps/explicit_schemes.cpp) or a contact class
+  // (classes/contact_classes.cpp). A step that runs with its own mass (the explicit schemes' row-sum
+  // lumped one) makes it the run's.
+  const SchemeInfo& scheme = scheme_info(parameters.scheme);
+  const StepContext context{mesh, mass, mass_, stiffness_, parameters, dt, problem.gap, problem.load != nullptr,
+                            massless_};
+  scheme.validate(context);
+  step_ = scheme.make_step(context);
+  if (const Tridiagonal* own = step_->own_mass()) mass_ = *own;
+  one_step_form_ = dynamic_cast<OneStepFormStep*>(step_.get());
 
   // The initial level. Uⁿ and V⁰ are the nodal interpolants of u⁰ and v⁰; a massless contact node
   // takes the value its algebraic row gives (mathematics.md §4: otherwise u₀ jumps in the first step and
@@ -315,10 +187,6 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   if (algebraic_row_ && !three_level_ && initial == InitialContactNode::consistent)
     state_.w[0] = massless_node_velocity(0.0);
   if (three_level_ && parameters.ps_explicit_start) {
-    if (massless_)
-      throw InvalidParameter("ps_start",
-                             "the explicit first step solves with M, singular with a massless contact node "
-                             "(allowed: the Crank-Nicolson start, or the consistent mass)");
     explicit_start_ = true;
   } else if (three_level_) {
     SchemeParameters start;  // Crank–Nicolson takes none of Paoli–Schatzman's parameters
@@ -328,9 +196,7 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   } else {
     state_.x = Eigen::VectorXd();
   }
-  if (contact_class)
-    class_step_ = make_contact_class_step(M, S, parameters, dt, mesh.contact_compliance(),
-                                          static_cast<bool>(problem.load), problem.gap, state_);
+  step_->start(state_);
 }
 
 BarSimulation::~BarSimulation() = default;
@@ -622,115 +488,6 @@ double BarSimulation::energy_two_level() const {
   return 0.5 * mass_.bilinear(state_.x, state_.x) + 0.5 * stiffness_.bilinear(state_.u, state_.u);
 }
 
-// ---------------------------------------------------------------------------------------------------
-// The reference step: (★) written as derived above (mathematics.md §4).
-//
-// With A, B₁, B₂, κ and the load weights assembled once by the constructor, one step is
-//
-//   1. the right-hand side  b = B₁ Uⁿ + B₂ W + g_now Fⁿ + g_next Fⁿ⁺¹, row 0 corrected: with the
-//      algebraic contact row b₀ = F₀ⁿ⁺¹ (and κ = 1); Crank–Nicolson with inertia at node 0 carries
-//      its −θλⁿ there;
-//   2. one tridiagonal solve of A Uⁿ⁺¹ = b − κ λ e₀ with 0 ≤ u₀ⁿ⁺¹ − g ⊥ λ ≤ 0, by the closed-form
-//      contact step ContactSolver::solve (contact.cpp), g = 0 or, for Paoli–Schatzman, −e u₀ⁿ⁻¹;
-//   3. the velocity from its definition: Crank–Nicolson Vⁿ⁺¹ = 2(Uⁿ⁺¹ − Uⁿ)/Δt − Vⁿ, backward Euler
-//      Vⁿ⁺¹ = (Uⁿ⁺¹ − Uⁿ)/Δt, Paoli–Schatzman X = (Uⁿ⁺¹ − Uⁿ)/Δt (and W becomes Uⁿ);
-//   4. the energy from its definition: Eⁿ⁺¹ = ½ Vⁿ⁺¹ᵀMVⁿ⁺¹ + ½ Uⁿ⁺¹ᵀSUⁿ⁺¹ (two levels),
-//      Eⁿ⁺½ = ½ XᵀMX + ½ (β Uⁿ⁺¹ᵀSUⁿ⁺¹ + (1−2β) Uⁿ⁺¹ᵀSUⁿ + β UⁿᵀSUⁿ) (Paoli–Schatzman).
-//
-// The stiffness forms are summed element by element, UᵀSV = ∫ u_h' v_h' dx = Σ_e (u_{e+1} − u_e)
-// (v_{e+1} − v_e)/h with the clamped value u_N = 0: the same number as S's bilinear form, without
-// cancelling the terms 2u_i²/h against −2u_{i−1}u_i/h (whose sizes grow like N² times the energy).
-// This step allocates its temporaries and walks the vectors several times; the fast path
-// (fast_step.cpp) does the same arithmetic inside the two sweeps of the solve. The doctest of
-// fast_step.cpp ("the fast step and the reference step agree to round-off") compares them.
-namespace {
-
-// UᵀSV for the P1 stiffness on the unknowns, element by element (node N clamped, or an unknown at a
-// free far end): Σ_e (E_e/h_e) Δu_e Δv_e, summed as Σ Δu Δv / h on the paper's mesh.
-double stiffness_form(const Eigen::VectorXd& u, const Eigen::VectorXd& v, const UniformMesh& mesh) {
-  const Index n = u.size();
-  double sum = 0;
-  const bool plain = mesh.uniform() && mesh.homogeneous();
-  for (Index e = 0; e < mesh.elements; ++e) {
-    const double du = (e + 1 < n ? u[e + 1] : 0.0) - u[e];
-    const double dv = (e + 1 < n ? v[e + 1] : 0.0) - v[e];
-    sum += plain ? du * dv : du * dv * mesh.young(e) / mesh.h(e);
-  }
-  return plain ? sum / mesh.h() : sum;
-}
-
-}  // namespace
-
-void BarSimulation::reference_step(bool has_load) {
-  const double h = mesh_.contact_compliance();
-  const Tridiagonal& M = mass_;
-  const Eigen::VectorXd& u = state_.u;  // Uⁿ
-  const Eigen::VectorXd& w = state_.w;  // W': Vⁿ (two levels) or Uⁿ − Uⁿ⁻¹ (Paoli–Schatzman)
-
-  // 1. The right-hand side of the increment form.
-  const Eigen::VectorXd rhs = increment_right_hand_side(step_, u, w, state_.lambda, has_load ? &state_.f_now : nullptr,
-                                                        has_load ? &state_.f_next : nullptr);
-
-  // 2. One solve for ΔU with the closed-form contact step, the obstacle of the increment g − u₀ⁿ. EC
-  // decides the contact on row 1 after the sweep down and starts the sweep up from the u₀ that carries
-  // its discrete-gradient force (energy_step.cpp); its scalar problem is written for u, so row 1's
-  // ΔU₁ = z + μΔU₀ is passed as u₁ⁿ⁺¹ = (u₁ⁿ + z − μu₀ⁿ) + μu₀ⁿ⁺¹. CN-switch decides it as Crank–Nicolson
-  // does, and if the status changes, takes its θ-step instead (nothing has been written yet). The gap
-  // moves the obstacle by step_.obstacle_offset.
-  double obstacle = three_level_ ? -parameters_.restitution * (u[0] - w[0]) : 0.0;  // g
-  if (step_.obstacle_offset != 0.0) obstacle += step_.obstacle_offset;              // (keeps a −0)
-  Eigen::VectorXd& du = state_.u_new;                                               // ΔU, then Uⁿ⁺¹
-  double contact_multiplier, u0_next;
-  if (energy_conserving_) {
-    solver_.sweep_down(rhs.data(), du.data());
-    const double load0_now = has_load ? state_.f_now[0] : 0.0, load0_next = has_load ? state_.f_next[0] : 0.0;
-    const double mu = -solver_.upward()[1];
-    const EnergyConservingContact contact =
-        energy_conserving_contact(u[1] + solver_.inverse_pivot()[1] * du[1] - mu * u[0], mu, u[0], u[1] + h * load0_now,
-                                  h, load0_next, problem_.gap);
-    solver_.sweep_up(contact.recurrence_u0 - u[0], du.data());
-    u0_next = contact.u0;
-    contact_multiplier = contact.multiplier;
-    state_.active = contact.active;
-  } else if (switch_) {
-    solver_.sweep_down(rhs.data(), du.data());
-    const ContactStep contact = solver_.resolve_contact(du[0], step_.kappa, obstacle - u[0]);
-    if (contact.active != state_.active) return switch_step(has_load);
-    solver_.sweep_up(contact.u0, du.data());
-    u0_next = contact.active ? obstacle : u[0] + contact.u0;
-    contact_multiplier = contact.multiplier;
-    state_.active = contact.active;
-  } else {
-    const ContactStep contact = solver_.solve(rhs.data(), du.data(), step_.kappa, obstacle - u[0]);
-    u0_next = contact.active ? obstacle : u[0] + contact.u0;
-    contact_multiplier = contact.multiplier;
-    state_.active = contact.active;
-  }
-  du[0] = u0_next - u[0];  // EC's recurrence value is not the contact node's new value
-
-  // 3 and 4. The velocity and the energy from their definitions, the velocity from ΔU.
-  const auto kinetic = [&](const Eigen::VectorXd& v) { return 0.5 * M.bilinear(v, v); };
-  Eigen::VectorXd u_next = u + du;
-  u_next[0] = u0_next;
-  if (three_level_) {
-    const double beta = parameters_.beta;
-    state_.x = step_.velocity_rate * du;  // X = ΔU/Δt
-    const auto potential = [&](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-      return 0.5 * (beta * stiffness_form(a, a, mesh_) + (1 - 2 * beta) * stiffness_form(a, b, mesh_) +
-                    beta * stiffness_form(b, b, mesh_));
-    };
-    state_.energy = kinetic(state_.x) + potential(u_next, u);
-    state_.w = du;  // W' = Uⁿ⁺¹ − Uⁿ
-  } else {
-    Eigen::VectorXd& v_next = state_.w;  // Vⁿ⁺¹ overwrites Vⁿ, entry by entry
-    v_next = step_.velocity_rate * du - step_.velocity_memory * w;
-    state_.energy = kinetic(v_next) + 0.5 * stiffness_form(u_next, u_next, mesh_);
-  }
-  state_.u = u_next;  // U = Uⁿ⁺¹
-  state_.lambda = contact_multiplier;
-  if (has_load) state_.f_now.swap(state_.f_next);
-}
-
 TEST_CASE("Crank–Nicolson conserves the discrete energy to round-off while the contact status is unchanged") {
   // The benchmark's first free flight lasts until t = 1: no status change before t = 0.9. Both step
   // kernels (their energies are summed in different orders).
@@ -778,31 +535,18 @@ TEST_CASE("backward Euler never increases the discrete energy") {
 
 BarSimulation::StepParts BarSimulation::step_parts() {
   const bool has_load = problem_.load != nullptr, starting = start_ != nullptr;
-  return {&state_,  &solver_,     fast_.get(),    class_step_.get(), explicit_.get(),
-          has_load, three_level_, algebraic_row_, starting};
+  return {&state_,
+          one_step_form_ ? &one_step_form_->solver() : nullptr,
+          one_step_form_ ? one_step_form_->fast() : nullptr,
+          dynamic_cast<ContactClassStep*>(step_.get()),
+          dynamic_cast<const ExplicitStep*>(step_.get()),
+          has_load,
+          three_level_,
+          algebraic_row_,
+          starting};
 }
 
-// CN-switch's θ-step, steps 1–4 of the reference step with the θ-step's matrices (both kernels call it:
-// it replaces a Crank–Nicolson step at a change of the contact status only, a few steps per period).
-void BarSimulation::switch_step(bool has_load) {
-  const StepMatrices& theta_step = switch_->matrices;
-  const Eigen::VectorXd rhs =
-      increment_right_hand_side(theta_step, state_.u, state_.w, state_.lambda, has_load ? &state_.f_now : nullptr,
-                                has_load ? &state_.f_next : nullptr);
-  Eigen::VectorXd& du = state_.u_new;                  // ΔU (the increment form), then Uⁿ⁺¹
-  const double obstacle = theta_step.obstacle_offset;  // g: the gap, 0 without one
-  const ContactStep contact = switch_->solver.solve(rhs.data(), du.data(), theta_step.kappa, obstacle - state_.u[0]);
-  const double u0_next = contact.active ? obstacle : state_.u[0] + contact.u0;
-  du[0] = u0_next - state_.u[0];
-  state_.w = theta_step.velocity_rate * du - theta_step.velocity_memory * state_.w;
-  du += state_.u;
-  du[0] = u0_next;
-  state_.energy = 0.5 * mass_.bilinear(state_.w, state_.w) + 0.5 * stiffness_form(du, du, mesh_);
-  state_.u.swap(state_.u_new);
-  state_.lambda = contact.multiplier;
-  state_.active = contact.active;
-  if (has_load) state_.f_now.swap(state_.f_next);
-}
+void BarSimulation::switch_step(bool has_load) { one_step_form_->switch_step(state_, has_load); }
 
 // Paoli–Schatzman's explicit first step (GetFEM's demo, doc/peer.md): U¹ = U⁰ + ΔtV⁰ + ½Δt² M⁻¹(F⁰ − SU⁰),
 // the three-level scheme's state W' = U¹ − U⁰, X = W'/Δt, and its energy E^{1/2} at t = Δt/2. The demo
@@ -860,15 +604,7 @@ void BarSimulation::step() {
   }
   const bool has_load = static_cast<bool>(problem_.load);
   if (has_load && !steady_load_) load_at(static_cast<double>(level_ + 1) * dt_, state_.f_next);
-  if (class_step_)
-    class_step_->step(state_, level_);
-  else if (explicit_) {
-    explicit_->step(state_, has_load);
-    state_.energy = 0.5 * mass_.form(state_.w) + 0.5 * stiffness_form(state_.u, state_.u, mesh_);
-  } else if (!fast_)
-    reference_step(has_load);
-  else if (!fast_->step(state_, solver_, has_load))
-    switch_step(has_load);  // CN-switch at a change of status
+  step_->advance(state_, level_, has_load);
   finish_step();
 }
 

@@ -10,35 +10,22 @@
 #include <vector>
 
 #include "core/problem.hpp"
-#include "time/scheme_registry.hpp"
-#include "time/step_matrices.hpp"
-#include "time/contact.hpp"
 #include "fem/mass_redistribution.hpp"
 #include "fem/p1.hpp"
+#include "steps/contact.hpp"
+#include "steps/step.hpp"
+#include "time/scheme_registry.hpp"
 
 namespace mrm {
-
-/// The state of a run between two steps, owned by BarSimulation and advanced by its step kernels (the
-/// reference step of schemes.cpp and the fast kernel of fast_step.cpp), which read and write nothing else.
-struct StepState {
-  Eigen::VectorXd u;       ///< Uⁿ
-  Eigen::VectorXd u_new;   ///< the scratch of the sweeps, then Uⁿ⁺¹ (swapped into u)
-  Eigen::VectorXd w;       ///< W': Vⁿ (the two-level schemes' velocity) or Uⁿ − Uⁿ⁻¹ (Paoli–Schatzman)
-  Eigen::VectorXd x;       ///< X = (Uⁿ − Uⁿ⁻¹)/Δt, Paoli–Schatzman's velocity (empty for two levels)
-  Eigen::VectorXd f_now;   ///< Fⁿ (empty without a load)
-  Eigen::VectorXd f_next;  ///< Fⁿ⁺¹ (empty without a load)
-  double lambda = 0.0;     ///< λ at the current level
-  double energy = 0.0;     ///< the discrete energy at the current level
-  bool active = false;     ///< the contact status: λ < 0, or s = u₁ + hF₀ < 0 for a massless node
-};
 
 class FastStep;
 class ContactClassStep;
 class ExplicitStep;
+class OneStepFormStep;
 
-/// One run of one scheme on one mesh with one mass: the state, the constant step matrix factorised
-/// once, and the step (the reference step of schemes.cpp or the fast kernel of fast_step.cpp, as
-/// SchemeParameters::kernel says). Memory is O(N): no history is kept. The formulas hold for any L,
+/// One run of one scheme on one mesh with one mass: the state, the initial level, and the step its
+/// registry entry builds (SchemeInfo::make_step: the paper's form (★), central differences or a contact
+/// class). Memory is O(N): no history is kept. The formulas hold for any L,
 /// but the numbers are sized for the dimensionless problem, L = 1 and data of order one (the energy's
 /// quadratic forms are taken as they are): the harness maps any length and amplitude to it by the
 /// scaling law (mathematics.md §1, repro/configurations/scaling.cpp).
@@ -78,8 +65,8 @@ class BarSimulation {
   /// finish_step): pointers into this simulation, valid while it is neither moved nor destroyed.
   struct StepParts {
     StepState* state;                   ///< the current level's state, advanced by the step
-    const ContactSolver* solver;        ///< A of the step (★), factorised
-    const FastStep* fast;               ///< the fast kernel (null for the reference step and the classes)
+    const ContactSolver* solver;        ///< A of the step (★), factorised (null for the other families)
+    const FastStep* fast;               ///< the fast kernel (null for the reference step and the other families)
     ContactClassStep* class_step;       ///< a contact class's step (null for the other schemes)
     const ExplicitStep* explicit_step;  ///< an explicit class's step (null for the other schemes)
     bool has_load;                      ///< whether the problem has a load
@@ -102,7 +89,6 @@ class BarSimulation {
   double contact_load(double t) const;
   double contact_load_rate(double t) const;
   double massless_node_velocity(double t) const;
-  void reference_step(bool has_load);
 
   Problem problem_;
   UniformMesh mesh_;
@@ -110,21 +96,10 @@ class BarSimulation {
   double dt_;
   bool massless_, algebraic_row_, three_level_;
   Tridiagonal mass_, stiffness_;
-  // One step is (★) with the matrices and scalars of step_ (step_matrices), A factorised in solver_.
-  // B₁ and B₂ are kept for the reference step only; the fast kernel keeps its rows of B₁, B₂, M and S
-  // in fast_ (null for the reference step).
-  StepMatrices step_;
-  ContactSolver solver_;
-  std::unique_ptr<const FastStep> fast_;
-  // CN-switch: the θ-step's matrices and scalars (theta_step_matrices) and its factorisation.
-  struct SwitchStep {
-    StepMatrices matrices;
-    ContactSolver solver;
-  };
-  std::unique_ptr<const SwitchStep> switch_;
-  // The explicit schemes' step (explicit_schemes.cpp), null for the others; it replaces (★) and both kernels.
-  std::unique_ptr<const ExplicitStep> explicit_;
-  bool energy_conserving_ = false;
+  // The step, built by the scheme's registry entry; one_step_form_ is the same step seen as (★)'s (for
+  // CN-switch's θ-step and the batched step's parts), null for the other families.
+  std::unique_ptr<Step> step_;
+  OneStepFormStep* one_step_form_ = nullptr;
 
   Index level_ = 0;
   StepState state_;
@@ -133,9 +108,6 @@ class BarSimulation {
   std::unique_ptr<BarSimulation> start_;  // the Crank–Nicolson first step of Paoli–Schatzman
   bool explicit_start_ = false;           // Paoli–Schatzman's first step is the explicit Newmark one (pending)
   void explicit_first_step();
-  // The step of a contact class (newmark, penalty, nitsche, moreau-jean: lib/classes/contact_classes.cpp),
-  // which replaces (★) and its kernels; null for the schemes of this file.
-  std::unique_ptr<ContactClassStep> class_step_;
   // Problem::steady_load: Fⁿ = F⁰ in state_.f_now and state_.f_next at every level, F₀ kept here.
   bool steady_load_ = false;
   double steady_contact_load_ = 0.0;

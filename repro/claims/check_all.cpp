@@ -61,7 +61,7 @@
 #include "studies/convergence.hpp"
 #include "sweep.hpp"
 #include "table.hpp"
-#include "time/contact.hpp"
+#include "steps/contact.hpp"
 #include "time_family.hpp"
 #include "claims/claims_classes.hpp"
 #include "claims/claims_phase.hpp"

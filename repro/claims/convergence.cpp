@@ -28,7 +28,7 @@
 #include "studies/convergence.hpp"
 #include "sweep.hpp"
 #include "table.hpp"
-#include "time/contact.hpp"
+#include "steps/contact.hpp"
 #include "time_family.hpp"
 
 namespace mrm::claims {

@@ -28,7 +28,7 @@
 #include "studies/convergence.hpp"
 #include "sweep.hpp"
 #include "table.hpp"
-#include "time/contact.hpp"
+#include "steps/contact.hpp"
 #include "time_family.hpp"
 
 namespace mrm::claims {
@@ -49,7 +49,7 @@ namespace mrm::claims {
 // and, when the contact node is massless and the contact row algebraic (every scheme but the literal
 // PS), row 0 replaced by the contact row S₀·Uⁿ⁺¹ + λ = 0 (paper eq. (6)). The active set is fixed to
 // the one the run found (u₀ on the obstacle, or λ = 0), and the (N + 1) × (N + 1) saddle-point system
-// in (U, λ) is solved by a general sparse LU (saddle_point_solve, lib/time/contact.cpp), which shares
+// in (U, λ) is solved by a general sparse LU (saddle_point_solve, lib/steps/contact.cpp), which shares
 // nothing with the closed form's elimination. The criterion: the differences in
 // Uⁿ⁺¹ and λ, relative to the largest |U| and |λ| of the compared steps, are ≤ 1e-10 (a few hundred
 // round-offs for these well-conditioned systems), and the run's step satisfies the complementarity

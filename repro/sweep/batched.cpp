@@ -215,7 +215,7 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                       bool classes = false;
                       for (std::size_t j = 0; j < batch.size(); ++j) {
                         is_class[j] =
-                            scheme_info(simulations[j].parameters().scheme).family == StepFamily::contact_class;
+                            find_entry(contact_class_schemes(), simulations[j].parameters().scheme) != nullptr;
                         classes = classes || is_class[j];
                       }
                       if (own_rates) {

@@ -12,7 +12,7 @@
 
 #include "fem/mass_redistribution.hpp"
 #include "fem/p1.hpp"
-#include "time/schemes.hpp"
+#include "steps/step.hpp"
 
 namespace mrm {
 
@@ -37,7 +37,7 @@ double explicit_stability_limit(const UniformMesh& mesh, const Eigen::VectorXd* 
 /// throws InvalidParameter naming the parameter: `mass` (taylor-flanagan needs a contact node with
 /// inertia, explicit a massless one; `lumping none` the consistent mass), `mass_lumping` (explicit
 /// takes row-sum only), `dt` (above the stability limit: "dt: dt = … is above … (allowed: 0 < dt <= Δt_max, i.e. C <= …)").
-class ExplicitStep {
+class ExplicitStep final : public Step {
  public:
   /// `mass` the redistribution of the run, `stiffness` S on the unknowns, `gap` the initial gap.
   ExplicitStep(const UniformMesh& mesh, const MassRedistribution& mass, const Tridiagonal& stiffness,
@@ -49,6 +49,10 @@ class ExplicitStep {
   /// Advances `state` by one step: Uⁿ, Vⁿ = W, λⁿ, Fⁿ (and Fⁿ⁺¹ already loaded when `has_load`) to
   /// level n+1 (Fⁿ⁺¹ swapped into f_now). The energy is left to the caller (BarSimulation: ½VᵀMV + ½UᵀSU).
   void step(StepState& state, bool has_load) const;
+  /// One step (step) and the energy of the new level, ½VᵀMV + ½UᵀSU with this step's mass M.
+  void advance(StepState& state, Index level, bool has_load) override;
+  /// This step's mass, which the run takes for its own (mass()).
+  const Tridiagonal* own_mass() const override { return &mass_; }
 
   /// What the batched step (batched_step.cpp) copies of a run: the step's arrays and scalars (pointers
   /// into this step, valid while it lives).
@@ -77,6 +81,7 @@ class ExplicitStep {
 
  private:
   void accelerate(const Eigen::VectorXd& u, const Eigen::VectorXd* load, double lambda, Eigen::VectorXd& a) const;
+  UniformMesh mesh_;
   bool taylor_flanagan_, lumped_, massless_;
   double dt_, gap_, compliance_, limit_;
   Tridiagonal mass_, stiffness_;
@@ -84,5 +89,9 @@ class ExplicitStep {
   Eigen::VectorXd pivot_, factor_;    // LDLᵀ of the consistent mass (lumping none)
   Eigen::VectorXd impulse_response_;  // r = M⁻¹e₀ (taylor-flanagan)
 };
+
+/// The registry entries of central differences: taylor-flanagan, explicit (time/scheme_registry.hpp gathers
+/// them). Their checks are ExplicitStep's constructor's.
+const std::vector<SchemeInfo>& central_difference_schemes();
 
 }  // namespace mrm

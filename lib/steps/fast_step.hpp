@@ -6,9 +6,10 @@
 
 #include <vector>
 
-#include "time/contact.hpp"
+#include "steps/contact.hpp"
 #include "fem/p1.hpp"
-#include "time/schemes.hpp"
+#include "steps/step.hpp"
+#include "steps/step_matrices.hpp"
 
 namespace mrm {
 

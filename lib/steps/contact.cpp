@@ -1,6 +1,6 @@
 /// @file contact.cpp
 /// @brief The contact node: mathematics.md §3 (condensation) and §4 (the closed-form contact step).
-#include "time/contact.hpp"
+#include "steps/contact.hpp"
 
 #include <cmath>
 #include <random>

@@ -6,7 +6,7 @@
 /// ContactSolver::solve, the velocity and the energy from their definitions), in another order, on the
 /// StepState it is given; the doctest at the end of this file compares the two for every scheme, mass
 /// and contact-row form.
-#include "time/fast_step.hpp"
+#include "steps/fast_step.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,10 +15,9 @@
 
 #include <doctest/doctest.h>
 
-#include "time/contact.hpp"
-#include "time/energy_step.hpp"
+#include "steps/contact.hpp"
+#include "steps/energy_step.hpp"
 #include "fem/mass_redistribution.hpp"
-#include "time/schemes.hpp"
 
 namespace mrm {
 
@@ -315,152 +314,4 @@ bool FastStep::fused_step(StepState& state, const ContactSolver& solver) const {
 /// @file fast_step.cpp
 /// ## The fast step against the reference step
 ///
-/// The fast step against the reference step (mathematics.md §4). Both compute (★) with the same
-/// factorised A; they differ only in the order of the floating-point operations: the fast kernel
-/// forms b on the fly and runs each sweep as two chains (products of two elimination factors), sums
-/// its energy forms by telescoping, multiplies by 1/Δt where the reference divides by Δt. Each step
-/// of either commits errors of a few ε = 2⁻⁵² relative to the size of the quantities it combines,
-/// and the scheme carries them on like any perturbation of its state: the contact step is Lipschitz
-/// in b (u₀ = max(g, …), λ = min(0, …); a status decided differently by two round-off-close values
-/// costs no jump), so the difference grows like the scheme's own response to a perturbation.
-///
-/// Prediction: the difference over a run of K steps is at most about K c ε A times the solution's
-/// scale, c a modest factor (the condition of a step, O(N)), A ≥ 1 the scheme's amplification of a
-/// perturbation of its state. A is measured by a third run, the initial displacement perturbed by
-/// p = 1e-10 sin(5x): A = max(1, max over the run of ‖ΔUⁿ‖∞ / p). It is ≈ 1 where the scheme is
-/// stable (backward Euler, Crank–Nicolson and Paoli–Schatzman with the algebraic row at Δt < h) and
-/// large where it is not: Crank–Nicolson with the consistent mass gains energy at every impact
-/// (10³–10⁷ here), the literal Paoli–Schatzman row lets its sawtooth grow (10–10²), large steps with
-/// restitution move the impact times. With K = 200 and N = 12, Kcε ~ 1e-13: the bound is τ = 1e-12
-/// of the solution's scale times A, the scale of each quantity being what its formula combines:
-///   Uⁿ           τ A U*, U* = max over the run of ‖Uⁿ‖∞;
-///   velocity     τ A U*/Δt (a difference of displacements divided by Δt);
-///   λ            τ A (‖M‖∞ U*/Δt² + ‖S‖∞ U* + F*), the forces that row 0 of (★) balances (F* ≥ ‖F‖∞);
-///   energy       τ A (‖M‖∞ (U*/Δt)² + ‖S‖∞ U*²), the sizes of the terms of ½VᵀMV + ½UᵀSU;
-/// and the instants of every sample, computed by the same code, exactly equal. A wrong term in either
-/// step would differ by O(h) or more at the first step, far above these bounds. The cases: every
-/// scheme (EC and CN-switch included; EC without the consistent mass, which it refuses), every mass of
-/// the paper (consistent, Mod 1–3) and two more that exercise every region of
-/// the fast kernel (the lost mass spread over 3 nodes; a weight varying along the bar, no Toeplitz
-/// interior at all), both Paoli–Schatzman forms (β = ¼, e = 0 at Δt = 0.7h; β = 0.3, e = 0.5 at
-/// Δt = 4h), with and without a load; every run has impacts.
-namespace {
-
-[[maybe_unused]] MassRedistribution varying_weight() {
-  return {"varying", "a weight that varies along the bar", [](Index i, Index j, const UniformMesh& mesh) {
-            if (i == 0 || j == 0) return 0.0;
-            return 1.0 + 0.3 * static_cast<double>(i + j) / static_cast<double>(mesh.elements);
-          }};
-}
-
-// max_i Σ_j |A_ij|
-[[maybe_unused]] double row_sum_norm(const Tridiagonal& a) {
-  return (a.lower.cwiseAbs() + a.diag.cwiseAbs() + a.upper.cwiseAbs()).maxCoeff();
-}
-
-}  // namespace
-
-TEST_CASE("the fast step and the reference step agree to round-off for every scheme, mass and form") {
-  struct Form {
-    Scheme scheme;
-    ContactRow row;
-  };
-  const std::vector<Form> forms = {
-      {Scheme::crank_nicolson, ContactRow::algebraic},    {Scheme::backward_euler, ContactRow::algebraic},
-      {Scheme::paoli_schatzman, ContactRow::algebraic},   {Scheme::paoli_schatzman, ContactRow::literal},
-      {Scheme::energy_conserving, ContactRow::algebraic}, {Scheme::switching, ContactRow::algebraic}};
-  const std::vector<MassRedistribution> masses = {consistent_mass(),          mod1(),          mod2(), mod3(),
-                                                  spread_over_first_nodes(3), varying_weight()};
-  const double tolerance = 1e-12, perturbation = 1e-10;
-  const double load_bound = 1.7;  // |f| ≤ 1.7 below, so ‖F‖∞ ≤ 1.7 h
-  const Index steps = 200;
-  const UniformMesh mesh(1.0, 12);
-  int runs = 0;
-  double worst = 0;  // the largest difference over its bound, over all runs
-  for (const bool loaded : {false, true}) {
-    for (const Form& form : forms) {
-      for (const MassRedistribution& mass : masses) {
-        // The algebraic Paoli–Schatzman row needs a massless contact node (refused otherwise, checked below).
-        if (form.row == ContactRow::algebraic && form.scheme == Scheme::paoli_schatzman && mass.name == "consistent")
-          continue;
-        if (form.scheme == Scheme::energy_conserving && mass.name == "consistent") continue;  // refused likewise
-        for (const double courant : {0.7, 4.0}) {
-          Problem problem = benchmark_problem();
-          if (loaded) problem.load = [](double x, double t) { return -1.0 + 0.7 * std::sin(3 * x + 5 * t); };
-          SchemeParameters p;
-          p.scheme = form.scheme;
-          p.contact_row = form.row;
-          const bool large = courant > 1;
-          p.beta = form.scheme == Scheme::paoli_schatzman && large ? 0.3 : 0.25;
-          // (e > 0 with the literal row and a massless contact node is refused: schemes.cpp.)
-          const bool literal_massless = form.row == ContactRow::literal && mass.name != "consistent";
-          p.restitution = form.scheme == Scheme::paoli_schatzman && large && !literal_massless ? 0.5 : 0.0;
-          const double dt = courant * mesh.h();
-          p.kernel = StepKernel::fast;
-          BarSimulation fast(problem, mesh, mass, p, dt);
-          Problem perturbed_problem = problem;
-          perturbed_problem.initial_displacement = [&](double x) {
-            return problem.initial_displacement(x) + perturbation * std::sin(5 * x);
-          };
-          BarSimulation perturbed(perturbed_problem, mesh, mass, p, dt);
-          p.kernel = StepKernel::reference;
-          BarSimulation reference(problem, mesh, mass, p, dt);
-          CAPTURE(to_string(form.scheme));
-          CAPTURE(to_string(form.row));
-          CAPTURE(mass.name);
-          CAPTURE(loaded);
-          CAPTURE(courant);
-
-          double response = 0, u_scale = 0, du = 0, dv = 0, dlambda = 0, denergy = 0;
-          int impacts = 0;
-          bool in_contact = false, same_instants = true;
-          for (Index k = 0; k <= steps; ++k) {
-            if (k > 0) {
-              fast.step();
-              reference.step();
-              perturbed.step();
-            }
-            const Sample f = fast.sample(), r = reference.sample();
-            response = std::max(response, (*perturbed.sample().displacement - *f.displacement).cwiseAbs().maxCoeff());
-            same_instants = same_instants && f.level == r.level && f.time == r.time &&
-                            f.velocity_time == r.velocity_time && f.has_multiplier == r.has_multiplier &&
-                            f.multiplier_time == r.multiplier_time && f.energy_time == r.energy_time;
-            u_scale = std::max({u_scale, f.displacement->cwiseAbs().maxCoeff(), r.displacement->cwiseAbs().maxCoeff()});
-            du = std::max(du, (*f.displacement - *r.displacement).cwiseAbs().maxCoeff());
-            dv = std::max(dv, (*f.velocity - *r.velocity).cwiseAbs().maxCoeff());
-            if (f.has_multiplier) dlambda = std::max(dlambda, std::abs(f.multiplier - r.multiplier));
-            denergy = std::max(denergy, std::abs(f.energy - r.energy));
-            impacts += r.multiplier < 0 && !in_contact;
-            in_contact = r.multiplier < 0;
-          }
-          const double amplification = std::max(1.0, response / perturbation);
-          const double m_norm = row_sum_norm(fast.mass()), s_norm = row_sum_norm(fast.stiffness());
-          const double relative = tolerance * amplification;
-          const double u_bound = relative * u_scale;
-          const double v_bound = relative * u_scale / dt;
-          const double lambda_bound =
-              relative * (m_norm * u_scale / (dt * dt) + s_norm * u_scale + (loaded ? load_bound * mesh.h() : 0.0));
-          const double energy_bound = relative * (m_norm * std::pow(u_scale / dt, 2) + s_norm * u_scale * u_scale);
-          CAPTURE(amplification);
-          CAPTURE(du);
-          CAPTURE(dv);
-          CAPTURE(dlambda);
-          CAPTURE(denergy);
-          CHECK(same_instants);
-          CHECK(du <= u_bound);
-          CHECK(dv <= v_bound);
-          CHECK(dlambda <= lambda_bound);
-          CHECK(denergy <= energy_bound);
-          CHECK(impacts >= 1);  // the runs do reach the obstacle
-          worst = std::max({worst, du / u_bound, dv / v_bound, dlambda / lambda_bound, denergy / energy_bound});
-          ++runs;
-        }
-      }
-    }
-  }
-  CAPTURE(worst);
-  CHECK(runs == 2 * 2 * (6 * 6 - 2));
-  CHECK(worst <= 1.0);
-}
-
 }  // namespace mrm

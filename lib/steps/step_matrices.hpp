@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 
 #include "fem/p1.hpp"
-#include "time/scheme_registry.hpp"
+#include "steps/scheme_parameters.hpp"
 
 namespace mrm {
 

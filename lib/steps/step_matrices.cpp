@@ -3,7 +3,7 @@
 /// (★) itself is derived in schemes.cpp): the θ-rule (Crank–Nicolson, backward Euler, CN-switch's
 /// θ-step), Paoli–Schatzman, the algebraic contact row of a massless contact node, and the increment form
 /// that the steps solve.
-#include "time/step_matrices.hpp"
+#include "steps/step_matrices.hpp"
 
 #include <cmath>
 
@@ -112,11 +112,11 @@ StepMatrices step_matrices(const Tridiagonal& mass, const Tridiagonal& stiffness
     case Scheme::nitsche:
     case Scheme::moreau_jean:
     case Scheme::dke:  // their steps are not (★): lib/classes/contact_classes.cpp
-      throw std::invalid_argument("step_matrices: the scheme " + to_string(p.scheme) +
-                                  " has no step of the form (★) (lib/classes/contact_classes.cpp)");
+      throw std::invalid_argument(
+          "step_matrices: a contact class has no step of the form (★) (lib/classes/contact_classes.cpp)");
     case Scheme::taylor_flanagan:  // explicit: no (★) (explicit_schemes.cpp); never asked by BarSimulation
     case Scheme::explicit_central:
-      throw InvalidParameter("scheme", to_string(p.scheme) + " is explicit and has no implicit step (★)");
+      throw InvalidParameter("scheme", "central differences have no implicit step (★)");
   }
   const double dt2 = dt * dt, beta = p.beta;
   StepMatrices m;
@@ -169,7 +169,7 @@ TEST_CASE("the increment form's matrices are (★)'s, combined exactly: C1 = B1 
       const StepMatrices k = step_matrices(m, s, p, dt);
       const bool three = scheme == Scheme::paoli_schatzman;
       CAPTURE(r.name);
-      CAPTURE(to_string(scheme));
+      CAPTURE(static_cast<int>(scheme));
       for (Index i = 0; i < m.size(); ++i)
         for (Index j = std::max<Index>(0, i - 1); j <= std::min<Index>(m.size() - 1, i + 1); ++j) {
           const double c1 = k.b1(i, j) - k.a(i, j) + (three ? k.b2(i, j) : 0.0);
