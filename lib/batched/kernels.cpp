@@ -695,6 +695,14 @@ std::size_t lane_count(Width width) {
   }
   return HWY_DYNAMIC_DISPATCH(LaneCount)();
 }
+bool width_dividing(std::size_t stride, Width& width) {
+  for (const Width w : {Width::full, Width::four, Width::two})
+    if (stride % lane_count(w) == 0) {
+      width = w;
+      return true;
+    }
+  return false;
+}
 void sweep_down(Width width, const Kernel& k) {
   switch (width) {
     case Width::full:

@@ -79,6 +79,9 @@ enum class Width { full, four, two };
 
 // The number of double lanes of the current target at a width (at most the full width).
 std::size_t lane_count(Width width);
+// The widest of the target's full width, 4 and 2 lanes whose lane count divides `stride` (the lanes of a
+// group, or of a batch's narrower remainder: batched_step.cpp); false when none does.
+bool width_dividing(std::size_t stride, Width& width);
 
 // The passes, on the current target at the group's width: the two sweeps of the fused step (fast_step.cpp),
 // the Newmark type's sweep down and the rest of its step, Moreau–Jean's and DKE's sweep down and sweep up,

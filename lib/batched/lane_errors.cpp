@@ -26,6 +26,7 @@
 #include <doctest/doctest.h>
 
 #include "batched/batched_step.hpp"
+#include "batched/kernels.hpp"
 #include "exact/characteristics.hpp"
 #include "measures/error_sums.hpp"
 #endif  // HWY_ONCE
@@ -50,10 +51,6 @@ namespace hn = hwy::HWY_NAMESPACE;
 using Full = hn::ScalableTag<double>;
 using Four = hn::CappedTag<double, 4>;
 using Two = hn::CappedTag<double, 2>;
-
-std::size_t LaneCount() { return hn::Lanes(Full()); }
-std::size_t LaneCount4() { return hn::Lanes(Four()); }
-std::size_t LaneCount2() { return hn::Lanes(Two()); }
 
 // Lanes 0 … W−1 (W a multiple of Lanes(d)): their e₀, e_{n−1}, D and Q in e0[j], last[j], ...
 template <class D>
@@ -168,9 +165,6 @@ HWY_AFTER_NAMESPACE();
 namespace mrm {
 /// @cond MRM_INTERNAL
 namespace error_lanes {
-HWY_EXPORT(LaneCount);
-HWY_EXPORT(LaneCount4);
-HWY_EXPORT(LaneCount2);
 HWY_EXPORT(LaneRunSums);
 HWY_EXPORT(LaneRunSums4);
 HWY_EXPORT(LaneRunSums2);
@@ -204,13 +198,12 @@ std::size_t ErrorAccumulator::add_lanes(const Lane* level, std::size_t count) {
         return false;
     return true;
   };
-  // The kernel for a stride: the widest of the target's full width, 4 and 2 lanes that divides it (a
-  // batch's groups have the full width or, a remainder, 4 or 2 lanes: lib/batched/batched_step.cpp); 0: none.
-  const std::size_t full = HWY_DYNAMIC_DISPATCH(error_lanes::LaneCount)(),
-                    four = HWY_DYNAMIC_DISPATCH(error_lanes::LaneCount4)(),
-                    two = HWY_DYNAMIC_DISPATCH(error_lanes::LaneCount2)();
-  const auto kernel_of = [&](std::size_t stride) {
-    return stride % full == 0 ? 1 : stride % four == 0 ? 2 : stride % two == 0 ? 3 : 0;
+  // The kernel for a stride: the widest width whose lanes divide it, as the batched step chooses its groups'
+  // (batched::width_dividing); 1 full, 2 four, 3 two, 0 none.
+  const auto kernel_of = [](std::size_t stride) {
+    batched::Width width = batched::Width::full;
+    if (!batched::width_dividing(stride, width)) return 0;
+    return width == batched::Width::full ? 1 : width == batched::Width::four ? 2 : 3;
   };
   // A run of the closed form on a uniform mesh: its affine runs and contact values are taken from a run
   // at the same instants (runs_of, contact_values), whatever its layout; summed in one pass with others
