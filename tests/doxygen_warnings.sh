@@ -28,8 +28,8 @@ expect() {  # expect FILE TEXT WHAT
   fi
 }
 expect index.html 'src="mathjax/MathJax.js"' 'the MathJax script'
-expect schemes_8cpp.html 'The massless contact row.' "the schemes' derivation"
-expect schemes_8cpp.html '\( A U^{n+1} = B_1 U^n' 'a MathJax formula'
+expect one__step__form_8cpp.html 'The massless contact row.' "the schemes' derivation"
+expect one__step__form_8cpp.html '\( A U^{n+1} = B_1 U^n' 'a MathJax formula'
 expect contact_8cpp.html 'Condensation of the massless contact node' "the contact node's derivation"
 expect contact_8cpp.html 'The closed-form contact step' "the contact step's derivation"
 expect contact_8cpp.html '\( A U = b - \kappa \lambda e_0' 'a MathJax formula'

@@ -116,12 +116,24 @@ void validate_contact_class(const SchemeParameters& p, bool massless) {
 std::unique_ptr<ContactClassStep> make_contact_class_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
                                                           const SchemeParameters& p, double dt, double h, bool has_load,
                                                           double gap) {
-  if (p.scheme == Scheme::moreau_jean) return class_steps::make_moreau_jean_step(mass, stiffness, p, dt, has_load, gap);
+  const SchemeInfo* entry = find_entry(contact_class_schemes(), p.scheme);
+  if (!entry) throw std::logic_error("make_contact_class_step: the scheme is not a contact class");
+  if (p.scheme == Scheme::moreau_jean)
+    return class_steps::make_moreau_jean_step(mass, stiffness, p, dt, has_load, gap, entry->id);
   if (p.scheme == Scheme::dke)
-    return class_steps::make_dke_step(mass, stiffness, dt, has_load, gap, p.kernel == StepKernel::fast);
-  if (find_entry(contact_class_schemes(), p.scheme))
-    return class_steps::make_newmark_type_step(mass, stiffness, p, dt, h, has_load, gap);
-  throw std::logic_error("make_contact_class_step: the scheme is not a contact class");
+    return class_steps::make_dke_step(mass, stiffness, dt, has_load, gap, p.kernel == StepKernel::fast, entry->id);
+  return class_steps::make_newmark_type_step(mass, stiffness, p, dt, h, has_load, gap, entry->id);
+}
+
+SchemeParameters class_parameters(Scheme scheme, double beta, double gamma) {
+  SchemeParameters p;
+  p.scheme = scheme;
+  const SchemeInfo* entry = find_entry(contact_class_schemes(), scheme);  // null for the other schemes
+  if (entry && entry->takes(SchemeParameter::newmark_beta)) {
+    p.newmark_beta = beta;
+    p.newmark_gamma = gamma;
+  }
+  return p;
 }
 
 // ---------------------------------------------------------------------------------------------------

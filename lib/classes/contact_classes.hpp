@@ -62,6 +62,10 @@ std::unique_ptr<ContactClassStep> make_contact_class_step(const Tridiagonal& mas
                                                           const SchemeParameters& parameters, double dt,
                                                           double contact_compliance, bool has_load, double gap);
 
+/// The parameters of `scheme` with Newmark's (β, γ) where it takes them (a Newmark-type class), the defaults
+/// otherwise: the runs of the doctests.
+SchemeParameters class_parameters(Scheme scheme, double beta = 0.25, double gamma = 0.5);
+
 /// The registry entries of the contact classes: newmark, penalty, nitsche, moreau-jean, dke
 /// (time/scheme_registry.hpp gathers them). Their checks are validate_contact_class and check_newmark_step.
 const std::vector<SchemeInfo>& contact_class_schemes();

@@ -72,8 +72,10 @@ namespace {
 // another cure of the same ill-posedness (doc/contact_treatments.md §2).
 class DkeStep final : public OneSolveStep {
  public:
-  DkeStep(const Tridiagonal& mass, const Tridiagonal& stiffness, double dt, bool has_load, double gap, bool fused)
-      : mass_(mass),
+  DkeStep(const Tridiagonal& mass, const Tridiagonal& stiffness, double dt, bool has_load, double gap, bool fused,
+          const std::string& id)
+      : id_(id),
+        mass_(mass),
         stiffness_(stiffness),
         dt_(dt),
         massless_(contact_node_is_massless(mass)),
@@ -204,11 +206,12 @@ class DkeStep final : public OneSolveStep {
     state.lambda = massless_ ? d.value : 0.5 * d.value - alpha / (dt_ * dt_);
     state.active = state.lambda < 0;
     state.energy = kinetic_and_strain;
-    require_finite(state.energy, Scheme::dke, level + 1);
+    require_finite(state.energy, id_, level + 1);
   }
 
  private:
   double energy(const StepState& s) const { return kinetic_and_strain(mass_, stiffness_, s); }
+  std::string id_;
   Tridiagonal mass_, stiffness_;
   double dt_;
   bool massless_, has_load_, fused_;
@@ -220,8 +223,8 @@ class DkeStep final : public OneSolveStep {
 }  // namespace
 
 std::unique_ptr<ContactClassStep> make_dke_step(const Tridiagonal& mass, const Tridiagonal& stiffness, double dt,
-                                                bool has_load, double gap, bool fused) {
-  return std::make_unique<DkeStep>(mass, stiffness, dt, has_load, gap, fused);
+                                                bool has_load, double gap, bool fused, const std::string& id) {
+  return std::make_unique<DkeStep>(mass, stiffness, dt, has_load, gap, fused, id);
 }
 
 }  // namespace mrm::class_steps

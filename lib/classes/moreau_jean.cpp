@@ -44,8 +44,9 @@ namespace {
 class MoreauJeanStep final : public OneSolveStep {
  public:
   MoreauJeanStep(const Tridiagonal& mass, const Tridiagonal& stiffness, const SchemeParameters& p, double dt,
-                 bool has_load, double gap)
-      : mass_(mass),
+                 bool has_load, double gap, const std::string& id)
+      : id_(id),
+        mass_(mass),
         stiffness_(stiffness),
         dt_(dt),
         theta_(p.moreau_theta),
@@ -147,11 +148,12 @@ class MoreauJeanStep final : public OneSolveStep {
     state.lambda = -d.value / dt_;
     state.active = d.value > 0;
     state.energy = kinetic_and_strain;
-    require_finite(state.energy, Scheme::moreau_jean, level + 1);
+    require_finite(state.energy, id_, level + 1);
   }
 
  private:
   double energy(const StepState& s) const { return kinetic_and_strain(mass_, stiffness_, s); }
+  std::string id_;
   Tridiagonal mass_, stiffness_, explicit_part_;
   double dt_, theta_, restitution_;
   bool has_load_, fused_;
@@ -165,8 +167,9 @@ class MoreauJeanStep final : public OneSolveStep {
 }  // namespace
 
 std::unique_ptr<ContactClassStep> make_moreau_jean_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
-                                                        const SchemeParameters& p, double dt, bool has_load, double gap) {
-  return std::make_unique<MoreauJeanStep>(mass, stiffness, p, dt, has_load, gap);
+                                                        const SchemeParameters& p, double dt, bool has_load, double gap,
+                                                        const std::string& id) {
+  return std::make_unique<MoreauJeanStep>(mass, stiffness, p, dt, has_load, gap, id);
 }
 
 }  // namespace mrm::class_steps

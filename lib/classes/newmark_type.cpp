@@ -79,8 +79,9 @@ namespace {
 class NewmarkContactStep final : public NewmarkTypeStep {
  public:
   NewmarkContactStep(const Tridiagonal& mass, const Tridiagonal& stiffness, const SchemeParameters& p, double dt,
-                     double h, bool has_load, double gap)
-      : scheme_(p.scheme),
+                     double h, bool has_load, double gap, const std::string& id)
+      : id_(id),
+        scheme_(p.scheme),
         mass_(mass),
         stiffness_(stiffness),
         linear_(stiffness),
@@ -288,7 +289,7 @@ class NewmarkContactStep final : public NewmarkTypeStep {
     state.active = lambda < 0;
     state.energy = energy_from(kinetic_strain, state);
     if (has_load_) state.f_now.swap(state.f_next);
-    require_finite(state.energy, scheme_, level + 1);
+    require_finite(state.energy, id_, level + 1);
   }
 
  private:
@@ -315,6 +316,7 @@ class NewmarkContactStep final : public NewmarkTypeStep {
     return e;
   }
 
+  std::string id_;
   Scheme scheme_;
   Tridiagonal mass_, stiffness_, linear_;
   double dt_, beta_, gamma_;
@@ -330,8 +332,8 @@ class NewmarkContactStep final : public NewmarkTypeStep {
 
 std::unique_ptr<ContactClassStep> make_newmark_type_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
                                                          const SchemeParameters& p, double dt, double h, bool has_load,
-                                                         double gap) {
-  return std::make_unique<NewmarkContactStep>(mass, stiffness, p, dt, h, has_load, gap);
+                                                         double gap, const std::string& id) {
+  return std::make_unique<NewmarkContactStep>(mass, stiffness, p, dt, h, has_load, gap, id);
 }
 
 }  // namespace mrm::class_steps

@@ -11,7 +11,6 @@
 #include <Eigen/Core>
 
 #include "classes/class_step.hpp"
-#include "classes/contact_classes.hpp"
 #include "steps/contact.hpp"
 
 namespace mrm::class_steps {
@@ -63,35 +62,24 @@ inline void sweep_down_forming(const ContactSolver& solver, Index n, double* y, 
   y[0] = b0 - eps[0] * yi;
 }
 
-/// Throws std::runtime_error naming the scheme and the level when the discrete energy is not finite.
-inline void require_finite(double energy, Scheme scheme, Index level) {
+/// Throws std::runtime_error naming the scheme (its registry id) and the level when the discrete energy is
+/// not finite.
+inline void require_finite(double energy, const std::string& id, Index level) {
   if (!std::isfinite(energy))
-    throw std::runtime_error("scheme " + find_entry(contact_class_schemes(), scheme)->id +
-                             ": the run lost finiteness at level " +
-                             std::to_string(level) + " (the discrete energy is not finite)");
+    throw std::runtime_error("scheme " + id + ": the run lost finiteness at level " + std::to_string(level) +
+                             " (the discrete energy is not finite)");
 }
 
-/// The parameters of a contact class for the doctests: Newmark's (β, γ) where the class takes them.
-inline SchemeParameters class_parameters(Scheme scheme, double beta = 0.25, double gamma = 0.5) {
-  SchemeParameters p;
-  p.scheme = scheme;
-  const SchemeInfo* entry = find_entry(contact_class_schemes(), scheme);  // null for the other schemes
-  if (entry && entry->takes(SchemeParameter::newmark_beta)) {
-    p.newmark_beta = beta;
-    p.newmark_gamma = gamma;
-  }
-  return p;
-}
-
-/// The step of a Newmark-type class (newmark, penalty, nitsche: newmark_type.cpp).
+/// The step of a Newmark-type class (newmark, penalty, nitsche: newmark_type.cpp); `id` its registry id, for its messages.
 std::unique_ptr<ContactClassStep> make_newmark_type_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
                                                          const SchemeParameters& p, double dt, double h, bool has_load,
-                                                         double gap);
+                                                         double gap, const std::string& id);
 /// The step of Moreau–Jean (moreau_jean.cpp).
 std::unique_ptr<ContactClassStep> make_moreau_jean_step(const Tridiagonal& mass, const Tridiagonal& stiffness,
-                                                        const SchemeParameters& p, double dt, bool has_load, double gap);
+                                                        const SchemeParameters& p, double dt, bool has_load, double gap,
+                                                        const std::string& id);
 /// The step of DKE (dke.cpp).
 std::unique_ptr<ContactClassStep> make_dke_step(const Tridiagonal& mass, const Tridiagonal& stiffness, double dt,
-                                                bool has_load, double gap, bool fused);
+                                                bool has_load, double gap, bool fused, const std::string& id);
 
 }  // namespace mrm::class_steps

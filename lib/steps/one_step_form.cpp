@@ -112,16 +112,15 @@ void OneStepFormStep::reference_step(StepState& state, bool has_load) const {
   // does, and if the status changes, takes its θ-step instead (nothing has been written yet). The gap
   // moves the obstacle by step_.obstacle_offset.
   double obstacle = three_level_ ? -restitution_ * (u[0] - w[0]) : 0.0;  // g
-  if (step_.obstacle_offset != 0.0) obstacle += step_.obstacle_offset;              // (keeps a −0)
-  Eigen::VectorXd& du = state.u_new;                                               // ΔU, then Uⁿ⁺¹
+  if (step_.obstacle_offset != 0.0) obstacle += step_.obstacle_offset;   // (keeps a −0)
+  Eigen::VectorXd& du = state.u_new;                                     // ΔU, then Uⁿ⁺¹
   double contact_multiplier, u0_next;
   if (energy_conserving_) {
     solver_.sweep_down(rhs.data(), du.data());
     const double load0_now = has_load ? state.f_now[0] : 0.0, load0_next = has_load ? state.f_next[0] : 0.0;
     const double mu = -solver_.upward()[1];
-    const EnergyConservingContact contact =
-        energy_conserving_contact(u[1] + solver_.inverse_pivot()[1] * du[1] - mu * u[0], mu, u[0], u[1] + h * load0_now,
-                                  h, load0_next, gap_);
+    const EnergyConservingContact contact = energy_conserving_contact(
+        u[1] + solver_.inverse_pivot()[1] * du[1] - mu * u[0], mu, u[0], u[1] + h * load0_now, h, load0_next, gap_);
     solver_.sweep_up(contact.recurrence_u0 - u[0], du.data());
     u0_next = contact.u0;
     contact_multiplier = contact.multiplier;
@@ -172,7 +171,7 @@ void OneStepFormStep::switch_step(StepState& state, bool has_load) const {
   const Eigen::VectorXd rhs =
       increment_right_hand_side(theta_step, state.u, state.w, state.lambda, has_load ? &state.f_now : nullptr,
                                 has_load ? &state.f_next : nullptr);
-  Eigen::VectorXd& du = state.u_new;                  // ΔU (the increment form), then Uⁿ⁺¹
+  Eigen::VectorXd& du = state.u_new;                   // ΔU (the increment form), then Uⁿ⁺¹
   const double obstacle = theta_step.obstacle_offset;  // g: the gap, 0 without one
   const ContactStep contact = switch_->solver.solve(rhs.data(), du.data(), theta_step.kappa, obstacle - state.u[0]);
   const double u0_next = contact.active ? obstacle : state.u[0] + contact.u0;

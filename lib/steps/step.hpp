@@ -37,15 +37,15 @@ struct StepState {
 /// run's own checks (Δt, the parameters' ranges, the problem's data). References into the run, valid
 /// during the call only.
 struct StepContext {
-  const UniformMesh& mesh;                  ///< the mesh
-  const MassRedistribution& redistribution; ///< the mass redistribution the run was given
-  const Tridiagonal& mass;                  ///< M (or M^mod) on the unknowns, assembled from it
-  const Tridiagonal& stiffness;             ///< S on the unknowns
-  const SchemeParameters& parameters;       ///< the scheme and its parameters
-  double dt;                                ///< Δt
-  double gap;                               ///< the initial gap g₀ ≥ 0 (the obstacle at −g₀)
-  bool has_load;                            ///< whether the problem has a load f
-  bool massless;                            ///< whether the contact node is massless (row 0 of M vanishes)
+  const UniformMesh& mesh;                   ///< the mesh
+  const MassRedistribution& redistribution;  ///< the mass redistribution the run was given
+  const Tridiagonal& mass;                   ///< M (or M^mod) on the unknowns, assembled from it
+  const Tridiagonal& stiffness;              ///< S on the unknowns
+  const SchemeParameters& parameters;        ///< the scheme and its parameters
+  double dt;                                 ///< Δt
+  double gap;                                ///< the initial gap g₀ ≥ 0 (the obstacle at −g₀)
+  bool has_load;                             ///< whether the problem has a load f
+  bool massless;                             ///< whether the contact node is massless (row 0 of M vanishes)
 };
 
 /// One step of a scheme, built once per run by its registry entry (SchemeInfo::make_step).

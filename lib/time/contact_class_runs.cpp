@@ -32,8 +32,6 @@ namespace mrm {
 // Doctests: the limit cases and the energy identities of the derivation above, on the library's runs.
 namespace {
 
-using class_steps::class_parameters;
-
 // The identity (MJ) of Moreau–Jean checked at every step of `run` up to `horizon`: E changes by
 // p(θv₀ⁿ⁺¹ + (1 − θ)v₀ⁿ) − (θ − ½)(‖ΔV‖²_M + ‖ΔU‖²_S), plus the load's work F·ΔU for a load constant in time
 // (`load` empty: none). Returns the largest defect and the number of steps with an impulse.

@@ -30,8 +30,6 @@ namespace mrm {
 
 namespace {
 
-using class_steps::class_parameters;
-
 // The largest eigenvalue of M⁻¹K by a power iteration on the dense matrices (K, M symmetric, M positive
 // definite): xₖ₊₁ = M⁻¹K xₖ/‖·‖, the Rayleigh quotient xᵀKx/xᵀMx of the last iterate.
 [[maybe_unused]] double power_iteration(const Eigen::MatrixXd& k, const Eigen::MatrixXd& m, int iterations) {

@@ -176,7 +176,6 @@ TEST_CASE("the fast step and the reference step agree to round-off for every sch
   CHECK(worst <= 1.0);
 }
 
-
 TEST_CASE(
     "EC with a gap: the energy is conserved to round-off at every step, and Signorini's conditions hold at -gap") {
   // "With a gap" (§3): the paper's bar, g₀ = 0.05 and 0.3, Mod 3 and Mod 1, Δt = h and 5h, both step

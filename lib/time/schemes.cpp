@@ -127,7 +127,7 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   // (classes/contact_classes.cpp). A step that runs with its own mass (the explicit schemes' row-sum
   // lumped one) makes it the run's.
   const SchemeInfo& scheme = scheme_info(parameters.scheme);
-  const StepContext context{mesh, mass, mass_, stiffness_, parameters, dt, problem.gap, problem.load != nullptr,
+  const StepContext context{mesh,     mass, mass_, stiffness_, parameters, dt, problem.gap, problem.load != nullptr,
                             massless_};
   scheme.validate(context);
   step_ = scheme.make_step(context);
