@@ -453,9 +453,7 @@ void write_series_header(const cli::Parser& parser, const Options& o, const Run&
 // 4. The run (repro/configurations: the errors and the energy range), writing the series if asked;
 // with a peer, its own measures beside (repro/peers.hpp).
 void run(Run& r) {
-  if (r.use_peer)
-    r.peer_measures = std::make_unique<mrm::repro::PeerMeasures>(
-        r.mesh, *r.reference, mrm::contact_node_is_massless(mrm::modified_mass(r.mesh, r.configuration.mass)));
+  if (r.use_peer) r.peer_measures = std::make_unique<mrm::repro::PeerMeasures>(r.mesh, *r.reference, r.massless);
   const auto start = std::chrono::steady_clock::now();
   r.measures = r.two_bodies ? mrm::repro::run_configuration(r.configuration)
                             : mrm::repro::run_configuration(
