@@ -76,6 +76,11 @@ all: build $(DATA)/benchmark.dat $(DATA)/benchmark.txt $(CLAIMS_OUTPUTS) $(FIGUR
 # ---- Rules --------------------------------------------------------------------------------------
 
 # Check the Debian packages, installing the missing ones when allowed (quiet when all present).
+# Every recipe waits for it (order only: `deps` is phony, and a file that depended on it normally would
+# be remade on every run): the build through `build: deps`, every result through the directory it is
+# written in, so that on a fresh machine no recipe calls a tool (doxygen, gnuplot, latexmk) that is still
+# being installed (the directories wait for it: "Output directories" below). The ctest entry
+# make_waits_for_deps checks it on make's database of `all` and `test`.
 deps:
 	tools/deps.sh
 
@@ -290,9 +295,10 @@ $(DOC)/html/index.html: Doxyfile $(wildcard lib/*/*.hpp lib/*/*.cpp doc/*.md) | 
 	done
 	touch $@
 
-# Output directories.
+# Output directories. Each waits for the packages, and so does every rule that writes in one (deps above).
 $(DATA) $(FIGURES) $(DOC):
 	mkdir -p $@
+$(DATA) $(FIGURES) $(DOC) $(BENCH) $(BENCH_SHORT): | deps
 
 # Remove every build directory and every generated result.
 clean:
