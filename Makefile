@@ -72,7 +72,7 @@ ALL_RESULTS = $(DATA)/benchmark.dat $(DATA)/benchmark.txt $(CLAIMS_OUTPUTS) $(FI
               $(BASELINE) $(FIGURE_PDFS) $(CLASSES) $(CLASSES_PDFS) $(DATA)/cn_large_step.tex $(PEER_TEX) \
               $(DATA)/report_meta.tex $(DOC)/html/index.html $(BENCH_SHORT)/bench_short.tex $(REPORT)
 
-.PHONY: all build clean deps help test test-unit bench
+.PHONY: all build clean deps help test test-unit bench install
 
 # ---- Rules --------------------------------------------------------------------------------------
 
@@ -105,6 +105,13 @@ test: build
 
 test-unit: build
 	ctest --test-dir $(BUILD) --output-on-failure -j$(JOBS) --no-tests=error -L unit
+
+# Install the method library (lib/, built without its doctests: its own target, compiled only here),
+# its headers and its CMake package under $(PREFIX) (find_package(mrm), target mrm::mrm).
+PREFIX ?= /usr/local
+install: build
+	env -u MAKEFLAGS -u MFLAGS cmake --build $(BUILD) -j$(JOBS) --target mrm
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 # The benchmark run: its data file and its stdout summary (written whole, via a temporary file; without
 # the wall time, so that the same command gives the same bytes).
@@ -320,6 +327,7 @@ help:
 	@echo '  bench    build, then time one step per node for N = 2^6..2^20 ($(OUT)/bench/bench_step.*)'
 	@echo '           (all runs a short one, N = 2^8..2^14, into $(OUT)/bench-short/ for the report)'
 	@echo '  deps     check the Debian packages, installing the missing ones if root (tools/deps.sh)'
+	@echo '  install  build the method library without its doctests and install it under $(PREFIX)'
 	@echo '  figures  the figures in $(FIGURES)/ (part of all)'
 	@echo '  report   the report $(REPORT) (part of all)'
 	@echo '  doc      the API documentation, $(DOC)/html/index.html (part of all)'
@@ -330,5 +338,6 @@ help:
 	@echo '  SANITIZE=1  ASan + UBSan build (RelWithDebInfo) in build-sanitize/'
 	@echo '  BUILD=dir   build directory (default: build, or build-sanitize with SANITIZE=1)'
 	@echo '  OUT=dir     output directory (default: output)'
+	@echo '  PREFIX=dir  where make install installs (default: /usr/local)'
 	@echo '  JOBS=n      parallel compile jobs (default: nproc)'
 	@echo '  BENCH_CLOCK=cpu  make bench times thread CPU time instead of wall time (loaded machine)'
