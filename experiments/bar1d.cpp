@@ -53,6 +53,7 @@
 // any work); (2) open the output file (so that a bad path fails before the run); (3) build the mesh,
 // the mass, the scheme and the reference, Δt = C h unless --dt is given; (4) run to the final time,
 // accumulating the errors and, if asked, the time series; (5) print the figures and commit the output.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -63,8 +64,11 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "options.hpp"
 #include "peers.hpp"
+#include "progress.hpp"
 #include "output_file.hpp"
 #include "configurations.hpp"
 #include "figure_program.hpp"
@@ -75,6 +79,7 @@
 #include "exact/exact_solution.hpp"
 #include "exact/impact_solution.hpp"
 #include "fem/interior_mass.hpp"
+#include "fem/p1.hpp"
 #include "fem/period_law.hpp"
 #include "classes/contact_classes.hpp"
 #include "time/schemes.hpp"
@@ -144,6 +149,7 @@ void declare_options(cli::Parser& parser, Options& o) {
   parser.add_real("--courant", "-c", "C", "time step as a multiple of h: dt = C h (0 < C <= 1e6)", &o.courant,
                   courant_range);
   parser.add_real("--dt", "", "X", "time step (0 < dt <= 1e6 h); excludes --courant", &o.dt, cli::positive());
+  parser.without_default("--dt");  // not given: dt = C h
   parser.add_real("--final-time", "-T", "T",
                   "final time (> 0); the period of the paper's benchmark is 3L; default 6 on the paper's "
                   "benchmark and --initial-data, 2 on the smooth benchmarks, the benchmark's own horizon (in "
@@ -450,15 +456,82 @@ void write_series_header(const cli::Parser& parser, const Options& o, const Run&
   }
 }
 
+// The configuration, first on standard output, as `# key = value` lines (the values the run took: a
+// peer's or a benchmark's defaults, the effective step), so that the output is a record of what ran:
+// the scheme, the mass, N, Δt, T, the benchmark (or the file of initial data), the contact stress, and
+// each parameter the scheme takes.
+std::string configuration_text(const Options& o, const Run& r) {
+  std::ostringstream text;
+  text << "# scheme = " << mrm::to_string(r.scheme_id) << "\n# mass = " << o.mass << "\n# elements = " << o.elements
+       << "\n# dt = " << cli::format_real(r.step) << "\n# final_time = " << cli::format_real(o.final_time)
+       << "\n# benchmark = " << (r.own_data ? "initial-data" : o.benchmark) << '\n';
+  if (r.own_data) text << "# initial_data = " << cli::json_string(o.initial_data) << '\n';
+  text << "# stress = " << o.stress << '\n';
+  for (const mrm::SchemeParameter parameter : mrm::scheme_info(r.scheme_id).parameters)
+    text << "# " << mrm::to_string(parameter) << " = "
+         << (mrm::parameter_spec(parameter).choices.empty()
+                 ? cli::format_real(mrm::number(r.scheme_parameters, parameter))
+                 : mrm::choice(r.scheme_parameters, parameter))
+         << '\n';
+  return text.str();
+}
+
+// Under a load (the field's benchmarks with gravity), the energy E_h = ½VᵀMV + ½UᵀSU alone is not
+// conserved: the load does work on the bar. The total energy adds the load's potential −F(t)·U, with F
+// the load vector of p1_load at the instant of the energy (Paoli–Schatzman's energy is at t_{n+1/2}: U
+// there is the mean of two levels): for a steady load, Crank–Nicolson's and EC's steps change E_h by
+// F·(Uⁿ⁺¹ − Uⁿ) between contact events, and EC's total is conserved through them as well. Its largest
+// change is relative to the larger of |total(0)| and the largest E_h of the run, the scale of the
+// energies the load exchanges (the total itself may start near 0: a bar at rest, its potential's zero
+// at the undeformed position).
+struct TotalEnergy {
+  mrm::Problem problem;
+  Eigen::VectorXd load, previous, at_energy;
+  double initial = 0, final = 0, min = HUGE_VAL, max = -HUGE_VAL, largest_energy = 0, largest_change = 0;
+  bool active = false;
+
+  void observe(const mrm::UniformMesh& mesh, const mrm::Sample& s) {
+    const Eigen::VectorXd& u = *s.displacement;
+    if (s.energy_time != s.time && s.level > 0) {
+      at_energy = 0.5 * (previous + u);
+    } else {
+      at_energy = u;
+    }
+    previous = u;
+    if (!problem.steady_load || load.size() == 0)
+      mrm::p1_load(
+          mesh, [&](double x) { return problem.load(x, s.energy_time); }, load);
+    const double total = s.energy - load.dot(at_energy);
+    if (s.level == 0) initial = total;
+    final = total;
+    min = std::min(min, total);
+    max = std::max(max, total);
+    largest_energy = std::max(largest_energy, s.energy);
+    largest_change = std::max(largest_change, std::abs(total - initial));
+  }
+  void print() const {
+    if (!active) return;
+    const double scale = std::max(std::abs(initial), largest_energy);
+    std::cout << "energy_total_initial = " << cli::format_real(initial)
+              << "\nenergy_total_final = " << cli::format_real(final)
+              << "\nenergy_total_min = " << cli::format_real(min) << "\nenergy_total_max = " << cli::format_real(max)
+              << "\nenergy_total_max_drift = "
+              << (scale > 0 ? cli::format_real(largest_change / scale) : std::string("n/a: no energy in the run"))
+              << '\n';
+  }
+};
+
 // 4. The run (repro/configurations: the errors and the energy range), writing the series if asked;
 // with a peer, its own measures beside (repro/peers.hpp).
-void run(Run& r) {
+void run(Run& r, TotalEnergy& total, mrm::repro::ProgressLine& progress) {
   if (r.use_peer) r.peer_measures = std::make_unique<mrm::repro::PeerMeasures>(r.mesh, *r.reference, r.massless);
   const auto start = std::chrono::steady_clock::now();
   r.measures = r.two_bodies ? mrm::repro::run_configuration(r.configuration)
                             : mrm::repro::run_configuration(
                                   r.configuration,
                                   [&](const mrm::Sample& s) {
+                                    progress.update(s.time);
+                                    if (total.active) total.observe(r.mesh, s);
                                     if (r.peer_measures) r.peer_measures->add(s);
                                     if (r.series) {
                                       const mrm::ReferenceSolution& exact = *r.reference;
@@ -477,15 +550,16 @@ void run(Run& r) {
 }
 
 // 5. The figures.
-void print_results(const Options& o, const Run& r) {
+void print_results(const Options& o, const Run& r, const TotalEnergy& total) {
   const auto values = mrm::ErrorAccumulator::values(r.measures.errors);
   for (std::size_t k = 0; k < values.size(); ++k)
     std::cout << mrm::ErrorAccumulator::names[k] << " = " << cli::format_real(values[k]) << '\n';
   std::cout << "energy_initial = " << cli::format_real(r.measures.energy_initial) << '\n'
             << "energy_final = " << cli::format_real(r.measures.energy_final) << '\n'
             << "energy_min = " << cli::format_real(r.measures.energy_min) << '\n'
-            << "energy_max = " << cli::format_real(r.measures.energy_max) << '\n'
-            << "steps = " << r.measures.steps << '\n';
+            << "energy_max = " << cli::format_real(r.measures.energy_max) << '\n';
+  total.print();
+  std::cout << "steps = " << r.measures.steps << '\n';
   // The interior mass, printed when it is not the paper's consistent one.
   if (r.blend != 0.0) std::cout << "interior_mass = " << mrm::interior_mass_name(r.blend) << '\n';
   std::cout << "final_time_reached = " << cli::format_real(static_cast<double>(r.measures.steps) * r.step) << '\n';
@@ -594,8 +668,24 @@ int main(int argc, char** argv) {
           mrm::repro::configuration_reference(r.configuration, mrm::repro::reference_horizon(r.steps, r.step));
     });
     if (r.series) write_series_header(parser, o, r);
-    run(r);
-    print_results(o, r);
+    // The configuration first: at once on a terminal (a person sees what runs while it runs), otherwise
+    // with the results, so that a run that fails leaves nothing on standard output.
+    const std::string configuration = configuration_text(o, r);
+    const bool terminal = ::isatty(STDOUT_FILENO) == 1;
+    if (terminal) std::cout << configuration << std::flush;
+    TotalEnergy total;
+    if (!r.two_bodies) {
+      total.problem = mrm::repro::configuration_problem(r.configuration);
+      total.active = static_cast<bool>(total.problem.load);
+    }
+    {
+      // A person at a terminal sees how far a long run is (standard error, after 2 s); erased before
+      // the results are printed.
+      mrm::repro::ProgressLine progress("bar1d", o.final_time);
+      run(r, total, progress);
+    }
+    if (!terminal) std::cout << configuration;
+    print_results(o, r, total);
     if (r.series) r.series->commit();
     return 0;
   });

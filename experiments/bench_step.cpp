@@ -45,7 +45,10 @@
 // number of steps until a batch takes 2 ms, then times R batches of as many steps as make about 10 ms
 // each with std::chrono::steady_clock (or, with --clock cpu, the thread's CPU time, which a loaded
 // machine disturbs less); the median over the batches is the figure, the minimum is reported beside
-// it. Nothing is pinned; run it on an idle machine. Steps: (1) read the options;
+// it (--statistic min: the other way round, the least disturbed batch for a shared machine). A figure
+// that cannot be trusted is written n/a with its reason: a difference of two timings within their noise,
+// a slope over fewer than three sizes or with a standard error above 0.1. Nothing is pinned; run it on an
+// idle machine. Steps: (1) read the options;
 // (2) open the outputs; (3) measure the peak memory in child processes (before anything else grows the
 // heap); (4) time every variant for every N; (5) fit the slopes; (6) print and write the tables.
 #include <sys/resource.h>
@@ -66,6 +69,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <Eigen/SparseCholesky>
@@ -107,8 +111,13 @@ double seconds_now() {
   return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
 }
 
+// The figure of a timing: the median of its batches (the default), or their minimum (--statistic min:
+// on a shared machine the batch least disturbed by other processes, the closest to the cost itself).
+bool use_minimum = false;
+
 struct Timing {
-  double median = NAN, minimum = NAN;  // nanoseconds per node per step
+  double value = NAN;                  // the figure: the median or the minimum, nanoseconds per node per step
+  double median = NAN, minimum = NAN;  // both statistics of the batches
   long steps_per_batch = 0;
 };
 
@@ -138,6 +147,7 @@ Timing measure(const std::function<void(long)>& batch, Index nodes, int repetiti
   Timing result;
   result.median = r % 2 ? per_node[r / 2] : 0.5 * (per_node[r / 2 - 1] + per_node[r / 2]);
   result.minimum = per_node.front();
+  result.value = use_minimum ? result.minimum : result.median;
   result.steps_per_batch = steps;
   return result;
 }
@@ -459,7 +469,7 @@ BatchedTimings time_batched(Index elements, int repetitions, double target) {
         },
         n * static_cast<Index>(W), repetitions, target);
     result.bytes = batched_state_bytes + (1 - result.plateau) * batched_factor_bytes;
-    result.traffic = traffic.median;
+    result.traffic = traffic.value;
     result.bandwidth = result.bytes / result.traffic;
     constexpr long rounds = 1000;
     double sink = 0;
@@ -468,7 +478,7 @@ BatchedTimings time_batched(Index elements, int repetitions, double target) {
                 static_cast<Index>(rounds * mrm::repro::arithmetic_operations_per_round) * static_cast<Index>(W),
                 repetitions, target);
     if (!std::isfinite(sink)) throw std::runtime_error("the arithmetic rounds gave a wrong value");
-    result.operation = operation.median;
+    result.operation = operation.value;
     result.arithmetic = batched_operations * result.operation;
     result.limit = std::max(result.traffic, result.arithmetic);
   }
@@ -522,9 +532,19 @@ long memory_increment_kib(mrm::Scheme scheme, Index elements, Index steps) {
 
 // ---- Fit ----------------------------------------------------------------------------------------
 
+// A value that could not be measured or cannot be trusted (a slope over fewer than three sizes or too
+// noisy, a marginal memory with one size, a cost below the timing noise) is written "n/a", never nan (the data files' rule, output_file.hpp).
+std::string fixed(double value, int digits) {
+  if (!std::isfinite(value)) return "n/a";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << value;
+  return s.str();
+}
+
 // The least-squares slope of log(cost per step) against log N over the sizes in [first, last] (NaN
 // with fewer than two).
-double loglog_slope(const std::vector<Index>& sizes, const std::vector<double>& ns_per_node, Index first, Index last) {
+double loglog_slope(const std::vector<Index>& sizes, const std::vector<double>& ns_per_node, Index first, Index last,
+                    double* error = nullptr) {
   std::vector<double> x, y;
   for (std::size_t k = 0; k < sizes.size(); ++k) {
     if (sizes[k] < first || sizes[k] > last || !(ns_per_node[k] > 0)) continue;
@@ -535,16 +555,20 @@ double loglog_slope(const std::vector<Index>& sizes, const std::vector<double>& 
   double c0, c1, cov00, cov01, cov11, sumsq;
   if (gsl_fit_linear(x.data(), 1, y.data(), 1, x.size(), &c0, &c1, &cov00, &cov01, &cov11, &sumsq) != GSL_SUCCESS)
     return NAN;
+  if (error) *error = x.size() > 2 ? std::sqrt(cov11) : NAN;
   return c1;
 }
 
-// A value that could not be measured (a slope over fewer than two sizes, a marginal memory with one
-// size) is written "n/a", never nan (the data files' rule, output_file.hpp).
-std::string fixed(double value, int digits) {
-  if (!std::isfinite(value)) return "n/a";
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << value;
-  return s.str();
+// A slope is given when it can be trusted: over at least three sizes, with a standard error of at most
+// this (a cost linear in N has slope 1; noisy timings over a short range of N can give 0.7 or 1.3).
+constexpr double largest_slope_error = 0.1;
+
+// Why a slope is not given, for the text outputs ("n/a: ..."); empty when it is.
+std::string slope_reason(double slope, double error) {
+  if (std::isfinite(slope)) return "";
+  if (!std::isfinite(error)) return "fewer than three sizes in the fitted range";
+  return "the fit's standard error, " + fixed(error, 3) + ", exceeds " + fixed(largest_slope_error, 1) +
+         " (timings too noisy for the range of N)";
 }
 
 // The load average of the machine (/proc/loadavg, 1 minute): timings taken under load are suspect.
@@ -570,7 +594,7 @@ struct Options {
   long min_log2 = 6, max_log2 = 20, repetitions = 11;
   double target_ms = 10;
   bool quick = false;
-  std::string output, tex, markdown, clock = "wall";
+  std::string output, tex, markdown, clock = "wall", statistic = "median";
 };
 
 // Step 1: the options, declared on the parser.
@@ -589,6 +613,10 @@ void declare_options(cli::Parser& parser, Options& o) {
                     "clock of the timed batches: wall (steady_clock) or cpu (this thread's CPU time, for a loaded "
                     "machine)",
                     {"wall", "cpu"}, &o.clock);
+  parser.add_choice("--statistic", "", "S",
+                    "the figure of each timing over its batches: the median, or the minimum (the batch least "
+                    "disturbed by other processes, for a shared machine)",
+                    {"median", "min"}, &o.statistic);
   parser.add_output("--output", "-o", "write the timings as a gnuplot data file", &o.output);
   parser.add_output("--tex", "", "write the table as a LaTeX tabular", &o.tex);
   parser.add_output("--markdown", "", "write the table as Markdown", &o.markdown);
@@ -638,11 +666,25 @@ struct Results {
   std::vector<std::array<Timing, variants>> timings;
   std::vector<BatchedTimings> batched;
   Sanity sanity;
-  std::array<double, variants> slope{};  ///< of the cost per step against N over 2^10 .. 2^20
+  std::array<double, variants> slope{};        ///< of the cost per step against N over 2^10 .. 2^20 (NaN: not given)
+  std::array<double, variants> slope_error{};  ///< its standard error
 
-  // The ratio of variant v to the bare solve, and the cost of the error measures.
-  static double ratio(const std::array<Timing, variants>& t, int v) { return t[v].median / t[v_bare].median; }
-  static double errors_cost(const std::array<Timing, variants>& t) { return t[v_errors].median - t[v_cn].median; }
+  // The ratio of variant v to the bare solve.
+  static double ratio(const std::array<Timing, variants>& t, int v) { return t[v].value / t[v_bare].value; }
+  // The cost of the error measures: the difference of two timings, given (else NaN, "n/a") only when it
+  // is above their noise, the spread of each one's batches (median − minimum): a difference within it,
+  // or a negative one, measures the machine, not the measures.
+  static double errors_cost(const std::array<Timing, variants>& t) {
+    const double difference = t[v_errors].value - t[v_cn].value;
+    const double noise = (t[v_errors].median - t[v_errors].minimum) + (t[v_cn].median - t[v_cn].minimum);
+    return difference > 0 && difference > noise ? difference : NAN;
+  }
+  // Why errors_cost is not given, for the text outputs.
+  static std::string errors_reason(const std::array<Timing, variants>& t) {
+    return "below the timing noise: the difference of the two timings, " + fixed(t[v_errors].value - t[v_cn].value, 2) +
+           " ns, is not above the spread of their batches, " +
+           fixed((t[v_errors].median - t[v_errors].minimum) + (t[v_cn].median - t[v_cn].minimum), 2) + " ns";
+  }
 };
 
 // Step 4: the timings, N = 2^min .. 2^max, after half a second of steps that brings the core out of
@@ -671,8 +713,9 @@ Results time_meshes(const Options& o) {
   // 5. Slopes of the cost per step against N over 2^10 .. 2^20, for every variant.
   for (int v = 0; v < variants; ++v) {
     std::vector<double> ns;
-    for (const auto& t : r.timings) ns.push_back(t[v].median);
-    r.slope[v] = loglog_slope(r.sizes, ns, Index{1} << 10, Index{1} << 20);
+    for (const auto& t : r.timings) ns.push_back(t[v].value);
+    r.slope[v] = loglog_slope(r.sizes, ns, Index{1} << 10, Index{1} << 20, &r.slope_error[v]);
+    if (!(r.slope_error[v] <= largest_slope_error)) r.slope[v] = NAN;
   }
   return r;
 }
@@ -682,10 +725,15 @@ std::string summary_text(const Options& o, const std::string& load_before, const
   std::ostringstream summary;
   summary << "cpu = " << cpu_model() << '\n'
           << "mass = mod3\ncourant = " << cli::format_real(courant) << '\n'
-          << "clock = " << o.clock << "\nrepetitions = " << o.repetitions
+          << "cores = " << std::thread::hardware_concurrency() << '\n'
+          << "clock = " << o.clock << "\nstatistic = " << o.statistic << "\nrepetitions = " << o.repetitions
           << "\nbatch_ms = " << cli::format_real(o.target_ms) << '\n'
           << "load_average_before = " << load_before << "\nload_average_after = " << load_average() << '\n';
-  for (int v = 0; v < variants; ++v) summary << "slope_" << variant_names[v] << " = " << fixed(r.slope[v], 3) << '\n';
+  for (int v = 0; v < variants; ++v) {
+    const std::string reason = slope_reason(r.slope[v], r.slope_error[v]);
+    summary << "slope_" << variant_names[v] << " = " << (reason.empty() ? fixed(r.slope[v], 3) : "n/a: " + reason)
+            << '\n';
+  }
   summary << "memory_cn_kib_N" << m.big << " = " << m.cn_big << "\nmemory_cn_kib_N" << m.small << " = " << m.cn_small
           << "\nmemory_ps_kib_N" << m.big << " = " << m.ps_big << "\nmemory_ps_kib_N" << m.small << " = " << m.ps_small
           << "\nmemory_cn_bytes_per_node_N" << m.big << " = " << fixed(Memory::bytes_per_node(m.cn_big, m.big), 1)
@@ -701,7 +749,8 @@ std::string summary_text(const Options& o, const std::string& load_before, const
 
 // Standard output: the scalar timings and their ratios, then the summary.
 void print_scalar_table(const Options& o, const Results& r, const std::string& summary) {
-  std::cout << "# ns per node per step (median of " << o.repetitions << " batches; min in brackets)\n";
+  std::cout << "# ns per node per step (" << o.statistic << " of " << o.repetitions << " batches; "
+            << (use_minimum ? "median" : "min") << " in brackets)\n";
   std::vector<std::string> headers{"N"};
   for (int v = 0; v < variants; ++v) headers.push_back(variant_names[v]);
   for (const char* h :
@@ -711,7 +760,8 @@ void print_scalar_table(const Options& o, const Results& r, const std::string& s
   for (std::size_t k = 0; k < r.sizes.size(); ++k) {
     const auto& t = r.timings[k];
     std::vector<std::string> cells{std::to_string(r.sizes[k])};
-    for (int v = 0; v < variants; ++v) cells.push_back(fixed(t[v].median, 2) + " [" + fixed(t[v].minimum, 2) + "]");
+    for (int v = 0; v < variants; ++v)
+      cells.push_back(fixed(t[v].value, 2) + " [" + fixed(use_minimum ? t[v].median : t[v].minimum, 2) + "]");
     for (const std::string& c : {fixed(Results::ratio(t, v_cn), 2), fixed(Results::ratio(t, v_be), 2),
                                  fixed(Results::ratio(t, v_ps), 2), fixed(Results::errors_cost(t), 2),
                                  fixed(Results::ratio(t, v_cn_ref), 2), fixed(Results::ratio(t, v_be_ref), 2),
@@ -731,7 +781,7 @@ void print_scalar_table(const Options& o, const Results& r, const std::string& s
 // step per run, against the scalar step, the bare solve (one and two at a time) and the limit of the
 // widest target: the larger of its memory traffic alone and of its operations at their peak rate.
 void print_batched_table(const Options& o, const Results& r, const std::vector<mrm::BatchTarget>& targets) {
-  std::cout << "# batched: ns per node per step per run (median of " << o.repetitions << " batches)\n";
+  std::cout << "# batched: ns per node per step per run (" << o.statistic << " of " << o.repetitions << " batches)\n";
   std::vector<std::string> headers{"N", "scalar"};
   for (const mrm::BatchTarget& t : targets) headers.push_back(t.name + "x" + std::to_string(t.lanes));
   for (const char* h : {"bare", "bare2", "bare_x2", "plateau", "B/node", "traffic", "GB/s", "Gop/s", "arith", "limit",
@@ -741,11 +791,11 @@ void print_batched_table(const Options& o, const Results& r, const std::vector<m
   for (std::size_t k = 0; k < r.sizes.size(); ++k) {
     const auto& t = r.timings[k];
     const BatchedTimings& b = r.batched[k];
-    std::vector<std::string> cells{std::to_string(r.sizes[k]), fixed(t[v_cn].median, 2)};
-    for (const Timing& x : b.per_target) cells.push_back(fixed(x.median, 3));
-    cells.push_back(fixed(t[v_bare].median, 2));
-    cells.push_back(fixed(t[v_bare2].median, 2));
-    cells.push_back(fixed(b.bare_x2.median, 2));
+    std::vector<std::string> cells{std::to_string(r.sizes[k]), fixed(t[v_cn].value, 2)};
+    for (const Timing& x : b.per_target) cells.push_back(fixed(x.value, 3));
+    cells.push_back(fixed(t[v_bare].value, 2));
+    cells.push_back(fixed(t[v_bare2].value, 2));
+    cells.push_back(fixed(b.bare_x2.value, 2));
     cells.push_back(fixed(b.plateau, 4));
     cells.push_back(fixed(b.bytes, 1));
     cells.push_back(fixed(b.traffic, 3));
@@ -753,8 +803,8 @@ void print_batched_table(const Options& o, const Results& r, const std::vector<m
     cells.push_back(fixed(1 / b.operation, 1));
     cells.push_back(fixed(b.arithmetic, 3));
     cells.push_back(fixed(b.limit, 3));
-    cells.push_back(fixed(t[v_cn].median / b.per_target.front().median, 2));
-    cells.push_back(fixed(b.per_target.front().median / b.limit, 2));
+    cells.push_back(fixed(t[v_cn].value / b.per_target.front().value, 2));
+    cells.push_back(fixed(b.per_target.front().value / b.limit, 2));
     screen.add_row(cells);
   }
   screen.write_text(std::cout, std::vector<std::size_t>(headers.size(), 11));
@@ -762,7 +812,7 @@ void print_batched_table(const Options& o, const Results& r, const std::vector<m
   std::cout << "batched_target = " << targets.front().name << " (" << targets.front().lanes << " lanes)\n"
             << "batched_bytes_per_node = " << fixed(r.batched.back().bytes, 1) << "\n"
             << "batched_speedup = "
-            << fixed(r.timings.back()[v_cn].median / r.batched.back().per_target.front().median, 2) << '\n';
+            << fixed(r.timings.back()[v_cn].value / r.batched.back().per_target.front().value, 2) << '\n';
 }
 
 // The data file: the options and the summary as comments, then one line per mesh.
@@ -791,13 +841,13 @@ void write_data(std::ostream& out, const cli::Parser& parser, const std::string&
   }
 }
 
-// The Markdown table for the README: its caption, one row per mesh (the median of each scheme with the
+// The Markdown table for the README: its caption, one row per mesh (the figure of each scheme with the
 // fast and the reference step and of the limits, the ratios to the bare solve, the errors), the slopes,
 // and the peak memory.
 void write_markdown(std::ostream& out, const Options& o, const std::string& load_before, const Results& r,
                     const Memory& m) {
   const std::string caption_md =
-      "Nanoseconds per node per step (median of " + std::to_string(o.repetitions) + " batches of about " +
+      "Nanoseconds per node per step (" + o.statistic + " of " + std::to_string(o.repetitions) + " batches of about " +
       fixed(o.target_ms, 0) + " ms of " + (o.clock == "cpu" ? "thread CPU time" : "wall time") +
       "), Mod 3, Δt = h/2, on " + cpu_model() + " (load average " + load_before +
       " before the run). CN, BE, PS: the fast step (the fused two-chain kernel every program uses); "
@@ -823,10 +873,10 @@ void write_markdown(std::ostream& out, const Options& o, const std::string& load
                            "BE/bare", "PS/bare", "CN ref/bare", "BE ref/bare", "PS ref/bare", "errors"});
   for (std::size_t k = 0; k < r.sizes.size(); ++k) {
     const auto& t = r.timings[k];
-    table.add_row({std::to_string(r.sizes[k]), fixed(t[v_cn].median, 2), fixed(t[v_be].median, 2),
-                   fixed(t[v_ps].median, 2), fixed(t[v_cn_ref].median, 2), fixed(t[v_be_ref].median, 2),
-                   fixed(t[v_ps_ref].median, 2), fixed(t[v_bare].median, 2), fixed(t[v_bare2].median, 2),
-                   fixed(t[v_eigen].median, 2), fixed(Results::ratio(t, v_cn), 2), fixed(Results::ratio(t, v_be), 2),
+    table.add_row({std::to_string(r.sizes[k]), fixed(t[v_cn].value, 2), fixed(t[v_be].value, 2),
+                   fixed(t[v_ps].value, 2), fixed(t[v_cn_ref].value, 2), fixed(t[v_be_ref].value, 2),
+                   fixed(t[v_ps_ref].value, 2), fixed(t[v_bare].value, 2), fixed(t[v_bare2].value, 2),
+                   fixed(t[v_eigen].value, 2), fixed(Results::ratio(t, v_cn), 2), fixed(Results::ratio(t, v_be), 2),
                    fixed(Results::ratio(t, v_ps), 2), fixed(Results::ratio(t, v_cn_ref), 2),
                    fixed(Results::ratio(t, v_be_ref), 2), fixed(Results::ratio(t, v_ps_ref), 2),
                    fixed(Results::errors_cost(t), 2)});
@@ -852,12 +902,12 @@ void write_tex_tables(std::ostream& out, const Results& r) {
       {"$N$", "CN ref", "BE ref", "PS ref", "bare", "CN ref/bare", "BE ref/bare", "PS ref/bare", "errors"});
   for (std::size_t k = 0; k < r.sizes.size(); ++k) {
     const auto& t = r.timings[k];
-    fast.add_row({std::to_string(r.sizes[k]), fixed(t[v_cn].median, 2), fixed(t[v_be].median, 2),
-                  fixed(t[v_ps].median, 2), fixed(t[v_bare].median, 2), fixed(t[v_bare2].median, 2),
-                  fixed(t[v_eigen].median, 2), fixed(Results::ratio(t, v_cn), 2), fixed(Results::ratio(t, v_be), 2),
-                  fixed(Results::ratio(t, v_ps), 2), fixed(t[v_cn].median / t[v_eigen].median, 2)});
-    reference.add_row({std::to_string(r.sizes[k]), fixed(t[v_cn_ref].median, 2), fixed(t[v_be_ref].median, 2),
-                       fixed(t[v_ps_ref].median, 2), fixed(t[v_bare].median, 2), fixed(Results::ratio(t, v_cn_ref), 2),
+    fast.add_row({std::to_string(r.sizes[k]), fixed(t[v_cn].value, 2), fixed(t[v_be].value, 2), fixed(t[v_ps].value, 2),
+                  fixed(t[v_bare].value, 2), fixed(t[v_bare2].value, 2), fixed(t[v_eigen].value, 2),
+                  fixed(Results::ratio(t, v_cn), 2), fixed(Results::ratio(t, v_be), 2),
+                  fixed(Results::ratio(t, v_ps), 2), fixed(t[v_cn].value / t[v_eigen].value, 2)});
+    reference.add_row({std::to_string(r.sizes[k]), fixed(t[v_cn_ref].value, 2), fixed(t[v_be_ref].value, 2),
+                       fixed(t[v_ps_ref].value, 2), fixed(t[v_bare].value, 2), fixed(Results::ratio(t, v_cn_ref), 2),
                        fixed(Results::ratio(t, v_be_ref), 2), fixed(Results::ratio(t, v_ps_ref), 2),
                        fixed(Results::errors_cost(t), 2)});
   }
@@ -882,13 +932,18 @@ void write_tex_tables(std::ostream& out, const Results& r) {
 // The figures the text quotes, as the report's values (\mrmdef, like every generated number): at
 // N = 2^16, or at the largest N measured if smaller (the short run of make all).
 void write_tex_values(std::ostream& out, const Options& o, const Results& r, const Memory& m,
-                      const std::vector<mrm::BatchTarget>& targets) {
+                      const std::vector<mrm::BatchTarget>& targets, const std::string& load_before) {
   const auto& slope = r.slope;
   // How the timings were taken, for the captions.
   mrm::tex_define(out, "bench:repetitions", std::to_string(o.repetitions));
   mrm::tex_define(out, "bench:batch-ms", fixed(o.target_ms, 0));
   mrm::tex_define(out, "bench:clock", o.clock == "cpu" ? "thread CPU time" : "wall time");
+  mrm::tex_define(out, "bench:statistic", o.statistic == "min" ? "the minimum" : "the median");
   mrm::tex_define(out, "bench:cpu", cpu_model());
+  // The machine and its load when the timings were taken (the 1-minute load average before and after).
+  mrm::tex_define(out, "bench:cores", std::to_string(std::thread::hardware_concurrency()));
+  mrm::tex_define(out, "bench:load-before", load_before);
+  mrm::tex_define(out, "bench:load-after", load_average());
   mrm::tex_define(out, "bench:nmin", std::to_string(r.sizes.front()));
   mrm::tex_define(out, "bench:nmax", std::to_string(r.sizes.back()));
   const Index text_n = std::min<Index>(Index{1} << 16, r.sizes.back());
@@ -899,21 +954,24 @@ void write_tex_values(std::ostream& out, const Options& o, const Results& r, con
     return nullptr;
   };
   if (const auto* t = at(text_n)) {
-    mrm::tex_define(out, "bench:cn:ns", fixed((*t)[v_cn].median, 2));
-    mrm::tex_define(out, "bench:be:ns", fixed((*t)[v_be].median, 2));
-    mrm::tex_define(out, "bench:ps:ns", fixed((*t)[v_ps].median, 2));
-    mrm::tex_define(out, "bench:bare:ns", fixed((*t)[v_bare].median, 2));
-    mrm::tex_define(out, "bench:bare2:ns", fixed((*t)[v_bare2].median, 2));
-    mrm::tex_define(out, "bench:eigen:ns", fixed((*t)[v_eigen].median, 2));
+    mrm::tex_define(out, "bench:cn:ns", fixed((*t)[v_cn].value, 2));
+    mrm::tex_define(out, "bench:be:ns", fixed((*t)[v_be].value, 2));
+    mrm::tex_define(out, "bench:ps:ns", fixed((*t)[v_ps].value, 2));
+    mrm::tex_define(out, "bench:bare:ns", fixed((*t)[v_bare].value, 2));
+    mrm::tex_define(out, "bench:bare2:ns", fixed((*t)[v_bare2].value, 2));
+    mrm::tex_define(out, "bench:eigen:ns", fixed((*t)[v_eigen].value, 2));
     mrm::tex_define(out, "bench:cn:ratio", fixed(Results::ratio(*t, v_cn), 2));
     mrm::tex_define(out, "bench:be:ratio", fixed(Results::ratio(*t, v_be), 2));
     mrm::tex_define(out, "bench:ps:ratio", fixed(Results::ratio(*t, v_ps), 2));
-    mrm::tex_define(out, "bench:cn:eigen-ratio", fixed((*t)[v_cn].median / (*t)[v_eigen].median, 2));
-    mrm::tex_define(out, "bench:errors:ns", fixed(Results::errors_cost(*t), 2));
+    mrm::tex_define(out, "bench:cn:eigen-ratio", fixed((*t)[v_cn].value / (*t)[v_eigen].value, 2));
+    if (std::isfinite(Results::errors_cost(*t)))
+      mrm::tex_define(out, "bench:errors:ns", fixed(Results::errors_cost(*t), 2));
+    else
+      mrm::tex_define(out, "bench:errors:na", Results::errors_reason(*t));
     mrm::tex_define(out, "bench:measures:ratio", fixed(Results::ratio(*t, v_errors), 2));
-    mrm::tex_define(out, "bench:cn-ref:ns", fixed((*t)[v_cn_ref].median, 2));
-    mrm::tex_define(out, "bench:be-ref:ns", fixed((*t)[v_be_ref].median, 2));
-    mrm::tex_define(out, "bench:ps-ref:ns", fixed((*t)[v_ps_ref].median, 2));
+    mrm::tex_define(out, "bench:cn-ref:ns", fixed((*t)[v_cn_ref].value, 2));
+    mrm::tex_define(out, "bench:be-ref:ns", fixed((*t)[v_be_ref].value, 2));
+    mrm::tex_define(out, "bench:ps-ref:ns", fixed((*t)[v_ps_ref].value, 2));
     mrm::tex_define(out, "bench:cn-ref:ratio", fixed(Results::ratio(*t, v_cn_ref), 2));
     mrm::tex_define(out, "bench:be-ref:ratio", fixed(Results::ratio(*t, v_be_ref), 2));
     mrm::tex_define(out, "bench:ps-ref:ratio", fixed(Results::ratio(*t, v_ps_ref), 2));
@@ -922,8 +980,8 @@ void write_tex_values(std::ostream& out, const Options& o, const Results& r, con
     const BatchedTimings& b = r.batched[static_cast<std::size_t>(t - r.timings.data())];
     mrm::tex_define(out, "bench:batched:target", targets.front().name);
     mrm::tex_define(out, "bench:batched:lanes", std::to_string(targets.front().lanes));
-    mrm::tex_define(out, "bench:batched:ns", fixed(b.per_target.front().median, 3));
-    mrm::tex_define(out, "bench:batched:speedup", fixed((*t)[v_cn].median / b.per_target.front().median, 2));
+    mrm::tex_define(out, "bench:batched:ns", fixed(b.per_target.front().value, 3));
+    mrm::tex_define(out, "bench:batched:speedup", fixed((*t)[v_cn].value / b.per_target.front().value, 2));
     mrm::tex_define(out, "bench:batched:limit", fixed(b.limit, 3));
     mrm::tex_define(out, "bench:batched:bytes", fixed(b.bytes, 1));
     mrm::tex_define(out, "bench:batched:plateau-percent", fixed(100 * b.plateau, 2));
@@ -932,14 +990,17 @@ void write_tex_values(std::ostream& out, const Options& o, const Results& r, con
     mrm::tex_define(out, "bench:batched:operations", fixed(batched_operations, 0));
     mrm::tex_define(out, "bench:batched:peak", fixed(1 / b.operation, 1));
     mrm::tex_define(out, "bench:batched:arithmetic", fixed(b.arithmetic, 3));
-    mrm::tex_define(out, "bench:batched:to-limit", fixed(b.per_target.front().median / b.limit, 2));
+    mrm::tex_define(out, "bench:batched:to-limit", fixed(b.per_target.front().value / b.limit, 2));
     mrm::tex_define(out, "bench:batched:bound", b.traffic >= b.arithmetic ? "memory traffic" : "arithmetic");
-    mrm::tex_define(out, "bench:batched:speedup-bound", fixed((*t)[v_cn].median / b.limit, 2));
-    mrm::tex_define(out, "bench:bare-x2:ns", fixed(b.bare_x2.median, 2));
+    mrm::tex_define(out, "bench:batched:speedup-bound", fixed((*t)[v_cn].value / b.limit, 2));
+    mrm::tex_define(out, "bench:bare-x2:ns", fixed(b.bare_x2.value, 2));
   }
-  mrm::tex_define(out, "bench:cn:slope", fixed(slope[v_cn], 3));
-  mrm::tex_define(out, "bench:be:slope", fixed(slope[v_be], 3));
-  mrm::tex_define(out, "bench:ps:slope", fixed(slope[v_ps], 3));
+  // The slopes, each given only when it can be trusted (slope_reason), else the reason.
+  for (const auto& [key, v] : {std::pair{"cn", v_cn}, std::pair{"be", v_be}, std::pair{"ps", v_ps}}) {
+    const std::string reason = slope_reason(slope[v], r.slope_error[v]);
+    mrm::tex_define(out, std::string("bench:") + key + (reason.empty() ? ":slope" : ":slope:na"),
+                    reason.empty() ? fixed(slope[v], 3) : reason);
+  }
   mrm::tex_define(out, "bench:slope-from", std::to_string(std::max<Index>(r.sizes.front(), Index{1} << 10)));
   mrm::tex_define(out, "bench:slope-to", std::to_string(std::min<Index>(r.sizes.back(), Index{1} << 20)));
   mrm::tex_define(out, "bench:memory:cn:bytes-per-node", fixed(Memory::bytes_per_node(m.cn_big, m.big), 0));
@@ -970,6 +1031,7 @@ int main(int argc, char** argv) {
     settle_options(parser, o);
     gsl_set_error_handler_off();
     use_thread_cpu_time = o.clock == "cpu";
+    use_minimum = o.statistic == "min";
 
     // 2. The outputs, opened now so that an unwritable path fails before the measurements.
     std::unique_ptr<cli::AtomicFile> data, table_tex, table_md;
@@ -996,7 +1058,7 @@ int main(int argc, char** argv) {
       out << "% bench_step: generated by `make bench` (or the short run of `make all`); timings depend on the\n"
              "% machine and its load. Two tables at the text size: the fast step, and the reference step.\n";
       write_tex_tables(out, results);
-      write_tex_values(out, o, results, memory, targets);
+      write_tex_values(out, o, results, memory, targets, load_before);
     }
     cli::commit_all({data.get(), table_tex.get(), table_md.get()});  // all three or none
     return 0;

@@ -98,15 +98,13 @@ std::vector<std::string> scheme_ids() {
 
 std::string scheme_help(const std::string& what) {
   std::string help = what + ":";
-  for (const SchemeInfo& info : scheme_registry()) help += " " + info.id + " = " + info.summary + ";";
-  help.pop_back();
+  for (const SchemeInfo& info : scheme_registry()) help += "\n" + info.id + " = " + info.summary;
   return help;
 }
 
 std::string benchmark_help(const std::string& what) {
   std::string help = what + ":";
-  for (const Label& label : benchmark_labels()) help += " " + label.id + " = " + label.plain + ";";
-  help.pop_back();
+  for (const Label& label : benchmark_labels()) help += "\n" + label.id + " = " + label.plain;
   return help;
 }
 

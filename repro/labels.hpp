@@ -45,7 +45,7 @@ const std::vector<std::string>& mass_names();
 std::vector<std::string> scheme_ids();
 
 /// The help text of a choice of scheme or benchmark: `what`, then each id with its registry summary
-/// (schemes) or its label (benchmarks).
+/// (schemes) or its label (benchmarks), one a line (the help lists them one a line: options.hpp).
 std::string scheme_help(const std::string& what);
 std::string benchmark_help(const std::string& what);
 

@@ -130,7 +130,8 @@ enum class Outcome { run, exit_success };
 // naming the option (exit 2).
 //
 // Each option has a long name ("--elements"), an optional short name ("-n", or "" for none), a
-// placeholder for its value in the help ("N"), one line of help, and is bound to the variable
+// placeholder for its value in the help ("N"), one paragraph of help (folded within 100 columns; each
+// further line after a '\n' is one item of a list of values, shown one a line), and is bound to the variable
 // that receives its value; the variable's value at registration is the default shown in the help
 // (an empty string shows none). On the command line a value follows its option as the next
 // argument or after '=' ("--elements 400", "--elements=400", "-n 400"). `--help`/`-h` and
@@ -170,6 +171,10 @@ class Parser {
 
   // An option without a value: giving it sets the variable to true.
   void add_flag(std::string long_name, std::string short_name, std::string help, bool* target);
+
+  // A registered option whose variable's value at registration means "not given" (a time step that
+  // --courant sets otherwise): the help shows no default for it.
+  void without_default(std::string_view long_name);
 
   // Two registered options that exclude each other:
   //   --dt and --courant cannot be given together

@@ -178,14 +178,17 @@ void fail(Program& program, const std::string& what) {
   ++program.failed;
 }
 
+// An option's line, `  -n, --name META  description`; its description may go on over the lines below,
+// indented to its column (a list of values one item a line, options.hpp), which are joined to it.
 void read_options(Program& program, const std::string& help) {
   static const std::regex line_pattern(R"(^  (-[A-Za-z], |    )(--[A-Za-z0-9-]+)( ([^ ]+))?  +(.*)$)");
-  static const std::regex choice_pattern(R"(\(one of: ([^;]*); default: ([^)]*)\)$)");
-  static const std::regex default_pattern(R"(\(default: ([^)]*)\)$)");
+  static const std::regex continuation_pattern(R"(^ {8,}(\S.*)$)");
+  static const std::regex choice_pattern(R"(\(one of: ([^;]*); default: ([^)]*)\))");
+  static const std::regex default_pattern(R"(\(default: ([^)]*)\))");
   static const std::regex conflict_pattern(R"(excludes (--[A-Za-z0-9-]+))");
   std::istringstream lines(help);
   std::string line;
-  bool in_options = false;
+  bool in_options = false, skipped = false;  // skipped: the last option line read was --help or --version
   while (std::getline(lines, line)) {
     if (line == "Options:") {
       in_options = true;
@@ -194,23 +197,32 @@ void read_options(Program& program, const std::string& help) {
     if (!in_options) continue;
     if (line.empty()) break;
     std::smatch match;
+    if (std::regex_match(line, match, continuation_pattern)) {
+      if (!skipped && !program.options.empty()) program.options.back().help += " " + match[1].str();
+      continue;
+    }
     if (!std::regex_match(line, match, line_pattern)) continue;
     Option option;
     option.name = match[2];
-    if (option.name == "--help" || option.name == "--version") continue;
+    skipped = option.name == "--help" || option.name == "--version";
+    if (skipped) continue;
     option.short_name = match[1].str() == "    " ? "" : match[1].str().substr(0, 2);
     option.metavar = match[4];
     option.help = match[5];
+    program.options.push_back(option);
+  }
+  for (Option& option : program.options) {
+    // The default is the parser's own "(default: X)" or "(one of: ...; default: X)": the last one of the
+    // help (its text may say "default" before it), at its end or before its list of values.
+    for (const std::regex* pattern : {&default_pattern, &choice_pattern})
+      for (std::sregex_iterator match(option.help.begin(), option.help.end(), *pattern), end; match != end; ++match)
+        option.default_value = (*match)[match->size() - 1];
     std::smatch part;
-    if (std::regex_search(option.help, part, choice_pattern) || std::regex_search(option.help, part, default_pattern)) {
-      option.default_value = part[part.size() - 1];
-    }
     if (std::regex_search(option.help, part, conflict_pattern)) program.conflicts.emplace_back(option.name, part[1]);
     if (!option.metavar.empty() &&
         (option.name.find("output") != std::string::npos || option.help.find("write") != std::string::npos)) {
       program.output_options.push_back(option.name);
     }
-    program.options.push_back(option);
   }
 }
 
@@ -286,6 +298,14 @@ void check_help_and_version(Program& program) {
       }
     } else if (result.out.rfind("Usage: " + program.name + " [options]\n", 0) != 0) {
       fail(program, request + ": the help does not start with \"Usage: " + program.name + " [options]\"");
+    } else {
+      // A terminal's width: every line of the help within 100 columns (characters, not bytes).
+      std::istringstream lines(result.out);
+      std::string line;
+      while (std::getline(lines, line)) {
+        const auto columns = std::count_if(line.begin(), line.end(), [](char c) { return (c & 0xC0) != 0x80; });
+        if (columns > 100) fail(program, request + ": a help line of " + std::to_string(columns) + " columns: " + line);
+      }
     }
   }
 }

@@ -393,6 +393,7 @@ compare_with_unit() {  # compare_with_unit L A: the summary in $out against the 
   awk -v L="$length" -v a="$amplitude" -v unit="$work/unit_summary" '
     function finite(x) { return x ~ /^-?[0-9]+(\.[0-9]+)?(e[-+][0-9]+)?$/ }
     BEGIN { while ((getline line < unit) > 0) { split(line, f, " = "); base[f[1]] = f[2] } }
+    /^# / { next }  # the configuration bar1d echoes first, not a measure
     {
       split($0, f, " = "); key = f[1]; value = f[2]
       if (key == "stress") { if (value != base[key]) printf "stress = %s, the unit bar reports %s\n", value, base[key]; next }
@@ -423,7 +424,7 @@ for scheme in be ps; do
   begin numbers "bar1d -s $scheme -L 1e100 -a 1e100: every value finite"
   run "$small" bar1d -s "$scheme" -n 20 -L 1e100 -a 1e100 -T 3e100 --no-timing
   expect_status 0
-  grep -v -E '^([A-Za-z_0-9]+ = (-?[0-9.]+(e[-+][0-9]+)?|n/a: .+)|stress = [a-z]+)$' "$out" | grep -q . && fail "non-finite values: $(grep -v -E '= -?[0-9]' "$out" | head -n 2 | tr '\n' ' ')"
+  grep -v -E '^([A-Za-z_0-9]+ = (-?[0-9.]+(e[-+][0-9]+)?|n/a: .+)|stress = [a-z]+|# [a-z_0-9]+ = .+)$' "$out" | grep -q . && fail "non-finite values: $(grep -v -E '= -?[0-9]' "$out" | head -n 2 | tr '\n' ' ')"
   begin numbers "bar1d -s $scheme -L 1e-100 -a 1e-100 --output: every value of the series finite"
   run "$small" bar1d -s "$scheme" -n 20 -L 1e-100 -a 1e-100 -T 3e-100 --no-timing --output s.dat
   expect_status 0
@@ -431,17 +432,18 @@ for scheme in be ps; do
   bad=$(grep -v '^#' s.dat | awk '{ for (i = 1; i <= NF; ++i) if (i != 5 && $i !~ /^-?[0-9.]+(e[-+][0-9]+)?$/) { print; exit } }')
   [[ -z $bad ]] || fail "a non-finite value in the series: $bad"
   # (max_penetration is exactly 0 for these schemes: they enforce the constraint at the levels.)
-  grep -v '^max_penetration = ' "$out" | grep -q ' = 0$' && fail "an error of exactly 0: $(grep ' = 0$' "$out" | head -n 1)"
+  grep -v -e '^max_penetration = ' -e '^# ' "$out" | grep -q ' = 0$' && fail "an error of exactly 0: $(grep ' = 0$' "$out" | head -n 1)"
 done
 # A value that cannot be computed is printed as "name = n/a: the reason" (never nan): accepted beside
-# the finite numbers, here and above; so is the name of the contact stress bar1d reports (stress = NAME).
+# the finite numbers, here and above; so are the name of the contact stress bar1d reports (stress = NAME)
+# and the configuration it echoes first (# key = value).
 begin numbers "bar1d at the ends of the other ranges (-c 1e6, -b 1e6): finite values or a refusal"
 for arguments in "-c 1e6 -n 2 -T 3" "-s ps -b 1e6 -T 3" "-s ps -b 1e6 -c 1e6 -n 2 -T 1e6" "-s be -c 1e6 -n 1000 -T 3" \
   "-s ps --ps-form literal -b 1e-300 -T 3" "-s ps --ps-form literal -b 4.9e-324 -n 4 -T 1" "-e 1 -s ps -T 3"; do
   # shellcheck disable=SC2086
   run "$small" bar1d $arguments --no-timing
   if ((status == 0)); then
-    grep -v -E '^([A-Za-z_0-9]+ = (-?[0-9.]+(e[-+][0-9]+)?|n/a: .+)|stress = [a-z]+)$' "$out" | grep -q . && fail "bar1d $arguments: non-finite values"
+    grep -v -E '^([A-Za-z_0-9]+ = (-?[0-9.]+(e[-+][0-9]+)?|n/a: .+)|stress = [a-z]+|# [a-z_0-9]+ = .+)$' "$out" | grep -q . && fail "bar1d $arguments: non-finite values"
   elif ((status == 2)); then
     [[ $(wc -l <"$err") == 1 ]] || fail "bar1d $arguments: refusal without one line"
   else

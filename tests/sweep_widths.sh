@@ -13,7 +13,7 @@ trap 'rm -rf "$dir"' EXIT
 grid=(--schemes cn,be,ps,ec,cn-switch --masses mod1,mod3 --elements 16,24 --courants 0.5,1.5 --final-time 4)
 
 # The targets, from the help's list of choices of --vector ("one of: widest, none, AVX3, ...").
-choices=$("$bin/sweep" --help | tr '\n' ' ' | sed -n 's/.*--vector W.*(one of: \([^;]*\); default: widest).*/\1/p')
+choices=$("$bin/sweep" --help | tr '\n' ' ' | tr -s ' ' | sed -n 's/.*--vector W.*(one of: \([^;]*\); default: widest).*/\1/p')
 [[ -n $choices ]] || { echo "sweep --help lists no choices of --vector"; exit 1; }
 IFS=', ' read -r -a widths <<< "$choices"
 [[ " ${widths[*]} " == *" none "* && " ${widths[*]} " == *" widest "* ]] || { echo "unexpected --vector choices: $choices"; exit 1; }

@@ -61,19 +61,63 @@ std::string echo_key(std::string_view long_name) {
   return key;
 }
 
+// The columns a UTF-8 text takes on a terminal: its characters (every byte but the continuation bytes
+// 10xxxxxx of a multi-byte character).
+std::size_t columns(std::string_view text) {
+  return static_cast<std::size_t>(
+      std::count_if(text.begin(), text.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+}
+
 // The description in the help is one paragraph, folded at word boundaries into lines of at most
-// `width` characters (a longer word gets a line of its own).
-std::string wrapped(std::string_view paragraph, std::size_t width = 80) {
+// `width` columns (a longer word gets a line of its own), the first line after `first`, the others
+// after `rest` (the widths count them).
+std::string wrapped(std::string_view paragraph, std::size_t width = 80, const std::string& first = "",
+                    const std::string& rest = "") {
   std::istringstream words{std::string(paragraph)};
-  std::string result, line, word;
+  std::string result, line = first, word;
+  bool empty = true;  // no word on the current line yet
   while (words >> word) {
-    if (!line.empty() && line.size() + 1 + word.size() > width) {
+    if (!empty && columns(line) + 1 + columns(word) > width) {
       result += line + '\n';
-      line.clear();
+      line = rest;
+      empty = true;
     }
-    line += (line.empty() ? "" : " ") + word;
+    line += (empty ? "" : " ") + word;
+    empty = false;
   }
-  return line.empty() ? result : result + line + '\n';
+  return empty && result.empty() ? result : result + line + '\n';
+}
+
+// The widest line of a help (a terminal's 100 columns): an option's description is folded into the
+// column after the names, each item of a list of values on a line of its own, folded under its start.
+constexpr std::size_t help_width = 100;
+
+// An option's help: its first line is a paragraph, and each further line ('\n'-separated) one item of
+// a list of values ("cn = Crank–Nicolson ..."). `column` spaces precede the description.
+std::string option_description(std::string_view help, std::size_t column) {
+  const std::string indent(column, ' '), item_indent(column + 2, ' '), item_rest(column + 4, ' ');
+  const std::size_t newline = help.find('\n');
+  std::string text = wrapped(help.substr(0, newline), help_width, indent, indent);
+  for (std::size_t start = newline; start != std::string_view::npos;) {
+    const std::size_t end = help.find('\n', start + 1);
+    text += wrapped(help.substr(start + 1, end == std::string_view::npos ? end : end - start - 1), help_width,
+                    item_indent, item_rest);
+    start = end;
+  }
+  return text;
+}
+
+// A sample run longer than the help's width, folded as a shell continues a command ("\\" at the end of a
+// line, the next one indented).
+std::string sample_run(const std::string& run) {
+  const std::string text = wrapped(run, help_width - 2, "  ", "      ");
+  std::string result;
+  for (std::size_t start = 0; start < text.size();) {
+    const std::size_t end = text.find('\n', start);
+    result += text.substr(start, end - start) + (end + 1 < text.size() ? " \\\n" : "\n");
+    start = end + 1;
+  }
+  return result;
 }
 
 std::string joined(const std::vector<std::string>& words) {
@@ -106,11 +150,13 @@ class Help : public CLI::Formatter {
     std::string help = "Usage: " + app->get_name() + " [options]\n";
     if (!app->get_description().empty()) help += '\n' + wrapped(app->get_description());
     help += "\nOptions:\n";
-    for (const auto& [names, text] : lines) help += names + std::string(width + 2 - names.size(), ' ') + text + '\n';
+    for (const auto& [names, text] : lines)
+      help +=
+          names + std::string(width + 2 - names.size(), ' ') + option_description(text, width + 2).substr(width + 2);
     // What an output option does with the path it is given (output_file.hpp), said once.
     if (writes_files) help += "\nOutput files:\n" + wrapped(output_files_help);
     if (!sample_runs_.empty()) help += "\nSample runs:\n";
-    for (const std::string& run : sample_runs_) help += "  " + run + '\n';
+    for (const std::string& run : sample_runs_) help += sample_run(run);
     return help;
   }
 
@@ -131,6 +177,8 @@ TEST_CASE("option names are recognised by their form") {
 
 TEST_CASE("a paragraph is folded at word boundaries within the width") {
   CHECK(wrapped("the  quick brown\nfox jumps", 10) == "the quick\nbrown fox\njumps\n");
+  CHECK(wrapped("θθθθ βββββ", 10) == "θθθθ βββββ\n");  // ten columns, eighteen bytes
+  CHECK(columns("Crank–Nicolson") == 14);
   CHECK(wrapped("a verylongword b", 5) == "a\nverylongword\nb\n");
   CHECK(wrapped("", 10).empty());
 }
@@ -144,8 +192,52 @@ struct Parser::Option {
   std::vector<std::string> allowed;
   bool path = false;
   CLI::Option* cli = nullptr;
-  int file = 0;  // 1: a file written (add_output), 2: a file read (add_input)
+  int file = 0;                    // 1: a file written (add_output), 2: a file read (add_input)
+  std::string help, default_text;  // as registered, and the variable's value then
 };
+
+namespace {
+
+// An option's description in the help: its help, with the default (the variable's value at
+// registration) and, for a choice, the allowed values, appended to the help's first paragraph. A help
+// that lists its values one a line (each after a '\n') lists the choices itself: "(default: cn)" then
+// comes before the list, in place of a closing ':'.
+std::string described(const std::string& help, const std::vector<std::string>& allowed, const std::string& default_text,
+                      bool shows_default) {
+  std::string suffix;
+  const std::size_t newline = help.find('\n');
+  if (!allowed.empty() && newline == std::string::npos)
+    suffix = " (one of: " + joined(allowed) + "; default: " + default_text + ")";
+  else if (!default_text.empty() && shows_default)
+    suffix = " (default: " + default_text + ")";
+  if (newline == std::string::npos) return help + suffix;
+  const bool colon = newline > 0 && help[newline - 1] == ':';
+  return help.substr(0, newline - colon) + suffix + (colon ? ":" : "") + help.substr(newline);
+}
+
+}  // namespace
+
+TEST_CASE("an option's description carries its default, and its choices unless it lists them") {
+  CHECK(described("time step", {}, "0.5", true) == "time step (default: 0.5)");
+  CHECK(described("time step", {}, "0", false) == "time step");
+  CHECK(described("output", {}, "", true) == "output");
+  CHECK(described("scheme", {"a", "b"}, "a", true) == "scheme (one of: a, b; default: a)");
+  CHECK(described("scheme:\na = first\nb = second", {"a", "b"}, "a", true) ==
+        "scheme (default: a):\na = first\nb = second");
+  CHECK(described("scheme\na = first", {"a"}, "a", true) == "scheme (default: a)\na = first");
+}
+
+TEST_CASE("an option's description is folded within the help's width, a list one item a line") {
+  const std::string long_text(30, 'x');
+  // Three words of 30 characters after a column of 20: two on a line (20 + 61 <= 100), the third below.
+  CHECK(option_description(long_text + " " + long_text + " " + long_text, 20) ==
+        std::string(20, ' ') + long_text + " " + long_text + "\n" + std::string(20, ' ') + long_text + "\n");
+  CHECK(option_description("scheme:\na = first\nb = second", 4) == "    scheme:\n      a = first\n      b = second\n");
+  CHECK(sample_run("run --a 1") == "  run --a 1\n");
+  const std::string run = "bench --output " + std::string(50, 'o') + " --tex " + std::string(40, 't');
+  CHECK(sample_run(run) ==
+        "  bench --output " + std::string(50, 'o') + " --tex \\\n      " + std::string(40, 't') + "\n");
+}
 
 // CLI11 knows the help flag from the start; --version prints "<program> <version>".
 Parser::Parser(std::string program, std::string description, std::vector<std::string> sample_runs)
@@ -182,19 +274,17 @@ void Parser::add(std::string long_name, std::string short_name, std::string meta
       target);
   if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), default_text) == allowed.end())
     throw std::logic_error("Parser: the default of " + long_name + " is not one of its allowed values");
-  if (!allowed.empty())
-    help += " (one of: " + joined(allowed) + "; default: " + default_text + ")";
-  else if (!default_text.empty())
-    help += " (default: " + default_text + ")";
+  const std::string description = described(help, allowed, default_text, true);
   const std::string names = short_name.empty() ? long_name : short_name + "," + long_name;
   try {
     if (flag) {
-      options_.push_back({long_name, target, {}, {}, false, app_->add_flag(names)->description(help)});
+      options_.push_back(
+          {long_name, target, {}, {}, false, app_->add_flag(names)->description(description), 0, help, default_text});
       options_.back().cli->disable_flag_override();
       return;
     }
     options_.push_back({long_name, target, std::move(check), std::move(allowed), file != 0 || metavar == "FILE",
-                        app_->add_option(names)->description(help), file});
+                        app_->add_option(names)->description(description), file, help, default_text});
   } catch (const CLI::ConstructionError& error) {
     throw std::logic_error("Parser: " + long_name + ": " + error.what());
   }
@@ -264,6 +354,14 @@ const Parser::Option& Parser::registered(std::string_view long_name) const {
 }
 
 bool Parser::given(std::string_view long_name) const { return registered(long_name).cli->count() > 0; }
+
+void Parser::without_default(std::string_view long_name) {
+  registered(long_name);  // a programming error if it is not
+  for (Option& option : options_)
+    if (option.long_name == long_name) {
+      option.cli->description(described(option.help, option.allowed, option.default_text, false));
+    }
+}
 
 // The parse loop is CLI11's; around it, what CLI11 would let through or word otherwise. Before:
 // "--" (CLI11's end of options) is an unknown option, and "--name=" gives the empty value

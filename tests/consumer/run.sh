@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# ctest install_consumer: installs the method library from the build tree BUILD into a fresh prefix,
+# ctest install_consumer: builds the installed method library (the target mrm: lib/ without its doctests,
+# which the default build does not make), installs it from the build tree BUILD into a fresh prefix,
 # configures and builds the consumer project SOURCE (tests/consumer) against it with find_package(mrm),
 # runs it, and checks that the Mod 3 total mass it prints equals the length L it prints, to round-off
 # (|total − L| ≤ 64 ε L: a sum of about 3N entries of size h, each with one rounding).
@@ -9,7 +10,8 @@ build=$1 source=$2 cxx=${3:-c++} flags=${4:-}
 work=$(mktemp -d "${TMPDIR:-/tmp}/mrm-consumer.XXXXXX")
 trap 'rm -rf -- "$work"' EXIT
 
-cmake --install "$build" --prefix "$work/prefix" >"$work/install.log" || { cat "$work/install.log"; exit 1; }
+cmake --build "$build" --target mrm >"$work/install.log" 2>&1 || { cat "$work/install.log"; exit 1; }
+cmake --install "$build" --prefix "$work/prefix" >>"$work/install.log" || { cat "$work/install.log"; exit 1; }
 for f in lib/libmrm.a include/mrm/core/problem.hpp include/mrm/fem/p1.hpp lib/cmake/mrm/mrmConfig.cmake lib/cmake/mrm/mrmConfigVersion.cmake; do
   [[ -f $work/prefix/$f ]] || { echo "install_consumer: $f was not installed"; exit 1; }
 done
