@@ -228,6 +228,14 @@ void declare_options(cli::Parser& parser, Options& o) {
   parser.add_conflict("--dt", "--courant");
   parser.add_conflict("--interior-mass", "--phase-matched");
   parser.add_conflict("--initial-data", "--benchmark");
+  // A peer runs its demo's problem (the paper's bar, L = 1, a = 1/2, a uniform mesh) and its measures are
+  // the demo's against that problem's exact solution (repro/peers.hpp): an option that changes the problem
+  // does not apply with a peer (its discretisation options do: --elements, --dt, --scheme, --mass, ...).
+  for (const char* option : {"--benchmark", "--initial-data", "--length", "--amplitude", "--grading"})
+    parser.add_not_applicable(option, "--peer",
+                              "a peer runs its demo's problem, the paper's bar with L = 1 and a = 1/2 on a uniform "
+                              "mesh; allowed: omit it, or --peer none",
+                              [&o] { return o.peer != "none"; });
 }
 
 // The values the options leave open (a peer's defaults, a benchmark's horizon) and the combinations
@@ -271,6 +279,20 @@ void resolve_options(const cli::Parser& parser, Options& o, Run& r) {
   // Each parameter the scheme takes: given, or else the peer's, or else the library's default.
   r.scheme_parameters = o.scheme_options.parameters(
       parser, r.scheme_id, r.use_peer ? mrm::repro::peer_preset(o.peer).scheme : mrm::SchemeParameters{});
+  // GetFEM's demo starts Paoli-Schatzman (getfem-v1) by its own Newmark (beta, 1/2) step: the explicit step
+  // at beta = 0 (the preset's --ps-start explicit) and the trapezoidal one, Crank-Nicolson's, at beta = 1/4
+  // (the demo's implicit Newmark with the impulse is, V eliminated, the three-level scheme with the same
+  // beta; doc/peer.md). A --beta given with the peer takes the start that is the demo's; for another beta
+  // no start of this library is the demo's, and --ps-start must say which to take.
+  if (r.use_peer && parser.given("--beta") && !parser.given("--ps-start") &&
+      mrm::repro::peer_preset(o.peer).scheme.scheme == mrm::Scheme::paoli_schatzman &&
+      r.scheme_id == mrm::Scheme::paoli_schatzman) {
+    if (r.scheme_parameters.beta != 0.0 && r.scheme_parameters.beta != 0.25)
+      throw cli::UsageError("--beta: " + cli::format_real(r.scheme_parameters.beta) + " with --peer " + o.peer +
+                            ", whose demo starts by its Newmark (beta, 1/2) step, which this library has for beta = 0 "
+                            "(explicit) and 1/4 (cn) only (allowed: 0 or 0.25, or choose the start with --ps-start)");
+    r.scheme_parameters.ps_explicit_start = r.scheme_parameters.beta == 0.0;
+  }
   // Two bodies (two-bars, lib/time/two_bodies.hpp): Crank-Nicolson with a massless contact node on each bar,
   // measured by run_configuration; the options of one body's run do not apply.
   r.two_bodies = r.field_benchmark && mrm::is_two_body_chain(mrm::impact_benchmark(o.benchmark).configuration);
@@ -581,7 +603,19 @@ void print_results(const Options& o, const Run& r, const TotalEnergy& total) {
     const auto peer_values = r.peer_measures->values();
     for (std::size_t k = 0; k < peer_values.size(); ++k)
       std::cout << "peer_" << mrm::repro::PeerMeasures::names[k] << " = " << cli::format_real(peer_values[k]) << '\n';
-    std::cout << "peer_formulation = " << mrm::repro::peer_preset(o.peer).formulation << '\n';
+    // The preset's formulation, or, for getfem-v1 with a --beta of its own, the same words with that beta
+    // and the start it takes (resolve_options).
+    const mrm::repro::PeerPreset& preset = mrm::repro::peer_preset(o.peer);
+    const mrm::SchemeParameters& p = r.configuration.scheme;
+    const bool own_beta = preset.scheme.scheme == mrm::Scheme::paoli_schatzman &&
+                          p.scheme == mrm::Scheme::paoli_schatzman && p.beta != preset.scheme.beta;
+    std::cout << "peer_formulation = "
+              << (own_beta ? "ps: three-level Paoli-Schatzman (beta = " + cli::format_real(p.beta) +
+                                 "), the literal contact row, e = e_PS, started by " +
+                                 (p.ps_explicit_start ? "the explicit Newmark step"
+                                                      : "one Crank-Nicolson step (the demo's Newmark (1/4, 1/2) step)")
+                           : preset.formulation)
+              << '\n';
   }
   std::cout << "impacts = " << r.measures.impacts.size() << '\n';
   if (!r.measures.impacts.empty() && !r.measures.phase)
@@ -601,12 +635,17 @@ void print_results(const Options& o, const Run& r, const TotalEnergy& total) {
               << "period_law_drift_per_period = " << cli::format_real(law.period_error) << '\n';
     // On a graded mesh: h0 and the coarsest element, and the first-order law's change of the
     // drift against Mod 3's on the same mesh, Σ δm_i κ(x_i) (period_law.cpp, "unequal elements").
+    // The first-order law compares redistributions (a massless contact node): for a mass that keeps the
+    // node's inertia the value is n/a with the reason, not an error after the results.
     if (o.grading != 1.0)
       std::cout << "grading = " << cli::format_real(o.grading) << '\n'
                 << "h0 = " << cli::format_real(r.mesh.h(0)) << '\n'
                 << "h_max = " << cli::format_real(r.mesh.h(o.elements - 1)) << '\n'
                 << "period_law_first_order_drift_change_vs_mod3 = "
-                << cli::format_real(mrm::first_order_period_change(r.mesh, r.configuration.mass)) << '\n';
+                << (r.massless ? cli::format_real(mrm::first_order_period_change(r.mesh, r.configuration.mass))
+                               : "n/a: the mass " + o.mass +
+                                     " keeps the inertia of the contact node (the law compares redistributions)")
+                << '\n';
   }
   // On a field benchmark: the exact contact windows over [0, T] (lib/exact/impact_solution.hpp, computed in the
   // benchmark's own units) and the run's (the crossings of the contact indicator, phase.hpp), in the

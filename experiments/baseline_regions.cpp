@@ -256,8 +256,7 @@ int main(int argc, char** argv) {
         "100, 400, 1600, dt/h = 1/4, 1/2, 1, over 1, 10, 30 and 1000 periods (as far as each mesh's cost allows).",
         {"baseline_regions --output output/data/baseline_regions.dat --tex output/data/baseline_regions.tex",
          "baseline_regions --threads 1 --output b.dat"});
-    program.parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it",
-                               &threads, cli::at_least(1));
+    cli::add_threads_option(program.parser, &threads);
     if (!program.parse(argc, argv, "also write the tables and the values the report quotes")) return 0;
 
     // 2. Outputs, and the grid with the longest horizon each mesh allows (the cost, above).

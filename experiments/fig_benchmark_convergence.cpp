@@ -369,8 +369,7 @@ int main(int argc, char** argv) {
                                &coarsest, cli::in_closed_range(5, 1000));
     program.parser.add_integer("--refinements", "-k", "K", "number of meshes N0, 2 N0, ..., 2^(K-1) N0, in [2, 6]",
                                &refinements, cli::in_closed_range(2, 6));
-    program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
-                               &threads, cli::in_closed_range(1, cli::max_threads));
+    cli::add_threads_option(program.parser, &threads);
     if (!program.parse(argc, argv, "also write the tables and values the report quotes")) return 0;
     if (coarsest % 5 != 0)
       throw cli::UsageError("--coarsest: " + std::to_string(coarsest) +
@@ -422,6 +421,7 @@ int main(int argc, char** argv) {
     }
     mrm::repro::SweepSettings settings = mrm::repro::sweep_settings();
     settings.threads = static_cast<unsigned>(threads);
+    mrm::repro::require_batched_memory("--coarsest", configurations, settings);  // before any run
     const auto start = std::chrono::steady_clock::now();
     const std::vector<mrm::repro::Measures> measures =
         mrm::repro::run_batched(configurations, settings, {}, keys, true, tasks);

@@ -737,8 +737,7 @@ int main(int argc, char** argv) {
         "1000 impacts on N = 25.",
         {"fig_classes --output output/data/fig_classes.dat --tex output/data/fig_classes.tex",
          "fig_classes --threads 1 --no-timing --output c.dat"});
-    program.parser.add_integer("--threads", "-j", "J", "worker threads (>= 1); the output does not depend on it",
-                               &threads, cli::at_least(1));
+    cli::add_threads_option(program.parser, &threads);
     program.parser.add_flag("--no-timing", "",
                             "leave out the wall times and costs per step on standard output (the only values "
                             "that vary from run to run; they are never in the data file)",

@@ -191,13 +191,12 @@ int main(int argc, char** argv) {
     program.add_final_time(3.0, "final time (> 0); one period is 3");
     program.parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
                               {"algebraic", "literal"}, &ps_form);
-    program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
-                               &threads, cli::in_closed_range(1, cli::max_threads));
+    cli::add_threads_option(program.parser, &threads);
     if (!program.parse(argc, argv, "also write the tables and values the report quotes")) return 0;
     const double final_time = program.final_time;
-    // The finest mesh (K ≤ 20 and N0 ≤ 1e7: the product is exact in a double), its steps at Δt = h/2, the
-    // coarsest run's at Δt = h (at least one), and the memory of the runs that may run at once: the
-    // longest go first, so up to `threads` of the 18 finest ones.
+    // The finest mesh (K ≤ 20 and N0 ≤ 1e7: the product is exact in a double), its steps at Δt = h/2 and the
+    // coarsest run's at Δt = h (at least one); the memory of the runs that may run at once (the batches of
+    // the 18 finest, on up to `threads` workers) is checked before the runs (require_batched_memory).
     const double finest_elements = std::ldexp(static_cast<double>(coarsest), static_cast<int>(refinements) - 1);
     if (!(finest_elements <= cli::max_elements))
       throw cli::UsageError("--refinements: " + std::to_string(refinements) + " meshes from N0 = " +
@@ -206,8 +205,6 @@ int main(int argc, char** argv) {
     cli::checked_steps("--final-time", final_time, 0.5 / finest_elements,
                        "the finest mesh size (lower --coarsest or --refinements)");
     cli::checked_steps("--final-time", final_time, 1.0 / static_cast<double>(coarsest), "--coarsest");
-    cli::require_mesh_memory("--coarsest", finest_elements, mrm::repro::bytes_per_element,
-                             std::min<double>(static_cast<double>(threads), 18));
 
     // 2. Outputs.
     program.open();
@@ -235,6 +232,7 @@ int main(int argc, char** argv) {
                                                                courants[r.courant], final_time));
     mrm::repro::SweepSettings settings = mrm::repro::sweep_settings();
     settings.threads = static_cast<unsigned>(threads);
+    mrm::repro::require_batched_memory("--coarsest", configurations, settings);  // before any run
     const std::vector<mrm::repro::Measures> measures = mrm::repro::run_batched(configurations, settings);
     for (std::size_t k = 0; k < runs.size(); ++k) runs[k].errors = mrm::ErrorAccumulator::values(measures[k].errors);
     std::cerr << "fig_convergence: " << runs.size() << " runs done\n";

@@ -365,8 +365,7 @@ int main(int argc, char** argv) {
         "cn-switch: theta of its switching step; only 1, the one theta whose energy identity proves no "
         "gain (lib/time/schemes.hpp)",
         &switch_theta, cli::in_closed_range(mrm::switch_theta_without_gain, 1));
-    program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 64]; the output does not depend on it",
-                               &threads, cli::in_closed_range(1, 64));
+    cli::add_threads_option(program.parser, &threads);
     if (!program.parse(argc, argv, "also write the values and tables the report quotes, as \\mrmdef lines")) return 0;
     const long elements = program.elements;
     if (view != "history" && program.parser.given("--elements"))

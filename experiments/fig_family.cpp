@@ -243,8 +243,7 @@ int main(int argc, char** argv) {
         "times per period beside the period law's prediction, and the errors relative to Mod 3.",
         {"fig_family --output output/data/fig_family.dat --tex output/data/fig_family.tex",
          "fig_family --threads 1 --output f.dat"});
-    program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
-                               &threads, cli::in_closed_range(1, cli::max_threads));
+    cli::add_threads_option(program.parser, &threads);
     if (!program.parse(argc, argv, "also write the values the report quotes")) return 0;
 
     // 2. Outputs.

@@ -323,8 +323,7 @@ int main(int argc, char** argv) {
     program.parser.add_integer("--field-refinements", "", "KF",
                                "the first KF meshes for the field's benchmarks bouncing and impacting, in [2, K]",
                                &field_refinements, cli::in_closed_range(2, 8));
-    program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
-                               &threads, cli::in_closed_range(1, cli::max_threads));
+    cli::add_threads_option(program.parser, &threads);
     if (!program.parse(argc, argv, "also write the tables and values the report quotes")) return 0;
     if (long_refinements > refinements)
       throw cli::UsageError("--long-refinements: at most --refinements (allowed: 2..K)");
@@ -362,6 +361,7 @@ int main(int argc, char** argv) {
     }
     mrm::repro::SweepSettings settings = mrm::repro::sweep_settings();
     settings.threads = static_cast<unsigned>(threads);
+    mrm::repro::require_batched_memory("--coarsest", configurations, settings);  // before any run
     const std::vector<mrm::repro::Measures> measures = mrm::repro::run_batched(configurations, settings);
     for (std::size_t k = 0; k < runs.size(); ++k) {
       for (const mrm::ErrorNorms& e : measures[k].horizon_errors)

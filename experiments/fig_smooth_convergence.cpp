@@ -140,8 +140,7 @@ int main(int argc, char** argv) {
                                cli::at_least(2));
     program.parser.add_integer("--refinements", "-k", "K", "number of meshes N0, 2 N0, ..., 2^(K-1) N0, in [2, 12]",
                                &refinements, cli::in_closed_range(2, 12));
-    program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
-                               &threads, cli::in_closed_range(1, cli::max_threads));
+    cli::add_threads_option(program.parser, &threads);
     if (!program.parse(argc, argv, "also write the tables and values the report quotes")) return 0;
     if (!(static_cast<double>(coarsest) * std::ldexp(1.0, static_cast<int>(refinements - 1)) <= 1e5))
       throw cli::UsageError("--coarsest: the finest mesh N0 2^(K-1) must be at most 1e5 elements");
@@ -178,6 +177,7 @@ int main(int argc, char** argv) {
     }
     mrm::repro::SweepSettings settings = mrm::repro::sweep_settings();
     settings.threads = static_cast<unsigned>(threads);
+    mrm::repro::require_batched_memory("--coarsest", configurations, settings);  // before any run
     const std::vector<mrm::repro::Measures> measures = mrm::repro::run_batched(configurations, settings);
     for (std::size_t k = 0; k < runs.size(); ++k) runs[k].errors = mrm::ErrorAccumulator::values(measures[k].errors);
     std::cerr << "fig_smooth_convergence: " << runs.size() << " runs in "

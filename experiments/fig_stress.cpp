@@ -288,8 +288,7 @@ int main(int argc, char** argv) {
                                &coarsest, cli::in_closed_range(10, 10000));
     program.parser.add_integer("--refinements", "-k", "K", "meshes N0, 4 N0, ..., 4^(K-1) N0, in [2, 5]", &refinements,
                                cli::in_closed_range(2, 5));
-    program.parser.add_integer("--threads", "-j", "J", "worker threads, in [1, 256]; the output does not depend on it",
-                               &threads, cli::in_closed_range(1, cli::max_threads));
+    cli::add_threads_option(program.parser, &threads);
     if (!program.parse(argc, argv, "also write the table and values the report quotes")) return 0;
     if (!(static_cast<double>(coarsest) * std::pow(4.0, static_cast<double>(refinements - 1)) <= 1e4))
       throw cli::UsageError("--coarsest: the finest mesh N0 4^(K-1) must be at most 1e4 elements");
@@ -320,6 +319,7 @@ int main(int argc, char** argv) {
     const auto start = std::chrono::steady_clock::now();
     mrm::repro::SweepSettings settings;
     settings.threads = static_cast<unsigned>(threads);
+    mrm::repro::require_batched_memory("--coarsest", configurations, settings);  // before any run
     const std::vector<mrm::repro::Measures> measures = mrm::repro::run_batched(configurations, settings);
     for (std::size_t k = 0; k < runs.size(); ++k) {
       Run& r = runs[k];

@@ -19,6 +19,7 @@
 #include <doctest/doctest.h>
 
 #include "options.hpp"
+#include "output_file.hpp"
 #include "run_limits.hpp"
 
 namespace mrm::repro {
@@ -38,10 +39,14 @@ bool read_number(const std::string& token, double& value) try {
 
 InitialData read_initial_data(const std::string& path, std::string_view option) {
   const std::string where = std::string(option) + ": " + cli::quoted_text(path);
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) throw cli::UsageError(where + ": is a directory, not a file");
+  // A regular file only: it is read twice (counted, then parsed), which a pipe cannot be, and a FIFO
+  // without a writer would block the program.
+  const std::string problem = cli::input_file_problem(path);
+  if (problem == "is a directory, not a file") throw cli::UsageError(where + ": " + problem);
+  if (!problem.empty() && problem.rfind("is ", 0) == 0)
+    throw cli::UsageError(where + ": " + problem + " (allowed: a regular file of columns x u0 v0, read twice)");
   std::ifstream in(path);
-  if (!in) throw cli::UsageError(where + ": cannot open the file (expected columns x u0 v0)");
+  if (!problem.empty() || !in) throw cli::UsageError(where + ": cannot open the file (expected columns x u0 v0)");
   // The samples are counted first (a line that is not blank nor a comment), so that a file too large
   // for the memory is refused before it is read: a sample takes about 200 bytes here and in the
   // piecewise data (its numbers, its line, a piece with two polynomials), 512 with a margin.

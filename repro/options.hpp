@@ -180,11 +180,21 @@ class Parser {
   //   --dt and --courant cannot be given together
   void add_conflict(std::string_view first_long_name, std::string_view second_long_name);
 
+  // An option that does not apply when another one is given (a mode of the program that does not use
+  // it, a preset that fixes what it would change): the two given together are refused after the parse,
+  // with one line naming both, the other's value and what is allowed (`reason`), e.g.
+  //   --threads: does not apply with --merge "runs" (the merge runs nothing; allowed: omit --threads)
+  // `when`, if set, is asked after the parse whether the rule holds (for some values of `other` only).
+  // The rules are checked in the order of declaration, after the ranges.
+  void add_not_applicable(std::string long_name, std::string other_long_name, std::string reason,
+                          std::function<bool()> when = {});
+
   // Reads the arguments (argv[0] is the program's own name and is skipped; the vector form has
   // the arguments only). Prints the help or the version on `out` and returns exit_success if
   // asked to; otherwise stores the values, applies the checks and the conflicts, and returns
   // run. Throws UsageError on: an unknown option, a missing value, an option given twice, a
-  // malformed or rejected value, a value given to a flag, a positional argument.
+  // malformed or rejected value, a value given to a flag ("--verbose=true" too), a positional
+  // argument, an option that does not apply (add_not_applicable).
   Outcome parse(int argc, const char* const* argv, std::ostream& out);
   Outcome parse(const std::vector<std::string>& arguments, std::ostream& out);
 
@@ -214,15 +224,21 @@ class Parser {
   std::unique_ptr<CLI::App> app_;
   std::vector<Option> options_;
   std::vector<std::pair<std::string, std::string>> conflicts_;
+  struct NotApplicable;
+  std::vector<NotApplicable> not_applicable_;
+  void refuse_not_applicable() const;
 };
 
 // Runs a program's body and turns its exceptions into an exit status and one line on `errors`:
 //   UsageError            "<program>: <message>"         status 2
+//   std::bad_alloc        "<program>: error: out of memory: ..."  status 1
 //   other std::exception  "<program>: error: <what>"     status 1
 // A body that succeeds but whose writes to `output` (standard output) failed, for example on a
 // full disk or a closed standard output, also ends with status 1, and so does one whose writes to
 // `errors` failed. Otherwise the body's own return value is returned. Before the body runs, closed
-// standard descriptors are reopened (prepare_standard_descriptors, output_file.hpp).
+// standard descriptors are reopened (prepare_standard_descriptors, output_file.hpp), and SIGXFSZ is
+// ignored, so that a write beyond the file-size limit (ulimit -f) fails as a write error (status 1, the
+// output named) instead of killing the program.
 int guarded_main(std::string_view program, const std::function<int()>& body, std::ostream& output = std::cout,
                  std::ostream& errors = std::cerr);
 

@@ -284,6 +284,20 @@ void commit_all(const std::vector<AtomicFile*>& given) {
   }
 }
 
+// ---- Input files ----------------------------------------------------------------------------------------
+
+std::string input_file_problem(const std::string& path) {
+  struct stat status {};
+  if (::stat(path.c_str(), &status) != 0) return std::strerror(errno);
+  if (S_ISREG(status.st_mode)) return "";
+  if (S_ISDIR(status.st_mode)) return "is a directory, not a file";
+  if (S_ISFIFO(status.st_mode)) return "is a FIFO or a pipe (a process substitution <(...) is one), not a regular file";
+  if (S_ISCHR(status.st_mode)) return "is a character device, not a regular file";
+  if (S_ISBLK(status.st_mode)) return "is a block device, not a regular file";
+  if (S_ISSOCK(status.st_mode)) return "is a socket, not a regular file";
+  return "is not a regular file";
+}
+
 // ---- Standard descriptors ----------------------------------------------------------------------------
 
 bool prepare_standard_descriptors() noexcept {

@@ -126,6 +126,13 @@ class AtomicFile {
 /// pointers (outputs not asked for) are skipped.
 void commit_all(const std::vector<AtomicFile*>& files);
 
+/// Why `path` cannot be read as an input file, or "" if it can: what stat says of a path it cannot examine
+/// ("No such file or directory"), "is a directory, not a file", or, for anything else that is not a
+/// regular file, what it is ("is a FIFO or a pipe (a process substitution <(...) is one), not a regular
+/// file", "is a character device, not a regular file", ...). The readers read their file twice (counted,
+/// then parsed) or must not block on a FIFO without a writer: they take regular files only, and say so.
+std::string input_file_problem(const std::string& path);
+
 /// Makes sure descriptors 0, 1 and 2 are open, so that no output file the program opens takes their
 /// place (and receives what the program prints): a closed one is opened on /dev/null, standard
 /// output read-only, so that printing results to it fails. Returns true if standard output was

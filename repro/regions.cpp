@@ -29,6 +29,7 @@
 
 #include "studies/convergence.hpp"
 #include "options.hpp"
+#include "output_file.hpp"
 #include "parallel.hpp"
 #include "fem/period_law.hpp"
 #include "sweep.hpp"
@@ -205,6 +206,11 @@ Sweep read_sweep(std::istream& in) {
 }
 
 Sweep read_sweep_file(const std::string& path, const std::string& option) {
+  // A regular file only: a FIFO without a writer would block the program.
+  const std::string problem = cli::input_file_problem(path);
+  if (!problem.empty() && problem.rfind("is ", 0) == 0)
+    throw cli::UsageError(option + ": cannot read " + cli::quoted_text(path) + ": it " + problem +
+                          " (allowed: a regular file written by check_claims --sweep)");
   std::ifstream in(path);
   if (!in)
     throw cli::UsageError(option + ": cannot read " + cli::quoted_text(path) +

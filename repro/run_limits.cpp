@@ -101,6 +101,29 @@ void require_memory(std::string_view option, double bytes, std::string_view what
                      " this process may use (allowed: runs that fit in memory)");
 }
 
+// The stacks of the worker threads: each is reserved at the stack limit's size (glibc's default for a new
+// thread, pthread_create(3); 2 MB on x86-64 when the limit is unlimited), and the threads count against
+// the limit on processes.
+void add_threads_option(Parser& parser, long* threads, const std::string& default_note) {
+  parser.add_integer("--threads", "-j", "J",
+                     "worker threads, in [1, 256]" + (default_note.empty() ? "" : " (default: " + default_note + ")") +
+                         "; the output does not depend on it",
+                     threads, [](std::string_view option, double value) {
+                       require_in_closed_range(option, value, 1, max_threads);
+                       struct rlimit limit {};
+                       if (::getrlimit(RLIMIT_NPROC, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY &&
+                           value > static_cast<double>(limit.rlim_cur))
+                         throw UsageError(std::string(option) + ": " + format_real(value) +
+                                          " threads are more than this process may start (ulimit -u " +
+                                          std::to_string(limit.rlim_cur) + "; allowed: at most that many)");
+                       double stack = 2e6;
+                       if (::getrlimit(RLIMIT_STACK, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+                         stack = static_cast<double>(limit.rlim_cur);
+                       require_memory(option, (value - 1) * stack,
+                                      "the stacks of " + format_real(value - 1) + " more threads");
+                     });
+}
+
 TEST_CASE("the steps of a run are refused before the run unless between 1 and 1e12") {
   CHECK(checked_steps("--final-time", 6.0, 0.005, "--courant") == 1200);
   CHECK(checked_steps("--final-time", 2e-9, 1.0, "--courant") == 1);  // T just above 1e-9 Δt: one step

@@ -49,4 +49,13 @@ void require_memory(std::string_view option, double bytes, std::string_view what
 
 void require_mesh_memory(std::string_view option, double elements, double bytes_per_element, double copies = 1);
 
+class Parser;
+/// The option --threads (-j) J of a program that shares its work among worker threads, declared once for
+/// every program: an integer in [1, max_threads] (the help says so, `default_note` after it if given, e.g.
+/// "one per hardware thread"), and, when the value is read, a UsageError naming --threads if the process
+/// could not start J - 1 more threads: more than its limit on processes (ulimit -u) or more thread stacks
+/// (ulimit -s each) than the memory it may use (ulimit -v). A thread that cannot start
+/// would otherwise stop the run after its work began.
+void add_threads_option(Parser& parser, long* threads, const std::string& default_note = "");
+
 }  // namespace mrm::cli

@@ -90,6 +90,7 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 
 #include <algorithm>
+#include <new>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -124,6 +125,7 @@ TrafficSkeleton::TrafficSkeleton(std::size_t n, std::size_t plateau_rows) : stor
   a.n = n, a.lanes = limit_lanes(), a.plateau_begin = 1, a.plateau_end = std::min(n, 1 + plateau_rows);
   for (int k = 0; k < 8; ++k) {
     store_->arrays.push_back(hwy::AllocateAligned<double>(n * a.lanes));
+    if (store_->arrays.back() == nullptr) throw std::bad_alloc();  // AllocateAligned returns null, throws nothing
     std::fill(store_->arrays.back().get(), store_->arrays.back().get() + n * a.lanes, 0.5);
   }
   auto& v = store_->arrays;

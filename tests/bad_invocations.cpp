@@ -20,8 +20,10 @@
 //      cli::Parser::print_help): unknown options, positional arguments, every option without its
 //      value and given twice, every numeric option given malformed numbers ("", "1e", "nan", "inf",
 //      "12abc", "1e400", ...: all 23 or 25 of them for the first integer and the first real option of
-//      the program, one of each sort for the others, which go through the same parsing), every choice given a value outside its list, every flag given a
-//      value, every pair of options the help says exclude each other ("excludes --x"), and every
+//      the program, one of each sort for the others, which go through the same parsing), every
+//      choice given a value outside its list, every flag given a value (even "=true"), --threads
+//      given 0, 257 and 2^32, every pair of options the help says exclude each other ("excludes
+//      --x"), and every
 //      output file option given a missing directory, a directory and an empty path. The kind of
 //      each option (integer, real, choice, string) is found by probing: `--option zzz --zz-probe`
 //      fails on the value for a number or a choice, with the message saying which, and on the
@@ -352,6 +354,7 @@ void generic_cases(Program& program) {
     if (option.metavar.empty()) {
       option.kind = "flag";
       check_bad(program, 2, name + ": takes no value", {name + "=1"});
+      check_bad(program, 2, name + ": takes no value", {name + "=true"});  // not even the value it sets
       check_bad(program, 2, name + ": given more than once", {name, name});
       continue;
     }
@@ -368,6 +371,13 @@ void generic_cases(Program& program) {
     if (!option.short_name.empty()) {
       check_bad(program, 2, name + ": missing value", {option.short_name});
       check_bad(program, 2, name + ": given more than once", {option.short_name, valid, name + "=" + valid});
+    }
+    // The worker threads of every program that has them: one range, refused before any work
+    // (run_limits.hpp, add_threads_option), also for a count that a 32-bit conversion would wrap.
+    if (name == "--threads") {
+      check_bad(program, 2, "--threads: 257 is outside the allowed range [1, 256]", {name, "257"});
+      check_bad(program, 2, "--threads: 4294967296 is outside the allowed range [1, 256]", {name, "4294967296"});
+      check_bad(program, 2, "--threads: 0 is outside the allowed range [1, 256]", {name + "=0"});
     }
     if (option.kind == "integer" || option.kind == "real") {
       // Every malformed number for the first option of each kind; a sample of them (one of each

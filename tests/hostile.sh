@@ -26,13 +26,21 @@
 #   ranges         values inside the documented ranges (or refused with status 2) never crash nor hang;
 #   late           sizes, step counts and resources that cannot run are refused with status 2 naming
 #                  the option, at once (no late std::bad_alloc, no pivot message, no zero-step run);
+#                  allowed values run to the end (a value that does not apply written n/a with its
+#                  reason), never fail after the work began;
 #   two_outputs    a write error (a file-size limit, a full file system) fails the run with status 1,
-#                  and no output of the run is replaced (all or nothing);
+#                  and no output of the run is replaced (all or nothing); a file-size limit never kills
+#                  a program by SIGXFSZ;
 #   leftovers      a valid long file name (up to NAME_MAX) is accepted, a longer one refused;
 #   non_finite     no nan or inf in any output: runs at the edges that cannot compute a value exit 0 with n/a
 #                  and its reason, or fail and commit nothing;
 #   closed_stdout  long_runs (C stdio) fails with a closed standard output or on /dev/full;
-#   memory         what does not fit under ulimit -v is refused at once, naming the option.
+#   memory         what does not fit under ulimit -v is refused at once, naming the option; what fails to
+#                  allocate all the same is an error with a message, never a crash;
+#   inputs         a file to read that is not a regular file (a FIFO, a process substitution, a device) is
+#                  refused at once with what it is, never read half or waited on;
+#   messages       user text echoed in a message (sweep's lists too) is quoted: one line, escapes escaped,
+#                  a long token cut with its size.
 #
 # Cases that need root (a device node of its own, a full file system) are skipped with a note when not
 # run as root.
@@ -665,6 +673,106 @@ else
   expect_refusal bar1d "--initial-data: "
 fi
 
+# ==== late, continued: allowed values run to the end ==============================================
+# Each value is inside its documented range; the run exits 0 with finite values (a value that does not
+# apply written n/a with its reason), before or without any error.
+finite_summary() { grep -v -E '^([A-Za-z_0-9]+ = (-?[0-9.]+(e[-+][0-9]+)?|n/a: .+)|stress = [a-z]+)$' "$out" | head -n 2; }
+late_run_case() {  # late_run_case NAME ARGS...: status 0, one line per value, each finite or n/a
+  local case_name=$1
+  shift
+  begin late "$case_name"
+  run "$small" bar1d "$@" --no-timing
+  expect_status 0
+  [[ -z $(finite_summary) ]] || fail "values that are not finite numbers nor n/a: $(finite_summary | tr '\n' ' ')"
+  [[ -s $err ]] && fail "wrote to stderr: $(shown_error)"
+  expect_entries
+}
+late_run_case "bar1d --grading 1.05 -m consistent: the first-order law's value n/a (no massless node)" --grading 1.05 -m consistent
+grep -q '^period_law_first_order_drift_change_vs_mod3 = n/a: ' "$out" || fail "the first-order law is not n/a with its reason"
+late_run_case "bar1d --grading 1.05 -n 2: the graded mesh's error measures on two elements" --grading 1.05 -n 2
+late_run_case "bar1d --benchmark smooth-impact -T 1e-9: one short step, the solution not tabulated" --benchmark smooth-impact -T 1e-9
+late_run_case "bar1d --benchmark grazing -T 1e-9" --benchmark grazing -T 1e-9
+
+# ==== inputs: files to read that are not regular files ==============================================
+# A FIFO would block the program until a writer comes, a pipe (a process substitution) cannot be read
+# twice (counted, then parsed): both are refused at once, with what they are.
+begin inputs "bar1d --initial-data FIFO: refused at once, not blocked"
+mkfifo fifo
+run "$quick" bar1d --initial-data fifo
+expect_refusal bar1d '--initial-data: "fifo": is a FIFO or a pipe'
+expect_entries fifo
+begin inputs "bar1d --initial-data <(cat FILE): refused as a pipe, not as a short file"
+printf '0 0.5 0\n0.5 0.25 0\n1 0 0\n' >"$work/data.dat"
+timeout -k 5 "$quick" "$bin/bar1d" --initial-data <(cat "$work/data.dat") >"$out" 2>"$err"
+status=$?
+expect_refusal bar1d ': is a FIFO or a pipe (a process substitution <(...) is one), not a regular file'
+begin inputs "bar1d --initial-data /dev/zero: refused as a device, not read forever"
+run "$quick" bar1d --initial-data /dev/zero
+expect_refusal bar1d '--initial-data: "/dev/zero": is a character device, not a regular file'
+begin inputs "fig_order_map --sweep FIFO: refused at once, not blocked"
+mkfifo fifo
+run "$quick" fig_order_map --sweep fifo --output o.dat
+expect_refusal fig_order_map '--sweep: cannot read "fifo": it is a FIFO or a pipe'
+expect_entries fifo
+
+# ==== messages: every echo of user text quoted, one line, cut ======================================
+begin messages "sweep --schemes with a 100 kB token: one line, cut with its size"
+run "$quick" sweep --schemes "$(printf 'c%.0s' $(seq 100000))" --output s.dat
+expect_refusal sweep '--schemes: unknown value "cccccccccc'
+grep -q '…" (100000 bytes) (allowed: ' "$err" || fail "the token is not cut with its size: $(head -c 200 "$err")"
+(($(wc -c <"$err") < 400)) || fail "the message has $(wc -c <"$err") bytes"
+expect_entries
+begin messages "sweep --masses with an escape sequence: escaped"
+run "$quick" sweep --masses $'mod3\e[2J' --output s.dat
+expect_refusal sweep '--masses: "mod3\u001b[2J"'
+grep -q $'\e' "$err" && fail "the escape character reached the terminal"
+expect_entries
+
+# ==== write errors: a file-size limit is an error, not a signal ===================================
+# Under ulimit -f (SIGXFSZ at its default, as a shell leaves it) a write beyond the limit fails as a
+# write error: status 1, a message naming the output, nothing committed, no death by SIGXFSZ.
+for program in fig_energy bar1d sweep; do
+  begin two_outputs "$program under ulimit -f 1 (SIGXFSZ not ignored by the caller): status 1 naming the output"
+  plant_old out.dat
+  case $program in
+    sweep) arguments=(--schemes cn,be --masses mod1,mod2,mod3 --elements 16,24,32 --courants 0.5,1,1.5) ;;
+    *) read -r -a arguments <<<"${small_args[$program]}" ;;
+  esac
+  # (perl restores SIGXFSZ's default, which a shell that found it ignored cannot.)
+  (cd "$dir" && ulimit -f 1 && exec perl -e '$SIG{XFSZ} = "DEFAULT"; exec @ARGV or die' timeout -k 5 "$small" \
+    "$bin/$program" "${arguments[@]}" --output out.dat >"$out" 2>"$err")
+  status=$?
+  expect_status 1
+  grep -q 'out.dat' "$err" || fail "the message does not name the output: $(shown_error)"
+  is_old out.dat || fail "out.dat was replaced although its write failed"
+  expect_entries out.dat
+done
+
+# ==== memory, continued: what cannot be allocated is an error, never a crash =======================
+if ((sanitized)); then
+  begin memory "under ulimit -v: skipped"
+  skip "AddressSanitizer reserves terabytes of address space"
+else
+  # The batched step's aligned arrays are checked (lib/batched/batched_step.cpp): a failed allocation is
+  # an error with a message (status 1), or the run is refused before it starts (status 2), never SIGSEGV.
+  begin memory "fig_convergence -n 2 -k 20 -T 3 under a 4 GB limit: an error or a refusal, no crash"
+  (ulimit -v 4194304 && cd "$dir" && exec timeout -k 5 120 "$bin/fig_convergence" -n 2 -k 20 -T 3 -o o.dat >"$out" 2>"$err")
+  status=$?
+  ((status == 1 || status == 2 || status == 0)) || fail "exit status $status ($(shown_error)): a crash or a hang"
+  ((status == 0)) || [[ $(wc -l <"$err") == 1 && ! -e o.dat ]] || fail "status $status without one line, or an output: $(shown_error)"
+  begin memory "sweep of N = 1e5 on 2 threads under a 500 MB limit: refused naming --elements"
+  (ulimit -v 500000 && cd "$dir" && exec timeout -k 5 "$quick" "$bin/sweep" --schemes cn,be --masses mod1,mod2,mod3,consistent \
+    --elements 100000 --courants 50,60,70,80 -T 0.01 --threads 2 --output s.dat >"$out" 2>"$err")
+  status=$?
+  expect_refusal sweep "--elements: "
+  expect_entries
+  begin memory "fig_family --threads 256 under a 1 GB limit: the threads' stacks refused naming --threads"
+  (ulimit -v 1000000 && ulimit -s 8192 && cd "$dir" && exec timeout -k 5 "$quick" "$bin/fig_family" --threads 256 --output o.dat >"$out" 2>"$err")
+  status=$?
+  expect_refusal fig_family "--threads: the stacks of 255 more threads"
+  expect_entries
+fi
+
 finish_case
 cd "$work" || exit 1
 
@@ -673,7 +781,7 @@ total=0
 total_failed=0
 echo
 echo "hostile: cases by class (failed, skipped, time)"
-for c in temporary nonregular descriptors numbers ranges late two_outputs leftovers non_finite closed_stdout memory; do
+for c in temporary nonregular descriptors numbers ranges late inputs messages two_outputs leftovers non_finite closed_stdout memory; do
   printf '  %-12s %3d cases, %3d failed, %d skipped, %5.1f s\n' "$c" "${cases[$c]:-0}" "${failures[$c]:-0}" \
     "${skips[$c]:-0}" "$((${milliseconds[$c]:-0} / 100))e-1"
   total=$((total + ${cases[$c]:-0}))

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <new>
 #include <optional>
 #include <string>
 #include <stdexcept>
@@ -101,6 +102,15 @@ struct BatchedSimulation::Group {
 /// @endcond
 
 namespace {
+
+// Every array of a group, allocated aligned for the vector loads. hwy::AllocateAligned returns a null
+// pointer when the memory is not there (it throws nothing): the failure is std::bad_alloc here, which the
+// programs report as an error (status 1), never a write through a null pointer.
+hwy::AlignedFreeUniquePtr<double[]> lane_array(std::size_t count) {
+  hwy::AlignedFreeUniquePtr<double[]> array = hwy::AllocateAligned<double>(count);
+  if (array == nullptr && count > 0) throw std::bad_alloc();
+  return array;
+}
 
 // The rows of a FastStep as 10 doubles (the order of batched::RowV).
 template <typename Row>
@@ -235,12 +245,12 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
       const std::size_t nw = g->n * width;
       for (auto* a : {&g->u, &g->y, &g->w, &g->x, &g->elimination, &g->elimination_pair, &g->inverse_pivot, &g->upward,
                       &g->upward_pair})
-        *a = hwy::AllocateAligned<double>(nw);
-      g->head_rows = hwy::AllocateAligned<double>(g->head * 10 * width);
-      g->interior = hwy::AllocateAligned<double>(10 * width);
-      g->last = hwy::AllocateAligned<double>(10 * width);
+        *a = lane_array(nw);
+      g->head_rows = lane_array(g->head * 10 * width);
+      g->interior = lane_array(10 * width);
+      g->last = lane_array(10 * width);
       for (auto* a : {&g->rate, &g->memory, &g->ps_q_weight, &g->u0_next, &g->recurrence_d0, &g->keep, &g->energy})
-        *a = hwy::AllocateAligned<double>(width);
+        *a = lane_array(width);
       g->decisions.resize(width);
       for (std::size_t j = 0; j < width; ++j) {
         const BarSimulation::StepParts parts = runs_[g->runs[j]].step_parts();
@@ -329,10 +339,10 @@ void BatchedSimulation::fill_newmark(Group& g, std::vector<BarSimulation>& runs)
                   &g.mass_inverse_pivot,
                   &g.mass_upward,
                   &g.z})
-    *a = hwy::AllocateAligned<double>(nw);
+    *a = lane_array(nw);
   for (auto* a : {&g.dt, &g.force_weight, &g.one_minus_gamma, &g.gamma, &g.g0, &g.g1, &g.massless, &g.lambda, &g.shift,
                   &g.kinetic_strain, &g.u0_next, &g.keep})
-    *a = hwy::AllocateAligned<double>(W);
+    *a = lane_array(W);
   for (std::size_t j = 0; j < W; ++j) {
     NewmarkTypeStep& step = newmark_step(runs[g.runs[j]]);
     g.steps.push_back(&step);
@@ -366,10 +376,10 @@ void BatchedSimulation::fill_one_solve(Group& g, std::vector<BarSimulation>& run
   g.one_solve = true, g.dke = dke;
   for (auto* a : {&g.u, &g.y, &g.w, &g.p, &g.elimination, &g.inverse_pivot, &g.upward, &g.right_diag, &g.right_lower,
                   &g.right_upper, &g.m_diag, &g.m_lower, &g.m_upper, &g.s_diag, &g.s_lower, &g.s_upper, &g.column})
-    *a = hwy::AllocateAligned<double>(nw);
+    *a = lane_array(nw);
   for (auto* a : {&g.dt, &g.weight, &g.theta, &g.one_minus_theta, &g.two_over_dt, &g.row0_zero, &g.alpha, &g.projected,
                   &g.minus_gap, &g.u0_next, &g.keep, &g.kinetic_strain})
-    *a = hwy::AllocateAligned<double>(W);
+    *a = lane_array(W);
   g.solve_decisions.resize(W);
   for (std::size_t j = 0; j < W; ++j) {
     OneSolveStep& step = one_solve_step(runs[g.runs[j]]);
@@ -399,9 +409,9 @@ void BatchedSimulation::fill_explicit(Group& g, std::vector<BarSimulation>& runs
   g.lumped = runs[g.runs[0]].step_parts().explicit_step->lanes().lumped;
   for (auto* a : {&g.u, &g.y, &g.w, &g.a, &g.s_diag, &g.s_lower, &g.s_upper, &g.m_diag, &g.m_lower, &g.m_upper,
                   &g.inverse_mass, &g.pivot, &g.factor, &g.impulse_response})
-    *a = hwy::AllocateAligned<double>(nw);
+    *a = lane_array(nw);
   for (auto* a : {&g.dt, &g.half_dt, &g.h, &g.clamped, &g.correct, &g.dt_mu, &g.dt2_mu, &g.keep, &g.energy})
-    *a = hwy::AllocateAligned<double>(W);
+    *a = lane_array(W);
   g.explicit_contacts.resize(W);
   for (std::size_t j = 0; j < W; ++j) {
     BarSimulation& run = runs[g.runs[j]];

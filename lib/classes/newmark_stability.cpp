@@ -81,7 +81,7 @@ double newmark_stability_limit(const Tridiagonal& mass, const Tridiagonal& stiff
     if (p.scheme == Scheme::nitsche) {
       const double gamma = p.nitsche_gamma / h, theta = p.nitsche_theta;
       // −(θ/γ)ddᵀ with d = (−1/h, 1/h): entries ∓θ/(γh²) on the first element.
-      const double c = theta / (gamma * h * h);
+      const double c = theta == 0 ? 0.0 : theta / (gamma * h * h);  // θ = 0: none, whatever γ
       free.diag[0] -= c, free.diag[1] -= c, free.upper[0] += c, free.lower[1] += c;
       active = free;
       // + (1/γ)(γe₀ + θd)(γe₀ + d)ᵀ, symmetrised: a = γe₀ + θd = (γ − θ/h, θ/h), b = γe₀ + d = (γ − 1/h, 1/h).

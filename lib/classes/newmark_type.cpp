@@ -61,7 +61,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -74,6 +76,13 @@
 namespace mrm::class_steps {
 
 namespace {
+
+// A number in a message, as %g writes it (six significant digits).
+std::string shown(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
 
 // Newmark(β, γ) with exact enforcement, a penalty or Nitsche's terms (file comment, (N)).
 class NewmarkContactStep final : public NewmarkTypeStep {
@@ -101,10 +110,22 @@ class NewmarkContactStep final : public NewmarkTypeStep {
       offset_ = gap;  // P = u₀ + g₀
     } else if (scheme_ == Scheme::nitsche) {
       const double gamma = p.nitsche_gamma / h, theta = p.nitsche_theta;
+      // Nitsche's terms divide by γ = γ₀/h (θ/γ, 1/γ) and by γh² (θ/(γh²) below): γ must be a normal double (a
+      // subnormal γ leaves those quotients without precision, a zero one 0/0), θ/(γh²) a finite one, and the
+      // first element's own stiffness 1/h must survive beside θ/(γ₀h): |θ|/γ₀ at most 1/ε.
+      const char* lost = !(gamma >= std::numeric_limits<double>::min()) ? "gamma = gamma0/h is not a normal double"
+                         : theta != 0 && !(std::abs(theta) * std::numeric_limits<double>::epsilon() <= p.nitsche_gamma)
+                             ? "|theta|/gamma0 is beyond 1/eps: the first element's own stiffness is lost in rounding"
+                         : theta != 0 && !std::isfinite(theta / (gamma * h * h)) ? "theta/(gamma h^2) is not a double"
+                                                                                 : nullptr;
+      if (lost)
+        throw InvalidParameter("nitsche_gamma", "gamma0 = " + shown(p.nitsche_gamma) +
+                                                    " on elements of h = " + shown(h) + ": " + lost +
+                                                    " (allowed: gamma0 >= h 2.2e-308 and gamma0 >= 2.2e-16 |theta|)");
       k_ = 1.0;
       ell_ = {gamma - 1 / h, 1 / h};                                // P = γu₀ + (u₁ − u₀)/h
       g_ = {1 - theta / p.nitsche_gamma, theta / p.nitsche_gamma};  // e₀ + (θ/γ) d
-      const double c = theta / (gamma * h * h);                     // (θ/γ) ddᵀ's entries ±θ/(γh²)
+      const double c = theta == 0 ? 0.0 : theta / (gamma * h * h);  // (θ/γ) ddᵀ's entries ±θ/(γh²)
       linear_.diag[0] -= c;
       linear_.upper[0] += c;
       linear_.lower[1] += c;
@@ -118,6 +139,18 @@ class NewmarkContactStep final : public NewmarkTypeStep {
     }
     // The step matrix A = M + βΔt² S_ℓ (row 0 S_ℓ's row 0 for a massless node) and the row weights w.
     const double w = beta_ * dt * dt;
+    // Exact enforcement on a node with inertia: the constraint's force enters row 0 with the weight βΔt²
+    // (β = 0 is refused for it: validate_contact_class). Below ε M₀₀ the weight βΔt²S₀₀ is lost in the
+    // rounding of M₀₀ + βΔt²S₀₀, which is β = 0 in floating point, and the force recovered by dividing by
+    // βΔt² grows without bound: the derived smallest β is ε M₀₀/(Δt² S₀₀).
+    if (scheme_ == Scheme::newmark && !massless_ && beta_ > 0 &&
+        !(w * stiffness.diag[0] >= std::numeric_limits<double>::epsilon() * mass.diag[0]))
+      throw InvalidParameter(
+          "newmark_beta",
+          shown(beta_) +
+              " with exact enforcement and a contact node with inertia: beta dt^2 S00 is below the "
+              "rounding of M00, as beta = 0 (allowed: beta >= eps M00 / (dt^2 S00) = " +
+              shown(std::numeric_limits<double>::epsilon() * mass.diag[0] / (dt * dt * stiffness.diag[0])) + ")");
     Tridiagonal a = mass.plus(w, linear_);
     weight0_ = w;
     if (massless_) {

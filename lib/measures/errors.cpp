@@ -94,6 +94,8 @@ ErrorAccumulator::ErrorAccumulator(const UniformMesh& mesh, std::shared_ptr<cons
   // The sums below need Toeplitz matrices (a uniform mesh of a homogeneous bar clamped at L); any other
   // mesh (graded, layered, a free far end) takes the quadratic forms eᵀMe, eᵀSe of its own P1
   // matrices, ρ and E included (the energy norms of the layered bar), by Tridiagonal::bilinear.
+  // A graded mesh is general whatever its matrices show (with two elements they have no row to compare).
+  general_ = !mesh.uniform();
   for (const Tridiagonal* a : {&mass_, &stiffness_})
     for (Index i = 2; i < n; ++i)
       if (a->diag[i] != a->diag[1] || a->lower[i] != a->lower[1]) general_ = true;

@@ -205,7 +205,9 @@ std::shared_ptr<const ReferenceSolution> unit_reference(const Configuration& c, 
   if (c.grading != 1.0) return std::make_shared<const CharacteristicSolution>(std::move(solution));
   const double h = UniformMesh(c.bar_length(), c.elements).h(), dt = c.step();
   const double small = std::min(h, dt), ratio = std::max(h, dt) / small;
-  if (std::abs(ratio - std::round(ratio)) <= 1e-9 * ratio && horizon / small <= 1e7)
+  // The table spans [−T, L] and [0, L + T] (TabulatedSolution): a short horizon on a fine lattice is
+  // still (L + T)/δ entries, so the bar's length counts as well as the horizon.
+  if (std::abs(ratio - std::round(ratio)) <= 1e-9 * ratio && (c.bar_length() + horizon) / small <= 1e7)
     return std::make_shared<const TabulatedSolution>(std::move(solution), small);
   return std::make_shared<const CharacteristicSolution>(std::move(solution));
 }

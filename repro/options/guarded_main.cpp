@@ -13,6 +13,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -20,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <new>
 #include <optional>
 #include <sstream>
 #include <system_error>
@@ -49,8 +51,13 @@ TEST_SUITE_BEGIN("cli");
 // What the program prints on the standard output goes through a WatchedBuffer (output_file.hpp): a
 // non-finite value printed ends the run with status 1 (and commit_all commits no file), and so does a
 // failed write through C's stdio (printf), which the C++ stream does not see.
+//
+// A file-size limit (ulimit -f) would kill the process by SIGXFSZ at the first write beyond it, leaving
+// no message and a status that says nothing of the cause: the signal is ignored, so that the write fails
+// with EFBIG and is reported as every other write error (the output named, status 1, nothing committed).
 int guarded_main(std::string_view program, const std::function<int()>& body, std::ostream& output,
                  std::ostream& errors) {
+  std::signal(SIGXFSZ, SIG_IGN);
   const bool output_closed = prepare_standard_descriptors();
   const bool watched = &output == &std::cout;
   WatchedBuffer watch(output.rdbuf());
@@ -89,6 +96,12 @@ int guarded_main(std::string_view program, const std::function<int()>& body, std
   } catch (const UsageError& error) {
     errors << program << ": " << error.what() << '\n';
     return 2;
+  } catch (const std::bad_alloc&) {
+    // A run the checks of the options let through whose memory was not there after all (the machine's
+    // other processes, an estimate exceeded): said as such, not as "std::bad_alloc".
+    errors << program << ": error: out of memory: an allocation failed during the run (allowed: a smaller run, "
+           << "or more memory for the process)\n";
+    return 1;
   } catch (const std::exception& error) {
     errors << program << ": error: " << error.what() << '\n';
     return 1;
@@ -116,6 +129,13 @@ TEST_CASE("guarded_main maps usage errors to status 2 and other failures to stat
     CHECK(guarded_main(
               "p", []() -> int { throw std::runtime_error("no convergence"); }, output, errors) == 1);
     CHECK(errors.str() == "p: error: no convergence\n");
+  }
+  SUBCASE("out of memory") {
+    CHECK(guarded_main(
+              "p", []() -> int { throw std::bad_alloc(); }, output, errors) == 1);
+    CHECK(errors.str() ==
+          "p: error: out of memory: an allocation failed during the run (allowed: a smaller run, or more memory "
+          "for the process)\n");
   }
   SUBCASE("not a standard exception") {
     CHECK(guarded_main(

@@ -347,6 +347,39 @@ void Parser::add_conflict(std::string_view first_long_name, std::string_view sec
   conflicts_.emplace_back(first_long_name, second_long_name);
 }
 
+// An option that does not apply beside another (options.hpp): kept with its reason and its condition.
+struct Parser::NotApplicable {
+  std::string option, other, reason;
+  std::function<bool()> when;
+};
+
+void Parser::add_not_applicable(std::string long_name, std::string other_long_name, std::string reason,
+                                std::function<bool()> when) {
+  registered(long_name);
+  registered(other_long_name);
+  not_applicable_.push_back({std::move(long_name), std::move(other_long_name), std::move(reason), std::move(when)});
+}
+
+// The other option's value as the message shows it: a choice as the word it is (one of its list), a
+// number as format_real writes it, any other text quoted (quoted_text), a flag not at all.
+void Parser::refuse_not_applicable() const {
+  for (const NotApplicable& rule : not_applicable_) {
+    if (!given(rule.option) || !given(rule.other) || (rule.when && !rule.when())) continue;
+    const Option& other = registered(rule.other);
+    std::string value;
+    std::visit(
+        [&](const auto* variable) {
+          using Type = std::remove_cv_t<std::remove_pointer_t<decltype(variable)>>;
+          if constexpr (std::is_same_v<Type, double>) value = " " + format_real(*variable);
+          if constexpr (std::is_same_v<Type, long>) value = " " + std::to_string(*variable);
+          if constexpr (std::is_same_v<Type, std::string>)
+            value = " " + (other.allowed.empty() ? quoted_text(*variable) : *variable);
+        },
+        other.target);
+    throw UsageError(rule.option + ": does not apply with " + rule.other + value + " (" + rule.reason + ")");
+  }
+}
+
 const Parser::Option& Parser::registered(std::string_view long_name) const {
   for (const Option& option : options_)
     if (option.long_name == long_name) return option;
@@ -376,7 +409,12 @@ Outcome Parser::parse(const std::vector<std::string>& arguments, std::ostream& o
     const CLI::Option* option = app_->get_option_no_throw(argument.substr(0, argument.find('=')));
     if (option != nullptr && option->get_expected_max() > 0 && argument.find('=') == std::string::npos)
       ++k;  // its value follows
-    else if (argument.size() > 2 && argument[0] == '-' && std::isalpha(static_cast<unsigned char>(argument[1])))
+    else if (option != nullptr && option->get_expected_max() == 0 && argument.rfind("--", 0) == 0 &&
+             argument.find('=') != std::string::npos) {
+      // A flag takes no value, not even the one it sets ("--verbose=true"; CLI11 would take it).
+      const std::string name = argument.substr(0, argument.find('='));
+      throw UsageError(name + ": takes no value (write " + quoted_text(name) + " alone)");
+    } else if (argument.size() > 2 && argument[0] == '-' && std::isalpha(static_cast<unsigned char>(argument[1])))
       throw UsageError("unknown option " + quoted_text(argument) + " (see --help)");
   }
   std::vector<std::string> reversed;
@@ -420,6 +458,7 @@ Outcome Parser::parse(const std::vector<std::string>& arguments, std::ostream& o
     if (auto* const integer = std::get_if<long*>(&option.target))
       option.check(option.long_name, static_cast<double>(**integer));
   }
+  refuse_not_applicable();
   refuse_shared_files();
   return Outcome::run;
 }
@@ -653,6 +692,36 @@ TEST_CASE("positional arguments and values given to flags are rejected") {
   CHECK_THROWS_WITH_AS(program.parse({"--verbose=yes"}), "--verbose: takes no value (write \"--verbose\" alone)",
                        UsageError);
   CHECK_THROWS_WITH_AS(program.parse({"--"}), "unknown option \"--\" (see --help)", UsageError);
+  // Not even the value it sets, nor the help's and the version's.
+  for (const char* argument : {"--verbose=true", "--verbose=false", "--verbose=", "--help=true", "--version=1"}) {
+    const std::string name = std::string(argument).substr(0, std::string(argument).find('='));
+    CHECK_THROWS_WITH_AS(program.parse({argument}), (name + ": takes no value (write \"" + name + "\" alone)").c_str(),
+                         UsageError);
+  }
+}
+
+TEST_CASE("an option that does not apply beside another is refused, naming both and what is allowed") {
+  ExampleProgram program;
+  std::string mode = "batch";
+  program.parser.add_choice("--mode", "", "M", "how to run", {"batch", "merge"}, &mode);
+  program.parser.add_not_applicable("--restitution", "--mode", "allowed: omit it, or --mode batch",
+                                    [&] { return mode == "merge"; });
+  program.parser.add_not_applicable("--verbose", "--output", "the file is quiet; allowed: omit --verbose");
+  program.parser.add_not_applicable("--scheme", "--dt", "allowed: omit --scheme");
+  CHECK_THROWS_WITH_AS(program.parse({"--mode", "merge", "-e", "0.5"}),
+                       "--restitution: does not apply with --mode merge (allowed: omit it, or --mode batch)",
+                       UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"-v", "-o", "a\nb"}),
+                       "--verbose: does not apply with --output \"a\\nb\" (the file is quiet; allowed: omit --verbose)",
+                       UsageError);
+  CHECK_THROWS_WITH_AS(program.parse({"--dt", "0.5", "--scheme", "rk4"}),
+                       "--scheme: does not apply with --dt 0.5 (allowed: omit --scheme)", UsageError);
+  // Either alone, or the condition false: a run.
+  CHECK(program.parse({"--mode", "batch", "-e", "0.5"}) == Outcome::run);
+  CHECK(program.parse({"-e", "0.5"}) == Outcome::run);
+  CHECK(program.parse({"--mode", "merge"}) == Outcome::run);
+  CHECK(program.parse({"-v"}) == Outcome::run);
+  CHECK_THROWS_AS(program.parser.add_not_applicable("--missing", "--dt", ""), std::logic_error);
 }
 
 TEST_CASE("checks reject given values out of range but not the defaults") {

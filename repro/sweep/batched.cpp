@@ -27,6 +27,7 @@
 #include "fem/mass_redistribution.hpp"
 #include "options.hpp"
 #include "parallel.hpp"
+#include "run_limits.hpp"
 
 namespace mrm::repro {
 
@@ -124,9 +125,7 @@ SweepSettings& sweep_settings() {
 }
 
 void add_sweep_options(cli::Parser& parser, SweepOptions& options) {
-  parser.add_integer("--threads", "-j", "J",
-                     "worker threads, in [1, 256] (default: one per hardware thread); the output does not depend on it",
-                     &options.threads, cli::in_closed_range(1, cli::max_threads));
+  cli::add_threads_option(parser, &options.threads, "one per hardware thread");
   std::vector<std::string> widths{"widest", "none"};
   for (const BatchTarget& t : batch_targets()) widths.push_back(t.name);
   parser.add_choice("--vector", "", "W",
@@ -141,6 +140,26 @@ void apply_sweep_options(const SweepOptions& options) {
   use_batch_target(0);
   for (const BatchTarget& t : batch_targets())
     if (t.name == options.vector) use_batch_target(t.bit);
+}
+
+// The runs stepped at once, at most: the batches of the largest mesh's runs (lanes of the target, or one run
+// each when not batched), on as many workers as there are such batches, at most the threads; the runs of
+// smaller meshes on other workers need less.
+void require_batched_memory(std::string_view option, const std::vector<Configuration>& configurations,
+                            const SweepSettings& settings) {
+  double largest = 0, at_largest = 0;
+  for (const Configuration& c : configurations) {
+    const double n = static_cast<double>(c.elements);
+    if (n > largest) largest = n, at_largest = 0;
+    if (n == largest) ++at_largest;
+  }
+  if (at_largest == 0) return;
+  const double lanes =
+      settings.batched ? static_cast<double>(std::max<std::size_t>(1, current_batch_target().lanes)) : 1;
+  const double threads = settings.threads > 0 ? static_cast<double>(settings.threads)
+                                              : static_cast<double>(std::max(1u, std::thread::hardware_concurrency()));
+  const double copies = std::min(threads, std::ceil(at_largest / lanes)) * std::min(lanes, at_largest);
+  cli::require_mesh_memory(option, largest, batched_bytes_per_lane_element, copies);
 }
 
 // The batches. Runs of the same N and scheme family have the same sequence of operations node by node

@@ -46,6 +46,19 @@ void add_sweep_options(cli::Parser& parser, SweepOptions& options);
 /// Sets sweep_settings() and the batched step's target (use_batch_target) from the parsed options.
 void apply_sweep_options(const SweepOptions& options);
 
+/// The memory of a run stepped in a vector lane, per element: its simulation, the batched step's copy of its
+/// vectors and factors, its error sums' interpolants (measured at N = 1e5, 8 lanes of AVX3: 524 bytes for
+/// penalty and nitsche, the most of the registry's schemes, 320 for cn; 600 with a margin).
+constexpr double batched_bytes_per_lane_element = 600;
+/// A cli::UsageError naming `option` unless the runs of `configurations` fit in the memory the process may
+/// use when they go through the sweep layer with `settings` (cli::require_mesh_memory): up to
+/// `settings.threads` workers (0: one per hardware thread) each stepping a batch of up to the vector
+/// target's lanes (1 unless batched) of runs of the largest mesh, at batched_bytes_per_lane_element a lane
+/// and element. Called before run_batched, so that a sweep that cannot fit is refused before any work,
+/// not ended by std::bad_alloc after it.
+void require_batched_memory(std::string_view option, const std::vector<Configuration>& configurations,
+                            const SweepSettings& settings = sweep_settings());
+
 /// What groups runs into batches: their number of elements and their scheme's batch_family
 /// (lib/batched/batched_step.hpp: Crank–Nicolson and backward Euler share one).
 using BatchKey = std::pair<Index, int>;
