@@ -76,6 +76,7 @@
 #include "run_limits.hpp"
 #include "initial_data_file.hpp"
 #include "measures/errors.hpp"
+#include "exact/benchmarks.hpp"
 #include "exact/exact_solution.hpp"
 #include "exact/impact_solution.hpp"
 #include "fem/interior_mass.hpp"
@@ -121,6 +122,7 @@ struct Options {
 struct Run {
   mrm::repro::Configuration configuration;
   mrm::UniformMesh mesh{1.0, 2};
+  const mrm::Benchmark* benchmark = nullptr;  // the registry's entry of --benchmark
   std::shared_ptr<const mrm::InitialData> data;
   mrm::Scheme scheme_id = mrm::Scheme::crank_nicolson;
   mrm::SchemeParameters scheme_parameters;
@@ -248,14 +250,14 @@ void resolve_options(const cli::Parser& parser, Options& o, Run& r) {
     throw cli::UsageError(std::string("--interior-mass: ") + e.what());
   }
   r.own_data = parser.given("--initial-data");
+  r.benchmark = &mrm::benchmark(o.benchmark);
   for (const char* option : {"--length", "--amplitude"})
-    if (parser.given(option) && (r.own_data || o.benchmark != "paper"))
+    if (parser.given(option) && (r.own_data || !r.benchmark->takes_length()))
       throw cli::UsageError(std::string(option) + ": only with --benchmark paper (the smooth benchmarks have L = 1, " +
                             "and --initial-data gives L as its last x)");
   if (r.own_data) r.data = std::make_shared<const mrm::InitialData>(mrm::repro::read_initial_data(o.initial_data));
-  r.field_benchmark = !r.own_data && mrm::repro::is_impact_benchmark(o.benchmark);
-  if (!parser.given("--final-time") && !r.own_data && o.benchmark != "paper")
-    o.final_time = r.field_benchmark ? mrm::impact_benchmark(o.benchmark).final_time : 2.0;
+  r.field_benchmark = !r.own_data && r.benchmark->field != nullptr;
+  if (!parser.given("--final-time") && !r.own_data) o.final_time = r.benchmark->final_time;
   // A peer's defaults (repro/peers.cpp): every parameter the command line does not give.
   r.use_peer = o.peer != "none";
   r.step_given = parser.given("--dt");
@@ -295,7 +297,7 @@ void resolve_options(const cli::Parser& parser, Options& o, Run& r) {
   }
   // Two bodies (two-bars, lib/time/two_bodies.hpp): Crank-Nicolson with a massless contact node on each bar,
   // measured by run_configuration; the options of one body's run do not apply.
-  r.two_bodies = r.field_benchmark && mrm::is_two_body_chain(mrm::impact_benchmark(o.benchmark).configuration);
+  r.two_bodies = r.field_benchmark && r.benchmark->two_bodies();
   if (r.two_bodies) {
     if (r.scheme_id != mrm::Scheme::crank_nicolson)
       throw cli::UsageError("--scheme: " + o.scheme + ": --benchmark " + o.benchmark +
@@ -322,7 +324,7 @@ void resolve_options(const cli::Parser& parser, Options& o, Run& r) {
   // One blend matches one Courant number c Δt/h: a bar whose layers have different wave speeds (layered)
   // has one per layer, and no A cancels the phase error in both.
   if (o.phase_matched && r.field_benchmark) {
-    const auto& segments = mrm::impact_benchmark(o.benchmark).configuration.segments;
+    const auto& segments = r.benchmark->field->configuration.segments;
     for (const auto& segment : segments)
       if (segment.modulus * segments.front().density != segments.front().modulus * segment.density)
         throw cli::UsageError("--phase-matched: --benchmark " + o.benchmark +
@@ -374,7 +376,11 @@ void build_run(const cli::Parser& parser, Options& o, Run& r) {
     } catch (const std::invalid_argument& e) {
       throw cli::UsageError(std::string("--phase-matched: ") + e.what());
     }
-  r.configuration.mass = mrm::repro::mass_from_option("--mass", o.mass, r.mesh, r.two_bodies, r.blend);
+  // The mass spec parsed once and M^mod assembled once on the mesh of the run: the checks, the run, the
+  // total mass and the period law read this one (Configuration::assembled_mass).
+  r.configuration.assembled_mass = std::make_shared<const mrm::AssembledMass>(
+      mrm::repro::assembled_mass_from_option("--mass", o.mass, r.mesh, r.two_bodies, r.blend));
+  r.configuration.mass = r.configuration.assembled_mass->redistribution;
   if (r.two_bodies)  // the options of one body's run (after the checks of the values the run takes)
     for (const char* option :
          {"--output", "--peer", "--initial-contact-node", "--contact-velocity", "--interior-mass", "--phase-matched"})
@@ -382,7 +388,7 @@ void build_run(const cli::Parser& parser, Options& o, Run& r) {
         throw cli::UsageError(std::string(option) + ": not with --benchmark " + o.benchmark +
                               " (two bodies: the run has no one-body contact point; allowed: --scheme cn, --mass, "
                               "--elements, --courant or --dt, --final-time, --no-timing)");
-  r.massless = mrm::contact_node_is_massless(mrm::modified_mass(r.mesh, r.configuration.mass));
+  r.massless = r.configuration.assembled_mass->massless;
   // A massless contact node's options do not apply to a node with inertia (its value and velocity are
   // its own unknowns); the literal row is the only Paoli-Schatzman row of such a node.
   if (!r.massless)
@@ -411,10 +417,9 @@ void build_run(const cli::Parser& parser, Options& o, Run& r) {
   // algebraic row or ec with a contact node that has inertia, a literal row with beta < 1/4 and a massless
   // node) and names the parameter, worded here as the option that sets it.
   // An explicit scheme's stability limit names the option that set the step.
-  // Two bodies: both meshes with the mass on each (their Crank-Nicolson step needs nothing else).
-  if (r.two_bodies)
-    for (int k = 0; k < 2; ++k)
-      mrm::modified_mass(mrm::repro::configuration_mesh(r.configuration, k), r.configuration.mass);
+  // Two bodies: both meshes with the mass on each (their Crank-Nicolson step needs nothing else); the left
+  // body's is the run's mesh, checked with the mass above.
+  if (r.two_bodies) (void)mrm::assemble_mass(mrm::repro::configuration_mesh(r.configuration, 1), r.configuration.mass);
   std::vector<std::pair<std::string, std::string>> option_names = o.scheme_options.option_names();
   option_names.insert(option_names.begin(), {"dt", parser.given("--dt") ? "--dt" : "--courant"});
   for (const auto& name : std::vector<std::pair<std::string, std::string>>{
@@ -422,7 +427,7 @@ void build_run(const cli::Parser& parser, Options& o, Run& r) {
     option_names.push_back(name);
   mrm::repro::as_usage_error(option_names, [&] {
     if (r.two_bodies) return;
-    r.validated.emplace(mrm::repro::configuration_problem(r.configuration), r.mesh, r.configuration.mass,
+    r.validated.emplace(mrm::repro::configuration_problem(r.configuration), r.mesh, *r.configuration.assembled_mass,
                         r.configuration.scheme, r.step, r.configuration.initial);
   });
 }
@@ -461,14 +466,13 @@ void write_series_header(const cli::Parser& parser, const Options& o, const Run&
     std::ostream& out = r.series->stream();
     out << "# bar1d: time series at the contact point x = 0 ("
         << (r.own_data ? std::string("initial data from a file") : o.benchmark + " benchmark") << "; exact values: "
-        << (r.field_benchmark                      ? "the chain's exact solution, lib/exact/impact_solution.hpp"
-            : r.own_data || o.benchmark != "paper" ? "characteristic solution, mathematics.md sec. 10"
-                                                   : "closed form, mathematics.md sec. 2")
+        << (r.field_benchmark ? "the chain's exact solution, lib/exact/impact_solution.hpp"
+            : !mrm::repro::has_closed_form(r.configuration) ? "characteristic solution, mathematics.md sec. 10"
+                                                            : "closed form, mathematics.md sec. 2")
         << ")\n";
     parser.echo(out);
     out << "# h = " << cli::format_real(r.mesh.h(0)) << (o.grading != 1.0 ? " (h0, the contact element)" : "")
-        << "\n# steps = " << r.steps
-        << "\n# total_mass = " << cli::format_real(mrm::total_mass(r.mesh, r.configuration.mass))
+        << "\n# steps = " << r.steps << "\n# total_mass = " << cli::format_real(r.configuration.assembled_mass->total())
         << "\n# massless_contact_node = " << (r.massless ? "true" : "false")
         << "\n# exact_energy = " << cli::format_real(r.reference->energy()) << '\n'
         << "# Each quantity is given at the instant it approximates: t for u0, t_lambda for lambda,\n"
@@ -629,8 +633,8 @@ void print_results(const Options& o, const Run& r, const TotalEnergy& total) {
       std::cout << "phase_drift_per_period = " << cli::format_real(*r.measures.phase->drift_per_period) << '\n'
                 << "phase_period = " << cli::format_real(r.measures.phase->period) << '\n';
   }
-  if (o.elements >= 3 && !r.configuration.data && r.configuration.benchmark == "paper") {
-    const mrm::PeriodPrediction law = mrm::predict_period(r.mesh, r.configuration.mass);
+  if (o.elements >= 3 && mrm::repro::has_closed_form(r.configuration)) {
+    const mrm::PeriodPrediction law = mrm::predict_period(r.mesh, r.configuration.assembled_mass->matrix);
     std::cout << "period_law_first_impact_error = " << cli::format_real(law.first_impact_error) << '\n'
               << "period_law_drift_per_period = " << cli::format_real(law.period_error) << '\n';
     // On a graded mesh: h0 and the coarsest element, and the first-order law's change of the
@@ -661,8 +665,7 @@ void print_results(const Options& o, const Run& r, const TotalEnergy& total) {
         std::cout << " [" << cli::format_real(w.start) << ", " << cli::format_real(w.end) << "]";
       std::cout << (list.empty() ? " none" : "") << '\n';
     };
-    if (!mrm::impact_benchmark(o.benchmark).time_unit.empty())
-      std::cout << "time_unit = " << mrm::impact_benchmark(o.benchmark).time_unit << '\n';
+    if (!r.benchmark->time_unit.empty()) std::cout << "time_unit = " << r.benchmark->time_unit << '\n';
     print("exact_contact_windows", windows);
     print("measured_contact_windows", r.measures.contact_windows);
     std::cout << "exact_contact_held_at_final_time = " << (!windows.empty() && windows.back().open ? "true" : "false")

@@ -113,12 +113,9 @@ std::string refusal(const ClassWithMass& c) {
   return "";
 }
 
-// The horizon of a benchmark's runs: two periods of 3 on the paper's, the registry's horizon (in its own
-// time unit) on the field's, 2 on the smooth ones.
-double horizon_of(const std::string& benchmark) {
-  if (benchmark == "paper") return 6.0;
-  return repro::is_impact_benchmark(benchmark) ? mrm::impact_benchmark(benchmark).final_time : 2.0;
-}
+// The horizon of a benchmark's runs: its registry entry's default (two periods of 3 on the paper's, 2 on
+// the smooth ones, a field benchmark's own in its time unit).
+double horizon_of(const std::string& benchmark) { return mrm::benchmark(benchmark).final_time; }
 
 // Whether run_configuration runs a benchmark with every case of the matrix (a probe of one step each), and
 // why not: the first refusal, named by its case. A benchmark joins the matrix only whole, so that every

@@ -58,8 +58,7 @@ double getfem_demo_exact(double x, double t, int d) {
 namespace {}  // namespace
 
 GetfemDemoMeasures getfem_demo_measures(const Configuration& configuration) {
-  if (configuration.benchmark != "paper" || configuration.data || configuration.length != 1.0 ||
-      configuration.amplitude != 0.5)
+  if (!has_closed_form(configuration) || configuration.length != 1.0 || configuration.amplitude != 0.5)
     throw std::invalid_argument("getfem_demo_measures: the demo's problem is the paper's benchmark, L = 1, a = 1/2");
   const Index n = configuration.elements;
   const double h = 1.0 / static_cast<double>(n), dt = configuration.step();

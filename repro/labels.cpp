@@ -7,6 +7,7 @@
 
 #include <doctest/doctest.h>
 
+#include "exact/benchmarks.hpp"
 #include "measures/errors.hpp"
 #include "fem/mass_redistribution.hpp"
 
@@ -57,25 +58,9 @@ const std::array<Label, 8>& measure_labels() {
   return labels;
 }
 
-const std::vector<Label>& benchmark_labels() {
-  static const std::vector<Label> labels{
-      {"paper", "the paper's benchmark (closed-form solution)", "the paper's benchmark"},
-      {"smooth-impact", "S1, a smooth impact", "S1 (smooth impact)"},
-      {"grazing", "S2, a grazing contact", "S2 (grazing contact)"},
-      // The field's benchmarks (lib/exact/impact_solution.hpp impact_benchmarks(), doc/benchmarks.md): each with
-      // its load, gap, material, far end and units, and the chain's exact solution as the reference.
-      {"bouncing", "Doyen-Ern-Piperno's bouncing bar (falling under gravity)",
-       "the bouncing bar (Doyen--Ern--Piperno)"},
-      {"impacting", "Code_Aster SDNV100's impacting bar, SI units", "the impacting bar (SDNV100)"},
-      {"gravity-paper", "the paper's bar pressed by f = -1", "the paper's bar under a load"},
-      {"two-bars", "two free bars colliding, N elements each (cn only)", "two bars"},
-      {"layered", "a two-layer bar hitting a wall", "a layered bar"}};
-  return labels;
-}
-
 std::vector<std::string> benchmark_names() {
   std::vector<std::string> names;
-  for (const Label& label : benchmark_labels()) names.push_back(label.id);
+  for (const Benchmark& b : benchmarks()) names.push_back(b.id);
   return names;
 }
 
@@ -104,7 +89,7 @@ std::string scheme_help(const std::string& what) {
 
 std::string benchmark_help(const std::string& what) {
   std::string help = what + ":";
-  for (const Label& label : benchmark_labels()) help += "\n" + label.id + " = " + label.plain;
+  for (const Benchmark& b : benchmarks()) help += "\n" + b.id + " = " + b.summary;
   return help;
 }
 

@@ -32,9 +32,8 @@ std::string scheme_row_label(const std::string& id, const std::string& ps_form);
 Label mass_label(const std::string& spec);
 /// The eight measures of mathematics.md §5, in the order of ErrorAccumulator::names.
 const std::array<Label, 8>& measure_labels();
-/// The benchmarks, in the order of their choice list: paper, smooth-impact, grazing, then the field's
-/// (bouncing, impacting, gravity-paper, two-bars, layered: lib/exact/impact_solution.hpp, exact solution only).
-const std::vector<Label>& benchmark_labels();
+/// The ids of the registry of benchmarks (mrm::benchmarks(), lib/exact/benchmarks.hpp), in the order of
+/// their choice list: paper, smooth-impact, grazing, then the field's.
 std::vector<std::string> benchmark_names();
 
 /// The three schemes of the paper (cn, be, ps), in the order of its Figure 1 and of every data file.
@@ -44,8 +43,8 @@ const std::vector<std::string>& mass_names();
 /// The ids of every scheme of the registry, for choice lists.
 std::vector<std::string> scheme_ids();
 
-/// The help text of a choice of scheme or benchmark: `what`, then each id with its registry summary
-/// (schemes) or its label (benchmarks), one a line (the help lists them one a line: options.hpp).
+/// The help text of a choice of scheme or benchmark: `what`, then each id with the summary of its registry
+/// entry (mrm::scheme_registry, mrm::benchmarks), one a line (the help lists them one a line: options.hpp).
 std::string scheme_help(const std::string& what);
 std::string benchmark_help(const std::string& what);
 

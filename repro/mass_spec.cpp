@@ -90,15 +90,18 @@ MassRedistribution mass_redistribution_from_spec(const std::string& spec, double
 }
 
 MassRedistribution mass_redistribution_from_spec(const std::string& spec, const UniformMesh& mesh, double blend) {
-  MassRedistribution r = mass_redistribution_from_spec(spec, blend);
+  return assembled_mass_from_spec(spec, mesh, blend).redistribution;
+}
+
+AssembledMass assembled_mass_from_spec(const std::string& spec, const UniformMesh& mesh, double blend) {
+  const MassRedistribution r = mass_redistribution_from_spec(spec, blend);
   if (spec.rfind("spread:", 0) == 0 && std::stoll(spec.substr(7)) > mesh.elements - 1)
     reject_spec(spec, "K must be at most N - 1 = " + std::to_string(mesh.elements - 1));
   try {
-    (void)modified_mass(mesh, r);
+    return assemble_mass(mesh, r);
   } catch (const std::invalid_argument&) {
     reject_spec(spec, "the mass is not positive definite on nodes 1..N-1 for N = " + std::to_string(mesh.elements));
   }
-  return r;
 }
 
 std::string interior_mass_forms() { return "consistent, lumped, blend:A with A a decimal or a fraction in [0, 1]"; }

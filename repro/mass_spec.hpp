@@ -23,6 +23,9 @@ MassRedistribution mass_redistribution_from_spec(const std::string& spec, double
 /// The same, checked on the mesh at hand: also K <= N - 1 and a mass that is positive definite on
 /// the nodes that keep inertia (mrm::modified_mass).
 MassRedistribution mass_redistribution_from_spec(const std::string& spec, const UniformMesh& mesh, double blend = 0.0);
+/// The same, with M^mod as the check assembled it on the mesh (mrm::assemble_mass), for a run that reads
+/// it rather than assembling it again.
+AssembledMass assembled_mass_from_spec(const std::string& spec, const UniformMesh& mesh, double blend = 0.0);
 
 /// The interior mass forms, in words: "consistent, lumped, blend:A with A a decimal or a fraction in [0, 1]".
 std::string interior_mass_forms();

@@ -171,6 +171,10 @@ double ImpactConfiguration::length() const {
   return sum;
 }
 
+bool is_two_body_chain(const ImpactConfiguration& c) {
+  return !c.obstacle && c.segments.size() == 2 && c.junctions.size() == 1 && c.junctions[0].contact;
+}
+
 void ImpactConfiguration::validate() const {
   if (segments.empty()) refuse("at least one bar segment is needed");
   for (std::size_t j = 0; j < segments.size(); ++j) {

@@ -46,6 +46,10 @@ struct ImpactConfiguration {
   void validate() const;
 };
 
+/// Whether a chain is two bodies in contact with each other (two segments, one contact junction, no
+/// rigid obstacle): the configurations TwoBodySimulation (lib/time/two_bodies.hpp) runs.
+bool is_two_body_chain(const ImpactConfiguration& configuration);
+
 /// The exact solution on [0, Σℓ] × [0, T] for initial data given as pieces (u⁰, v⁰ polynomials in each
 /// piece's σ) whose breakpoints include every junction. Exact to round-off: every wave is a piecewise
 /// polynomial in time, and the number of wave fronts is finite over [0, T] (it is counted: more than

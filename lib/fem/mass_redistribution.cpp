@@ -261,12 +261,28 @@ static bool tridiagonal_is_positive_definite(const Tridiagonal& a, Index first) 
   return true;
 }
 
-Tridiagonal modified_mass(const UniformMesh& mesh, const MassRedistribution& redistribution) {
-  const Tridiagonal m = modified_mass_all_nodes(mesh, redistribution).leading_block(mesh.unknowns());
+// M^mod on the unknowns: the leading block of the all-nodes matrix, checked positive definite on the
+// nodes with inertia.
+static Tridiagonal unknowns_block(const Tridiagonal& all_nodes, const UniformMesh& mesh,
+                                  const MassRedistribution& redistribution) {
+  const Tridiagonal m = all_nodes.leading_block(mesh.unknowns());
   const Index first = contact_node_is_massless(m) ? 1 : 0;
   if (!tridiagonal_is_positive_definite(m, first))
     throw std::invalid_argument("mass redistribution \"" + redistribution.name +
                                 "\": the weights must leave a positive definite mass on the nodes with inertia");
+  return m;
+}
+
+Tridiagonal modified_mass(const UniformMesh& mesh, const MassRedistribution& redistribution) {
+  return unknowns_block(modified_mass_all_nodes(mesh, redistribution), mesh, redistribution);
+}
+
+AssembledMass assemble_mass(const UniformMesh& mesh, const MassRedistribution& redistribution) {
+  AssembledMass m;
+  m.redistribution = redistribution;
+  m.all_nodes = modified_mass_all_nodes(mesh, redistribution);
+  m.matrix = unknowns_block(m.all_nodes, mesh, redistribution);
+  m.massless = contact_node_is_massless(m.matrix);
   return m;
 }
 
@@ -290,6 +306,26 @@ TEST_CASE("Mod 1 loses exactly 2h/3 of the total mass; Mod 2, Mod 3 and the spre
       if (n > 4) CHECK(std::abs(total_mass(mesh, spread_over_first_nodes(3)) - length) < 1e-13 * length);
     }
   }
+}
+
+TEST_CASE("a mass assembled once is modified_mass, modified_mass_all_nodes and total_mass, bit for bit") {
+  const auto same = [](const Tridiagonal& a, const Tridiagonal& b) {
+    return a.size() == b.size() && a.diag == b.diag && a.lower == b.lower && a.upper == b.upper;
+  };
+  const UniformMesh layered = with_material(UniformMesh(2.5, 5), {4, 4, 1, 1, 1}, {1, 1, 1, 1, 1});
+  for (const UniformMesh& mesh : {UniformMesh(1.0, 20), graded_mesh(1.0, 20, 1.05), layered})
+    for (const MassRedistribution& r : {consistent_mass(), mod1(), mod3(), mod3(0.5)}) {
+      CAPTURE(r.name);
+      const AssembledMass m = assemble_mass(mesh, r);
+      CHECK(m.redistribution.name == r.name);
+      CHECK(same(m.matrix, modified_mass(mesh, r)));
+      CHECK(same(m.all_nodes, modified_mass_all_nodes(mesh, r)));
+      CHECK(m.total() == total_mass(mesh, r));
+      CHECK(m.massless == (r.name != "consistent"));
+    }
+  MassRedistribution broken = mod3();
+  broken.weight = [](Index i, Index j, const UniformMesh&) { return i == 1 && j == 1 ? -1.0 : 1.0; };
+  CHECK_THROWS_AS(assemble_mass(UniformMesh(1.0, 10), broken), std::invalid_argument);
 }
 
 TEST_CASE("the redistributed masses remove the inertia of the contact node and stay definite elsewhere") {

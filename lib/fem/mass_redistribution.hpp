@@ -76,6 +76,21 @@ double total_mass(const UniformMesh& mesh, const MassRedistribution& redistribut
 /// True when row and column 0 of the mass matrix vanish: the contact node has no inertia.
 bool contact_node_is_massless(const Tridiagonal& mass);
 
+/// The mass of a run, assembled once from its redistribution on its mesh and read by everything of the
+/// run that needs it (the step, the checks, the total mass, the period law), so that M^mod is formed
+/// once per run: M^mod on every node, its block on the unknowns, and whether the contact node is massless.
+struct AssembledMass {
+  MassRedistribution redistribution;  ///< the redistribution it was assembled from
+  Tridiagonal all_nodes;              ///< M^mod on all nodes 0..N (modified_mass_all_nodes)
+  Tridiagonal matrix;                 ///< M^mod on the unknowns 0..N-1 (modified_mass)
+  bool massless = false;              ///< contact_node_is_massless(matrix)
+  /// The total mass 1ᵀ M^mod 1 over all nodes (total_mass).
+  double total() const { return all_nodes.sum(); }
+};
+/// M^mod of `redistribution` on `mesh`, assembled once; throws std::invalid_argument where
+/// modified_mass does.
+AssembledMass assemble_mass(const UniformMesh& mesh, const MassRedistribution& redistribution);
+
 /// M̄_11 = X h on node 1 (weight w_11 = 3X/2), every other entry as Mod 1, the total not renormalised:
 /// Mod 1 is node1(2/3), Mod 3 is node1(4/3). Throws std::invalid_argument unless X > 0 is finite.
 MassRedistribution node1(double x, double blend = 0.0);

@@ -24,6 +24,8 @@ struct ReducedPencils {
 };
 /// Throws std::invalid_argument for a mesh with N < 3 (the reduced pencils need two free nodes).
 ReducedPencils reduced_pencils(const UniformMesh& mesh, const MassRedistribution& redistribution);
+/// The same from M^mod already assembled on the unknowns (AssembledMass::matrix).
+ReducedPencils reduced_pencils(const UniformMesh& mesh, const Tridiagonal& mass);
 
 /// The lengths of the continuous bars whose first frequency is that of the reduced pencils:
 /// ℓ_f = π/(2ω_f) (free–clamped, a quarter wave), ℓ_c = π/ω_c (clamped–clamped, a half wave).
@@ -46,6 +48,8 @@ struct PeriodPrediction {
 };
 /// The prediction of the period law for a redistribution on a mesh (see PeriodPrediction).
 PeriodPrediction predict_period(const UniformMesh& mesh, const MassRedistribution& redistribution);
+/// The same from M^mod already assembled on the unknowns (AssembledMass::matrix): the same bits.
+PeriodPrediction predict_period(const UniformMesh& mesh, const Tridiagonal& mass);
 
 /// The leading-order period change of a redistribution that adds the mass `local` at node 1 beyond
 /// Mod 3's M̄₁₁ = 4h/3 and spreads the mass `global` uniformly over the bar: ΔP = 2 δm_loc +

@@ -98,12 +98,17 @@
 
 namespace mrm {
 
-Eigen::VectorXd row_sum_lumped_mass(const UniformMesh& mesh, const MassRedistribution& mass) {
-  const Tridiagonal all = modified_mass_all_nodes(mesh, mass);
-  const Index n = mesh.unknowns();
+namespace {
+// The row sums of M^mod (all nodes) on the unknowns 0..n−1.
+Eigen::VectorXd row_sums(const Tridiagonal& all, Index n) {
   Eigen::VectorXd m(n);
   for (Index i = 0; i < n; ++i) m[i] = all.lower[i] + all.diag[i] + all.upper[i];
   return m;
+}
+}  // namespace
+
+Eigen::VectorXd row_sum_lumped_mass(const UniformMesh& mesh, const MassRedistribution& mass) {
+  return row_sums(modified_mass_all_nodes(mesh, mass), mesh.unknowns());
 }
 
 TEST_CASE("row-sum lumping: (h/2, h, ..., h) for the consistent mass, (0, 3h/2, h, ...) for Mod 3") {
@@ -162,6 +167,10 @@ TEST_CASE("the explicit stability limits: h (lumped P1, and lumped Mod 3 with a 
 
 ExplicitStep::ExplicitStep(const UniformMesh& mesh, const MassRedistribution& mass, const Tridiagonal& stiffness,
                            const SchemeParameters& parameters, double dt, double gap)
+    : ExplicitStep(mesh, assemble_mass(mesh, mass), stiffness, parameters, dt, gap) {}
+
+ExplicitStep::ExplicitStep(const UniformMesh& mesh, const AssembledMass& assembled, const Tridiagonal& stiffness,
+                           const SchemeParameters& parameters, double dt, double gap)
     : mesh_(mesh),
       taylor_flanagan_(parameters.scheme == Scheme::taylor_flanagan),
       lumped_(parameters.lumping == MassLumping::row_sum),
@@ -175,8 +184,9 @@ ExplicitStep::ExplicitStep(const UniformMesh& mesh, const MassRedistribution& ma
     for (const SchemeInfo& info : central_difference_schemes()) allowed += (allowed.empty() ? "" : ", ") + info.id;
     throw InvalidParameter("scheme", "the scheme is not an explicit scheme (allowed: " + allowed + ")");
   }
-  const Tridiagonal consistent = modified_mass(mesh, mass);
-  massless_ = contact_node_is_massless(consistent);
+  const MassRedistribution& mass = assembled.redistribution;
+  const Tridiagonal& consistent = assembled.matrix;
+  massless_ = assembled.massless;
   const std::string id = entry->id;
   if (taylor_flanagan_ && massless_)
     throw InvalidParameter("mass",
@@ -193,7 +203,7 @@ ExplicitStep::ExplicitStep(const UniformMesh& mesh, const MassRedistribution& ma
   const Index n = mesh.unknowns();
   Eigen::VectorXd lumped_mass;
   if (lumped_) {
-    lumped_mass = row_sum_lumped_mass(mesh, mass);
+    lumped_mass = row_sums(assembled.all_nodes, n);
     mass_ = Tridiagonal(n);
     mass_.diag = lumped_mass;
     inverse_mass_.resize(n);
@@ -306,7 +316,7 @@ void ExplicitStep::advance(StepState& state, Index, bool has_load) {
 const std::vector<SchemeInfo>& central_difference_schemes() {
   const auto validate = [](const StepContext&) {};
   const auto make = [](const StepContext& c) -> std::unique_ptr<Step> {
-    return std::make_unique<ExplicitStep>(c.mesh, c.redistribution, c.stiffness, c.parameters, c.dt, c.gap);
+    return std::make_unique<ExplicitStep>(c.mesh, c.assembled, c.stiffness, c.parameters, c.dt, c.gap);
   };
   static const std::vector<SchemeInfo> entries = {
       {Scheme::taylor_flanagan,

@@ -39,8 +39,12 @@ double explicit_stability_limit(const UniformMesh& mesh, const Eigen::VectorXd* 
 /// takes row-sum only), `dt` (above the stability limit: "dt: dt = … is above … (allowed: 0 < dt <= Δt_max, i.e. C <= …)").
 class ExplicitStep final : public Step {
  public:
-  /// `mass` the redistribution of the run, `stiffness` S on the unknowns, `gap` the initial gap.
+  /// `mass` the redistribution of the run (assembled here), `stiffness` S on the unknowns, `gap` the
+  /// initial gap.
   ExplicitStep(const UniformMesh& mesh, const MassRedistribution& mass, const Tridiagonal& stiffness,
+               const SchemeParameters& parameters, double dt, double gap);
+  /// The same with the mass the run assembled once on `mesh` (StepContext::assembled).
+  ExplicitStep(const UniformMesh& mesh, const AssembledMass& mass, const Tridiagonal& stiffness,
                const SchemeParameters& parameters, double dt, double gap);
   /// The mass the step uses, on the unknowns: diagonal (row-sum lumped) or the consistent one.
   const Tridiagonal& mass() const { return mass_; }

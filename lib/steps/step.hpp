@@ -46,6 +46,9 @@ struct StepContext {
   double gap;                                ///< the initial gap g₀ ≥ 0 (the obstacle at −g₀)
   bool has_load;                             ///< whether the problem has a load f
   bool massless;                             ///< whether the contact node is massless (row 0 of M vanishes)
+  /// The run's mass as it was assembled once (M^mod on every node too, which a step that lumps its rows
+  /// reads): a step reads it rather than assembling M^mod again.
+  const AssembledMass& assembled;
 };
 
 /// One step of a scheme, built once per run by its registry entry (SchemeInfo::make_step).

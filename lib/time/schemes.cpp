@@ -93,9 +93,9 @@ void validate(const SchemeParameters& p, double dt) {
 
 // M^mod on the mesh, its refusal (weights not symmetric or not finite, a matrix that is not
 // positive definite) worded as the mass's.
-Tridiagonal checked_mass(const UniformMesh& mesh, const MassRedistribution& mass) {
+AssembledMass checked_mass(const UniformMesh& mesh, const MassRedistribution& mass) {
   try {
-    return modified_mass(mesh, mass);
+    return assemble_mass(mesh, mass);
   } catch (const std::invalid_argument& e) {
     throw InvalidParameter("mass", e.what());
   }
@@ -103,15 +103,22 @@ Tridiagonal checked_mass(const UniformMesh& mesh, const MassRedistribution& mass
 
 }  // namespace
 
-// Setting up (★) for the chosen scheme: the coefficients of the builder above, and the initial level.
+// The mass assembled here (after the parameters' checks), then the run as from a mass assembled once.
 BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, const MassRedistribution& mass,
+                             const SchemeParameters& parameters, double dt, InitialContactNode initial)
+    : BarSimulation(problem, mesh, (validate(parameters, dt), checked_mass(mesh, mass)), parameters, dt, initial) {}
+
+// Setting up (★) for the chosen scheme: the coefficients of the builder above, and the initial level.
+BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, const AssembledMass& mass,
                              const SchemeParameters& parameters, double dt, InitialContactNode initial)
     : problem_(problem),
       mesh_(mesh),
       parameters_((validate(parameters, dt), parameters)),
       dt_(dt),
-      mass_(checked_mass(mesh, mass)),
+      mass_(mass.matrix),
       stiffness_(p1_stiffness(mesh)) {
+  if (mass_.size() != mesh.unknowns())
+    throw InvalidParameter("mass", "the mass was assembled on another mesh (allowed: M^mod on the run's mesh)");
   if (!problem.initial_displacement)
     throw InvalidParameter("problem", "no initial displacement u0 (allowed: a function of x)");
   if (problem.length != mesh.length)
@@ -119,7 +126,7 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
                                           ", the mesh L = " + std::to_string(mesh.length) + " (allowed: the same L)");
   if (!(std::isfinite(problem.gap) && problem.gap >= 0))
     throw InvalidParameter("gap", "the initial gap must be finite and >= 0 (got " + std::to_string(problem.gap) + ")");
-  massless_ = contact_node_is_massless(mass_);
+  massless_ = mass.massless;
   three_level_ = parameters.scheme == Scheme::paoli_schatzman;
   algebraic_row_ = massless_ && (!three_level_ || parameters.contact_row == ContactRow::algebraic);
   // The scheme's own checks and its step, from its registry entry (scheme_registry.hpp): the paper's form
@@ -127,8 +134,8 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   // (classes/contact_classes.cpp). A step that runs with its own mass (the explicit schemes' row-sum
   // lumped one) makes it the run's.
   const SchemeInfo& scheme = scheme_info(parameters.scheme);
-  const StepContext context{mesh,     mass, mass_, stiffness_, parameters, dt, problem.gap, problem.load != nullptr,
-                            massless_};
+  const StepContext context{mesh,        mass.redistribution,     mass_,     stiffness_, parameters, dt,
+                            problem.gap, problem.load != nullptr, massless_, mass};
   scheme.validate(context);
   step_ = scheme.make_step(context);
   if (const Tridiagonal* own = step_->own_mass()) mass_ = *own;
@@ -690,7 +697,7 @@ double first_impact_time(Index elements, const MassRedistribution& mass, double 
       previous = g;
     }
   } else {
-    const Tridiagonal m = checked_mass(mesh, mass), s = p1_stiffness(mesh);
+    const Tridiagonal m = checked_mass(mesh, mass).matrix, s = p1_stiffness(mesh);
     if (!contact_node_is_massless(m))
       throw std::invalid_argument("first_impact_time: the mass must leave the contact node massless");
     const StepMatrices step = step_matrices(m, s, SchemeParameters(), dt);

@@ -41,6 +41,10 @@ class BarSimulation {
   BarSimulation(const Problem& problem, const UniformMesh& mesh, const MassRedistribution& mass,
                 const SchemeParameters& parameters, double dt,
                 InitialContactNode initial = InitialContactNode::consistent);
+  /// The same with the mass the run assembled once on `mesh` (assemble_mass): M^mod is not formed again.
+  BarSimulation(const Problem& problem, const UniformMesh& mesh, const AssembledMass& mass,
+                const SchemeParameters& parameters, double dt,
+                InitialContactNode initial = InitialContactNode::consistent);
 
   /// Advances one time level.
   void step();

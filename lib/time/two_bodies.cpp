@@ -180,10 +180,6 @@ void TwoBodySimulation::step() {
   ++level_;
 }
 
-bool is_two_body_chain(const ImpactConfiguration& c) {
-  return !c.obstacle && c.segments.size() == 2 && c.junctions.size() == 1 && c.junctions[0].contact;
-}
-
 TwoBodyReference::TwoBodyReference(std::shared_ptr<const ImpactSolution> chain, int body)
     : chain_(std::move(chain)), body_(body) {
   if (!chain_ || !is_two_body_chain(chain_->configuration()) || (body != 0 && body != 1))

@@ -97,8 +97,4 @@ class TwoBodyReference : public ReferenceSolution {
   double junction_, sign_, energy_ = 0;
 };
 
-/// Whether a chain is two bodies in contact with each other (two segments, one contact junction, no
-/// rigid obstacle): the configurations TwoBodySimulation runs.
-bool is_two_body_chain(const ImpactConfiguration& configuration);
-
 }  // namespace mrm

@@ -181,11 +181,9 @@ std::vector<ClaimResult> check_classes(const ClassesSettings& settings, Judge& j
   const auto redistributed_on = [&](const std::string& b) {
     return b == "two-bars" ? std::vector<Scheme>{Scheme::crank_nicolson} : redistributed;
   };
-  // The horizon: two periods of the paper's benchmark, 2 on smooth-impact (bar1d's default), the registry's
-  // horizon of a field benchmark in its own time unit (as fig_classes runs it).
-  const auto horizon = [](const std::string& b) {
-    return b == "paper" ? 6.0 : repro::is_impact_benchmark(b) ? impact_benchmark(b).final_time : 2.0;
-  };
+  // The horizon: the benchmark's default (its registry entry, as bar1d and fig_classes run it): two
+  // periods of the paper's benchmark, 2 on smooth-impact, a field benchmark's own in its time unit.
+  const auto horizon = [](const std::string& b) { return mrm::benchmark(b).final_time; };
   // The runs: (O) every benchmark × pair × mesh × step; (E) the long runs.
   struct Key {
     std::string benchmark;
@@ -259,7 +257,7 @@ std::vector<ClaimResult> check_classes(const ClassesSettings& settings, Judge& j
                  << number(tv(b, x, "consistent", settings.meshes.size() - 1, 0))
                  << " at N = " << settings.meshes.back() << (x == Scheme::penalty ? " ((P)" : " ((N')")
                  << ": growing like N)";
-      std::string basis = b == "paper" || b == "smooth-impact" ? "(O)" : two ? "(O'), (T)" : "(O')";
+      std::string basis = !mrm::benchmark(b).field ? "(O)" : two ? "(O'), (T)" : "(O')";
       if (x == Scheme::dke) basis += ", (D): an impulse m_eff dv/dt per impact, no chatter of its own; conjecture";
       if (x == Scheme::moreau_jean)
         basis += ", (M): an impulse m_eff v/dt per impact (m_eff = 0.38h-0.41h), no chatter of its own; conjecture";

@@ -21,39 +21,36 @@
 
 namespace mrm::repro {
 
+const Benchmark& configuration_benchmark(const Configuration& c) { return mrm::benchmark(c.benchmark); }
+
 const ImpactBenchmark* configuration_field(const Configuration& c) {
   if (c.data) return nullptr;
   if (c.field) return c.field.get();
-  for (const ImpactBenchmark& b : impact_benchmarks())
-    if (b.id == c.benchmark) return &b;
-  return nullptr;
+  return configuration_benchmark(c).field;
+}
+
+bool has_closed_form(const Configuration& c) {
+  return !c.data && configuration_benchmark(c).kind == BenchmarkKind::paper;
 }
 
 double Configuration::bar_length() const {
   if (data) return data->length();
-  if (const ImpactBenchmark* b = configuration_field(*this)) return b->configuration.length();
-  return benchmark == "paper" ? length : 1.0;
+  if (field) return field->configuration.length();
+  return mrm::benchmark(benchmark).bar_length(length);
 }
-
-namespace {
-// The wave speed √(E/ρ) of a field benchmark's contact segment (1 for any other configuration).
-double contact_wave_speed(const Configuration& c) {
-  const ImpactBenchmark* b = configuration_field(c);
-  if (!b) return 1.0;
-  const BarSegment& s = b->configuration.segments.front();
-  return std::sqrt(s.modulus / s.density);
-}
-}  // namespace
 
 double Configuration::step() const {
   if (dt > 0) return dt;
   const ImpactBenchmark* b = configuration_field(*this);
-  if (!b)
-    return courant * (grading == 1.0 ? UniformMesh(bar_length(), elements).h()
-                                     : graded_mesh(bar_length(), elements, grading).h(0));
-  if (is_two_body_chain(b->configuration))  // h = ℓ/N of the left body (N elements on each body)
-    return courant * (UniformMesh(b->configuration.segments.front().length, elements).h() / contact_wave_speed(*this));
-  return courant * (UniformMesh(bar_length(), elements).h() / contact_wave_speed(*this));
+  if (!b) {
+    const double l = bar_length();
+    return courant * (grading == 1.0 ? UniformMesh(l, elements).h() : graded_mesh(l, elements, grading).h(0));
+  }
+  // h/c at the contact end: c = √(E/ρ) of the contact segment, h = L/N, or ℓ/N of the left body on two
+  // bodies (N elements on each body).
+  const BarSegment& contact = b->configuration.segments.front();
+  const double l = is_two_body_chain(b->configuration) ? contact.length : b->configuration.length();
+  return courant * (UniformMesh(l, elements).h() / std::sqrt(contact.modulus / contact.density));
 }
 
 bool is_two_body_configuration(const Configuration& c) {
@@ -64,16 +61,7 @@ bool is_two_body_configuration(const Configuration& c) {
 InitialData configuration_data(const Configuration& c) {
   if (c.data) return *c.data;
   if (const ImpactBenchmark* b = configuration_field(c)) return b->data;
-  if (c.benchmark == "paper") return benchmark_initial_data(c.length, c.amplitude);
-  if (c.benchmark == "smooth-impact") return smooth_benchmark(SmoothBenchmark::generic_impact).data;
-  if (c.benchmark == "grazing") return smooth_benchmark(SmoothBenchmark::grazing).data;
-  throw std::invalid_argument("unknown benchmark '" + c.benchmark + "' (allowed: paper, smooth-impact, grazing)");
-}
-
-bool is_impact_benchmark(const std::string& benchmark) {
-  for (const ImpactBenchmark& b : impact_benchmarks())
-    if (b.id == benchmark) return true;
-  return false;
+  return configuration_benchmark(c).data(c.length, c.amplitude);
 }
 
 std::vector<ContactInterval> configuration_contact_windows(const Configuration& c, double final_time) {
@@ -99,115 +87,60 @@ TEST_CASE("the exact contact windows of the paper's benchmark are [1 + 3k, 2 + 3
     }
   }
   c.benchmark = "bouncing";
-  CHECK(is_impact_benchmark("bouncing"));
-  CHECK_FALSE(is_impact_benchmark("paper"));
+  CHECK(configuration_field(c) == benchmark("bouncing").field);
   CHECK(configuration_contact_windows(c, 8.0).size() == 3);
 }
 
-// The paper's benchmark keeps its own problem (the closed-form data as functions), so that its runs are
-// the same bits as before the benchmarks became a choice. At the configuration's own scale (the
+// The problem of the configuration's benchmark (lib/exact/benchmarks.hpp), or of its chain scaled to unit
+// size (unit_configuration), or of its data of one's own. At the configuration's own scale (the
 // harness runs unit_configuration's).
 Problem configuration_problem(const Configuration& c) {
-  if (!c.data && c.benchmark == "paper") return benchmark_problem(c.length, c.amplitude);
-  const ImpactBenchmark* b = configuration_field(c);
-  if (b && is_two_body_chain(b->configuration))
-    throw InvalidParameter("benchmark", b->id +
-                                            ": two bodies have no one-body problem (run_configuration runs "
-                                            "them with lib/time/two_bodies.hpp)");
-  Problem problem = configuration_data(c).problem();
-  if (!b) return problem;
-  configuration_mesh(c);  // refuses what the finite element runs do not take
-  // The chain's load f (a polynomial in each segment's σ = (x − centre)/(ℓ/2)) and the obstacle's gap.
-  const ImpactConfiguration& chain = b->configuration;
-  problem.length = chain.length();
-  problem.gap = chain.obstacle_gap;
-  bool loaded = false;
-  for (const BarSegment& segment : chain.segments)
-    for (const double v : segment.load) loaded = loaded || v != 0.0;
-  if (loaded) {
-    // f(x) only: the run forms its load vector once (Problem::steady_load).
-    problem.steady_load = true;
-    problem.load = [segments = chain.segments](double x, double) {
-      double origin = 0;
-      std::size_t j = 0;
-      while (j + 1 < segments.size() && x > origin + segments[j].length) origin += segments[j++].length;
-      const BarSegment& s = segments[j];
-      return s.load.empty() ? 0.0 : poly::evaluate(s.load, (x - origin) / (0.5 * s.length) - 1);
-    };
-  }
-  return problem;
+  if (c.data) return c.data->problem();
+  const Benchmark& entry = configuration_benchmark(c);
+  if (!entry.field) return entry.problem(c.length, c.amplitude);
+  // The mesh refuses what the finite element runs do not take (a grading, an interface that is not a
+  // node; the unit chain's interfaces are the registry's, scaled).
+  if (!entry.two_bodies()) (void)entry.mesh(c.elements, c.grading);
+  return chain_problem(c.field ? *c.field : *entry.field);
 }
 
-// The mesh of a field benchmark. The material is constant on each element (the midpoint's segment), so
-// an interface must be a node: x_j/L = k/N for an integer k, that is N a multiple of the denominator q_j
-// of x_j/L (found as the least q ≤ 10⁴ with q x_j/L within 1e-9 of an integer); the allowed N are the
-// multiples of the least common multiple of the q_j.
 UniformMesh configuration_mesh(const Configuration& c, int body) {
-  const ImpactBenchmark* b = configuration_field(c);
-  if (c.grading != 1.0) {
-    if (b)
-      throw InvalidParameter("grading",
-                             "a graded mesh is for the paper's benchmark, the smooth ones and data of "
-                             "one's own (allowed on " +
-                                 b->id + ": 1, the uniform mesh)");
-    return graded_mesh(c.bar_length(), c.elements, c.grading);
+  if (!c.data) {
+    const Benchmark& entry = configuration_benchmark(c);
+    // The chain unit_configuration scaled to unit size, or the registry's entry's.
+    if (c.field && c.grading == 1.0) return chain_mesh(*c.field, c.elements, body);
+    return entry.mesh(c.elements, c.grading, c.length, body);
   }
-  UniformMesh mesh(c.bar_length(), c.elements);
-  if (!b) return mesh;
-  const ImpactConfiguration& chain = b->configuration;
-  if (is_two_body_chain(chain)) {
-    // Body k in its own frame (lib/time/two_bodies.hpp): its segment, N elements, its far end (the left
-    // body's is x = 0, free: no obstacle; the right body's is the chain's far end).
-    const BarSegment& s = chain.segments.at(static_cast<std::size_t>(body));
-    UniformMesh own(s.length, c.elements);
-    if (s.modulus != 1.0 || s.density != 1.0)
-      own = with_material(own, std::vector<double>(static_cast<std::size_t>(c.elements), s.modulus),
-                          std::vector<double>(static_cast<std::size_t>(c.elements), s.density));
-    return with_far_end(own, body == 0 ? FarEnd::free : chain.far_end);
-  }
-  bool two_bodies = !chain.obstacle;
-  for (const SegmentJunction& j : chain.junctions) two_bodies = two_bodies || j.contact;
-  if (two_bodies)
-    throw InvalidParameter("benchmark", b->id +
-                                            ": the finite element runs take one body against a rigid obstacle, "
-                                            "or two bodies in contact with each other (allowed: bouncing, "
-                                            "impacting, gravity-paper, two-bars, layered, paper, smooth-impact, "
-                                            "grazing)");
-  const double length = chain.length(), n = static_cast<double>(c.elements);
-  long multiple = 1;
-  bool misplaced = false;
-  std::string interface;
-  double x = 0;
-  for (std::size_t j = 0; j + 1 < chain.segments.size(); ++j) {
-    x += chain.segments[j].length;
-    const double fraction = x / length;
-    long q = 1;
-    while (q < 10000 && std::abs(q * fraction - std::round(q * fraction)) > 1e-9 * q) ++q;
-    multiple = std::lcm(multiple, q);
-    const double k = fraction * n;
-    if (std::abs(k - std::round(k)) > 1e-9 * n) misplaced = true, interface = cli::format_real(x);
-  }
-  if (misplaced)
-    throw InvalidParameter("elements", "the interface at x = " + interface + " of benchmark " + b->id +
-                                           " must be a node (allowed: N a multiple of " + std::to_string(multiple) +
-                                           ")");
-  bool homogeneous = true;
-  for (const BarSegment& s : chain.segments) homogeneous = homogeneous && s.modulus == 1.0 && s.density == 1.0;
-  if (!homogeneous) {
-    std::vector<double> young(static_cast<std::size_t>(c.elements)), density(young.size());
-    for (Index e = 0; e < c.elements; ++e) {
-      const double middle = 0.5 * (mesh.x(e) + mesh.x(e + 1));
-      double origin = 0;
-      std::size_t j = 0;
-      while (j + 1 < chain.segments.size() && middle > origin + chain.segments[j].length)
-        origin += chain.segments[j++].length;
-      young[static_cast<std::size_t>(e)] = chain.segments[j].modulus;
-      density[static_cast<std::size_t>(e)] = chain.segments[j].density;
-    }
-    mesh = with_material(mesh, young, density);
-  }
-  return with_far_end(mesh, chain.far_end);
+  const double l = c.data->length();
+  return c.grading == 1.0 ? UniformMesh(l, c.elements) : graded_mesh(l, c.elements, c.grading);
 }
+
+TEST_CASE("a configuration builds its benchmark's problem, mesh and data: those of the registry's entry") {
+  for (const Benchmark& entry : benchmarks()) {
+    CAPTURE(entry.id);
+    Configuration c;
+    c.benchmark = entry.id;
+    c.elements = 20;
+    CHECK(c.bar_length() == entry.bar_length(c.length));
+    CHECK(configuration_mesh(c).h() == entry.mesh(20, 1.0, c.length).h());
+    CHECK(configuration_data(c).pieces.size() == entry.data(c.length, c.amplitude).pieces.size());
+    CHECK(configuration_field(c) == entry.field);
+    if (entry.two_bodies()) {
+      CHECK(is_two_body_configuration(c));
+      CHECK_THROWS_AS(configuration_problem(c), InvalidParameter);
+      continue;
+    }
+    const Problem a = configuration_problem(c), b = entry.problem(c.length, c.amplitude);
+    for (int k = 0; k <= 8; ++k) {
+      const double x = c.bar_length() * k / 8.0;
+      CHECK(a.initial_displacement(x) == b.initial_displacement(x));
+      CHECK(a.initial_velocity(x) == b.initial_velocity(x));
+    }
+    CHECK(a.gap == b.gap);
+    CHECK(static_cast<bool>(a.load) == static_cast<bool>(b.load));
+  }
+}
+
 Configuration paper_configuration(Scheme scheme, const std::string& ps_form, const std::string& mass, Index elements,
                                   double courant, double final_time) {
   Configuration c;
@@ -256,11 +189,16 @@ TEST_CASE("study_configuration and run_cost: the fields given, the defaults kept
 
 MassRedistribution mass_from_option(const std::string& option, const std::string& spec, const UniformMesh& mesh,
                                     bool massless, double blend) {
+  return assembled_mass_from_option(option, spec, mesh, massless, blend).redistribution;
+}
+
+AssembledMass assembled_mass_from_option(const std::string& option, const std::string& spec, const UniformMesh& mesh,
+                                         bool massless, double blend) {
   try {
     if (massless && spec == "consistent")
       throw std::invalid_argument(cli::quoted_text(spec) + ": this program needs a massless contact node (allowed: " +
                                   mass_redistribution_forms() + ", except consistent)");
-    return mass_redistribution_from_spec(spec, mesh, blend);
+    return assembled_mass_from_spec(spec, mesh, blend);
   } catch (const std::invalid_argument& e) {
     throw cli::UsageError(option + ": " + e.what());
   }

@@ -18,6 +18,7 @@
 #include "output_file.hpp"
 #include "run_limits.hpp"
 
+#include "exact/benchmarks.hpp"
 #include "exact/characteristics.hpp"
 #include "measures/contact_stress.hpp"
 #include "measures/errors.hpp"
@@ -53,6 +54,10 @@ inline mrm::SchemeParameters scheme_parameters(const std::string& scheme, const 
 /// blend A the member is defined on (interior_blend_from_spec, mass_spec.hpp; 0 the paper's).
 MassRedistribution mass_from_option(const std::string& option, const std::string& spec, const UniformMesh& mesh,
                                     bool massless = false, double blend = 0.0);
+/// The same, with M^mod as the check assembled it on `mesh` (assembled_mass_from_spec): the one assembly of
+/// a run that shares it (Configuration::assembled_mass).
+AssembledMass assembled_mass_from_option(const std::string& option, const std::string& spec, const UniformMesh& mesh,
+                                         bool massless = false, double blend = 0.0);
 
 /// The velocity of a massless contact node in the velocity measures. `algebraic` (the default): the
 /// library's own, defined from the algebraic contact row (mathematics.md §7; BarSimulation sets V₀ at
@@ -69,6 +74,11 @@ ContactVelocity contact_velocity_by_name(const std::string& name);
 struct Configuration {
   SchemeParameters scheme;
   MassRedistribution mass = mod3();
+  /// `mass` assembled once on configuration_mesh(*this) (assembled_mass_from_option; null by default):
+  /// the run reads it instead of assembling M^mod again when its unit mesh is this mesh (a scaling of
+  /// the amplitude alone: L = 1, c = E = 1 at the contact end). Whoever changes `mass` or the mesh
+  /// resets it.
+  std::shared_ptr<const AssembledMass> assembled_mass;
   Index elements = 100;
   double courant = 0.5;  ///< Δt = C h, unless dt > 0
   double dt = 0.0;       ///< the time step if > 0
@@ -80,9 +90,10 @@ struct Configuration {
   /// Horizons T_k (increasing, each ≤ final_time) at which the errors over [0, T_k] are also measured,
   /// from the same run: a prefix of the run is the run to T_k.
   std::vector<double> horizons;
-  /// One of benchmark_names(); `length` and `amplitude` apply to "paper" only (the smooth benchmarks have
-  /// L = 1). Ignored when `data` is set. A field benchmark (is_impact_benchmark: bouncing, impacting,
-  /// gravity-paper, layered) runs its chain of lib/exact/impact_solution.hpp: its load, gap, material and far
+  /// The id of an entry of the registry of benchmarks (mrm::benchmarks(), lib/exact/benchmarks.hpp);
+  /// `length` and `amplitude` apply to the one that takes them (Benchmark::takes_length: the paper's).
+  /// Ignored when `data` is set. A field benchmark (Benchmark::field: bouncing, impacting, gravity-paper,
+  /// two-bars, layered) runs its chain of lib/exact/impact_solution.hpp: its load, gap, material and far
   /// end, in its own units, with the exact ImpactSolution as the reference.
   std::string benchmark = "paper";
   /// The field benchmark's chain and data when they are not the registry's: set by unit_configuration
@@ -117,21 +128,30 @@ struct Configuration {
   double step() const;
 };
 
-/// The problem of a configuration: its initial data, f = 0 (a field benchmark: its load and gap). Throws
-/// std::invalid_argument for an unknown benchmark name, InvalidParameter ("benchmark") for two-bars (two
-/// bodies have no one-body problem: run_configuration runs them).
+/// The registry's entry of a configuration's benchmark (mrm::benchmark); throws InvalidParameter
+/// ("benchmark") for an unknown id.
+const Benchmark& configuration_benchmark(const Configuration& configuration);
+
+/// Whether the configuration runs the paper's benchmark (not data of one's own), whose exact solution is
+/// the closed form of mathematics.md §2.
+bool has_closed_form(const Configuration& configuration);
+
+/// The problem of a configuration: its benchmark's (Benchmark::problem; the field chain's load and gap),
+/// or its data of one's own with f = 0. Throws InvalidParameter ("benchmark") for an unknown id and for
+/// two-bars (two bodies have no one-body problem: run_configuration runs them).
 Problem configuration_problem(const Configuration& configuration);
 
 /// The field benchmark of a configuration (its `field`, or the registry's entry named `benchmark`), or
 /// null for the paper's, the smooth ones and data of one's own.
 const ImpactBenchmark* configuration_field(const Configuration& configuration);
 
-/// The mesh of a configuration: N uniform elements on (0, L) (graded by Configuration::grading), and on
-/// a field benchmark its material per element and its far end. Throws InvalidParameter ("elements") when
-/// an interface between two materials is not a node (the allowed N named), InvalidParameter
-/// ("grading") for a grading on a field benchmark. On two bodies (two-bars: is_two_body_chain), the
-/// mesh of body k (0 the left one) in its own frame (lib/time/two_bodies.hpp: ξ from its contact end): N
-/// elements on its length, its material, its far end; both bodies have N elements.
+/// The mesh of a configuration: its benchmark's (Benchmark::mesh: N elements on (0, L) graded by
+/// Configuration::grading; on a field benchmark its material per element and its far end, mrm::chain_mesh),
+/// or N elements on the length of its data of one's own. Throws InvalidParameter ("elements") when an
+/// interface between two materials is not a node (the allowed N named), InvalidParameter ("grading") for
+/// a grading on a field benchmark. On two bodies (two-bars: is_two_body_chain), the mesh of body k (0 the
+/// left one) in its own frame (lib/time/two_bodies.hpp: ξ from its contact end): N elements on its length,
+/// its material, its far end; both bodies have N elements.
 UniformMesh configuration_mesh(const Configuration& configuration, int body = 0);
 /// Whether the configuration is a field benchmark of two bodies in contact (two-bars), which
 /// run_configuration runs with lib/time/two_bodies.hpp (Crank–Nicolson only).
@@ -141,20 +161,16 @@ bool is_two_body_configuration(const Configuration& configuration);
 /// the file's).
 InitialData configuration_data(const Configuration& configuration);
 
-/// The exact solution a configuration's errors are measured against: the closed form for "paper"
-/// (mathematics.md §2), otherwise the characteristic solution of its data (mathematics.md §10) up to
+/// The exact solution a configuration's errors are measured against: the closed form for the paper's
+/// benchmark (has_closed_form, mathematics.md §2), a field benchmark's ImpactReference, otherwise the
+/// characteristic solution of its data (mathematics.md §10) up to
 /// `horizon`, tabulated on the lattice of h and Δt when one of them is a whole multiple of the other.
 /// At the configuration's own scale (the characteristic solution is computed for the unit
 /// configuration and scaled back).
 std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& configuration, double horizon);
 
-/// Whether `benchmark` is one of the field's benchmarks of lib/exact/impact_solution.hpp (impact_benchmarks():
-/// bouncing, impacting, gravity-paper, two-bars, layered), whose finite element runs need what the
-/// schemes do not have yet (a load, a free far end, a gap, layers, two bodies).
-bool is_impact_benchmark(const std::string& benchmark);
-
 /// The exact solution's contact windows over [0, T] of a configuration's contact point, in the
-/// configuration's own units: for a field benchmark (is_impact_benchmark) its chain and data, for the
+/// configuration's own units: for a field benchmark (Benchmark::field) its chain and data, for the
 /// others (paper, smooth ones, data of one's own) the clamped homogeneous bar of unit wave speed with
 /// configuration_data. Computed by mrm::ImpactSolution (lib/exact/impact_solution.cpp), in the data's units
 /// (SI for impacting: the exact solution needs no scaling). Throws mrm::InvalidParameter ("final_time")
@@ -172,7 +188,7 @@ Configuration paper_configuration(const std::string& scheme, const std::string& 
 
 /// One run of a study over benchmarks and variants (fig_stress, fig_phase_matched; fig_classes may use
 /// it too): `scheme` with its registry defaults, the contact mass `mass`, N elements, Δt = C h (c the
-/// wave speed at the contact end on a field benchmark), to T on `benchmark` (one of benchmark_names()).
+/// wave speed at the contact end on a field benchmark), to T on `benchmark` (an id of mrm::benchmarks()).
 /// Every other field keeps Configuration's default.
 Configuration study_configuration(const std::string& benchmark, Scheme scheme, const MassRedistribution& mass,
                                   Index elements, double courant, double final_time);

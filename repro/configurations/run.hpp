@@ -63,7 +63,7 @@ Measures run_configuration(const Configuration& configuration, const std::functi
 using ReferenceSource =
     std::function<std::shared_ptr<const ReferenceSolution>(const Configuration& unit, double horizon)>;
 /// The reference run_configuration measures a unit configuration (unit_configuration) against up to
-/// `horizon`: the closed form for "paper", a field benchmark's ImpactReference, otherwise the
+/// `horizon`: the closed form for the paper's benchmark, a field benchmark's ImpactReference, otherwise the
 /// characteristic solution of its data, tabulated on the lattice of h and Δt when one of them is a
 /// whole multiple of the other.
 std::shared_ptr<const ReferenceSolution> unit_configuration_reference(const Configuration& unit, double horizon);

@@ -143,7 +143,7 @@ ImpactBenchmark unit_benchmark(const ImpactBenchmark& b, const Scaling& s) {
 Scaling configuration_scaling(const Configuration& c) {
   Scaling s;
   s.length = c.bar_length();
-  if (!c.data && c.benchmark == "paper") {
+  if (has_closed_form(c)) {
     s.amplitude = amplitude_normaliser(std::abs(c.amplitude));
     return s;
   }
@@ -178,13 +178,16 @@ Scaling configuration_scaling(const Configuration& c) {
 Configuration unit_configuration(const Configuration& c, const Scaling& s) {
   Configuration unit = c;
   unit.length = 1.0;
-  if (!c.data && c.benchmark == "paper") {
+  if (has_closed_form(c)) {
     unit.amplitude = c.amplitude / s.amplitude;
   } else if (const ImpactBenchmark* b = configuration_field(c)) {
     unit.field = std::make_shared<const ImpactBenchmark>(unit_benchmark(*b, s));
   } else if (!s.identity()) {
     unit.data = std::make_shared<const InitialData>(unit_data(configuration_data(c), s));
   }
+  // The mass assembled on the configuration's mesh is the unit run's when the scaling leaves the mesh
+  // alone (L = 1, c = E = 1 at the contact end: the amplitude alone is scaled).
+  if (s.length != 1.0 || s.wave_speed != 1.0 || s.modulus != 1.0) unit.assembled_mass = nullptr;
   if (c.dt > 0) unit.dt = c.dt / s.time_scale();
   unit.final_time = c.final_time / s.time_scale();
   for (double& t : unit.horizons) t /= s.time_scale();
@@ -197,8 +200,8 @@ Configuration unit_configuration(const Configuration& c, const Scaling& s) {
 std::shared_ptr<const ReferenceSolution> unit_reference(const Configuration& c, double horizon) {
   // The closed form's error sums need the uniform mesh (errors.cpp); a graded mesh takes the
   // characteristic solution of the same data (equal to the closed form: the doctests of phase.cpp).
-  if (!c.data && c.benchmark == "paper" && c.grading == 1.0)
-    return std::make_shared<const ExactSolution>(c.length, c.amplitude);
+  if (has_closed_form(c) && c.grading == 1.0)
+    return configuration_benchmark(c).reference(horizon, c.length, c.amplitude);
   if (const ImpactBenchmark* b = configuration_field(c))
     return std::make_shared<const ImpactReference>(b->configuration, b->data, horizon);
   CharacteristicSolution solution(configuration_data(c), horizon);
@@ -230,7 +233,7 @@ std::shared_ptr<const ReferenceSolution> to_unit(std::shared_ptr<const Reference
 
 void require_reference_memory(const Configuration& c, double horizon, std::string_view option) {
   // The paper's closed form needs none; a field benchmark's solver bounds its own pieces (ImpactSolution).
-  if (!c.data && ((c.benchmark == "paper" && c.grading == 1.0) || configuration_field(c))) return;
+  if ((has_closed_form(c) && c.grading == 1.0) || configuration_field(c)) return;
   double coefficients = 0;
   for (const InitialDataPiece& piece : configuration_data(c).pieces)
     coefficients += static_cast<double>(piece.displacement.size() + piece.velocity.size());
@@ -241,8 +244,8 @@ void require_reference_memory(const Configuration& c, double horizon, std::strin
 }
 
 std::shared_ptr<const ReferenceSolution> configuration_reference(const Configuration& c, double horizon) {
-  if (!c.data && c.benchmark == "paper" && c.grading == 1.0)
-    return std::make_shared<const ExactSolution>(c.length, c.amplitude);
+  if (has_closed_form(c) && c.grading == 1.0)
+    return configuration_benchmark(c).reference(horizon, c.length, c.amplitude);
   const Scaling s = configuration_scaling(c);
   std::shared_ptr<const ReferenceSolution> unit = unit_reference(unit_configuration(c, s), horizon / s.time_scale());
   if (s.identity()) return unit;

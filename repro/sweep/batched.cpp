@@ -518,7 +518,7 @@ TEST_CASE("two bodies and a sweep's own tasks run on the sweep's workers, each o
     for (const char* benchmark : {"paper", "two-bars", "bouncing"}) {
       Configuration c = paper_configuration("cn", "algebraic", mass, 10, 0.5, 3.0);
       c.benchmark = benchmark;
-      if (is_impact_benchmark(benchmark)) c.final_time = impact_benchmark(benchmark).final_time;
+      if (mrm::benchmark(benchmark).field) c.final_time = mrm::benchmark(benchmark).final_time;
       configurations.push_back(c);
     }
   REQUIRE(is_two_body_configuration(configurations[1]));
