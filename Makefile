@@ -113,8 +113,9 @@ install: build
 	env -u MAKEFLAGS -u MFLAGS cmake --build $(BUILD) -j$(JOBS) --target mrm
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
-# The README's generated blocks (tools/readme.sh): the claims and their verdicts from the claims detail
-# of `make all`, the times of the two commands from doc/build_times.txt (tools/measure_commands.sh).
+# The README's generated blocks (tools/readme.sh): the claims, their verdicts and where each holds and
+# fails from the claims detail of `make all`, the times of the two commands from doc/build_times.txt
+# (tools/measure_commands.sh measures them in a fresh clone).
 readme: $(DATA)/claims.txt
 	tools/readme.sh $(DATA)/claims.txt
 

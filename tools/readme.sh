@@ -63,7 +63,8 @@ awk -F' = ' '
     printf "(1-minute load average %s%s; `doc/build_times.txt`).\n", \
       load[1] == load[2] ? load[1] : load[1] "–" load[2], loaded ? ": other work ran at the same time, so an idle machine is faster" : ""
   }
-' "$times" | fold -s -w 100 | sed 's/ *$//' >"$work/timings"
+' "$times" | awk -F'`' -v OFS='`' '{ for (i = 2; i <= NF; i += 2) gsub(/ /, "\001", $i); print }' |
+  fold -s -w 100 | sed 's/ *$//' | tr '\001' ' ' >"$work/timings"  # no line break inside `code`
 
 # The claims block: the summary table that opens the detail (a text table: rows between +---+ rules,
 # each cell wrapped over several lines), its cells joined back: each claim, its verdict, and one line
