@@ -72,7 +72,7 @@ ALL_RESULTS = $(DATA)/benchmark.dat $(DATA)/benchmark.txt $(CLAIMS_OUTPUTS) $(FI
               $(BASELINE) $(FIGURE_PDFS) $(CLASSES) $(CLASSES_PDFS) $(DATA)/cn_large_step.tex $(PEER_TEX) \
               $(DATA)/report_meta.tex $(DOC)/html/index.html $(BENCH_SHORT)/bench_short.tex $(REPORT)
 
-.PHONY: all build clean deps help test test-unit bench install
+.PHONY: all build clean deps help test test-unit bench install readme
 
 # ---- Rules --------------------------------------------------------------------------------------
 
@@ -112,6 +112,12 @@ PREFIX ?= /usr/local
 install: build
 	env -u MAKEFLAGS -u MFLAGS cmake --build $(BUILD) -j$(JOBS) --target mrm
 	cmake --install $(BUILD) --prefix $(PREFIX)
+
+# The README's generated blocks (tools/readme.sh): the claims, their verdicts and where each holds and
+# fails from the claims detail of `make all`, the times of the two commands from doc/build_times.txt
+# (tools/measure_commands.sh measures them in a fresh clone).
+readme: $(DATA)/claims.txt
+	tools/readme.sh $(DATA)/claims.txt
 
 # The benchmark run: its data file and its stdout summary (written whole, via a temporary file; without
 # the wall time, so that the same command gives the same bytes).
@@ -328,6 +334,7 @@ help:
 	@echo '           (all runs a short one, N = 2^8..2^14, into $(OUT)/bench-short/ for the report)'
 	@echo '  deps     check the Debian packages, installing the missing ones if root (tools/deps.sh)'
 	@echo '  install  build the method library without its doctests and install it under $(PREFIX)'
+	@echo '  readme   rewrite the README'"'"'s generated blocks (verdicts, times) from $(DATA)/claims.txt'
 	@echo '  figures  the figures in $(FIGURES)/ (part of all)'
 	@echo '  report   the report $(REPORT) (part of all)'
 	@echo '  doc      the API documentation, $(DOC)/html/index.html (part of all)'

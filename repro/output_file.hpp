@@ -1,5 +1,5 @@
-// Output files sized for the threat model (README, "Output files"): the programs are run by their
-// user on their own files. What an option naming a file to write (`--output FILE`) promises:
+// Output files sized for the threat model (doc/robustness.md, "Output files"): the programs are run by
+// their user on their own files. What an option naming a file to write (`--output FILE`) promises:
 //
 //   - the output is complete or absent: it is written to a temporary file in FILE's directory, opened
 //     exclusively (an existing file or symbolic link at that name is never followed nor reused),

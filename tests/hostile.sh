@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Hostile input, odd outputs and closed descriptors (ctest runs `bash tests/hostile.sh BIN_DIR`).
 #
-# The programs are run as a careless user would run them on their own files (the threat model of the
-# README's "Output files"), one class at a time, each with cases of its own. What every case demands:
+# The programs are run as a careless user would run them on their own files (the threat model of
+# doc/robustness.md, "Output files"), one class at a time, each with cases of its own. What every
+# case demands:
 #
 #   - nothing lost: an output that existed keeps its old bytes unless the run succeeds;
 #   - nothing overwritten that the user did not name, and nothing left behind (no temporary file);

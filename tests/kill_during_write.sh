@@ -8,8 +8,8 @@
 #
 #   - the run ended by that signal (exit status 128 + signal number);
 #   - the output file still holds the old content, byte for byte;
-#   - nothing else is left but the hidden temporary (no handler removes it: the threat model of the
-#     README's "Output files" allows it);
+#   - nothing else is left but the hidden temporary (no handler removes it: the threat model of
+#     doc/robustness.md, "Output files", allows it);
 #   - the next run writing the same output succeeds and replaces it.
 #
 # Job control is switched on so that the background run does not inherit an ignored SIGINT (a
