@@ -228,7 +228,7 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
                       // lengthen the batch (a run of 2Δt to a later horizon would): else every run at every
                       // step. Only for the caller's keys: in the batches of the default keys (N, family),
                       // whose runs are put together by cost, check_claims took 1.05–1.08 of the CPU time with
-                      // rates (farm-bench, medians of 3 sets), though a profile of one pair said less.
+                      // rates (medians of 3 timed sets of runs), though a profile of one pair said less.
                       std::vector<Index> rate(batch.size(), 1);
                       std::vector<char> is_class(batch.size()), stepped(batch.size());
                       bool classes = false;
