@@ -55,8 +55,9 @@ int main(int argc, char** argv) {
                               mrm::repro::scheme_ids(), &scheme);
     mrm::SchemeParameters literal_row;  // the figure's Paoli-Schatzman: the literal contact row by default
     literal_row.contact_row = mrm::ContactRow::literal;
-    scheme_options.declare(program.parser, {mrm::SchemeParameter::contact_row, mrm::SchemeParameter::switch_theta},
-                           literal_row);
+    // In the order the series header echoes them: --switch-theta, then --ps-form.
+    scheme_options.declare(program.parser, {mrm::SchemeParameter::switch_theta});
+    scheme_options.declare(program.parser, {mrm::SchemeParameter::contact_row}, literal_row);
     program.parser.add_string("--instants", "-t", "LIST",
                               "comma-separated instants t >= 0, each rounded to a time level (at most 1e12 steps away)",
                               &instants_text);
