@@ -131,6 +131,9 @@ struct Run {
   double blend = 0.0;  // the interior mass blend A (lib/fem/interior_mass.hpp)
   double transit = 0.0, step_request = 0.0, step = 0.0;
   mrm::Index steps = 0;
+  // M^mod on `mesh`, in the bar's units: the run's assembled mass (Configuration::assembled_mass), or
+  // it times rho_c L when the run steps on the unit bar (Scaling::mass).
+  std::shared_ptr<const mrm::AssembledMass> bar_mass;
   std::optional<mrm::BarSimulation>
       validated;  // one body: built before any work, so that the library checks every input; its matrices give the explicit limits' warning
   std::shared_ptr<const mrm::ReferenceSolution> reference;
@@ -376,11 +379,26 @@ void build_run(const cli::Parser& parser, Options& o, Run& r) {
     } catch (const std::invalid_argument& e) {
       throw cli::UsageError(std::string("--phase-matched: ") + e.what());
     }
-  // The mass spec parsed once and M^mod assembled once on the mesh of the run: the checks, the run, the
-  // total mass and the period law read this one (Configuration::assembled_mass).
+  // The mass spec parsed once and M^mod assembled once per body, on the mesh the run steps on
+  // (Configuration::assembled_mass): the unit bar (the bar's own mesh unless the scaling changes L, c or
+  // E at the contact end; of two bodies, body 0's). The run reads it; the checks on the
+  // bar's mesh (the simulation built below, the total mass, the period law) read it in the bar's units,
+  // M = rho_c L M^ (Scaling::mass: every element's rho h is rho_c L times its unit one), a matrix
+  // the run does not step with.
+  const mrm::repro::Scaling scaling = mrm::repro::configuration_scaling(r.configuration);
+  const bool unit_bar = !scaling.keeps_mesh();
+  const mrm::repro::Configuration unit = mrm::repro::unit_configuration(r.configuration, scaling);
+  const mrm::UniformMesh run_mesh = unit_bar ? mrm::repro::configuration_mesh(unit) : r.mesh;
   r.configuration.assembled_mass = std::make_shared<const mrm::AssembledMass>(
-      mrm::repro::assembled_mass_from_option("--mass", o.mass, r.mesh, r.two_bodies, r.blend));
+      mrm::repro::assembled_mass_from_option("--mass", o.mass, run_mesh, r.two_bodies, r.blend));
   r.configuration.mass = r.configuration.assembled_mass->redistribution;
+  r.bar_mass = r.configuration.assembled_mass;
+  if (unit_bar) {
+    mrm::AssembledMass bar = *r.configuration.assembled_mass;
+    bar.all_nodes = bar.all_nodes.scaled(scaling.mass(1.0));
+    bar.matrix = bar.matrix.scaled(scaling.mass(1.0));
+    r.bar_mass = std::make_shared<const mrm::AssembledMass>(std::move(bar));
+  }
   if (r.two_bodies)  // the options of one body's run (after the checks of the values the run takes)
     for (const char* option :
          {"--output", "--peer", "--initial-contact-node", "--contact-velocity", "--interior-mass", "--phase-matched"})
@@ -418,8 +436,11 @@ void build_run(const cli::Parser& parser, Options& o, Run& r) {
   // node) and names the parameter, worded here as the option that sets it.
   // An explicit scheme's stability limit names the option that set the step.
   // Two bodies: both meshes with the mass on each (their Crank-Nicolson step needs nothing else); the left
-  // body's is the run's mesh, checked with the mass above.
-  if (r.two_bodies) (void)mrm::assemble_mass(mrm::repro::configuration_mesh(r.configuration, 1), r.configuration.mass);
+  // body's is the run's mesh, checked with the mass above; the right body's assembled here, once, on the
+  // unit bar too.
+  if (r.two_bodies)
+    r.configuration.assembled_mass_body1 = std::make_shared<const mrm::AssembledMass>(
+        mrm::assemble_mass(mrm::repro::configuration_mesh(unit, 1), r.configuration.mass));
   std::vector<std::pair<std::string, std::string>> option_names = o.scheme_options.option_names();
   option_names.insert(option_names.begin(), {"dt", parser.given("--dt") ? "--dt" : "--courant"});
   for (const auto& name : std::vector<std::pair<std::string, std::string>>{
@@ -427,8 +448,8 @@ void build_run(const cli::Parser& parser, Options& o, Run& r) {
     option_names.push_back(name);
   mrm::repro::as_usage_error(option_names, [&] {
     if (r.two_bodies) return;
-    r.validated.emplace(mrm::repro::configuration_problem(r.configuration), r.mesh, *r.configuration.assembled_mass,
-                        r.configuration.scheme, r.step, r.configuration.initial);
+    r.validated.emplace(mrm::repro::configuration_problem(r.configuration), r.mesh, *r.bar_mass, r.configuration.scheme,
+                        r.step, r.configuration.initial);
   });
 }
 
@@ -472,7 +493,7 @@ void write_series_header(const cli::Parser& parser, const Options& o, const Run&
         << ")\n";
     parser.echo(out);
     out << "# h = " << cli::format_real(r.mesh.h(0)) << (o.grading != 1.0 ? " (h0, the contact element)" : "")
-        << "\n# steps = " << r.steps << "\n# total_mass = " << cli::format_real(r.configuration.assembled_mass->total())
+        << "\n# steps = " << r.steps << "\n# total_mass = " << cli::format_real(r.bar_mass->total())
         << "\n# massless_contact_node = " << (r.massless ? "true" : "false")
         << "\n# exact_energy = " << cli::format_real(r.reference->energy()) << '\n'
         << "# Each quantity is given at the instant it approximates: t for u0, t_lambda for lambda,\n"
@@ -550,7 +571,15 @@ struct TotalEnergy {
 // 4. The run (repro/configurations: the errors and the energy range), writing the series if asked;
 // with a peer, its own measures beside (repro/peers.hpp).
 void run(Run& r, TotalEnergy& total, mrm::repro::ProgressLine& progress) {
-  if (r.use_peer) r.peer_measures = std::make_unique<mrm::repro::PeerMeasures>(r.mesh, *r.reference, r.massless);
+  // The peer's norms take the consistent mass on the bar's mesh: the run's own when the run takes it on
+  // that mesh (the demo's standard mass), otherwise assembled for them.
+  if (r.use_peer) {
+    const mrm::AssembledMass& run = *r.bar_mass;
+    const bool consistent = run.redistribution.name == mrm::consistent_mass().name &&
+                            run.redistribution.interior_blend == 0.0 && r.bar_mass == r.configuration.assembled_mass;
+    r.peer_measures = consistent ? std::make_unique<mrm::repro::PeerMeasures>(r.mesh, *r.reference, run, r.massless)
+                                 : std::make_unique<mrm::repro::PeerMeasures>(r.mesh, *r.reference, r.massless);
+  }
   const auto start = std::chrono::steady_clock::now();
   r.measures = r.two_bodies ? mrm::repro::run_configuration(r.configuration)
                             : mrm::repro::run_configuration(
@@ -634,7 +663,7 @@ void print_results(const Options& o, const Run& r, const TotalEnergy& total) {
                 << "phase_period = " << cli::format_real(r.measures.phase->period) << '\n';
   }
   if (o.elements >= 3 && mrm::repro::has_closed_form(r.configuration)) {
-    const mrm::PeriodPrediction law = mrm::predict_period(r.mesh, r.configuration.assembled_mass->matrix);
+    const mrm::PeriodPrediction law = mrm::predict_period(r.mesh, r.bar_mass->matrix);
     std::cout << "period_law_first_impact_error = " << cli::format_real(law.first_impact_error) << '\n'
               << "period_law_drift_per_period = " << cli::format_real(law.period_error) << '\n';
     // On a graded mesh: h0 and the coarsest element, and the first-order law's change of the

@@ -37,6 +37,7 @@
 #include "labels.hpp"
 #include "figure_program.hpp"
 #include "report_values.hpp"
+#include "scheme_options.hpp"
 #include "table.hpp"
 #include "time/schemes.hpp"
 
@@ -45,7 +46,7 @@ namespace cli = mrm::cli;
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_contact_history", [&] {
     // 1. Options.
-    std::string ps_form = "algebraic";
+    mrm::repro::SchemeParameterOptions scheme_options;  // --ps-form, algebraic by default
     mrm::repro::FigureProgram program(
         "fig_contact_history",
         "Writes the history of the contact point, u(0,t) and the contact stress lambda(t), of the "
@@ -57,12 +58,10 @@ int main(int argc, char** argv) {
     program.add_elements(20, "number of elements N (h = 1/N), in [2, 1e7]; coarse so that the masses differ");
     program.add_courant(0.5);
     program.add_final_time(9.0);
-    program.parser.add_choice("--ps-form", "", "F",
-                              "Paoli-Schatzman's contact row (algebraic, the form the report believes the paper used, "
-                              "coincides with cn in u and lambda)",
-                              {"algebraic", "literal"}, &ps_form);
+    scheme_options.declare(program.parser, {mrm::SchemeParameter::contact_row});
     program.add_exact_points(3600);
     if (!program.parse(argc, argv)) return 0;
+    const std::string ps_form = mrm::to_string(scheme_options.values().contact_row);
 
     const long elements = program.elements, exact_points = program.exact_points;
     const double courant = program.courant, final_time = program.final_time, dt = program.dt();

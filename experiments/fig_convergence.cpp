@@ -40,6 +40,7 @@
 #include "parallel.hpp"
 #include "sweep.hpp"
 #include "report_values.hpp"
+#include "scheme_options.hpp"
 #include "table.hpp"
 #include "time/schemes.hpp"
 
@@ -174,7 +175,7 @@ int main(int argc, char** argv) {
   return cli::guarded_main("fig_convergence", [&] {
     // 1. Options.
     long coarsest = 128, refinements = 6, threads = 2;
-    std::string ps_form = "literal";
+    mrm::repro::SchemeParameterOptions scheme_options;  // --ps-form
     mrm::repro::FigureProgram program(
         "fig_convergence",
         "Writes every relative error of mathematics.md §5 against h, with dt = h and dt = h/2, for "
@@ -189,10 +190,12 @@ int main(int argc, char** argv) {
         "number of meshes N0, 2 N0, ..., 2^(K-1) N0, in [2, 20]; the finest has at most 1e7 elements", &refinements,
         cli::in_closed_range(2, 20));
     program.add_final_time(3.0, "final time (> 0); one period is 3");
-    program.parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
-                              {"algebraic", "literal"}, &ps_form);
+    mrm::SchemeParameters literal_row;  // the figure's Paoli-Schatzman: the literal contact row by default
+    literal_row.contact_row = mrm::ContactRow::literal;
+    scheme_options.declare(program.parser, {mrm::SchemeParameter::contact_row}, literal_row);
     cli::add_threads_option(program.parser, &threads);
     if (!program.parse(argc, argv, "also write the tables and values the report quotes")) return 0;
+    const std::string ps_form = mrm::to_string(scheme_options.values().contact_row);
     const double final_time = program.final_time;
     // The finest mesh (K ≤ 20 and N0 ≤ 1e7: the product is exact in a double), its steps at Δt = h/2 and the
     // coarsest run's at Δt = h (at least one); the memory of the runs that may run at once (the batches of

@@ -32,6 +32,7 @@
 #include "labels.hpp"
 #include "figure_program.hpp"
 #include "report_values.hpp"
+#include "scheme_options.hpp"
 #include "time/schemes.hpp"
 
 namespace cli = mrm::cli;
@@ -39,7 +40,7 @@ namespace cli = mrm::cli;
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_energy", [&] {
     // 1. Options and the limits of the run.
-    std::string ps_form = "literal";
+    mrm::repro::SchemeParameterOptions scheme_options;  // --ps-form
     mrm::repro::FigureProgram program(
         "fig_energy",
         "Writes the discrete energy history of every scheme (cn, be, ps) with every mass "
@@ -49,9 +50,11 @@ int main(int argc, char** argv) {
     program.add_elements(20);
     program.add_courant(0.5);
     program.add_final_time(9.0);
-    program.parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row (algebraic coincides with cn)",
-                              {"algebraic", "literal"}, &ps_form);
+    mrm::SchemeParameters literal_row;  // the figure's Paoli-Schatzman: the literal contact row by default
+    literal_row.contact_row = mrm::ContactRow::literal;
+    scheme_options.declare(program.parser, {mrm::SchemeParameter::contact_row}, literal_row);
     if (!program.parse(argc, argv)) return 0;
+    const std::string ps_form = mrm::to_string(scheme_options.values().contact_row);
     const long elements = program.elements;
     const double courant = program.courant, final_time = program.final_time;
     program.steps(9);  // nine energy histories

@@ -51,6 +51,7 @@
 #include "steps/energy_step.hpp"
 #include "options.hpp"
 #include "report_values.hpp"
+#include "scheme_options.hpp"
 #include "time/schemes.hpp"
 #include "sweep.hpp"
 #include "table.hpp"
@@ -342,7 +343,7 @@ int main(int argc, char** argv) {
   return cli::guarded_main("fig_energy_schemes", [&] {
     // 1. Options.
     long threads = 2;
-    double switch_theta = 1.0;
+    mrm::repro::SchemeParameterOptions scheme_options;  // --switch-theta
     std::string view = "history", mass = "mod3";
     mrm::repro::FigureProgram program(
         "fig_energy_schemes",
@@ -360,14 +361,11 @@ int main(int argc, char** argv) {
     program.parser.add_choice("--mass", "-m", "M",
                               "history and map: the mass (a massless contact node, which ec needs)",
                               {"mod1", "mod2", "mod3"}, &mass);
-    program.parser.add_real(
-        "--switch-theta", "", "TH",
-        "cn-switch: theta of its switching step; only 1, the one theta whose energy identity proves no "
-        "gain (lib/time/schemes.hpp)",
-        &switch_theta, cli::in_closed_range(mrm::switch_theta_without_gain, 1));
+    scheme_options.declare(program.parser, {mrm::SchemeParameter::switch_theta});
     cli::add_threads_option(program.parser, &threads);
     if (!program.parse(argc, argv, "also write the values and tables the report quotes, as \\mrmdef lines")) return 0;
     const long elements = program.elements;
+    const double switch_theta = scheme_options.values().switch_theta;
     if (view != "history" && program.parser.given("--elements"))
       throw cli::UsageError("--elements: only with --view history (the other views fix their meshes)");
     if (view == "measures" && program.parser.given("--mass"))

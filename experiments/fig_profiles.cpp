@@ -31,6 +31,7 @@
 #include "configurations.hpp"
 #include "figure_program.hpp"
 #include "report_values.hpp"
+#include "scheme_options.hpp"
 #include "time/schemes.hpp"
 
 namespace cli = mrm::cli;
@@ -38,9 +39,8 @@ namespace cli = mrm::cli;
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_profiles", [&] {
     // 1. Options.
-    double switch_theta = 1.0;
-    std::string scheme = mrm::to_string(mrm::Scheme::crank_nicolson), ps_form = "literal",
-                instants_text = "0.5,1.5,2.5,6.5,7.5,8.5";
+    mrm::repro::SchemeParameterOptions scheme_options;  // --ps-form, --switch-theta
+    std::string scheme = mrm::to_string(mrm::Scheme::crank_nicolson), instants_text = "0.5,1.5,2.5,6.5,7.5,8.5";
     mrm::repro::FigureProgram program(
         "fig_profiles",
         "Writes the displacement along the bar at a few instants (free flight, contact, release): "
@@ -53,22 +53,20 @@ int main(int argc, char** argv) {
                               "time scheme (ec: energy-conserving Crank-Nicolson; cn-switch: "
                               "Crank-Nicolson with a theta-step at each change of the contact status)",
                               mrm::repro::scheme_ids(), &scheme);
-    program.parser.add_real(
-        "--switch-theta", "", "TH",
-        "cn-switch: theta of its switching step; only 1, the one theta whose energy identity proves no "
-        "gain (lib/time/schemes.hpp)",
-        &switch_theta, cli::in_closed_range(mrm::switch_theta_without_gain, 1));
-    program.parser.add_choice("--ps-form", "", "F", "Paoli-Schatzman's contact row", {"algebraic", "literal"},
-                              &ps_form);
+    mrm::SchemeParameters literal_row;  // the figure's Paoli-Schatzman: the literal contact row by default
+    literal_row.contact_row = mrm::ContactRow::literal;
+    // In the order the series header echoes them: --switch-theta, then --ps-form.
+    scheme_options.declare(program.parser, {mrm::SchemeParameter::switch_theta});
+    scheme_options.declare(program.parser, {mrm::SchemeParameter::contact_row}, literal_row);
     program.parser.add_string("--instants", "-t", "LIST",
                               "comma-separated instants t >= 0, each rounded to a time level (at most 1e12 steps away)",
                               &instants_text);
     program.add_exact_points(400, "number of intervals of each exact profile, in [10, 1e6]");
     if (!program.parse(argc, argv)) return 0;
     const long exact_points = program.exact_points;
-    mrm::repro::refuse_untaken(
-        program.parser, mrm::scheme_by_name(scheme),
-        {{"--switch-theta", mrm::SchemeParameter::switch_theta}, {"--ps-form", mrm::SchemeParameter::contact_row}});
+    scheme_options.parameters(program.parser, mrm::scheme_by_name(scheme));  // refuses an option it does not take
+    const std::string ps_form = mrm::to_string(scheme_options.values().contact_row);
+    const double switch_theta = scheme_options.values().switch_theta;
     std::vector<double> instants;
     for (const double t : cli::parse_real_list("--instants", instants_text)) {
       cli::require_at_least("--instants", t, 0.0);

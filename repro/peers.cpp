@@ -25,7 +25,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <doctest/doctest.h>
+
 #include "getfem_demo_v4.hpp"
+#include "exact/exact_solution.hpp"
 #include "fem/mass_redistribution.hpp"
 
 namespace mrm::repro {
@@ -119,13 +122,39 @@ const std::array<const char*, 7> PeerMeasures::names = {"LinfL2u", "LinfH1u", "L
                                                         "L2H1u",   "L2L2v",   "L2sn"};
 
 PeerMeasures::PeerMeasures(const UniformMesh& mesh, const ReferenceSolution& exact, bool massless_contact_node)
+    : PeerMeasures(mesh, exact, assemble_mass(mesh, consistent_mass()), massless_contact_node) {}
+
+// The norms' matrices from the one assembly: M on the unknowns, M + S for H¹, and M on every node (the
+// clamped one included) for the velocity's L².
+PeerMeasures::PeerMeasures(const UniformMesh& mesh, const ReferenceSolution& exact, const AssembledMass& consistent,
+                           bool massless_contact_node)
     : exact_(exact),
-      mass_(modified_mass(mesh, consistent_mass())),
-      h1_(modified_mass(mesh, consistent_mass()).plus(1.0, p1_stiffness(mesh))),
-      all_mass_(modified_mass(with_far_end(mesh, FarEnd::free), consistent_mass())),
+      mass_(consistent.matrix),
+      h1_(consistent.matrix.plus(1.0, p1_stiffness(mesh))),
+      all_mass_(consistent.all_nodes),
       length_(mesh.length),
       massless_(massless_contact_node) {
+  if (consistent.redistribution.name != consistent_mass().name || consistent.redistribution.interior_blend != 0.0 ||
+      consistent.matrix.size() != mesh.unknowns())
+    throw std::invalid_argument("PeerMeasures: the norms take the consistent mass assembled on the run's mesh");
   for (Index i = 0; i < mesh.unknowns(); ++i) x_.push_back(mesh.x(i));
+}
+
+TEST_CASE("the peer's norms from the consistent mass assembled once are those of the demo's matrices") {
+  // M on every node is M on the unknowns of the same mesh with a free far end (no node clamped).
+  const UniformMesh mesh(1.0, 12);
+  const AssembledMass consistent = assemble_mass(mesh, consistent_mass());
+  const Tridiagonal free_end = modified_mass(with_far_end(mesh, FarEnd::free), consistent_mass());
+  CHECK(consistent.all_nodes.diag == free_end.diag);
+  CHECK(consistent.all_nodes.lower == free_end.lower);
+  CHECK(consistent.all_nodes.upper == free_end.upper);
+  const Tridiagonal m = modified_mass(mesh, consistent_mass());
+  CHECK(consistent.matrix.diag == m.diag);
+  CHECK(consistent.matrix.lower == m.lower);
+  CHECK(consistent.matrix.upper == m.upper);
+  const ExactSolution exact;
+  CHECK_THROWS_AS(PeerMeasures(mesh, exact, assemble_mass(mesh, mod3()), false), std::invalid_argument);
+  CHECK_THROWS_AS(PeerMeasures(UniformMesh(1.0, 10), exact, consistent, false), std::invalid_argument);
 }
 
 void PeerMeasures::add(const Sample& sample) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "exact/reference_solution.hpp"
+#include "fem/mass_redistribution.hpp"
 #include "time/schemes.hpp"
 
 namespace mrm::repro {
@@ -54,6 +55,11 @@ class PeerMeasures {
   /// On `mesh` (the paper's: uniform, E = 1) against `exact`, which must outlive the accumulator;
   /// `massless_contact_node`: node 0's velocity is the backward difference, as in the demo.
   PeerMeasures(const UniformMesh& mesh, const ReferenceSolution& exact, bool massless_contact_node = false);
+  /// The same, its norms read from `consistent`, the consistent mass already assembled on `mesh`
+  /// (assemble_mass(mesh, consistent_mass()): the run's own when it takes the consistent mass, the
+  /// demo's); std::invalid_argument for another mass or another mesh's.
+  PeerMeasures(const UniformMesh& mesh, const ReferenceSolution& exact, const AssembledMass& consistent,
+               bool massless_contact_node);
   /// Adds one level of a run.
   void add(const Sample& sample);
   /// The names the demo prints them under, in its order: LinfL2u, LinfH1u, LinfL2v, L2L2u, L2H1u, L2L2v, L2sn.

@@ -13,7 +13,8 @@ namespace mrm::repro {
 
 namespace cli = mrm::cli;
 
-void SchemeParameterOptions::declare(cli::Parser& parser, const std::vector<mrm::SchemeParameter>& which) {
+void SchemeParameterOptions::declare(cli::Parser& parser, const std::vector<mrm::SchemeParameter>& which,
+                                     const mrm::SchemeParameters& defaults) {
   const std::vector<mrm::ParameterSpec>& specs = mrm::scheme_parameter_specs();
   // Sized once, before any option points into them (the parser keeps the addresses): a program may
   // declare the parameters in several calls, to place them among its other options.
@@ -21,7 +22,6 @@ void SchemeParameterOptions::declare(cli::Parser& parser, const std::vector<mrm:
     numbers_.assign(specs.size(), 0.0);
     choices_.assign(specs.size(), std::string());
   }
-  const mrm::SchemeParameters defaults;
   for (const mrm::ParameterSpec& spec : specs) {
     if (!which.empty() && std::find(which.begin(), which.end(), spec.parameter) == which.end()) continue;
     if (std::find(declared_.begin(), declared_.end(), spec.parameter) != declared_.end())
@@ -65,6 +65,18 @@ mrm::SchemeParameters SchemeParameterOptions::parameters(const cli::Parser& pars
   return p;
 }
 
+mrm::SchemeParameters SchemeParameterOptions::values() const {
+  mrm::SchemeParameters p;
+  for (const mrm::SchemeParameter parameter : declared_) {
+    const auto k = static_cast<std::size_t>(parameter);
+    if (mrm::parameter_spec(parameter).choices.empty())
+      mrm::set_number(p, parameter, numbers_[k]);
+    else
+      mrm::set_choice(p, parameter, choices_[k]);
+  }
+  return p;
+}
+
 std::vector<std::pair<std::string, std::string>> SchemeParameterOptions::option_names() const {
   std::vector<std::pair<std::string, std::string>> names;
   for (const mrm::SchemeParameter parameter : declared_)
@@ -104,6 +116,24 @@ TEST_CASE("the scheme options set what the scheme takes, from the command line o
   // Out of the spec's range: refused by the parser.
   CHECK_THROWS_AS(parse({"--penalty", "0"}, mrm::Scheme::penalty, mrm::SchemeParameters{}), cli::UsageError);
   CHECK_THROWS_AS(parse({"--moreau-theta", "0.4"}, mrm::Scheme::moreau_jean, mrm::SchemeParameters{}), cli::UsageError);
+}
+
+TEST_CASE("a program's own default of a scheme parameter: shown in its help, its value when not given") {
+  const auto values = [](std::vector<std::string> words) {
+    cli::Parser parser("program", "a program", {});
+    SchemeParameterOptions options;
+    mrm::SchemeParameters defaults;
+    defaults.contact_row = mrm::ContactRow::literal;
+    options.declare(parser, {mrm::SchemeParameter::contact_row}, defaults);
+    std::ostringstream out;
+    parser.parse(words, out);
+    return std::make_pair(options.values(), out.str());
+  };
+  CHECK(values({}).first.contact_row == mrm::ContactRow::literal);
+  CHECK(values({"--ps-form", "algebraic"}).first.contact_row == mrm::ContactRow::algebraic);
+  CHECK(values({"--help"}).second.find("default: literal") != std::string::npos);
+  // A parameter not declared keeps SchemeParameters{}'s value.
+  CHECK(values({}).first.beta == mrm::SchemeParameters{}.beta);
 }
 
 }  // namespace mrm::repro

@@ -711,7 +711,7 @@ TEST_CASE("two-bars by symmetry: each body of the two-body Crank-Nicolson run is
     const UniformMesh mesh = with_far_end(UniformMesh(10.0, 40), FarEnd::free);
     const double dt = 0.5 * mesh.h();
     const Index n = mesh.unknowns();
-    TwoBodyPart part{mesh, mass, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Constant(n, -0.1)};
+    TwoBodyPart part{mesh, mass, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Constant(n, -0.1), nullptr};
     TwoBodySimulation pair({part, part}, 0.0, dt);
     Problem one;
     one.length = 10.0;

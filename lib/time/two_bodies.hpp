@@ -24,6 +24,9 @@ struct TwoBodyPart {
   MassRedistribution redistribution;  ///< its mass; the contact node must be massless
   Eigen::VectorXd displacement;       ///< w⁰ on its unknowns (the contact node's value is recomputed)
   Eigen::VectorXd velocity;           ///< ẇ⁰ on its unknowns (the contact node's likewise)
+  /// `redistribution` already assembled on `mesh` (assemble_mass), which the run then reads instead of
+  /// assembling M^mod again; null: assembled by the run.
+  std::shared_ptr<const AssembledMass> assembled;
 };
 
 /// Crank–Nicolson for two bodies coupled by one contact multiplier λ ≤ 0 (the contact stress, the same

@@ -74,11 +74,15 @@ ContactVelocity contact_velocity_by_name(const std::string& name);
 struct Configuration {
   SchemeParameters scheme;
   MassRedistribution mass = mod3();
-  /// `mass` assembled once on configuration_mesh(*this) (assembled_mass_from_option; null by default):
-  /// the run reads it instead of assembling M^mod again when its unit mesh is this mesh (a scaling of
-  /// the amplitude alone: L = 1, c = E = 1 at the contact end). Whoever changes `mass` or the mesh
-  /// resets it.
+  /// `mass` assembled once on the mesh the run steps on (assembled_mass_from_option; null by default),
+  /// which the run reads instead of assembling M^mod again: the unit bar's,
+  /// configuration_mesh(unit_configuration(*this, configuration_scaling(*this))) (of two bodies, body
+  /// 0's), the configuration's own mesh when the scaling keeps it (Scaling::keeps_mesh). Whoever
+  /// changes `mass` or the mesh resets it.
   std::shared_ptr<const AssembledMass> assembled_mass;
+  /// Two bodies: `mass` assembled once on body 1's unit mesh (configuration_mesh(unit, 1), unit as
+  /// above; null by default), which their run reads like `assembled_mass` on body 0's.
+  std::shared_ptr<const AssembledMass> assembled_mass_body1;
   Index elements = 100;
   double courant = 0.5;  ///< Δt = C h, unless dt > 0
   double dt = 0.0;       ///< the time step if > 0

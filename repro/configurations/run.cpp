@@ -103,9 +103,9 @@ std::shared_ptr<const ReferenceSolution> unit_configuration_reference(const Conf
 // (u₀ⁿ − u₀ⁿ⁻¹)/Δt from level 1 on; the impacts and the energy are the scheme's either way.
 
 namespace {
-// The unit run's simulation: from the mass the configuration assembled once when it is the unit run's
-// (Configuration::assembled_mass, kept by unit_configuration on the same mesh), otherwise from the
-// redistribution, assembled here.
+// The unit run's simulation: from the mass the configuration assembled once on the unit run's mesh
+// (Configuration::assembled_mass, kept by unit_configuration), otherwise from the redistribution,
+// assembled here.
 BarSimulation unit_simulation(const Problem& problem, const UniformMesh& mesh, const Configuration& unit, double dt) {
   const AssembledMass* shared = unit.assembled_mass.get();
   if (shared && shared->redistribution.name == unit.mass.name &&

@@ -185,9 +185,6 @@ Configuration unit_configuration(const Configuration& c, const Scaling& s) {
   } else if (!s.identity()) {
     unit.data = std::make_shared<const InitialData>(unit_data(configuration_data(c), s));
   }
-  // The mass assembled on the configuration's mesh is the unit run's when the scaling leaves the mesh
-  // alone (L = 1, c = E = 1 at the contact end: the amplitude alone is scaled).
-  if (s.length != 1.0 || s.wave_speed != 1.0 || s.modulus != 1.0) unit.assembled_mass = nullptr;
   if (c.dt > 0) unit.dt = c.dt / s.time_scale();
   unit.final_time = c.final_time / s.time_scale();
   for (double& t : unit.horizons) t /= s.time_scale();

@@ -29,6 +29,11 @@ struct Scaling {
   double strain(double unit) const { return amplitude * unit; }                   ///< u_x = σ û_ξ
   double stress(double unit) const { return (modulus * amplitude) * unit; }       ///< E u_x = E_c σ σ̂, also λ
   double energy(double unit) const { return modulus * ((amplitude * amplitude * length) * unit); }  ///< E_c σ²L Ê
+  /// m = ρ_c L m̂ with ρ_c = E_c/c²: a mass (an element's ρh, an entry of M^mod) in the bar's units.
+  double mass(double unit) const { return (modulus / (wave_speed * wave_speed) * length) * unit; }
+  /// Whether the unit bar's mesh is the bar's own mesh (L = 1, c = E = 1 at the contact end: the
+  /// amplitude alone is scaled), so that a mass assembled on one is the other's.
+  bool keeps_mesh() const { return length == 1.0 && wave_speed == 1.0 && modulus == 1.0; }
   /// Nothing to scale.
   bool identity() const { return length == 1.0 && amplitude == 1.0 && wave_speed == 1.0 && modulus == 1.0; }
 };

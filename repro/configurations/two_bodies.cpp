@@ -98,6 +98,7 @@ Measures run_two_bodies(const Configuration& configuration) {
     TwoBodyPart& part = parts[k];
     part.mesh = configuration_mesh(c, k);
     part.redistribution = c.mass;
+    part.assembled = k == 0 ? c.assembled_mass : c.assembled_mass_body1;  // assembled once, or null
     const Index n = part.mesh.unknowns();
     part.displacement.resize(n);
     part.velocity.resize(n);
