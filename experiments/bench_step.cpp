@@ -157,14 +157,6 @@ Timing measure(const std::function<void(long)>& batch, Index nodes, int repetiti
 // The configuration every variant shares: the benchmark of mathematics.md §2, Mod 3, Δt = C h.
 const double courant = 0.5;
 
-mrm::SchemeParameters parameters_of(mrm::Scheme scheme, mrm::StepKernel kernel = mrm::StepKernel::fast) {
-  mrm::SchemeParameters p;
-  p.scheme = scheme;
-  p.contact_row = mrm::ContactRow::algebraic;
-  p.kernel = kernel;
-  return p;
-}
-
 // Crank–Nicolson's step matrix A = M^mod + θS with θ = Δt²/4 and row 0 replaced by the algebraic
 // contact row S₀· (lib/time/schemes.cpp); `symmetric` scales that row by θ instead, which gives the
 // symmetric M^mod + θS (M^mod has a zero row 0).
@@ -307,7 +299,8 @@ std::array<Timing, variants> time_all(Index elements, int repetitions, double ta
   for (int k = 0; k < 3; ++k) {
     for (const mrm::StepKernel kernel : {mrm::StepKernel::fast, mrm::StepKernel::reference}) {
       const int v = kernel == mrm::StepKernel::fast ? fast_variants[k] : reference_variants[k];
-      mrm::BarSimulation simulation(problem, mesh, mrm::mod3(), parameters_of(schemes[k], kernel), dt);
+      mrm::BarSimulation simulation(problem, mesh, mrm::mod3(),
+                                    mrm::parameters_of(schemes[k], mrm::ContactRow::algebraic, kernel), dt);
       t[v] = measure(
           [&](long s) {
             for (long i = 0; i < s; ++i) simulation.step();
@@ -317,7 +310,7 @@ std::array<Timing, variants> time_all(Index elements, int repetitions, double ta
     }
   }
   {
-    mrm::BarSimulation simulation(problem, mesh, mrm::mod3(), parameters_of(mrm::Scheme::crank_nicolson), dt);
+    mrm::BarSimulation simulation(problem, mesh, mrm::mod3(), mrm::parameters_of(mrm::Scheme::crank_nicolson), dt);
     mrm::ErrorAccumulator errors(mesh, mrm::ExactSolution());
     t[v_errors] = measure(
         [&](long k) {
@@ -433,7 +426,8 @@ BatchedTimings time_batched(Index elements, int repetitions, double target) {
     mrm::use_batch_target(t.bit);
     std::vector<mrm::BarSimulation> runs;
     for (std::size_t k = 0; k < t.lanes; ++k)
-      runs.emplace_back(mrm::benchmark_problem(), mesh, mrm::mod3(), parameters_of(mrm::Scheme::crank_nicolson), dt);
+      runs.emplace_back(mrm::benchmark_problem(), mesh, mrm::mod3(), mrm::parameters_of(mrm::Scheme::crank_nicolson),
+                        dt);
     mrm::BatchedSimulation batch(std::move(runs));
     if (batch.batched_runs() != t.lanes) throw std::runtime_error("the batched step did not batch its runs");
     if (result.per_target.empty()) result.plateau = static_cast<double>(batch.plateau_rows()) / static_cast<double>(n);
@@ -503,7 +497,7 @@ long memory_increment_kib(mrm::Scheme scheme, Index elements, Index steps) {
       rusage before{}, after{};
       getrusage(RUSAGE_SELF, &before);
       const mrm::UniformMesh mesh(1.0, elements);
-      mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mod3(), parameters_of(scheme),
+      mrm::BarSimulation simulation(mrm::benchmark_problem(), mesh, mrm::mod3(), mrm::parameters_of(scheme),
                                     courant * mesh.h());
       mrm::ErrorAccumulator errors(mesh, mrm::ExactSolution());
       for (Index k = 0; k < steps; ++k) {
@@ -692,8 +686,8 @@ struct Results {
 Results time_meshes(const Options& o) {
   {
     const mrm::UniformMesh mesh(1.0, 4096);
-    mrm::BarSimulation warm(mrm::benchmark_problem(), mesh, mrm::mod3(), parameters_of(mrm::Scheme::crank_nicolson),
-                            courant * mesh.h());
+    mrm::BarSimulation warm(mrm::benchmark_problem(), mesh, mrm::mod3(),
+                            mrm::parameters_of(mrm::Scheme::crank_nicolson), courant * mesh.h());
     const auto start = Clock::now();
     while (std::chrono::duration<double>(Clock::now() - start).count() < (o.quick ? 0.1 : 0.5)) warm.step();
   }

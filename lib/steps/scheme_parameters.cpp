@@ -44,6 +44,14 @@ MassLumping mass_lumping_by_name(const std::string& name) {
 // is offered at the one value whose energy identity proves that no step gains energy
 // (switch_theta_without_gain; the library keeps [½, 1] for the checks of the θ-step itself).
 
+SchemeParameters parameters_of(Scheme scheme, ContactRow row, StepKernel kernel) {
+  SchemeParameters p;
+  p.scheme = scheme;
+  p.contact_row = row;
+  p.kernel = kernel;
+  return p;
+}
+
 const std::vector<ParameterSpec>& scheme_parameter_specs() {
   using P = SchemeParameter;
   static const std::vector<ParameterSpec> specs = {

@@ -91,6 +91,10 @@ struct SchemeParameters {
   MassLumping lumping = MassLumping::row_sum;  ///< the explicit schemes' mass (explicit_schemes.hpp)
 };
 
+/// `scheme` with every parameter at its default, the contact row and the step's kernel as given.
+SchemeParameters parameters_of(Scheme scheme, ContactRow row = ContactRow::algebraic,
+                               StepKernel kernel = StepKernel::fast);
+
 /// The θ of CN-switch's step for which the θ-step's energy identity proves that no step gains energy
 /// (energy_step.cpp §4): Eⁿ⁺¹ − Eⁿ ≤ −(θ − ½)‖ΔV‖²_M̄ + ρ_θ(a, b), and at a release (a < 0 ≤ b, s = u₁ + hF₀
 /// before and after) ρ_θ = ((1 − θ)|ab| − (θ − ½)a²)/h, positive as soon as |b|/|a| > (θ − ½)/(1 − θ).

@@ -13,20 +13,6 @@
 
 namespace mrm {
 
-// Helpers of the doctests below.
-namespace {
-
-[[maybe_unused]] SchemeParameters parameters_of(Scheme scheme, ContactRow row = ContactRow::algebraic,
-                                                StepKernel kernel = StepKernel::fast) {
-  SchemeParameters p;
-  p.scheme = scheme;
-  p.contact_row = row;
-  p.kernel = kernel;
-  return p;
-}
-
-}  // namespace
-
 // The one builder of (★): the matrices and scalars of the derivation in schemes.cpp, scheme by scheme
 // (mathematics.md §4), M the mass (consistent or redistributed), S the stiffness.
 //

@@ -236,16 +236,6 @@ TEST_CASE(
 
 namespace {
 
-// The doctests' scheme parameters: `scheme` with its defaults, the contact row and kernel given.
-[[maybe_unused]] SchemeParameters parameters_of(Scheme scheme, ContactRow row = ContactRow::algebraic,
-                                                StepKernel kernel = StepKernel::fast) {
-  SchemeParameters p;
-  p.scheme = scheme;
-  p.contact_row = row;
-  p.kernel = kernel;
-  return p;
-}
-
 // A problem whose initial data are the nodal values (U, V) of another run's level: the massless
 // contact node takes its algebraic value again, so a two-level scheme restarts exactly from (Ū, V).
 [[maybe_unused]] Problem restart_problem(const Sample& sample, const UniformMesh& mesh) {

@@ -39,15 +39,6 @@ namespace {
   return energy;
 }
 
-[[maybe_unused]] SchemeParameters parameters_of(Scheme scheme, ContactRow row = ContactRow::algebraic,
-                                                StepKernel kernel = StepKernel::fast) {
-  SchemeParameters p;
-  p.scheme = scheme;
-  p.contact_row = row;
-  p.kernel = kernel;
-  return p;
-}
-
 }  // namespace
 
 // The round-off floor, on the first impact time at N = 8 (Mod 1), Δt = h/4096, h/16384, h/65536
