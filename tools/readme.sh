@@ -48,21 +48,22 @@ awk -F' = ' '
       print "The times of the two commands are not measured yet: `tools/measure_commands.sh` measures them."
       exit 0
     }
-    split("date cpu cores runs load_1min_before load_1min_max make_all_seconds make_test_seconds make_all_again_seconds", keys, " ")
+    split("date commit cpu cores runs own_cpu_seconds other_cpu_seconds make_all_seconds make_test_seconds make_all_again_seconds", keys, " ")
     for (k in keys) if (!(keys[k] in value)) {
       print "readme: the build times lack " keys[k] " (tools/measure_commands.sh writes it)" > "/dev/stderr"
       exit 1
     }
-    # Other work ran (the rule of tools/measure_commands.sh): a load above 1.5 before the commands, or
-    # above the cores (the jobs of the commands) plus 1.5 during them.
-    loaded = value["load_1min_before"] > 1.5 || value["load_1min_max"] > value["cores"] + 1.5
+    # Other work ran (the rule of tools/measure_commands.sh): other processes used more than 2 % of the
+    # CPU time of the commands while they ran.
+    share = 100 * value["other_cpu_seconds"] / value["own_cpu_seconds"]
+    loaded = share > 2
     date = value["date"]; sub(/ .*/, "", date)
     printf "On a %s-core machine (%s), from a fresh clone with the packages present, %s on %s: ", \
       value["cores"], value["cpu"], value["runs"] == 1 ? "measured once" : "median (min – max) of " value["runs"] " runs", date
     printf "`make all` %s, `make test` after it %s, `make all` again %s ", \
       span("make_all_seconds"), span("make_test_seconds"), span("make_all_again_seconds")
-    printf "(load average %s before, %s at most during them%s; `doc/build_times.txt`).\n", \
-      value["load_1min_before"], value["load_1min_max"], loaded ? ": other work ran too, an idle machine is faster" : ""
+    printf "(commit %s; other processes used %.1f %% of the commands%s CPU time%s; `doc/build_times.txt`).\n", \
+      value["commit"], share, "\047", loaded ? ": other work ran too, an idle machine is faster" : ""
   }
 ' "$times" | awk -F'`' -v OFS='`' '{ for (i = 2; i <= NF; i += 2) gsub(/ /, "\001", $i); print }' |
   fold -s -w 100 | sed 's/ *$//' | tr '\001' ' ' >"$work/timings"  # no line break inside `code`
