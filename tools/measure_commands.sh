@@ -75,6 +75,7 @@ stats() {
 }
 
 date=$(date -u '+%Y-%m-%d %H:%M UTC')
+commit=$(git -C "$root" rev-parse --short HEAD)  # what every run clones
 all=() test=() again=()
 for ((run = 1; run <= runs; ++run)); do
   rm -rf -- "$clone"
@@ -107,7 +108,7 @@ fi
   echo "# run, min median max for several. load_before_after: the 1-, 5- and 15-minute load averages before"
   echo "# and after each command, in order (make all, make test, make all again, for each run)."
   echo "date = $date"
-  echo "commit = $(git -C "$root" rev-parse --short HEAD)"
+  echo "commit = $commit"
   echo "cpu = $(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)"
   echo "cores = $cores"
   echo "runs = $runs"

@@ -244,12 +244,13 @@ double kernel(WindowKernel k, double s) {
 // The origin o cannot follow every sample (the running sums would be rebuilt at each), nor stay at 0 (the
 // moments (m − o)^l would grow like n³ and cancel). The samples go in chunks of L = max(1, ⌊r₀/2⌋)
 // consecutive samples whose radii lie in [r₀, 2r₀] (r₀ the first's); o is the chunk's middle, and the running
-// sums are built outward from o over the chunk's windows, L + 2 max r + 1 values: O(1) per sample for
-// widths that change slowly (δ ∝ t^{1/3} doubles its radius only when t grows eightfold), O(r) per sample
-// at worst (widths that jump).
+// sums are built outward from o over the chunk's windows: L + 2 max r + 1 values of the four moments, O(1)
+// per sample for widths that change slowly (δ ∝ t^{1/3} doubles its radius only when t grows eightfold),
+// O(r) per sample at worst (widths that jump).
 //
-// Round-off. The running sums are compensated (TwoSum), so |Ĝ_l(m) − G_l(m)| ≤ 2ε Σ|(m' − o)^l v_{m'}|
-// over the m' between o and m, which all lie in the window (|o − n| ≤ L/2 ≤ r/4 < r). In a window,
+// Round-off. The running sums are compensated (TwoSum) and rounded once when stored, so
+// |Ĝ_l(m) − G_l(m)| ≤ 2ε Σ|(m' − o)^l v_{m'}| over the m' between o and m, which all lie in the window
+// (|o − n| ≤ L/2 ≤ r/4 < r). In a window,
 // α|y| + α|e| ≤ α(|j| + 2|e|) ≤ 2 + 1 = 3 (α ≤ 2/r), so a piece's error is at most
 // 2 · 2ε max|v| (2r + 1) P̄(3), with P̄(x) = Σ_k |c_k| x^k ≤ 23.2 (p_in: 2/3 + 9 + 13.5; p_out: 5³/6 = 20.8).
 // Four pieces, and a denominator at least (2r + 1)/6 (the mean weight tends to ¼; at r = 1 it is 2/9):
@@ -288,38 +289,39 @@ std::array<double, 4> power_sums(long a, long b) {
 // The running sums G_l (l = 0..3) of one chunk, compensated: G_l(m) = sum[l][m − lo] + carry[l][m − lo].
 struct RunningMoments {
   long lo = 0, origin = 0;
-  std::array<std::vector<double>, 4> sum, carry;
+  std::vector<std::array<double, 4>> g;  ///< G_0..G_3 at m = lo + index, each rounded once from (sum, carry)
 
   void build(const std::vector<double>& v, long first, long last, long o) {
-    const long n = static_cast<long>(v.size()), size = last - first + 1;
+    const long n = static_cast<long>(v.size());
     lo = first, origin = o;
-    for (int l = 0; l < 4; ++l) sum[l].assign(static_cast<std::size_t>(size), 0.0), carry[l].assign(sum[l].size(), 0.0);
+    g.assign(static_cast<std::size_t>(last - first + 1), {0.0, 0.0, 0.0, 0.0});
     auto value = [&](long m) { return v[static_cast<std::size_t>(std::clamp(m, 0L, n - 1))]; };
-    // Adds t to (s, c) with Knuth's TwoSum: the rounding error of s + t goes to the carry.
-    auto add = [](double& s, double& c, double t) {
-      const double total = s + t, b = total - s;
-      c += (s - (total - b)) + (t - b);
-      s = total;
-    };
-    auto step = [&](long from, long to, double sign, long at) {  // G(to) = G(from) + sign · terms at m = at
-      const double y = static_cast<double>(at - o), t0 = sign * value(at);
-      const double terms[4] = {t0, t0 * y, t0 * y * y, t0 * y * y * y};
-      for (int l = 0; l < 4; ++l) {
-        const std::size_t f = static_cast<std::size_t>(from - lo), t = static_cast<std::size_t>(to - lo);
-        double s = sum[l][f], c = carry[l][f];
-        add(s, c, terms[l]);
-        sum[l][t] = s, carry[l][t] = c;
+    // Walks from o to `end` one index at a time (`direction` ±1), adding the terms at m (right of o) or
+    // subtracting those at m + 1 (left of o), with Knuth's TwoSum: each addition's rounding error goes to
+    // a carry, and G = sum + carry is stored rounded once.
+    auto walk = [&](long end, long direction) {
+      double sum[4] = {0, 0, 0, 0}, carry[4] = {0, 0, 0, 0};
+      for (long m = o + direction; direction > 0 ? m <= end : m >= end; m += direction) {
+        const long at = direction > 0 ? m : m + 1;
+        const double y = static_cast<double>(at - o), t0 = static_cast<double>(direction) * value(at);
+        const double terms[4] = {t0, t0 * y, t0 * y * y, t0 * y * y * y};
+        std::array<double, 4>& out = g[static_cast<std::size_t>(m - lo)];
+        for (int l = 0; l < 4; ++l) {
+          const double total = sum[l] + terms[l], b = total - sum[l];
+          carry[l] += (sum[l] - (total - b)) + (terms[l] - b);
+          sum[l] = total;
+          out[static_cast<std::size_t>(l)] = sum[l] + carry[l];
+        }
       }
     };
-    for (long m = o + 1; m <= last; ++m) step(m - 1, m, 1.0, m);
-    for (long m = o - 1; m >= first; --m) step(m + 1, m, -1.0, m + 1);
+    walk(last, 1);
+    walk(first, -1);
   }
   // Σ_{m = a}^{b} (m − o)^l v_m for l = 0..3.
   std::array<double, 4> moments(long a, long b) const {
-    std::array<double, 4> out{};
-    const std::size_t hi = static_cast<std::size_t>(b - lo), below = static_cast<std::size_t>(a - 1 - lo);
-    for (int l = 0; l < 4; ++l) out[l] = (sum[l][hi] + carry[l][hi]) - (sum[l][below] + carry[l][below]);
-    return out;
+    const std::array<double, 4>&hi = g[static_cast<std::size_t>(b - lo)],
+                             &below = g[static_cast<std::size_t>(a - 1 - lo)];
+    return {hi[0] - below[0], hi[1] - below[1], hi[2] - below[2], hi[3] - below[3]};
   }
 };
 
