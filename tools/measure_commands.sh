@@ -51,7 +51,9 @@ timed() {
   busy_start=$(busy_ticks)
   start=$(now)
   local TIMEFORMAT='%3U %3S'
-  if ! { time (cd "$clone" && "$@") >>"$work/log" 2>&1; } 2>"$work/cpu"; then
+  # (the command's output is redirected inside the timed subshell: a redirection of the timed command
+  # itself would take time's own report too)
+  if ! { time (cd "$clone" && "$@" >>"$work/log" 2>&1); } 2>"$work/cpu"; then
     echo "measure_commands: '$*' failed; the end of its output:" >&2
     tail -n 40 "$work/log" >&2
     exit 1
