@@ -286,7 +286,7 @@ std::array<double, 4> power_sums(long a, long b) {
   return {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], hi[3] - lo[3]};
 }
 
-// The running sums G_l (l = 0..3) of one chunk, compensated: G_l(m) = sum[l][m − lo] + carry[l][m − lo].
+// The running sums G_l (l = 0..3) of one chunk about its origin o, compensated: G_l(m) = g[m − lo][l].
 struct RunningMoments {
   long lo = 0, origin = 0;
   std::vector<std::array<double, 4>> g;  ///< G_0..G_3 at m = lo + index, each rounded once from (sum, carry)
