@@ -62,7 +62,6 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 
 #include "classes/step_pieces.hpp"
 #include "steps/contact.hpp"

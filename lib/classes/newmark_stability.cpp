@@ -15,7 +15,6 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 
 #include "classes/step_pieces.hpp"
 #include "fem/pencil.hpp"

@@ -19,7 +19,6 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 
 #include "classes/contact_classes.hpp"
 #include "classes/step_pieces.hpp"

@@ -19,7 +19,6 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 
 #include "exact/exact_solution.hpp"
 #include "fem/mass_redistribution.hpp"

@@ -19,7 +19,6 @@
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 
 #include "fem/mass_redistribution.hpp"
 #include "steps/energy_step.hpp"
