@@ -134,7 +134,7 @@ struct GradedRun {
 void write_data_table(std::ostream& defs, const std::vector<mrm::ContactInterval>& layered_windows) {
   // The data of each benchmark, from the registry (lib/exact/impact_solution.cpp), and its exact windows
   // against an independent closed form where one is derived (the doctests of impact_solution.cpp):
-  // bouncing, the free fall to the floor √(2g₀/g) = 1 then contacts of 2L/c every 8L/(3c) = [1 + 8k/3,
+  // bouncing, the free fall to the floor √(2g₀/g) = 1 then contacts of 2L/c every 8L/c = [1 + 8k/3,
   // 5/3 + 8k/3]; impacting, [g₀/v, g₀/v + 2L/c]; gravity-paper, held over [0, T]. The layered bar has no
   // closed form here: its windows are compared with the finest Mod 3 run.
   mrm::repro::Table data_table(

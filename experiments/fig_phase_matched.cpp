@@ -160,7 +160,7 @@ mrm::repro::Table write_targets(std::ostream& defs, std::ostream& summary, const
       eh.push_back(study.at(0, v, l).errors[ten][u_L2H1]);
       el.push_back(study.at(0, v, l).errors[ten][lambda_L2]);
     }
-    target_row("order:u:" + vk, std::string("order u (N <= ") + std::to_string(n400) + "), " + variants[v].label,
+    target_row("order:u:" + vk, std::string("order u ($N \\le ") + std::to_string(n400) + "$), " + variants[v].label,
                mrm::fit_order(steps, eu).order, 0.85);
     target_row("order:H1:" + vk, std::string("order H1, ") + variants[v].label, mrm::fit_order(steps, eh).order, 0.4);
     target_row("order:lambda:" + vk, std::string("order lambda, ") + variants[v].label, mrm::fit_order(steps, el).order,

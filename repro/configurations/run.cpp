@@ -262,12 +262,17 @@ Measures ConfigurationRun::measures() {
   m.errors = unit_.measure_errors ? errors_->relative() : ErrorNorms{};
   if (tv_exact_ > 0) m.lambda_tv_ratio = tv_ / tv_exact_;  // a ratio of two stresses: scale-free
   m.stress = unit_.stress;
+  if (unit_.stress == ContactStress::multiplier && unit_.measure_errors && tv_exact_ > 0)
+    m.stress_l2_error = m.errors.lambda_L2;
   if (keep_) {
     if (unit_.stress != ContactStress::multiplier) {
-      if (tv_exact_ > 0)
-        m.lambda_tv_ratio = stress_measures(history_, unit_.stress).tv_ratio;
-      else
+      if (tv_exact_ > 0) {
+        const StressMeasures own = stress_measures(history_, unit_.stress);
+        m.lambda_tv_ratio = own.tv_ratio;
+        m.stress_l2_error = own.l2_error;
+      } else {
         m.lambda_tv_ratio.reset();
+      }
     }
     m.stress_history = std::move(history_);
   }

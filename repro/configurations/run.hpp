@@ -30,6 +30,12 @@ struct Measures {
   std::optional<double> lambda_tv_ratio;
   /// The stress lambda_tv_ratio is of (Configuration::stress).
   ContactStress stress = ContactStress::multiplier;
+  /// The relative L²(0,T) error of that stress against the exact λ, trapezoidal over its instants
+  /// (StressMeasures::l2_error): for the multiplier it is errors.lambda_L2 (the same sum over the same
+  /// samples), for the other stresses their own, so that a run reports the error of the stress it
+  /// reports. Absent when the exact λ does not vary over the run (as lambda_tv_ratio) or, for the
+  /// multiplier, when the run measures no errors.
+  std::optional<double> stress_l2_error;
   /// The histories of every stress (Configuration::keep_stress_history or a stress other than the
   /// multiplier).
   std::optional<StressHistory> stress_history;

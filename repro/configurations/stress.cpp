@@ -119,6 +119,13 @@ TEST_CASE("a run reports the stress it is asked for: the window bounds what the 
   CHECK(w.l2_error < 2 * raw_l2);  // the same order W^{1/2}
   CHECK(w.l2_error > 0.25 * raw_l2);
   CHECK(windowed.errors.lambda_L2 == raw.errors.lambda_L2);  // the scheme's measures are unchanged
+  // Each run's stress error is its own stress's: the multiplier's is the error accumulator's λ error,
+  // the same trapezoidal sum over the same samples as the history's (to round-off in the sums' order).
+  REQUIRE(raw.stress_l2_error);
+  REQUIRE(windowed.stress_l2_error);
+  CHECK(*raw.stress_l2_error == raw.errors.lambda_L2);
+  CHECK(*raw.stress_l2_error == doctest::Approx(raw_l2).epsilon(1e-12));
+  CHECK(*windowed.stress_l2_error == w.l2_error);
 }
 
 }  // namespace mrm::repro

@@ -147,7 +147,7 @@ Measures run_two_bodies(const Configuration& configuration) {
     simulation.step();
   }
   m.errors = larger();
-  if (tv_exact > 0) m.lambda_tv_ratio = tv / tv_exact;
+  if (tv_exact > 0) m.lambda_tv_ratio = tv / tv_exact, m.stress_l2_error = m.errors.lambda_L2;
   m.stress = ContactStress::multiplier;
   if (!impacts.impacts().empty())
     m.phase = phase_from_contacts(impacts.impacts(), chain->contact_windows(0), chain->horizon(), transit);
