@@ -148,6 +148,8 @@ void write_values(std::ostream& defs, const Study& study) {
   const auto& stresses = mrm::contact_stress_registry();
   const Run& shown = study.at(0, 0, study.middle);
   mrm::tex_define(defs, "st:Nmin", std::to_string(study.coarsest));
+  for (const Benchmark& b : benchmarks)  // each benchmark's horizon, for the captions
+    mrm::tex_define(defs, std::string("st:T:") + b.key, mrm::significant(b.final_time, 3));
   mrm::tex_define(defs, "st:Nmax",
                   std::to_string(study.at(0, 0, static_cast<std::size_t>(study.refinements - 1)).elements));
   mrm::tex_define(defs, "st:Nshown", std::to_string(shown.elements));
