@@ -111,6 +111,7 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include <doctest/doctest.h>
 
@@ -123,6 +124,8 @@ const std::vector<ContactStressEntry>& contact_stress_registry() {
       {ContactStress::window, "window", "lambda_h averaged with the cubic B-spline window of width 8W"},
       {ContactStress::recovered, "recovered",
        "strain at x = 0 of the least-squares quadratic through the first round(4W/h) elements"},
+      {ContactStress::gated, "gated",
+       "the window where the multiplier's variation exceeds 3/2 of the window's (it rattles), else the multiplier"},
   };
   return registry;
 }
@@ -435,7 +438,7 @@ double total_variation(const std::vector<double>& values) {
 
 TEST_CASE("the contact stresses are named once; a bad name lists the allowed ones") {
   for (const ContactStressEntry& e : contact_stress_registry()) CHECK(contact_stress_by_name(e.name) == e.stress);
-  CHECK(contact_stress_names() == "multiplier|box|window|recovered");
+  CHECK(contact_stress_names() == "multiplier|box|window|recovered|gated");
   CHECK_THROWS_WITH_AS(contact_stress_by_name("smooth"),
                        "unknown contact stress \"smooth\" (allowed: multiplier|box|window|recovered)",
                        std::invalid_argument);
@@ -577,6 +580,45 @@ TEST_CASE("the recovered strain read with a stride (a run in the lanes of a batc
     }
   }
   CHECK_THROWS_AS(recovered_strain(lanes.data(), 0, 2, h), std::invalid_argument);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// 6. The gate: the window where the multiplier rattles, the multiplier where it does not.
+//
+// The window bounds the variation of a rattling multiplier (§2), but where nothing rattles it only
+// smooths: on a smooth λ a symmetric window of width δ has the bias O(δ² λ''), and with δ = 8W ∝
+// (h² t)^{1/3} that is O(h^{4/3}), below the multiplier's own order where λ is smooth enough (the grazing
+// contact S2: the multiplier's L² error falls at about 1.8, the window's at about 4/3). One run tells
+// the two cases apart without the exact solution: G = TV(λ_h)/TV(window(λ_h)). Where the multiplier
+// rattles, its variation grows like N^{1/2} (§1) and the window's is bounded (§2b), so G grows like
+// N^{1/2}; where it does not, both variations tend to TV(λ) and G tends to a constant near 1. If the gate
+// keeps the multiplier, its TV ratio is G · TV(window)/TV(λ); the window's bounded level is 1.34 (§2b,
+// CN at c = ½, measured), so G ≤ τ = 2/1.34 ≈ 3/2 keeps it at most 2. τ follows from that measured
+// level, not from the gate's own benchmarks. The gate is one decision for the whole run: a run that is
+// smooth for a long time and then rattles is smoothed everywhere.
+std::vector<double> gated_stress(const std::vector<double>& multiplier, const std::vector<double>& window) {
+  if (multiplier.size() != window.size())
+    throw std::invalid_argument("gated_stress: the multiplier and its window differ in size (" +
+                                std::to_string(multiplier.size()) + " and " + std::to_string(window.size()) + ")");
+  return total_variation(multiplier) > gate_threshold * total_variation(window) ? window : multiplier;
+}
+
+TEST_CASE("the gate smooths a rattling multiplier and keeps a smooth one") {
+  // A smooth history (a half sine) and the same with an alternating wiggle of 5 % of its height: the
+  // window of 40 spacings removes the wiggle (its variation falls from about 2 + 0.1·n to about 2).
+  const std::size_t n = 400;
+  std::vector<double> smooth(n), rattling(n), width(n, 40.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    smooth[i] = -std::sin(3.14159265358979323846 * static_cast<double>(i) / (n - 1));
+    rattling[i] = smooth[i] + (i % 2 ? 0.05 : -0.05);
+  }
+  const std::vector<double> smooth_window = window_average(smooth, 1.0, width, WindowKernel::spline);
+  const std::vector<double> rattling_window = window_average(rattling, 1.0, width, WindowKernel::spline);
+  CHECK(total_variation(rattling) > gate_threshold * total_variation(rattling_window));
+  CHECK(gated_stress(rattling, rattling_window) == rattling_window);
+  CHECK(total_variation(smooth) <= gate_threshold * total_variation(smooth_window));
+  CHECK(gated_stress(smooth, smooth_window) == smooth);
+  CHECK_THROWS_AS(gated_stress(smooth, std::vector<double>(n - 1)), std::invalid_argument);
 }
 
 }  // namespace mrm

@@ -19,6 +19,7 @@ enum class ContactStress {
   box,         ///< λ_h averaged over a centred box window of width δ = 8W (W the smearing width)
   window,      ///< λ_h averaged with the cubic B-spline window of width δ = 8W
   recovered,   ///< the strain at x = 0 of the least-squares quadratic through the first k ≈ 4W/h elements
+  gated,       ///< the window where the multiplier rattles (gated_stress), the multiplier where it does not
 };
 /// One entry of the registry of contact stresses.
 struct ContactStressEntry {
@@ -85,5 +86,13 @@ Index recovered_elements(double smearing, double h);
 
 /// The total variation Σ |v_{n+1} − v_n|.
 double total_variation(const std::vector<double>& values);
+
+/// The gate's threshold τ (contact_stress.cpp §6): the multiplier rattles when its variation exceeds τ
+/// times the variation of its window average.
+inline constexpr double gate_threshold = 1.5;
+/// The gated stress (contact_stress.cpp §6): `window` (the multiplier's window average) if
+/// TV(multiplier) > gate_threshold · TV(window), else `multiplier`. Throws std::invalid_argument if the
+/// sizes differ.
+std::vector<double> gated_stress(const std::vector<double>& multiplier, const std::vector<double>& window);
 
 }  // namespace mrm

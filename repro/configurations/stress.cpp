@@ -27,6 +27,7 @@ namespace mrm::repro {
 std::vector<double> StressHistory::values(ContactStress stress) const {
   if (stress == ContactStress::multiplier) return multiplier;
   if (stress == ContactStress::recovered) return recovered;
+  if (stress == ContactStress::gated) return gated_stress(multiplier, values(ContactStress::window));
   std::vector<double> width;
   width.reserve(time.size());
   for (double t : time) width.push_back(8 * smearing_width(h, std::max(0.0, t), order));
