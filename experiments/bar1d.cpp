@@ -73,6 +73,7 @@
 #include "output_file.hpp"
 #include "configurations.hpp"
 #include "figure_program.hpp"
+#include "report_values.hpp"
 #include "scheme_options.hpp"
 #include "run_limits.hpp"
 #include "initial_data_file.hpp"
@@ -112,7 +113,7 @@ struct Options {
   std::string interior_mass = "consistent";
   // The contact stress whose oscillation bar1d reports (lib/measures/contact_stress.hpp; default: see the
   // --stress help and experiments/fig_stress.cpp's measurements).
-  std::string stress = "window";
+  std::string stress = "gated";
   bool no_timing = false, phase_matched = false;
   // The scheme parameters (--beta, --restitution, --ps-form, --switch-theta, --newmark-beta, ...,
   // --lumping): each option, range and help from the registry (lib/time/scheme_registry.hpp).
@@ -225,10 +226,12 @@ void declare_options(cli::Parser& parser, Options& o) {
     for (const mrm::ContactStressEntry& e : mrm::contact_stress_registry()) stresses.push_back(e.name);
     parser.add_choice(
         "--stress", "", "S",
-        "contact stress whose oscillation lambda_tv_ratio reports: the multiplier, its box "
-        "or B-spline window average over 8 smearing widths, or the strain recovered over the first "
-        "elements (lib/measures/contact_stress.hpp); default window, multiplier on two-bars (its run keeps no "
-        "stress history)",
+        "contact stress whose oscillation lambda_tv_ratio and error err_stress_L2 report: the multiplier, its "
+        "box or B-spline window average over 8 smearing widths, the strain recovered over the first "
+        "elements, or gated: the window where the multiplier's variation exceeds " +
+            mrm::significant(mrm::gate_threshold) +
+            " times the window's (it rattles), else the multiplier (lib/measures/contact_stress.hpp); default "
+            "gated, multiplier on two-bars (its run keeps no stress history)",
         stresses, &o.stress);
   }
   parser.add_conflict("--dt", "--courant");

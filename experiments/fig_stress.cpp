@@ -36,11 +36,13 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "configurations.hpp"
+#include "exact/benchmarks.hpp"
 #include "measures/contact_stress.hpp"
 #include "studies/convergence.hpp"
 #include "figure_program.hpp"
@@ -90,10 +92,10 @@ std::size_t variants_of(std::size_t benchmark) { return benchmark == 0 ? variant
 struct Run {
   std::size_t benchmark, variant, level;
   mrm::Index elements;
-  std::array<mrm::repro::StressMeasures, 4> measures;
+  std::vector<mrm::repro::StressMeasures> measures;  // indexed by ContactStress
   mrm::repro::StressMeasures window_at_cn_width;  // backward Euler only
   std::vector<double> time, exact;
-  std::array<std::vector<double>, 4> values;  // kept for the figure's history only
+  std::vector<std::vector<double>> values;  // kept for the figure's history only, indexed by ContactStress
 };
 
 // The runs of the study and the meshes N0 4^l, l < K (`middle` the figure's).
@@ -133,10 +135,12 @@ void write_data(std::ostream& out, const Study& study) {
   out << "\n\n# block " << block << ": history over the last period, paper, cn:c12, N = " << shown.elements
       << "\n# block history = " << block << "\n# history_N = " << shown.elements
       << "\n# tv_multiplier_N0 = " << cli::format_real(study.at(0, 0, 0).measures[0].tv_ratio)
-      << "\n# columns: t exact multiplier box window recovered\n";
+      << "\n# columns: t exact";
+  for (const mrm::ContactStressEntry& e : stresses) out << ' ' << e.name;
+  out << '\n';
   for (std::size_t i = 0; i < shown.time.size(); ++i) {
     out << cli::format_real(shown.time[i]) << ' ' << cli::format_real(shown.exact[i]);
-    for (std::size_t s = 0; s < 4; ++s)
+    for (std::size_t s = 0; s < stresses.size(); ++s)
       out << ' ' << (i < shown.values[s].size() ? cli::format_real(shown.values[s][i]) : std::string("?"));
     out << '\n';
   }
@@ -275,12 +279,226 @@ void write_values(std::ostream& defs, const Study& study) {
   std::cout << summary.str();
 }
 
+// ---------------------------------------------------------------------------------------------------
+// The default stress over a region: the gate (contact_stress.cpp §6) against the multiplier and the
+// window's width, for the default scheme (CN + Mod 3, Δt/h = ½, A = 0), on the meshes N_g 2^l.
+//
+// The cases: the three whose exact λ jumps (the paper's benchmark over T = 30, bouncing and impacting over
+// their own horizons, the registry's T), where the multiplier rattles; the smooth S2 (grazing) and S1 at
+// their own T = 2, where it does not; and S1 over T = 30, whose λ is smooth but whose fronts have had
+// fifteen times longer to smear. The criteria, stated before the runs:
+//   (a) every case, every mesh: L²(gated) ≤ L²(multiplier). A default that smooths must not be less
+//       accurate than the multiplier it replaces. Where the gate keeps the multiplier the two are the same
+//       numbers, so this judges the cases where it fires.
+//   (b) the jump cases, every mesh: TV(gated)/TV(λ) ≤ 2, the stress study's bound.
+//   (c) the smooth cases: the L² order fitted over the last four meshes at least the multiplier's minus
+//       2σ, σ² = σ_g² + σ_m² the two fits' squared standard errors (OrderFit::order_std_error).
+// The window's width: the B-spline window at 4W, 8W (the registry's) and 16W, measured without a verdict
+// (the gate decides with the 8W window).
+struct GateCase {
+  const char* benchmark;  // Configuration::benchmark
+  const char* key;
+  double final_time;
+  bool jumps;  // the exact λ jumps: criterion (b); else (c)
+};
+std::vector<GateCase> gate_cases() {
+  return {{"paper", "paper", 30.0, true},
+          {"bouncing", "bouncing", mrm::benchmark("bouncing").final_time, true},
+          {"impacting", "impacting", mrm::benchmark("impacting").final_time, true},
+          {"smooth-impact", "s1:T30", 30.0, false},
+          {"smooth-impact", "s1:T2", 2.0, false},
+          {"grazing", "s2", 2.0, false}};
+}
+std::string gate_case_label(const GateCase& c) {
+  const std::string name = std::string(c.key).rfind("s1", 0) == 0 ? "S1" : std::string(c.key) == "s2" ? "S2" : c.key;
+  return name + ", $T = " + mrm::significant(c.final_time, 3) + "$";
+}
+
+// The stresses of the gate study, in the order of its tables.
+enum GateStress { gate_multiplier, gate_window4, gate_window8, gate_window16, gate_gated, gate_stresses };
+const char* const gate_stress_keys[gate_stresses] = {"multiplier", "window4", "window8", "window16", "gated"};
+const char* const gate_stress_labels[gate_stresses] = {"multiplier", "window $4W$", "window $8W$", "window $16W$",
+                                                       "gated (default)"};
+
+struct GateRun {
+  std::size_t which, level;
+  mrm::Index elements;
+  std::array<mrm::repro::StressMeasures, gate_stresses> measures;
+  double G = 0;  // TV(multiplier)/TV(window 8W), the gate's indicator
+};
+
+GateRun measure_gate_run(std::size_t which, std::size_t level, mrm::Index elements,
+                         const mrm::repro::StressHistory& h) {
+  GateRun r{which, level, elements, {}, 0};
+  r.measures[gate_multiplier] = mrm::repro::stress_measures(h, mrm::ContactStress::multiplier);
+  mrm::repro::StressHistory widths = h;
+  for (const auto& [k, factor] : {std::pair{gate_window4, 4.0}, {gate_window8, 8.0}, {gate_window16, 16.0}}) {
+    widths.width_factor = factor;
+    r.measures[k] = mrm::repro::stress_measures(widths, mrm::ContactStress::window);
+  }
+  r.measures[gate_gated] = mrm::repro::stress_measures(h, mrm::ContactStress::gated);
+  r.G = mrm::total_variation(h.values(mrm::ContactStress::multiplier)) /
+        mrm::total_variation(h.values(mrm::ContactStress::window));
+  return r;
+}
+
+struct GateStudy {
+  std::vector<GateCase> cases;
+  std::vector<GateRun> runs;
+  long coarsest, refinements;
+  const GateRun& at(std::size_t c, std::size_t l) const {
+    for (const GateRun& r : runs)
+      if (r.which == c && r.level == l) return r;
+    throw std::logic_error("fig_stress: no such gate run");
+  }
+  std::size_t levels() const { return static_cast<std::size_t>(refinements); }
+  std::size_t fit_from() const { return levels() > 4 ? levels() - 4 : 0; }  // the last four meshes
+};
+
+// The blocks write_data writes: one per (benchmark, variant, stress), then the history.
+std::size_t first_gate_block() {
+  std::size_t blocks = 0;
+  for (std::size_t b = 0; b < benchmarks.size(); ++b) blocks += variants_of(b) * mrm::contact_stress_registry().size();
+  return blocks + 1;
+}
+
+// The data: one block per (case, stress) with the columns N tv_ratio l2_error G.
+void write_gate_data(std::ostream& out, const GateStudy& study, std::size_t first_block) {
+  std::size_t block = first_block;
+  for (std::size_t c = 0; c < study.cases.size(); ++c)
+    for (std::size_t s = 0; s < gate_stresses; ++s) {
+      out << "\n\n# block " << block << ": the default stress's region, benchmark = " << study.cases[c].benchmark
+          << ", T = " << cli::format_real(study.cases[c].final_time) << ", stress = " << gate_stress_keys[s]
+          << "\n# block gate:" << study.cases[c].key << ':' << gate_stress_keys[s] << " = " << block
+          << "\n# columns: N tv_ratio l2_error G\n";
+      ++block;
+      for (std::size_t l = 0; l < study.levels(); ++l) {
+        const GateRun& r = study.at(c, l);
+        out << r.elements << ' ' << cli::format_real(r.measures[s].tv_ratio) << ' '
+            << cli::format_real(r.measures[s].l2_error) << ' ' << cli::format_real(r.G) << '\n';
+      }
+    }
+}
+
+// The tables (TV ratios with the indicator G; L² errors with the orders and the verdict) and the values.
+void write_gate_values(std::ostream& defs, const GateStudy& study) {
+  const std::size_t k = study.levels(), from = study.fit_from();
+  std::vector<double> steps;
+  for (std::size_t l = 0; l < k; ++l) steps.push_back(1.0 / static_cast<double>(study.at(0, l).elements));
+  const std::vector<double> fit_steps(steps.begin() + static_cast<std::ptrdiff_t>(from), steps.end());
+  mrm::tex_define(defs, "st:gate:Nmin", std::to_string(study.at(0, 0).elements));
+  mrm::tex_define(defs, "st:gate:Nmax", std::to_string(study.at(0, k - 1).elements));
+  mrm::tex_define(defs, "st:gate:fit:Nmin", std::to_string(study.at(0, from).elements));
+  mrm::tex_define(defs, "st:gate:threshold", mrm::tex_number(mrm::gate_threshold, 3));
+  std::vector<std::string> tv_headers{"case", "stress"}, l2_headers{"case", "stress"};
+  for (std::size_t l = 0; l < k; ++l) {
+    tv_headers.push_back("$\\mathrm{TV}_{" + std::to_string(study.at(0, l).elements) + "}$");
+    l2_headers.push_back("$L^2_{" + std::to_string(study.at(0, l).elements) + "}$");
+  }
+  tv_headers.push_back("slope");
+  l2_headers.push_back("order");
+  l2_headers.push_back("verdict");
+  mrm::repro::Table tv_table(tv_headers), l2_table(l2_headers);
+  std::ostringstream summary;
+  double fired_min = std::numeric_limits<double>::infinity(), kept_max = 0;
+  bool all_met = true;
+  for (std::size_t c = 0; c < study.cases.size(); ++c) {
+    const GateCase& gc = study.cases[c];
+    const std::string label = gate_case_label(gc);
+    std::array<mrm::OrderFit, gate_stresses> fits;
+    for (std::size_t s = 0; s < gate_stresses; ++s) {
+      std::vector<double> tv, l2;
+      for (std::size_t l = 0; l < k; ++l) {
+        const mrm::repro::StressMeasures& m = study.at(c, l).measures[s];
+        tv.push_back(m.tv_ratio), l2.push_back(m.l2_error);
+        const std::string n = std::string(":") + gc.key + ":" + gate_stress_keys[s] + ":N" +
+                              std::to_string(study.at(c, l).elements);
+        mrm::tex_define(defs, "st:gate:tv" + n, mrm::tex_number(m.tv_ratio, 3));
+        mrm::tex_define(defs, "st:gate:l2" + n, mrm::tex_number(m.l2_error, 2));
+      }
+      fits[s] = mrm::fit_order(fit_steps, std::vector<double>(l2.begin() + static_cast<std::ptrdiff_t>(from), l2.end()));
+      const double slope = -mrm::fit_order(steps, tv).order;
+      const std::string key = std::string(gc.key) + ":" + gate_stress_keys[s];
+      mrm::tex_define(defs, "st:gate:order:" + key, mrm::tex_number(fits[s].order, 2));
+      mrm::tex_define(defs, "st:gate:tvslope:" + key, mrm::tex_number(slope, 2));
+      std::vector<std::string> tv_row{s == 0 ? label : "", gate_stress_labels[s]}, l2_row{s == 0 ? label : "",
+                                                                                          gate_stress_labels[s]};
+      for (double x : tv) tv_row.push_back(mrm::tex_number(x, 3));
+      tv_row.push_back(mrm::tex_number(slope, 2));
+      for (double x : l2) l2_row.push_back(mrm::tex_number(x, 2));
+      l2_row.push_back(mrm::tex_number(fits[s].order, 2) + " $\\pm$ " + mrm::tex_number(fits[s].order_std_error, 1));
+      summary << "gate " << key << ": TV";
+      for (double x : tv) summary << ' ' << x;
+      summary << ", L2";
+      for (double x : l2) summary << ' ' << x;
+      summary << " (order " << fits[s].order << " +- " << fits[s].order_std_error << " over N >= "
+              << study.at(c, from).elements << ")\n";
+      if (s + 1 < gate_stresses) {
+        l2_row.push_back("");
+      } else {
+        // The verdict of the default (criteria (a)-(c) above), with its margins.
+        bool met = true;
+        double worst_l2 = 0, worst_tv = 0;
+        for (std::size_t l = 0; l < k; ++l) {
+          const GateRun& r = study.at(c, l);
+          const double ratio = r.measures[gate_gated].l2_error / r.measures[gate_multiplier].l2_error;
+          worst_l2 = std::max(worst_l2, ratio);
+          worst_tv = std::max(worst_tv, r.measures[gate_gated].tv_ratio);
+          met = met && ratio <= 1.0;
+          if (gc.jumps) met = met && r.measures[gate_gated].tv_ratio <= 2.0;
+          if (r.G > mrm::gate_threshold)  // the gate's own rule (gated_stress): it fired
+            fired_min = std::min(fired_min, r.G);
+          else
+            kept_max = std::max(kept_max, r.G);
+        }
+        const double sigma = std::hypot(fits[gate_gated].order_std_error, fits[gate_multiplier].order_std_error);
+        const double order_margin = fits[gate_gated].order - (fits[gate_multiplier].order - 2 * sigma);
+        if (!gc.jumps) met = met && order_margin >= 0;
+        all_met = all_met && met;
+        l2_row.push_back(met ? "met" : "not met");
+        mrm::tex_define(defs, "st:gate:verdict:" + std::string(gc.key), met ? "met" : "not met");
+        mrm::tex_define(defs, "st:gate:l2ratio:" + std::string(gc.key), mrm::tex_number(worst_l2, 3));
+        mrm::tex_define(defs, "st:gate:worsttv:" + std::string(gc.key), mrm::tex_number(worst_tv, 3));
+        mrm::tex_define(defs, "st:gate:ordermargin:" + std::string(gc.key), mrm::tex_number(order_margin, 2));
+        summary << "gate verdict " << gc.key << ": " << (met ? "met" : "not met") << " (largest L2 ratio gated/multiplier "
+                << worst_l2 << ", largest TV ratio " << worst_tv << ", order margin " << order_margin << ")\n";
+      }
+      tv_table.add_row(tv_row);
+      l2_table.add_row(l2_row);
+    }
+    // The indicator G = TV(multiplier)/TV(window 8W) per mesh, under the case's TV rows.
+    std::vector<std::string> g_row{"", "$G$"};
+    std::vector<double> g;
+    for (std::size_t l = 0; l < k; ++l) {
+      g.push_back(study.at(c, l).G);
+      g_row.push_back(mrm::tex_number(study.at(c, l).G, 3));
+      mrm::tex_define(defs, "st:gate:G:" + std::string(gc.key) + ":N" + std::to_string(study.at(c, l).elements),
+                      mrm::tex_number(study.at(c, l).G, 3));
+    }
+    g_row.push_back(mrm::tex_number(-mrm::fit_order(steps, g).order, 2));
+    tv_table.add_row(g_row);
+    if (c + 1 < study.cases.size()) tv_table.add_rule(), l2_table.add_rule();
+  }
+  // How well the threshold separates: the smallest G where the gate fired over τ, τ over the largest G
+  // where it kept the multiplier.
+  mrm::tex_define(defs, "st:gate:G:fired:min", mrm::tex_number(fired_min, 3));
+  mrm::tex_define(defs, "st:gate:G:kept:max", mrm::tex_number(kept_max, 3));
+  mrm::tex_define(defs, "st:gate:verdict", all_met ? "met" : "not met");
+  summary << "gate: fired for G >= " << fired_min << ", kept the multiplier for G <= " << kept_max << " (threshold "
+          << mrm::gate_threshold << "); every case " << (all_met ? "met" : "not met") << '\n';
+  defs << "\\mrmdef{st:table:gate:tv}{" << mrm::repro::latex_tabular(tv_table, "ll" + std::string(k + 1, 'r'))
+       << "}\n";
+  defs << "\\mrmdef{st:table:gate:l2}{" << mrm::repro::latex_tabular(l2_table, "ll" + std::string(k + 1, 'r') + "l")
+       << "}\n";
+  std::cout << summary.str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   return cli::guarded_main("fig_stress", [&] {
     // 1. Options.
-    long coarsest = 100, refinements = 3, threads = 2;
+    long coarsest = 100, refinements = 3, gate_coarsest = 100, gate_refinements = 6, threads = 2;
     mrm::repro::FigureProgram program(
         "fig_stress",
         "Writes the oscillation TV(stress)/TV(lambda_exact), the L2 error and the largest error away from the jumps "
@@ -292,10 +510,17 @@ int main(int argc, char** argv) {
                                &coarsest, cli::in_closed_range(10, 10000));
     program.parser.add_integer("--refinements", "-k", "K", "meshes N0, 4 N0, ..., 4^(K-1) N0, in [2, 5]", &refinements,
                                cli::in_closed_range(2, 5));
+    program.parser.add_integer("--gate-coarsest", "", "NG",
+                               "coarsest mesh of the default stress's region (meshes NG 2^l), in [10, 1e4]",
+                               &gate_coarsest, cli::in_closed_range(10, 10000));
+    program.parser.add_integer("--gate-refinements", "", "KG", "meshes NG, 2 NG, ..., 2^(KG-1) NG, in [2, 8]",
+                               &gate_refinements, cli::in_closed_range(2, 8));
     cli::add_threads_option(program.parser, &threads);
     if (!program.parse(argc, argv, "also write the table and values the report quotes")) return 0;
     if (!(static_cast<double>(coarsest) * std::pow(4.0, static_cast<double>(refinements - 1)) <= 1e4))
       throw cli::UsageError("--coarsest: the finest mesh N0 4^(K-1) must be at most 1e4 elements");
+    if (!(static_cast<double>(gate_coarsest) * std::pow(2.0, static_cast<double>(gate_refinements - 1)) <= 1e4))
+      throw cli::UsageError("--gate-coarsest: the finest mesh NG 2^(KG-1) must be at most 1e4 elements");
 
     // 2. Outputs.
     program.open();
@@ -320,6 +545,19 @@ int main(int argc, char** argv) {
       c.measure_errors = false;  // the stresses only
       configurations.push_back(c);
     }
+    // The default stress's region: CN + Mod 3 at Δt/h = ½ on each case and mesh (after the study's runs).
+    const std::vector<GateCase> cases = gate_cases();
+    std::vector<std::pair<std::size_t, long>> gate_runs;  // (case, level)
+    for (std::size_t g = 0; g < cases.size(); ++g)
+      for (long l = 0; l < gate_refinements; ++l) {
+        mrm::repro::Configuration c =
+            mrm::repro::study_configuration(cases[g].benchmark, mrm::Scheme::crank_nicolson, mrm::mod3(),
+                                            static_cast<mrm::Index>(gate_coarsest) << l, 0.5, cases[g].final_time);
+        c.keep_stress_history = true;
+        c.measure_errors = false;
+        configurations.push_back(c);
+        gate_runs.emplace_back(g, l);
+      }
     const auto start = std::chrono::steady_clock::now();
     mrm::repro::SweepSettings settings;
     settings.threads = static_cast<unsigned>(threads);
@@ -329,6 +567,8 @@ int main(int argc, char** argv) {
       Run& r = runs[k];
       const mrm::repro::Configuration& c = configurations[k];
       const mrm::repro::StressHistory& h = *measures[k].stress_history;
+      r.measures.resize(mrm::contact_stress_registry().size());
+      r.values.resize(mrm::contact_stress_registry().size());
       for (const mrm::ContactStressEntry& e : mrm::contact_stress_registry())
         r.measures[static_cast<std::size_t>(e.stress)] = mrm::repro::stress_measures(h, e.stress);
       if (r.variant == be_variant) {  // the same history, the window at CN's width
@@ -347,15 +587,24 @@ int main(int argc, char** argv) {
           if (h.time[i] >= c.final_time - 3.0) r.time.push_back(h.time[i]), r.exact.push_back(h.exact[i]);
       }
     }
+    GateStudy gate{cases, {}, gate_coarsest, gate_refinements};
+    for (std::size_t k = 0; k < gate_runs.size(); ++k) {
+      const mrm::repro::Configuration& c = configurations[runs.size() + k];
+      gate.runs.push_back(measure_gate_run(gate_runs[k].first, static_cast<std::size_t>(gate_runs[k].second),
+                                           c.elements, *measures[runs.size() + k].stress_history));
+    }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cerr << "fig_stress: " << runs.size() << " runs in " << wall << " s\n";
+    std::cerr << "fig_stress: " << configurations.size() << " runs in " << wall << " s\n";
     const Study study{runs, coarsest, refinements, middle};
 
     // 4. The data.
-    write_data(program.header("contact stresses: oscillation TV ratio, L2 error, error away from jumps"), study);
+    std::ostream& data = program.header("contact stresses: oscillation TV ratio, L2 error, error away from jumps");
+    write_data(data, study);
+    write_gate_data(data, gate, first_gate_block());
 
     // 5. The table, slopes, the target's verdict and the values.
     write_values(program.values(), study);
+    write_gate_values(program.values(), gate);
 
     // 6. Commit.
     program.commit();

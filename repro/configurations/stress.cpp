@@ -21,7 +21,8 @@
 
 namespace mrm::repro {
 
-// The window stresses average the multiplier over 8 W(h, t_n) at each instant (contact_stress.cpp §2);
+// The window stresses average the multiplier over width_factor · W(h, t_n) at each instant
+// (contact_stress.cpp §2; 8 W for the registry's stresses);
 // the multiplier's instants are uniformly spaced by Δt (one per level, or per step for the staggered
 // schemes). The recovered strain is projected onto λ ≤ 0 when it is recorded.
 std::vector<double> StressHistory::values(ContactStress stress) const {
@@ -30,7 +31,7 @@ std::vector<double> StressHistory::values(ContactStress stress) const {
   if (stress == ContactStress::gated) return gated_stress(multiplier, values(ContactStress::window));
   std::vector<double> width;
   width.reserve(time.size());
-  for (double t : time) width.push_back(8 * smearing_width(h, std::max(0.0, t), order));
+  for (double t : time) width.push_back(width_factor * smearing_width(h, std::max(0.0, t), order));
   return window_average(multiplier, spacing, width,
                         stress == ContactStress::box ? WindowKernel::box : WindowKernel::spline);
 }

@@ -16,8 +16,12 @@ struct StressHistory {
   std::vector<double> time, multiplier, recovered_time, recovered, exact, exact_at_levels;
   double h = 0, spacing = 0;
   PhaseOrder order{2, 1.0 / 48};
-  /// The stress's values: the multiplier, its box or spline window average of width 8 W(h, t), or the
-  /// recovered strain projected onto λ ≤ 0 (contact_stress.cpp §2–§4).
+  /// The windows' width in units of the smearing width W(h, t): 8 is the width of the registry's box,
+  /// window and gated stresses (contact_stress.cpp §2); fig_stress also measures 4 and 16.
+  double width_factor = 8;
+  /// The stress's values: the multiplier, its box or spline window average of width width_factor ·
+  /// W(h, t), the gate between the multiplier and that window (contact_stress.cpp §6), or the recovered
+  /// strain projected onto λ ≤ 0 (contact_stress.cpp §2–§4).
   std::vector<double> values(ContactStress stress) const;
   /// The instants of values(stress) and the exact λ there.
   const std::vector<double>& instants(ContactStress stress) const;
