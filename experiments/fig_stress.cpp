@@ -93,7 +93,7 @@ struct Run {
   std::size_t benchmark, variant, level;
   mrm::Index elements;
   std::vector<mrm::repro::StressMeasures> measures;  // indexed by ContactStress
-  mrm::repro::StressMeasures window_at_cn_width;  // backward Euler only
+  mrm::repro::StressMeasures window_at_cn_width;     // backward Euler only
   std::vector<double> time, exact;
   std::vector<std::vector<double>> values;  // kept for the figure's history only, indexed by ContactStress
 };
@@ -411,18 +411,19 @@ void write_gate_values(std::ostream& defs, const GateStudy& study) {
       for (std::size_t l = 0; l < k; ++l) {
         const mrm::repro::StressMeasures& m = study.at(c, l).measures[s];
         tv.push_back(m.tv_ratio), l2.push_back(m.l2_error);
-        const std::string n = std::string(":") + gc.key + ":" + gate_stress_keys[s] + ":N" +
-                              std::to_string(study.at(c, l).elements);
+        const std::string n =
+            std::string(":") + gc.key + ":" + gate_stress_keys[s] + ":N" + std::to_string(study.at(c, l).elements);
         mrm::tex_define(defs, "st:gate:tv" + n, mrm::tex_number(m.tv_ratio, 3));
         mrm::tex_define(defs, "st:gate:l2" + n, mrm::tex_number(m.l2_error, 2));
       }
-      fits[s] = mrm::fit_order(fit_steps, std::vector<double>(l2.begin() + static_cast<std::ptrdiff_t>(from), l2.end()));
+      fits[s] =
+          mrm::fit_order(fit_steps, std::vector<double>(l2.begin() + static_cast<std::ptrdiff_t>(from), l2.end()));
       const double slope = -mrm::fit_order(steps, tv).order;
       const std::string key = std::string(gc.key) + ":" + gate_stress_keys[s];
       mrm::tex_define(defs, "st:gate:order:" + key, mrm::tex_number(fits[s].order, 2));
       mrm::tex_define(defs, "st:gate:tvslope:" + key, mrm::tex_number(slope, 2));
-      std::vector<std::string> tv_row{s == 0 ? label : "", gate_stress_labels[s]}, l2_row{s == 0 ? label : "",
-                                                                                          gate_stress_labels[s]};
+      std::vector<std::string> tv_row{s == 0 ? label : "", gate_stress_labels[s]},
+          l2_row{s == 0 ? label : "", gate_stress_labels[s]};
       for (double x : tv) tv_row.push_back(mrm::tex_number(x, 3));
       tv_row.push_back(mrm::tex_number(slope, 2));
       for (double x : l2) l2_row.push_back(mrm::tex_number(x, 2));
@@ -431,8 +432,8 @@ void write_gate_values(std::ostream& defs, const GateStudy& study) {
       for (double x : tv) summary << ' ' << x;
       summary << ", L2";
       for (double x : l2) summary << ' ' << x;
-      summary << " (order " << fits[s].order << " +- " << fits[s].order_std_error << " over N >= "
-              << study.at(c, from).elements << ")\n";
+      summary << " (order " << fits[s].order << " +- " << fits[s].order_std_error
+              << " over N >= " << study.at(c, from).elements << ")\n";
       if (s + 1 < gate_stresses) {
         l2_row.push_back("");
       } else {
@@ -460,8 +461,9 @@ void write_gate_values(std::ostream& defs, const GateStudy& study) {
         mrm::tex_define(defs, "st:gate:l2ratio:" + std::string(gc.key), mrm::tex_number(worst_l2, 3));
         mrm::tex_define(defs, "st:gate:worsttv:" + std::string(gc.key), mrm::tex_number(worst_tv, 3));
         mrm::tex_define(defs, "st:gate:ordermargin:" + std::string(gc.key), mrm::tex_number(order_margin, 2));
-        summary << "gate verdict " << gc.key << ": " << (met ? "met" : "not met") << " (largest L2 ratio gated/multiplier "
-                << worst_l2 << ", largest TV ratio " << worst_tv << ", order margin " << order_margin << ")\n";
+        summary << "gate verdict " << gc.key << ": " << (met ? "met" : "not met")
+                << " (largest L2 ratio gated/multiplier " << worst_l2 << ", largest TV ratio " << worst_tv
+                << ", order margin " << order_margin << ")\n";
       }
       tv_table.add_row(tv_row);
       l2_table.add_row(l2_row);
@@ -486,8 +488,7 @@ void write_gate_values(std::ostream& defs, const GateStudy& study) {
   mrm::tex_define(defs, "st:gate:verdict", all_met ? "met" : "not met");
   summary << "gate: fired for G >= " << fired_min << ", kept the multiplier for G <= " << kept_max << " (threshold "
           << mrm::gate_threshold << "); every case " << (all_met ? "met" : "not met") << '\n';
-  defs << "\\mrmdef{st:table:gate:tv}{" << mrm::repro::latex_tabular(tv_table, "ll" + std::string(k + 1, 'r'))
-       << "}\n";
+  defs << "\\mrmdef{st:table:gate:tv}{" << mrm::repro::latex_tabular(tv_table, "ll" + std::string(k + 1, 'r')) << "}\n";
   defs << "\\mrmdef{st:table:gate:l2}{" << mrm::repro::latex_tabular(l2_table, "ll" + std::string(k + 1, 'r') + "l")
        << "}\n";
   std::cout << summary.str();

@@ -213,7 +213,7 @@ TEST_CASE("MemoizedReference: a field benchmark's answers, bit for bit, each ins
   CHECK(bits_of(memo.displacement(x_mid, t_mid)) == bits_of(chain->displacement(x_mid, t_mid)));
 }
 
-TEST_CASE("MemoizedReference: other points are asked of the solution itself; -0 and 0 are two instants") {
+TEST_CASE("MemoizedReference: other points are asked of the solution itself, and -0 and 0 are two instants") {
   const auto counting = std::make_shared<const CountingReference>();
   MemoizedReference memo(counting);
   const double nodes[3] = {0, 0.5, 1}, others[3] = {0, 0.25, 1}, shorter[2] = {0, 0.5};

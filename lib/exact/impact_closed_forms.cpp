@@ -245,7 +245,7 @@ TEST_CASE("a static load: a piecewise-polynomial f(x) on a layered bar in static
   CHECK(std::abs(solution.contact_stress(0, 3.0) - ls) <= 1e-12);
 }
 
-TEST_CASE("two bars: equal bars meet as one bar on a wall; unequal impedances separate after 2 transits") {
+TEST_CASE("two bars: equal bars meet as one bar on a wall, and unequal impedances separate after 2 transits") {
   // Two free bars touching at t = 0 with velocities v_A > v_B. Free flight would close the gap at
   // β = v_B − v_A < 0, so they stay in contact with σ = μ β, μ = Z_A Z_B/(Z_A + Z_B) (impact_chain.cpp,
   // derivation §3).

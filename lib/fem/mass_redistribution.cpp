@@ -292,7 +292,7 @@ double total_mass(const UniformMesh& mesh, const MassRedistribution& redistribut
 
 // ---------------------------------------------------------------------------------------------------
 
-TEST_CASE("Mod 1 loses exactly 2h/3 of the total mass; Mod 2, Mod 3 and the spreads preserve it") {
+TEST_CASE("Mod 1 loses exactly 2h/3 of the total mass, and Mod 2, Mod 3 and the spreads preserve it") {
   for (double length : {1.0, 2.5}) {
     for (Index n : {2, 3, 10, 64, 1000}) {
       const UniformMesh mesh(length, n);

@@ -436,11 +436,11 @@ double total_variation(const std::vector<double>& values) {
   return tv;
 }
 
-TEST_CASE("the contact stresses are named once; a bad name lists the allowed ones") {
+TEST_CASE("the contact stresses are named once, and a bad name lists the allowed ones") {
   for (const ContactStressEntry& e : contact_stress_registry()) CHECK(contact_stress_by_name(e.name) == e.stress);
   CHECK(contact_stress_names() == "multiplier|box|window|recovered|gated");
   CHECK_THROWS_WITH_AS(contact_stress_by_name("smooth"),
-                       "unknown contact stress \"smooth\" (allowed: multiplier|box|window|recovered)",
+                       "unknown contact stress \"smooth\" (allowed: multiplier|box|window|recovered|gated)",
                        std::invalid_argument);
 }
 
@@ -522,7 +522,7 @@ TEST_CASE("the window in O(1) per sample equals the direct sum to 4096 eps max|v
   check(std::vector<double>(v.begin(), v.begin() + 1500), std::vector<double>(1500, 16.0));
 }
 
-TEST_CASE("the window's L2 error at a jump is c_K delta^(1/2); the spline passes one half at k delta/8 = 1") {
+TEST_CASE("the window's L2 error at a jump is c_K delta^(1/2), and the spline passes one half at k delta/8 = 1") {
   // A unit jump sampled at τ = 1e-4 on [−1, 1]: quartering δ must halve the L² error (δ^{1/2}), to the
   // sampling error (a few τ/δ).
   const double tau = 1e-4;

@@ -24,7 +24,7 @@ namespace {
 
 }  // namespace
 
-TEST_CASE("CN keeps and EC conserves the energy on the blend; the fast kernel agrees with the reference step") {
+TEST_CASE("CN keeps and EC conserves the energy on the blend, and the fast kernel agrees with the reference step") {
   // interior_mass.cpp §3: the identities need only a symmetric positive definite mass. CN: |E_k − E₀| ≤ 1e-14 + k·1e-15 over
   // the first free flight (t < 0.9, no status change); EC: the same bound at every step over 3 periods
   // (status changes included); both kernels, the blends 0.25 and 1, Mod 3 and Mod 1 on them. The two

@@ -220,7 +220,7 @@ TEST_CASE("Nitsche with theta = 1 is a gradient: Newmark (1/4, 1/2) conserves E 
   CHECK(same > 500);
 }
 
-TEST_CASE("Moreau-Jean: the identity (MJ) at every step; theta = 1/2, e = 1 conserves E") {
+TEST_CASE("Moreau-Jean: the identity (MJ) at every step, and theta = 1/2, e = 1 conserves E") {
   const UniformMesh mesh(1.0, 30);
   const double dt = 0.5 * mesh.h();
   for (const double theta : {0.5, 0.75}) {
@@ -590,7 +590,7 @@ TEST_CASE("a gap shifts the first impact by gap/velocity, for every scheme of th
 
 namespace mrm {
 
-TEST_CASE("dke: (DKE) at every step, the energy never grows, no penetration at the levels; its limit cases") {
+TEST_CASE("dke: (DKE) at every step, the energy never grows, no penetration at the levels, and its limit cases") {
   // The paper's benchmark with the consistent mass (the standard mass: the class's case), N = 40, Δt = h/2,
   // over three periods (impacts, contact phases, releases), without and with a gap g₀ = 0.2. At every step,
   // from the sample: α = max(0, −(w₀ + g₀))/(M⁻¹)₀₀ with W = Uⁿ + ΔtVⁿ (recomputed here from the definition,

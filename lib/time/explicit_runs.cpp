@@ -92,7 +92,7 @@ TEST_CASE("taylor-flanagan, lumped, at dt = h is exact at the nodes until the fi
 // (it leaves the obstacle in one step and is corrected at the next with D₀_{n−½} > 0) and the shadow
 // energy gains (measured: +0.0125 = 10 % of E at several impacts of N = 40 over 9 time units). A
 // finding about Taylor–Flanagan at its lumped limit, not a defect of the implementation (the identity holds).
-TEST_CASE("taylor-flanagan: the impact identity holds at every step; no penetration; gains only at dt = h") {
+TEST_CASE("taylor-flanagan: the impact identity holds at every step, and no penetration, and gains only at dt = h") {
   const UniformMesh mesh(1.0, 40);
   for (const MassLumping lumping : {MassLumping::row_sum, MassLumping::none})
     for (double courant : {0.5, 1.0 / std::sqrt(3.0), 1.0}) {

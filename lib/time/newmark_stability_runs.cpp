@@ -152,7 +152,8 @@ TEST_CASE(
                                 class_parameters(Scheme::penalty, 0.25, 0.5), h) == HUGE_VAL);
 }
 
-TEST_CASE("central differences with a penalty: E_h changes only at switches, by (J), within (B); (C) and (G) hold") {
+TEST_CASE(
+    "central differences with a penalty: E_h changes only at switches, by (J), within (B), and (C) and (G) hold") {
   // The run of the measured gains (N = 16, γ₀ = 100 and 10, the consistent mass, 0.9 Δt_max, ten periods):
   // (J) to round-off at every step (so the whole growth of E_h is the sum of the switch jumps), jumps of
   // both signs (losses entering, gains leaving), (B) and (C) at every level, (G) at every level with ρ
@@ -215,7 +216,7 @@ TEST_CASE("central differences with a penalty: E_h changes only at switches, by 
 }
 
 TEST_CASE(
-    "central differences with Nitsche: E_N changes by (JN); theta = 1 only at switches within (B), theta = 0 "
+    "central differences with Nitsche: E_N changes by (JN), and theta = 1 only at switches within (B), theta = 0 "
     "also between") {
   // Runs of block 6's grid (N = 16, γ₀ = 5, the consistent mass, ten periods; θ = 1 at 0.9 and 0.5 Δt_max, θ = 0
   // at 0.9):

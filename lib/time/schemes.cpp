@@ -47,7 +47,7 @@ namespace {
 // round-off, √K ε|U| / |u̇₁| ≈ 1e-13 (K steps, a random walk of the additions Uⁿ + ΔU, u̇₁ ≈ −½). The
 // form for Uⁿ⁺¹ loses ε|U|/Δt of velocity per step: ≈ 1e-6 at h/65536 (measured 8e-7; 2e-4 at N = 40).
 // The threshold 1e-9 lies an order above the first prediction and three below the second.
-TEST_CASE("the increment form keeps the first impact time flat as dt -> 0; the form for U^{n+1} does not") {
+TEST_CASE("the increment form keeps the first impact time flat as dt -> 0, and the form for U^{n+1} does not") {
   double increment_low = HUGE_VAL, increment_high = -HUGE_VAL, for_u_low = HUGE_VAL, for_u_high = -HUGE_VAL;
   for (const long ratio : {4096L, 16384L, 65536L}) {
     const double a = first_impact_time(8, mod1(), 0.125 / static_cast<double>(ratio), StepForm::increment),

@@ -78,7 +78,7 @@ StressMeasures stress_measures(const StressHistory& history, ContactStress stres
   return m;
 }
 
-TEST_CASE("stress_measures: an exact history scores 1, 0, 0; an error next to a jump is not away from it") {
+TEST_CASE("stress_measures: an exact history scores 1, 0, 0, and an error next to a jump is not away from it") {
   // λ = −½ on [1, 2), 0 elsewhere, sampled at τ = 0.01 on [0, 3]: the shortest window is 1, so ε = ¼.
   StressHistory h;
   h.h = 0.02, h.spacing = 0.01;
