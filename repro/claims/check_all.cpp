@@ -205,7 +205,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
         [&] { rows.push_back(check_exact_solution(ExactSolution(1.0, 0.5), FineSolutionSettings(), judge)); });
   timed("classes", [&] { append(check_classes(ClassesSettings(), judge)); });  // claims_classes.cpp
   timed("7 phase-matched mass", [&] { append(check_phase_matched(PhaseMatchedSettings(), judge)); });  // claims_phase
-  timed("7 contact stress", [&] { rows.push_back(check_bounded_stress(StressSettings(), judge)); });   // claims_phase
+  timed("7 contact stress", [&] { append(check_contact_stress(StressSettings(), judge)); });           // claims_phase
   append(judge.stale());
 
   // The summary: one line per claim (claim 3 per scheme, with its mechanism and its sensitivity).
