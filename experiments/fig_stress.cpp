@@ -390,6 +390,8 @@ void write_gate_values(std::ostream& defs, const GateStudy& study) {
   mrm::tex_define(defs, "st:gate:Nmax", std::to_string(study.at(0, k - 1).elements));
   mrm::tex_define(defs, "st:gate:fit:Nmin", std::to_string(study.at(0, from).elements));
   mrm::tex_define(defs, "st:gate:threshold", mrm::tex_number(mrm::gate_threshold, 3));
+  for (const GateCase& c : study.cases)  // each case's horizon, for the prose
+    mrm::tex_define(defs, std::string("st:gate:T:") + c.key, mrm::significant(c.final_time, 3));
   std::vector<std::string> tv_headers{"case", "stress"}, l2_headers{"case", "stress"};
   for (std::size_t l = 0; l < k; ++l) {
     tv_headers.push_back("$\\mathrm{TV}_{" + std::to_string(study.at(0, l).elements) + "}$");
@@ -415,6 +417,11 @@ void write_gate_values(std::ostream& defs, const GateStudy& study) {
             std::string(":") + gc.key + ":" + gate_stress_keys[s] + ":N" + std::to_string(study.at(c, l).elements);
         mrm::tex_define(defs, "st:gate:tv" + n, mrm::tex_number(m.tv_ratio, 3));
         mrm::tex_define(defs, "st:gate:l2" + n, mrm::tex_number(m.l2_error, 2));
+        if (l + 1 == k) {  // the finest mesh, also under ":last"
+          const std::string last = std::string(":") + gc.key + ":" + gate_stress_keys[s] + ":last";
+          mrm::tex_define(defs, "st:gate:tv" + last, mrm::tex_number(m.tv_ratio, 3));
+          mrm::tex_define(defs, "st:gate:l2" + last, mrm::tex_number(m.l2_error, 2));
+        }
       }
       fits[s] =
           mrm::fit_order(fit_steps, std::vector<double>(l2.begin() + static_cast<std::ptrdiff_t>(from), l2.end()));
@@ -476,6 +483,8 @@ void write_gate_values(std::ostream& defs, const GateStudy& study) {
       g_row.push_back(mrm::tex_number(study.at(c, l).G, 3));
       mrm::tex_define(defs, "st:gate:G:" + std::string(gc.key) + ":N" + std::to_string(study.at(c, l).elements),
                       mrm::tex_number(study.at(c, l).G, 3));
+      if (l + 1 == k)
+        mrm::tex_define(defs, "st:gate:G:" + std::string(gc.key) + ":last", mrm::tex_number(study.at(c, l).G, 3));
     }
     g_row.push_back(mrm::tex_number(-mrm::fit_order(steps, g).order, 2));
     tv_table.add_row(g_row);
