@@ -35,6 +35,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <limits>
 #include <sstream>
@@ -309,16 +310,17 @@ std::vector<GateCase> gate_cases() {
           {"smooth-impact", "s1:T2", 2.0, false},
           {"grazing", "s2", 2.0, false}};
 }
-std::string gate_case_label(const GateCase& c) {
-  const std::string name = std::string(c.key).rfind("s1", 0) == 0 ? "S1" : std::string(c.key) == "s2" ? "S2" : c.key;
-  return name + ", $T = " + mrm::significant(c.final_time, 3) + "$";
+std::string gate_case_label(const GateCase& c) {  // the horizon only where the benchmark is met twice
+  const std::string key = c.key;
+  if (key == "s1:T30" || key == "s1:T2") return "S1, $T = " + mrm::significant(c.final_time, 3) + "$";
+  return key == "s2" ? "S2" : key;
 }
 
 // The stresses of the gate study, in the order of its tables.
 enum GateStress { gate_multiplier, gate_window4, gate_window8, gate_window16, gate_gated, gate_stresses };
 const char* const gate_stress_keys[gate_stresses] = {"multiplier", "window4", "window8", "window16", "gated"};
 const char* const gate_stress_labels[gate_stresses] = {"multiplier", "window $4W$", "window $8W$", "window $16W$",
-                                                       "gated (default)"};
+                                                       "gated"};
 
 struct GateRun {
   std::size_t which, level;
@@ -380,6 +382,15 @@ void write_gate_data(std::ostream& out, const GateStudy& study, std::size_t firs
     }
 }
 
+// An order with its standard error in units of its last digit (three decimals), "0.321(2)": the error
+// rounded up, at least 1.
+std::string order_with_error(const mrm::OrderFit& fit) {
+  char order[32];
+  std::snprintf(order, sizeof order, "%.3f", fit.order);
+  const double error = std::max(1.0, std::ceil(fit.order_std_error * 1000 - 1e-9));
+  return std::string(order) + "(" + std::to_string(static_cast<long>(error)) + ")";
+}
+
 // The tables (TV ratios with the indicator G; L² errors with the orders and the verdict) and the values.
 void write_gate_values(std::ostream& defs, const GateStudy& study) {
   const std::size_t k = study.levels(), from = study.fit_from();
@@ -434,7 +445,7 @@ void write_gate_values(std::ostream& defs, const GateStudy& study) {
       for (double x : tv) tv_row.push_back(mrm::tex_number(x, 3));
       tv_row.push_back(mrm::tex_number(slope, 2));
       for (double x : l2) l2_row.push_back(mrm::tex_number(x, 2));
-      l2_row.push_back(mrm::tex_number(fits[s].order, 2) + " $\\pm$ " + mrm::tex_number(fits[s].order_std_error, 1));
+      l2_row.push_back(order_with_error(fits[s]));
       summary << "gate " << key << ": TV";
       for (double x : tv) summary << ' ' << x;
       summary << ", L2";
