@@ -260,7 +260,14 @@ struct ClaimsReport {
   std::vector<SummaryLine> summary;  ///< at most 12 lines
   repro::Sweep sweep;                ///< the sweep the region checks judged
 };
-ClaimsReport check_all(const Expectations& expectations, std::ostream* progress = nullptr);
+/// With `only` not empty, the checks of the rows whose id starts with `only` alone: a block of checks runs if
+/// one of its rows' prefixes and `only` is a prefix of the other, and the report holds the rows that start
+/// with `only`, no summary and no sweep unless a block needs it. Throws std::invalid_argument (before any
+/// check runs) if no block's rows can start with `only`, and std::runtime_error if none does.
+ClaimsReport check_all(const Expectations& expectations, std::ostream* progress = nullptr,
+                       const std::string& only = "");
+/// The prefixes of the rows of check_all's blocks of checks, in their order ("1/", "2/", ..., "7/stress/").
+const std::vector<std::string>& claim_row_prefixes();
 
 // ---- Output ---------------------------------------------------------------------------------------
 

@@ -83,11 +83,41 @@ namespace mrm::claims {
 // ---------------------------------------------------------------------------------------------------
 // All of them, and the summary that opens the table.
 
-ClaimsReport check_all(const Expectations& expectations, std::ostream* progress) {
+// The blocks of checks below and the prefixes of their rows (the sweep serves claims 3 and 4).
+const std::vector<std::string>& claim_row_prefixes() {
+  static const std::vector<std::string> prefixes{
+      "1/", "2/", "3/", "4/", "4t/", "5/", "6/step/", "6/exact", "classes/", "7/phase-matched/", "7/stress/"};
+  return prefixes;
+}
+
+namespace {
+// Whether a row that starts with `prefix` can start with `only` (either is a prefix of the other).
+bool overlaps(const std::string& prefix, const std::string& only) {
+  const std::size_t n = std::min(prefix.size(), only.size());
+  return prefix.compare(0, n, only, 0, n) == 0;
+}
+}  // namespace
+
+ClaimsReport check_all(const Expectations& expectations, std::ostream* progress, const std::string& only) {
   ClaimsReport report;
   std::vector<ClaimResult>& rows = report.rows;
   Judge judge(expectations);
-  auto timed = [&](const char* name, const std::function<void()>& body) {
+  const auto wanted = [&](std::initializer_list<const char*> prefixes) {
+    if (only.empty()) return true;
+    for (const char* p : prefixes)
+      if (overlaps(p, only)) return true;
+    return false;
+  };
+  if (!only.empty()) {
+    bool any = false;
+    for (const std::string& p : claim_row_prefixes()) any = any || overlaps(p, only);
+    if (!any)
+      throw std::invalid_argument("no claims row starts with \"" + only +
+                                  "\" (allowed: a row's id or a prefix of one: " + join(claim_row_prefixes(), ", ") +
+                                  ", ...)");
+  }
+  auto timed = [&](const char* name, std::initializer_list<const char*> prefixes, const std::function<void()>& body) {
+    if (!wanted(prefixes)) return;
     const auto start = std::chrono::steady_clock::now();
     body();
     if (progress)
@@ -113,11 +143,12 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
     return holding == total && marginal > 0 ? std::string("marginal") : summary_verdict(holding, total);
   };
 
-  timed("sweep (claims 3 and 4)", [&] { report.sweep = repro::run_sweep(repro::SweepGrid(), 0, progress); });
+  timed("sweep (claims 3 and 4)", {"3/", "4/"},
+        [&] { report.sweep = repro::run_sweep(repro::SweepGrid(), 0, progress); });
   const repro::Sweep& sweep = report.sweep;
 
   SummaryLine stability_line;
-  timed("1 stability", [&] {
+  timed("1 stability", {"1/"}, [&] {
     const StabilitySettings st;
     append(check_stability(paper_schemes(), paper_masses(), st, judge));
     rows.push_back(check_consistent_mass_blows_up(scheme_choice(Scheme::crank_nicolson), st, judge));
@@ -179,33 +210,43 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress)
                              " periods, per Δt/h: " + join(per_courant, ", ") + "; " + significant(grid.long_periods) +
                              " periods, Δt = h: " + join(per_mass, ", ");
   });
-  timed("2 mass", [&] {
+  timed("2 mass", {"2/"}, [&] {
     std::vector<UniformMesh> meshes;
     for (double length : {1.0, 2.5})
       for (Index n : {2, 3, 10, 50, 200, 1000, 10000}) meshes.emplace_back(length, n);
     append(check_mass({mod2(), mod3()}, {mod1()}, meshes, judge));
   });
-  timed("3 ordering", [&] {
+  timed("3 ordering", {"3/"}, [&] {
     append(check_ordering(sweep, sweep.grid.masses, judge));
     append(check_phase_drift(sweep, PhaseDriftSettings(), judge));
     append(check_reconstruction_sensitivity(SensitivitySettings(), judge));
   });
-  timed("4 convergence in h", [&] { append(check_convergence(sweep, judge)); });
-  timed("4 convergence in time", [&] {
+  timed("4 convergence in h", {"4/"}, [&] { append(check_convergence(sweep, judge)); });
+  timed("4 convergence in time", {"4t/"}, [&] {
     append(check_time_convergence(scheme_choice(Scheme::crank_nicolson), paper_masses(), TimeConvergenceSettings(),
                                   judge));
   });
-  timed("5 energy", [&] {
+  timed("5 energy", {"5/"}, [&] {
     append(check_energy_conservation(scheme_choice(Scheme::crank_nicolson), paper_masses(), EnergySettings(), judge));
     append(check_energy_dissipation(scheme_choice(Scheme::backward_euler), paper_masses(), EnergySettings(), judge));
   });
-  timed("6 contact step",
+  timed("6 contact step", {"6/step/"},
         [&] { append(check_contact_step(paper_contact_step_cases(), ContactStepSettings(), judge)); });
-  timed("6 exact solution",
+  timed("6 exact solution", {"6/exact"},
         [&] { rows.push_back(check_exact_solution(ExactSolution(1.0, 0.5), FineSolutionSettings(), judge)); });
-  timed("classes", [&] { append(check_classes(ClassesSettings(), judge)); });  // claims_classes.cpp
-  timed("7 phase-matched mass", [&] { append(check_phase_matched(PhaseMatchedSettings(), judge)); });  // claims_phase
-  timed("7 contact stress", [&] { append(check_contact_stress(StressSettings(), judge)); });           // claims_phase
+  timed("classes", {"classes/"}, [&] { append(check_classes(ClassesSettings(), judge)); });  // claims_classes.cpp
+  timed("7 phase-matched mass", {"7/phase-matched/"},
+        [&] { append(check_phase_matched(PhaseMatchedSettings(), judge)); });  // claims_phase
+  timed("7 contact stress", {"7/stress/"},
+        [&] { append(check_contact_stress(StressSettings(), judge)); });  // claims_phase
+  if (!only.empty()) {  // the rows asked for, without the summary (which needs every row)
+    std::vector<ClaimResult> kept;
+    for (const ClaimResult& row : rows)
+      if (row.id.compare(0, only.size(), only) == 0) kept.push_back(row);
+    if (kept.empty()) throw std::runtime_error("no claims row starts with \"" + only + "\"");
+    rows = std::move(kept);
+    return report;
+  }
   append(judge.stale());
 
   // The summary: one line per claim (claim 3 per scheme, with its mechanism and its sensitivity).

@@ -113,7 +113,8 @@ void write_text_table(std::ostream& out, const std::vector<ClaimResult>& rows) {
     const ClaimResult& r = rows[k];
     const bool same_criterion = k > 0 && rows[k - 1].criterion == r.criterion;
     const bool same_reason = k > 0 && !r.reason.empty() && rows[k - 1].reason == r.reason;
-    table.add_row({"[" + r.id + "] " + r.claim, measured_text(r), same_criterion ? "(as above)" : r.criterion,
+    table.add_row({"[" + r.id + "] " + r.claim + " (alone: check_claims --only " + r.id + ")", measured_text(r),
+                   same_criterion ? "(as above)" : r.criterion,
                    same_reason ? to_string(r.verdict) + " (as above)" : verdict_text(r)});
   }
   table.write_text(out, {34, 58, 40, 30});
