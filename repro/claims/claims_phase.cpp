@@ -88,7 +88,10 @@ ClaimResult gain_row(Judge& judge, const std::string& id, const std::string& cla
                           "at least 1 (the derivation gives the sign: the matched mass has the smaller phase error at "
                           "every kh below the grid scale; the size is a conjecture and is not judged)",
                           at_least("ratio", ratio, 1.0));
-  row.values = {{"ratio", decimals(ratio, 2)}, {"size", decimals(guess, 2)}};
+  row.values = {{"ratio", decimals(ratio, 2)},
+                {"size", decimals(guess, 2)},
+                {"N", std::to_string(c.elements)},
+                {"transits", decimals(transits, 0)}};
   return row;
 }
 
@@ -168,13 +171,18 @@ std::vector<ClaimResult> check_phase_matched(const PhaseMatchedSettings& setting
             " standard errors of the fitted slope (the prediction inside its " +
             significant(100 * settings.confidence) + " % confidence interval, Student's t with " +
             std::to_string(fine.points - 2) +
-            " degrees of freedom). Basis (theory): W ≈ (h⁴t)^{1/5} (mathematics.md §9, " + "phase order 4) gives " +
+            " degrees of freedom). Basis (theory): W ≈ (h^4 t)^{1/5} (mathematics.md §9, " + "phase order 4) gives " +
             fraction +
             "; the tolerance is the fit's own uncertainty, its rule fixed before the fine meshes' residuals were seen",
         at_most("|order − " + fraction + "|", std::abs(fine.order - predicted), tolerance));
     row.values = {{"order", decimals(fine.order, 3)},
                   {"tolerance", decimals(tolerance, 3)},
-                  {"coarse", decimals(coarse.order, 3)}};
+                  {"coarse", decimals(coarse.order, 3)},
+                  {"quantile", decimals(quantile, 2)},
+                  {"confidence", significant(100 * settings.confidence)},
+                  {"from", std::to_string(settings.asymptotic_from)},
+                  {"finest", std::to_string(settings.finest)},
+                  {"coarsest", std::to_string(settings.coarsest)}};
     rows.push_back(row);
   }
   // The field's benchmarks: A = 0 against A = 1/4 at Δt = h/2 on one mesh, over each one's horizon: (R).

@@ -17,9 +17,9 @@ namespace mrm::claims {
 struct PhaseMatchedSettings {
   Index coarsest = 50;          ///< the pre-asymptotic fit: coarsest … asymptotic_from (printed, not judged)
   Index asymptotic_from = 400;  ///< the judged fit: asymptotic_from … finest; the mesh of the ratios
-  Index finest = 3200;
-  double final_time = 30;    ///< ten periods
-  double confidence = 0.95;  ///< the fitted order's confidence interval, the tolerance of the order rows
+  Index finest = 3200;          ///< the finest mesh of the judged fit
+  double final_time = 30;       ///< ten periods
+  double confidence = 0.95;     ///< the fitted order's confidence interval, the tolerance of the order rows
   /// The field's one-body benchmarks with jumps, each over its natural horizon (the registry's T), on one
   /// mesh of `field_elements` (a coarse one: pre-asymptotic, see claims_phase.cpp).
   std::vector<std::string> field_benchmarks{"bouncing", "impacting"};
