@@ -18,9 +18,9 @@
 //     ratio, not judged (the same row as the field's benchmarks below: gain_row).
 // (O) The orders. The width gives the asymptotic orders μ/(μ + 1) = 4/5 for u and half of it, 2/5, for H¹
 //     and λ, as h → 0. They are judged where the meshes are finest that make all affordable: the
-//     least-squares order over N = 400, 800, 1600, 3200 (cost: the study takes about 8 s of check_claims's
-//     time, against 1 s for N = 50 … 400; N = 3200 alone is 6.9 CPU-s in bar1d, N = 6400 would be 4 times
-//     that). The tolerance is the fit's own uncertainty: the residuals of the four points about the
+//     least-squares order over N = 400, 800, 1600, 3200 (cost: on one thread the study takes 14 s of
+//     check_claims's 82 CPU-s, against 0.8 s of 71 when it stopped at N = 400; N = 3200 alone is 6.9 CPU-s
+//     in bar1d, and N = 6400 would be 4 times that). The tolerance is the fit's own uncertainty: the residuals of the four points about the
 //     fitted line give the standard error s of the slope (studies/convergence.cpp), and the criterion is
 //     that the predicted order lies in the slope's 95 % confidence interval, |p − p_pred| ≤ t s with t
 //     Student's 0.975 quantile for n − 2 = 2 degrees of freedom (4.30): the prediction is judged as far
