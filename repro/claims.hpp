@@ -62,6 +62,9 @@ struct ClaimResult {
   Margin margin;          ///< the measured value against the threshold
   Verdict verdict;
   std::string reason;  ///< for not_reproduced/failed: why (the expected-failure reason, or what broke)
+  /// Numbers of the row that the report quotes, as (name, value): write_latex_table defines each as
+  /// `\mrmdef{claims:value:<id, '/' as ':'>:<name>}{value}`.
+  std::vector<std::pair<std::string, std::string>> values;
 };
 
 /// The rows expected NOT to reproduce, by row id, with the reason (and, in the table's source, the

@@ -2,7 +2,8 @@
 // (doc/contact_treatments.md). See
 // claims_classes.hpp; the full matrix is experiments/fig_classes.cpp, these rows its checked part.
 //
-// The predictions, derived before the numbers, with their mechanisms:
+// The predictions with their mechanisms; each says whether it was derived before the numbers or set after a
+// run, and its rows' criteria say it too (basis(), below):
 //
 // (O) Stress oscillation. A class that keeps the contact node's inertia (the standard mass) and
 //     enforces the contact on it, exactly or by a velocity correction (in the registry: cn, ps, cn-switch,
@@ -164,6 +165,25 @@ repro::Configuration classes_configuration(Scheme scheme, const std::string& mas
 
 std::string number(double x) { return cli::format_real(std::round(x * 1000) / 1000); }
 
+// Each row's basis, as the derivations above record it: (O), (E), (M) and (N') were derived before their
+// cells were run; (O') (and with it (T)) was set when fig_classes's N = 200, Δt = h/2 column was known,
+// (D) after a first run of dke's cells, (P) after that column showed penalty + consistent's TV ratio 127 on
+// two-bars. The band (10 %) is a convention, baseline_regions' "equal".
+std::string basis(const std::string& benchmark, Scheme x, bool energy) {
+  std::vector<std::string> after;
+  if (!energy && mrm::benchmark(benchmark).field)
+    after.push_back("the field's benchmarks (O'): fig_classes, N = 200, dt = h/2, known when the rows were set");
+  if (x == Scheme::dke) after.push_back("dke (D): a first run of dke's cells");
+  if (!energy && x == Scheme::penalty)
+    after.push_back("the penalty (P): fig_classes, N = 200, dt = h/2, penalty's TV ratio 127 on two-bars");
+  if (after.empty())
+    return "Basis (theory): the prediction derived before the numbers; the band a convention (baseline_regions' "
+           "equal)";
+  std::string text = "Basis: chosen after a run (";
+  for (std::size_t i = 0; i < after.size(); ++i) text += (i ? "; " : "") + after[i];
+  return text + "), with " + (energy ? "(E)'s" : "(O)'s") + " mechanism, band (a convention) and region";
+}
+
 }  // namespace
 
 std::vector<ClaimResult> check_classes(const ClassesSettings& settings, Judge& judge) {
@@ -258,15 +278,16 @@ std::vector<ClaimResult> check_classes(const ClassesSettings& settings, Judge& j
                  << number(tv(b, x, "consistent", settings.meshes.size() - 1, 0))
                  << " at N = " << settings.meshes.back() << (x == Scheme::penalty ? " ((P)" : " ((N')")
                  << ": growing like N)";
-      std::string basis = !mrm::benchmark(b).field ? "(O)" : two ? "(O'), (T)" : "(O')";
-      if (x == Scheme::dke) basis += ", (D): an impulse m_eff dv/dt per impact, no chatter of its own; conjecture";
+      std::string derivation = !mrm::benchmark(b).field ? "(O)" : two ? "(O'), (T)" : "(O')";
+      if (x == Scheme::dke) derivation += ", (D): an impulse m_eff dv/dt per impact, no chatter of its own; conjecture";
       if (x == Scheme::moreau_jean)
-        basis += ", (M): an impulse m_eff v/dt per impact (m_eff = 0.38h-0.41h), no chatter of its own; conjecture";
+        derivation +=
+            ", (M): an impulse m_eff v/dt per impact (m_eff = 0.38h-0.41h), no chatter of its own; conjecture";
       if (x == Scheme::penalty)
-        basis += ", (P): gamma0 = 1, a mode above the mesh's band that rings through the contact";
+        derivation += ", (P): gamma0 = 1, a mode above the mesh's band that rings through the contact";
       if (x == Scheme::nitsche)
-        basis += two ? ", (N'): theta = 0, gamma0' = 10, a mode above the mesh's band (omega h = 6.04) that rings"
-                     : ", (N'): theta = 0, gamma0 = 5, a mode above the mesh's band (omega h = 4.43) that rings";
+        derivation += two ? ", (N'): theta = 0, gamma0' = 10, a mode above the mesh's band (omega h = 6.04) that rings"
+                          : ", (N'): theta = 0, gamma0 = 5, a mode above the mesh's band (omega h = 4.43) that rings";
       rows.push_back(
           judge("classes/oscillation/" + b + "/" + to_string(x),
                 std::string(two ? "Mod 3 (cn, on the two bodies)" : "Mod 3 (cn, ec, cn-switch)") +
@@ -279,7 +300,7 @@ std::vector<ClaimResult> check_classes(const ClassesSettings& settings, Judge& j
                 measured.str(),
                 "TV_R (1 + 10 %) < TV_X in every cell: the redistributed lambda is Lipschitz in u1, the "
                 "inertial one an impulse m0 v/dt per switch (claims_classes.cpp " +
-                    basis + ")",
+                    derivation + "). " + basis(b, x, false),
                 at_most("largest TV_R (1 + band)/TV_X", worst, 1.0)));
     }
   // (E): EC + Mod 3 within 1e-6, each class outside the band, after 10³ impacts.
@@ -303,7 +324,8 @@ std::vector<ClaimResult> check_classes(const ClassesSettings& settings, Judge& j
                            measured.str(),
                            "ec within 1e-6 (its energy identity), dke outside [0.9, 1.1] (about 0.096h of E per "
                            "impact, a conjecture on the amount) and E_max <= (1 + 1e-9) E0 (its identity (DKE): "
-                           "claims_classes.cpp (D))",
+                           "claims_classes.cpp (D)). " +
+                               basis("paper", Scheme::dke, true),
                            tighter(tighter(conserved, away), at_most("largest E/E0 - 1 of dke", gain, 1e-9))));
       continue;
     }
@@ -315,7 +337,8 @@ std::vector<ClaimResult> check_classes(const ClassesSettings& settings, Judge& j
               "ec within 1e-6 (its energy identity), the class outside [0.9, 1.1] (it removes or adds the "
               "inertial node's kinetic energy, >= h/24 per impact: claims_classes.cpp (E)" +
                   std::string(inertial[i] == Scheme::moreau_jean ? "; (M): 0.38h of E per impact at theta = 1/2, e = 0)"
-                                                                 : ")"),
+                                                                 : ")") +
+                  ". " + basis("paper", inertial[i], true),
               tighter(conserved, away)));
   }
   return rows;

@@ -63,7 +63,7 @@ ClaimResult Judge::operator()(std::string id, std::string claim, std::string mea
   const bool expected_to_hold = expected_failure == expectations_.end();
   if (!expected_to_hold) used_.push_back(id);
   ClaimResult row{
-      std::move(id), std::move(claim), std::move(measured), std::move(criterion), margin, Verdict::reproduced, ""};
+      std::move(id), std::move(claim), std::move(measured), std::move(criterion), margin, Verdict::reproduced, "", {}};
   if (holds && expected_to_hold) {
     if (margin.fraction() < marginal_fraction) {
       row.verdict = Verdict::marginal;
@@ -92,9 +92,14 @@ std::vector<ClaimResult> Judge::stale() const {
   std::vector<ClaimResult> rows;
   for (const auto& [id, reason] : expectations_) {
     if (std::find(used_.begin(), used_.end(), id) != used_.end()) continue;
-    rows.push_back({id, "Expectation table entry", "no check produced this row", "every entry names a row",
-                    at_least("rows with this id", 0, 1), Verdict::failed,
-                    "stale expectation: remove or rename the entry"});
+    rows.push_back({id,
+                    "Expectation table entry",
+                    "no check produced this row",
+                    "every entry names a row",
+                    at_least("rows with this id", 0, 1),
+                    Verdict::failed,
+                    "stale expectation: remove or rename the entry",
+                    {}});
   }
   return rows;
 }

@@ -238,6 +238,14 @@ void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) 
     if (counts.find(group) == counts.end()) groups.push_back(group), counts[group] = {0, 0, 0, 0};
     ++counts[group][static_cast<std::size_t>(r.verdict)];
   }
+  // The numbers a row gives the report (ClaimResult::values): \mrmdef{claims:value:7:phase-matched:order-u:order}{0.784}.
+  for (const ClaimResult& r : rows)
+    for (const auto& [name, value] : r.values) {
+      std::string key = r.id;
+      for (char& c : key)
+        if (c == '/') c = ':';
+      tex_define(out, "claims:value:" + key + ":" + name, latex_escape(value));
+    }
   for (const std::string& g : groups) {
     const std::array<int, 4>& c = counts[g];
     const int total = c[0] + c[1] + c[2] + c[3];
@@ -251,7 +259,7 @@ void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) 
   }
 }
 
-TEST_CASE("the claims table's group verdicts count each group's rows by verdict") {
+TEST_CASE("the claims table's group verdicts count each group's rows by verdict; a row's values are report values") {
   const auto row = [](std::string id, Verdict v) {
     ClaimResult r;
     r.id = std::move(id);
@@ -268,6 +276,11 @@ TEST_CASE("the claims table's group verdicts count each group's rows by verdict"
         std::string::npos);
   CHECK(tex.find("\\mrmdef{claims:group:2:mod2}{its one row reproduced}") != std::string::npos);
   CHECK(tex.find("claims:group:2:mod3") != std::string::npos);
+  ClaimResult valued = row("7/phase-matched/order-u", Verdict::reproduced);
+  valued.values = {{"order", "0.784"}};
+  std::ostringstream with_value;
+  write_latex_table(with_value, {valued});
+  CHECK(with_value.str().find("\\mrmdef{claims:value:7:phase-matched:order-u:order}{0.784}") != std::string::npos);
 }
 
 }  // namespace mrm::claims
