@@ -259,7 +259,8 @@ void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows) 
   }
 }
 
-TEST_CASE("the claims table's group verdicts count each group's rows by verdict, and a row's values are report values") {
+TEST_CASE(
+    "the claims table's group verdicts count each group's rows by verdict, and a row's values are report values") {
   const auto row = [](std::string id, Verdict v) {
     ClaimResult r;
     r.id = std::move(id);
