@@ -131,7 +131,7 @@ struct Run {
   bool own_data = false, field_benchmark = false, two_bodies = false, use_peer = false, massless = false;
   bool step_given = false;
   double blend = 0.0;  // the interior mass blend A (lib/fem/interior_mass.hpp)
-  double transit = 0.0, step_request = 0.0, step = 0.0;
+  double transit = 0.0, step = 0.0;
   mrm::Index steps = 0;
   // M^mod on `mesh`, in the bar's units: the run's assembled mass (Configuration::assembled_mass), or
   // it times rho_c L when the run steps on the unit bar (Scaling::mass).
@@ -359,18 +359,17 @@ void build_run(const cli::Parser& parser, Options& o, Run& r) {
                              [&] { r.mesh = mrm::repro::configuration_mesh(r.configuration); });
   r.configuration.courant = 1.0;
   r.transit = r.configuration.step();
-  r.step_request = r.step_given ? o.dt : o.courant * r.transit;
-  if (!(r.step_request <= largest_courant * r.transit))
-    throw cli::UsageError("--dt: " + cli::format_real(r.step_request) +
+  r.step = r.step_given ? o.dt : o.courant * r.transit;
+  if (!(r.step <= largest_courant * r.transit))
+    throw cli::UsageError("--dt: " + cli::format_real(r.step) +
                           " is more than 1e6 h/c = " + cli::format_real(largest_courant * r.transit) +
                           " (allowed: 0 < dt <= 1e6 h/c, h = L/N, c the wave speed at the contact end)");
-  r.steps = cli::checked_steps("--final-time", o.final_time, r.step_request, "--dt or --courant");
+  r.steps = cli::checked_steps("--final-time", o.final_time, r.step, "--dt or --courant");
   // One rule for the final time in every program (mrm::steps_to_reach, which the studies and the claims
   // use): the step is the one asked for, constant over the run, and the run takes ⌈T/Δt⌉ steps, so that
   // it ends at the first level at or after T (final_time_reached, less than T + Δt). A last short step
   // would need a second factorisation and would break the three-level schemes' uniform levels; a step
   // shrunk to land on T would not be the Δt = C h that a study's row states.
-  r.step = r.step_request;
   // The exact solution of data other than the paper's grows with the horizon: checked before anything
   // is built from the data.
   mrm::repro::require_reference_memory(r.configuration, mrm::repro::reference_horizon(r.steps, r.step),

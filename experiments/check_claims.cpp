@@ -25,6 +25,7 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "claims.hpp"
@@ -68,14 +69,10 @@ int main(int argc, char** argv) {
     if (parser.parse(argc, argv, std::cout) == cli::Outcome::exit_success) return 0;
     mrm::repro::apply_sweep_options(sweep_options);
     if (parser.given("--only")) {  // a prefix no row can have: refused before any check runs
-      bool any = false;
-      for (const std::string& p : claims::claim_row_prefixes())
-        any = any || p.compare(0, std::min(p.size(), only.size()), only, 0, std::min(p.size(), only.size())) == 0;
-      if (only.empty() || !any) {
-        std::string allowed;
-        for (const std::string& p : claims::claim_row_prefixes()) allowed += (allowed.empty() ? "" : ", ") + p;
-        throw cli::UsageError("--only: no claims row starts with \"" + only +
-                              "\" (allowed: a row's id or a prefix of one: " + allowed + ", ...)");
+      try {
+        claims::require_claim_row_prefix(only);
+      } catch (const std::invalid_argument& e) {
+        throw cli::UsageError(std::string("--only: ") + e.what());
       }
       for (const char* whole : {"--summary-tex", "--summary-table", "--sweep"})  // they need every row
         if (parser.given(whole))

@@ -269,8 +269,9 @@ struct ClaimsReport {
 /// check runs) if no block's rows can start with `only`, and std::runtime_error if none does.
 ClaimsReport check_all(const Expectations& expectations, std::ostream* progress = nullptr,
                        const std::string& only = "");
-/// The prefixes of the rows of check_all's blocks of checks, in their order ("1/", "2/", ..., "7/stress/").
-const std::vector<std::string>& claim_row_prefixes();
+/// Throws std::invalid_argument, naming the rows' prefixes, if no block of check_all can give a row that
+/// starts with `only` (or `only` is empty).
+void require_claim_row_prefix(const std::string& only);
 
 // ---- Output ---------------------------------------------------------------------------------------
 

@@ -90,9 +90,12 @@ double total_variation(const std::vector<double>& values);
 /// The gate's threshold τ (contact_stress.cpp §6): the multiplier rattles when its variation exceeds τ
 /// times the variation of its window average.
 inline constexpr double gate_threshold = 1.5;
+/// The gate's indicator G = TV(multiplier)/TV(window) (contact_stress.cpp §6): it grows like N^{1/2}
+/// where the multiplier rattles and tends to a constant near 1 where it does not.
+double gate_indicator(const std::vector<double>& multiplier, const std::vector<double>& window);
 /// The gated stress (contact_stress.cpp §6): `window` (the multiplier's window average) if
-/// TV(multiplier) > gate_threshold · TV(window), else `multiplier`. Throws std::invalid_argument if the
-/// sizes differ.
+/// gate_indicator(multiplier, window) > gate_threshold, else `multiplier`. Throws std::invalid_argument if
+/// the sizes differ.
 std::vector<double> gated_stress(const std::vector<double>& multiplier, const std::vector<double>& window);
 
 }  // namespace mrm

@@ -83,20 +83,27 @@ namespace mrm::claims {
 // ---------------------------------------------------------------------------------------------------
 // All of them, and the summary that opens the table.
 
+namespace {
 // The blocks of checks below and the prefixes of their rows (the sweep serves claims 3 and 4).
 const std::vector<std::string>& claim_row_prefixes() {
   static const std::vector<std::string> prefixes{
       "1/", "2/", "3/", "4/", "4t/", "5/", "6/step/", "6/exact", "classes/", "7/phase-matched/", "7/stress/"};
   return prefixes;
 }
-
-namespace {
 // Whether a row that starts with `prefix` can start with `only` (either is a prefix of the other).
 bool overlaps(const std::string& prefix, const std::string& only) {
   const std::size_t n = std::min(prefix.size(), only.size());
   return prefix.compare(0, n, only, 0, n) == 0;
 }
 }  // namespace
+
+void require_claim_row_prefix(const std::string& only) {
+  bool any = false;
+  for (const std::string& p : claim_row_prefixes()) any = any || overlaps(p, only);
+  if (only.empty() || !any)
+    throw std::invalid_argument("no claims row starts with \"" + only + "\" (allowed: a row's id or a prefix of one: " +
+                                join(claim_row_prefixes(), ", ") + ", ...)");
+}
 
 ClaimsReport check_all(const Expectations& expectations, std::ostream* progress, const std::string& only) {
   ClaimsReport report;
@@ -108,14 +115,7 @@ ClaimsReport check_all(const Expectations& expectations, std::ostream* progress,
       if (overlaps(p, only)) return true;
     return false;
   };
-  if (!only.empty()) {
-    bool any = false;
-    for (const std::string& p : claim_row_prefixes()) any = any || overlaps(p, only);
-    if (!any)
-      throw std::invalid_argument("no claims row starts with \"" + only +
-                                  "\" (allowed: a row's id or a prefix of one: " + join(claim_row_prefixes(), ", ") +
-                                  ", ...)");
-  }
+  if (!only.empty()) require_claim_row_prefix(only);  // before any check runs
   auto timed = [&](const char* name, std::initializer_list<const char*> prefixes, const std::function<void()>& body) {
     if (!wanted(prefixes)) return;
     const auto start = std::chrono::steady_clock::now();

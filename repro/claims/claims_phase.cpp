@@ -251,8 +251,7 @@ std::vector<ClaimResult> check_contact_stress(const StressSettings& settings, Ju
       const repro::StressHistory& h = *measures[k * levels + l].stress_history;
       const repro::StressMeasures s = repro::stress_measures(h, stress);
       const repro::StressMeasures raw = repro::stress_measures(h, ContactStress::multiplier);
-      const double G = total_variation(h.values(ContactStress::multiplier)) /
-                       total_variation(h.values(ContactStress::window));  // the gate's indicator (§6)
+      const double G = gate_indicator(h.multiplier, h.values(ContactStress::window));
       ratios.push_back(s.tv_ratio), raw_ratios.push_back(raw.tv_ratio);
       l2.push_back(s.l2_error), raw_l2.push_back(raw.l2_error);
       worst_ratio = std::max(worst_ratio, s.tv_ratio);
