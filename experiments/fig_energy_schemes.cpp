@@ -12,7 +12,10 @@
 //             periods and N = 20, Δt = h over 1000 periods, where Crank–Nicolson gains most. The largest
 //             one-step increase of CN-switch and backward Euler, whose exact energies never increase, is
 //             measured against the round-off bound 16 N ε (1 + h/Δt) E₀ of energy_step.cpp §5 on every
-//             run: the program fails if one is above it;
+//             run: the program fails if one is above it; and the drifting bar: EC with Mod 3 on the
+//             layered bar (N = 50, 100, Δt = h/(2c)), which leaves the wall at t = 4.1 and flies off with
+//             its free end, its energy's range up to t = 100, 300, 1000 against u(0, t)² (§5's model
+//             assumes a clamped end);
 //   measures  the eight relative errors of mathematics.md §5 of each scheme with Mod 1, 2 and 3 at
 //             N = 100 and 400, Δt = h/2, T = 30, their ratios to Crank–Nicolson's, and the energy lost,
 //             1 − E_h(T)/E_h(0) (in the data file; in per cent in the report's values), with the table of
@@ -34,7 +37,8 @@
 // Data files. history: block 4 c + s is ratio c ∈ (1/2, 1, 5), scheme s ∈ (cn, ec, cn-switch, be),
 // columns t_energy energy_ratio. map: block 4 s + k is scheme s, mesh k ∈ (16, 32, 64, 128), columns
 // dt_over_h largest smallest final largest_increase increase_bound; block 16 the long runs, columns run
-// scheme mass N dt_over_h periods drift largest_increase largest final increase_bound. measures: block k is N ∈ (100, 400), columns
+// scheme mass N dt_over_h periods drift largest_increase largest final increase_bound; block 17 the
+// drifting bar, columns N T u0 energy_range model_scale range_over_scale (model_scale = ε N u0²/(L E₀)). measures: block k is N ∈ (100, 400), columns
 // scheme mass, the eight measures, the eight ratios to Crank–Nicolson's (same mass), energy_lost.
 #include <algorithm>
 #include <array>
@@ -138,6 +142,17 @@ struct LongRun {
 };
 const std::array<LongRun, 2> long_runs{LongRun{"coarse", 16, 10.0, 100}, LongRun{"long", 20, 1.0, 1000}};
 const double period = 3.0, measure_periods = 10;
+// The drifting bar: EC + Mod 3 on the layered bar (released at 4.1, then flying off with its free far
+// end), N elements, observed up to each horizon.
+const std::vector<mrm::Index> drift_meshes{50, 100};
+const std::vector<double> drift_horizons{100, 300, 1000};
+
+// What the drifting bar's run keeps at each horizon: the range (max − min)/E₀ of its energy so far and
+// u(0, t), and the round-off model's scale ε N u(0, t)²/(L E₀) (energy_step.cpp §5).
+struct DriftRun {
+  mrm::Index elements = 0;
+  std::vector<double> range, u0, scale;
+};
 
 // Steps 4 and 5 of a view: its blocks in the data file and its values, the runs taken in the order they
 // were made.
@@ -265,6 +280,31 @@ void write_map(ViewWriter& w, const std::string& mass) {
   mrm::tex_define(w.defs, "ecs:increase:bound_fraction", mrm::tex_number(w.largest_bound_fraction, 2));
   w.out << "# largest_bound_fraction = " << cli::format_real(w.largest_bound_fraction)
         << " (max over the cn-switch and be runs of largest_increase / increase_bound)\n";
+}
+
+// The drifting bar's block and values: the energy's range against u(0, t)² (energy_step.cpp §5).
+void write_drift(ViewWriter& w, const std::vector<DriftRun>& drifting) {
+  w.start_block("the drifting bar: ec, mod3, layered, dt = h/(2c)", "N T u0 energy_range model_scale range_over_scale");
+  double smallest = HUGE_VAL, largest = 0;
+  for (const DriftRun& d : drifting)
+    for (std::size_t k = 0; k < drift_horizons.size(); ++k) {
+      const double constant = d.range[k] / d.scale[k];
+      smallest = std::min(smallest, constant), largest = std::max(largest, constant);
+      w.out << d.elements << ' ' << cli::format_real(drift_horizons[k]) << ' ' << cli::format_real(d.u0[k]) << ' '
+            << cli::format_real(d.range[k]) << ' ' << cli::format_real(d.scale[k]) << ' ' << cli::format_real(constant)
+            << '\n';
+      const std::string key = "ecs:drift:" + std::to_string(d.elements) + ":" + cli::format_real(drift_horizons[k]);
+      mrm::tex_define(w.defs, key + ":range", mrm::tex_number(d.range[k], 2));
+      mrm::tex_define(w.defs, key + ":u0", mrm::tex_number(d.u0[k], 3));
+    }
+  mrm::tex_define(w.defs, "ecs:drift:constant:min", mrm::tex_number(smallest, 2));
+  mrm::tex_define(w.defs, "ecs:drift:constant:max", mrm::tex_number(largest, 2));
+  std::string horizons;
+  for (std::size_t k = 0; k < drift_horizons.size(); ++k)
+    horizons += (k == 0 ? "" : k + 1 == drift_horizons.size() ? " and " : ", ") + cli::format_real(drift_horizons[k]);
+  mrm::tex_define(w.defs, "ecs:drift:horizons", horizons);
+  mrm::tex_define(w.defs, "ecs:drift:Ncoarse", std::to_string(drift_meshes.front()));
+  mrm::tex_define(w.defs, "ecs:drift:Nfine", std::to_string(drift_meshes.back()));
 }
 
 // The measures view: the eight errors of every scheme and mass, relative to Crank–Nicolson's.
@@ -426,13 +466,41 @@ int main(int argc, char** argv) {
         /*observer_reads_vectors=*/false);
     for (std::size_t k = 0; k < runs.size(); ++k) runs[k].measures = measures[k];
 
+    // The drifting bar (map view): one run per mesh, observed at every level (its displacement too), so
+    // run alone; the horizons are whole multiples of its Δt's levels' instants as they come.
+    std::vector<DriftRun> drifting;
+    if (view == "map")
+      for (const mrm::Index n : drift_meshes) {
+        const mrm::repro::Configuration c = mrm::repro::study_configuration(
+            "layered", mrm::Scheme::energy_conserving, mrm::repro::mass_redistribution_from_spec("mod3"), n, 0.5,
+            drift_horizons.back());
+        DriftRun d{n, {}, {}, {}};
+        double initial = 0, lowest = 0, highest = 0;
+        const double length = c.bar_length();
+        mrm::repro::run_configuration(c, [&](const mrm::Sample& s) {
+          if (s.level == 0) initial = lowest = highest = s.energy;
+          lowest = std::min(lowest, s.energy), highest = std::max(highest, s.energy);
+          if (d.range.size() < drift_horizons.size() && s.time >= drift_horizons[d.range.size()]) {
+            const double u0 = (*s.displacement)[0];
+            d.range.push_back((highest - lowest) / initial);
+            d.u0.push_back(u0);
+            d.scale.push_back(std::numeric_limits<double>::epsilon() * static_cast<double>(n) * u0 * u0 /
+                              (length * initial));
+          }
+        });
+        if (d.range.size() != drift_horizons.size())
+          throw std::logic_error("fig_energy_schemes: the drifting bar's run ended before its last horizon");
+        drifting.push_back(d);
+      }
+
     // 4 and 5. The blocks, the values and the tables, view by view (runs in the order they were made).
     ViewWriter w{out, defs, runs};
     if (view == "history")
       write_history(w, mass, elements);
-    else if (view == "map")
+    else if (view == "map") {
       write_map(w, mass);
-    else
+      write_drift(w, drifting);
+    } else
       write_measures(w);
 
     // 6. Commit.

@@ -1,7 +1,7 @@
 # Convergence on the field's benchmarks (bouncing, impacting, gravity-paper, layered, two-bars; Crank–Nicolson,
 # dt = h/(2c)): four relative errors against h, one panel per benchmark and measure, one curve per mass
-# (Mod 1 red, Mod 2 blue, Mod 3 green); the grey lines are reference slopes h^{1/2} and h^1. Blocks
-# 0..14 of the data file (two-bars: h of one bar) ("benchmark = b, mass = m"); the axes are set by the data.
+# (Mod 1 red, Mod 2 blue, Mod 3 green); the grey lines are reference slopes h^{1/3} and h^{2/3} (the
+# conjectured orders with a release). Blocks 0..14 of the data file (two-bars: h of one bar) ("benchmark = b, mass = m"); the axes are set by the data.
 # Usage: gnuplot -e "data='output/data/fig_benchmark_convergence.dat'; output='output/figures/fig_benchmark_convergence.pdf'" figures/fig_benchmark_convergence.gp
 if (!exists("data")) data = 'output/data/fig_benchmark_convergence.dat'
 if (!exists("output")) output = 'output/figures/fig_benchmark_convergence.pdf'
@@ -49,8 +49,8 @@ do for [i=1:5] {
     }
     plot for [m in masses] data index block_of(b, m) using 2:(column(c) > 0 ? column(c) : 1/0) \
            with linespoints lc rgb mass_colour(mass_index(m)) @measured_style title mass_name(m), \
-         e0*(x/h0)**0.5 with lines @reference_style dt 3 title "slope 1/2", \
-         e0*(x/h0) with lines @reference_style dt 4 title "slope 1"
+         e0*(x/h0)**(1.0/3) with lines @reference_style dt 3 title "slope 1/3", \
+         e0*(x/h0)**(2.0/3) with lines @reference_style dt 4 title "slope 2/3"
   }
 }
 unset multiplot
