@@ -282,7 +282,8 @@ $(DATA)/cn_large_step.tex: $(BUILD)/bin/cn_large_step | $(DATA)
 
 # The report: every figure and fragment is found through TEXINPUTS (so OUT=dir works); latexmk keeps its
 # auxiliary files in $(OUT)/latex. The full benchmark's table and plot (make bench) are included if
-# present, the short benchmark's otherwise. A bitmap (Type 3) font in the PDF fails the rule: the report is
+# present, the short benchmark's otherwise. A < or > in text mode, which the text font prints as ¡ or ¿,
+# fails the rule, and so does a bitmap (Type 3) font in the PDF: the report is
 # vector throughout (so that it prints and zooms alike).
 $(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/cn_large_step.tex $(BASELINE) \
            $(FIELD_ASYMPTOTICS) \
@@ -292,6 +293,8 @@ $(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/
 	  latexmk -pdf -silent -interaction=nonstopmode -halt-on-error -outdir=$(OUT)/latex paper/report.tex
 	@! pdffonts $(OUT)/latex/report.pdf | grep -q 'Type 3' \
 	  || { echo 'report: a bitmap (Type 3) font in the PDF (pdffonts $(OUT)/latex/report.pdf)'; exit 1; }
+	@! pdftotext -enc UTF-8 $(OUT)/latex/report.pdf - | grep -nF -e '¡' -e '¿' \
+	  || { echo 'report: a < or > typeset in text mode prints as ¡ or ¿ (above; write $$<$$ or $$>$$)'; exit 1; }
 	cp $(OUT)/latex/report.pdf $@.tmp
 	mv $@.tmp $@
 

@@ -142,13 +142,13 @@ FineFit fine_fit(const mrm::repro::MeshRefinement& meshes, const std::vector<dou
 }
 
 // The masses of benchmark b on level l ordered from the smallest value of `value(m)` to the largest,
-// written "1 < 3 < 2" (Mod numbers).
+// written "1 $<$ 3 $<$ 2" (Mod numbers, LaTeX).
 template <class Value>
 std::string ordering(Value value) {
   std::array<std::size_t, 3> order{0, 1, 2};
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t c) { return value(a) < value(c); });
   std::string text;
-  for (const std::size_t m : order) text += (text.empty() ? "" : " < ") + std::to_string(m + 1);
+  for (const std::size_t m : order) text += (text.empty() ? "" : " $<$ ") + std::to_string(m + 1);
   return text;
 }
 
