@@ -1,4 +1,5 @@
-// Limits of the runs: see run_limits.hpp.
+/// @file run_limits.cpp
+/// @brief Limits of the runs: see run_limits.hpp.
 #include "run_limits.hpp"
 
 #include <algorithm>

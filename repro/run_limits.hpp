@@ -1,7 +1,8 @@
-// Limits of the runs the programs accept, checked when the options are read, before any work: a
-// request that cannot run (too many elements, steps or curve points for the time or the memory
-// there is, a product of options that overflows, no step at all) is a usage error naming the
-// option, never a late std::bad_alloc, a pivot message, a crash or a run that cannot end.
+/// @file run_limits.hpp
+/// @brief Limits of the runs the programs accept, checked when the options are read, before any work: a
+/// request that cannot run (too many elements, steps or curve points for the time or the memory
+/// there is, a product of options that overflows, no step at all) is a usage error naming the
+/// option, never a late std::bad_alloc, a pivot message, a crash or a run that cannot end.
 #pragma once
 
 #include <string>
