@@ -69,7 +69,6 @@
 #include "refinement.hpp"
 #include "report_values.hpp"
 #include "studies/convergence.hpp"
-#include "studies/smeared_orders.hpp"
 #include "sweep.hpp"
 #include "table.hpp"
 
@@ -83,7 +82,15 @@ constexpr double courant = 0.5, old_agreement = 0.25, confidence = 0.95;
 constexpr std::size_t fitted_meshes = 4;
 enum Measure { u0_L2, lambda_L2, u_LinfL2, u_LinfH1, v_LinfL2, u_L2L2, u_L2H1, v_L2L2 };
 
-bool has_release(std::size_t b) { return mrm::repro::field_benchmark_releases(benchmarks[b]); }
+// Whether benchmark b releases its contact (field_benchmark_releases, an exact solve), asked once each.
+bool has_release(std::size_t b) {
+  static const std::array<bool, benchmarks.size()> releases = [] {
+    std::array<bool, benchmarks.size()> r{};
+    for (std::size_t i = 0; i < benchmarks.size(); ++i) r[i] = mrm::repro::field_benchmark_releases(benchmarks[i]);
+    return r;
+  }();
+  return releases[b];
+}
 bool displacement_in_L2(std::size_t k) { return k == u0_L2 || k == u_LinfL2 || k == u_L2L2; }
 
 double predicted_order(std::size_t b, std::size_t m, std::size_t k) {
@@ -176,15 +183,22 @@ int main(int argc, char** argv) {
                                &refinements, cli::in_closed_range(4, 6));
     cli::add_threads_option(program.parser, &threads);
     if (!program.parse(argc, argv, "also write the tables and values the report quotes")) return 0;
-    if (coarsest % 5 != 0)
-      throw cli::UsageError("--coarsest: " + std::to_string(coarsest) +
-                            " is not a multiple of 5 (allowed: multiples of 5 in [5, 1000]: the layered "
-                            "bar's interface at x = 1 of L = 2.5 must be a node)");
+    const mrm::repro::MeshRefinement meshes(static_cast<mrm::Index>(coarsest), static_cast<std::size_t>(refinements));
+    const std::size_t levels = meshes.levels();
+    const auto configuration_of = [&](std::size_t b, const char* mass, mrm::Index elements) {
+      return mrm::repro::study_configuration(benchmarks[b], mrm::Scheme::crank_nicolson,
+                                             mrm::repro::mass_redistribution_from_spec(mass), elements, courant,
+                                             mrm::impact_benchmark(benchmarks[b]).final_time);
+    };
+    // Every mesh is a multiple of the coarsest, so the library's refusal of an N that puts no node on a
+    // material interface (chain_mesh, naming the allowed N) is asked of the coarsest, before any work.
+    mrm::repro::as_usage_error({{"elements", "--coarsest"}}, [&] {
+      for (std::size_t b = 0; b < benchmarks.size(); ++b)
+        mrm::repro::configuration_mesh(configuration_of(b, masses.front(), meshes.coarsest()));
+    });
 
     // 2. Outputs.
     program.open();
-    const mrm::repro::MeshRefinement meshes(static_cast<mrm::Index>(coarsest), static_cast<std::size_t>(refinements));
-    const std::size_t levels = meshes.levels();
 
     // 3. The runs, through the sweep layer: the three masses of one benchmark and mesh make one batch
     // (fig_benchmark_convergence's grouping), each run's measures run_configuration's bit for bit.
@@ -193,9 +207,7 @@ int main(int argc, char** argv) {
     for (std::size_t b = 0; b < benchmarks.size(); ++b)
       for (const char* m : masses)
         for (std::size_t l = 0; l < levels; ++l) {
-          configurations.push_back(mrm::repro::study_configuration(
-              benchmarks[b], mrm::Scheme::crank_nicolson, mrm::repro::mass_redistribution_from_spec(m),
-              meshes.elements(l), courant, mrm::impact_benchmark(benchmarks[b]).final_time));
+          configurations.push_back(configuration_of(b, m, meshes.elements(l)));
           keys.push_back({meshes.elements(l), static_cast<int>(b)});
         }
     mrm::repro::SweepSettings settings = mrm::repro::sweep_settings();
@@ -207,6 +219,16 @@ int main(int argc, char** argv) {
     std::cerr << "field_asymptotics: " << configurations.size() << " runs in "
               << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
 
+    // The exact first release of each benchmark (in its time unit: the same on every mesh).
+    std::vector<double> exact_release(benchmarks.size(), 0.0);
+    for (std::size_t b = 0; b < benchmarks.size(); ++b)
+      if (has_release(b)) {
+        const std::vector<mrm::ContactInterval> exact = mrm::repro::configuration_contact_windows(
+            configurations[b * masses.size() * levels], mrm::impact_benchmark(benchmarks[b]).final_time);
+        if (exact.empty() || exact.front().open)
+          throw std::runtime_error(std::string(benchmarks[b]) + ": the exact solution has no first release");
+        exact_release[b] = exact.front().end;
+      }
     Results results{levels, {}, {}, {}};
     for (std::size_t i = 0; i < measures.size(); ++i) {
       const std::array<double, 8> row = mrm::ErrorAccumulator::values(measures[i].errors);
@@ -216,13 +238,10 @@ int main(int argc, char** argv) {
       const std::size_t b = i / (masses.size() * levels);
       double exact_end = 0, measured_end = 0;
       if (has_release(b)) {
-        const std::vector<mrm::ContactInterval> exact = mrm::repro::configuration_contact_windows(
-            configurations[i], mrm::impact_benchmark(benchmarks[b]).final_time);
-        if (exact.empty() || exact.front().open || measures[i].contact_windows.empty() ||
-            measures[i].contact_windows.front().open)
-          throw std::runtime_error(std::string(benchmarks[b]) + ": the exact solution or the run (N = " +
-                                   std::to_string(configurations[i].elements) + ") has no first release");
-        exact_end = exact.front().end;
+        if (measures[i].contact_windows.empty() || measures[i].contact_windows.front().open)
+          throw std::runtime_error(std::string(benchmarks[b]) + ": the run with N = " +
+                                   std::to_string(configurations[i].elements) + " has no first release");
+        exact_end = exact_release[b];
         measured_end = measures[i].contact_windows.front().end;
       }
       results.release_exact.push_back(exact_end);
@@ -317,8 +336,8 @@ int main(int argc, char** argv) {
           return "\\textit{" + text + "}";
       }
     };
-    // The release's conjectured order (lib/studies/smeared_orders.cpp §2), Crank–Nicolson's μ = 2.
-    const double release_order = mrm::release_shift_order(mrm::crank_nicolson_phase_order(courant, 0.0));
+    // The release's conjectured order (repro/field_conjecture.cpp).
+    const double release_order = mrm::repro::field_release_order();
     for (std::size_t b = 0; b < benchmarks.size(); ++b) {
       const std::string key = benchmarks[b];
       for (std::size_t m = 0; m < masses.size(); ++m) {
@@ -434,6 +453,20 @@ int main(int argc, char** argv) {
       }
       if (b + 1 < benchmarks.size()) orderings.add_rule();
     }
+    // On the bars with a release: how many have Mod 3 smallest in u(0,·) on the coarsest and the finest mesh.
+    long releasing = 0, mod3_coarsest = 0, mod3_finest = 0;
+    for (std::size_t b = 0; b < benchmarks.size(); ++b)
+      if (has_release(b)) {
+        const auto mod3_smallest = [&](std::size_t l) {
+          return results.at(b, 2, l)[u0_L2] < std::min(results.at(b, 0, l)[u0_L2], results.at(b, 1, l)[u0_L2]);
+        };
+        ++releasing;
+        mod3_coarsest += mod3_smallest(0);
+        mod3_finest += mod3_smallest(levels - 1);
+      }
+    mrm::tex_define(defs, "fieldasym:releasing", std::to_string(releasing));
+    mrm::tex_define(defs, "fieldasym:mod3best:coarsest", std::to_string(mod3_coarsest));
+    mrm::tex_define(defs, "fieldasym:mod3best:finest", std::to_string(mod3_finest));
     mrm::tex_define(defs, "fieldasym:follows", std::to_string(follows));
     mrm::tex_define(defs, "fieldasym:pairs", std::to_string(pairs));
     std::cout << "u(0,.) errors ordered as the release errors: " << follows << " of " << pairs << " pairs\n";

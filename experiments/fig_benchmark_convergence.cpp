@@ -362,10 +362,12 @@ int main(int argc, char** argv) {
                                &refinements, cli::in_closed_range(2, 6));
     cli::add_threads_option(program.parser, &threads);
     if (!program.parse(argc, argv, "also write the tables and values the report quotes")) return 0;
-    if (coarsest % 5 != 0)
-      throw cli::UsageError("--coarsest: " + std::to_string(coarsest) +
-                            " is not a multiple of 5 (allowed: multiples of 5 in [5, 1000]: the layered "
-                            "bar's interface at x = 1 of L = 2.5 must be a node)");
+    // Every mesh is a multiple of the coarsest, so the library's refusal of an N that puts no node on a
+    // material interface (chain_mesh, naming the allowed N) is asked of the coarsest, before any work.
+    mrm::repro::as_usage_error({{"elements", "--coarsest"}}, [&] {
+      for (const char* b : benchmarks)
+        mrm::repro::configuration_mesh(benchmark_configuration(b, "mod1", static_cast<mrm::Index>(coarsest), courant));
+    });
 
     // 2. Outputs.
     program.open();
