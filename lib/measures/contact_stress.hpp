@@ -56,6 +56,10 @@ PhaseOrder interior_phase_order(const SchemeParameters& scheme, double courant, 
 /// h (contact_stress.cpp, §1): W = (C h^μ t)^{1/(μ+1)}. Throws std::invalid_argument unless h > 0,
 /// t ≥ 0, C > 0.
 double smearing_width(double h, double t, const PhaseOrder& order);
+/// factor · W(h, t) at each instant t ≥ 0 of `times`, with one power per instant: factor (C h^μ)^{1/(μ+1)}
+/// times t^{1/(μ+1)}, the same number as factor · smearing_width(h, t) up to a few roundings. Throws
+/// std::invalid_argument as smearing_width does, and for factor ≤ 0.
+std::vector<double> smearing_widths(double h, std::vector<double> times, const PhaseOrder& order, double factor);
 
 /// The window kernels: the box (transfer sinc(kδ/2), decay order p = 1) and the cubic B-spline of
 /// support δ (four boxes of width δ/4: transfer sinc⁴(kδ/8), p = 4).
@@ -65,7 +69,7 @@ enum class WindowKernel { box, spline };
 /// ṽ_n = Σ_m K((t_m − t_n)/δ_n) v_m / Σ_m K((t_m − t_n)/δ_n), the samples extended by their first and last
 /// values beyond the ends, with δ_n = width[n] (a width below the spacing leaves the sample as it is).
 /// Summed from running moments of the kernel's polynomial pieces (contact_stress.cpp §5): O(1) per
-/// sample where the widths change slowly, within 4096 ε max|v| of the direct sum.
+/// sample where the widths change slowly, within 8192 ε max|v| of the direct sum.
 /// Throws std::invalid_argument if the sizes differ, or a width is negative, not finite or more than
 /// 2e12 spacings.
 std::vector<double> window_average(const std::vector<double>& values, double spacing, const std::vector<double>& width,
@@ -96,6 +100,6 @@ double gate_indicator(const std::vector<double>& multiplier, const std::vector<d
 /// The gated stress (contact_stress.cpp §6): `window` (the multiplier's window average) if
 /// gate_indicator(multiplier, window) > gate_threshold, else `multiplier`. Throws std::invalid_argument if
 /// the sizes differ.
-std::vector<double> gated_stress(const std::vector<double>& multiplier, const std::vector<double>& window);
+std::vector<double> gated_stress(const std::vector<double>& multiplier, std::vector<double> window);
 
 }  // namespace mrm

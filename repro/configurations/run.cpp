@@ -145,6 +145,9 @@ ConfigurationRun::ConfigurationRun(const Configuration& configuration, std::func
     history_.h = mesh_.h(0);  // the contact element (the recovered fit assumes uniform elements near x = 0)
     history_.spacing = dt_;
     history_.order = interior_phase_order(unit_.scheme, dt_ / history_.h, unit_.mass.interior_blend);
+    // One sample per level (or per step): room for all of them at once.
+    const std::size_t samples = static_cast<std::size_t>(std::max<long>(0, measures_.steps)) + 2;
+    history_.time.reserve(samples), history_.multiplier.reserve(samples), history_.exact.reserve(samples);
   }
   // A given reference is the caller's, at the configuration's scale (not owned: an aliasing pointer
   // with no owner), brought to the unit scale; otherwise the unit configuration's own, kept for the run.

@@ -9,6 +9,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include <doctest/doctest.h>
 
@@ -29,10 +30,9 @@ std::vector<double> StressHistory::values(ContactStress stress) const {
   if (stress == ContactStress::multiplier) return multiplier;
   if (stress == ContactStress::recovered) return recovered;
   if (stress == ContactStress::gated) return gated_stress(multiplier, values(ContactStress::window));
-  std::vector<double> width;
-  width.reserve(time.size());
-  for (double t : time) width.push_back(width_factor * smearing_width(h, std::max(0.0, t), order));
-  return window_average(multiplier, spacing, width,
+  std::vector<double> clamped(time.size());
+  std::transform(time.begin(), time.end(), clamped.begin(), [](double t) { return std::max(0.0, t); });
+  return window_average(multiplier, spacing, smearing_widths(h, std::move(clamped), order, width_factor),
                         stress == ContactStress::box ? WindowKernel::box : WindowKernel::spline);
 }
 const std::vector<double>& StressHistory::instants(ContactStress stress) const {
