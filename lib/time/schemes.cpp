@@ -131,6 +131,8 @@ BarSimulation::BarSimulation(const Problem& problem, const UniformMesh& mesh, co
   step_ = scheme.make_step(context);
   if (const Tridiagonal* own = step_->own_mass()) mass_ = *own;
   one_step_form_ = dynamic_cast<OneStepFormStep*>(step_.get());
+  class_step_ = dynamic_cast<ContactClassStep*>(step_.get());
+  explicit_step_ = dynamic_cast<const ExplicitStep*>(step_.get());
 
   // The initial level. Uⁿ and V⁰ are the nodal interpolants of u⁰ and v⁰; a massless contact node
   // takes the value its algebraic row gives (mathematics.md §4: otherwise u₀ jumps in the first step and
@@ -536,8 +538,8 @@ BarSimulation::StepParts BarSimulation::step_parts() {
   return {&state_,
           one_step_form_ ? &one_step_form_->solver() : nullptr,
           one_step_form_ ? one_step_form_->fast() : nullptr,
-          dynamic_cast<ContactClassStep*>(step_.get()),
-          dynamic_cast<const ExplicitStep*>(step_.get()),
+          class_step_,
+          explicit_step_,
           has_load,
           three_level_,
           algebraic_row_,

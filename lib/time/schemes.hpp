@@ -101,9 +101,13 @@ class BarSimulation {
   bool massless_, algebraic_row_, three_level_;
   Tridiagonal mass_, stiffness_;
   // The step, built by the scheme's registry entry; one_step_form_ is the same step seen as (★)'s (for
-  // CN-switch's θ-step and the batched step's parts), null for the other families.
+  // CN-switch's θ-step and the batched step's parts), class_step_ and explicit_step_ as a contact class's
+  // and an explicit class's (the batched step's parts), each null for the other families: cast once here,
+  // not at each step.
   std::unique_ptr<Step> step_;
   OneStepFormStep* one_step_form_ = nullptr;
+  ContactClassStep* class_step_ = nullptr;
+  const ExplicitStep* explicit_step_ = nullptr;
 
   Index level_ = 0;
   StepState state_;
