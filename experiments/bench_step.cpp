@@ -430,7 +430,10 @@ BatchedTimings time_batched(Index elements, int repetitions, double target) {
                         dt);
     mrm::BatchedSimulation batch(std::move(runs));
     if (batch.batched_runs() != t.lanes) throw std::runtime_error("the batched step did not batch its runs");
-    if (result.per_target.empty()) result.plateau = static_cast<double>(batch.plateau_rows()) / static_cast<double>(n);
+    // The plateau of one group (the runs are the same configuration: every group has the same one).
+    if (result.per_target.empty())
+      result.plateau = static_cast<double>(batch.plateau_rows()) /
+                       static_cast<double>(batch.group_widths().size() * static_cast<std::size_t>(n));
     Timing timing = measure(
         [&](long s) {
           for (long i = 0; i < s; ++i) batch.step();

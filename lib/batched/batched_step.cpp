@@ -25,6 +25,9 @@
 #include <tuple>
 #include <utility>
 
+#include <unistd.h>
+
+#include <doctest/doctest.h>
 #include <hwy/aligned_allocator.h>
 #include <hwy/targets.h>
 
@@ -112,6 +115,35 @@ hwy::AlignedFreeUniquePtr<double[]> lane_array(std::size_t count) {
   return array;
 }
 
+// The lanes of a family's groups. A group's interleaved state is about 64 bytes per node and lane
+// (bench_step's B/node), swept down and up at each step. Where the target's W lanes of it outgrow the
+// level-2 cache (`cache` bytes; 0 when unknown) and W > 4, the family goes in groups of 4 lanes on the same
+// target. Chosen after a run (bench_step, CPU clock, the minimum of 5 batches, on a Zen 4 core with AVX-512
+// and a 1 MiB L2): 8 lanes cost 0.94–1.00 ns per node, step and run at N = 4096 … 65536 against 0.77–0.87
+// with 4, and 0.70 against 0.84 at N = 1024, where 8 lanes fit (the crossover, N = 2048, is where 8 lanes
+// of 64 bytes fill 1 MiB). The grouping changes no bit of a lane: every operation is lane-wise.
+std::size_t group_stride(std::size_t n, std::size_t lanes, std::size_t cache) {
+  constexpr std::size_t bytes_per_node = 64;
+  if (cache == 0 || lanes <= 4) return lanes;
+  return n * lanes * bytes_per_node > cache ? 4 : lanes;
+}
+
+TEST_CASE("a family's groups take 4 lanes where the target's full width outgrows the cache") {
+  CHECK(group_stride(1024, 8, std::size_t{1} << 20) == 8);
+  CHECK(group_stride(2048, 8, std::size_t{1} << 20) == 8);  // exactly full
+  CHECK(group_stride(2049, 8, std::size_t{1} << 20) == 4);
+  CHECK(group_stride(65536, 8, std::size_t{1} << 20) == 4);
+  CHECK(group_stride(65536, 4, std::size_t{1} << 20) == 4);  // AVX2: its own width
+  CHECK(group_stride(65536, 2, std::size_t{1} << 20) == 2);
+  CHECK(group_stride(65536, 8, 0) == 8);  // cache unknown: the full width
+}
+
+// The level-2 cache of this processor in bytes, 0 when the system does not say.
+std::size_t level2_cache_bytes() {
+  const long bytes = sysconf(_SC_LEVEL2_CACHE_SIZE);
+  return bytes > 0 ? static_cast<std::size_t>(bytes) : 0;
+}
+
 // The rows of a FastStep as 10 doubles (the order of batched::RowV).
 template <typename Row>
 std::array<double, 10> coefficients(const Row& r) {
@@ -196,12 +228,15 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
     const int family = fast->three_level() ? 1 : fast->energy_conserving() ? 2 : fast->switching() ? 3 : 0;
     families[Key{n, family, fast->head().size()}].push_back(k);
   }
-  // Each family: groups of the full width, then the remainder q < W in one group of the narrowest width
+  // Each family: groups of the full width (of 4 lanes where the full width outgrows the cache:
+  // group_stride), then the remainder q < W in one group of the narrowest width
   // that holds it (2 runs in 2 lanes, 3 or 4 in 4, more in the full width), or alone if q = 1. The width
   // changes no bit of a lane (every operation is lane-wise), only the cost of the padding lanes.
+  const std::size_t cache = level2_cache_bytes();
   for (const auto& [key, members] : families) {
-    for (std::size_t first = 0; first < members.size(); first += lanes_) {
-      const std::size_t used = std::min(lanes_, members.size() - first);
+    const std::size_t stride = group_stride(std::get<0>(key), lanes_, cache);
+    for (std::size_t first = 0; first < members.size(); first += stride) {
+      const std::size_t used = std::min(stride, members.size() - first);
       if (used == 1) {  // a group of one: stepped alone
         alone_.push_back(members[first]);
         continue;
