@@ -23,6 +23,9 @@ std::uint64_t bits_of(double t) {
   std::memcpy(&b, &t, sizeof b);
   return b;
 }
+// The shard of an instant (of 64): the top 6 bits of its bits times 2^64/φ (Fibonacci hashing), so that
+// successive instants, which differ in their last bits, fall in different shards.
+std::size_t shard_of(std::uint64_t key) { return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 58); }
 }  // namespace
 
 MemoizedReference::MemoizedReference(std::shared_ptr<const ReferenceSolution> inner) : inner_(std::move(inner)) {
@@ -31,8 +34,8 @@ MemoizedReference::MemoizedReference(std::shared_ptr<const ReferenceSolution> in
 
 // A vector of the record is written once, when it is inserted, and never moved afterwards (the nodes of
 // an unordered_map stay where they are when it grows): it is copied out without the lock. The recorded
-// points are set once (the first call) and compared without the lock; a lookup takes the lock shared,
-// so that the runs of the threads read at once, and only an insertion takes it alone. A question not in
+// points are set once (the first call) and compared without the lock; a lookup takes its shard's lock
+// shared, so that the runs of the threads read at once, and only an insertion takes it alone. A question not in
 // the record is evaluated without the lock, so that the other runs go on reading meanwhile.
 void MemoizedReference::at_points(Vectors& record, bool velocity, double t, const double* x, long count,
                                   double* out) const {
@@ -41,12 +44,13 @@ void MemoizedReference::at_points(Vectors& record, bool velocity, double t, cons
   std::call_once(points_once_, [&] { points_.assign(x, x + count); });
   const bool recorded_points = static_cast<long>(points_.size()) == count &&
                                std::equal(points_.begin(), points_.end(), x);  // == on every point: the same doubles
+  auto& shard = record[shard_of(key)];
   if (recorded_points) {
     const std::vector<double>* found = nullptr;
     {
-      std::shared_lock<std::shared_mutex> lock(mutex_);
-      const auto it = record.find(key);
-      if (it != record.end()) found = &it->second;
+      std::shared_lock<std::shared_mutex> lock(shard.mutex);
+      const auto it = shard.map.find(key);
+      if (it != shard.map.end()) found = &it->second;
     }
     if (found) {
       std::copy(found->begin(), found->end(), out);
@@ -59,22 +63,24 @@ void MemoizedReference::at_points(Vectors& record, bool velocity, double t, cons
   else
     inner_->displacement_at_points(t, x, count, out);
   if (!recorded_points) return;
-  std::unique_lock<std::shared_mutex> lock(mutex_);
-  record.emplace(key, std::vector<double>(out, out + count));  // a value already there has the same bits
+  std::vector<double> values(out, out + count);
+  std::unique_lock<std::shared_mutex> lock(shard.mutex);
+  shard.map.emplace(key, std::move(values));  // a value already there has the same bits
 }
 
 double MemoizedReference::scalar(Scalars& record, bool multiplier, double t) const {
   const std::uint64_t key = bits_of(t);
   questions_.fetch_add(1, std::memory_order_relaxed);
+  auto& shard = record[shard_of(key)];
   {
-    std::shared_lock<std::shared_mutex> lock(mutex_);
-    const auto it = record.find(key);
-    if (it != record.end()) return it->second;
+    std::shared_lock<std::shared_mutex> lock(shard.mutex);
+    const auto it = shard.map.find(key);
+    if (it != shard.map.end()) return it->second;
   }
   evaluations_.fetch_add(1, std::memory_order_relaxed);
   const double value = multiplier ? inner_->contact_multiplier(t) : inner_->contact_displacement(t);
-  std::unique_lock<std::shared_mutex> lock(mutex_);
-  record.emplace(key, value);
+  std::unique_lock<std::shared_mutex> lock(shard.mutex);
+  shard.map.emplace(key, value);
   return value;
 }
 
