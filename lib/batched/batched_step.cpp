@@ -115,22 +115,23 @@ hwy::AlignedFreeUniquePtr<double[]> lane_array(std::size_t count) {
   return array;
 }
 
-// The lanes of a family's groups. A group's interleaved state is about 64 bytes per node and lane
-// (bench_step's B/node), swept down and up at each step. Where the target's W lanes of it outgrow the
-// level-2 cache (`cache` bytes; 0 when unknown) and W > 4, the family goes in groups of 4 lanes on the same
-// target. Chosen after a run (bench_step, CPU clock, the minimum of 5 batches, on a Zen 4 core with AVX-512
-// and a 1 MiB L2): 8 lanes cost 0.94–1.00 ns per node, step and run at N = 4096 … 65536 against 0.77–0.87
-// with 4, and 0.70 against 0.84 at N = 1024, where 8 lanes fit (the crossover, N = 2048, is where 8 lanes
-// of 64 bytes fill 1 MiB). The grouping changes no bit of a lane: every operation is lane-wise.
+// The lanes of a family's groups. A group's state is four interleaved vectors (U, y, W′, X: 32 bytes per
+// node and lane), swept down and up at each step, and it shares the level-2 cache (`cache` bytes; 0 when
+// unknown) with the factors off the plateau, the rows and the runs' own measures. Where the target's
+// W > 4 lanes of state fill more than half of it, the family goes in groups of 4 lanes on the same target.
+// The half was chosen after a run (bench_step, CPU clock, the minimum of 5 batches, on a Zen 4 core with
+// AVX-512 and a 1 MiB L2): 8 lanes cost 0.70 ns per node, step and run against 0.84 with 4 at N = 1024
+// (256 KiB of state), about the same at N = 2048 (512 KiB), and 0.94–1.00 against 0.77–0.87 at N = 4096 …
+// 65536 (1 MiB and more). The grouping changes no bit of a lane: every operation is lane-wise.
 std::size_t group_stride(std::size_t n, std::size_t lanes, std::size_t cache) {
-  constexpr std::size_t bytes_per_node = 64;
+  constexpr std::size_t state_bytes = 4 * sizeof(double);
   if (cache == 0 || lanes <= 4) return lanes;
-  return n * lanes * bytes_per_node > cache ? 4 : lanes;
+  return n * lanes * state_bytes > cache / 2 ? 4 : lanes;
 }
 
 TEST_CASE("a family's groups take 4 lanes where the target's full width outgrows the cache") {
   CHECK(group_stride(1024, 8, std::size_t{1} << 20) == 8);
-  CHECK(group_stride(2048, 8, std::size_t{1} << 20) == 8);  // exactly full
+  CHECK(group_stride(2048, 8, std::size_t{1} << 20) == 8);  // exactly half
   CHECK(group_stride(2049, 8, std::size_t{1} << 20) == 4);
   CHECK(group_stride(65536, 8, std::size_t{1} << 20) == 4);
   CHECK(group_stride(65536, 4, std::size_t{1} << 20) == 4);  // AVX2: its own width
@@ -228,8 +229,8 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
     const int family = fast->three_level() ? 1 : fast->energy_conserving() ? 2 : fast->switching() ? 3 : 0;
     families[Key{n, family, fast->head().size()}].push_back(k);
   }
-  // Each family: groups of the full width (of 4 lanes where the full width outgrows the cache:
-  // group_stride), then the remainder q < W in one group of the narrowest width
+  // Each family: groups of the full width (of 4 lanes where the full width's state fills more than half
+  // the level-2 cache: group_stride), then the remainder q < W in one group of the narrowest width
   // that holds it (2 runs in 2 lanes, 3 or 4 in 4, more in the full width), or alone if q = 1. The width
   // changes no bit of a lane (every operation is lane-wise), only the cost of the padding lanes.
   const std::size_t cache = level2_cache_bytes();

@@ -69,7 +69,7 @@ enum class WindowKernel { box, spline };
 /// ṽ_n = Σ_m K((t_m − t_n)/δ_n) v_m / Σ_m K((t_m − t_n)/δ_n), the samples extended by their first and last
 /// values beyond the ends, with δ_n = width[n] (a width below the spacing leaves the sample as it is).
 /// Summed from running moments of the kernel's polynomial pieces (contact_stress.cpp §5): O(1) per
-/// sample where the widths change slowly, within 8192 ε max|v| of the direct sum.
+/// sample where the widths change slowly, within 4096 ε max|v| of the direct sum.
 /// Throws std::invalid_argument if the sizes differ, or a width is negative, not finite or more than
 /// 2e12 spacings.
 std::vector<double> window_average(const std::vector<double>& values, double spacing, const std::vector<double>& width,
