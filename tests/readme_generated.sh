@@ -2,15 +2,17 @@
 # ctest readme_generated: the README cannot go stale.
 #   - Its generated blocks (tools/readme.sh: the times of the two commands from doc/build_times.txt, the
 #     claims and their verdicts from the claims detail) are what their files give: the claims detail is
-#     the one the ctest entry check_claims wrote in this build (a fixture: check_claims runs first).
+#     the one the ctest entry check_claims wrote in this build (a fixture: check_claims runs first), or,
+#     under `make test`, the one make's claims rule wrote (MRM_CLAIMS_DETAIL; the Makefile's rule `test`).
 #   - Its first screen, everything above the line `<!-- the first screen ends here -->`, fits in 60 lines.
 #   - Its figure table lists every figure `make all` draws, and no other: the figures are read from make's
 #     database of `all` (make -pn, nothing run).
-# Usage: readme_generated.sh BIN_DIR   (the claims detail is BIN_DIR/../check_claims_detail.txt)
+# Usage: readme_generated.sh BIN_DIR   (the claims detail: $MRM_CLAIMS_DETAIL if set, else
+#        BIN_DIR/../check_claims_detail.txt)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 bin=${1:?usage: readme_generated.sh BIN_DIR}
-detail=$bin/../check_claims_detail.txt
+detail=${MRM_CLAIMS_DETAIL:-$bin/../check_claims_detail.txt}
 work=$(mktemp -d -t readme_generated.XXXXXX)
 trap 'rm -rf -- "$work"' EXIT
 status=0
@@ -19,7 +21,7 @@ status=0
 if [[ -f $detail ]]; then
   bash "$root/tools/readme.sh" --check "$detail" || status=1
 else
-  echo "readme_generated: no claims detail at $detail (the ctest entry check_claims writes it)"
+  echo "readme_generated: no claims detail at $detail (the ctest entry check_claims writes it, or make's claims rule)"
   status=1
 fi
 
