@@ -1,5 +1,5 @@
 /// @file dense_eigenvalues.hpp
-/// @brief Reference eigenvalues of small dense matrices (LAPACK-style QR iterations, through Eigen), the
+/// @brief Reference eigenvalues of small dense matrices (LAPACK-style QR iterations, through GSL), the
 /// yardstick of the doctests that check a bisection, a step limit or a spectrum derived in closed form.
 #pragma once
 
