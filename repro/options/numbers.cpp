@@ -3,8 +3,6 @@
 #include "options.hpp"
 #include "output_file.hpp"
 
-#include <CLI/CLI.hpp>
-
 #include <doctest/doctest.h>
 
 #include <algorithm>
