@@ -759,7 +759,7 @@ int main(int argc, char** argv) {
     const repro::Table table = summary_table(study, common);
     std::ostream& defs = program.values();
     write_summary_values(defs, study, table);
-    // Is a scheme exact at the nodes at Δt = h (explicit_schemes.cpp, "Is `explicit` exact ...")? The
+    // Is a scheme exact at the nodes at Δt = h (explicit_schemes.cpp, "Is the scheme "explicit" exact ...")? The
     // largest nodal error max_n max_i |u_i − u(x_i, t_n)| of the paper's benchmark over one period, for
     // explicit + Mod 3 and cn + Mod 3, and for taylor-flanagan (lumped) up to the first impact (t < 1,
     // the free wave equation) and over the period.

@@ -2,7 +2,9 @@
 # The API documentation is complete and shows the derivations: doxygen over lib/ (with the Doxyfile of
 # the repository and the documents of doc/ that exist) must write no warning at all (every public
 # member documented, no broken reference), and the pages of schemes.cpp and contact.cpp must carry
-# their derivations with MathJax formulas.
+# their derivations with MathJax formulas; and no markup shows as text (tools/doc_markup.sh: an escaped
+# tag such as a heading's literal <tt>, a literal **, a Markdown table not rendered, a column layout that
+# doxygen joins into one paragraph).
 # Usage: doxygen_warnings.sh [BIN_DIR] (BIN_DIR unused: ctest passes it to every shell test)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -42,5 +44,7 @@ done
 for page in benchmarks contact_treatments peer; do
   expect "$page.html" 'References' "the references of $page"
 done
-((status == 0)) && echo "doxygen_warnings: no warning; derivations and formulas on the pages of schemes.cpp, contact.cpp and the modules"
+# The markup rendered, not shown as text.
+bash tools/doc_markup.sh "$work/html" "$root" || status=1
+((status == 0)) && echo "doxygen_warnings: no warning; derivations and formulas on the pages of schemes.cpp, contact.cpp and the modules; no markup shown as text"
 exit "$status"

@@ -2,7 +2,7 @@
 /// @brief Moreau–Jean (θ, e): the θ-method with a velocity-level impact law (`moreau-jean`), in the
 /// notation of contact_classes.cpp. The doctests that run it are in contact_classes.cpp.
 ///
-/// ## Moreau–Jean (θ, e) (`moreau-jean`)
+/// ## Moreau–Jean (θ, e) (moreau-jean)
 ///
 ///     M(Vⁿ⁺¹ − Vⁿ) = −Δt S(θUⁿ⁺¹ + (1 − θ)Uⁿ) + p e₀,     Uⁿ⁺¹ = Uⁿ + Δt(θVⁿ⁺¹ + (1 − θ)Vⁿ),
 ///     if u₀ⁿ + ½Δt v₀ⁿ ≤ 0:  0 ≤ v₀ⁿ⁺¹ + e v₀ⁿ ⊥ p ≥ 0,   else p = 0,

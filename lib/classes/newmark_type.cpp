@@ -3,7 +3,7 @@
 /// Nitsche's terms (`nitsche`), in the notation of contact_classes.cpp. The doctests that run them are in
 /// contact_classes.cpp.
 ///
-/// ## Newmark(β, γ) with a contact force (`newmark`, `penalty`, `nitsche`)
+/// ## Newmark(β, γ) with a contact force (newmark, penalty, nitsche)
 ///
 /// Written on R = M A, the force (internal and contact) that the acceleration A carries, so that a
 /// singular M (a massless contact node) needs no A:

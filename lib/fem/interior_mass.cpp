@@ -49,10 +49,15 @@
 /// zero drift is the one whose node 1 carries the whole removed element beyond that end mass: Mod 3
 /// defined on M^A as the Galerkin mass PᵀM^AP of u₀ := u₁, M̄₁₁ = (4/3 + A/6)h (mass_redistribution.cpp),
 /// with the same row sums as the paper's Mod 3. The other members, on M^A:
-///   Mod 1  drops m_lost(A) = (2/3 − A/6)h:                       ΔP = −2 m_lost(A)       = −(4/3 − A/3)h
-///   Mod 2  spreads it uniformly (δm_loc = −m_lost, δm_glob = m_lost): ΔP = −m_lost(A)/2   = −(1/3 − A/12)h
-///   the literal weight w₁₁ = 2 on M^A (M̄₁₁ = (4/3 + 2A/3)h, Ah/2 beyond Mod 3):   ΔP = +A h
-/// The last one is why the family must be defined by what it does with the lost mass, not by its weights.
+///
+/// | member         | the lost mass m_lost(A) = (2/3 − A/6)h                | ΔP                            |
+/// |----------------|-------------------------------------------------------|-------------------------------|
+/// | Mod 1          | dropped                                               | −2 m_lost(A) = −(4/3 − A/3)h  |
+/// | Mod 2          | spread uniformly (δm_loc = −m_lost, δm_glob = m_lost) | −m_lost(A)/2 = −(1/3 − A/12)h |
+/// | w₁₁ = 2 on M^A | M̄₁₁ = (4/3 + 2A/3)h: Ah/2 beyond Mod 3                | +A h                          |
+///
+/// The last one, the literal weight, is why the family must be defined by what it does with the lost
+/// mass, not by its weights.
 #include "fem/interior_mass.hpp"
 
 #include <charconv>

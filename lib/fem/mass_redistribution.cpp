@@ -11,9 +11,11 @@
 /// the paper is an instance (the matrices are this implementation's reconstruction: the paper names
 /// them in words only, mathematics.md §3):
 ///
-///   Mod 1  w = 1 for i, j ≥ 1                 the mass 2h/3 of row/column 0 is dropped: total L − 2h/3
-///   Mod 2  w = L/(L − 2h/3) for i, j ≥ 1       spread uniformly: total mass L again
-///   Mod 3  w_11 = 2, w = 1 otherwise           moved to node 1 (M̄_11 = 2h/3 + 2h/3 = 4h/3): total L
+/// | member | weight                        | the mass 2h/3 of row and column 0           | total mass |
+/// |--------|-------------------------------|---------------------------------------------|------------|
+/// | Mod 1  | w = 1 for i, j ≥ 1            | dropped                                     | L − 2h/3   |
+/// | Mod 2  | w = L/(L − 2h/3) for i, j ≥ 1 | spread uniformly                            | L again    |
+/// | Mod 3  | w_11 = 2, w = 1 otherwise     | moved to node 1 (M̄_11 = 2h/3 + 2h/3 = 4h/3) | L          |
 ///
 /// Removing row and column 0 removes M_00 + 2 M_01 = h/3 + 2 h/6 = 2h/3 of the total mass 1ᵀM1 = L. The
 /// total mass counts every node 0..N, the clamped one included, so the matrices are built on all nodes

@@ -67,7 +67,7 @@
 /// and eliminating u₀ leaves central differences on nodes 1..N−1 with node 1 held by a one-sided
 /// spring of stiffness 1/h (in contact) or by the load (free): a Lipschitz force, whence the same limit.
 ///
-/// ## Is `explicit` exact at the nodes at Δt = h?
+/// ## Is the scheme "explicit" exact at the nodes at Δt = h?
 ///
 /// For the free wave equation, lumped central differences at Δt = h are the d'Alembert diamond
 /// u_iⁿ⁺¹ + u_iⁿ⁻¹ = u_{i+1}ⁿ + u_{i−1}ⁿ, exact at the nodes; a free end with the lumped half mass h/2

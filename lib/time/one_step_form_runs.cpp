@@ -45,11 +45,15 @@ namespace mrm {
 /// (10³–10⁷ here), the literal Paoli–Schatzman row lets its sawtooth grow (10–10²), large steps with
 /// restitution move the impact times. With K = 200 and N = 12, Kcε ~ 1e-13: the bound is τ = 1e-12
 /// of the solution's scale times A, the scale of each quantity being what its formula combines:
-///   Uⁿ           τ A U*, U* = max over the run of ‖Uⁿ‖∞;
-///   velocity     τ A U*/Δt (a difference of displacements divided by Δt);
-///   λ            τ A (‖M‖∞ U*/Δt² + ‖S‖∞ U* + F*), the forces that row 0 of (★) balances (F* ≥ ‖F‖∞);
-///   energy       τ A (‖M‖∞ (U*/Δt)² + ‖S‖∞ U*²), the sizes of the terms of ½VᵀMV + ½UᵀSU;
-/// and the instants of every sample, computed by the same code, exactly equal. A wrong term in either
+///
+/// | quantity | bound of the difference          | its scale                                         |
+/// |----------|----------------------------------|---------------------------------------------------|
+/// | Uⁿ       | τ A U*                           | U* = max over the run of ‖Uⁿ‖∞                    |
+/// | velocity | τ A U*/Δt                        | a difference of displacements divided by Δt       |
+/// | λ        | τ A (‖M‖∞ U*/Δt² + ‖S‖∞ U* + F*) | the forces that row 0 of (★) balances (F* ≥ ‖F‖∞) |
+/// | energy   | τ A (‖M‖∞ (U*/Δt)² + ‖S‖∞ U*²)   | the sizes of the terms of ½VᵀMV + ½UᵀSU           |
+///
+/// The instants of every sample, computed by the same code, are exactly equal. A wrong term in either
 /// step would differ by O(h) or more at the first step, far above these bounds. The cases: every
 /// scheme (EC and CN-switch included; EC without the consistent mass, which it refuses), every mass of
 /// the paper (consistent, Mod 1–3) and two more that exercise every region of
