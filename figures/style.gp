@@ -13,10 +13,14 @@
 set encoding utf8
 fontface = "Latin Modern Roman"
 font(size) = sprintf("%s,%g", fontface, size)
-# The one terminal of the report's figures: PDF at the text width, text at 9 pt (the captions are set
-# at 10), lines 1.5 times cairo's default. A script sets `set terminal @figure_terminal size W,H`; a
-# figure with small panels may lower its own labels' font, never the terminal's.
-figure_terminal = sprintf("pdfcairo font '%s' linewidth 1.5 enhanced", font(9))
+# The one terminal of the report's figures: PDF, text at 10 pt (the size of the captions; the body is
+# set at 11), lines 1.5 times cairo's default. A script sets `set terminal @figure_terminal size W,H`
+# with W the width at which the report includes the figure, so that the text prints at 10 pt: 16 cm
+# for a figure at \textwidth (16.4 cm: A4 with margins of 2.3 cm, a scale of 1.025), and
+# fraction * text_width for one at a fraction of it. Every label, key and tic keeps this size; a figure
+# with more text than room gets more height or fewer panels a row, not a smaller font.
+text_width = 16.4
+figure_terminal = sprintf("pdfcairo font '%s' linewidth 1.5 enhanced", font(10))
 # The data file's comment lines, read once (one process each, instead of one per lookup: a figure looks
 # up hundreds of labels and values, and a process each made gnuplot most of `make all`'s time):
 # comment(text, prefix) is the rest of the first line of `text` that starts with `prefix`, or "".
