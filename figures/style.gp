@@ -90,6 +90,11 @@ measure_short(id) = \
 # The column names of a `# columns: ...` line (the first one of the file).
 columns = system(sprintf("sed -n 's/^# columns: //p' '%s' | head -n 1", data))
 set grid lc rgb "#dddddd" lw 0.5
+# A log axis fitted to the data: after `stats` of the plotted values (positive ones; `set autoscale y`
+# before it, or stats skips the values outside the previous panel's range), @fit_log_y sets the y range to the decades that enclose them, so that a reference slope is clipped to the data's range
+# instead of stretching the axis to where no datum is.
+fit_log_y = "set yrange [10**floor(log10(STATS_min) + 1e-9):10**ceil(log10(STATS_max) - 1e-9)]"
+positive(v) = v > 0 ? v : NaN
 # The energies' symbols, as in the report: the two-level E_h and Paoli–Schatzman's E_h^β.
 E_h = "{/:Italic E}_{/:Italic h}"
 E_h_beta = "{/:Italic E}_{/:Italic h}^".beta_
