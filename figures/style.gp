@@ -98,3 +98,15 @@ positive(v) = v > 0 ? v : NaN
 # The energies' symbols, as in the report: the two-level E_h and Paoli–Schatzman's E_h^β.
 E_h = "{/:Italic E}_{/:Italic h}"
 E_h_beta = "{/:Italic E}_{/:Italic h}^".beta_
+# Small multiples placed by hand (a `layout` would also give the key its own plot): set grid_cols,
+# grid_rows and the grid's edges and gaps (screen fractions; the gaps hold a title, the edges the tic
+# labels and axis labels of the outer panels), then `@grid_setup` once and, for panel k (0 the top left,
+# row by row), `@grid_panel` before its plot. grid_left_column(k) and grid_bottom_row(k, n) (n panels in
+# all: no panel below k) say where a panel needs its tic labels and axis labels.
+grid_left = 0.1; grid_right = 0.98; grid_bottom = 0.07; grid_top = 0.95; grid_gap_x = 0.02; grid_gap_y = 0.05
+grid_setup = "grid_w = (grid_right - grid_left - (grid_cols - 1) * grid_gap_x) / grid_cols; grid_h = (grid_top - grid_bottom - (grid_rows - 1) * grid_gap_y) / grid_rows"
+grid_x(k) = grid_left + (k % grid_cols) * (grid_w + grid_gap_x)
+grid_y(k) = grid_top - (k / grid_cols) * (grid_h + grid_gap_y)
+grid_panel = "set lmargin at screen grid_x(k); set rmargin at screen grid_x(k) + grid_w; set tmargin at screen grid_y(k); set bmargin at screen grid_y(k) - grid_h"
+grid_left_column(k) = k % grid_cols == 0
+grid_bottom_row(k, n) = k + grid_cols >= n
