@@ -40,7 +40,7 @@ do for [s=1:ns] {
   } else {
     unset logscale y
     set format y "%g"
-    set ylabel "(".largest." − 1) / ".italic("ε")
+    set ylabel "(".largest." − 1) / ".epsilon_
     if (STATS_max == STATS_min) { set yrange [-1:1] } else { set autoscale y }
   }
   plot for [k=1:nm] data index nm*(s-1)+k-1 using 1:(grows ? $2 : ($2 - 1) / epsilon) with linespoints \

@@ -43,7 +43,12 @@ beta_ = math("𝛽")
 delta_ = math("𝛿")
 xi_ = math("𝜉")
 omega_ = math("𝜔")
+gamma_ = math("𝛾")
+epsilon_ = math("𝜀")
 Delta_t = "Δ".italic("t")
+# A name from the data file with its Greek letters in the math font (the labels write "Newmark (β, γ)").
+replace(s, a, b) = strstrt(s, a) == 0 ? s : s[1:strstrt(s, a) - 1].b.replace(s[strstrt(s, a) + strlen(a):], a, b)
+greek(s) = replace(replace(s, "β", beta_), "γ", gamma_)
 mass_colour(m) = m == 1 ? "#d62728" : m == 2 ? "#1f77b4" : m == 3 ? "#2ca02c" : "#9467bd"
 # The colour of curve k where the curves are variants of one run (stresses, steps, blends), neither masses
 # nor schemes: one palette for every such figure.
@@ -59,8 +64,8 @@ exact_style = "lc rgb 'black' lw 2"
 # The names of schemes and masses: the `# label <id> = <name>` lines the program wrote into the data
 # file (repro/labels.cpp, the one table of labels); an id without a line is its own name.
 label(id) = comment(comments, "# label ".id." = ")
-mass_name(id) = label(id) eq "" ? id : label(id)
-scheme_name(id) = label(id) eq "" ? id : label(id)
+mass_name(id) = label(id) eq "" ? id : greek(label(id))
+scheme_name(id) = label(id) eq "" ? id : greek(label(id))
 # The title of a figure's row of scheme `id`: the `# title <id> = <title>` line of the data file (its
 # name, with the contact row for a scheme that takes one; repro/labels.cpp, write_scheme_titles).
 scheme_title(id) = comment(comments, "# title ".id." = ")
