@@ -10,7 +10,7 @@ dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".
 load dir.'style.gp'
 
 # The report includes it at 0.88 \textwidth.
-eval sprintf("set terminal %s size %.2fcm,24cm", figure_terminal, 0.88 * text_width)
+eval sprintf("set terminal %s size %.2fcm,22cm", figure_terminal, 0.88 * text_width)
 set output output
 
 benchmarks = "bouncing impacting gravity-paper layered two-bars"
@@ -31,7 +31,7 @@ set format y "10^{%L}"
 set autoscale xfix
 set offsets graph 0.05, graph 0.05, 0, 0
 set multiplot layout 5,4 title "Convergence on the field's benchmarks (Crank–Nicolson, ".Delta_t." = ".italic("h")."/2".italic("c").")" \
-  margins 0.1,0.98,0.04,0.9 spacing 0.07,0.06
+  margins 0.1,0.98,0.05,0.9 spacing 0.07,0.045
 do for [i=1:5] {
   b = word(benchmarks, i)
   do for [k=1:4] {
@@ -51,7 +51,8 @@ do for [i=1:5] {
     }
     STATS_min = lo; STATS_max = hi
     @fit_log_y
-    if (i == 5) { set xlabel italic("h") } else { unset xlabel }
+    # The rows share the h axis: its tic labels and label under the last row only.
+    if (i == 5) { set xlabel italic("h"); set format x "2^{%L}" } else { unset xlabel; set format x "" }
     if (i == 1 && k == 1) {
       set key at screen 0.5,0.955 center top vertical maxrows 1 samplen 3 width 1
     } else {
