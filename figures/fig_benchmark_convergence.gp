@@ -1,14 +1,16 @@
 # Convergence on the field's benchmarks (bouncing, impacting, gravity-paper, layered, two-bars; Crank–Nicolson,
 # dt = h/(2c)): four relative errors against h, one panel per benchmark and measure, one curve per mass
 # (Mod 1 red, Mod 2 blue, Mod 3 green); the grey lines are reference slopes h^{1/3} and h^{2/3} (the
-# conjectured orders with a release). Blocks 0..14 of the data file (two-bars: h of one bar) ("benchmark = b, mass = m"); the axes are set by the data.
+# conjectured orders with a release). Blocks 0..14 of the data file (two-bars: h of one bar) ("benchmark = b, mass = m"); the axes are set by the data (y: the decades of the panel's errors, the
+# reference slopes clipped to them).
 # Usage: gnuplot -e "data='output/data/fig_benchmark_convergence.dat'; output='output/figures/fig_benchmark_convergence.pdf'" figures/fig_benchmark_convergence.gp
 if (!exists("data")) data = 'output/data/fig_benchmark_convergence.dat'
 if (!exists("output")) output = 'output/figures/fig_benchmark_convergence.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal @figure_terminal size 16cm,25cm
+# The report includes it at 0.88 \textwidth.
+eval sprintf("set terminal %s size %.2fcm,22cm", figure_terminal, 0.88 * text_width)
 set output output
 
 benchmarks = "bouncing impacting gravity-paper layered two-bars"
@@ -29,7 +31,7 @@ set format y "10^{%L}"
 set autoscale xfix
 set offsets graph 0.05, graph 0.05, 0, 0
 set multiplot layout 5,4 title "Convergence on the field's benchmarks (Crank–Nicolson, ".Delta_t." = ".italic("h")."/2".italic("c").")" \
-  font font(11) margins 0.08,0.98,0.04,0.905 spacing 0.06,0.06
+  margins 0.1,0.98,0.05,0.9 spacing 0.07,0.045
 do for [i=1:5] {
   b = word(benchmarks, i)
   do for [k=1:4] {
@@ -37,11 +39,20 @@ do for [i=1:5] {
     c = column_of(id)
     set title b.": ".measure_short(id)
     anchor = block_of(b, "mod1")
+    set autoscale y
     stats data index anchor using 2 nooutput
     h0 = STATS_max
     stats data index anchor every ::0::0 using (column(c)) nooutput
     e0 = STATS_max / 2.0
-    if (i == 5) { set xlabel italic("h") } else { unset xlabel }
+    lo = 1e300; hi = 0
+    do for [m in masses] {
+      stats data index block_of(b, m) using (positive(column(c))) nooutput
+      lo = STATS_min < lo ? STATS_min : lo; hi = STATS_max > hi ? STATS_max : hi
+    }
+    STATS_min = lo; STATS_max = hi
+    @fit_log_y
+    # The rows share the h axis: its tic labels and label under the last row only.
+    if (i == 5) { set xlabel italic("h"); set format x "2^{%L}" } else { unset xlabel; set format x "" }
     if (i == 1 && k == 1) {
       set key at screen 0.5,0.955 center top vertical maxrows 1 samplen 3 width 1
     } else {

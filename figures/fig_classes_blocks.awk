@@ -2,6 +2,7 @@
 # figures/fig_classes_*.gp, which `load` this program's output (gnuplot commands), so that each curve
 # reads its own block instead of the whole file:
 # - `benchmarks` and `pairs` (scheme/mass): the words in the order of their first row in block 0;
+# - `classes` and `masses`: the schemes and the masses of the pairs, in the same order;
 # - the datablock $runs: block 0's runs at dt = h/2, one block per benchmark and pair in that order:
 #   block (b - 1) * words(pairs) + p - 1 holds the rows of benchmark b and pair p;
 # - `courants`: the dt/h of block 3 (the long runs' energy every 10 periods) in the order of their first
@@ -14,6 +15,8 @@
   pair = $2 "/" $3
   if (!($1 in benchmark_seen)) { benchmark_seen[$1] = 1; benchmark[++benchmarks] = $1 }
   if (!(pair in pair_seen)) { pair_seen[pair] = 1; pair_list[++pairs] = pair }
+  if (!($2 in class_seen)) { class_seen[$2] = 1; class[++classes] = $2 }
+  if (!($3 in mass_seen)) { mass_seen[$3] = 1; mass[++masses] = $3 }
   if ($4 == 0.5) runs[$1, pair] = runs[$1, pair] $0 "\n"
 }
 block == 3 && !/^#/ && NF == 5 {
@@ -27,6 +30,8 @@ function words(list, count,    i, s) {
 END {
   print "benchmarks = \"" words(benchmark, benchmarks) "\""
   print "pairs = \"" words(pair_list, pairs) "\""
+  print "classes = \"" words(class, classes) "\""
+  print "masses = \"" words(mass, masses) "\""
   print "courants = \"" words(courant, courants) "\""
   print "$runs << EOD"
   for (b = 1; b <= benchmarks; ++b)

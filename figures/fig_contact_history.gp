@@ -26,19 +26,22 @@ baseline_title = "baseline: ".mass_name(word(blocks, words(blocks)))
 title(s) = scheme_title(scheme_id(s))
 final_time = header("final_time") + 0
 
-set multiplot layout 2,2 margins 0.08,0.98,0.07,0.89 spacing 0.08,0.12
+set multiplot layout 2,2 margins 0.08,0.98,0.07,0.91 spacing 0.08,0.13
 set xlabel italic("t")
 set xrange [0:final_time]
 set xtics 1
 set offsets 0, 0, graph 0.05, graph 0.05
-# One legend for the whole figure, above the panels: every colour named.
-set key at screen 0.5,0.995 center top vertical maxrows 2 samplen 3 width 1
+# One legend for the whole figure, above the panels, in one row: every colour named (the columns are
+# narrowed to the short titles; the long one, the baseline's, comes last).
+set key at screen 0.5,0.995 center top vertical maxrows 1 Left reverse samplen 3 width -12
 do for [s=0:1] {
   set title title(s)
   set ylabel italic("u")."(0,".italic("t").")"
-  plot data index baseline using 1:2 with lines lc rgb mass_colour(4) lw 1.0 dt 2 title baseline_title, \
+  plot NaN with lines lc rgb "black" lw 2.0 title "exact", \
+       data index baseline using 1:2 with lines lc rgb mass_colour(4) lw 1.0 dt 2 notitle, \
        for [m=1:3] data index 1+3*s+m-1 using 1:2 with lines lc rgb mass_colour(m) lw 1.0 title mass_name(mass_id(m)), \
-       data index 0 using 1:2 with lines lc rgb "black" lw 2.0 title "exact"
+       data index 0 using 1:2 with lines lc rgb "black" lw 2.0 notitle, \
+       NaN with lines lc rgb mass_colour(4) lw 1.0 dt 2 title baseline_title
   unset key
   set ylabel lambda_."(".italic("t").")"
   plot data index baseline using 3:4 with lines lc rgb mass_colour(4) lw 1.0 dt 2 notitle, \

@@ -2,14 +2,16 @@
 # measure, Mod 1/2/3 in colour, the first ratio Δt/h of the file solid with filled marks, the second
 # dashed with open marks; the grey lines are reference slopes h^(1/2) and h^1 through the Mod 3 errors.
 # Schemes, masses, ratios and measures are read from the data file's block and column headers; the axes
-# are set by the data.
+# are set by the data (each panel's y axis spans the decades of its errors; a reference slope is clipped
+# to them).
 # Usage: gnuplot -e "data='output/data/fig_convergence.dat'; output='output/figures/fig_convergence.pdf'" figures/fig_convergence.gp
 if (!exists("data")) data = 'output/data/fig_convergence.dat'
 if (!exists("output")) output = 'output/figures/fig_convergence.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal @figure_terminal size 16cm,21cm
+# The report includes each page at 0.95 \textwidth.
+eval sprintf("set terminal %s size %.2fcm,21cm", figure_terminal, 0.95 * text_width)
 set output output
 
 # Block 2 (3 s + m - 1) + c is scheme s, mass m, ratio c.
@@ -35,11 +37,14 @@ do for [s=0:2] {
   set multiplot layout 4,2 title title(s) font font(11) margins 0.09,0.98,0.05,0.86 spacing 0.09,0.075
   do for [k=1:8] {
     set title measure_name(word(columns, 3 + k))
+    set autoscale y
     # Reference slopes through the Mod 3 error of the first ratio on the coarsest mesh, shifted down by 2.
     stats data index 2*(3*s+2) every ::0::0 using 2 nooutput
     h0 = STATS_max
     stats data index 2*(3*s+2) every ::0::0 using (column(3+k)) nooutput
     e0 = STATS_max / 2.0
+    stats data index 2*(3*s):2*(3*s)+5 using (positive(column(3+k))) nooutput
+    @fit_log_y
     if (k >= 7) { set xlabel italic("h") } else { unset xlabel }
     if (k == 1) {
       set key at screen 0.5,0.945 center top vertical maxrows 2 samplen 3 width 1

@@ -23,12 +23,11 @@ exact_energy = header("exact_energy") + 0
 final_time = header("final_time") + 0
 exact_label = sprintf("exact %s = %g", italic("E"), exact_energy)
 
-set multiplot layout 3,1 margins 0.10,0.97,0.06,0.93 spacing 0.0,0.09
-set xlabel italic("t")
+set multiplot layout 3,1 margins 0.10,0.97,0.06,0.91 spacing 0.0,0.08
 set xrange [0:final_time]
 set xtics 1
 set offsets 0, 0, graph 0.05, graph 0.05
-set key at screen 0.5,0.985 center top vertical maxrows 1 samplen 3 width 2
+set key at screen 0.5,0.997 center top vertical maxrows 1 samplen 3 width 2
 # The exact solution's impacts (t = 1 mod 3) and releases (t = 2 mod 3): thin vertical marks.
 do for [k=0:int(final_time / 3)] {
   do for [j=1:2] {
@@ -38,6 +37,8 @@ do for [k=0:int(final_time / 3)] {
   }
 }
 do for [s=0:2] {
+  # The panels share the time axis: its label under the last one only.
+  if (s == 2) { set xlabel italic("t") }
   set title title(s)
   set ylabel energy_label(s)
   plot for [m=1:3] data index 3*s+m-1 using 1:2 with lines lc rgb mass_colour(m) lw 1.2 title mass_name(mass_id(m)), \

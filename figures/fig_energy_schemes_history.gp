@@ -23,19 +23,26 @@ conserving = header("conserving")
 width_of(id) = id eq conserving ? 2.0 : 1.2
 dash_of(id) = id eq conserving ? 2 : 1
 
-set multiplot layout nr,1 margins 0.10,0.97,0.06,0.93 spacing 0.0,0.08
-# The time axis is labelled under the last panel only (under the others the label met the next title).
+# A row per step; left: every scheme on one axis; right: Crank-Nicolson and EC alone, on an axis fitted to
+# them (on the left, Crank-Nicolson's jumps of a few thousandths at the small steps hide under EC's line).
+set multiplot layout nr,2 margins 0.09,0.98,0.06,0.92 spacing 0.08,0.08
+# The time axis is labelled under the last row only (under the others the label met the next title).
 set xrange [0:final_time]
-set xtics 3
-set offsets 0, 0, graph 0.05, graph 0.05
+set xtics 6
 set ylabel E_h."(".italic("t").") / ".E_h."(0)"
 set key at screen 0.5,0.995 center top vertical maxrows 1 samplen 3 width 1
 do for [c=0:nr-1] {
   if (c == nr - 1) { set xlabel italic("t") } else { unset xlabel }
-  set title sprintf("%s = %s, %s = %s, %s", Delta_t, step(word(blocks, 2 * ns * c + 2)), italic("N"), header("N"), \
+  run = sprintf("%s = %s, %s = %s, %s", Delta_t, step(word(blocks, 2 * ns * c + 2)), italic("N"), header("N"), \
     mass_name(header("mass")))
+  set title run
+  set autoscale y
+  set offsets 0, 0, graph 0.05, graph 0.05
   plot for [s=1:ns] data index ns*c+s-1 using 1:2 with lines lc rgb scheme_colour(word(schemes, s)) \
          lw width_of(word(schemes, s)) dashtype dash_of(word(schemes, s)) title scheme_name(word(schemes, s))
   unset key
+  set title scheme_name(word(schemes, 1))." and ".scheme_name(conserving)." alone"
+  plot for [s=1:ns] data index ns*c+s-1 using 1:(word(schemes, s) eq conserving || s == 1 ? $2 : NaN) with lines \
+         lc rgb scheme_colour(word(schemes, s)) lw width_of(word(schemes, s)) dashtype dash_of(word(schemes, s)) notitle
 }
 unset multiplot

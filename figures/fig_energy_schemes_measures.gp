@@ -22,7 +22,7 @@ nm = words(masses)
 marker(m) = word("4 6 7 8", m) + 0
 step(r) = r eq "1" ? italic("h") : (r + 0 < 1 ? italic("h")."/".sprintf("%g", 1 / (r + 0)) : r.italic("h"))
 
-set multiplot layout words(meshes),1 margins 0.09,0.98,0.10,0.88 spacing 0.0,0.14
+set multiplot layout words(meshes),1 margins 0.09,0.98,0.10,0.9 spacing 0.0,0.14
 set grid ytics lc rgb "#dddddd" lw 0.5
 set logscale y 10
 # The y-range: the smallest and largest ratio of any panel, with a margin.
@@ -38,14 +38,14 @@ set xrange [0.5:nk + 0.5]
 set xtics ()
 do for [k=1:nk] { set xtics add (measure_short("err_".word(measures, k)) k) }
 set ylabel "error / Crank–Nicolson's"
-# Two legends above the panels: the colours (schemes) and the marks (masses).
-set key at screen 0.5,0.995 center top horizontal maxcols 3 samplen 1 width 1
+# One legend above the panels, in one row: the colours (schemes), then the marks (masses).
+set key at screen 0.5,0.995 center top vertical maxrows 1 samplen 1 width 1
 do for [b=1:words(meshes)] {
   set title sprintf("%s = %s, %s = %s, %s = %s", italic("N"), word(meshes, b), Delta_t, step(header("dt\\/h")), \
     italic("T"), header("T"))
   plot 1 with lines lc rgb "#999999" dt 2 notitle, \
        for [s=1:ns] for [m=1:nm] for [k=1:nk] data index b-1 \
-         using (strcol(1) eq word(schemes, s) && strcol(2) eq word(masses, m) ? k + 0.22*(s-(ns+1)/2.0) + 0.06*(m-(nm+1)/2.0) : NaN):(column(2 + nk + k)) \
+         using (strcol(1) eq word(schemes, s) && strcol(2) eq word(masses, m) ? k + 0.27*(s-(ns+1)/2.0) + 0.08*(m-(nm+1)/2.0) : NaN):(column(2 + nk + k)) \
          with points lc rgb scheme_colour(word(schemes, s)) pt marker(m) ps 0.7 notitle, \
        for [s=1:ns] NaN with points lc rgb scheme_colour(word(schemes, s)) pt 5 ps 0.9 title scheme_name(word(schemes, s)), \
        for [m=1:nm] NaN with points lc rgb "black" pt marker(m) ps 0.7 title mass_name(word(masses, m))

@@ -11,7 +11,7 @@ if (!exists("output")) output = 'output/figures/fig_family.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal @figure_terminal size 16cm,8cm
+set terminal @figure_terminal size 16cm,10cm
 set output output
 
 # Blocks 4a + 2b + c: two meshes, two steps, two horizons; the longer horizon's blocks are odd. Each
@@ -22,29 +22,36 @@ label(b) = sprintf("%s = %s, %s = %s, %s periods", italic("N"), block_value(b, "
   step_text(block_value(b, "dt/h")), block_value(b, "periods"))
 colour(f) = f eq "mod" ? 0x000000 : f eq "spread" ? 0x2ca02c : f eq "beta" ? 0x1f77b4 : 0xd62728
 point(b) = b == 1 ? 7 : b == 3 ? 5 : b == 5 ? 9 : 11
-set multiplot layout 1,2 margins 0.08,0.98,0.13,0.84 spacing 0.09,0
-small_font = font(8)
-set key at screen 0.5,0.995 center top vertical maxrows 2 font small_font samplen 1 width 1
+# One key above both panels, two columns: the runs (marker) and the families (colour).
+set multiplot layout 1,2 margins 0.08,0.98,0.12,0.74 spacing 0.1,0
+set key at screen 0.5,0.995 center top vertical maxrows 4 samplen 1 width 2
+h_ = italic("h")
+drift = "measured drift − Mod 3's (per period, /".h_.")"
 
-set title "drift per period against the period law" font font(10)
-set xlabel "predicted ΔP / h = 2".delta_."m_{loc} + 1.5".delta_."m_{glob}"
-set ylabel "measured drift − Mod 3's drift (per period, / h)"
+set title "drift per period against the period law (dashed)"
+set xlabel "predicted Δ".italic("P")."/".h_." = 2".delta_.italic("m")."_{loc} + 1.5".delta_.italic("m")."_{glob}"
+set ylabel drift
 set xrange [-2.2:1.5]
 set yrange [-2.2:1.5]
 set size ratio -1
-plot x with lines @reference_style dt 2 title "the law", \
+plot x with lines @reference_style dt 2 notitle, \
      for [b in "1 3 5 7"] data index (b+0) using 8:12:(colour(strcol(3))) with points pt point(b+0) ps 0.6 \
        lc rgb variable notitle, \
-     for [b in "1 3 5 7"] keyentry with points pt point(b+0) ps 0.6 lc rgb "#555555" title label(b+0)
+     for [b in "1 3 5 7"] keyentry with points pt point(b+0) ps 0.6 lc rgb "#555555" title label(b+0), \
+     keyentry with points pt 7 ps 0.6 lc rgb "#000000" title "Mod 1/2/3", \
+     keyentry with points pt 7 ps 0.6 lc rgb "#2ca02c" title "spread:".italic("K"), \
+     keyentry with points pt 7 ps 0.6 lc rgb "#1f77b4" title "beta:".italic("B"), \
+     keyentry with points pt 7 ps 0.6 lc rgb "#d62728" title "node1:".italic("X")
 unset key
 set size noratio
-set title "error relative to Mod 3 (geometric mean of the 8 measures)" font font(10)
-set xlabel "measured drift − Mod 3's drift (per period, / h)"
+set title "error relative to Mod 3 (geometric mean of 8 measures)"
+set xlabel drift
 set ylabel "error / Mod 3's error"
 set xrange [-2.2:1.5]
 set yrange [0.9:*]
 set logscale y
-set label 1 "black: Mod 1/2/3; green: spread:K; blue: beta:B; red: node1:X" at graph 0.02,0.95 font font(8)
+set ytics 1, 2
+set format y "%g"
 plot for [b in "1 3 5 7"] data index (b+0) using 12:13:(colour(strcol(3))) with points pt point(b+0) ps 0.6 \
        lc rgb variable notitle
 unset multiplot

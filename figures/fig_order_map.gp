@@ -35,13 +35,14 @@ set offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05
 set yrange [0:*]
 # One legend for the whole figure, above the panels (inside a panel it covered the curves): the first
 # panel, which has every entry (the baseline's too), draws it; the others draw none.
-set key at screen 0.5,0.945 center top vertical maxrows 2 samplen 2 width 1
-set xlabel "horizon (periods)"
+set key at screen 0.5,0.955 center top vertical maxrows 2 samplen 2 width 1
 set ylabel "order in ".italic("h")
-set multiplot layout 2,2 margins 0.08,0.98,0.08,0.83 spacing 0.08,0.15 \
-  title sprintf("%s = %s%s", Delta_t, ratio, italic("h")) font font(10)
+set multiplot layout 2,2 margins 0.08,0.98,0.08,0.81 spacing 0.08,0.1 \
+  title sprintf("%s = %s%s", Delta_t, ratio, italic("h"))
 first_panel = 1
 do for [scheme in header("panels")] {
+  # The rows share the horizon axis: its label under the last row only.
+  if (scheme eq word(header("panels"), words(header("panels")))) { set xlabel "horizon (periods)" }
   do for [q=1:2] {
     col = column_of(word(measures, q))
     pcol = column_of(word(predicted, q))

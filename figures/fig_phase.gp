@@ -18,11 +18,10 @@ mass_index(id) = id eq "mod1" ? 1 : id eq "mod2" ? 2 : id eq "mod3" ? 3 : 4
 run_title = sprintf("%s, %s = 1/%s, %s = %s%s", scheme_name(header("scheme")), italic("h"), header("elements"), \
   Delta_t, header("courant"), italic("h"))
 
-set multiplot layout 3,1 margins 0.11,0.97,0.06,0.93 spacing 0.0,0.1 title run_title font font(10)
+set multiplot layout 3,1 margins 0.11,0.97,0.06,0.91 spacing 0.0,0.105 title run_title
 # The keys where no curve is: above the errors, which grow with time (the top centre stays free), and
 # below the impact-time errors at the start, where every mass is still on time.
 set key top center horizontal samplen 2
-set xlabel italic("t")
 set autoscale xfix
 set offsets 0, 0, graph 0.05, graph 0.05
 
@@ -31,6 +30,8 @@ set ylabel "error"
 plot for [m=1:n] data index m-1 using 1:2 with lines lc rgb mass_colour(mass_index(word(histories, m))) lw 1.0 \
   title mass_name(word(histories, m))
 
+# The first two panels share the time axis: its label under the second only.
+set xlabel italic("t")
 set title "error of ".italic("u")." in ".italic("L")."^2(0,".italic("L").")"
 plot for [m=1:n] data index m-1 using 1:3 with lines lc rgb mass_colour(mass_index(word(histories, m))) lw 1.0 \
   title mass_name(word(histories, m))

@@ -9,9 +9,10 @@ if (!exists("output")) output = 'output/figures/fig_phase_matched.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal @figure_terminal size 16cm,17cm
+# The report includes it at 0.9 \textwidth.
+eval sprintf("set terminal %s size %.2fcm,16cm", figure_terminal, 0.9 * text_width)
 set output output
-set multiplot layout 2,1 margins 0.11,0.97,0.07,0.95 spacing 0.0,0.1
+set multiplot layout 2,1 margins 0.12,0.97,0.07,0.95 spacing 0.0,0.125
 
 dt_h = Delta_t."/".italic("h")
 # (a function, not a word list: math()'s font name is quoted)
@@ -20,6 +21,9 @@ title_of(k) = k == 1 ? dt_h." = 1/2, ".italic("A")." = 0" : k == 2 ? dt_h." = 1/
 colour(k) = curve_colour(k)
 set logscale xy
 set format y "10^{%T}"
+# The x axes end at the data (autoscaled to whole decades they ran to 10 and to 10^4).
+set autoscale xfix
+set offsets graph 0.02, graph 0.02, 0, 0
 set key top left
 set title "relative phase-speed error of Crank–Nicolson with the blended mass"
 set xlabel xi_." = ".italic("kh")
@@ -36,6 +40,9 @@ b3 = block("consistent|0.7071067811865475")
 set title "error of ".italic("u")." in ".italic("L")."^2(0,".italic("T").";".italic("L")."^2), CN + Mod 3, paper's benchmark, ".italic("T")." = 30"
 set xlabel italic("N")
 set ylabel "relative error"
+set format x "%g"
+stats data index b1 using 1 nooutput
+set xtics STATS_min, 2
 plot data index b1 using 1:9 with linespoints lc rgb colour(1) @measured_style title title_of(1), \
   data index b2 using 1:9 with linespoints lc rgb colour(2) @measured_style title title_of(2), \
   data index b3 using 1:9 with linespoints lc rgb colour(3) @measured_style title title_of(3)

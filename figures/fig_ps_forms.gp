@@ -20,14 +20,15 @@ colour(v) = mass_of(v) eq "consistent" ? mass_colour(4) : form(v) eq "algebraic"
 exact_energy = header("exact_energy") + 0
 final_time = header("final_time") + 0
 
-set multiplot layout 3,2 margins 0.09,0.98,0.06,0.89 spacing 0.09,0.09
-set xlabel italic("t")
+set multiplot layout 3,2 margins 0.09,0.98,0.06,0.89 spacing 0.09,0.08
 set xrange [0:final_time]
 set xtics 3
 set offsets 0, 0, graph 0.05, graph 0.05
 # One legend for the figure, above the panels (drawn with the first panel): every colour named.
 set key at screen 0.5,0.995 center top vertical maxrows 2 samplen 3 width 2
 do for [v=1:3] {
+  # The rows share the time axis: its label under the last row only.
+  if (v == 3) { set xlabel italic("t") }
   set title variant(v)
   set ylabel italic("u")."(0,".italic("t").")"
   # The exact curve first and wide, the computed one over it: both stay visible where they agree.

@@ -21,17 +21,22 @@ mass_index(id) = id eq "mod1" ? 1 : id eq "mod2" ? 2 : id eq "mod3" ? 3 : 4
 u0 = italic("u")."(0,".italic("t").")"
 quantity(q) = q == 0 ? u0 : q == 1 ? italic("u_h")."(0,".italic("t").") − ".u0 : lambda_."(".italic("t").")"
 
-set multiplot layout 3,words(benchmarks) margins 0.1,0.98,0.06,0.9 spacing 0.09,0.09
+set multiplot layout 3,words(benchmarks) margins 0.1,0.98,0.06,0.91 spacing 0.09,0.05
 set autoscale xfix
 set offsets 0, 0, graph 0.05, graph 0.05
 do for [q=0:2] {
   do for [b=1:words(benchmarks)] {
-    set title sprintf("%s, %s = 1/%s, %s = %s%s", benchmark_name(word(benchmarks, b)), italic("h"), header("elements"), \
-      Delta_t, header("courant"), italic("h"))
+    # A column per benchmark: its title over the first row only.
+    if (q == 0) {
+      set title sprintf("%s, %s = 1/%s, %s = %s%s", benchmark_name(word(benchmarks, b)), italic("h"), header("elements"), \
+        Delta_t, header("courant"), italic("h"))
+    } else {
+      unset title
+    }
     set ylabel quantity(q)
     if (q == 2) { set xlabel italic("t") } else { unset xlabel }
     if (q == 0 && b == 1) {
-      set key at screen 0.5,0.975 center top horizontal samplen 3
+      set key at screen 0.5,0.99 center top horizontal samplen 3 width 1
     } else {
       unset key
     }

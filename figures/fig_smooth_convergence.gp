@@ -10,7 +10,8 @@ if (!exists("output")) output = 'output/figures/fig_smooth_convergence.pdf'
 dir = ARG0[1:strstrt(ARG0, "/") > 0 ? strlen(ARG0) - strlen(system("basename '".ARG0."'")) : 0]
 load dir.'style.gp'
 
-set terminal @figure_terminal size 16cm,21cm
+# The report includes a page at 0.95 \textwidth.
+eval sprintf("set terminal %s size %.2fcm,21cm", figure_terminal, 0.95 * text_width)
 set output output
 
 # The blocks in file order: benchmark scheme mass ratio, four words per block.
@@ -39,15 +40,26 @@ set offsets graph 0.05, graph 0.05, 0, 0
 do for [b in benchmarks] {
   do for [s in schemes] {
     set multiplot layout 4,2 title benchmark_name(b)." with ".scheme_name(s) font font(11) \
-      margins 0.09,0.98,0.05,0.86 spacing 0.09,0.05
+      margins 0.09,0.98,0.05,0.86 spacing 0.09,0.075
     # Reference slopes through the last mass's error at the first ratio on the coarsest mesh, halved.
     anchor = block_of(b, s, word(masses, words(masses)), word(ratios, 1))
     do for [k=1:nk] {
       set title measure_name(word(columns, 3 + k))
+      set autoscale y
       stats data index anchor using 2 nooutput
       h0 = STATS_max
       stats data index anchor every ::0::0 using (column(3 + k)) nooutput
       e0 = STATS_max / 2.0
+      # The y axis spans the decades of the panel's errors; the reference slopes are clipped to it.
+      lo = 1e300; hi = 0
+      do for [m in masses] {
+        do for [j=1:words(ratios)] {
+          stats data index block_of(b, s, m, word(ratios, j)) using (positive(column(3 + k))) nooutput
+          lo = STATS_min < lo ? STATS_min : lo; hi = STATS_max > hi ? STATS_max : hi
+        }
+      }
+      STATS_min = lo; STATS_max = hi
+      @fit_log_y
       if (k > nk - 2) { set xlabel italic("h") } else { unset xlabel }
       if (k == 1) {
         set key at screen 0.5,0.945 center top vertical maxrows 2 samplen 3 width 1

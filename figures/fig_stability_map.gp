@@ -25,6 +25,10 @@ set offsets graph 0.03, graph 0.03, 0, 0
 set multiplot layout 1,2 margins 0.09,0.98,0.14,0.9 spacing 0.1,0.0
 set title sprintf("%s periods, %s", header("periods"), mass_name("mod3"))
 set xlabel Delta_t." / ".italic("h")
+# Tics at every factor of 2 from the smallest ratio of the data.
+stats data index 0 using 1 nooutput
+set xtics STATS_min, 2
+set format x "%g"
 set ylabel "max ".E_h." / ".E_h."(0)"
 set key top left samplen 2
 plot for [b=1:n] data index b-1 using 1:2 with linespoints lc rgb mesh_colour(b) pt 7 ps 0.4 \
@@ -37,6 +41,9 @@ set xlabel italic("N")
 set key top right
 set xtics ()
 do for [b=1:n] { set xtics add (word(meshes, b) word(meshes, b) + 0) }
+# Within a decade or two, tics at every factor of 2 (powers of ten alone left two labels).
+set ytics 2
+set format y "%g"
 plot for [m=1:3] data index n using ($1 == m ? $2 : NaN):3 with linespoints lc rgb mass_colour(m) pt 7 ps 0.5 \
        title mass_name(word(masses, m)), \
      threshold with lines lc rgb "black" dt 2 title sprintf("%g %s(0)", threshold, E_h)

@@ -4,7 +4,8 @@
 # the coarse mesh whose steps reach the asymptotic range (bottom, blocks 2 and 3); grey lines are
 # reference slopes dt^1 and dt^2 through each panel's smallest-step value of u in L^inf(0,T;L^2).
 # Schemes, measures, meshes and reference ratios are read from the data file's header (blocks
-# "scheme = s, elements = N, reference_ratio = R"); the axes are set by the data.
+# "scheme = s, elements = N, reference_ratio = R"); the axes are set by the data (y: the decades of the
+# panel's errors, the reference slopes clipped to them).
 # Usage: gnuplot -e "data='output/data/fig_time_error.dat'; output='output/figures/fig_time_error.pdf'" figures/fig_time_error.gp
 if (!exists("data")) data = 'output/data/fig_time_error.dat'
 if (!exists("output")) output = 'output/figures/fig_time_error.pdf'
@@ -34,10 +35,21 @@ do for [k=1:8] { if (word(columns, 2 + k) eq "err_u_LinfL2") { anchor = k } }
 set multiplot layout blocks/2,2 margins 0.09,0.98,0.07,0.86 spacing 0.08,0.14
 set key at screen 0.5,0.995 center top vertical maxrows 2 samplen 2 width 1
 do for [b=0:blocks-1] {
+  set autoscale y
   stats data index b using 2 nooutput
   x0 = STATS_min
   stats data index b using (column(2 + anchor)) nooutput
   e0 = STATS_min / 3.0
+  # The y axis spans the decades of the panel's data; the reference slopes are clipped to it (drawn in
+  # full, slope 2 ran the backward Euler panels up to 10^2 above data that stay below 1).
+  stats data index b using (positive(column(3))) nooutput
+  lo = STATS_min; hi = STATS_max
+  do for [k=2:8] {
+    stats data index b using (positive(column(2 + k))) nooutput
+    lo = STATS_min < lo ? STATS_min : lo; hi = STATS_max > hi ? STATS_max : hi
+  }
+  STATS_min = lo; STATS_max = hi
+  @fit_log_y
   set title sprintf("%s, %s = 1/%s, reference %s = %s/%s", scheme_name(block_value(b, "scheme")), italic("h"), \
     block_value(b, "elements"), Delta_t."_{ref}", italic("h"), block_value(b, "reference_ratio"))
   plot for [k=1:8] data index b using 2:(column(2+k)) with linespoints lc rgb colour(k) pt (k+3) ps 0.6 lw 1.2 \

@@ -13,10 +13,14 @@
 set encoding utf8
 fontface = "Latin Modern Roman"
 font(size) = sprintf("%s,%g", fontface, size)
-# The one terminal of the report's figures: PDF at the text width, text at 9 pt (the captions are set
-# at 10), lines 1.5 times cairo's default. A script sets `set terminal @figure_terminal size W,H`; a
-# figure with small panels may lower its own labels' font, never the terminal's.
-figure_terminal = sprintf("pdfcairo font '%s' linewidth 1.5 enhanced", font(9))
+# The one terminal of the report's figures: PDF, text at 10 pt (the size of the captions; the body is
+# set at 11), lines 1.5 times cairo's default. A script sets `set terminal @figure_terminal size W,H`
+# with W the width at which the report includes the figure, so that the text prints at 10 pt: 16 cm
+# for a figure at \textwidth (16.4 cm: A4 with margins of 2.3 cm, a scale of 1.025), and
+# fraction * text_width for one at a fraction of it. Every label, key and tic keeps this size; a figure
+# with more text than room gets more height or fewer panels a row, not a smaller font.
+text_width = 16.4
+figure_terminal = sprintf("pdfcairo font '%s' linewidth 1.5 enhanced", font(10))
 # The data file's comment lines, read once (one process each, instead of one per lookup: a figure looks
 # up hundreds of labels and values, and a process each made gnuplot most of `make all`'s time):
 # comment(text, prefix) is the rest of the first line of `text` that starts with `prefix`, or "".
@@ -39,7 +43,12 @@ beta_ = math("𝛽")
 delta_ = math("𝛿")
 xi_ = math("𝜉")
 omega_ = math("𝜔")
+gamma_ = math("𝛾")
+epsilon_ = math("𝜀")
 Delta_t = "Δ".italic("t")
+# A name from the data file with its Greek letters in the math font (the labels write "Newmark (β, γ)").
+replace(s, a, b) = strstrt(s, a) == 0 ? s : s[1:strstrt(s, a) - 1].b.replace(s[strstrt(s, a) + strlen(a):], a, b)
+greek(s) = replace(replace(s, "β", beta_), "γ", gamma_)
 mass_colour(m) = m == 1 ? "#d62728" : m == 2 ? "#1f77b4" : m == 3 ? "#2ca02c" : "#9467bd"
 # The colour of curve k where the curves are variants of one run (stresses, steps, blends), neither masses
 # nor schemes: one palette for every such figure.
@@ -55,8 +64,8 @@ exact_style = "lc rgb 'black' lw 2"
 # The names of schemes and masses: the `# label <id> = <name>` lines the program wrote into the data
 # file (repro/labels.cpp, the one table of labels); an id without a line is its own name.
 label(id) = comment(comments, "# label ".id." = ")
-mass_name(id) = label(id) eq "" ? id : label(id)
-scheme_name(id) = label(id) eq "" ? id : label(id)
+mass_name(id) = label(id) eq "" ? id : greek(label(id))
+scheme_name(id) = label(id) eq "" ? id : greek(label(id))
 # The title of a figure's row of scheme `id`: the `# title <id> = <title>` line of the data file (its
 # name, with the contact row for a scheme that takes one; repro/labels.cpp, write_scheme_titles).
 scheme_title(id) = comment(comments, "# title ".id." = ")
@@ -86,6 +95,23 @@ measure_short(id) = \
 # The column names of a `# columns: ...` line (the first one of the file).
 columns = system(sprintf("sed -n 's/^# columns: //p' '%s' | head -n 1", data))
 set grid lc rgb "#dddddd" lw 0.5
+# A log axis fitted to the data: after `stats` of the plotted values (positive ones; `set autoscale y`
+# before it, or stats skips the values outside the previous panel's range), @fit_log_y sets the y range to the decades that enclose them, so that a reference slope is clipped to the data's range
+# instead of stretching the axis to where no datum is.
+fit_log_y = "set yrange [10**floor(log10(STATS_min) + 1e-9):10**ceil(log10(STATS_max) - 1e-9)]"
+positive(v) = v > 0 ? v : NaN
 # The energies' symbols, as in the report: the two-level E_h and Paoli–Schatzman's E_h^β.
 E_h = "{/:Italic E}_{/:Italic h}"
 E_h_beta = "{/:Italic E}_{/:Italic h}^".beta_
+# Small multiples placed by hand (a `layout` would also give the key its own plot): set grid_cols,
+# grid_rows and the grid's edges and gaps (screen fractions; the gaps hold a title, the edges the tic
+# labels and axis labels of the outer panels), then `@grid_setup` once and, for panel k (0 the top left,
+# row by row), `@grid_panel` before its plot. grid_left_column(k) and grid_bottom_row(k, n) (n panels in
+# all: no panel below k) say where a panel needs its tic labels and axis labels.
+grid_left = 0.1; grid_right = 0.98; grid_bottom = 0.07; grid_top = 0.95; grid_gap_x = 0.02; grid_gap_y = 0.05
+grid_setup = "grid_w = (grid_right - grid_left - (grid_cols - 1) * grid_gap_x) / grid_cols; grid_h = (grid_top - grid_bottom - (grid_rows - 1) * grid_gap_y) / grid_rows"
+grid_x(k) = grid_left + (k % grid_cols) * (grid_w + grid_gap_x)
+grid_y(k) = grid_top - (k / grid_cols) * (grid_h + grid_gap_y)
+grid_panel = "set lmargin at screen grid_x(k); set rmargin at screen grid_x(k) + grid_w; set tmargin at screen grid_y(k); set bmargin at screen grid_y(k) - grid_h"
+grid_left_column(k) = k % grid_cols == 0
+grid_bottom_row(k, n) = k + grid_cols >= n
