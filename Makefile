@@ -34,17 +34,19 @@ ifneq ($(filter clean,$(MAKECMDGOALS)),)
 .NOTPARALLEL:
 endif
 
-# Generated results: data, figures, the report and the API documentation.
+# Generated results: data, figures, the article and its supplement, and the API documentation.
 OUT ?= output
 DATA := $(OUT)/data
 FIGURES := $(OUT)/figures
 REPORT := $(OUT)/report.pdf
+SUPPLEMENT := $(OUT)/supplement.pdf
 DOC := $(OUT)/doc
 
 # ---- The results ---------------------------------------------------------------------------------
 # One figure = one program experiments/X.cpp = one data file $(DATA)/X.dat (with the LaTeX values the
 # report quotes, $(DATA)/X.tex) = one gnuplot script figures/X.gp = one PDF $(FIGURES)/X.pdf.
-# The report paper/report.tex \input's the .tex fragments and includes the PDFs; latexmk builds it.
+# The article paper/report.tex and its supplement paper/supplement.tex \input the .tex fragments (through
+# their shared preamble, paper/preamble.tex) and include the PDFs; latexmk builds them.
 # The maps of claims 3 and 4 read the sweep that check_claims writes; experiments/fig_energy_schemes.cpp
 # has three views, each its own run, data file and figure.
 SWEEP_MAPS := fig_ordering_map fig_order_map
@@ -66,11 +68,12 @@ BASELINE := $(DATA)/baseline_regions.dat $(DATA)/baseline_regions.tex
 
 # Everything `make all` makes: the build, the benchmark run, the claims, every figure with its data and
 # values (named, so that make does not take them for intermediate files and delete them), the short
-# benchmark, the report and the API documentation. Each has its section below; the rule `all` is at the
+# benchmark, the article with its supplement and the API documentation. Each has its section below; the rule `all` is at the
 # end of this file, where every name it lists is defined.
 ALL_RESULTS = $(DATA)/benchmark.dat $(DATA)/benchmark.txt $(CLAIMS_OUTPUTS) $(FIGURE_DATA) $(FIGURE_TEX) \
               $(BASELINE) $(FIGURE_PDFS) $(CLASSES) $(CLASSES_PDFS) $(DATA)/cn_large_step.tex $(PEER_TEX) \
-              $(DATA)/report_meta.tex $(DOC)/html/index.html $(BENCH_SHORT)/bench_short.tex $(REPORT)
+              $(DATA)/report_meta.tex $(DATA)/build_times.tex $(DOC)/html/index.html $(BENCH_SHORT)/bench_short.tex \
+              $(REPORT) $(SUPPLEMENT)
 
 .PHONY: all build clean deps help test test-unit bench install readme field-asymptotics
 
@@ -206,7 +209,7 @@ $(SWEEP_MAPS:%=$(DATA)/%.dat): $(DATA)/%.dat: $(BUILD)/bin/% $(DATA)/sweep.dat |
 	$< --sweep $(DATA)/sweep.dat --output $@ --tex $(DATA)/$*.tex
 $(SWEEP_MAPS:%=$(DATA)/%.tex): $(DATA)/%.tex: $(DATA)/%.dat ;
 
-# ---- Figures, report and API documentation ------------------------------------------------------
+# ---- Figures, article, supplement and API documentation ---------------------------------------------
 REPORT_SOURCES := $(wildcard paper/*.tex)
 # The claims table (experiments/check_claims.cpp, see the claims section above).
 CLAIMS_TEX := $(DATA)/claims.tex $(DATA)/claims_summary.tex $(DATA)/claims_summary_table.tex
@@ -215,7 +218,7 @@ REPRODUCIBLE := SOURCE_DATE_EPOCH=0 FORCE_SOURCE_DATE=1
 
 .PHONY: figures report doc
 figures: $(FIGURE_PDFS)
-report: $(REPORT)
+report: $(REPORT) $(SUPPLEMENT)
 doc: $(DOC)/html/index.html
 
 # The figure programs are reached through the pattern rule $(BUILD)/bin/%: make must not take them for
@@ -245,6 +248,13 @@ $(FIGURES)/%.pdf: figures/%.gp figures/style.gp $(DATA)/%.dat | $(FIGURES)
 $(DATA)/report_meta.tex: FORCE $(BUILD)/bin/build_info | $(DATA)
 	tools/report_meta.sh CITATION.cff $(BUILD)/bin/build_info > $@.tmp
 	if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv $@.tmp $@; fi
+
+# The times of the README's two commands for the article's section on reproducing it: the values of
+# doc/build_times.txt (tools/measure_commands.sh measures them; tools/readme.sh writes the README's
+# sentence from the same file).
+$(DATA)/build_times.tex: doc/build_times.txt tools/build_times_tex.sh | $(DATA)
+	tools/build_times_tex.sh doc/build_times.txt > $@.tmp
+	mv $@.tmp $@
 
 # EC and CN-switch against Crank–Nicolson and backward Euler (mathematics.md §12): one program,
 # experiments/fig_energy_schemes.cpp, three views, each its own run, data file, values and figure
@@ -280,7 +290,7 @@ $(PEER_TEX): $(BUILD)/bin/bar1d tests/data/getfem/measures.dat tools/getfem_peer
 CLASSES_VIEWS := accuracy oscillation energy penetration
 CLASSES := $(DATA)/fig_classes.dat $(DATA)/fig_classes.tex
 CLASSES_PDFS := $(CLASSES_VIEWS:%=$(FIGURES)/fig_classes_%.pdf)
-$(REPORT): $(CLASSES) $(CLASSES_PDFS)
+$(REPORT) $(SUPPLEMENT): $(CLASSES) $(CLASSES_PDFS)
 .SECONDARY: $(BUILD)/bin/fig_classes
 $(CLASSES) &: $(BUILD)/bin/fig_classes | $(DATA)
 	$< --output $(DATA)/fig_classes.dat --tex $(DATA)/fig_classes.tex
@@ -293,23 +303,42 @@ $(FIGURES)/fig_classes_%.pdf: figures/fig_classes_%.gp figures/style.gp figures/
 $(DATA)/cn_large_step.tex: $(BUILD)/bin/cn_large_step | $(DATA)
 	$< --tex $@
 
-# The report: every figure and fragment is found through TEXINPUTS (so OUT=dir works); latexmk keeps its
-# auxiliary files in $(OUT)/latex. The full benchmark's table and plot (make bench) are included if
-# present, the short benchmark's otherwise. A < or > in text mode, which the text font prints as ¡ or ¿,
-# fails the rule, and so does a bitmap (Type 3) font in the PDF: the report is
-# vector throughout (so that it prints and zooms alike).
-$(REPORT): $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/cn_large_step.tex $(BASELINE) \
-           $(FIELD_ASYMPTOTICS) \
-           $(DATA)/report_meta.tex $(BENCH_SHORT)/bench_short.tex $(PEER_TEX) \
+# The article and its supplement: every figure and fragment is found through TEXINPUTS (so OUT=dir
+# works); latexmk keeps its auxiliary files in $(OUT)/latex. The full benchmark's table and plot (make
+# bench) are included if present, the short benchmark's otherwise. Each document refers to the other's
+# sections, figures and tables through the other's .aux (xr-hyper's \externaldocument, found through
+# TEXINPUTS): one rule makes both, each typeset twice in turn (latexmk reruns a document only when a file
+# it read changed, the other's .aux among them; an empty report.aux on a fresh build makes the
+# supplement's first run record it, so that its second run sees the article's labels). Then, for each
+# PDF: a reference left undefined or a label defined twice fails the rule; so does a < or > in text
+# mode, which the text font prints as ¡ or ¿, and a bitmap (Type 3) font: both documents are vector
+# throughout (so that they print and zoom alike). The article has at most 20 pages.
+LATEXMK := TEXINPUTS=paper:$(DATA):$(FIGURES):$(OUT)/bench:$(BENCH_SHORT):doc/results:$(OUT)/latex: $(REPRODUCIBLE) \
+  latexmk -pdf -silent -interaction=nonstopmode -halt-on-error -outdir=$(OUT)/latex
+$(REPORT) $(SUPPLEMENT) &: $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/cn_large_step.tex \
+           $(BASELINE) $(FIELD_ASYMPTOTICS) \
+           $(DATA)/report_meta.tex $(DATA)/build_times.tex $(BENCH_SHORT)/bench_short.tex $(PEER_TEX) \
            $(wildcard $(OUT)/bench/bench_step.tex $(OUT)/bench/bench_step.pdf) | $(DATA)
-	TEXINPUTS=paper:$(DATA):$(FIGURES):$(OUT)/bench:$(BENCH_SHORT):doc/results: $(REPRODUCIBLE) \
-	  latexmk -pdf -silent -interaction=nonstopmode -halt-on-error -outdir=$(OUT)/latex paper/report.tex
-	@! pdffonts $(OUT)/latex/report.pdf | grep -q 'Type 3' \
-	  || { echo 'report: a bitmap (Type 3) font in the PDF (pdffonts $(OUT)/latex/report.pdf)'; exit 1; }
-	@! pdftotext -enc UTF-8 $(OUT)/latex/report.pdf - | grep -nF -e '¡' -e '¿' \
-	  || { echo 'report: a < or > typeset in text mode prints as ¡ or ¿ (above; write $$<$$ or $$>$$)'; exit 1; }
-	cp $(OUT)/latex/report.pdf $@.tmp
-	mv $@.tmp $@
+	mkdir -p $(OUT)/latex
+	[[ -e $(OUT)/latex/report.aux ]] || : > $(OUT)/latex/report.aux
+	$(LATEXMK) paper/supplement.tex
+	$(LATEXMK) paper/report.tex
+	$(LATEXMK) paper/supplement.tex
+	$(LATEXMK) paper/report.tex
+	@for doc in report supplement; do \
+	  ! grep -E "Reference .* undefined|There were undefined references|multiply defined" $(OUT)/latex/$$doc.log \
+	    || { echo "$$doc: a reference undefined or a label defined twice (above; $(OUT)/latex/$$doc.log)"; exit 1; }; \
+	  ! pdffonts $(OUT)/latex/$$doc.pdf | grep -q 'Type 3' \
+	    || { echo "$$doc: a bitmap (Type 3) font in the PDF (pdffonts $(OUT)/latex/$$doc.pdf)"; exit 1; }; \
+	  ! pdftotext -enc UTF-8 $(OUT)/latex/$$doc.pdf - | grep -nF -e '¡' -e '¿' \
+	    || { echo "$$doc: a < or > typeset in text mode prints as ¡ or ¿ (above; write $$<$$ or $$>$$)"; exit 1; }; \
+	done
+	@pages=$$(pdfinfo $(OUT)/latex/report.pdf | awk '/^Pages:/ { print $$2 }'); ((pages <= 20)) \
+	  || { echo "report: the article has $$pages pages, at most 20 (move the evidence to the supplement)"; exit 1; }
+	cp $(OUT)/latex/report.pdf $(REPORT).tmp
+	cp $(OUT)/latex/supplement.pdf $(SUPPLEMENT).tmp
+	mv $(REPORT).tmp $(REPORT)
+	mv $(SUPPLEMENT).tmp $(SUPPLEMENT)
 
 # The API documentation (Doxyfile): lib/ and the documents of doc/ that exist (the main page, the
 # mathematics, the field's benchmarks, contact treatments and peer, and one page per module whose
@@ -343,9 +372,10 @@ $(DATA) $(FIGURES) $(DOC):
 	mkdir -p $@
 $(DATA) $(FIGURES) $(DOC) $(BENCH) $(BENCH_SHORT): | deps
 
-# `make all`, and the short benchmark after every other result of it but the report (order only).
+# `make all`, and the short benchmark after every other result of it but the article and its supplement
+# (order only).
 all: build $(ALL_RESULTS)
-$(BENCH_SHORT)/bench_short.tex: | $(filter-out $(BENCH_SHORT)/bench_short.tex $(REPORT),$(ALL_RESULTS))
+$(BENCH_SHORT)/bench_short.tex: | $(filter-out $(BENCH_SHORT)/bench_short.tex $(REPORT) $(SUPPLEMENT),$(ALL_RESULTS))
 
 # Remove every build directory and every generated result.
 clean:
@@ -366,7 +396,7 @@ help:
 	@echo '  readme   rewrite the README'"'"'s generated blocks (verdicts, times) from $(DATA)/claims.txt'
 	@echo '  field-asymptotics  rerun the field'"'"'s benchmarks up to N = 2560 into doc/results/ (committed; ~2 min)'
 	@echo '  figures  the figures in $(FIGURES)/ (part of all)'
-	@echo '  report   the report $(REPORT) (part of all)'
+	@echo '  report   the article $(REPORT) and its supplement $(SUPPLEMENT) (part of all)'
 	@echo '  doc      the API documentation, $(DOC)/html/index.html (part of all)'
 	@echo '  clean    remove build/, build-sanitize/ and $(OUT)/'
 	@echo '  help     this list'

@@ -51,12 +51,18 @@ int main(int argc, char** argv) {
                       "also write the summary with its regions and numbers and the table of every row (claim, "
                       "measured with the margin, criterion with its basis, verdict) as plain text to FILE",
                       &detail);
-    parser.add_output("--tex", "", "also write the table as a LaTeX longtable fragment (booktabs) to FILE", &tex);
+    parser.add_output("--tex", "",
+                      "also write the table as two LaTeX longtables (booktabs), the paper's claims and this project's "
+                      "hypotheses, as report values to FILE",
+                      &tex);
     parser.add_output("--markdown", "", "also write the table as Markdown to FILE", &markdown);
     parser.add_output("--summary-tex", "",
                       "also write the summary as \\mrmdef lines (claim:KEY:verdict, holds, fails, numbers) to FILE",
                       &summary_tex);
-    parser.add_output("--summary-table", "", "also write the summary as a LaTeX longtable to FILE", &summary_table);
+    parser.add_output(
+        "--summary-table", "",
+        "also write the summary as two LaTeX longtables (the paper's claims, this project's hypotheses) to FILE",
+        &summary_table);
     parser.add_output("--sweep", "",
                       "also write every measure of the sweep behind claims 3 and 4 (the maps' data) to FILE", &sweep);
     parser.add_string("--only", "", "ID",

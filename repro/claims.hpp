@@ -283,15 +283,28 @@ void write_short_summary(std::ostream& out, const std::vector<SummaryLine>& summ
                          const std::vector<ClaimResult>& rows);
 /// The summary as \mrmdef lines for the report: claim:KEY:verdict, :holds, :fails, :numbers (LaTeX-escaped).
 void write_latex_summary(std::ostream& out, const std::vector<SummaryLine>& summary);
-/// The summary as a LaTeX longtable (claim, verdict, holds, fails; the numbers under each line).
+/// The summary as two LaTeX longtables, each a report value: \mrmdef{claims:summary:paper} (the lines of
+/// the paper's claims) and \mrmdef{claims:summary:project} (this project's; paper_claim_line), each line
+/// with where it holds and where it fails and its numbers under it. The verdict of each line is not in
+/// them: the report states it once, from claim:KEY:verdict (write_latex_summary).
 void write_latex_summary_table(std::ostream& out, const std::vector<SummaryLine>& summary);
 /// The table as plain text with word-wrapped columns (claim | measured | criterion | verdict).
 void write_text_table(std::ostream& out, const std::vector<ClaimResult>& rows);
 /// The table as Markdown.
 void write_markdown_table(std::ostream& out, const std::vector<ClaimResult>& rows);
-/// The table as a LaTeX longtable (booktabs rules, p{} columns for an A4 page); needs the packages
-/// longtable, booktabs and array.
+/// The table as two LaTeX longtables (booktabs rules, p{} columns for an A4 page), each a report value:
+/// \mrmdef{claims:table:paper} (the rows of the paper's claims) and \mrmdef{claims:table:project} (this
+/// project's hypotheses and checks; paper_claim_row), each in the rows' order; then each group's verdict
+/// counts and the rows' values. Needs the packages longtable, booktabs and array.
 void write_latex_table(std::ostream& out, const std::vector<ClaimResult>& rows);
+/// Whether the row with this id checks a claim of the paper (claims 1 to 5 of mathematics.md §6, and
+/// the sensitivity of claim 3 to the reconstruction of the masses) rather than one of this project's
+/// own hypotheses and checks: the mechanism of claim 3 (the period law, mathematics.md §8), the
+/// comparisons with independent computations (claim 6), the contact classes, the phase-matched mass and
+/// the contact stress (group 7). The report prints the two kinds in two tables.
+bool paper_claim_row(const std::string& id);
+/// The same for a line of the summary, by its key: "mechanism" and "independent" are this project's.
+bool paper_claim_line(const SummaryLine& line);
 /// Escapes LaTeX's special characters and writes E_h and u_t as math; the Unicode symbols stay as they
 /// are, for the report's preamble to typeset (\newunicodechar in paper/report.tex).
 std::string latex_escape(const std::string& text);
