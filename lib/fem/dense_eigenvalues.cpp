@@ -27,7 +27,8 @@ struct GslMatrix {
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> data;
   gsl_matrix_view view;
   explicit GslMatrix(const Eigen::MatrixXd& a)
-      : data(a), view(gsl_matrix_view_array(data.data(), static_cast<size_t>(a.rows()), static_cast<size_t>(a.cols()))) {}
+      : data(a),
+        view(gsl_matrix_view_array(data.data(), static_cast<size_t>(a.rows()), static_cast<size_t>(a.cols()))) {}
   GslMatrix(const GslMatrix&) = delete;
   GslMatrix& operator=(const GslMatrix&) = delete;
 };
