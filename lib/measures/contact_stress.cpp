@@ -325,7 +325,9 @@ struct RunningMoments {
   void build(const std::vector<double>& v, long first, long last, long o) {
     const long n = static_cast<long>(v.size());
     lo = first, origin = o;
-    g.assign(static_cast<std::size_t>(last - first + 1), {0.0, 0.0, 0.0, 0.0});
+    // Every entry is written below (G(o) = 0, the walks the others): no value-initialisation.
+    g.resize(static_cast<std::size_t>(last - first + 1));
+    g[static_cast<std::size_t>(o - lo)] = {0.0, 0.0, 0.0, 0.0};
     auto value = [&](long m) { return v[static_cast<std::size_t>(std::clamp(m, 0L, n - 1))]; };
     // Walks from o to `end` one index at a time (`direction` ±1), adding the terms at m (right of o) or
     // subtracting those at m + 1 (left of o), with Knuth's TwoSum: each addition's rounding error goes to
