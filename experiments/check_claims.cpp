@@ -110,7 +110,8 @@ int main(int argc, char** argv) {
       claims::write_text_table(std::cout, rows);
     if (detail_file) {
       if (only.empty()) {
-        detail_file->stream() << "Summary: each claim of the paper, its verdict and the region where it holds\n";
+        detail_file->stream() << "Summary: each claim of the paper (1 to 5) and this project's hypotheses H1, H2, its "
+                                 "verdict and the region where it holds\n";
         claims::write_text_summary(detail_file->stream(), report.summary);
         detail_file->stream() << '\n';
       }

@@ -4,9 +4,9 @@
 # and is written from a generated file:
 #   timings  how long `make all`, `make test` and `make all` again take, from doc/build_times.txt
 #            (tools/measure_commands.sh measures them);
-#   claims   the paper's claims, each with its verdict and where it holds and fails on one line, from
-#            the summary that opens the claims detail (check_claims --detail; `make all` writes it as
-#            output/data/claims.txt).
+#   claims   the paper's claims and this project's hypotheses H1, H2, each with its verdict and where it
+#            holds and fails on one line, from the summary that opens the claims detail (check_claims
+#            --detail; `make all` writes it as output/data/claims.txt).
 # `make readme` rewrites the blocks after `make all`; the ctest entry readme_generated runs this with
 # --check, which changes nothing and fails if a block differs from what its file gives.
 #
@@ -97,7 +97,7 @@ LC_ALL=C awk -F'|' '
   /^\|/ && rules >= 2 { for (c = 2; c <= 5; ++c) cell[c] = join(cell[c], $c) }
   END {
     if (n == 0) { print "readme: no claim in the summary of the claims detail" > "/dev/stderr"; exit 1 }
-    print "| the paper'"'"'s claim | verdict | holds | fails |"
+    print "| claim (1–5: the paper'"'"'s; H: this project'"'"'s hypotheses) | verdict | holds | fails |"
     print "|---|---|---|---|"
     for (k = 1; k <= n; ++k) printf "| %s | %s | %s | %s |\n", claim[k], verdict[k], shorten(holds[k]), shorten(fails[k])
   }

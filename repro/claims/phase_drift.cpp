@@ -117,7 +117,8 @@ SummaryLine summarize_phase_drift(const repro::Sweep& sweep, const PhaseDriftSet
   const bool holds = worst_difference <= st.difference_tolerance;
   SummaryLine line;
   line.key = "mechanism";
-  line.claim = "3 Mechanism: drift −4h/3, −h/3 against Mod 3 (" + scheme_abbreviation(st.scheme) + ")";
+  line.claim =
+      "H1 Period law, the mechanism of 3: drift −4h/3, −h/3 against Mod 3 (" + scheme_abbreviation(st.scheme) + ")";
   line.verdict = holds ? "reproduced" : "partly reproduced";
   line.holds = "every Δt/h, N of the sweep: differences within " + decimals(worst_difference, 3) + "h of the law's";
   line.fails = holds ? "nowhere in the grid" : "cells beyond " + significant(st.difference_tolerance, 3) + "h";
