@@ -68,8 +68,8 @@ BASELINE := $(DATA)/baseline_regions.dat $(DATA)/baseline_regions.tex
 
 # Everything `make all` makes: the build, the benchmark run, the claims, every figure with its data and
 # values (named, so that make does not take them for intermediate files and delete them), the short
-# benchmark, the article with its supplement and the API documentation. Each has its section below; the rule `all` is at the
-# end of this file, where every name it lists is defined.
+# benchmark, the article with its supplement and the API documentation. Each has its section below; the
+# rule `all` is at the end of this file, where every name it lists is defined.
 ALL_RESULTS = $(DATA)/benchmark.dat $(DATA)/benchmark.txt $(CLAIMS_OUTPUTS) $(FIGURE_DATA) $(FIGURE_TEX) \
               $(BASELINE) $(FIGURE_PDFS) $(CLASSES) $(CLASSES_PDFS) $(DATA)/cn_large_step.tex $(PEER_TEX) \
               $(DATA)/report_meta.tex $(DATA)/build_times.tex $(DOC)/html/index.html $(BENCH_SHORT)/bench_short.tex \
@@ -252,7 +252,7 @@ $(DATA)/report_meta.tex: FORCE $(BUILD)/bin/build_info | $(DATA)
 # The times of the README's two commands for the article's section on reproducing it: the values of
 # doc/build_times.txt (tools/measure_commands.sh measures them; tools/readme.sh writes the README's
 # sentence from the same file).
-$(DATA)/build_times.tex: doc/build_times.txt tools/build_times_tex.sh | $(DATA)
+$(DATA)/build_times.tex: doc/build_times.txt tools/build_times_tex.sh tools/build_times.awk | $(DATA)
 	tools/build_times_tex.sh doc/build_times.txt > $@.tmp
 	mv $@.tmp $@
 

@@ -31,28 +31,13 @@ trap 'rm -rf -- "$work"' EXIT
 
 # The timings block: one sentence from doc/build_times.txt: the machine, the date, the number of runs,
 # each command's time (its one value, or the median with the minimum and maximum) and the load.
-awk -F' = ' '
-  /^#/ { next }
-  { value[$1] = $2 }
-  function duration(s) {  # 170.4 -> "2 min 50 s", 58.3 -> "58 s", 1.23 -> "1.2 s"
-    if (s >= 60) return sprintf("%d min %d s", int(s / 60), int(s - 60 * int(s / 60) + 0.5))
-    if (s >= 10) return sprintf("%d s", int(s + 0.5))
-    return sprintf("%.1f s", s)
-  }
-  function span(key,    v, n) {  # one value, or "median (min – max)"
-    n = split(value[key], v, " ")
-    return n == 1 ? duration(v[1]) : duration(v[2]) " (" duration(v[1]) " – " duration(v[3]) ")"
-  }
+awk -F' = ' -f "$root/tools/build_times.awk" -f /dev/stdin "$times" <<'AWK' |
   END {
     if (value["runs"] == 0) {
       print "The times of the two commands are not measured yet: `tools/measure_commands.sh` measures them."
       exit 0
     }
-    split("date commit cpu cores runs own_cpu_seconds other_cpu_seconds make_all_seconds make_test_seconds make_all_again_seconds", keys, " ")
-    for (k in keys) if (!(keys[k] in value)) {
-      print "readme: the build times lack " keys[k] " (tools/measure_commands.sh writes it)" > "/dev/stderr"
-      exit 1
-    }
+    if (!complete("readme")) exit 1
     # Other work ran (the rule of tools/measure_commands.sh): other processes used more than 2 % of the
     # CPU time of the commands while they ran.
     share = 100 * value["other_cpu_seconds"] / value["own_cpu_seconds"]
@@ -61,11 +46,12 @@ awk -F' = ' '
     printf "On a %s-core machine (%s), from a fresh clone with the packages present, %s on %s: ", \
       value["cores"], value["cpu"], value["runs"] == 1 ? "measured once" : "median (min – max) of " value["runs"] " runs", date
     printf "`make all` %s, `make test` after it %s, `make all` again %s ", \
-      span("make_all_seconds"), span("make_test_seconds"), span("make_all_again_seconds")
+      span("make_all_seconds", "–"), span("make_test_seconds", "–"), span("make_all_again_seconds", "–")
     printf "(commit %s; other processes used %.1f %% of the commands%s CPU time%s; `doc/build_times.txt`).\n", \
       value["commit"], share, "\047", loaded ? ": other work ran too, an idle machine is faster" : ""
   }
-' "$times" | awk -F'`' -v OFS='`' '{ for (i = 2; i <= NF; i += 2) gsub(/ /, "\001", $i); print }' |
+AWK
+  awk -F'`' -v OFS='`' '{ for (i = 2; i <= NF; i += 2) gsub(/ /, "\001", $i); print }' |
   fold -s -w 100 | sed 's/ *$//' | tr '\001' ' ' >"$work/timings"  # no line break inside `code`
 
 # The claims block: the summary table that opens the detail (a text table: rows between +---+ rules,
