@@ -53,7 +53,7 @@ BarSegment bar(double length, double modulus, double density, double load = 0.0)
   return s;
 }
 
-std::vector<ImpactBenchmark> make_benchmarks() {
+std::vector<ImpactBenchmark> make_impact_benchmarks() {
   std::vector<ImpactBenchmark> list;
   {
     // Doyen–Ern–Piperno's bouncing bar: L = 10, E = 900, ρ = 1 (c = 30), g = 10 (f = −ρg), at rest,
@@ -143,7 +143,7 @@ std::vector<ImpactBenchmark> make_benchmarks() {
 }  // namespace
 
 const std::vector<ImpactBenchmark>& impact_benchmarks() {
-  static const std::vector<ImpactBenchmark> list = make_benchmarks();
+  static const std::vector<ImpactBenchmark> list = make_impact_benchmarks();
   return list;
 }
 

@@ -157,13 +157,23 @@ poly::Coefficients plus_constant(poly::Coefficients p, double d) {
 // breakpoints, the arguments from τ_j = ℓ_j/c_j, which may differ in the last bit.
 double inside(const PiecewisePolynomial& wave, double x) { return std::min(wave.end(), std::max(wave.begin(), x)); }
 
-std::string number(double v) {
+// A double in full (17 significant digits), for the messages of the exceptions.
+std::string digits17(double v) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.17g", v);
   return buffer;
 }
 
 }  // namespace
+
+BarSegment uniform_segment(double length, double modulus, double density, double load) {
+  BarSegment s;
+  s.length = length;
+  s.modulus = modulus;
+  s.density = density;
+  if (load != 0.0) s.load = {load};
+  return s;
+}
 
 double ImpactConfiguration::length() const {
   double sum = 0;
@@ -278,7 +288,7 @@ ImpactSolution::ImpactSolution(ImpactConfiguration configuration, const InitialD
     for (double s : {-1.0, 1.0}) scale_u = std::max(scale_u, std::abs(poly::evaluate(p.displacement, s)));
   }
   if (std::abs(pieces.back().b - total) > 1e-12 * total)
-    throw InvalidParameter("initial_data", "the pieces must end at the chain's length " + number(total));
+    throw InvalidParameter("initial_data", "the pieces must end at the chain's length " + digits17(total));
   const double tie_x = 1e-12 * total;
   right_.resize(n);
   left_.resize(n);
@@ -289,7 +299,7 @@ ImpactSolution::ImpactSolution(ImpactConfiguration configuration, const InitialD
     double primitive = 0;  // V at the start of the current piece
     bool first_piece = true;
     if (k >= pieces.size() || std::abs(pieces[k].a - origin_[j]) > tie_x)
-      throw InvalidParameter("initial_data", "every junction (x = " + number(origin_[j]) + ") must be a breakpoint");
+      throw InvalidParameter("initial_data", "every junction (x = " + digits17(origin_[j]) + ") must be a breakpoint");
     while (k < pieces.size() && pieces[k].b <= origin_[j + 1] + tie_x) {
       const InitialDataPiece& p = pieces[k++];
       const double r = 0.5 * (p.b - p.a), m = 0.5 * (p.a + p.b);
@@ -310,7 +320,7 @@ ImpactSolution::ImpactSolution(ImpactConfiguration configuration, const InitialD
     }
     if (left_[j].empty() || std::abs(left_[j].end() - travel_[j]) > 1e-12 * travel_[j])
       throw InvalidParameter("initial_data",
-                             "every junction (x = " + number(origin_[j + 1]) + ") must be a breakpoint");
+                             "every junction (x = " + digits17(origin_[j + 1]) + ") must be a breakpoint");
     for (std::size_t i = rights.size(); i-- > 0;) right_[j].append(rights[i], snap_);
   }
   // Continuity of u⁰ inside each body, the clamp, and the contacts not violated at t = 0.
@@ -325,13 +335,13 @@ ImpactSolution::ImpactSolution(ImpactConfiguration configuration, const InitialD
     const double jump = u_right(j + 1) - u_left(j);
     if (!config_.junctions[j].contact && std::abs(jump) > tol)
       throw InvalidParameter("initial_data",
-                             "u0 must be continuous at the welded junction x = " + number(origin_[j + 1]));
+                             "u0 must be continuous at the welded junction x = " + digits17(origin_[j + 1]));
     if (config_.junctions[j].contact && jump + config_.junctions[j].gap < -tol)
-      throw InvalidParameter("initial_data", "the contact at x = " + number(origin_[j + 1]) +
+      throw InvalidParameter("initial_data", "the contact at x = " + digits17(origin_[j + 1]) +
                                                  " is violated at t = 0 (u_B - u_A + gap < 0)");
   }
   if (config_.far_end == FarEnd::clamped && std::abs(u_left(n - 1)) > tol)
-    throw InvalidParameter("initial_data", "u0 must be 0 at the clamped end, got " + number(u_left(n - 1)));
+    throw InvalidParameter("initial_data", "u0 must be 0 at the clamped end, got " + digits17(u_left(n - 1)));
   if (config_.obstacle && u_right(0) + config_.obstacle_gap < -tol)
     throw InvalidParameter("initial_data", "u0(0) + gap must be >= 0 (the obstacle)");
 
@@ -351,15 +361,16 @@ ImpactSolution::ImpactSolution(ImpactConfiguration configuration, const InitialD
   const double window = *std::min_element(travel_.begin(), travel_.end());
   constexpr double max_windows = 1e5;  // each window adds at least one piece per wave: bounded before any work
   if (!(horizon_ <= max_windows * window))
-    throw InvalidParameter("final_time", "the horizon " + number(horizon_) + " is more than 1e5 transit times (" +
-                                             number(max_windows * window) +
+    throw InvalidParameter("final_time", "the horizon " + digits17(horizon_) + " is more than 1e5 transit times (" +
+                                             digits17(max_windows * window) +
                                              ") of the shortest segment: too many wave fronts to solve exactly");
   for (long w = 0;; ++w) {
     const double t0 = static_cast<double>(w) * window, t1 = static_cast<double>(w + 1) * window;
     for (std::size_t node = 0; node <= n; ++node) process(node, t0, t1);
     if (piece_count() > max_pieces)
-      throw InvalidParameter("final_time", "more than " + std::to_string(max_pieces) + " wave pieces before t = " +
-                                               number(t1) + ": too many wave fronts over the horizon to solve exactly");
+      throw InvalidParameter("final_time", "more than " + std::to_string(max_pieces) +
+                                               " wave pieces before t = " + digits17(t1) +
+                                               ": too many wave fronts over the horizon to solve exactly");
     if (t1 >= horizon_ + tie_) break;
   }
   for (ContactState& c : contacts_) {
@@ -534,7 +545,7 @@ void ImpactSolution::process(std::size_t node, double t0, double t1) {
 
 std::size_t ImpactSolution::segment_of(double x) const {
   if (!(x >= 0.0 && x <= origin_.back()))
-    throw std::out_of_range("impact solution: x = " + number(x) + " outside [0, " + number(origin_.back()) + "]");
+    throw std::out_of_range("impact solution: x = " + digits17(x) + " outside [0, " + digits17(origin_.back()) + "]");
   const auto it = std::upper_bound(origin_.begin() + 1, origin_.end() - 1, x);
   std::size_t j = static_cast<std::size_t>(it - origin_.begin()) - 1;
   if (j > 0 && x == origin_[j]) --j;  // a junction belongs to the segment on its left
@@ -544,7 +555,7 @@ std::size_t ImpactSolution::segment_of(double x) const {
 namespace {
 void check_time(double t, double horizon) {
   if (!(t >= 0.0 && t <= horizon))
-    throw std::out_of_range("impact solution: t = " + number(t) + " outside [0, " + number(horizon) + "]");
+    throw std::out_of_range("impact solution: t = " + digits17(t) + " outside [0, " + digits17(horizon) + "]");
 }
 }  // namespace
 
@@ -642,15 +653,6 @@ InitialDataPiece affine_piece(double a, double b, double ua, double ub, double v
   return {a, b, {0.5 * (ua + ub), 0.5 * (ub - ua)}, {v}};
 }
 
-BarSegment segment(double length, double modulus, double density, double load = 0.0) {
-  BarSegment s;
-  s.length = length;
-  s.modulus = modulus;
-  s.density = density;
-  if (load != 0.0) s.load = {load};
-  return s;
-}
-
 }  // namespace
 
 TEST_CASE("the chain solver reproduces the paper's closed form, also cut into welded pieces") {
@@ -660,7 +662,7 @@ TEST_CASE("the chain solver reproduces the paper's closed form, also cut into we
     ImpactConfiguration config;
     InitialData data;
     for (int j = 0; j < cuts; ++j) {
-      config.segments.push_back(segment(1.0 / cuts, 1.0, 1.0));
+      config.segments.push_back(uniform_segment(1.0 / cuts, 1.0, 1.0));
       const double a = static_cast<double>(j) / cuts, b = static_cast<double>(j + 1) / cuts;
       data.pieces.push_back(
           affine_piece(a, j + 1 == cuts ? 1.0 : b, 0.5 * (1 - a), j + 1 == cuts ? 0.0 : 0.5 * (1 - b), 0.0));
@@ -706,7 +708,7 @@ TEST_CASE("the chain solver agrees with the clamped solver (characteristics.cpp)
   const InitialData data = initial_data_from_samples(x, u, v);
   const CharacteristicSolution reference(data, 12.0);
   ImpactConfiguration config;
-  config.segments = {segment(1.3, 1.0, 1.0)};
+  config.segments = {uniform_segment(1.3, 1.0, 1.0)};
   const ImpactSolution solution(config, data, 12.0);
   double du = 0, dl = 0;
   for (int n = 0; n <= 2400; ++n) {
@@ -734,7 +736,7 @@ TEST_CASE("the chain solver refuses what it cannot do, naming the problem") {
   InitialData data;
   data.pieces = {{0.0, 1.0, {0.25, -0.25}, {0.0}}};
   ImpactConfiguration good;
-  good.segments = {segment(1.0, 1.0, 1.0)};
+  good.segments = {uniform_segment(1.0, 1.0, 1.0)};
   CHECK_NOTHROW(ImpactSolution(good, data, 1.0));
   const auto refused = [&](ImpactConfiguration c, const InitialData& d, double t, const char* what) {
     CAPTURE(what);
@@ -750,7 +752,7 @@ TEST_CASE("the chain solver refuses what it cannot do, naming the problem") {
   c.obstacle = false;
   refused(c, data, 1.0, "no contact");
   c = good;
-  c.segments.push_back(segment(1.0, 1.0, 1.0));
+  c.segments.push_back(uniform_segment(1.0, 1.0, 1.0));
   c.junctions = {{false, 0.1}};
   refused(c, data, 1.0, "a welded junction has no gap");
   c.junctions = {{true, 0.0}, {true, 0.0}};
@@ -765,14 +767,15 @@ TEST_CASE("the chain solver refuses what it cannot do, naming the problem") {
   bad.pieces[0].displacement = {-0.5, 0.5};
   refused(good, bad, 1.0, "u0(0) + gap must be >= 0");
   ImpactConfiguration two = good;
-  two.segments = {segment(0.5, 1.0, 1.0), segment(0.5, 1.0, 1.0)};
+  two.segments = {uniform_segment(0.5, 1.0, 1.0), uniform_segment(0.5, 1.0, 1.0)};
   refused(two, data, 1.0, "must be a breakpoint");  // the junction x = 0.5 is inside a data piece
   InitialData jump;
   jump.pieces = {{0.0, 0.5, {0.3, -0.1}, {0.0}}, {0.5, 1.0, {0.125, -0.125}, {0.0}}};
   refused(two, jump, 1.0, "u0 must be continuous at the welded junction");
   // Incommensurate layers: the fronts multiply; a small budget is refused rather than exceeded.
   ImpactConfiguration layered;
-  layered.segments = {segment(1.0, 1.0, 1.0), segment(std::sqrt(2.0), 3.0, 1.0), segment(M_PI / 3, 0.5, 2.0)};
+  layered.segments = {uniform_segment(1.0, 1.0, 1.0), uniform_segment(std::sqrt(2.0), 3.0, 1.0),
+                      uniform_segment(M_PI / 3, 0.5, 2.0)};
   layered.far_end = FarEnd::free;
   InitialData v;
   v.pieces = {{0.0, 1.0, {0.0}, {-1.0}},

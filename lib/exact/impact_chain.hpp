@@ -22,6 +22,9 @@ struct BarSegment {
   poly::Coefficients load;  ///< f (force per unit volume) in σ = (x − centre)/(ℓ/2) of the segment; empty: 0
 };
 
+/// A segment of constant modulus, density and load (f = `load`; 0: none).
+BarSegment uniform_segment(double length, double modulus, double density, double load = 0.0);
+
 /// Where two consecutive segments meet.
 struct SegmentJunction {
   bool contact = false;  ///< false: welded (u and the stress continuous); true: unilateral contact

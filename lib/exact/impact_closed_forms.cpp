@@ -20,18 +20,7 @@
 
 namespace mrm {
 
-namespace {
-
-BarSegment segment(double length, double modulus, double density, double load = 0.0) {
-  BarSegment s;
-  s.length = length;
-  s.modulus = modulus;
-  s.density = density;
-  if (load != 0.0) s.load = {load};
-  return s;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 TEST_CASE("the impacting bar (SDNV100): contact from gap/v for 2L/c at stress -rho c v, then rigid rebound") {
   // A free bar with uniform velocity −v toward the wall across a gap g₀: free flight z = g₀ − v t until
@@ -41,7 +30,7 @@ TEST_CASE("the impacting bar (SDNV100): contact from gap/v for 2L/c at stress -r
   const double nu = 0.3, modulus = 2e11 * (1 - nu) / ((1 + nu) * (1 - 2 * nu)), rho = 8000, length = 0.2, speed = 100,
                gap = 2e-3;
   ImpactConfiguration config;
-  config.segments = {segment(length, modulus, rho)};
+  config.segments = {uniform_segment(length, modulus, rho)};
   config.far_end = FarEnd::free;
   config.obstacle_gap = gap;
   InitialData data;
@@ -74,7 +63,7 @@ TEST_CASE("the bouncing bar (Doyen-Ern-Piperno): free-fall parabola, contacts of
   // After it the motion repeats: contacts every 8τ = 8/3, the state periodic with period 16τ = 16/3
   // (DEP: the motion is periodic; here the period of the state is two contact cycles, measured).
   ImpactConfiguration config;
-  config.segments = {segment(10.0, 900.0, 1.0, -10.0)};
+  config.segments = {uniform_segment(10.0, 900.0, 1.0, -10.0)};
   config.far_end = FarEnd::free;
   config.obstacle_gap = 5.0;
   InitialData data;
@@ -122,7 +111,7 @@ TEST_CASE("gravity on the paper's bar: a sudden load gives a persistent contact 
   for (const auto& [length, modulus, b] : {std::tuple<double, double, double>{1.0, 1.0, 1.0}, {2.0, 4.0, 0.3}}) {
     CAPTURE(length);
     ImpactConfiguration config;
-    config.segments = {segment(length, modulus, 1.0, -b)};
+    config.segments = {uniform_segment(length, modulus, 1.0, -b)};
     InitialData data;
     data.pieces = {{0.0, length, {0.0}, {0.0}}};
     const double c = std::sqrt(modulus), period = 2 * length / c, horizon = 5 * period;
@@ -158,7 +147,7 @@ TEST_CASE("gravity on the paper's bar: a sudden load gives a persistent contact 
   }
   for (const double b : {0.25, 1.0, 4.0}) {
     ImpactConfiguration config;
-    config.segments = {segment(1.0, 1.0, 1.0, -b)};
+    config.segments = {uniform_segment(1.0, 1.0, 1.0, -b)};
     InitialData data;
     data.pieces = {{0.0, 1.0, {0.25, -0.25}, {0.0}}};
     const ImpactSolution solution(config, data, 3.0);
@@ -181,7 +170,7 @@ TEST_CASE("a static load: a piecewise-polynomial f(x) on a layered bar in static
   const double ls = -(integral(1.5, 0.0)) / ((1.0 / 2) + (0.5 / 5));  // u_s(1.5) = 0 fixes λ_s (linear in it)
   REQUIRE(ls < 0);
   ImpactConfiguration config;
-  config.segments = {segment(1.0, 2.0, 1.0), segment(0.5, 5.0, 3.0)};
+  config.segments = {uniform_segment(1.0, 2.0, 1.0), uniform_segment(0.5, 5.0, 3.0)};
   // f in σ: on [0, 1] x = (1 + σ)/2, on [1, 1.5] x = 1.25 + σ/4.
   config.segments[0].load = {-1.5, -0.5};
   config.segments[1].load = {-4.6875, -1.875, -0.1875};  // −3(1.25 + σ/4)²
@@ -254,7 +243,7 @@ TEST_CASE("two bars: equal bars meet as one bar on a wall, and unequal impedance
   // Equal bars (Z_A = Z_B) are symmetric about the contact plane: bar B is one bar on a rigid wall.
   {
     ImpactConfiguration config;
-    config.segments = {segment(10.0, 1.0, 1.0), segment(10.0, 1.0, 1.0)};
+    config.segments = {uniform_segment(10.0, 1.0, 1.0), uniform_segment(10.0, 1.0, 1.0)};
     config.junctions = {{true, 0.0}};
     config.obstacle = false;
     config.far_end = FarEnd::free;
@@ -262,7 +251,7 @@ TEST_CASE("two bars: equal bars meet as one bar on a wall, and unequal impedance
     data.pieces = {{0.0, 10.0, {0.0}, {0.1}}, {10.0, 20.0, {0.0}, {-0.1}}};
     const ImpactSolution solution(config, data, 60.0);
     ImpactConfiguration wall;
-    wall.segments = {segment(10.0, 1.0, 1.0)};
+    wall.segments = {uniform_segment(10.0, 1.0, 1.0)};
     wall.far_end = FarEnd::free;
     InitialData one;
     one.pieces = {{0.0, 10.0, {0.0}, {-0.1}}};
@@ -289,7 +278,7 @@ TEST_CASE("two bars: equal bars meet as one bar on a wall, and unequal impedance
   {
     // Z_A = 1 (E = ρ = 1, ℓ = 1), Z_B = 3 (E = 9, ρ = 1, ℓ = 3): τ = 1 for both, v_A = 0.2, v_B = −0.1.
     ImpactConfiguration config;
-    config.segments = {segment(1.0, 1.0, 1.0), segment(3.0, 9.0, 1.0)};
+    config.segments = {uniform_segment(1.0, 1.0, 1.0), uniform_segment(3.0, 9.0, 1.0)};
     config.junctions = {{true, 0.0}};
     config.obstacle = false;
     config.far_end = FarEnd::free;
@@ -318,7 +307,7 @@ TEST_CASE("layered bars: reflection at an interface, and equal impedances are tr
   // far end's tension keeps it off until T = 10.
   {
     ImpactConfiguration config;
-    config.segments = {segment(1.0, 4.0, 1.0), segment(1.5, 1.0, 1.0)};
+    config.segments = {uniform_segment(1.0, 4.0, 1.0), uniform_segment(1.5, 1.0, 1.0)};
     config.far_end = FarEnd::free;
     config.obstacle_gap = 0.1;
     InitialData data;
@@ -338,7 +327,7 @@ TEST_CASE("layered bars: reflection at an interface, and equal impedances are tr
     // Equal impedances Z = 1 with c = 4 (E = 4, ρ = ¼, ℓ = 2, τ = ½) and c = 1 (ℓ = 1.5, τ = 1.5):
     // no reflection at the interface; the contact point sees a homogeneous bar of transit time 2.
     ImpactConfiguration config;
-    config.segments = {segment(2.0, 4.0, 0.25), segment(1.5, 1.0, 1.0)};
+    config.segments = {uniform_segment(2.0, 4.0, 0.25), uniform_segment(1.5, 1.0, 1.0)};
     config.far_end = FarEnd::clamped;
     InitialData data;
     // u⁰ = ½(2 − θ), θ the travel time from x = 0: 1 − x/8 on [0, 2], ½(3.5 − x) on [2, 3.5].

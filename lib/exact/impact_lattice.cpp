@@ -25,15 +25,6 @@ namespace mrm {
 
 namespace {
 
-BarSegment segment(double length, double modulus, double density, double load = 0.0) {
-  BarSegment s;
-  s.length = length;
-  s.modulus = modulus;
-  s.density = density;
-  if (load != 0.0) s.load = {load};
-  return s;
-}
-
 struct Lattice {
   std::vector<double> gaps;   // z at every level, for contact 0
   std::vector<double> level;  // t_n
@@ -183,12 +174,12 @@ TEST_CASE("the named benchmarks' contact windows against the closed forms and th
   // Three layers clamped at the far end hitting the wall (the lattice is exact up to the second impact,
   // which falls between levels), and two bars of unequal impedances with a gap between them.
   ImpactConfiguration three;
-  three.segments = {segment(0.4, 4.0, 1.0), segment(0.3, 1.0, 1.0), segment(0.5, 1.0, 4.0)};
+  three.segments = {uniform_segment(0.4, 4.0, 1.0), uniform_segment(0.3, 1.0, 1.0), uniform_segment(0.5, 1.0, 4.0)};
   three.obstacle_gap = 0.1;
   InitialData layered_data;
   layered_data.pieces = {{0.0, 0.4, {0.0}, {-1.0}}, {0.4, 0.7, {0.0}, {-1.0}}, {0.7, 1.2, {0.0}, {-1.0}}};
   ImpactConfiguration unequal;
-  unequal.segments = {segment(1.0, 1.0, 1.0), segment(3.0, 9.0, 1.0)};
+  unequal.segments = {uniform_segment(1.0, 1.0, 1.0), uniform_segment(3.0, 9.0, 1.0)};
   unequal.junctions = {{true, 0.05}};
   unequal.obstacle = false;
   unequal.far_end = FarEnd::free;

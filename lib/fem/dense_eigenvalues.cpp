@@ -18,6 +18,8 @@
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_errno.h>
 
+#include "core/constants.hpp"
+
 namespace mrm {
 
 namespace {
@@ -101,7 +103,6 @@ TEST_CASE("the reference eigenvalues reproduce spectra known in closed form") {
     a(i, i) = 2;
     if (i > 0) a(i, i - 1) = a(i - 1, i) = -1;
   }
-  const double pi = 3.14159265358979323846;
   const Eigen::VectorXd symmetric = symmetric_eigenvalues(a);
   const Eigen::VectorXd pencil = generalized_symmetric_eigenvalues(2 * a, 2 * Eigen::MatrixXd::Identity(n, n));
   for (Eigen::Index j = 1; j <= n; ++j) {

@@ -68,13 +68,13 @@
 
 #include <doctest/doctest.h>
 
+#include "core/constants.hpp"
 #include "fem/mass_redistribution.hpp"
 #include "fem/period_law.hpp"
 
 namespace mrm {
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
 
 void check_blend(double blend, const char* where) {
   if (!(blend >= 0.0 && blend <= 1.0))

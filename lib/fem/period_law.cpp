@@ -66,13 +66,12 @@
 #include <Eigen/Dense>
 #include <doctest/doctest.h>
 
+#include "core/constants.hpp"
 #include "fem/dense_eigenvalues.hpp"
 
 namespace mrm {
 
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
 
 // The block of a tridiagonal matrix on the indices 1..n−1.
 Tridiagonal without_first(const Tridiagonal& a) {

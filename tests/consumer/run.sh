@@ -5,7 +5,7 @@
 # runs it, and checks that the Mod 3 total mass it prints equals the length L it prints, to round-off
 # (|total − L| ≤ 64 ε L: a sum of about 3N entries of size h, each with one rounding).
 # It also checks that the library references no function that the sources it leaves out define (LEFT_OUT:
-# their objects in the default build, with their test cases, ;-separated; CMakeLists.txt lists them).
+# the objects of the default build's mrm_test_cases, with their test cases, ;-separated).
 # Usage: run.sh BUILD SOURCE [CXX [FLAGS [LEFT_OUT]]]   (FLAGS: compile and link flags of a sanitized build)
 set -euo pipefail
 build=$1 source=$2 cxx=${3:-c++} flags=${4:-} left_out=${5:-}
