@@ -307,9 +307,12 @@ $(DATA)/cn_large_step.tex: $(BUILD)/bin/cn_large_step | $(DATA)
 # works); latexmk keeps its auxiliary files in $(OUT)/latex. The full benchmark's table and plot (make
 # bench) are included if present, the short benchmark's otherwise. Each document refers to the other's
 # sections, figures and tables through the other's .aux (xr-hyper's \externaldocument, found through
-# TEXINPUTS): one rule makes both, each typeset twice in turn (latexmk reruns a document only when a file
-# it read changed, the other's .aux among them; an empty report.aux on a fresh build makes the
-# supplement's first run record it, so that its second run sees the article's labels). Then, for each
+# TEXINPUTS): one rule makes both, in two rounds. Before each round it copies each document's .aux to
+# xr-<document>.aux (an empty one if there is none yet), which the other document reads, then typesets
+# both at once, on two cores: neither reads a file the other is writing, and the second round sees the
+# labels the first one settled (numbers of sections, tables and figures, which do not depend on the
+# other document's text: two rounds are what the documents need, as two runs in turn each did before).
+# latexmk reruns a document within a round only when a file it read changed. Then, for each
 # PDF: a reference left undefined or a label defined twice fails the rule; so does a < or > in text
 # mode, which the text font prints as ¡ or ¿, and a bitmap (Type 3) font: both documents are vector
 # throughout (so that they print and zoom alike). The article has at most 20 pages.
@@ -320,11 +323,19 @@ $(REPORT) $(SUPPLEMENT) &: $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAI
            $(DATA)/report_meta.tex $(DATA)/build_times.tex $(BENCH_SHORT)/bench_short.tex $(PEER_TEX) \
            $(wildcard $(OUT)/bench/bench_step.tex $(OUT)/bench/bench_step.pdf) | $(DATA)
 	mkdir -p $(OUT)/latex
-	[[ -e $(OUT)/latex/report.aux ]] || : > $(OUT)/latex/report.aux
-	$(LATEXMK) paper/supplement.tex
-	$(LATEXMK) paper/report.tex
-	$(LATEXMK) paper/supplement.tex
-	$(LATEXMK) paper/report.tex
+	for round in 1 2; do \
+	  for doc in report supplement; do \
+	    rm -f $(OUT)/latex/xr-$$doc.aux; \
+	    if [[ -e $(OUT)/latex/$$doc.aux ]]; then cp $(OUT)/latex/$$doc.aux $(OUT)/latex/xr-$$doc.aux; \
+	    else : > $(OUT)/latex/xr-$$doc.aux; fi; \
+	  done; \
+	  failed=0; \
+	  $(LATEXMK) paper/supplement.tex & supplement=$$!; \
+	  $(LATEXMK) paper/report.tex & report=$$!; \
+	  wait $$supplement || failed=1; \
+	  wait $$report || failed=1; \
+	  ((failed == 0)); \
+	done
 	@for doc in report supplement; do \
 	  ! grep -E "Reference .* undefined|There were undefined references|multiply defined" $(OUT)/latex/$$doc.log \
 	    || { echo "$$doc: a reference undefined or a label defined twice (above; $(OUT)/latex/$$doc.log)"; exit 1; }; \

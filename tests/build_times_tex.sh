@@ -39,6 +39,10 @@ sed -e 's/^runs = .*/runs = 1/' -e 's/^make_all_seconds = .*/make_all_seconds = 
 out=$("$tool" "$dir/one.txt")
 expect "$out" '\mrmdef{times:all}{9.9 s}'
 expect "$out" '\mrmdef{times:measured}{measured once}'
+# A time is rounded to whole seconds before it is split into minutes: 179.6 s is 3 min 0 s, not 2 min 60 s.
+sed -e 's/^make_all_seconds = .*/make_all_seconds = 119.5 179.6 181.1/' "$dir/three.txt" > "$dir/round.txt"
+out=$("$tool" "$dir/round.txt")
+expect "$out" '\mrmdef{times:all}{3 min 0 s (2 min 0 s -- 3 min 1 s)}'
 
 printf 'runs = 0\n' > "$dir/none.txt"
 out=$("$tool" "$dir/none.txt")

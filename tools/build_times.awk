@@ -7,10 +7,13 @@
 { value[$1] = $2 }
 
 # A duration in seconds as a person reads it: 170.4 -> "2 min 50 s", 58.3 -> "58 s", 1.23 -> "1.2 s".
-function duration(s) {
-  if (s >= 60) return sprintf("%d min %d s", int(s / 60), int(s - 60 * int(s / 60) + 0.5))
-  if (s >= 10) return sprintf("%d s", int(s + 0.5))
-  return sprintf("%.1f s", s)
+# Rounded to whole seconds before it is split into minutes, so that 179.6 s reads 3 min 0 s (not 2 min
+# 60 s); up to 60 s in seconds, below 9.95 s to a tenth.
+function duration(s,    r) {
+  if (s < 9.95) return sprintf("%.1f s", s)
+  r = int(s + 0.5)
+  if (r > 60) return sprintf("%d min %d s", int(r / 60), r % 60)
+  return sprintf("%d s", r)
 }
 
 # A command's time: its one value, or "median (min DASH max)" for several runs.
