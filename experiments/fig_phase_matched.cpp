@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "configurations.hpp"
+#include "core/constants.hpp"
 #include "measures/contact_stress.hpp"
 #include "studies/convergence.hpp"
 #include "measures/errors.hpp"
@@ -377,7 +378,7 @@ int main(int argc, char** argv) {
         << variants[1].key << ", " << variants[2].key << "\n# columns: xi e0 e1 e2\n";
     const int points = 120;
     for (int i = 0; i <= points; ++i) {
-      const double xi = 0.01 * std::pow(3.14159265358979323846 / 0.01, static_cast<double>(i) / points);  // 0.01 .. π
+      const double xi = 0.01 * std::pow(mrm::pi / 0.01, static_cast<double>(i) / points);  // 0.01 .. π
       out << cli::format_real(xi);
       for (std::size_t v = 0; v < cn_variants; ++v)
         out << ' ' << cli::format_real(std::abs(mrm::phase_speed_error(xi, variants[v].courant, variants[v].blend)));

@@ -44,15 +44,6 @@ std::string configuration_features(const ImpactConfiguration& c) {
 
 namespace {
 
-BarSegment bar(double length, double modulus, double density, double load = 0.0) {
-  BarSegment s;
-  s.length = length;
-  s.modulus = modulus;
-  s.density = density;
-  if (load != 0.0) s.load = {load};
-  return s;
-}
-
 std::vector<ImpactBenchmark> make_impact_benchmarks() {
   std::vector<ImpactBenchmark> list;
   {
@@ -66,7 +57,7 @@ std::vector<ImpactBenchmark> make_impact_benchmarks() {
                       {},
                       {},
                       8.0};
-    b.configuration.segments = {bar(10.0, 900.0, 1.0, -10.0)};
+    b.configuration.segments = {uniform_segment(10.0, 900.0, 1.0, -10.0)};
     b.configuration.far_end = FarEnd::free;
     b.configuration.obstacle_gap = 5.0;
     b.data.pieces = {{0.0, 10.0, {0.0}, {0.0}}};
@@ -83,7 +74,7 @@ std::vector<ImpactBenchmark> make_impact_benchmarks() {
                       {},
                       {},
                       2e-4};
-    b.configuration.segments = {bar(0.2, modulus, 8000.0)};
+    b.configuration.segments = {uniform_segment(0.2, modulus, 8000.0)};
     b.configuration.far_end = FarEnd::free;
     b.configuration.obstacle_gap = 2e-3;
     b.data.pieces = {{0.0, 0.2, {0.0}, {-100.0}}};
@@ -100,7 +91,7 @@ std::vector<ImpactBenchmark> make_impact_benchmarks() {
                       {},
                       {},
                       4.0};
-    b.configuration.segments = {bar(1.0, 1.0, 1.0, -1.0)};
+    b.configuration.segments = {uniform_segment(1.0, 1.0, 1.0, -1.0)};
     b.data.pieces = {{0.0, 1.0, {0.0}, {0.0}}};
     list.push_back(b);
   }
@@ -114,7 +105,7 @@ std::vector<ImpactBenchmark> make_impact_benchmarks() {
                       {},
                       {},
                       40.0};
-    b.configuration.segments = {bar(10.0, 1.0, 1.0), bar(10.0, 1.0, 1.0)};
+    b.configuration.segments = {uniform_segment(10.0, 1.0, 1.0), uniform_segment(10.0, 1.0, 1.0)};
     b.configuration.junctions = {{true, 0.0}};
     b.configuration.obstacle = false;
     b.configuration.far_end = FarEnd::free;
@@ -131,7 +122,7 @@ std::vector<ImpactBenchmark> make_impact_benchmarks() {
                       {},
                       {},
                       10.0};
-    b.configuration.segments = {bar(1.0, 4.0, 1.0), bar(1.5, 1.0, 1.0)};
+    b.configuration.segments = {uniform_segment(1.0, 4.0, 1.0), uniform_segment(1.5, 1.0, 1.0)};
     b.configuration.far_end = FarEnd::free;
     b.configuration.obstacle_gap = 0.1;
     b.data.pieces = {{0.0, 1.0, {0.0}, {-1.0}}, {1.0, 2.5, {0.0}, {-1.0}}};

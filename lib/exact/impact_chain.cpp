@@ -99,6 +99,7 @@
 
 #include <doctest/doctest.h>
 
+#include "core/constants.hpp"
 #include "core/problem.hpp"
 #include "exact/exact_solution.hpp"
 
@@ -775,12 +776,12 @@ TEST_CASE("the chain solver refuses what it cannot do, naming the problem") {
   // Incommensurate layers: the fronts multiply; a small budget is refused rather than exceeded.
   ImpactConfiguration layered;
   layered.segments = {uniform_segment(1.0, 1.0, 1.0), uniform_segment(std::sqrt(2.0), 3.0, 1.0),
-                      uniform_segment(M_PI / 3, 0.5, 2.0)};
+                      uniform_segment(pi / 3, 0.5, 2.0)};
   layered.far_end = FarEnd::free;
   InitialData v;
   v.pieces = {{0.0, 1.0, {0.0}, {-1.0}},
               {1.0, 1.0 + std::sqrt(2.0), {0.0}, {-1.0}},
-              {1.0 + std::sqrt(2.0), 1.0 + std::sqrt(2.0) + M_PI / 3, {0.0}, {-1.0}}};
+              {1.0 + std::sqrt(2.0), 1.0 + std::sqrt(2.0) + pi / 3, {0.0}, {-1.0}}};
   CHECK_THROWS_WITH_AS(ImpactSolution(layered, v, 200.0, 2000), doctest::Contains("too many wave fronts"),
                        InvalidParameter);
 }

@@ -15,6 +15,7 @@
 #include <doctest/doctest.h>
 
 #include "core/problem.hpp"
+#include "core/constants.hpp"
 #include "exact/exact_solution.hpp"
 #include "exact/impact_chain.hpp"
 
@@ -181,7 +182,7 @@ TEST_CASE("a static load: a piecewise-polynomial f(x) on a layered bar in static
     const int n = degree + 1;
     std::vector<double> matrix(static_cast<std::size_t>(n * n)), rhs(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) {
-      const double s = std::cos(M_PI * (i + 0.5) / n), x = 0.5 * (a + b) + 0.5 * (b - a) * s;
+      const double s = std::cos(pi * (i + 0.5) / n), x = 0.5 * (a + b) + 0.5 * (b - a) * s;
       for (int k = 0; k < n; ++k) matrix[static_cast<std::size_t>(i * n + k)] = std::pow(s, k);
       rhs[static_cast<std::size_t>(i)] = integral(x, ls);
     }

@@ -115,6 +115,8 @@
 
 #include <doctest/doctest.h>
 
+#include "core/constants.hpp"
+
 namespace mrm {
 
 const std::vector<ContactStressEntry>& contact_stress_registry() {
@@ -657,7 +659,7 @@ TEST_CASE("the gate smooths a rattling multiplier and keeps a smooth one") {
   const std::size_t n = 400;
   std::vector<double> smooth(n), rattling(n), width(n, 40.0);
   for (std::size_t i = 0; i < n; ++i) {
-    smooth[i] = -std::sin(3.14159265358979323846 * static_cast<double>(i) / (n - 1));
+    smooth[i] = -std::sin(pi * static_cast<double>(i) / (n - 1));
     rattling[i] = smooth[i] + (i % 2 ? 0.05 : -0.05);
   }
   const std::vector<double> smooth_window = window_average(smooth, 1.0, width, WindowKernel::spline);
