@@ -391,7 +391,7 @@ int main(int argc, char** argv) {
     const std::size_t total = configurations.size() + graded.size();
     // Through the sweep layer (repro/sweep.hpp, run_batched), keyed by group: the three masses of one
     // benchmark and mesh (the h study's runs, Δt = h/(2c)) make one batch, in vector lanes where the
-    // batched step takes them (the others, a benchmark with a load, stepped alone in it), and ask the same
+    // batched step takes them (a benchmark's steady load included: batched_step.cpp), and ask the same
     // exact solution the same questions at the same instants: it is made once for the sweep
     // (ReferenceCache) and evaluated once per instant for the batch (ErrorAccumulator::add_lanes). The Δt
     // study's two runs of a benchmark make one batch (2h/c and h/c, each at its own rate). Two-bars' runs

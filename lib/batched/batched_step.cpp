@@ -79,6 +79,9 @@ struct BatchedSimulation::Group {
   bool three_level = false, switching = false;
   hwy::AlignedFreeUniquePtr<double[]> u, y, w, x, elimination, elimination_pair, inverse_pivot, upward, upward_pair,
       head_rows, interior, last, rate, memory, ps_q_weight, u0_next, recurrence_d0, keep, energy;
+  // The steady loads' terms of the right-hand side, L_i = g_now F_i + g_next F_i per lane (null when no
+  // lane has a load; −0 in a lane without one, fill below).
+  hwy::AlignedFreeUniquePtr<double[]> load;
   std::vector<FastStep::ContactDecision> decisions;  // the lanes' contact decisions of the current step
   // A group of Newmark-type steps (batch_family 4, batched::NewmarkKernel): u, y, w, the factors of A
   // (elimination, inverse_pivot, upward), u0_next (the decision's u₀) and keep above, and these.
@@ -193,7 +196,8 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
   group_of_.assign(count, 0);
   lane_of_.assign(count, 0);
   // The key of runs that can share a group: the number of unknowns, the scheme family and the layout of
-  // the fast step. A run with the reference kernel or a load is stepped alone.
+  // the fast step. A run with the reference kernel, or with a load that changes with t, is stepped alone; a
+  // steady load (Problem::steady_load) is a vector of the lane's own (Group::load).
   using Key = std::tuple<std::size_t, int, std::size_t>;
   std::map<Key, std::vector<std::size_t>> families;
   for (std::size_t k = 0; k < count; ++k) {
@@ -221,7 +225,7 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
         continue;
       }
     }
-    if (!fast || parts.has_load || n < 2 || lanes_ < 2 || r.level() != 0) {
+    if (!fast || (parts.has_load && !parts.steady_load) || n < 2 || lanes_ < 2 || r.level() != 0) {
       alone_.push_back(k);
       continue;
     }
@@ -313,6 +317,25 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
         g->memory[j] = f.coefficients().velocity_memory;
         g->ps_q_weight[j] = 1 - 4 * f.beta();  // as fused_step writes it: (1 − 4β)
         g->keep[j] = 0;
+      }
+      // A steady load enters the fused step's right-hand side of row i as b_i + (g_now F_i + g_next F_i)
+      // (FastStep::fused_step: b += g_now f_now[i] + g_next f_next[i], with f_now = f_next = F bit for bit,
+      // which BarSimulation checks), so the term in parentheses is formed here once, by the same two products
+      // and sum, and the sweep down adds it to b_i: the scalar step's bits. A lane without a load adds −0,
+      // which leaves every b_i as it is, its sign of zero included (x + (−0) = x in IEEE 754 for every x).
+      bool loaded = false;
+      for (std::size_t j = 0; j < width; ++j) loaded = loaded || runs_[g->runs[j]].step_parts().has_load;
+      if (loaded) {
+        g->load = lane_array(nw);
+        for (std::size_t j = 0; j < width; ++j) {
+          const BarSimulation::StepParts parts = runs_[g->runs[j]].step_parts();
+          const double g_now = parts.fast->coefficients().load_now, g_next = parts.fast->coefficients().load_next;
+          for (std::size_t i = 0; i < g->n; ++i) {
+            const auto e = static_cast<Index>(i);
+            g->load[i * width + j] =
+                parts.has_load ? g_now * parts.state->f_now[e] + g_next * parts.state->f_next[e] : -0.0;
+          }
+        }
       }
       for (std::size_t j = 0; j < width; ++j) load_lane(*g, j, runs_[g->runs[j]]);
       find_plateau(*g);
@@ -671,6 +694,7 @@ void BatchedSimulation::advance(const char* flags) {  // null: every run
     k.rate = g.rate.get(), k.memory = g.memory.get(), k.ps_q_weight = g.ps_q_weight.get();
     k.u0_next = g.u0_next.get(), k.recurrence_d0 = g.recurrence_d0.get(), k.keep = g.keep.get();
     k.energy = g.energy.get();
+    k.load = g.load.get();
     batched::sweep_down(g.width, k);
     // Between the sweeps, each lane's contact decision: FastStep::contact_decision, the scalar code.
     std::vector<FastStep::ContactDecision>& decisions = g.decisions;
@@ -683,9 +707,11 @@ void BatchedSimulation::advance(const char* flags) {  // null: every run
         continue;
       }
       const BarSimulation::StepParts parts = runs_[g.runs[j]].step_parts();
+      const StepState& state = *parts.state;
+      const bool load = parts.has_load;  // steady (the constructor): F₀ⁿ = F₀ⁿ⁺¹ = F₀
       const FastStep::ContactDecision c =
-          parts.fast->contact_decision(g.u[j], g.u[W + j], g.w[j], g.w[W + j], g.y[W + j], parts.state->lambda,
-                                       parts.state->active, *parts.solver, false, 0.0, 0.0);
+          parts.fast->contact_decision(g.u[j], g.u[W + j], g.w[j], g.w[W + j], g.y[W + j], state.lambda, state.active,
+                                       *parts.solver, load, load ? state.f_now[0] : 0.0, load ? state.f_next[0] : 0.0);
       decisions[j] = c;
       g.keep[j] = c.status_change ? 1.0 : 0.0;
       g.u0_next[j] = c.status_change ? g.u[j] : c.u0_next;  // (a kept lane's values are not written)
@@ -701,7 +727,7 @@ void BatchedSimulation::advance(const char* flags) {  // null: every run
       StepState& state = *parts.state;
       if (decisions[j].status_change) {  // CN-switch's θ-step, alone, from the untouched state
         store_lane(g, j, run);
-        run.switch_step(false);
+        run.switch_step(parts.has_load);
         load_lane(g, j, run);
         stale_[r] = 0;
       } else {

@@ -41,8 +41,9 @@ BatchTarget current_batch_target();
 /// levels), 2 EC, 3 CN-switch, 4 the Newmark-type classes (newmark, penalty, nitsche: contact_classes.hpp,
 /// NewmarkTypeStep), 5 Moreau–Jean and 6 DKE (OneSolveStep), 7 the explicit classes (Taylor–Flanagan and
 /// explicit: ExplicitStep, lumped and consistent masses in groups of their own). Runs of the same number of
-/// unknowns and family, on the fast kernel and without a load, share the lanes of a group whatever their
-/// scheme, mass, Δt or data; runs of different families never do. Every scheme of the registry has a
+/// unknowns and family, on the fast kernel, share the lanes of a group whatever their scheme, mass, Δt or
+/// data, and, for families 0–3, their steady load or none (a load that changes with t, or one on a class of
+/// families 4–7, is stepped alone); runs of different families never do. Every scheme of the registry has a
 /// family (a doctest checks it). The sweep layer batches runs by it (repro/sweep.hpp).
 /// It is the scheme's registry entry's batch_family (lib/time/scheme_registry.hpp).
 int batch_family(Scheme scheme);

@@ -66,8 +66,9 @@ inline RowV<D> LoadRow(D d, const double* row, std::size_t lanes) {
   return {at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7), at(8), at(9)};
 }
 
-// The sweep down of FastStep::fused_step (no load), on W lanes.
-template <class D>
+// The sweep down of FastStep::fused_step, on W lanes; with `loaded`, each row's right-hand side b_i plus
+// the lane's steady load term (Kernel::load: g_now F_i + g_next F_i, formed once, batched_step.cpp).
+template <bool loaded, class D>
 void SweepDownT(D d, const Kernel& k) {
   using V = hn::Vec<D>;
   const std::size_t W = k.lanes;
@@ -75,13 +76,19 @@ void SweepDownT(D d, const Kernel& k) {
   const auto at = [&](const double* a, std::ptrdiff_t i) { return hn::Load(d, a + static_cast<std::size_t>(i) * W); };
   const double* u = k.u;
   const double* w = k.w;
+  const auto with_load = [&](V b, std::ptrdiff_t i) {
+    if constexpr (loaded) b = b + at(k.load, i);
+    return b;
+  };
   const auto rhs = [&](const RowV<D>& r, std::ptrdiff_t i, V u_up, V w_up) {
-    return r.c1l * at(u, i - 1) + r.c1d * at(u, i) + r.c1u * u_up + r.c2l * at(w, i - 1) + r.c2d * at(w, i) +
-           r.c2u * w_up;
+    return with_load(
+        r.c1l * at(u, i - 1) + r.c1d * at(u, i) + r.c1u * u_up + r.c2l * at(w, i - 1) + r.c2d * at(w, i) + r.c2u * w_up,
+        i);
   };
   const auto rhs_interior = [&](const RowV<D>& r, std::ptrdiff_t i) {
-    return r.c1l * (at(u, i - 1) + at(u, i + 1)) + r.c1d * at(u, i) + r.c2l * (at(w, i - 1) + at(w, i + 1)) +
-           r.c2d * at(w, i);
+    return with_load(r.c1l * (at(u, i - 1) + at(u, i + 1)) + r.c1d * at(u, i) + r.c2l * (at(w, i - 1) + at(w, i + 1)) +
+                         r.c2d * at(w, i),
+                     i);
   };
   V b_up = hn::Zero(d), y_up = hn::Zero(d), y_up2 = hn::Zero(d);
   const auto eliminate_by = [&](std::ptrdiff_t i, V b, V elimination, V elimination_pair) {
@@ -638,9 +645,16 @@ void NewmarkDown2(const NewmarkKernel& k) { NewmarkDownT(Two(), k); }
 void NewmarkUp(const NewmarkKernel& k) { NewmarkStepD(Full(), k); }
 void NewmarkUp4(const NewmarkKernel& k) { NewmarkStepD(Four(), k); }
 void NewmarkUp2(const NewmarkKernel& k) { NewmarkStepD(Two(), k); }
-void SweepDown(const Kernel& k) { SweepDownT(Full(), k); }
-void SweepDown4(const Kernel& k) { SweepDownT(Four(), k); }
-void SweepDown2(const Kernel& k) { SweepDownT(Two(), k); }
+template <class D>
+void SweepDownD(D d, const Kernel& k) {
+  if (k.load)
+    SweepDownT<true>(d, k);
+  else
+    SweepDownT<false>(d, k);
+}
+void SweepDown(const Kernel& k) { SweepDownD(Full(), k); }
+void SweepDown4(const Kernel& k) { SweepDownD(Four(), k); }
+void SweepDown2(const Kernel& k) { SweepDownD(Two(), k); }
 void SweepUp(const Kernel& k) { SweepUpD(Full(), k); }
 void SweepUp4(const Kernel& k) { SweepUpD(Four(), k); }
 void SweepUp2(const Kernel& k) { SweepUpD(Two(), k); }

@@ -20,7 +20,8 @@ struct Kernel {
   const double *head_rows = nullptr, *interior = nullptr, *last = nullptr;  // 10 coefficients × lanes per row
   const double *rate = nullptr, *memory = nullptr, *ps_q_weight = nullptr;  // per lane; 1 − 4β for PS
   const double *u0_next = nullptr, *recurrence_d0 = nullptr, *keep = nullptr;
-  double* energy = nullptr;  // per lane, written by the sweep up
+  double* energy = nullptr;      // per lane, written by the sweep up
+  const double* load = nullptr;  // the steady loads' terms of the right-hand side, per node and lane (or null)
 };
 
 // The same for the Newmark-type steps (contact_classes.cpp, NewmarkTypeStep): the interleaved state (U, Y =

@@ -285,6 +285,84 @@ TEST_CASE("a partial step keeps the runs that stay, and runs at their own rates 
 }
 
 /// @file lanes_alone.cpp
+/// ## Steady loads in the lanes
+///
+/// A run whose load does not change with t (Problem::steady_load: the bouncing benchmark's gravity) takes a
+/// lane of its own family: its load term g_now F_i + g_next F_i is formed once per lane (batched_step.cpp)
+/// and added to each row's right-hand side in the sweep down, where the fused step adds the same sum at
+/// every step; its contact decision reads F₀ as the fused step does. A lane without a load adds −0, which
+/// leaves every value, its sign of zero included, as it was. Prediction: the identity again, lane by lane,
+/// past the first impact, for every scheme of the fused step (cn, be, ps with both contact rows, ec,
+/// cn-switch) and every target, with loaded and unloaded runs in the same groups; and every run but the
+/// one left over in the lanes (a load that changes with t is still stepped alone). Dropping the load term
+/// from the sweep down, or F₀ from the decision, fails (tried).
+TEST_CASE("runs with a steady load share the lanes with runs without one, each lane bitwise its run alone") {
+  const UniformMesh mesh(1.0, 24);
+  const Index steps = 150;  // past the first impact at every Δt below
+  const std::vector<BatchedCase> fused = {
+      {Scheme::crank_nicolson, ContactRow::algebraic},    {Scheme::backward_euler, ContactRow::algebraic},
+      {Scheme::paoli_schatzman, ContactRow::algebraic},   {Scheme::paoli_schatzman, ContactRow::literal},
+      {Scheme::energy_conserving, ContactRow::algebraic}, {Scheme::switching, ContactRow::algebraic}};
+  int status_changes = 0;
+  for (const BatchTarget& target : batch_targets()) {
+    use_batch_target(target.bit);
+    CAPTURE(target.name);
+    for (const BatchedCase& c : fused) {
+      CAPTURE(to_string(c.scheme));
+      CAPTURE(to_string(c.row));
+      std::vector<BarSimulation> batch, alone;
+      const std::size_t count = 2 * target.lanes + 1;
+      for (std::size_t k = 0; k < count; ++k) {
+        SchemeParameters p;
+        p.scheme = c.scheme;
+        p.contact_row = c.row;
+        Problem problem = benchmark_problem();
+        if (k % 2 == 0) {  // f(x) = −(1 + x): towards the obstacle, its F₀ ≠ 0
+          problem.load = [](double x, double) { return -(1.0 + x); };
+          problem.steady_load = true;
+        }
+        const double dt = (0.5 + 0.1 * static_cast<double>(k % 7)) * mesh.h();
+        batch.emplace_back(problem, mesh, mod1(), p, dt);
+        alone.emplace_back(problem, mesh, mod1(), p, dt);
+      }
+      BatchedSimulation batched(std::move(batch));
+      CHECK(batched.batched_runs() == count - 1);  // loaded or not, every run but the one left over
+      bool identical = true;
+      std::vector<bool> active(count, false);
+      for (Index n = 1; n <= steps && identical; ++n) {
+        batched.step();
+        for (std::size_t k = 0; k < count; ++k) {
+          alone[k].step();
+          const Sample a = batched.run(k).sample(), b = alone[k].sample();
+          const bool same = a.level == b.level && same_bits(*a.displacement, *b.displacement) &&
+                            same_bits(*a.velocity, *b.velocity) && same_bits(a.multiplier, b.multiplier) &&
+                            same_bits(a.energy, b.energy) && same_bits(a.multiplier_time, b.multiplier_time);
+          if (!same) {
+            CAPTURE(k);
+            CAPTURE(n);
+            CHECK(same);
+            identical = false;
+          }
+          const bool now = b.multiplier < 0;
+          status_changes += c.scheme == Scheme::switching && now != active[k];
+          active[k] = now;
+        }
+      }
+      CHECK(identical);
+    }
+  }
+  use_batch_target(0);
+  CHECK(status_changes > 0);  // CN-switch's θ-step, alone, with its load, was taken
+  // A load that changes with t is formed at every step: such a run is stepped alone.
+  std::vector<BarSimulation> two;
+  Problem varying = benchmark_problem();
+  varying.load = [](double x, double t) { return -(1.0 + x) * (1.0 + t); };
+  two.emplace_back(varying, mesh, mod1(), SchemeParameters{}, 0.5 * mesh.h());
+  two.emplace_back(varying, mesh, mod1(), SchemeParameters{}, 0.5 * mesh.h());
+  CHECK(BatchedSimulation(std::move(two)).batched_runs() == 0);
+}
+
+/// @file lanes_alone.cpp
 /// ## One family, one group
 ///
 /// Crank–Nicolson and backward Euler differ only in the values of their step's matrices and rates, which

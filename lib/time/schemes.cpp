@@ -541,6 +541,7 @@ BarSimulation::StepParts BarSimulation::step_parts() {
           class_step_,
           explicit_step_,
           has_load,
+          steady_load_,
           three_level_,
           algebraic_row_,
           starting};

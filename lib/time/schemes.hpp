@@ -74,6 +74,7 @@ class BarSimulation {
     ContactClassStep* class_step;       ///< a contact class's step (null for the other schemes)
     const ExplicitStep* explicit_step;  ///< an explicit class's step (null for the other schemes)
     bool has_load;                      ///< whether the problem has a load
+    bool steady_load;                   ///< whether that load is steady: Fⁿ = F⁰ at every level (Problem)
     bool three_level;                   ///< Paoli–Schatzman's three levels (W' = Uⁿ − Uⁿ⁻¹)
     bool algebraic_row;                 ///< whether row 0 is algebraic (a massless contact node)
     bool starting;                      ///< whether Paoli–Schatzman's Crank–Nicolson first step is pending
