@@ -162,10 +162,60 @@ void require_batched_memory(std::string_view option, const std::vector<Configura
   cli::require_mesh_memory(option, largest, batched_bytes_per_lane_element, copies);
 }
 
+namespace {
+
+// The cost of one batch step of a group of `runs` runs stepped together in lockstep, per node, in units of
+// the scalar step, on a target of `width` lanes. The batched step gives 2 runs 2 lanes, 3 or 4 runs 4, more
+// the full width (batched_step.cpp), and a lane costs about the same at 2 and 4 lanes as a scalar step per
+// 2 and 4 runs: on the 2-core Zen 4 (bench_step's batched table, N = 1024, chosen after that run) 2 lanes
+// 1.67 ns per node and run, 4 lanes 0.83, 8 lanes 0.70, the scalar step 3.25 — so a group of up to 4 runs
+// costs one scalar step, and one of 8 costs 1.7.
+double lockstep_cost(std::size_t runs, std::size_t width) {
+  const std::size_t lanes = runs <= 1 ? 1 : runs == 2 ? 2 : runs <= 4 ? 4 : width;
+  return lanes <= 4 ? 1.0 : 1.7 * static_cast<double>(lanes) / 8.0;
+}
+
+// A key's runs, costliest first (steps[0] ≥ steps[1] ≥ …), cut into consecutive batches of at most `width`:
+// in lockstep a batch steps as long as its longest run, its first, so its cost is lockstep_cost × steps of
+// its first run. The cut of least total cost, by dynamic programming from the last run (best[i]: the runs
+// i … end; among equal costs the longer batch, so that runs of the same length stay together).
+std::vector<std::size_t> lockstep_batches(const std::vector<double>& steps, std::size_t width) {
+  const std::size_t m = steps.size();
+  std::vector<double> best(m + 1, 0.0);
+  std::vector<std::size_t> size(m + 1, 0);
+  for (std::size_t i = m; i-- > 0;) {
+    best[i] = HUGE_VAL;
+    for (std::size_t k = std::min(width, m - i); k >= 1; --k) {
+      const double c = lockstep_cost(k, width) * steps[i] + best[i + k];
+      if (c < best[i]) best[i] = c, size[i] = k;
+    }
+  }
+  std::vector<std::size_t> sizes;
+  for (std::size_t i = 0; i < m; i += size[i]) sizes.push_back(size[i]);
+  return sizes;
+}
+
+}  // namespace
+
+TEST_CASE("a key's runs are cut into the lockstep batches of least cost") {
+  // Eight runs of one length: one batch of 8 (1.7 steps) rather than two of 4 (2).
+  CHECK(lockstep_batches(std::vector<double>(8, 100.0), 8) == std::vector<std::size_t>{8});
+  // Runs of three lengths (fig_stress's finest mesh): 4 + 2 (192 + 12 = 204) rather than one batch of 6,
+  // which steps the short ones as long as the long ones (1.7 · 192 = 326), or 3 + 3 (192 + 37).
+  CHECK(lockstep_batches({192, 192, 153, 37, 12, 12}, 8) == std::vector<std::size_t>{4, 2});
+  // A run alone costs what a group of 4 costs: it is never split off a group of up to 4.
+  CHECK(lockstep_batches({100, 10, 10, 10}, 8) == std::vector<std::size_t>{4});
+  // 4 lanes at most (AVX2): batches of 4.
+  CHECK(lockstep_batches(std::vector<double>(9, 5.0), 4) == std::vector<std::size_t>{4, 4, 1});
+  CHECK(lockstep_batches({}, 8).empty());
+}
+
 // The batches. Runs of the same N and scheme family have the same sequence of operations node by node
 // (the batched step groups them further by layout, and steps the others alone); within a key
-// the costliest runs (the most steps) go first, so that the runs of a batch have nearly the same number
-// of steps. A batch steps its runs together (with own_rates, each at its own rate when their Δt are whole
+// the costliest runs (the most steps) go first, and they are cut into batches of at most the vector width
+// of least lockstep cost (lockstep_batches), so that the runs of a batch have nearly the same number of
+// steps; with `most` (the caller's batches: runs that share their instants at their own rates) into batches
+// of `most`. A batch steps its runs together (with own_rates, each at its own rate when their Δt are whole
 // multiples of the smallest, BatchedSimulation::step(advance), and a lane whose run has ended, or whose
 // observer wants no more, is kept as it is; otherwise such a lane is stepped on, no longer observed, except
 // a contact class's run, which is kept: its step checks finiteness and could throw past the run's horizon).
@@ -190,10 +240,22 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
   std::vector<double> batch_cost;
   for (auto& [key, members] : groups) {
     std::stable_sort(members.begin(), members.end(), [&](std::size_t a, std::size_t b) { return costs[a] > costs[b]; });
-    for (std::size_t first = 0; first < members.size(); first += width) {
+    // One key's runs have one N: their costs (N × steps) are their steps, to a common factor.
+    std::vector<std::size_t> sizes;
+    if (most == 0 && width > 1) {
+      std::vector<double> steps;
+      for (std::size_t k : members) steps.push_back(costs[k]);
+      sizes = lockstep_batches(steps, width);
+    } else {
+      for (std::size_t first = 0; first < members.size(); first += width)
+        sizes.push_back(std::min(width, members.size() - first));
+    }
+    std::size_t first = 0;
+    for (const std::size_t size : sizes) {
       batches.emplace_back(members.begin() + static_cast<std::ptrdiff_t>(first),
-                           members.begin() + static_cast<std::ptrdiff_t>(std::min(first + width, members.size())));
+                           members.begin() + static_cast<std::ptrdiff_t>(first + size));
       batch_cost.push_back(costs[batches.back().front()]);
+      first += size;
     }
   }
   // The whole runs after the batches: task b ≥ batches.size() is whole run wholes[b − batches.size()].
