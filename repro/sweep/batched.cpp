@@ -167,9 +167,10 @@ namespace {
 // The cost of one batch step of a group of `runs` runs stepped together in lockstep, per node, in units of
 // the scalar step, on a target of `width` lanes. The batched step gives 2 runs 2 lanes, 3 or 4 runs 4, more
 // the full width (batched_step.cpp), and a lane costs about the same at 2 and 4 lanes as a scalar step per
-// 2 and 4 runs: on the 2-core Zen 4 (bench_step's batched table, N = 1024, chosen after that run) 2 lanes
-// 1.67 ns per node and run, 4 lanes 0.83, 8 lanes 0.70, the scalar step 3.25 — so a group of up to 4 runs
-// costs one scalar step, and one of 8 costs 1.7.
+// 2 and 4 runs: on the 2-core Zen 4 (bench_step's batched table, N = 1024, its columns SSE4x2, AVX2x4 and
+// AVX3x8 for 2, 4 and 8 lanes; chosen after that run) 1.67 ns per node and run, 0.83 and 0.70, the scalar
+// step 3.25 — so a group of up to 4 runs costs one scalar step, and one of 8 costs 1.7. The cut changes no
+// bit of a run (each lane is its run alone), only the time.
 double lockstep_cost(std::size_t runs, std::size_t width) {
   const std::size_t lanes = runs <= 1 ? 1 : runs == 2 ? 2 : runs <= 4 ? 4 : width;
   return lanes <= 4 ? 1.0 : 1.7 * static_cast<double>(lanes) / 8.0;
