@@ -241,7 +241,8 @@ void step_in_batches(const std::vector<BatchKey>& keys, const std::vector<double
   std::vector<double> batch_cost;
   for (auto& [key, members] : groups) {
     std::stable_sort(members.begin(), members.end(), [&](std::size_t a, std::size_t b) { return costs[a] > costs[b]; });
-    // One key's runs have one N: their costs (N × steps) are their steps, to a common factor.
+    // The runs of one key have one N (the default keys, N and family; the callers' keys too): their costs,
+    // N × steps, are their steps to a common factor.
     std::vector<std::size_t> sizes;
     if (most == 0 && width > 1) {
       std::vector<double> steps;
