@@ -48,16 +48,17 @@ BatchTarget current_batch_target();
 /// It is the scheme's registry entry's batch_family (lib/time/scheme_registry.hpp).
 int batch_family(Scheme scheme);
 
-/// A batch of runs (BarSimulation's at level 0, moved in) advanced one step at a time. Runs whose
-/// steps can share vector registers (the fast kernel, no load, and the same number of unknowns, scheme
-/// family — two-level, Paoli–Schatzman, EC, CN-switch, Newmark-type, Moreau–Jean, DKE, explicit (the classes:
-/// at least 4 unknowns; the explicit ones on a uniform homogeneous mesh) — and fast-step
-/// layout, FastStep's explicit head rows) are grouped by lanes of the current target: groups of the target's full width, and the remainder
-/// of a family in one group of the narrowest width that holds it (2, 4 or the full width: padding lanes
-/// cost as much as runs); every other run (the reference kernel, a load, a remainder of one) is stepped
-/// alone. Paoli–Schatzman's Crank–Nicolson first step and CN-switch's θ-step
-/// at a status change are each lane's own scalar step. Every run ends in the same state, bit for bit,
-/// as if stepped alone by BarSimulation::step (the doctests of lanes_alone.cpp).
+/// A batch of runs (BarSimulation's at level 0, moved in) advanced one step at a time. Runs whose steps can
+/// share vector registers (the fast kernel, without a load or with a steady one (families 0–3), and the same
+/// number of unknowns, scheme family — two-level, Paoli–Schatzman, EC, CN-switch, Newmark-type, Moreau–Jean,
+/// DKE, explicit (the classes: at least 4 unknowns, no load; the explicit ones on a uniform homogeneous
+/// mesh) — and fast-step layout, FastStep's explicit head rows) are grouped by lanes of the current target:
+/// groups of the target's full width, and the remainder of a family in one group of the narrowest width
+/// that holds it (2, 4 or the full width: padding lanes cost as much as runs); every other run (the
+/// reference kernel, a load that changes with t, a remainder of one) is stepped alone. Paoli–Schatzman's
+/// Crank–Nicolson first step and CN-switch's θ-step at a status change are each lane's own scalar step.
+/// Every run ends in the same state, bit for bit, as if stepped alone by BarSimulation::step (the doctests
+/// of lanes_alone.cpp).
 class BatchedSimulation {
  public:
   /// Takes the runs (each at level 0), groups them by lanes of the current target and copies the
