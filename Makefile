@@ -70,12 +70,10 @@ BASELINE := $(DATA)/baseline_regions.dat $(DATA)/baseline_regions.tex
 # values (named, so that make does not take them for intermediate files and delete them), the short
 # benchmark, the article with its supplement and the API documentation. Each has its section below; the
 # rule `all` is at the end of this file, where every name it lists is defined.
-# The claims and the short benchmark come first: make starts its recipes in this order, and these two
-# begin together (the short benchmark's section below says why).
-ALL_RESULTS = $(CLAIMS_OUTPUTS) $(BENCH_SHORT)/bench_short.tex $(DATA)/benchmark.dat $(DATA)/benchmark.txt \
-              $(FIGURE_DATA) $(FIGURE_TEX) $(BASELINE) $(FIGURE_PDFS) $(CLASSES) $(CLASSES_PDFS) \
-              $(DATA)/cn_large_step.tex $(PEER_TEX) $(DATA)/report_meta.tex $(DATA)/build_times.tex \
-              $(DOC)/html/index.html $(REPORT) $(SUPPLEMENT)
+ALL_RESULTS = $(DATA)/benchmark.dat $(DATA)/benchmark.txt $(CLAIMS_OUTPUTS) $(FIGURE_DATA) $(FIGURE_TEX) \
+              $(BASELINE) $(FIGURE_PDFS) $(CLASSES) $(CLASSES_PDFS) $(DATA)/cn_large_step.tex $(PEER_TEX) \
+              $(DATA)/report_meta.tex $(DATA)/build_times.tex $(DOC)/html/index.html $(BENCH_SHORT)/bench_short.tex \
+              $(REPORT) $(SUPPLEMENT)
 
 .PHONY: all build clean deps help test test-unit bench install readme field-asymptotics
 
@@ -174,14 +172,11 @@ $(BENCH):
 # $(BENCH_SHORT)/bench_short.tex. Timings are not deterministic: like $(BENCH), this directory is
 # outside the results that CI compares byte for byte (.ci/run). A full `make bench` takes precedence in
 # the report when its table exists.
-# It times on the thread's CPU clock and takes the minimum of its repetitions: whatever else the machine
-# runs, the least disturbed batch is the closest to the cost itself. It starts with the claims, the longest
-# study, which holds one core (the first two of ALL_RESULTS), and every other study waits for a free job
-# slot: on the 2-core machine its timings beside check_claims were those of the benchmark run alone (two
-# runs of each, every N of its table within the spread of the runs alone; checked after a run), and the
-# 4.5 s it holds a core are no longer added to the wall time of `make all` after every study. A figure that
-# cannot be trusted is written n/a with its reason (bench_step), and the report says on what machine and
-# load the timings were taken.
+# It runs alone, after every other result of `make all` but the report, which includes it (order only:
+# they do not remake it; the end of this file), and it times on the thread's CPU clock and takes the
+# minimum of its repetitions: whatever else the machine runs, the least disturbed batch is the closest to
+# the cost itself. A figure that cannot be trusted is written n/a with its reason (bench_step), and the
+# report says on what machine and load the timings were taken.
 BENCH_SHORT_OPTIONS := --min-log2 8 --max-log2 14 --repetitions 5 --batch-ms 5 --clock cpu --statistic min
 $(BENCH_SHORT)/bench_short.tex: $(BUILD)/bin/bench_step | $(BENCH_SHORT)
 	$< $(BENCH_SHORT_OPTIONS) --tex $@ > $(BENCH_SHORT)/bench_short.txt
@@ -388,8 +383,10 @@ $(DATA) $(FIGURES) $(DOC):
 	mkdir -p $@
 $(DATA) $(FIGURES) $(DOC) $(BENCH) $(BENCH_SHORT): | deps
 
-# `make all`.
+# `make all`, and the short benchmark after every other result of it but the article and its supplement
+# (order only).
 all: build $(ALL_RESULTS)
+$(BENCH_SHORT)/bench_short.tex: | $(filter-out $(BENCH_SHORT)/bench_short.tex $(REPORT) $(SUPPLEMENT),$(ALL_RESULTS))
 
 # Remove every build directory and every generated result.
 clean:
