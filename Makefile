@@ -324,14 +324,15 @@ $(DATA)/cn_large_step.tex: $(BUILD)/bin/cn_large_step | $(DATA)
 # The first round is one pdflatex run of each in draft mode (no PDF): the numbers of the labels are
 # those of the first run, as neither document refers to a page of the other. The second is latexmk,
 # which reruns a document only while a file it read changed (its own .aux, its table of contents): the
-# supplement takes three runs in all instead of four when the first round was latexmk too. Then, for each
-# PDF: a reference left undefined or a label defined twice fails the rule; so does a < or > in text
-# mode, which the text font prints as ¡ or ¿, and a bitmap (Type 3) font: both documents are vector
-# throughout (so that they print and zoom alike). The article has at most 20 pages.
+# supplement takes three runs in all instead of four when the first round was latexmk too. Each document,
+# as soon as its second round is done (the article's while the supplement is still typeset), is checked
+# (tools/check_pdf.sh): a reference left undefined or a label defined twice fails the rule; so does a < or
+# > in text mode, which the text font prints as ¡ or ¿, and a bitmap (Type 3) font: both documents are
+# vector throughout (so that they print and zoom alike). The article has at most 20 pages.
 TEX_ENV := TEXINPUTS=paper:$(DATA):$(FIGURES):$(OUT)/bench:$(BENCH_SHORT):doc/results:$(OUT)/latex: $(REPRODUCIBLE)
 LATEXMK := $(TEX_ENV) latexmk -pdf -silent -interaction=nonstopmode -halt-on-error -outdir=$(OUT)/latex
 PDFLATEX_DRAFT := $(TEX_ENV) pdflatex -draftmode -interaction=nonstopmode -halt-on-error -output-directory=$(OUT)/latex
-$(REPORT) $(SUPPLEMENT) &: $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/cn_large_step.tex \
+$(REPORT) $(SUPPLEMENT) &: $(REPORT_SOURCES) tools/check_pdf.sh $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAIMS_TEX) $(DATA)/cn_large_step.tex \
            $(BASELINE) $(FIELD_ASYMPTOTICS) \
            $(DATA)/report_meta.tex $(DATA)/build_times.tex $(BENCH_SHORT)/bench_short.tex $(PEER_TEX) \
            $(wildcard $(OUT)/bench/bench_step.tex $(OUT)/bench/bench_step.pdf) | $(DATA)
@@ -347,20 +348,12 @@ $(REPORT) $(SUPPLEMENT) &: $(REPORT_SOURCES) $(FIGURE_PDFS) $(FIGURE_TEX) $(CLAI
 	    $(PDFLATEX_DRAFT) paper/supplement.tex > /dev/null & supplement=$$!; \
 	    $(PDFLATEX_DRAFT) paper/report.tex > /dev/null & report=$$!; \
 	  else \
-	    $(LATEXMK) paper/supplement.tex & supplement=$$!; \
-	    $(LATEXMK) paper/report.tex & report=$$!; \
+	    { $(LATEXMK) paper/supplement.tex && tools/check_pdf.sh $(OUT)/latex supplement; } & supplement=$$!; \
+	    { $(LATEXMK) paper/report.tex && tools/check_pdf.sh $(OUT)/latex report; } & report=$$!; \
 	  fi; \
 	  wait $$supplement || { failed=1; grep -A4 '^!' $(OUT)/latex/supplement.log || true; }; \
 	  wait $$report || { failed=1; grep -A4 '^!' $(OUT)/latex/report.log || true; }; \
 	  ((failed == 0)); \
-	done
-	@for doc in report supplement; do \
-	  ! grep -E "Reference .* undefined|There were undefined references|multiply defined" $(OUT)/latex/$$doc.log \
-	    || { echo "$$doc: a reference undefined or a label defined twice (above; $(OUT)/latex/$$doc.log)"; exit 1; }; \
-	  ! pdffonts $(OUT)/latex/$$doc.pdf | grep -q 'Type 3' \
-	    || { echo "$$doc: a bitmap (Type 3) font in the PDF (pdffonts $(OUT)/latex/$$doc.pdf)"; exit 1; }; \
-	  ! pdftotext -enc UTF-8 $(OUT)/latex/$$doc.pdf - | grep -nF -e '¡' -e '¿' \
-	    || { echo "$$doc: a < or > typeset in text mode prints as ¡ or ¿ (above; write $$<$$ or $$>$$)"; exit 1; }; \
 	done
 	@pages=$$(pdfinfo $(OUT)/latex/report.pdf | awk '/^Pages:/ { print $$2 }'); ((pages <= 20)) \
 	  || { echo "report: the article has $$pages pages, at most 20 (move the evidence to the supplement)"; exit 1; }
