@@ -74,11 +74,13 @@ struct BatchedSimulation::Group {
   std::vector<std::size_t> runs;  // the run of each lane (W of them); padding lanes repeat lane 0's, ignored
   std::size_t used = 0;           // lanes 0 … used−1 are runs of their own
   batched::Width width = batched::Width::full;  // the kernel of W lanes: the full width, or capped at 4 or 2
-  std::size_t n = 0, head = 0;
+  // head: the explicit head rows of the lane with the most, head_min of the lane with the fewest, heads each
+  // lane's (as doubles, for the kernels' masks: batched::Kernel).
+  std::size_t n = 0, head = 0, head_min = 0;
   std::size_t flat_begin = 0, flat_end = 0;  // the plateau of the factors (find_plateau)
   bool three_level = false, switching = false;
   hwy::AlignedFreeUniquePtr<double[]> u, y, w, x, elimination, elimination_pair, inverse_pivot, upward, upward_pair,
-      head_rows, interior, last, rate, memory, ps_q_weight, u0_next, recurrence_d0, keep, energy;
+      head_rows, heads, interior, last, rate, memory, ps_q_weight, u0_next, recurrence_d0, keep, energy;
   // The steady loads' terms of the right-hand side, L_i = g_now F_i + g_next F_i per lane (null when no
   // lane has a load; −0 in a lane without one, fill below).
   hwy::AlignedFreeUniquePtr<double[]> load;
@@ -229,9 +231,13 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
       alone_.push_back(k);
       continue;
     }
-    // batch_family's numbers (its doctest checks that they agree)
+    // batch_family's numbers (its doctest checks that they agree). Runs whose explicit head rows differ in
+    // number share a group (each lane's rows are its own: the kernels take, in the rows where the heads
+    // differ, each lane's explicit or Toeplitz row), as long as every head leaves interior rows below it;
+    // a head that reaches the last row keeps a key of its own.
     const int family = fast->three_level() ? 1 : fast->energy_conserving() ? 2 : fast->switching() ? 3 : 0;
-    families[Key{n, family, fast->head().size()}].push_back(k);
+    const std::size_t head = fast->head().size();
+    families[Key{n, family, head + 1 < n ? 0 : head}].push_back(k);
   }
   // Each family: groups of the full width (of 4 lanes where the full width's state fills more than half
   // the level-2 cache: group_stride), then the remainder q < W in one group of the narrowest width
@@ -279,7 +285,11 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
       }
       const FastStep& f0 = *runs_[g->runs[0]].step_parts().fast;
       g->n = std::get<0>(key);
-      g->head = std::get<2>(key);
+      g->head = 0, g->head_min = g->n;
+      for (std::size_t j = 0; j < width; ++j) {
+        const std::size_t h = runs_[g->runs[j]].step_parts().fast->head().size();
+        g->head = std::max(g->head, h), g->head_min = std::min(g->head_min, h);
+      }
       g->three_level = f0.three_level();
       g->switching = f0.switching();
       const std::size_t nw = g->n * width;
@@ -287,6 +297,7 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
                       &g->upward_pair})
         *a = lane_array(nw);
       g->head_rows = lane_array(g->head * 10 * width);
+      g->heads = lane_array(width);
       g->interior = lane_array(10 * width);
       g->last = lane_array(10 * width);
       for (auto* a : {&g->rate, &g->memory, &g->ps_q_weight, &g->u0_next, &g->recurrence_d0, &g->keep, &g->energy})
@@ -304,11 +315,14 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
           g->upward[i * width + j] = s.upward()[e];
           g->upward_pair[i * width + j] = s.upward_pair()[e];
         }
+        // The lane's head rows; below its own head (a longer head in another lane) its interior row, which
+        // the kernels do not take there (finite numbers all the same).
+        const auto ci = coefficients(f.interior()), cl = coefficients(f.last());
+        g->heads[j] = static_cast<double>(f.head().size());
         for (std::size_t h = 0; h < g->head; ++h) {
-          const auto c = coefficients(f.head()[h]);
+          const auto c = h < f.head().size() ? coefficients(f.head()[h]) : ci;
           for (std::size_t m = 0; m < 10; ++m) g->head_rows[(h * 10 + m) * width + j] = c[m];
         }
-        const auto ci = coefficients(f.interior()), cl = coefficients(f.last());
         for (std::size_t m = 0; m < 10; ++m) {
           g->interior[m * width + j] = ci[m];
           g->last[m * width + j] = cl[m];
@@ -685,7 +699,8 @@ void BatchedSimulation::advance(const char* flags) {  // null: every run
       continue;
     }
     batched::Kernel k;
-    k.n = g.n, k.lanes = W, k.head = g.head, k.flat_begin = g.flat_begin, k.flat_end = g.flat_end;
+    k.n = g.n, k.lanes = W, k.head = g.head, k.head_min = g.head_min, k.heads = g.heads.get();
+    k.flat_begin = g.flat_begin, k.flat_end = g.flat_end;
     k.three_level = g.three_level, k.keeps = g.switching || !all;
     k.u = g.u.get(), k.y = g.y.get(), k.w = g.w.get(), k.x = g.x.get();
     k.elimination = g.elimination.get(), k.elimination_pair = g.elimination_pair.get();

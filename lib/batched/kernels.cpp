@@ -31,6 +31,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <type_traits>
 
 /// @cond MRM_INTERNAL (the Highway plumbing and the kernels: not part of the library's interface)
 #undef HWY_TARGET_INCLUDE
@@ -100,10 +101,10 @@ void SweepDownT(D d, const Kernel& k) {
     eliminate_by(i, b, at(k.elimination, i), at(k.elimination_pair, i));
   };
   eliminate(n - 1, rhs(LoadRow(d, k.last, W), n - 1, hn::Zero(d), hn::Zero(d)));
+  const RowV<D> r = LoadRow(d, k.interior, W);
   {
     // The interior rows, bottom up; on the plateau [a, b) the factors are the same numbers row after row
     // (Kernel::flat_begin), held in registers instead of loaded.
-    const RowV<D> r = LoadRow(d, k.interior, W);
     const std::ptrdiff_t a = static_cast<std::ptrdiff_t>(k.flat_begin), b = static_cast<std::ptrdiff_t>(k.flat_end);
     std::ptrdiff_t i = n - 2;
     for (; i >= std::max(b, head); --i) eliminate(i, rhs_interior(r, i));
@@ -113,8 +114,17 @@ void SweepDownT(D d, const Kernel& k) {
     }
     for (; i >= head; --i) eliminate(i, rhs_interior(r, i));
   }
-  for (std::ptrdiff_t i = std::min(head, n - 1) - 1; i >= 1; --i)
-    eliminate(i, rhs(LoadRow(d, k.head_rows + static_cast<std::size_t>(i) * 10 * W, W), i, at(u, i + 1), at(w, i + 1)));
+  const auto head_row = [&](std::ptrdiff_t i) {
+    return rhs(LoadRow(d, k.head_rows + static_cast<std::size_t>(i) * 10 * W, W), i, at(u, i + 1), at(w, i + 1));
+  };
+  // Rows head_min … head − 1: each lane's own row, explicit where the row is in its head, Toeplitz where it
+  // is in its interior (both formed, the lane's taken: its operations are those of its run alone).
+  const std::ptrdiff_t head_min = k.heads ? static_cast<std::ptrdiff_t>(k.head_min) : head;  // no heads: all alike
+  for (std::ptrdiff_t i = std::min(head, n - 1) - 1; i >= std::max<std::ptrdiff_t>(head_min, 1); --i) {
+    const auto in_head = hn::Lt(hn::Set(d, static_cast<double>(i)), hn::Load(d, k.heads));
+    eliminate(i, hn::IfThenElse(in_head, head_row(i), rhs_interior(r, i)));
+  }
+  for (std::ptrdiff_t i = std::min(std::min(head_min, head), n - 1) - 1; i >= 1; --i) eliminate(i, head_row(i));
 }
 
 // The sweep up of FastStep::fused_step, from the lanes' contact decisions; a lane with keep ≠ 0 is
@@ -137,8 +147,29 @@ void SweepUpT(D d, const Kernel& k) {
   V kinetic = zero, potential = zero, potential_q = zero;
   V un_prev = zero, d_prev = zero, d_prev2 = zero, z_prev = zero, v_prev = zero, p_prev = zero, q_prev = zero;
   V k_d = zero, k_q = zero, p_d = zero, p_q = zero, q_d = zero, q_q = zero;
-  const auto emit = [&](const RowV<D>& r, std::ptrdiff_t i, V dd, V un, auto toeplitz) {
-    constexpr bool sums = decltype(toeplitz)::value;
+  // A row's sums of the energy: a Toeplitz row's (toeplitz_sums, into k_d … q_q) or an explicit row's
+  // (explicit_sums, into kinetic, potential, potential_q), by `mode`: std::true_type, std::false_type, or
+  // a mask, true in the lanes where the row is explicit, where each lane takes its own (both are formed,
+  // into disjoint sums, and each lane keeps the sums of its kind of row only).
+  const auto sum_by = [&](auto mode, const auto& toeplitz_sums, const auto& explicit_sums) {
+    using Mode = decltype(mode);
+    if constexpr (std::is_same_v<Mode, std::true_type>) {
+      toeplitz_sums();
+    } else if constexpr (std::is_same_v<Mode, std::false_type>) {
+      explicit_sums();
+    } else {
+      const V k0 = kinetic, p0 = potential, q0 = potential_q, kd = k_d, kq = k_q, pd = p_d, pq = p_q, qd = q_d,
+              qq = q_q;
+      toeplitz_sums();
+      explicit_sums();
+      kinetic = hn::IfThenElse(mode, kinetic, k0), potential = hn::IfThenElse(mode, potential, p0);
+      potential_q = hn::IfThenElse(mode, potential_q, q0);
+      k_d = hn::IfThenElse(mode, kd, k_d), k_q = hn::IfThenElse(mode, kq, k_q);
+      p_d = hn::IfThenElse(mode, pd, p_d), p_q = hn::IfThenElse(mode, pq, p_q);
+      q_d = hn::IfThenElse(mode, qd, q_d), q_q = hn::IfThenElse(mode, qq, q_q);
+    }
+  };
+  const auto emit = [&](const RowV<D>& r, std::ptrdiff_t i, V dd, V un, auto mode) {
     const V uo = at(u, i);
     if constexpr (keeps) {
       put(hn::IfThenElse(keep, uo, un), y, i);
@@ -154,16 +185,19 @@ void SweepUpT(D d, const Kernel& k) {
         put(xx, x_out, i);
         put(dd, w_out, i);
       }
-      if constexpr (sums) {
-        const V dx = xx - v_prev, dp = p - p_prev, dq = q - q_prev;
-        k_d = k_d + dx * dx, k_q = k_q + xx * xx;
-        p_d = p_d + dp * dp, p_q = p_q + p * p;
-        q_d = q_d + dq * dq, q_q = q_q + q * q;
-      } else {
-        kinetic = kinetic + (r.md * xx * xx + r.ml2 * v_prev * xx);
-        potential = potential + (r.sd * p * p + r.sl2 * p_prev * p);
-        potential_q = potential_q + (r.sd * q * q + r.sl2 * q_prev * q);
-      }
+      sum_by(
+          mode,
+          [&] {
+            const V dx = xx - v_prev, dp = p - p_prev, dq = q - q_prev;
+            k_d = k_d + dx * dx, k_q = k_q + xx * xx;
+            p_d = p_d + dp * dp, p_q = p_q + p * p;
+            q_d = q_d + dq * dq, q_q = q_q + q * q;
+          },
+          [&] {
+            kinetic = kinetic + (r.md * xx * xx + r.ml2 * v_prev * xx);
+            potential = potential + (r.sd * p * p + r.sl2 * p_prev * p);
+            potential_q = potential_q + (r.sd * q * q + r.sl2 * q_prev * q);
+          });
       v_prev = xx, p_prev = p, q_prev = q;
     } else {
       const V wo = at(w_out, i);
@@ -173,14 +207,17 @@ void SweepUpT(D d, const Kernel& k) {
       } else {
         put(v, w_out, i);
       }
-      if constexpr (sums) {
-        const V dv = v - v_prev, du = un - un_prev;
-        k_d = k_d + dv * dv, k_q = k_q + v * v;
-        p_d = p_d + du * du, p_q = p_q + un * un;
-      } else {
-        kinetic = kinetic + (r.md * v * v + r.ml2 * v_prev * v);
-        potential = potential + (r.sd * un * un + r.sl2 * un_prev * un);
-      }
+      sum_by(
+          mode,
+          [&] {
+            const V dv = v - v_prev, du = un - un_prev;
+            k_d = k_d + dv * dv, k_q = k_q + v * v;
+            p_d = p_d + du * du, p_q = p_q + un * un;
+          },
+          [&] {
+            kinetic = kinetic + (r.md * v * v + r.ml2 * v_prev * v);
+            potential = potential + (r.sd * un * un + r.sl2 * un_prev * un);
+          });
       v_prev = v;
     }
     un_prev = un;
@@ -194,20 +231,47 @@ void SweepUpT(D d, const Kernel& k) {
     z_prev = z;
     return dd;
   };
-  const auto emit_up = [&](const RowV<D>& r, std::ptrdiff_t i, auto toeplitz) {
+  const auto emit_up = [&](const RowV<D>& r, std::ptrdiff_t i, auto mode) {
     const V dd = solve_up_by(i, at(k.inverse_pivot, i), at(k.upward, i), at(k.upward_pair, i));
-    emit(r, i, dd, at(u, i) + dd, toeplitz);
+    emit(r, i, dd, at(u, i) + dd, mode);
   };
   const V u0_next = hn::Load(d, k.u0_next), recurrence_d0 = hn::Load(d, k.recurrence_d0);
   emit(LoadRow(d, k.head_rows, W), 0, u0_next - at(u, 0), u0_next, explicit_row);
   z_prev = recurrence_d0;
-  for (std::ptrdiff_t i = 1; i < std::min(head, n - 1); ++i) {
-    emit_up(LoadRow(d, k.head_rows + static_cast<std::size_t>(i) * 10 * W, W), i, explicit_row);
+  const auto head_row = [&](std::ptrdiff_t i) {
+    return LoadRow(d, k.head_rows + static_cast<std::size_t>(i) * 10 * W, W);
+  };
+  // Rows 1 … head_min − 1 are explicit in every lane; rows head_min … head − 1 in the lanes whose head is
+  // longer (the others' interior starts there: the sums' first values ka, pa, qa are taken lane by lane,
+  // and row 1's d_{i−2} is set as each lane's run sets it).
+  const std::ptrdiff_t head_min = k.heads ? static_cast<std::ptrdiff_t>(k.head_min) : head;  // no heads: all alike
+  const std::ptrdiff_t all_explicit = std::min(head_min, n - 1);
+  for (std::ptrdiff_t i = 1; i < all_explicit; ++i) {
+    emit_up(head_row(i), i, explicit_row);
     if (i == 1) d_prev2 = recurrence_d0;
   }
+  const RowV<D> r = LoadRow(d, k.interior, W);
+  V ka = v_prev, pa = three_level ? p_prev : un_prev, qa = q_prev;
+  const auto interior_starts = [&](std::ptrdiff_t i) {  // the lanes whose first interior row is i
+    const auto starts = hn::Eq(hn::Set(d, static_cast<double>(i)), hn::Load(d, k.heads));
+    ka = hn::IfThenElse(starts, v_prev, ka);
+    pa = hn::IfThenElse(starts, three_level ? p_prev : un_prev, pa);
+    qa = hn::IfThenElse(starts, q_prev, qa);
+  };
+  for (std::ptrdiff_t i = std::max<std::ptrdiff_t>(all_explicit, 1); i < std::min(head, n - 1); ++i) {
+    interior_starts(i);
+    const auto in_head = hn::Lt(hn::Set(d, static_cast<double>(i)), hn::Load(d, k.heads));
+    const V dd = solve_up_by(i, at(k.inverse_pivot, i), at(k.upward, i), at(k.upward_pair, i));
+    const RowV<D> rh = head_row(i);
+    // A row's coefficients enter only its explicit sums (the Toeplitz sums take the interior's at the end).
+    emit(rh, i, dd, at(u, i) + dd, in_head);
+    if (i == 1) d_prev2 = hn::IfThenElse(in_head, recurrence_d0, d_prev2);
+  }
   if (head < n - 1) {
-    const RowV<D> r = LoadRow(d, k.interior, W);
-    const V ka = v_prev, pa = three_level ? p_prev : un_prev, qa = q_prev;
+    if (head_min < head)
+      interior_starts(head);
+    else
+      ka = v_prev, pa = three_level ? p_prev : un_prev, qa = q_prev;
     // The interior rows, top down, with the plateau [a, b) as in SweepDown. Two levels: its factors held
     // in registers. Three levels keep three more forms' sums live, and three copies of the emission
     // would not all be inlined (measured: twice the time): one loop, the plateau's factors read from

@@ -11,7 +11,10 @@ namespace mrm::batched {
 // The interleaved arrays of one group and what the two sweeps exchange with the per-lane contact
 // decision between them (plain pointers: the same struct for every target).
 struct Kernel {
-  std::size_t n = 0, lanes = 0, head = 0;
+  // head: the explicit head rows of the lane with the most; rows head_min … head − 1 are explicit in the lanes
+  // whose own head (heads, per lane, as doubles) is longer, Toeplitz rows of the interior in the others.
+  std::size_t n = 0, lanes = 0, head = 0, head_min = 0;
+  const double* heads = nullptr;
   std::size_t flat_begin = 0, flat_end = 0;  // rows [flat_begin, flat_end) of the interior: constant factors
   bool three_level = false, keeps = false;   // keeps: a lane may be left untouched (CN-switch, step(advance))
   double *u = nullptr, *y = nullptr, *w = nullptr, *x = nullptr;
