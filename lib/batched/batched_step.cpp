@@ -77,10 +77,13 @@ struct BatchedSimulation::Group {
   // head: the explicit head rows of the lane with the most, head_min of the lane with the fewest, heads each
   // lane's (as doubles, for the kernels' masks: batched::Kernel).
   std::size_t n = 0, head = 0, head_min = 0;
+  // Each lane's unknowns (n, or n − 1 for a fixed far end beside free ones: short_lanes, batched::Kernel).
+  std::vector<std::size_t> rows;
+  bool ragged = false;                       // some lane has n − 1 unknowns
   std::size_t flat_begin = 0, flat_end = 0;  // the plateau of the factors (find_plateau)
   bool three_level = false, switching = false;
   hwy::AlignedFreeUniquePtr<double[]> u, y, w, x, elimination, elimination_pair, inverse_pivot, upward, upward_pair,
-      head_rows, heads, interior, last, rate, memory, ps_q_weight, u0_next, recurrence_d0, keep, energy;
+      head_rows, heads, short_lanes, interior, last, rate, memory, ps_q_weight, u0_next, recurrence_d0, keep, energy;
   // The steady loads' terms of the right-hand side, L_i = g_now F_i + g_next F_i per lane (null when no
   // lane has a load; −0 in a lane without one, fill below).
   hwy::AlignedFreeUniquePtr<double[]> load;
@@ -169,7 +172,8 @@ std::array<double, 10> coefficients(const Row& r) {
 }  // namespace
 
 void BatchedSimulation::find_plateau(Group& g) {
-  const std::size_t W = g.runs.size(), end = g.n - 1;  // the interior rows: head … n − 2
+  // The rows every lane takes as interior rows: head … n − 2 (n − 3 when some lanes have n − 1 unknowns).
+  const std::size_t W = g.runs.size(), end = g.n - (g.ragged ? 2 : 1);
   const double* factors[] = {g.elimination.get(), g.elimination_pair.get(), g.inverse_pivot.get(), g.upward.get(),
                              g.upward_pair.get()};
   const auto same_rows = [&](std::size_t i, std::size_t m) {
@@ -235,9 +239,13 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
     // number share a group (each lane's rows are its own: the kernels take, in the rows where the heads
     // differ, each lane's explicit or Toeplitz row), as long as every head leaves interior rows below it;
     // a head that reaches the last row keeps a key of its own.
+    // Runs of one mesh whose far ends differ, fixed (N unknowns) or free (N + 1), share a group too: the
+    // kernels end each lane at its own last row. The key is then the number of elements (a run whose
+    // head reaches near its last row keeps a key of its own, its number of unknowns and its head).
     const int family = fast->three_level() ? 1 : fast->energy_conserving() ? 2 : fast->switching() ? 3 : 0;
-    const std::size_t head = fast->head().size();
-    families[Key{n, family, head + 1 < n ? 0 : head}].push_back(k);
+    const std::size_t head = fast->head().size(), elements = static_cast<std::size_t>(r.mesh().elements);
+    const bool shares = head + 4 < n && (n == elements || n == elements + 1);
+    families[shares ? Key{elements, family, 0} : Key{n, family, head}].push_back(k);
   }
   // Each family: groups of the full width (of 4 lanes where the full width's state fills more than half
   // the level-2 cache: group_stride), then the remainder q < W in one group of the narrowest width
@@ -284,11 +292,18 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
         continue;
       }
       const FastStep& f0 = *runs_[g->runs[0]].step_parts().fast;
-      g->n = std::get<0>(key);
+      g->n = 0;
+      for (std::size_t j = 0; j < width; ++j) {
+        g->rows.push_back(static_cast<std::size_t>(runs_[g->runs[j]].step_parts().state->u.size()));
+        g->n = std::max(g->n, g->rows.back());
+      }
       g->head = 0, g->head_min = g->n;
       for (std::size_t j = 0; j < width; ++j) {
         const std::size_t h = runs_[g->runs[j]].step_parts().fast->head().size();
         g->head = std::max(g->head, h), g->head_min = std::min(g->head_min, h);
+        if (g->rows[j] + 1 < g->n)
+          throw std::logic_error("BatchedSimulation: a group's runs differ by more than one unknown");
+        g->ragged = g->ragged || g->rows[j] < g->n;
       }
       g->three_level = f0.three_level();
       g->switching = f0.switching();
@@ -298,6 +313,7 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
         *a = lane_array(nw);
       g->head_rows = lane_array(g->head * 10 * width);
       g->heads = lane_array(width);
+      g->short_lanes = lane_array(width);
       g->interior = lane_array(10 * width);
       g->last = lane_array(10 * width);
       for (auto* a : {&g->rate, &g->memory, &g->ps_q_weight, &g->u0_next, &g->recurrence_d0, &g->keep, &g->energy})
@@ -307,14 +323,16 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
         const BarSimulation::StepParts parts = runs_[g->runs[j]].step_parts();
         const FastStep& f = *parts.fast;
         const ContactSolver& s = *parts.solver;
-        for (std::size_t i = 0; i < g->n; ++i) {
+        for (std::size_t i = 0; i < g->n; ++i) {  // past the lane's last row (n − 1 unknowns): zeros, not read
           const auto e = static_cast<Index>(i);
-          g->elimination[i * width + j] = s.elimination()[e];
-          g->elimination_pair[i * width + j] = s.elimination_pair()[e];
-          g->inverse_pivot[i * width + j] = s.inverse_pivot()[e];
-          g->upward[i * width + j] = s.upward()[e];
-          g->upward_pair[i * width + j] = s.upward_pair()[e];
+          const bool in = i < g->rows[j];
+          g->elimination[i * width + j] = in ? s.elimination()[e] : 0.0;
+          g->elimination_pair[i * width + j] = in ? s.elimination_pair()[e] : 0.0;
+          g->inverse_pivot[i * width + j] = in ? s.inverse_pivot()[e] : 0.0;
+          g->upward[i * width + j] = in ? s.upward()[e] : 0.0;
+          g->upward_pair[i * width + j] = in ? s.upward_pair()[e] : 0.0;
         }
+        g->short_lanes[j] = g->rows[j] < g->n ? 1.0 : 0.0;
         // The lane's head rows; below its own head (a longer head in another lane) its interior row, which
         // the kernels do not take there (finite numbers all the same).
         const auto ci = coefficients(f.interior()), cl = coefficients(f.last());
@@ -346,8 +364,9 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
           const double g_now = parts.fast->coefficients().load_now, g_next = parts.fast->coefficients().load_next;
           for (std::size_t i = 0; i < g->n; ++i) {
             const auto e = static_cast<Index>(i);
-            g->load[i * width + j] =
-                parts.has_load ? g_now * parts.state->f_now[e] + g_next * parts.state->f_next[e] : -0.0;
+            g->load[i * width + j] = parts.has_load && i < g->rows[j]
+                                         ? g_now * parts.state->f_now[e] + g_next * parts.state->f_next[e]
+                                         : -0.0;
           }
         }
       }
@@ -529,12 +548,14 @@ void BatchedSimulation::load_lane(Group& g, std::size_t j, BarSimulation& run) {
     }
     return;
   }
-  const bool has_x = static_cast<std::size_t>(state.x.size()) == g.n;
+  const std::size_t rows = g.rows[j];  // past them (n − 1 unknowns in a lane of n): zeros, not read
+  const bool has_x = static_cast<std::size_t>(state.x.size()) == rows;
   for (std::size_t i = 0; i < g.n; ++i) {
     const auto e = static_cast<Index>(i);
-    g.u[i * W + j] = state.u[e];
-    g.w[i * W + j] = state.w[e];
-    g.x[i * W + j] = has_x ? state.x[e] : 0.0;
+    const bool in = i < rows;
+    g.u[i * W + j] = in ? state.u[e] : 0.0;
+    g.w[i * W + j] = in ? state.w[e] : 0.0;
+    g.x[i * W + j] = in && has_x ? state.x[e] : 0.0;
   }
 }
 
@@ -559,8 +580,9 @@ void BatchedSimulation::store_lane(const Group& g, std::size_t j, BarSimulation&
     }
     return;
   }
-  const bool has_x = static_cast<std::size_t>(state.x.size()) == g.n;
-  for (std::size_t i = 0; i < g.n; ++i) {
+  const std::size_t rows = g.rows[j];
+  const bool has_x = static_cast<std::size_t>(state.x.size()) == rows;
+  for (std::size_t i = 0; i < rows; ++i) {
     const auto e = static_cast<Index>(i);
     state.u[e] = g.u[i * W + j];
     state.w[e] = g.w[i * W + j];
@@ -592,7 +614,7 @@ const BarSimulation& BatchedSimulation::run(std::size_t k) {
     StepState& state = *runs_[g.runs[j]].step_parts().state;
     u.push_back(state.u.data());
     w.push_back(state.w.data());
-    x.push_back(static_cast<std::size_t>(state.x.size()) == g.n ? state.x.data() : nullptr);
+    x.push_back(static_cast<std::size_t>(state.x.size()) == g.rows[j] ? state.x.data() : nullptr);
   }
   const std::size_t count = lanes.size();
   for (std::size_t i = 0; i < g.n; ++i) {
@@ -601,6 +623,7 @@ const BarSimulation& BatchedSimulation::run(std::size_t k) {
     const double* gx = &g.x[i * W];
     for (std::size_t m = 0; m < count; ++m) {
       const std::size_t j = lanes[m];
+      if (i >= g.rows[j]) continue;  // a lane of n − 1 unknowns
       u[m][i] = gu[j];
       w[m][i] = gw[j];
       if (x[m]) x[m][i] = gx[j];
@@ -700,6 +723,7 @@ void BatchedSimulation::advance(const char* flags) {  // null: every run
     }
     batched::Kernel k;
     k.n = g.n, k.lanes = W, k.head = g.head, k.head_min = g.head_min, k.heads = g.heads.get();
+    k.short_lanes = g.ragged ? g.short_lanes.get() : nullptr;
     k.flat_begin = g.flat_begin, k.flat_end = g.flat_end;
     k.three_level = g.three_level, k.keeps = g.switching || !all;
     k.u = g.u.get(), k.y = g.y.get(), k.w = g.w.get(), k.x = g.x.get();

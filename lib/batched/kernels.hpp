@@ -15,6 +15,9 @@ struct Kernel {
   // whose own head (heads, per lane, as doubles) is longer, Toeplitz rows of the interior in the others.
   std::size_t n = 0, lanes = 0, head = 0, head_min = 0;
   const double* heads = nullptr;
+  // Per lane 1 where the lane's run has n − 1 unknowns (its last row is n − 2: a fixed far end beside runs
+  // with a free one), 0 where it has n; null when every lane has n.
+  const double* short_lanes = nullptr;
   std::size_t flat_begin = 0, flat_end = 0;  // rows [flat_begin, flat_end) of the interior: constant factors
   bool three_level = false, keeps = false;   // keeps: a lane may be left untouched (CN-switch, step(advance))
   double *u = nullptr, *y = nullptr, *w = nullptr, *x = nullptr;
