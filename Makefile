@@ -182,8 +182,8 @@ $(BENCH):
 # runs, the least disturbed batch is the closest to the cost itself. It starts with the claims, the longest
 # study (the first two of ALL_RESULTS), and every other study waits for a free job slot. On the 2-core
 # machine its timings beside check_claims were those of the benchmark run alone: four alternated runs of
-# each, and 3 of its 244 minima beside the claims above every run alone, by at most 6 %, less than the
-# spread of the runs alone (checked after a run). Its 4.5 s on one core are then no longer added to the
+# each, and 3 of its 244 minima beside the claims above every run alone, by at most 2 % of the largest
+# run alone, less than the spread of the runs alone (checked after a run). Its 4.5 s on one core are then no longer added to the
 # wall time of `make all` after every study. A figure that cannot be trusted is written n/a with its reason
 # (bench_step), and the report says on what machine and load the timings were taken.
 BENCH_SHORT_OPTIONS := --min-log2 8 --max-log2 14 --repetitions 5 --batch-ms 5 --clock cpu --statistic min
