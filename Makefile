@@ -73,8 +73,8 @@ BASELINE := $(DATA)/baseline_regions.dat $(DATA)/baseline_regions.tex
 # The claims and the short benchmark come first: make starts its recipes in this order, and these two
 # begin together (the short benchmark's section below says why). Then the costliest studies, costliest
 # first, so that the short ones fill the cores at the end instead of one long study running last
-# (CPU seconds on the 2-core machine, chosen after a run: fig_time_error 16, fig_classes 13,
-# baseline_regions 10, fig_stress 8).
+# (CPU seconds on the 2-core machine, chosen after a run: fig_time_error 16, fig_classes 11,
+# baseline_regions 9, fig_stress 6; every other study at most 3.4).
 LONGEST_STUDIES = $(DATA)/fig_time_error.dat $(CLASSES) $(BASELINE) $(DATA)/fig_stress.dat
 ALL_RESULTS = $(CLAIMS_OUTPUTS) $(BENCH_SHORT)/bench_short.tex $(LONGEST_STUDIES) \
               $(DATA)/benchmark.dat $(DATA)/benchmark.txt $(FIGURE_DATA) $(FIGURE_TEX) $(BASELINE) $(FIGURE_PDFS) $(CLASSES) $(CLASSES_PDFS) \
@@ -183,9 +183,10 @@ $(BENCH):
 # study (the first two of ALL_RESULTS), and every other study waits for a free job slot. On the 2-core
 # machine its timings beside check_claims were those of the benchmark run alone: four alternated runs of
 # each, and 3 of its 244 minima beside the claims above every run alone, by at most 2 % of the largest
-# run alone, less than the spread of the runs alone (checked after a run). Its 4.5 s on one core are then no longer added to the
-# wall time of `make all` after every study. A figure that cannot be trusted is written n/a with its reason
-# (bench_step), and the report says on what machine and load the timings were taken.
+# run alone, less than the spread of the runs alone (checked after a run). Its 4.5 s on one core are then
+# no longer added to the wall time of `make all` after every study. A figure that cannot be trusted is
+# written n/a with its reason (bench_step), and the report says on what machine and load the timings were
+# taken.
 BENCH_SHORT_OPTIONS := --min-log2 8 --max-log2 14 --repetitions 5 --batch-ms 5 --clock cpu --statistic min
 $(BENCH_SHORT)/bench_short.tex: $(BUILD)/bin/bench_step | $(BENCH_SHORT)
 	$< $(BENCH_SHORT_OPTIONS) --tex $@ > $(BENCH_SHORT)/bench_short.txt

@@ -17,6 +17,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <new>
 #include <optional>
@@ -77,9 +78,9 @@ struct BatchedSimulation::Group {
   // head: the explicit head rows of the lane with the most, head_min of the lane with the fewest, heads each
   // lane's (as doubles, for the kernels' masks: batched::Kernel).
   std::size_t n = 0, head = 0, head_min = 0;
-  // Each lane's unknowns (n, or n − 1 for a fixed far end beside free ones: short_lanes, batched::Kernel).
+  // Each lane's unknowns: n, or n − 1 for a held far end beside free ones (short_lanes, batched::Kernel,
+  // allocated only then).
   std::vector<std::size_t> rows;
-  bool ragged = false;                       // some lane has n − 1 unknowns
   std::size_t flat_begin = 0, flat_end = 0;  // the plateau of the factors (find_plateau)
   bool three_level = false, switching = false;
   hwy::AlignedFreeUniquePtr<double[]> u, y, w, x, elimination, elimination_pair, inverse_pivot, upward, upward_pair,
@@ -173,7 +174,7 @@ std::array<double, 10> coefficients(const Row& r) {
 
 void BatchedSimulation::find_plateau(Group& g) {
   // The rows every lane takes as interior rows: head … n − 2 (n − 3 when some lanes have n − 1 unknowns).
-  const std::size_t W = g.runs.size(), end = g.n - (g.ragged ? 2 : 1);
+  const std::size_t W = g.runs.size(), end = g.n - (g.short_lanes ? 2 : 1);
   const double* factors[] = {g.elimination.get(), g.elimination_pair.get(), g.inverse_pivot.get(), g.upward.get(),
                              g.upward_pair.get()};
   const auto same_rows = [&](std::size_t i, std::size_t m) {
@@ -235,13 +236,11 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
       alone_.push_back(k);
       continue;
     }
-    // batch_family's numbers (its doctest checks that they agree). Runs whose explicit head rows differ in
-    // number share a group (each lane's rows are its own: the kernels take, in the rows where the heads
-    // differ, each lane's explicit or Toeplitz row), as long as every head leaves interior rows below it;
-    // a head that reaches the last row keeps a key of its own.
-    // Runs of one mesh whose far ends differ, fixed (N unknowns) or free (N + 1), share a group too: the
-    // kernels end each lane at its own last row. The key is then the number of elements (a run whose
-    // head reaches near its last row keeps a key of its own, its number of unknowns and its head).
+    // batch_family's numbers (its doctest checks that they agree). The runs of one mesh (N elements) share a
+    // group whatever their explicit head rows and their far end, held (N unknowns) or free (N + 1): in the
+    // rows where lanes differ the kernels take each lane's own row (batched::Kernel). The key is then the
+    // number of elements; a run whose head leaves fewer than four interior rows keeps a key of its own
+    // (its unknowns and its head).
     const int family = fast->three_level() ? 1 : fast->energy_conserving() ? 2 : fast->switching() ? 3 : 0;
     const std::size_t head = fast->head().size(), elements = static_cast<std::size_t>(r.mesh().elements);
     const bool shares = head + 4 < n && (n == elements || n == elements + 1);
@@ -292,19 +291,15 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
         continue;
       }
       const FastStep& f0 = *runs_[g->runs[0]].step_parts().fast;
-      g->n = 0;
+      g->n = 0, g->head = 0, g->head_min = std::numeric_limits<std::size_t>::max();
       for (std::size_t j = 0; j < width; ++j) {
-        g->rows.push_back(static_cast<std::size_t>(runs_[g->runs[j]].step_parts().state->u.size()));
+        const BarSimulation::StepParts parts = runs_[g->runs[j]].step_parts();
+        const std::size_t h = parts.fast->head().size();
+        g->rows.push_back(static_cast<std::size_t>(parts.state->u.size()));  // N or N + 1 (the key)
         g->n = std::max(g->n, g->rows.back());
-      }
-      g->head = 0, g->head_min = g->n;
-      for (std::size_t j = 0; j < width; ++j) {
-        const std::size_t h = runs_[g->runs[j]].step_parts().fast->head().size();
         g->head = std::max(g->head, h), g->head_min = std::min(g->head_min, h);
-        if (g->rows[j] + 1 < g->n)
-          throw std::logic_error("BatchedSimulation: a group's runs differ by more than one unknown");
-        g->ragged = g->ragged || g->rows[j] < g->n;
       }
+      const bool ragged = *std::min_element(g->rows.begin(), g->rows.end()) < g->n;
       g->three_level = f0.three_level();
       g->switching = f0.switching();
       const std::size_t nw = g->n * width;
@@ -313,7 +308,7 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
         *a = lane_array(nw);
       g->head_rows = lane_array(g->head * 10 * width);
       g->heads = lane_array(width);
-      g->short_lanes = lane_array(width);
+      if (ragged) g->short_lanes = lane_array(width);
       g->interior = lane_array(10 * width);
       g->last = lane_array(10 * width);
       for (auto* a : {&g->rate, &g->memory, &g->ps_q_weight, &g->u0_next, &g->recurrence_d0, &g->keep, &g->energy})
@@ -332,7 +327,7 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
           g->upward[i * width + j] = in ? s.upward()[e] : 0.0;
           g->upward_pair[i * width + j] = in ? s.upward_pair()[e] : 0.0;
         }
-        g->short_lanes[j] = g->rows[j] < g->n ? 1.0 : 0.0;
+        if (ragged) g->short_lanes[j] = g->rows[j] < g->n ? 1.0 : 0.0;
         // The lane's head rows; below its own head (a longer head in another lane) its interior row, which
         // the kernels do not take there (finite numbers all the same).
         const auto ci = coefficients(f.interior()), cl = coefficients(f.last());
@@ -723,7 +718,7 @@ void BatchedSimulation::advance(const char* flags) {  // null: every run
     }
     batched::Kernel k;
     k.n = g.n, k.lanes = W, k.head = g.head, k.head_min = g.head_min, k.heads = g.heads.get();
-    k.short_lanes = g.ragged ? g.short_lanes.get() : nullptr;
+    k.short_lanes = g.short_lanes.get();  // null when every lane has n unknowns
     k.flat_begin = g.flat_begin, k.flat_end = g.flat_end;
     k.three_level = g.three_level, k.keeps = g.switching || !all;
     k.u = g.u.get(), k.y = g.y.get(), k.w = g.w.get(), k.x = g.x.get();

@@ -4,6 +4,7 @@
 #include "batched/batched_step.hpp"
 
 #include <cstring>
+#include <functional>
 #include <string>
 #include <stdexcept>
 #include <vector>
@@ -149,6 +150,61 @@ bool steps_alike(BatchedSimulation& batched, std::vector<BarSimulation>& alone, 
   return true;
 }
 
+// Whether the case's scheme allows a contact node with inertia (the consistent mass): energy-conserving and
+// Paoli–Schatzman with the algebraic row need a massless one.
+bool inertia_allowed(const BatchedCase& c) {
+  return c.scheme != Scheme::energy_conserving &&
+         !(c.scheme == Scheme::paoli_schatzman && c.row == ContactRow::algebraic);
+}
+
+// For every scheme of the fused step (batch families 0–3: cn, be, ps with both contact rows, ec, cn-switch)
+// on every vector target, the runs run(c, k), k < count(lanes), made twice with the same arguments, are
+// stepped 150 steps (past the first impact at the Δt the callers take) in one batch and alone and compared
+// step by step (steps_alike), after expect(batched, alone) has checked the batch. Returns the status changes
+// of CN-switch's runs, which its callers check are some (its θ-step, alone, was taken).
+int fused_cases_alike(const std::function<std::size_t(std::size_t lanes)>& count,
+                      const std::function<BarSimulation(const BatchedCase&, std::size_t k)>& run,
+                      const std::function<void(const BatchedSimulation&, std::vector<BarSimulation>&)>& expect) {
+  std::vector<BatchedCase> fused;
+  for (const BatchedCase& c : batched_cases())
+    if (batch_family(c.scheme) <= 3) fused.push_back(c);
+  REQUIRE(fused.size() == 6);
+  int status_changes = 0;
+  for (const BatchTarget& target : batch_targets()) {
+    use_batch_target(target.bit);
+    CAPTURE(target.name);
+    for (const BatchedCase& c : fused) {
+      CAPTURE(to_string(c.scheme));
+      CAPTURE(to_string(c.row));
+      std::vector<BarSimulation> batch, alone;
+      for (std::size_t k = 0; k < count(target.lanes); ++k) {
+        batch.push_back(run(c, k));
+        alone.push_back(run(c, k));
+      }
+      BatchedSimulation batched(std::move(batch));
+      expect(batched, alone);
+      CHECK(steps_alike(batched, alone, 150, c.scheme == Scheme::switching ? &status_changes : nullptr));
+    }
+  }
+  use_batch_target(0);
+  return status_changes;
+}
+
+// The scheme parameters of a case.
+SchemeParameters case_parameters(const BatchedCase& c) {
+  SchemeParameters p;
+  p.scheme = c.scheme;
+  p.contact_row = c.row;
+  return p;
+}
+
+// A steady load towards the obstacle, f(x) = −(1 + x) (its F₀ ≠ 0), added to `problem`.
+Problem with_steady_load(Problem problem) {
+  problem.load = [](double x, double) { return -(1.0 + x); };
+  problem.steady_load = true;
+  return problem;
+}
+
 }  // namespace
 
 TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for every scheme and target") {
@@ -167,19 +223,17 @@ TEST_CASE("the batched step is bitwise each run stepped alone, lane by lane, for
       std::vector<BarSimulation> batch, alone;
       const std::size_t count = 2 * target.lanes + 1;
       for (std::size_t k = 0; k < count; ++k) {
-        const bool inertia_allowed = c.scheme != Scheme::energy_conserving &&
-                                     !(c.scheme == Scheme::paoli_schatzman && c.row == ContactRow::algebraic);
-        MassRedistribution mass = k % 3 == 0        ? mod1()
-                                  : k % 3 == 1      ? mod3()
-                                  : inertia_allowed ? consistent_mass()
-                                                    : mod2();
+        MassRedistribution mass = k % 3 == 0           ? mod1()
+                                  : k % 3 == 1         ? mod3()
+                                  : inertia_allowed(c) ? consistent_mass()
+                                                       : mod2();
         SchemeParameters p;
         p.scheme = c.scheme;
         p.contact_row = c.row;
         Problem problem = benchmark_problem();
         // A restitution e > 0 with the literal row needs a contact node with inertia (schemes.cpp refuses
         // it on a massless node): the consistent mass of k % 3 == 2 only.
-        const bool massless = !(k % 3 == 2 && inertia_allowed);
+        const bool massless = !(k % 3 == 2 && inertia_allowed(c));
         if (c.scheme == Scheme::paoli_schatzman && k % 2 == 1)
           p.beta = 0.3, p.restitution = c.row == ContactRow::literal && massless ? 0.0 : 0.5;
         double dt = (0.5 + 0.1 * static_cast<double>(k % 13)) * mesh.h();
@@ -305,39 +359,16 @@ TEST_CASE("a partial step keeps the runs that stay, and runs at their own rates 
 /// from the sweep down, or F₀ from the decision, fails (tried).
 TEST_CASE("runs with a steady load share the lanes with runs without one, each lane bitwise its run alone") {
   const UniformMesh mesh(1.0, 24);
-  const Index steps = 150;         // past the first impact at every Δt below
-  std::vector<BatchedCase> fused;  // the schemes of the fused step: batch families 0–3
-  for (const BatchedCase& c : batched_cases())
-    if (batch_family(c.scheme) <= 3) fused.push_back(c);
-  REQUIRE(fused.size() == 6);
-  int status_changes = 0;
-  for (const BatchTarget& target : batch_targets()) {
-    use_batch_target(target.bit);
-    CAPTURE(target.name);
-    for (const BatchedCase& c : fused) {
-      CAPTURE(to_string(c.scheme));
-      CAPTURE(to_string(c.row));
-      std::vector<BarSimulation> batch, alone;
-      const std::size_t count = 2 * target.lanes + 1;
-      for (std::size_t k = 0; k < count; ++k) {
-        SchemeParameters p;
-        p.scheme = c.scheme;
-        p.contact_row = c.row;
-        Problem problem = benchmark_problem();
-        if (k % 2 == 0) {  // f(x) = −(1 + x): towards the obstacle, its F₀ ≠ 0
-          problem.load = [](double x, double) { return -(1.0 + x); };
-          problem.steady_load = true;
-        }
-        const double dt = (0.5 + 0.1 * static_cast<double>(k % 7)) * mesh.h();
-        batch.emplace_back(problem, mesh, mod1(), p, dt);
-        alone.emplace_back(problem, mesh, mod1(), p, dt);
-      }
-      BatchedSimulation batched(std::move(batch));
-      CHECK(batched.batched_runs() == count - 1);  // loaded or not, every run but the one left over
-      CHECK(steps_alike(batched, alone, steps, c.scheme == Scheme::switching ? &status_changes : nullptr));
-    }
-  }
-  use_batch_target(0);
+  const int status_changes = fused_cases_alike(
+      [](std::size_t lanes) { return 2 * lanes + 1; },
+      [&](const BatchedCase& c, std::size_t k) {
+        const Problem problem = k % 2 == 0 ? with_steady_load(benchmark_problem()) : benchmark_problem();
+        return BarSimulation(problem, mesh, mod1(), case_parameters(c),
+                             (0.5 + 0.1 * static_cast<double>(k % 7)) * mesh.h());
+      },
+      [](const BatchedSimulation& batched, std::vector<BarSimulation>& alone) {
+        CHECK(batched.batched_runs() == alone.size() - 1);  // loaded or not, every run but the one left over
+      });
   CHECK(status_changes > 0);  // CN-switch's θ-step, alone, with its load, was taken
   // A load that changes with t is formed at every step: such a run is stepped alone.
   std::vector<BarSimulation> two;
@@ -365,47 +396,27 @@ TEST_CASE("runs with a steady load share the lanes with runs without one, each l
 /// value, fails (tried).
 TEST_CASE("runs whose heads differ in length share a group, each lane bitwise its run alone") {
   const UniformMesh mesh(1.0, 24);
-  const Index steps = 150;         // past the first impact at every Δt below
-  std::vector<BatchedCase> fused;  // the schemes of the fused step: batch families 0–3
-  for (const BatchedCase& c : batched_cases())
-    if (batch_family(c.scheme) <= 3) fused.push_back(c);
-  REQUIRE(fused.size() == 6);
-  int status_changes = 0;
-  for (const BatchTarget& target : batch_targets()) {
-    use_batch_target(target.bit);
-    CAPTURE(target.name);
-    for (const BatchedCase& c : fused) {
-      CAPTURE(to_string(c.scheme));
-      CAPTURE(to_string(c.row));
-      // Energy-conserving and Paoli–Schatzman with the algebraic row need a massless contact node: their
-      // heads differ through the masses that keep it massless.
-      const bool inertia_allowed = c.scheme != Scheme::energy_conserving &&
-                                   !(c.scheme == Scheme::paoli_schatzman && c.row == ContactRow::algebraic);
-      const std::vector<MassRedistribution> masses = {inertia_allowed ? consistent_mass() : mod2(), mod1(),
-                                                      spread_over_first_nodes(3), mod3(0.25),
-                                                      spread_over_first_nodes(5)};
-      std::vector<BarSimulation> batch, alone;
-      const std::size_t count = 2 * target.lanes;
-      std::size_t shortest = 1000, longest = 0;
-      for (std::size_t k = 0; k < count; ++k) {
-        SchemeParameters p;
-        p.scheme = c.scheme;
-        p.contact_row = c.row;
-        const MassRedistribution& mass = masses[k % masses.size()];
-        const double dt = (0.5 + 0.1 * static_cast<double>(k % 7)) * mesh.h();
-        batch.emplace_back(benchmark_problem(), mesh, mass, p, dt);
-        alone.emplace_back(benchmark_problem(), mesh, mass, p, dt);
-        const std::size_t head = batch.back().step_parts().fast->head().size();
-        shortest = std::min(shortest, head), longest = std::max(longest, head);
-      }
-      CHECK(shortest < longest);  // not vacuous: the heads differ
-      BatchedSimulation batched(std::move(batch));
-      CHECK(batched.batched_runs() == count);     // every run in the lanes
-      CHECK(batched.group_widths().size() == 2);  // two full groups, whatever the heads
-      CHECK(steps_alike(batched, alone, steps, c.scheme == Scheme::switching ? &status_changes : nullptr));
-    }
-  }
-  use_batch_target(0);
+  const int status_changes =
+      fused_cases_alike([](std::size_t lanes) { return 2 * lanes; },
+                        [&](const BatchedCase& c, std::size_t k) {
+                          // The schemes that need a massless contact node have heads that differ through the masses that keep
+                          // it massless.
+                          const std::vector<MassRedistribution> masses = {
+                              inertia_allowed(c) ? consistent_mass() : mod2(), mod1(), spread_over_first_nodes(3),
+                              mod3(0.25), spread_over_first_nodes(5)};
+                          return BarSimulation(benchmark_problem(), mesh, masses[k % masses.size()], case_parameters(c),
+                                               (0.5 + 0.1 * static_cast<double>(k % 7)) * mesh.h());
+                        },
+                        [](const BatchedSimulation& batched, std::vector<BarSimulation>& alone) {
+                          std::size_t shortest = alone[0].step_parts().fast->head().size(), longest = shortest;
+                          for (BarSimulation& run : alone) {
+                            const std::size_t head = run.step_parts().fast->head().size();
+                            shortest = std::min(shortest, head), longest = std::max(longest, head);
+                          }
+                          CHECK(shortest < longest);                      // not vacuous: the heads differ
+                          CHECK(batched.batched_runs() == alone.size());  // every run in the lanes
+                          CHECK(batched.group_widths().size() == 2);      // two full groups, whatever the heads
+                        });
   CHECK(status_changes > 0);  // CN-switch changed status
 }
 
@@ -425,48 +436,23 @@ TEST_CASE("runs whose heads differ in length share a group, each lane bitwise it
 /// masks there keep only the sign of a zero, and removing them is not seen by this test.
 TEST_CASE("runs with a held and with a free far end share a group, each lane bitwise its run alone") {
   const UniformMesh held(1.0, 24), free_end = with_far_end(held, FarEnd::free);
-  const Index steps = 150;         // past the first impact at every Δt below
-  std::vector<BatchedCase> fused;  // the schemes of the fused step: batch families 0–3
-  for (const BatchedCase& c : batched_cases())
-    if (batch_family(c.scheme) <= 3) fused.push_back(c);
-  REQUIRE(fused.size() == 6);
-  int status_changes = 0;
-  for (const BatchTarget& target : batch_targets()) {
-    use_batch_target(target.bit);
-    CAPTURE(target.name);
-    for (const BatchedCase& c : fused) {
-      CAPTURE(to_string(c.scheme));
-      CAPTURE(to_string(c.row));
-      const bool inertia_allowed = c.scheme != Scheme::energy_conserving &&
-                                   !(c.scheme == Scheme::paoli_schatzman && c.row == ContactRow::algebraic);
-      std::vector<BarSimulation> batch, alone;
-      const std::size_t count = 2 * target.lanes;
-      std::size_t held_runs = 0;
-      for (std::size_t k = 0; k < count; ++k) {
-        SchemeParameters p;
-        p.scheme = c.scheme;
-        p.contact_row = c.row;
-        Problem problem = benchmark_problem();
-        if (k % 3 == 1) {  // a steady load towards the obstacle in some runs of either kind
-          problem.load = [](double x, double) { return -(1.0 + x); };
-          problem.steady_load = true;
-        }
-        const UniformMesh& mesh = k % 2 == 0 ? held : free_end;
-        held_runs += k % 2 == 0;
-        const MassRedistribution mass = k % 4 < 2 ? mod1() : inertia_allowed ? consistent_mass() : mod3();
-        const double dt = (0.5 + 0.1 * static_cast<double>(k % 7)) * held.h();
-        batch.emplace_back(problem, mesh, mass, p, dt);
-        alone.emplace_back(problem, mesh, mass, p, dt);
-      }
-      CHECK(held_runs > 0);
-      CHECK(held_runs < count);  // not vacuous: both kinds of far end
-      BatchedSimulation batched(std::move(batch));
-      CHECK(batched.batched_runs() == count);     // every run in the lanes
-      CHECK(batched.group_widths().size() == 2);  // two full groups, whatever the far ends
-      CHECK(steps_alike(batched, alone, steps, c.scheme == Scheme::switching ? &status_changes : nullptr));
-    }
-  }
-  use_batch_target(0);
+  const int status_changes = fused_cases_alike(
+      [](std::size_t lanes) { return 2 * lanes; },
+      [&](const BatchedCase& c, std::size_t k) {
+        // A steady load in some runs of either kind; the masses with heads of different lengths.
+        const Problem problem = k % 3 == 1 ? with_steady_load(benchmark_problem()) : benchmark_problem();
+        const MassRedistribution mass = k % 4 < 2 ? mod1() : inertia_allowed(c) ? consistent_mass() : mod3();
+        return BarSimulation(problem, k % 2 == 0 ? held : free_end, mass, case_parameters(c),
+                             (0.5 + 0.1 * static_cast<double>(k % 7)) * held.h());
+      },
+      [](const BatchedSimulation& batched, std::vector<BarSimulation>& alone) {
+        std::size_t held_runs = 0;
+        for (const BarSimulation& run : alone) held_runs += run.mesh().far_end == FarEnd::clamped;
+        CHECK(held_runs > 0);
+        CHECK(held_runs < alone.size());                // not vacuous: both kinds of far end
+        CHECK(batched.batched_runs() == alone.size());  // every run in the lanes
+        CHECK(batched.group_widths().size() == 2);      // two full groups, whatever the far ends
+      });
   CHECK(status_changes > 0);  // CN-switch changed status
 }
 
