@@ -90,7 +90,6 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 
 #include <algorithm>
-#include <new>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -100,6 +99,7 @@ HWY_AFTER_NAMESPACE();
 #include <hwy/aligned_allocator.h>
 
 #include "batched/batched_step.hpp"
+#include "batched/lane_array.hpp"
 
 namespace mrm::repro {
 namespace limits {
@@ -116,22 +116,23 @@ void traffic_step(const TrafficArrays& arrays) {
 }
 
 struct TrafficSkeleton::Store {
-  std::vector<hwy::AlignedFreeUniquePtr<double[]>> arrays;
+  std::vector<batched::LaneArray> arrays;
   TrafficArrays a;
 };
 
 TrafficSkeleton::TrafficSkeleton(std::size_t n, std::size_t plateau_rows) : store_(std::make_unique<Store>()) {
   TrafficArrays& a = store_->a;
   a.n = n, a.lanes = limit_lanes(), a.plateau_begin = 1, a.plateau_end = std::min(n, 1 + plateau_rows);
-  for (int k = 0; k < 8; ++k) {
-    store_->arrays.push_back(hwy::AllocateAligned<double>(n * a.lanes));
-    if (store_->arrays.back() == nullptr) throw std::bad_alloc();  // AllocateAligned returns null, throws nothing
+  // The step's arrays where its group puts them (batched/lane_array.hpp): a group allocates U, y, W′, X, ε,
+  // εε, 1/p, c, cc in that order, slots 0 … 8 (X, slot 3, is the three-level step's and is not streamed here).
+  for (std::size_t slot = 0; slot < 9; ++slot) {
+    store_->arrays.emplace_back(n * a.lanes, slot);
     std::fill(store_->arrays.back().get(), store_->arrays.back().get() + n * a.lanes, 0.5);
   }
   auto& v = store_->arrays;
-  a.u = v[0].get(), a.w = v[1].get(), a.y = v[2].get();
-  a.elimination = v[3].get(), a.elimination_pair = v[4].get();
-  a.inverse_pivot = v[5].get(), a.upward = v[6].get(), a.upward_pair = v[7].get();
+  a.u = v[0].get(), a.y = v[1].get(), a.w = v[2].get();
+  a.elimination = v[4].get(), a.elimination_pair = v[5].get();
+  a.inverse_pivot = v[6].get(), a.upward = v[7].get(), a.upward_pair = v[8].get();
 }
 
 TrafficSkeleton::~TrafficSkeleton() = default;

@@ -40,9 +40,10 @@ std::size_t limit_lanes();
 /// stored value is the maximum of the values the row loaded.
 void traffic_step(const TrafficArrays& arrays);
 
-/// The arrays of one group for traffic_step, owned: `n` rows of limit_lanes() lanes (every value ½),
-/// the plateau [1, 1 + plateau_rows) (where it lies does not change the traffic). step() is one step's
-/// traffic followed by the exchange of u and y.
+/// The arrays of one group for traffic_step, owned: `n` rows of limit_lanes() lanes (every value ½), each
+/// at the page offset of the step's array (lib/batched/lane_array.hpp), the plateau [1, 1 + plateau_rows)
+/// (where it lies does not change the traffic). step() is one step's traffic followed by the exchange of u
+/// and y.
 class TrafficSkeleton {
  public:
   TrafficSkeleton(std::size_t n, std::size_t plateau_rows);

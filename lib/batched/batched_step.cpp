@@ -26,13 +26,11 @@
 #include <tuple>
 #include <utility>
 
-#include <unistd.h>
-
 #include <doctest/doctest.h>
-#include <hwy/aligned_allocator.h>
 #include <hwy/targets.h>
 
 #include "batched/kernels.hpp"
+#include "batched/lane_array.hpp"
 #include "steps/contact.hpp"
 #include "classes/contact_classes.hpp"
 #include "steps/explicit_schemes.hpp"
@@ -82,32 +80,32 @@ struct BatchedSimulation::Group {
   // allocated only then).
   std::vector<std::size_t> rows;
   std::size_t flat_begin = 0, flat_end = 0;  // the plateau of the factors (find_plateau)
+  std::size_t arrays = 0;                    // the arrays allocated so far (lane_array: each its own slot)
   bool three_level = false, switching = false;
-  hwy::AlignedFreeUniquePtr<double[]> u, y, w, x, elimination, elimination_pair, inverse_pivot, upward, upward_pair,
-      head_rows, heads, short_lanes, interior, last, rate, memory, ps_q_weight, u0_next, recurrence_d0, keep, energy;
+  batched::LaneArray u, y, w, x, elimination, elimination_pair, inverse_pivot, upward, upward_pair, head_rows, heads,
+      short_lanes, interior, last, rate, memory, ps_q_weight, u0_next, recurrence_d0, keep, energy;
   // The steady loads' terms of the right-hand side, L_i = g_now F_i + g_next F_i per lane (null when no
   // lane has a load; −0 in a lane without one, fill below).
-  hwy::AlignedFreeUniquePtr<double[]> load;
+  batched::LaneArray load;
   std::vector<FastStep::ContactDecision> decisions;  // the lanes' contact decisions of the current step
   // A group of Newmark-type steps (batch_family 4, batched::NewmarkKernel): u, y, w, the factors of A
   // (elimination, inverse_pivot, upward), u0_next (the decision's u₀) and keep above, and these.
   bool newmark = false;
-  hwy::AlignedFreeUniquePtr<double[]> r, r_next, t, m_diag, m_lower, m_upper, s_diag, s_lower, s_upper, l_diag, l_lower,
-      l_upper, mass_elimination, mass_inverse_pivot, mass_upward, z, dt, force_weight, one_minus_gamma, gamma, g0, g1,
-      massless, lambda, shift, kinetic_strain;
+  batched::LaneArray r, r_next, t, m_diag, m_lower, m_upper, s_diag, s_lower, s_upper, l_diag, l_lower, l_upper,
+      mass_elimination, mass_inverse_pivot, mass_upward, z, dt, force_weight, one_minus_gamma, gamma, g0, g1, massless,
+      lambda, shift, kinetic_strain;
   std::vector<NewmarkTypeStep*> steps;  // each lane's step (its decision and end of step)
   // A group of Moreau–Jean or DKE steps (batch_family 5 or 6, batched::OneSolveKernel): u, y, w, the rows of M
   // and S, the factors of A, dt, keep and kinetic_strain above, u0_next as the decision's x₀, and these.
   bool one_solve = false, dke = false;
-  hwy::AlignedFreeUniquePtr<double[]> p, right_diag, right_lower, right_upper, column, weight, theta, one_minus_theta,
-      two_over_dt, row0_zero, alpha, projected, minus_gap;
+  batched::LaneArray p, right_diag, right_lower, right_upper, column, weight, theta, one_minus_theta, two_over_dt,
+      row0_zero, alpha, projected, minus_gap;
   std::vector<OneSolveStep*> solve_steps;               // each lane's step (its pieces)
   std::vector<OneSolveStep::Decision> solve_decisions;  // the lanes' decisions of the current step
   // A group of the explicit classes (batch_family 7, batched::ExplicitKernel): u, y, w, the rows of M and S, dt,
   // keep and energy above, and these (a: the consistent mass's solve).
   bool explicit_scheme = false, lumped = true;
-  hwy::AlignedFreeUniquePtr<double[]> a, inverse_mass, pivot, factor, impulse_response, half_dt, h, clamped, correct,
-      dt_mu, dt2_mu;
+  batched::LaneArray a, inverse_mass, pivot, factor, impulse_response, half_dt, h, clamped, correct, dt_mu, dt2_mu;
   std::vector<const ExplicitStep*> explicit_steps;       // each lane's step (its contact)
   std::vector<ExplicitStep::Contact> explicit_contacts;  // the lanes' contacts of the current step
 };
@@ -115,44 +113,10 @@ struct BatchedSimulation::Group {
 
 namespace {
 
-// Every array of a group, allocated aligned for the vector loads. hwy::AllocateAligned returns a null
-// pointer when the memory is not there (it throws nothing): the failure is std::bad_alloc here, which the
-// programs report as an error (status 1), never a write through a null pointer.
-hwy::AlignedFreeUniquePtr<double[]> lane_array(std::size_t count) {
-  hwy::AlignedFreeUniquePtr<double[]> array = hwy::AllocateAligned<double>(count);
-  if (array == nullptr && count > 0) throw std::bad_alloc();
-  return array;
-}
-
-// The lanes of a family's groups. A group's state is four interleaved vectors (U, y, W′, X: 32 bytes per
-// node and lane), swept down and up at each step, and it shares the level-2 cache (`cache` bytes; 0 when
-// unknown) with the factors off the plateau, the rows and the runs' own measures. Where the target's
-// W > 4 lanes of state fill more than half of it, the family goes in groups of 4 lanes on the same target.
-// The half was chosen after a run (bench_step, CPU clock, the minimum of 5 batches, on a Zen 4 core with
-// AVX-512 and a 1 MiB L2): 8 lanes cost 0.70 ns per node, step and run against 0.84 with 4 at N = 1024
-// (256 KiB of state), about the same at N = 2048 (512 KiB), and 0.94–1.00 against 0.77–0.87 at N = 4096 …
-// 65536 (1 MiB and more). The grouping changes no bit of a lane: every operation is lane-wise.
-std::size_t group_stride(std::size_t n, std::size_t lanes, std::size_t cache) {
-  constexpr std::size_t state_bytes = 4 * sizeof(double);
-  if (cache == 0 || lanes <= 4) return lanes;
-  return n * lanes * state_bytes > cache / 2 ? 4 : lanes;
-}
-
-TEST_CASE("a family's groups take 4 lanes where the target's full width outgrows the cache") {
-  CHECK(group_stride(1024, 8, std::size_t{1} << 20) == 8);
-  CHECK(group_stride(2048, 8, std::size_t{1} << 20) == 8);  // exactly half
-  CHECK(group_stride(2049, 8, std::size_t{1} << 20) == 4);
-  CHECK(group_stride(65536, 8, std::size_t{1} << 20) == 4);
-  CHECK(group_stride(65536, 4, std::size_t{1} << 20) == 4);  // AVX2: its own width
-  CHECK(group_stride(65536, 2, std::size_t{1} << 20) == 2);
-  CHECK(group_stride(65536, 8, 0) == 8);  // cache unknown: the full width
-}
-
-// The level-2 cache of this processor in bytes, 0 when the system does not say.
-std::size_t level2_cache_bytes() {
-  const long bytes = sysconf(_SC_LEVEL2_CACHE_SIZE);
-  return bytes > 0 ? static_cast<std::size_t>(bytes) : 0;
-}
+// The next array of a group that has `arrays` of them: aligned for the vector loads, at its own offset within
+// a page (lane_array.hpp; a group allocates its streamed arrays first). When the memory is not there the
+// failure is std::bad_alloc, which the programs report as an error (status 1).
+batched::LaneArray lane_array(std::size_t count, std::size_t& arrays) { return batched::LaneArray(count, arrays++); }
 
 // The rows of a FastStep as 10 doubles (the order of batched::RowV).
 template <typename Row>
@@ -174,7 +138,7 @@ std::array<double, 10> coefficients(const Row& r) {
 
 void BatchedSimulation::find_plateau(Group& g) {
   // The rows every lane takes as interior rows: head … n − 2 (n − 3 when some lanes have n − 1 unknowns).
-  const std::size_t W = g.runs.size(), end = g.n - (g.short_lanes ? 2 : 1);
+  const std::size_t W = g.runs.size(), end = g.n - (g.short_lanes.get() ? 2 : 1);
   const double* factors[] = {g.elimination.get(), g.elimination_pair.get(), g.inverse_pivot.get(), g.upward.get(),
                              g.upward_pair.get()};
   const auto same_rows = [&](std::size_t i, std::size_t m) {
@@ -246,15 +210,12 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
     const bool shares = head + 4 < n && (n == elements || n == elements + 1);
     families[shares ? Key{elements, family, 0} : Key{n, family, head}].push_back(k);
   }
-  // Each family: groups of the full width (of 4 lanes where the full width's state fills more than half
-  // the level-2 cache: group_stride), then the remainder q < W in one group of the narrowest width
+  // Each family: groups of the full width W, then the remainder q < W in one group of the narrowest width
   // that holds it (2 runs in 2 lanes, 3 or 4 in 4, more in the full width), or alone if q = 1. The width
   // changes no bit of a lane (every operation is lane-wise), only the cost of the padding lanes.
-  const std::size_t cache = level2_cache_bytes();
   for (const auto& [key, members] : families) {
-    const std::size_t stride = group_stride(std::get<0>(key), lanes_, cache);
-    for (std::size_t first = 0; first < members.size(); first += stride) {
-      const std::size_t used = std::min(stride, members.size() - first);
+    for (std::size_t first = 0; first < members.size(); first += lanes_) {
+      const std::size_t used = std::min(lanes_, members.size() - first);
       if (used == 1) {  // a group of one: stepped alone
         alone_.push_back(members[first]);
         continue;
@@ -305,14 +266,17 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
       const std::size_t nw = g->n * width;
       for (auto* a : {&g->u, &g->y, &g->w, &g->x, &g->elimination, &g->elimination_pair, &g->inverse_pivot, &g->upward,
                       &g->upward_pair})
-        *a = lane_array(nw);
-      g->head_rows = lane_array(g->head * 10 * width);
-      g->heads = lane_array(width);
-      if (ragged) g->short_lanes = lane_array(width);
-      g->interior = lane_array(10 * width);
-      g->last = lane_array(10 * width);
+        *a = lane_array(nw, g->arrays);
+      bool loaded = false;  // the steady loads' terms (below): streamed too
+      for (std::size_t j = 0; j < width; ++j) loaded = loaded || runs_[g->runs[j]].step_parts().has_load;
+      if (loaded) g->load = lane_array(nw, g->arrays);
+      g->head_rows = lane_array(g->head * 10 * width, g->arrays);
+      g->heads = lane_array(width, g->arrays);
+      if (ragged) g->short_lanes = lane_array(width, g->arrays);
+      g->interior = lane_array(10 * width, g->arrays);
+      g->last = lane_array(10 * width, g->arrays);
       for (auto* a : {&g->rate, &g->memory, &g->ps_q_weight, &g->u0_next, &g->recurrence_d0, &g->keep, &g->energy})
-        *a = lane_array(width);
+        *a = lane_array(width, g->arrays);
       g->decisions.resize(width);
       for (std::size_t j = 0; j < width; ++j) {
         const BarSimulation::StepParts parts = runs_[g->runs[j]].step_parts();
@@ -350,10 +314,7 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
       // which BarSimulation checks), so the term in parentheses is formed here once, by the same two products
       // and sum, and the sweep down adds it to b_i: the scalar step's bits. A lane without a load adds −0,
       // which leaves every b_i as it is, its sign of zero included (x + (−0) = x in IEEE 754 for every x).
-      bool loaded = false;
-      for (std::size_t j = 0; j < width; ++j) loaded = loaded || runs_[g->runs[j]].step_parts().has_load;
       if (loaded) {
-        g->load = lane_array(nw);
         for (std::size_t j = 0; j < width; ++j) {
           const BarSimulation::StepParts parts = runs_[g->runs[j]].step_parts();
           const double g_now = parts.fast->coefficients().load_now, g_next = parts.fast->coefficients().load_next;
@@ -426,10 +387,10 @@ void BatchedSimulation::fill_newmark(Group& g, std::vector<BarSimulation>& runs)
                   &g.mass_inverse_pivot,
                   &g.mass_upward,
                   &g.z})
-    *a = lane_array(nw);
+    *a = lane_array(nw, g.arrays);
   for (auto* a : {&g.dt, &g.force_weight, &g.one_minus_gamma, &g.gamma, &g.g0, &g.g1, &g.massless, &g.lambda, &g.shift,
                   &g.kinetic_strain, &g.u0_next, &g.keep})
-    *a = lane_array(W);
+    *a = lane_array(W, g.arrays);
   for (std::size_t j = 0; j < W; ++j) {
     NewmarkTypeStep& step = newmark_step(runs[g.runs[j]]);
     g.steps.push_back(&step);
@@ -463,10 +424,10 @@ void BatchedSimulation::fill_one_solve(Group& g, std::vector<BarSimulation>& run
   g.one_solve = true, g.dke = dke;
   for (auto* a : {&g.u, &g.y, &g.w, &g.p, &g.elimination, &g.inverse_pivot, &g.upward, &g.right_diag, &g.right_lower,
                   &g.right_upper, &g.m_diag, &g.m_lower, &g.m_upper, &g.s_diag, &g.s_lower, &g.s_upper, &g.column})
-    *a = lane_array(nw);
+    *a = lane_array(nw, g.arrays);
   for (auto* a : {&g.dt, &g.weight, &g.theta, &g.one_minus_theta, &g.two_over_dt, &g.row0_zero, &g.alpha, &g.projected,
                   &g.minus_gap, &g.u0_next, &g.keep, &g.kinetic_strain})
-    *a = lane_array(W);
+    *a = lane_array(W, g.arrays);
   g.solve_decisions.resize(W);
   for (std::size_t j = 0; j < W; ++j) {
     OneSolveStep& step = one_solve_step(runs[g.runs[j]]);
@@ -496,9 +457,9 @@ void BatchedSimulation::fill_explicit(Group& g, std::vector<BarSimulation>& runs
   g.lumped = runs[g.runs[0]].step_parts().explicit_step->lanes().lumped;
   for (auto* a : {&g.u, &g.y, &g.w, &g.a, &g.s_diag, &g.s_lower, &g.s_upper, &g.m_diag, &g.m_lower, &g.m_upper,
                   &g.inverse_mass, &g.pivot, &g.factor, &g.impulse_response})
-    *a = lane_array(nw);
+    *a = lane_array(nw, g.arrays);
   for (auto* a : {&g.dt, &g.half_dt, &g.h, &g.clamped, &g.correct, &g.dt_mu, &g.dt2_mu, &g.keep, &g.energy})
-    *a = lane_array(W);
+    *a = lane_array(W, g.arrays);
   g.explicit_contacts.resize(W);
   for (std::size_t j = 0; j < W; ++j) {
     BarSimulation& run = runs[g.runs[j]];
