@@ -26,7 +26,9 @@
 // AVX-512, AVX2, SSE4, ..., chosen at run time), beside the scalar step, the bare solve (plain, two-chain,
 // and two right-hand sides at a time, "bare_x2"), and the limit of the widest target: the larger of the time
 // of the step's memory traffic alone (64 to 104 bytes per node and run, timed as a skeleton of its sweeps,
-// repro/step_limits.hpp) and of its 32 operations per node and run at the peak rate measured for them; its
+// repro/step_limits.hpp, its arrays at the step's page offsets) and of its 32 operations per node and run
+// at the peak rate measured for them; beside the traffic, "aliased", the same skeleton with its arrays
+// 64 bytes apart within their pages (what the step's layout avoids, lib/batched/lane_array.hpp); its
 // last lines give the widest target and batched_speedup, scalar over batched at the largest N.
 // Then the ratio of each scheme (fast and reference steps) and of a run with its error measures (cn+errors:
 // its budget is 1.5) to the bare solve, the log-log slope of the cost per step against N
@@ -394,6 +396,7 @@ struct BatchedTimings {
   double plateau = 0;              // the fraction of the rows whose factors stay in registers
   double bytes = 0;                // bytes per node, step and run of the batched step's traffic
   double traffic = 0;              // ns per node per step per run of that traffic alone (the skeleton)
+  double aliased = 0;              // the same with the skeleton's arrays 64 bytes apart in their pages
   double bandwidth = 0;            // bytes per ns of the skeleton: bytes / traffic
   double operation = 0;            // ns per lane operation at the peak rate (arithmetic_rounds)
   double arithmetic = 0;           // ns per node per step per run of the step's operations at that rate
@@ -465,6 +468,16 @@ BatchedTimings time_batched(Index elements, int repetitions, double target) {
           for (long i = 0; i < s; ++i) skeleton.step();
         },
         n * static_cast<Index>(W), repetitions, target);
+    // The same traffic with the arrays 64 bytes apart within their pages (the k-th at 64k), one row of W
+    // lanes apart for W = 8: what the step's layout (lib/batched/lane_array.hpp) avoids.
+    mrm::repro::TrafficSkeleton aliased(static_cast<std::size_t>(n),
+                                        static_cast<std::size_t>(std::llround(result.plateau * n)), 64);
+    result.aliased = measure(
+                         [&](long s) {
+                           for (long i = 0; i < s; ++i) aliased.step();
+                         },
+                         n * static_cast<Index>(W), repetitions, target)
+                         .value;
     result.bytes = batched_state_bytes + (1 - result.plateau) * batched_factor_bytes;
     result.traffic = traffic.value;
     result.bandwidth = result.bytes / result.traffic;
@@ -781,8 +794,8 @@ void print_batched_table(const Options& o, const Results& r, const std::vector<m
   std::cout << "# batched: ns per node per step per run (" << o.statistic << " of " << o.repetitions << " batches)\n";
   std::vector<std::string> headers{"N", "scalar"};
   for (const mrm::BatchTarget& t : targets) headers.push_back(t.name + "x" + std::to_string(t.lanes));
-  for (const char* h : {"bare", "bare2", "bare_x2", "plateau", "B/node", "traffic", "GB/s", "Gop/s", "arith", "limit",
-                        "scalar/widest", "widest/limit"})
+  for (const char* h : {"bare", "bare2", "bare_x2", "plateau", "B/node", "traffic", "aliased", "GB/s", "Gop/s", "arith",
+                        "limit", "scalar/widest", "widest/limit"})
     headers.push_back(h);
   mrm::repro::Table screen(headers);
   for (std::size_t k = 0; k < r.sizes.size(); ++k) {
@@ -796,6 +809,7 @@ void print_batched_table(const Options& o, const Results& r, const std::vector<m
     cells.push_back(fixed(b.plateau, 4));
     cells.push_back(fixed(b.bytes, 1));
     cells.push_back(fixed(b.traffic, 3));
+    cells.push_back(fixed(b.aliased, 3));
     cells.push_back(fixed(b.bandwidth, 1));
     cells.push_back(fixed(1 / b.operation, 1));
     cells.push_back(fixed(b.arithmetic, 3));
@@ -984,6 +998,7 @@ void write_tex_values(std::ostream& out, const Options& o, const Results& r, con
     mrm::tex_define(out, "bench:batched:plateau-percent", fixed(100 * b.plateau, 2));
     mrm::tex_define(out, "bench:batched:bandwidth", fixed(b.bandwidth, 1));
     mrm::tex_define(out, "bench:batched:traffic", fixed(b.traffic, 3));
+    mrm::tex_define(out, "bench:batched:aliased", fixed(b.aliased, 3));
     mrm::tex_define(out, "bench:batched:operations", fixed(batched_operations, 0));
     mrm::tex_define(out, "bench:batched:peak", fixed(1 / b.operation, 1));
     mrm::tex_define(out, "bench:batched:arithmetic", fixed(b.arithmetic, 3));

@@ -120,13 +120,15 @@ struct TrafficSkeleton::Store {
   TrafficArrays a;
 };
 
-TrafficSkeleton::TrafficSkeleton(std::size_t n, std::size_t plateau_rows) : store_(std::make_unique<Store>()) {
+TrafficSkeleton::TrafficSkeleton(std::size_t n, std::size_t plateau_rows, std::size_t spacing)
+    : store_(std::make_unique<Store>()) {
   TrafficArrays& a = store_->a;
   a.n = n, a.lanes = limit_lanes(), a.plateau_begin = 1, a.plateau_end = std::min(n, 1 + plateau_rows);
   // The step's arrays where its group puts them (batched/lane_array.hpp): a group allocates U, y, W′, X, ε,
-  // εε, 1/p, c, cc in that order, slots 0 … 8 (X, slot 3, is the three-level step's and is not streamed here).
+  // εε, 1/p, c, cc in that order, slots 0 … 8 (X, slot 3, is the three-level step's and is not streamed here);
+  // or slot k at k·spacing bytes.
   for (std::size_t slot = 0; slot < 9; ++slot) {
-    store_->arrays.emplace_back(n * a.lanes, slot);
+    store_->arrays.emplace_back(n * a.lanes, spacing ? slot * spacing % 4096 : batched::lane_array_offset(slot));
     std::fill(store_->arrays.back().get(), store_->arrays.back().get() + n * a.lanes, 0.5);
   }
   auto& v = store_->arrays;

@@ -41,12 +41,13 @@ std::size_t limit_lanes();
 void traffic_step(const TrafficArrays& arrays);
 
 /// The arrays of one group for traffic_step, owned: `n` rows of limit_lanes() lanes (every value ½), each
-/// at the page offset of the step's array (lib/batched/lane_array.hpp), the plateau [1, 1 + plateau_rows)
-/// (where it lies does not change the traffic). step() is one step's traffic followed by the exchange of u
-/// and y.
+/// at the page offset of the step's array (lib/batched/lane_array.hpp), or with `spacing` > 0 (a multiple of
+/// 64) the k-th at k·spacing bytes modulo 4096 (arrays that alias a few rows apart, as an allocator may place
+/// them); the plateau [1, 1 + plateau_rows) (where it lies does not change the traffic). step() is one
+/// step's traffic followed by the exchange of u and y.
 class TrafficSkeleton {
  public:
-  TrafficSkeleton(std::size_t n, std::size_t plateau_rows);
+  TrafficSkeleton(std::size_t n, std::size_t plateau_rows, std::size_t spacing = 0);
   ~TrafficSkeleton();
   void step();
   std::size_t lanes() const;

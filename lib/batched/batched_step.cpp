@@ -116,7 +116,9 @@ namespace {
 // The next array of a group that has `arrays` of them: aligned for the vector loads, at its own offset within
 // a page (lane_array.hpp; a group allocates its streamed arrays first). When the memory is not there the
 // failure is std::bad_alloc, which the programs report as an error (status 1).
-batched::LaneArray lane_array(std::size_t count, std::size_t& arrays) { return batched::LaneArray(count, arrays++); }
+batched::LaneArray lane_array(std::size_t count, std::size_t& arrays) {
+  return batched::LaneArray(count, batched::lane_array_offset(arrays++));
+}
 
 // The rows of a FastStep as 10 doubles (the order of batched::RowV).
 template <typename Row>

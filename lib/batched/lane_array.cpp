@@ -30,6 +30,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <new>
+#include <stdexcept>
 #include <vector>
 
 #include <doctest/doctest.h>
@@ -47,8 +48,10 @@ std::size_t lane_array_offset(std::size_t slot) {
   return reversed * spacing;
 }
 
-LaneArray::LaneArray(std::size_t count, std::size_t slot) {
-  const std::size_t offset = lane_array_offset(slot), bytes = offset + count * sizeof(double);
+LaneArray::LaneArray(std::size_t count, std::size_t offset) {
+  if (offset >= page || offset % 64 != 0)
+    throw std::invalid_argument("LaneArray: the offset must be a multiple of 64 below 4096");
+  const std::size_t bytes = offset + count * sizeof(double);
   // std::aligned_alloc wants a size that is a multiple of the alignment.
   void* block = std::aligned_alloc(page, (bytes + page - 1) / page * page);
   if (block == nullptr) throw std::bad_alloc();
@@ -79,9 +82,9 @@ TEST_CASE("a group's arrays start at distinct page offsets, the first 2^k of the
   CHECK(lane_array_offset(17) == 2048);
 }
 
-TEST_CASE("a lane array lies at its slot's page offset, aligned for the widest vector load, all its entries there") {
+TEST_CASE("a lane array lies at its page offset, aligned for the widest vector load, all its entries there") {
   for (std::size_t slot = 0; slot < 20; ++slot) {
-    const LaneArray a(100, slot);
+    const LaneArray a(100, lane_array_offset(slot));
     const auto address = reinterpret_cast<std::uintptr_t>(a.get());
     CHECK(address % 64 == 0);
     CHECK(address % page == lane_array_offset(slot));
@@ -89,6 +92,8 @@ TEST_CASE("a lane array lies at its slot's page offset, aligned for the widest v
     CHECK(a[0] + a[99] == 3.0);
   }
   CHECK(LaneArray().get() == nullptr);
+  CHECK_THROWS_AS(LaneArray(100, 4096), std::invalid_argument);
+  CHECK_THROWS_AS(LaneArray(100, 32), std::invalid_argument);
 }
 
 }  // namespace mrm::batched

@@ -13,13 +13,14 @@ namespace mrm::batched {
 /// The offset, in bytes past a 4 KiB boundary, of a group's array number `slot` (lane_array.cpp).
 std::size_t lane_array_offset(std::size_t slot);
 
-/// `count` doubles at lane_array_offset(slot) bytes past a 4 KiB boundary (so aligned to 64 bytes, the widest
-/// vector load), owned; uninitialised. Throws std::bad_alloc when the memory is not there. A default-made
+/// `count` doubles at `offset` bytes past a 4 KiB boundary (a multiple of 64 below 4096, so aligned for the
+/// widest vector load: a group's array number k takes lane_array_offset(k)), owned; uninitialised. Throws
+/// std::invalid_argument for another offset and std::bad_alloc when the memory is not there. A default-made
 /// LaneArray holds nothing (get() is null).
 class LaneArray {
  public:
   LaneArray() = default;
-  LaneArray(std::size_t count, std::size_t slot);
+  LaneArray(std::size_t count, std::size_t offset);
   double* get() const { return data_; }
   double& operator[](std::size_t i) const { return data_[i]; }
 
