@@ -22,7 +22,9 @@
 /// AVX-512 on a Zen 4 core, the median of 5 fresh batches of the minimum of 5 timed ones, CPU clock), with
 /// its arrays k·S bytes apart: S = 64 took 0.94, 1.02 and 0.93 ns per node, step and run at N = 2048, 4096
 /// and 16384; S = 448, 1024 and this layout 0.68–0.69, 0.78–0.79 and 0.67–0.68. At N = 4096 the step took
-/// 0.95, 0.87, 0.85, 0.74, 0.71 and 0.71 ns with S = 0, 64, 128, 256, 448 and 1024. Where its arrays lie
+/// 0.95, 0.87, 0.85, 0.74, 0.71 and 0.71 ns with S = 0, 64, 128, 256, 448 and 1024. bench_step's batched table
+/// measures the effect at each of its runs: its column "aliased" is the traffic skeleton of the step with
+/// its arrays 64 bytes apart, beside "traffic", the same skeleton at these offsets. Where the arrays lie
 /// changes no bit of a lane.
 #include "batched/lane_array.hpp"
 
