@@ -113,12 +113,15 @@ struct BatchedSimulation::Group {
 
 namespace {
 
-// The next array of a group that has `arrays` of them: aligned for the vector loads, at its own offset within
-// a page (lane_array.hpp; a group allocates its streamed arrays first). When the memory is not there the
-// failure is std::bad_alloc, which the programs report as an error (status 1).
+// A group's next array by node (`count` = its rows × lanes), when it has `arrays` of them: at its own offset
+// within a page (lane_array.hpp; a group allocates the arrays its sweeps stream first), so that no two of
+// them alias a few rows apart. Its values per lane (lane_values: one value or a few rows of coefficients
+// per lane, read a few times a step) are aligned to 64 bytes only. When the memory is not there the failure
+// is std::bad_alloc, which the programs report as an error (status 1).
 batched::LaneArray lane_array(std::size_t count, std::size_t& arrays) {
   return batched::LaneArray(count, batched::lane_array_offset(arrays++));
 }
+batched::LaneArray lane_values(std::size_t count) { return batched::LaneArray(count); }
 
 // The rows of a FastStep as 10 doubles (the order of batched::RowV).
 template <typename Row>
@@ -272,13 +275,13 @@ BatchedSimulation::BatchedSimulation(std::vector<BarSimulation> runs) : runs_(st
       bool loaded = false;  // the steady loads' terms (below): streamed too
       for (std::size_t j = 0; j < width; ++j) loaded = loaded || runs_[g->runs[j]].step_parts().has_load;
       if (loaded) g->load = lane_array(nw, g->arrays);
-      g->head_rows = lane_array(g->head * 10 * width, g->arrays);
-      g->heads = lane_array(width, g->arrays);
-      if (ragged) g->short_lanes = lane_array(width, g->arrays);
-      g->interior = lane_array(10 * width, g->arrays);
-      g->last = lane_array(10 * width, g->arrays);
+      g->head_rows = lane_values(g->head * 10 * width);
+      g->heads = lane_values(width);
+      if (ragged) g->short_lanes = lane_values(width);
+      g->interior = lane_values(10 * width);
+      g->last = lane_values(10 * width);
       for (auto* a : {&g->rate, &g->memory, &g->ps_q_weight, &g->u0_next, &g->recurrence_d0, &g->keep, &g->energy})
-        *a = lane_array(width, g->arrays);
+        *a = lane_values(width);
       g->decisions.resize(width);
       for (std::size_t j = 0; j < width; ++j) {
         const BarSimulation::StepParts parts = runs_[g->runs[j]].step_parts();
@@ -392,7 +395,7 @@ void BatchedSimulation::fill_newmark(Group& g, std::vector<BarSimulation>& runs)
     *a = lane_array(nw, g.arrays);
   for (auto* a : {&g.dt, &g.force_weight, &g.one_minus_gamma, &g.gamma, &g.g0, &g.g1, &g.massless, &g.lambda, &g.shift,
                   &g.kinetic_strain, &g.u0_next, &g.keep})
-    *a = lane_array(W, g.arrays);
+    *a = lane_values(W);
   for (std::size_t j = 0; j < W; ++j) {
     NewmarkTypeStep& step = newmark_step(runs[g.runs[j]]);
     g.steps.push_back(&step);
@@ -429,7 +432,7 @@ void BatchedSimulation::fill_one_solve(Group& g, std::vector<BarSimulation>& run
     *a = lane_array(nw, g.arrays);
   for (auto* a : {&g.dt, &g.weight, &g.theta, &g.one_minus_theta, &g.two_over_dt, &g.row0_zero, &g.alpha, &g.projected,
                   &g.minus_gap, &g.u0_next, &g.keep, &g.kinetic_strain})
-    *a = lane_array(W, g.arrays);
+    *a = lane_values(W);
   g.solve_decisions.resize(W);
   for (std::size_t j = 0; j < W; ++j) {
     OneSolveStep& step = one_solve_step(runs[g.runs[j]]);
@@ -461,7 +464,7 @@ void BatchedSimulation::fill_explicit(Group& g, std::vector<BarSimulation>& runs
                   &g.inverse_mass, &g.pivot, &g.factor, &g.impulse_response})
     *a = lane_array(nw, g.arrays);
   for (auto* a : {&g.dt, &g.half_dt, &g.h, &g.clamped, &g.correct, &g.dt_mu, &g.dt2_mu, &g.keep, &g.energy})
-    *a = lane_array(W, g.arrays);
+    *a = lane_values(W);
   g.explicit_contacts.resize(W);
   for (std::size_t j = 0; j < W; ++j) {
     BarSimulation& run = runs[g.runs[j]];

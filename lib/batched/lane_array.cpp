@@ -61,6 +61,15 @@ LaneArray::LaneArray(std::size_t count, std::size_t offset) {
   data_ = reinterpret_cast<double*>(static_cast<char*>(block) + offset);
 }
 
+LaneArray::LaneArray(std::size_t count) {
+  constexpr std::size_t line = 64;
+  // std::aligned_alloc wants a size that is a multiple of the alignment (and here not 0).
+  void* block = std::aligned_alloc(line, std::max<std::size_t>(1, (count * sizeof(double) + line - 1) / line) * line);
+  if (block == nullptr) throw std::bad_alloc();
+  block_.reset(block);
+  data_ = static_cast<double*>(block);
+}
+
 void LaneArray::Free::operator()(void* block) const { std::free(block); }
 
 TEST_CASE("a group's arrays start at distinct page offsets, the first 2^k of them 4096 / 2^k bytes apart") {
@@ -92,6 +101,12 @@ TEST_CASE("a lane array lies at its page offset, aligned for the widest vector l
     CHECK(address % page == lane_array_offset(slot));
     a[0] = 1.0, a[99] = 2.0;  // the sanitized build checks that the whole count is there
     CHECK(a[0] + a[99] == 3.0);
+  }
+  for (const std::size_t count : {std::size_t{1}, std::size_t{8}, std::size_t{100}}) {
+    const LaneArray a(count);
+    CHECK(reinterpret_cast<std::uintptr_t>(a.get()) % 64 == 0);
+    a[0] = 1.0, a[count - 1] = 2.0;  // the sanitized build checks that the whole count is there
+    CHECK(a[count - 1] == 2.0);
   }
   CHECK(LaneArray().get() == nullptr);
   CHECK_THROWS_AS(LaneArray(100, 4096), std::invalid_argument);
