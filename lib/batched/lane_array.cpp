@@ -8,9 +8,10 @@
 /// within a 4 KiB page) is held back until the store's whole address is compared: the processor's memory
 /// disambiguation matches the page offset first ("4K aliasing" in the vendors' optimisation manuals). A
 /// row of W lanes is 8W bytes, so two arrays 8W·k bytes apart modulo 4096 alias k rows apart; arrays
-/// aligned to 64 bytes by an allocator may lie 0, 64 or 128 bytes apart (Highway's AllocateAligned put a
-/// group's arrays at 0x140, 0x180 and 0x1c0 past a page boundary on the machine measured below), which
-/// for 8 lanes is 0, 1 or 2 rows: the distance between a store and the loads that follow it.
+/// aligned to 64 bytes by an allocator may lie 0, 64 or 128 bytes apart (Highway's AllocateAligned started
+/// consecutive blocks at 0x140, 0x140, 0x180, 0x1c0, ... past a page boundary in a test program on the
+/// machine measured below), which for 8 lanes is 0, 1 or 2 rows: the
+/// distance between a store and the loads that follow it.
 ///
 /// Array number `slot` of a group therefore starts at r(slot) · 256 bytes past a page boundary, where r
 /// reverses the four bits of slot mod 16 (the van der Corput sequence: 0, 2048, 1024, 3072, 512, ...): the
