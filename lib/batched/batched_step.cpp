@@ -80,7 +80,7 @@ struct BatchedSimulation::Group {
   // allocated only then).
   std::vector<std::size_t> rows;
   std::size_t flat_begin = 0, flat_end = 0;  // the plateau of the factors (find_plateau)
-  std::size_t arrays = 0;                    // the arrays allocated so far (lane_array: each its own slot)
+  std::size_t arrays = 0;  // its arrays by node allocated so far (lane_array: each its own page offset)
   bool three_level = false, switching = false;
   batched::LaneArray u, y, w, x, elimination, elimination_pair, inverse_pivot, upward, upward_pair, head_rows, heads,
       short_lanes, interior, last, rate, memory, ps_q_weight, u0_next, recurrence_d0, keep, energy;
